@@ -1,0 +1,50 @@
+//! Regions a march may be confined to, with the signed distance used to locate the exit.
+
+use glam::DVec3;
+
+/// A closed region of space; a march that leaves it ends with [`super::Termination::LeftBounds`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Bounds {
+    /// No limit.
+    Unbounded,
+    /// An axis-aligned box [min, max].
+    Box {
+        /// Lower corner.
+        min: DVec3,
+        /// Upper corner.
+        max: DVec3,
+    },
+    /// A ball.
+    Ball {
+        /// Centre.
+        center: DVec3,
+        /// Radius.
+        radius: f64,
+    },
+}
+
+impl Bounds {
+    /// Signed distance to the boundary: ≤ 0 inside, > 0 outside (for the box, exact outside
+    /// and the negated distance to the nearest face inside).
+    pub fn signed_distance(&self, p: DVec3) -> f64 {
+        match *self {
+            Bounds::Unbounded => f64::NEG_INFINITY,
+            Bounds::Box { min, max } => {
+                let center = 0.5 * (min + max);
+                let half = 0.5 * (max - min);
+                let q = (p - center).abs() - half;
+                q.max(DVec3::ZERO).length() + q.max_element().min(0.0)
+            }
+            Bounds::Ball { center, radius } => (p - center).length() - radius,
+        }
+    }
+
+    /// A length scale of the region (for exit-location tolerances).
+    pub fn scale(&self) -> f64 {
+        match *self {
+            Bounds::Unbounded => 1.0,
+            Bounds::Box { min, max } => (max - min).max_element(),
+            Bounds::Ball { radius, .. } => radius,
+        }
+    }
+}

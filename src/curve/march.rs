@@ -1,0 +1,288 @@
+//! The march: repeated steps under a step control until an explicit termination.
+
+use super::bounds::Bounds;
+use super::stepper::{RayState, Stepper};
+use crate::media::{optical_path_length, Medium};
+use rand::Rng;
+use rand_pcg::Pcg64Mcg;
+
+/// How step lengths are chosen.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum StepControl {
+    /// Every step has length `step` (the last one is clipped to the requested length).
+    Fixed {
+        /// Step length (scene units).
+        step: f64,
+    },
+    /// Seed 000 §4 as intended (DESIGN §5b): a trial step is rejected and the step multiplied
+    /// by a random ξ ∈ (0, 1] while ε = |F' − F|/|F| > `t_max`; after an accepted step with
+    /// ε < `t_min` the step is divided by ξ. ξ comes from a PCG stream keyed by `seed`, so runs
+    /// repeat. Every trial counts against the march's step limit (N_max).
+    Tessendorf {
+        /// Initial step (scene units).
+        initial_step: f64,
+        /// Rejection threshold on the relative change of F across a step.
+        t_max: f64,
+        /// Growth threshold (< t_max).
+        t_min: f64,
+        /// Seed of the ξ stream.
+        seed: u64,
+    },
+    /// Deterministic error control: a step is accepted when the stepper's local position-error
+    /// estimate is ≤ `tolerance`·h, so the position error per unit arclength stays ≤ `tolerance`
+    /// (dimensionless). The next step is h·clamp(0.9 (tolerance·h/error)^(1/p), 0.2, 5),
+    /// never longer than the medium's step hint.
+    Adaptive {
+        /// Position error per unit arclength.
+        tolerance: f64,
+    },
+}
+
+impl StepControl {
+    /// The default control: adaptive at 1e-9 per unit length.
+    pub const DEFAULT: StepControl = StepControl::Adaptive { tolerance: 1e-9 };
+}
+
+/// What ends a march; every march ends with exactly one.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Termination {
+    /// The requested arclength was travelled.
+    LengthReached,
+    /// The ray crossed the boundary of the bounds; the final state is on the boundary.
+    LeftBounds,
+    /// The ray reached a region where the medium captures it (singular or non-positive index).
+    Captured,
+    /// The adaptive step fell below a few ulps of the position: the ray cannot advance (a
+    /// singularity that the medium does not flag).
+    StepUnderflow,
+    /// The step limit (N_max) was reached first.
+    MaxSteps,
+}
+
+impl Termination {
+    /// A short lower-case name for summaries and CSV.
+    pub fn name(self) -> &'static str {
+        match self {
+            Termination::LengthReached => "length reached",
+            Termination::LeftBounds => "left bounds",
+            Termination::Captured => "captured",
+            Termination::StepUnderflow => "step underflow",
+            Termination::MaxSteps => "max steps",
+        }
+    }
+}
+
+/// Limits of one march.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MarchLimits {
+    /// Arclength to travel (scene units).
+    pub length: f64,
+    /// Maximum number of step attempts (accepted and rejected), N_max.
+    pub max_steps: u64,
+    /// Region the ray is confined to.
+    pub bounds: Bounds,
+}
+
+/// The result of a march.
+#[derive(Clone, Copy, Debug)]
+pub struct MarchOutcome {
+    /// The final state (on the boundary for `LeftBounds`, the last good state otherwise).
+    pub state: RayState,
+    /// Arclength travelled.
+    pub arclength: f64,
+    /// Optical path length ∫ n ds travelled (trapezoid rule per step).
+    pub optical_path: f64,
+    /// Accepted steps.
+    pub steps: u64,
+    /// Step attempts, accepted and rejected.
+    pub attempts: u64,
+    /// Shortest accepted step (∞ when none).
+    pub min_step: f64,
+    /// Why the march ended.
+    pub reason: Termination,
+}
+
+/// Marches a ray from `start` with `stepper` under `control` until one of `limits` ends it.
+/// `observe` sees every accepted state (the start first) with its arclength.
+pub fn march<S, M, O>(
+    stepper: &S,
+    medium: &M,
+    control: StepControl,
+    start: RayState,
+    limits: &MarchLimits,
+    mut observe: O,
+) -> MarchOutcome
+where
+    S: Stepper,
+    M: Medium + ?Sized,
+    O: FnMut(f64, &RayState),
+{
+    let mut out = MarchOutcome {
+        state: start,
+        arclength: 0.0,
+        optical_path: 0.0,
+        steps: 0,
+        attempts: 0,
+        min_step: f64::INFINITY,
+        reason: Termination::LengthReached,
+    };
+    observe(0.0, &start);
+    let mut rng = match control {
+        StepControl::Tessendorf { seed, .. } => Some(Pcg64Mcg::new(u128::from(seed) | 1)),
+        _ => None,
+    };
+    // ξ ∈ (0, 1]: never zero (seed 000's shader left ξ = 0 unguarded).
+    let mut xi = || 1.0 - rng.as_mut().map_or(0.5, |r| r.gen::<f64>());
+    let mut h = match control {
+        StepControl::Fixed { step } => step,
+        StepControl::Tessendorf { initial_step, .. } => initial_step,
+        StepControl::Adaptive { .. } => medium.step_hint(start.position).min(limits.length),
+    };
+    let done_within = 1e-12 * limits.length;
+    loop {
+        let remaining = limits.length - out.arclength;
+        if remaining <= done_within {
+            out.reason = Termination::LengthReached;
+            return out;
+        }
+        if out.attempts >= limits.max_steps {
+            out.reason = Termination::MaxSteps;
+            return out;
+        }
+        out.attempts += 1;
+        let state = out.state;
+        let h_try = h.min(remaining);
+        // One trial: the step, whether to accept it, and the next h.
+        let (step, next_h) = match control {
+            StepControl::Fixed { step } => match stepper.step(medium, &state, h_try) {
+                Some(s) => (s, step),
+                None => {
+                    out.reason = Termination::Captured;
+                    return out;
+                }
+            },
+            StepControl::Tessendorf { t_max, t_min, .. } => {
+                match stepper.step(medium, &state, h_try) {
+                    // A step that leaves the region ends the march whatever its ε (seed step 2).
+                    Some(s) if leaves(limits, s.state.position) => (s, h_try),
+                    Some(s) => {
+                        let eps = relative_force_change(&state, &s.state);
+                        if eps > t_max {
+                            h = h_try * xi();
+                            continue;
+                        }
+                        (s, if eps < t_min { h_try / xi() } else { h_try })
+                    }
+                    // Landing where the index is singular counts as an unbounded ε: rejected.
+                    None => {
+                        h = h_try * xi();
+                        continue;
+                    }
+                }
+            }
+            StepControl::Adaptive { tolerance } => {
+                let h_try = h_try.min(medium.step_hint(state.position));
+                let floor = 4.0 * f64::EPSILON * state.position.abs().max_element();
+                if !(h_try > floor) {
+                    out.reason = Termination::StepUnderflow;
+                    return out;
+                }
+                let Some(est) = stepper.estimated_step(medium, &state, h_try) else {
+                    // The step reached a capture region: approach it with shorter steps.
+                    h = 0.25 * h_try;
+                    if h <= floor {
+                        out.reason = Termination::Captured;
+                        return out;
+                    }
+                    continue;
+                };
+                let p = f64::from(stepper.order());
+                let ratio = tolerance * h_try / est.error;
+                let factor = 0.9 * ratio.powf(1.0 / p);
+                if est.error > tolerance * h_try {
+                    h = h_try * factor.clamp(0.1, 0.9);
+                    continue;
+                }
+                (est.step, h_try * factor.clamp(0.2, 5.0))
+            }
+        };
+        if leaves(limits, step.state.position) {
+            let (exit, len) = locate_exit(stepper, medium, &state, step.length, limits);
+            accept(&mut out, exit, len, &mut observe);
+            out.reason = Termination::LeftBounds;
+            return out;
+        }
+        accept(&mut out, step.state, step.length, &mut observe);
+        h = next_h;
+    }
+}
+
+fn accept<O: FnMut(f64, &RayState)>(out: &mut MarchOutcome, state: RayState, len: f64, observe: &mut O) {
+    out.optical_path += optical_path_length(&out.state.index, &state.index, len);
+    out.arclength += len;
+    out.steps += 1;
+    out.min_step = out.min_step.min(len);
+    out.state = state;
+    observe(out.arclength, &state);
+}
+
+fn leaves(limits: &MarchLimits, p: glam::DVec3) -> bool {
+    limits.bounds.signed_distance(p) > 0.0
+}
+
+/// ε = |F' − F|/|F| of seed 000 §4, with F = 0 guarded: 0 when both vanish, ∞ when only F does.
+fn relative_force_change(a: &RayState, b: &RayState) -> f64 {
+    let f0 = a.index.log_gradient();
+    let f1 = b.index.log_gradient();
+    let diff = (f1 - f0).length();
+    if diff == 0.0 {
+        0.0
+    } else {
+        diff / f0.length()
+    }
+}
+
+/// The state where a step of length `h` from `state` crosses the boundary, by the Illinois
+/// variant of regula falsi on the step length (the boundary's signed distance changes sign
+/// on [0, h]); to ~1e-12 of the region's scale.
+fn locate_exit<S, M>(stepper: &S, medium: &M, state: &RayState, h: f64, limits: &MarchLimits) -> (RayState, f64)
+where
+    S: Stepper,
+    M: Medium + ?Sized,
+{
+    let sd = |hh: f64| -> Option<(f64, RayState, f64)> {
+        let s = stepper.step(medium, state, hh)?;
+        Some((limits.bounds.signed_distance(s.state.position), s.state, s.length))
+    };
+    let tol = 1e-12 * limits.bounds.scale();
+    let (mut a, mut fa) = (0.0, limits.bounds.signed_distance(state.position).min(0.0));
+    let Some((mut fb, mut best, mut best_len)) = sd(h) else {
+        return (*state, 0.0);
+    };
+    let mut b = h;
+    let mut side = 0i8;
+    for _ in 0..100 {
+        if fb.abs() <= tol || (b - a) <= 1e-15 * h {
+            break;
+        }
+        let c = (a * fb - b * fa) / (fb - fa);
+        let Some((fc, st, len)) = sd(c) else { break };
+        if fc > 0.0 {
+            (b, fb, best, best_len) = (c, fc, st, len);
+            if side == 1 {
+                fa *= 0.5;
+            }
+            side = 1;
+        } else {
+            (a, fa) = (c, fc);
+            if fc.abs() <= tol {
+                return (st, len);
+            }
+            if side == -1 {
+                fb *= 0.5;
+            }
+            side = -1;
+        }
+    }
+    (best, best_len)
+}

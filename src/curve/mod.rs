@@ -1,0 +1,12 @@
+//! The curved-segment engine shared by every pass (DESIGN §4–5): the exact arc
+//! ([`CurvedSegment`]), the steppers, step control and the march with its termination reasons.
+
+mod bounds;
+mod march;
+mod segment;
+mod stepper;
+
+pub use bounds::Bounds;
+pub use march::{march, MarchLimits, MarchOutcome, StepControl, Termination};
+pub use segment::{accurate_cross, ArcPoint, CurvedSegment};
+pub use stepper::{EstimatedStep, ExactArc, RayState, Rk4Sharma, SnellSteps, Step, Stepper};

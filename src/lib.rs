@@ -1,0 +1,26 @@
+//! grinlight: a photon-mapping renderer for gradient-index (GRIN) media.
+//!
+//! Light in a medium of varying index n follows the ray equation d/ds(n dx/ds) = ∇n. This crate
+//! holds the media ([`media`]), the curved-ray engine ([`curve`]) and the scene description
+//! ([`scene`]).
+//!
+//! ```
+//! use grinlight::curve::{march, Bounds, ExactArc, MarchLimits, RayState, StepControl, Termination};
+//! use grinlight::media::SechFiber;
+//! use glam::DVec3;
+//!
+//! // A meridional ray in a sech fiber returns to its start height after one period 2π/g.
+//! let fiber = SechFiber { n0: 1.5, g: 1.0, axis: grinlight::media::Axis { center: DVec3::ZERO, axis: DVec3::Z } };
+//! let start = RayState::new(&fiber, DVec3::new(0.1, 0.0, 0.0), DVec3::Z).unwrap();
+//! let limits = MarchLimits { length: 20.0, max_steps: 100_000, bounds: Bounds::Unbounded };
+//! let out = march(&ExactArc, &fiber, StepControl::DEFAULT, start, &limits, |_, _| {});
+//! assert_eq!(out.reason, Termination::LengthReached);
+//! ```
+#![forbid(unsafe_code)]
+#![warn(missing_docs)]
+
+pub mod curve;
+pub mod error;
+pub mod media;
+pub mod plot;
+pub mod scene;

@@ -1,0 +1,116 @@
+//! Profiles that depend on the distance from a centre: Luneburg lens, Maxwell fish-eye, black hole.
+
+use super::{IndexSample, Medium};
+use glam::DVec3;
+
+/// Luneburg lens n = √(2 − (r/R)²) inside the sphere of radius R, 1 outside: parallel rays
+/// focus on the antipodal surface point.
+#[derive(Clone, Debug)]
+pub struct Luneburg {
+    /// Centre of the lens.
+    pub center: DVec3,
+    /// Radius R.
+    pub radius: f64,
+}
+
+impl Medium for Luneburg {
+    fn sample(&self, p: DVec3) -> Option<IndexSample> {
+        let d = p - self.center;
+        let u2 = d.length_squared() / (self.radius * self.radius);
+        if u2 > 1.0 {
+            return Some(IndexSample::constant(1.0));
+        }
+        let n = (2.0 - u2).sqrt();
+        Some(IndexSample {
+            n,
+            grad: -d / (n * self.radius * self.radius),
+        })
+    }
+    fn step_hint(&self, _p: DVec3) -> f64 {
+        0.25 * self.radius
+    }
+}
+
+/// Maxwell fish-eye n = n0 / (1 + (r/R)²): with n0 = 2, R = 1 a ray from P0 passes through −P0/|P0|².
+#[derive(Clone, Debug)]
+pub struct FishEye {
+    /// Index at the centre.
+    pub n0: f64,
+    /// Centre.
+    pub center: DVec3,
+    /// Radius scale R.
+    pub radius: f64,
+}
+
+impl Medium for FishEye {
+    fn sample(&self, p: DVec3) -> Option<IndexSample> {
+        let d = p - self.center;
+        let r2 = self.radius * self.radius;
+        let w = 1.0 + d.length_squared() / r2;
+        let n = self.n0 / w;
+        Some(IndexSample {
+            n,
+            grad: -2.0 * n / (w * r2) * d,
+        })
+    }
+    /// ∇ln n = −2d/(R² + r²) varies on the scale max(R, r).
+    fn step_hint(&self, p: DVec3) -> f64 {
+        0.25 * self.radius.max((p - self.center).length())
+    }
+}
+
+/// Weak-field index of a Reissner–Nordström black hole, n = ρ²/(ρ² − ρ + q²) with
+/// ρ = |x − center|/rs (seed 000 eq. 25). A ray is captured at and inside the horizon
+/// ρ+ = (1 + √(1 − 4q²))/2, where the index diverges, and at the centre.
+#[derive(Clone, Debug)]
+pub struct BlackHole {
+    /// Centre.
+    pub center: DVec3,
+    /// Schwarzschild radius rs (length).
+    pub rs: f64,
+    /// Dimensionless charge q.
+    pub q: f64,
+}
+
+impl BlackHole {
+    /// Relative distance above the horizon at which a ray counts as captured: there n is
+    /// ~1e9 and no step can resolve the path any further in f64.
+    const CAPTURE_MARGIN: f64 = 1e-9;
+
+    /// Outer root of ρ² − ρ + q² in units of rs (0 when 4q² > 1: no horizon).
+    pub fn horizon(&self) -> f64 {
+        let disc = 1.0 - 4.0 * self.q * self.q;
+        if disc >= 0.0 {
+            0.5 * (1.0 + disc.sqrt())
+        } else {
+            0.0
+        }
+    }
+}
+
+impl Medium for BlackHole {
+    fn sample(&self, p: DVec3) -> Option<IndexSample> {
+        let d = p - self.center;
+        let rho = d.length() / self.rs;
+        if rho <= self.horizon() * (1.0 + Self::CAPTURE_MARGIN) || rho == 0.0 {
+            return None;
+        }
+        let q2 = self.q * self.q;
+        let den = rho * rho - rho + q2;
+        if den <= 0.0 {
+            return None;
+        }
+        let n = rho * rho / den;
+        // dn/dρ = ρ(2q² − ρ)/den², and ∇ρ = d/(|d| rs) = d/(ρ rs²).
+        let dn_drho = rho * (2.0 * q2 - rho) / (den * den);
+        let grad = d * (dn_drho / (rho * self.rs * self.rs));
+        (n.is_finite() && grad.is_finite()).then_some(IndexSample { n, grad })
+    }
+    /// A quarter of the distance to the horizon (far away, a quarter of the distance to the
+    /// centre: the scale on which ∇ln n ∝ 1/r² varies). Steps toward the horizon shrink
+    /// geometrically, so a plunging ray reaches the capture margin in ~70 steps.
+    fn step_hint(&self, p: DVec3) -> f64 {
+        let r = (p - self.center).length();
+        0.25 * (r - self.horizon() * self.rs).max(0.0)
+    }
+}

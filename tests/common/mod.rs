@@ -1,0 +1,5 @@
+//! Independent references shared by the integration tests.
+#![allow(dead_code)]
+
+pub mod bigarc;
+pub mod reference;
