@@ -1,1 +1,53 @@
-//! Errors.
+//! The crate's one error type. No user input reaches a panic: every bad scene, file or flag
+//! ends here with a message naming the file, line, column and key where it can.
+
+use std::path::PathBuf;
+
+/// Everything that can go wrong outside the numerical core.
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// A file could not be read or written.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The OS error.
+        source: std::io::Error,
+    },
+    /// A scene file is malformed or inconsistent, at `line`:`col` (1-based).
+    #[error("{path}:{line}:{col}: {message}")]
+    Scene {
+        /// The scene file.
+        path: PathBuf,
+        /// Line (1-based).
+        line: usize,
+        /// Column (1-based, in characters).
+        col: usize,
+        /// What is wrong, naming the key.
+        message: String,
+    },
+    /// A command-line argument is invalid.
+    #[error("{0}")]
+    Usage(String),
+    /// An image could not be encoded.
+    #[error("{path}: {message}")]
+    Image {
+        /// The output file.
+        path: PathBuf,
+        /// The encoder's message.
+        message: String,
+    },
+}
+
+impl Error {
+    /// An I/O error on `path`.
+    pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
+        Error::Io {
+            path: path.into(),
+            source,
+        }
+    }
+}
+
+/// The crate's result type.
+pub type Result<T> = std::result::Result<T, Error>;

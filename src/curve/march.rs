@@ -1,7 +1,7 @@
 //! The march: repeated steps under a step control until an explicit termination.
 
 use super::bounds::Bounds;
-use super::stepper::{RayState, Stepper};
+use super::stepper::{ExactArc, RayState, Rk4Sharma, SnellSteps, Stepper, StepperKind};
 use crate::media::{optical_path_length, Medium};
 use rand::Rng;
 use rand_pcg::Pcg64Mcg;
@@ -30,8 +30,8 @@ pub enum StepControl {
     },
     /// Deterministic error control: a step is accepted when the stepper's local position-error
     /// estimate is ≤ `tolerance`·h, so the position error per unit arclength stays ≤ `tolerance`
-    /// (dimensionless). The next step is h·clamp(0.9 (tolerance·h/error)^(1/p), 0.2, 5),
-    /// never longer than the medium's step hint.
+    /// (dimensionless), or is below the rounding of the position (16 ε |x|∞). The next step is
+    /// h·clamp(0.9 (allowed/error)^(1/p), 0.2, 5), never longer than the medium's step hint.
     Adaptive {
         /// Position error per unit arclength.
         tolerance: f64,
@@ -39,8 +39,12 @@ pub enum StepControl {
 }
 
 impl StepControl {
-    /// The default control: adaptive at 1e-9 per unit length.
-    pub const DEFAULT: StepControl = StepControl::Adaptive { tolerance: 1e-9 };
+    /// The default control for a stepper: adaptive at its default tolerance.
+    pub fn default_for(kind: StepperKind) -> StepControl {
+        StepControl::Adaptive {
+            tolerance: kind.default_tolerance(),
+        }
+    }
 }
 
 /// What ends a march; every march ends with exactly one.
@@ -197,9 +201,11 @@ where
                     continue;
                 };
                 let p = f64::from(stepper.order());
-                let ratio = tolerance * h_try / est.error;
-                let factor = 0.9 * ratio.powf(1.0 / p);
-                if est.error > tolerance * h_try {
+                // What a step may err by: the tolerance per unit length, and never less than
+                // the rounding of the position itself (else tight tolerances stall).
+                let allowed = tolerance * h_try + 16.0 * f64::EPSILON * state.position.abs().max_element();
+                let factor = 0.9 * (allowed / est.error).powf(1.0 / p);
+                if est.error > allowed {
                     h = h_try * factor.clamp(0.1, 0.9);
                     continue;
                 }
@@ -285,4 +291,24 @@ where
         }
     }
     (best, best_len)
+}
+
+/// [`march`] with the stepper chosen at run time.
+pub fn march_with<M, O>(
+    kind: StepperKind,
+    medium: &M,
+    control: StepControl,
+    start: RayState,
+    limits: &MarchLimits,
+    observe: O,
+) -> MarchOutcome
+where
+    M: Medium + ?Sized,
+    O: FnMut(f64, &RayState),
+{
+    match kind {
+        StepperKind::Arc => march(&ExactArc, medium, control, start, limits, observe),
+        StepperKind::Rk4 => march(&Rk4Sharma, medium, control, start, limits, observe),
+        StepperKind::Snell => march(&SnellSteps, medium, control, start, limits, observe),
+    }
 }

@@ -1,0 +1,111 @@
+//! `grinlight trace`: one ray through one medium, its summary, its CSV and its picture.
+
+use crate::curve::{march_with, MarchLimits, MarchOutcome, RayState, StepControl, StepperKind};
+use crate::error::{Error, Result};
+use crate::media::Medium;
+use crate::plot::{self, Panel};
+use glam::DVec3;
+use std::io::Write;
+use std::path::Path;
+
+/// One accepted point of a traced path.
+#[derive(Clone, Copy, Debug)]
+pub struct PathPoint {
+    /// Arclength from the start.
+    pub s: f64,
+    /// The state there.
+    pub state: RayState,
+}
+
+/// Traces one ray and keeps every accepted point.
+pub fn trace_path(
+    medium: &dyn Medium,
+    kind: StepperKind,
+    control: StepControl,
+    start: RayState,
+    limits: &MarchLimits,
+) -> (MarchOutcome, Vec<PathPoint>) {
+    let mut points = Vec::new();
+    let out = march_with(kind, medium, control, start, limits, |s, st| {
+        points.push(PathPoint { s, state: *st })
+    });
+    (out, points)
+}
+
+/// The one-line summary the CLI prints.
+pub fn summary(out: &MarchOutcome) -> String {
+    let p = out.state.position;
+    let d = out.state.direction;
+    format!(
+        "end ({:.12}, {:.12}, {:.12}) dir ({:.12}, {:.12}, {:.12}) s {:.12} opl {:.12} steps {} attempts {} reason: {}",
+        p.x, p.y, p.z, d.x, d.y, d.z, out.arclength, out.optical_path, out.steps, out.attempts, out.reason.name()
+    )
+}
+
+/// Writes `step,s,x,y,z,dx,dy,dz,n`, one row per accepted point (the start first).
+pub fn write_csv(points: &[PathPoint], path: &Path) -> Result<()> {
+    let io = |e| Error::io(path, e);
+    let mut w = std::io::BufWriter::new(std::fs::File::create(path).map_err(io)?);
+    writeln!(w, "step,s,x,y,z,dx,dy,dz,n").map_err(io)?;
+    for (i, p) in points.iter().enumerate() {
+        let (x, d) = (p.state.position, p.state.direction);
+        writeln!(
+            w,
+            "{i},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e}",
+            p.s, x.x, x.y, x.z, d.x, d.y, d.z, p.state.index.n
+        )
+        .map_err(io)?;
+    }
+    w.flush().map_err(io)
+}
+
+/// Draws the path in two projections over the index as a grey shade (darker = lower n):
+/// left, the plane of the path's two widest coordinates; right, the widest and the third.
+/// Each panel is a slice through the path's mean position along the hidden axis, with its
+/// own scale per axis (so thin fiber paths stay visible). Returns a legend line.
+pub fn plot_path(medium: &dyn Medium, points: &[PathPoint], path: &Path) -> Result<String> {
+    let pos: Vec<DVec3> = points.iter().map(|p| p.state.position).collect();
+    let ranges: Vec<(f64, f64)> = (0..3).map(|a| plot::range_of(pos.iter().map(|p| p[a]))).collect();
+    let mean = pos.iter().copied().sum::<DVec3>() / pos.len().max(1) as f64;
+    let mut axes = [0usize, 1, 2];
+    axes.sort_by(|&a, &b| (ranges[b].1 - ranges[b].0).total_cmp(&(ranges[a].1 - ranges[a].0)));
+    let names = ["x", "y", "z"];
+    let (w, h, margin) = (520u32, 420u32, 70u32);
+    let mut img = plot::canvas(2 * (w + 2 * margin), h + 2 * margin);
+    let mut legend = Vec::new();
+    for (k, (u, v)) in [(axes[0], axes[1]), (axes[0], axes[2])].into_iter().enumerate() {
+        let hidden = 3 - u - v;
+        let at = |x: f64, y: f64| {
+            let mut p = mean;
+            p[u] = x;
+            p[v] = y;
+            p[hidden] = mean[hidden];
+            medium.sample(p).map_or(f64::NAN, |s| s.n)
+        };
+        let mut samples = Vec::new();
+        for j in 0..32 {
+            for i in 0..32 {
+                let x = ranges[u].0 + (i as f64 + 0.5) / 32.0 * (ranges[u].1 - ranges[u].0);
+                let y = ranges[v].0 + (j as f64 + 0.5) / 32.0 * (ranges[v].1 - ranges[v].0);
+                samples.push(at(x, y));
+            }
+        }
+        let n_range = plot::range_of(samples.into_iter());
+        let left = k as u32 * (w + 2 * margin) + margin;
+        let mut panel = Panel::new(&mut img, (left, margin, w, h), ranges[u], ranges[v], (false, false));
+        panel.shade(n_range, at);
+        let line: Vec<(f64, f64)> = pos.iter().map(|p| (p[u], p[v])).collect();
+        panel.polyline(&line, plot::PALETTE[0]);
+        if let (Some(a), Some(b)) = (line.first(), line.last()) {
+            panel.marker(a.0, a.1, plot::PALETTE[2]);
+            panel.marker(b.0, b.1, plot::PALETTE[1]);
+        }
+        panel.axes();
+        legend.push(format!(
+            "panel {}: horizontal {} in [{:.6}, {:.6}], vertical {} in [{:.6}, {:.6}], {} = {:.6}, n shaded over [{:.6}, {:.6}]",
+            k + 1, names[u], ranges[u].0, ranges[u].1, names[v], ranges[v].0, ranges[v].1, names[hidden], mean[hidden], n_range.0, n_range.1
+        ));
+    }
+    plot::save(&img, path)?;
+    Ok(format!("{} (green start, blue end)", legend.join("; ")))
+}
