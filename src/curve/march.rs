@@ -157,9 +157,19 @@ where
         let state = out.state;
         let h_try = h.min(remaining);
         // One trial: the step, whether to accept it, and the next h.
-        let (step, next_h) = match control {
+        let (step, next_h, requested) = match control {
             StepControl::Fixed { step } => match stepper.step(medium, &state, h_try) {
-                Some(s) => (s, step),
+                Some(s) if plausible(&state, &s, h_try) => (s, step, h_try),
+                // A step that did not advance about h (RK4 flung out by a near-singular n∇n)
+                // is retried at half the length; the fixed length resumes afterwards.
+                Some(_) => {
+                    h = 0.5 * h_try;
+                    if h <= round_off_floor(&state) {
+                        out.reason = Termination::StepUnderflow;
+                        return out;
+                    }
+                    continue;
+                }
                 None => {
                     out.reason = Termination::Captured;
                     return out;
@@ -168,14 +178,18 @@ where
             StepControl::Tessendorf { t_max, t_min, .. } => {
                 match stepper.step(medium, &state, h_try) {
                     // A step that leaves the region ends the march whatever its ε (seed step 2).
-                    Some(s) if leaves(limits, s.state.position) => (s, h_try),
+                    Some(s) if !plausible(&state, &s, h_try) => {
+                        h = h_try * xi();
+                        continue;
+                    }
+                    Some(s) if leaves(limits, s.state.position) => (s, h_try, h_try),
                     Some(s) => {
                         let eps = relative_force_change(&state, &s.state);
                         if eps > t_max {
                             h = h_try * xi();
                             continue;
                         }
-                        (s, if eps < t_min { h_try / xi() } else { h_try })
+                        (s, if eps < t_min { h_try / xi() } else { h_try }, h_try)
                     }
                     // Landing where the index is singular counts as an unbounded ε: rejected.
                     None => {
@@ -186,13 +200,17 @@ where
             }
             StepControl::Adaptive { tolerance } => {
                 let h_try = h_try.min(medium.step_hint(state.position));
-                let floor = 4.0 * f64::EPSILON * state.position.abs().max_element();
+                let floor = round_off_floor(&state);
                 if !(h_try > floor) {
                     out.reason = Termination::StepUnderflow;
                     return out;
                 }
-                let Some(est) = stepper.estimated_step(medium, &state, h_try) else {
-                    // The step reached a capture region: approach it with shorter steps.
+                let Some(est) = stepper
+                    .estimated_step(medium, &state, h_try)
+                    .filter(|e| plausible(&state, &e.step, h_try))
+                else {
+                    // The step reached a capture region (or was flung out by it): approach it
+                    // with shorter steps.
                     h = 0.25 * h_try;
                     if h <= floor {
                         out.reason = Termination::Captured;
@@ -209,9 +227,21 @@ where
                     h = h_try * factor.clamp(0.1, 0.9);
                     continue;
                 }
-                (est.step, h_try * factor.clamp(0.2, 5.0))
+                (est.step, h_try * factor.clamp(0.2, 5.0), h_try)
             }
         };
+        // A stepper that advances in optical time (RK4) may overshoot the requested length
+        // by O(h |∇n|/n): shorten the last step until it ends on the length (secant on h).
+        let mut step = step;
+        for _ in 0..8 {
+            if step.length <= remaining + done_within {
+                break;
+            }
+            match stepper.step(medium, &state, step_request(requested, &step, remaining)) {
+                Some(s) => step = s,
+                None => break,
+            }
+        }
         if leaves(limits, step.state.position) {
             let (exit, len) = locate_exit(stepper, medium, &state, step.length, limits);
             accept(&mut out, exit, len, &mut observe);
@@ -221,6 +251,25 @@ where
         accept(&mut out, step.state, step.length, &mut observe);
         h = next_h;
     }
+}
+
+/// A step length below which a step cannot move the ray (a few ulps of its position).
+fn round_off_floor(state: &RayState) -> f64 {
+    4.0 * f64::EPSILON * state.position.abs().max_element()
+}
+
+/// Whether a step advanced about the arclength requested, as every stepper does on a smooth
+/// index: RK4 in optical time can be flung far where n∇n is near-singular, and such a step is
+/// not a solution of anything.
+fn plausible(state: &RayState, step: &super::stepper::Step, requested: f64) -> bool {
+    (step.length - requested).abs() <= 0.5 * requested
+        && (step.state.position - state.position).length() <= 1.5 * requested
+}
+
+/// The step length to request so that a step that advanced `step.length` for a request of
+/// `requested` advances `target` instead (the two are proportional to first order).
+fn step_request(requested: f64, step: &super::stepper::Step, target: f64) -> f64 {
+    requested * target / step.length
 }
 
 fn accept<O: FnMut(f64, &RayState)>(out: &mut MarchOutcome, state: RayState, len: f64, observe: &mut O) {
