@@ -6,6 +6,7 @@ use glam::DVec3;
 use grinlight::curve::{Bounds, MarchLimits, RayState, StepControl, StepperKind};
 use grinlight::error::Error;
 use grinlight::{scene, trace};
+use std::io::Write;
 use std::path::PathBuf;
 
 #[derive(Parser)]
@@ -103,6 +104,10 @@ fn positive(name: &str, v: f64) -> std::result::Result<f64, Error> {
 
 fn main() {
     if let Err(e) = run(Cli::parse()) {
+        // A closed pipe (`grinlight trace … | head`) is not an error worth a message.
+        if e.downcast_ref::<std::io::Error>().is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe) {
+            return;
+        }
         eprintln!("error: {e}");
         std::process::exit(1);
     }
@@ -156,16 +161,23 @@ fn run(cli: Cli) -> Result<()> {
                     }
                 }
             };
+            if stepper == StepperKind::Snell && trace::at_turning_point(&start) {
+                eprintln!(
+                    "warning: --dir is perpendicular to ∇n at --from (a turning point): Snell steps \
+                     cannot bend a ray there and it will run straight; use --stepper rk4 or arc"
+                );
+            }
             let limits = MarchLimits { length, max_steps, bounds: Bounds::Unbounded };
             let (out, points) = trace::trace_path(medium, stepper, control, start, &limits);
-            println!("{}", trace::summary(&out));
+            let mut stdout = std::io::stdout().lock();
+            writeln!(stdout, "{}", trace::summary(&out))?;
             if let Some(path) = csv {
                 trace::write_csv(&points, &path)?;
-                println!("wrote {} ({} rows)", path.display(), points.len());
+                writeln!(stdout, "wrote {} ({} rows)", path.display(), points.len())?;
             }
             if let Some(path) = plot {
                 let legend = trace::plot_path(medium, &points, &path)?;
-                println!("wrote {}: {legend}", path.display());
+                writeln!(stdout, "wrote {}: {legend}", path.display())?;
             }
             Ok(())
         }

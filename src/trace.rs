@@ -32,6 +32,13 @@ pub fn trace_path(
     (out, points)
 }
 
+/// Whether a ray starts exactly perpendicular to ∇n (to 1e-12), where Snell steps cannot
+/// bend it (see [`crate::curve::SnellSteps`]).
+pub fn at_turning_point(start: &RayState) -> bool {
+    let g = start.index.grad;
+    g != DVec3::ZERO && start.direction.dot(g).abs() <= 1e-12 * g.length()
+}
+
 /// The one-line summary the CLI prints.
 pub fn summary(out: &MarchOutcome) -> String {
     let p = out.state.position;

@@ -9,7 +9,7 @@ mod planar;
 mod radial;
 mod spherical;
 
-pub use grid::GridMedium;
+pub use grid::{GridError, GridMedium};
 pub use planar::{ExponentialMedium, LinearMedium, UniformMedium};
 pub use radial::{Axis, ParabolicFiber, SechFiber};
 pub use spherical::{BlackHole, FishEye, Luneburg};

@@ -1,9 +1,8 @@
-//! Scenes: the TOML description ([`desc`]), its loading with source positions ([`load`]) and
-//! the validated, render-ready [`Scene`] ([`build`]).
+//! Scenes: a TOML file read with every key's position kept ([`table`]), media tables
+//! ([`media`]), and loading into the validated, render-ready [`Scene`] ([`load`]).
 
-pub mod build;
-pub mod desc;
 pub mod load;
+pub mod media;
+pub mod table;
 
-pub use build::Scene;
-pub use load::load_scene;
+pub use load::{load_scene, Scene};

@@ -1,0 +1,107 @@
+//! `[[medium]]` tables ⇒ media. Each profile's keys, units and defaults are listed in
+//! `docs/scene-format.md`; lengths are scene units, vectors [x, y, z].
+
+use super::table::TableReader;
+use crate::error::Result;
+use crate::media::{
+    Axis, BlackHole, ExponentialMedium, FishEye, GridError, GridMedium, LinearMedium, Luneburg, Medium,
+    ParabolicFiber, SechFiber, UniformMedium,
+};
+use glam::DVec3;
+
+/// The profile names a `[[medium]]` table may give.
+pub const PROFILES: &[&str] = &[
+    "uniform", "linear", "exponential", "parabolic", "sech", "luneburg", "fisheye", "black_hole", "grid",
+];
+
+/// Reads one `[[medium]]` table (its `name` already taken) and builds the medium.
+pub fn read_medium(t: &mut TableReader, dir: &std::path::Path) -> Result<Box<dyn Medium>> {
+    let profile = t.string("profile")?;
+    let fiber_axis = |t: &mut TableReader| -> Result<Axis> {
+        Ok(Axis {
+            center: t.vec3_or("center", DVec3::ZERO)?,
+            axis: t.direction_or("axis", DVec3::Z)?,
+        })
+    };
+    Ok(match profile.as_str() {
+        "uniform" => Box::new(UniformMedium { n: t.positive("n")? }),
+        "linear" => Box::new(LinearMedium {
+            n0: t.positive("n0")?,
+            gradient: t.vec3("gradient")?,
+            origin: t.vec3_or("origin", DVec3::ZERO)?,
+        }),
+        "exponential" => Box::new(ExponentialMedium {
+            n0: t.positive("n0")?,
+            gradient: t.vec3("gradient")?,
+            origin: t.vec3_or("origin", DVec3::ZERO)?,
+        }),
+        "parabolic" => Box::new(ParabolicFiber {
+            n0: t.positive("n0")?,
+            a: t.f64("a")?,
+            axis: fiber_axis(t)?,
+        }),
+        "sech" => Box::new(SechFiber {
+            n0: t.positive("n0")?,
+            g: t.positive("g")?,
+            axis: fiber_axis(t)?,
+        }),
+        "luneburg" => Box::new(Luneburg {
+            center: t.vec3_or("center", DVec3::ZERO)?,
+            radius: t.positive("radius")?,
+        }),
+        "fisheye" => Box::new(FishEye {
+            n0: t.positive("n0")?,
+            center: t.vec3_or("center", DVec3::ZERO)?,
+            radius: t.positive("radius")?,
+        }),
+        "black_hole" => {
+            let center = t.vec3_or("center", DVec3::ZERO)?;
+            let rs = t.positive("rs")?;
+            let q = t.f64_or("q", 0.0)?;
+            t.check("q", q >= 0.0, format!("must be ≥ 0, got {q}"))?;
+            Box::new(BlackHole { center, rs, q })
+        }
+        "grid" => Box::new(read_grid(t, dir)?),
+        other => {
+            return Err(t.error(
+                "profile",
+                format!("unknown profile '{other}' (expected one of: {})", PROFILES.join(", ")),
+            ))
+        }
+    })
+}
+
+fn read_grid(t: &mut TableReader, dir: &std::path::Path) -> Result<GridMedium> {
+    let bounds = t.vec3_list("bounds")?;
+    let [min, max] = bounds[..] else {
+        return Err(t.error("bounds", "expected [[min x, y, z], [max x, y, z]]"));
+    };
+    let dims: [usize; 3] = t.counts("dims")?;
+    let values = t.f64_list_opt("values")?;
+    let file = t.string_opt("file")?;
+    let (values, key) = match (values, file) {
+        (Some(v), None) => (v, "values"),
+        (None, Some(f)) => (read_grid_file(t, &dir.join(f))?, "file"),
+        _ => return Err(t.error("values", "give exactly one of `values` and `file`")),
+    };
+    GridMedium::new(min, max, dims, values).map_err(|e| {
+        let key = match e {
+            GridError::TooFewNodes(_) => "dims",
+            GridError::EmptyBox => "bounds",
+            _ => key,
+        };
+        t.error(key, e)
+    })
+}
+
+fn read_grid_file(t: &TableReader, path: &std::path::Path) -> Result<Vec<f64>> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| t.error("file", format!("cannot read {}: {e}", path.display())))?;
+    text.split_whitespace()
+        .enumerate()
+        .map(|(i, w)| {
+            w.parse::<f64>()
+                .map_err(|_| t.error("file", format!("{}: value #{i} '{w}' is not a number", path.display())))
+        })
+        .collect()
+}

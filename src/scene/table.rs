@@ -1,0 +1,203 @@
+//! Typed reading of one TOML table with every key's position kept, so that a wrong type, a
+//! bad value, a missing or an unknown key is reported at file:line:col naming the key.
+
+use super::load::Source;
+use crate::error::{Error, Result};
+use glam::DVec3;
+use std::collections::BTreeMap;
+use std::ops::Range;
+use toml::{Spanned, Value};
+
+/// A TOML table as parsed, with the span of every key and value.
+pub type SpannedTable = BTreeMap<Spanned<String>, Spanned<Value>>;
+
+/// Reads the keys of one table, each at most once; [`TableReader::finish`] rejects the rest.
+pub struct TableReader<'a> {
+    source: &'a Source,
+    span: Range<usize>,
+    /// What the table is, for messages ("medium 'rod'").
+    what: String,
+    entries: Vec<(Spanned<String>, Spanned<Value>, bool)>,
+    /// Every key asked for, present or not: the keys this table accepts.
+    asked: Vec<String>,
+}
+
+impl<'a> TableReader<'a> {
+    /// A reader of `table`, which spans `span` in `source`.
+    pub fn new(source: &'a Source, span: Range<usize>, what: impl Into<String>, table: SpannedTable) -> Self {
+        Self {
+            source,
+            span,
+            what: what.into(),
+            entries: table.into_iter().map(|(k, v)| (k, v, false)).collect(),
+            asked: Vec::new(),
+        }
+    }
+
+    /// Renames the table in later messages.
+    pub fn describe(&mut self, what: impl Into<String>) {
+        self.what = what.into();
+    }
+
+    /// An error at `key`'s value (or at the table when the key is absent).
+    pub fn error(&self, key: &str, message: impl std::fmt::Display) -> Error {
+        let at = self
+            .entries
+            .iter()
+            .find(|(k, _, _)| k.get_ref() == key)
+            .map_or(self.span.start, |(k, _, _)| k.span().start);
+        self.source.error_at(at, format!("{}: key `{key}`: {message}", self.what))
+    }
+
+    fn take(&mut self, key: &str) -> Option<Value> {
+        if !self.asked.iter().any(|k| k == key) {
+            self.asked.push(key.to_string());
+        }
+        let entry = self.entries.iter_mut().find(|(k, _, _)| k.get_ref() == key)?;
+        entry.2 = true;
+        Some(entry.1.get_ref().clone())
+    }
+
+    fn required(&mut self, key: &str) -> Result<Value> {
+        self.take(key).ok_or_else(|| self.error(key, "is missing"))
+    }
+
+    fn number(&self, key: &str, v: &Value) -> Result<f64> {
+        let x = match v {
+            Value::Float(f) => *f,
+            Value::Integer(i) => *i as f64,
+            other => return Err(self.error(key, format!("expected a number, got {}", other.type_str()))),
+        };
+        if x.is_finite() {
+            Ok(x)
+        } else {
+            Err(self.error(key, format!("must be finite, got {x}")))
+        }
+    }
+
+    /// A required finite number.
+    pub fn f64(&mut self, key: &str) -> Result<f64> {
+        let v = self.required(key)?;
+        self.number(key, &v)
+    }
+
+    /// An optional finite number.
+    pub fn f64_or(&mut self, key: &str, default: f64) -> Result<f64> {
+        match self.take(key) {
+            Some(v) => self.number(key, &v),
+            None => Ok(default),
+        }
+    }
+
+    /// A required number > 0.
+    pub fn positive(&mut self, key: &str) -> Result<f64> {
+        let x = self.f64(key)?;
+        self.check(key, x > 0.0, format!("must be > 0, got {x}"))?;
+        Ok(x)
+    }
+
+    /// Fails at `key` with `message` unless `ok`.
+    pub fn check(&self, key: &str, ok: bool, message: impl std::fmt::Display) -> Result<()> {
+        if ok {
+            Ok(())
+        } else {
+            Err(self.error(key, message))
+        }
+    }
+
+    /// A required string.
+    pub fn string(&mut self, key: &str) -> Result<String> {
+        match self.required(key)? {
+            Value::String(s) => Ok(s),
+            other => Err(self.error(key, format!("expected a string, got {}", other.type_str()))),
+        }
+    }
+
+    /// An optional string.
+    pub fn string_opt(&mut self, key: &str) -> Result<Option<String>> {
+        match self.take(key) {
+            None => Ok(None),
+            Some(Value::String(s)) => Ok(Some(s)),
+            Some(other) => Err(self.error(key, format!("expected a string, got {}", other.type_str()))),
+        }
+    }
+
+    fn numbers(&self, key: &str, v: &Value) -> Result<Vec<f64>> {
+        match v {
+            Value::Array(a) => a.iter().map(|x| self.number(key, x)).collect(),
+            other => Err(self.error(key, format!("expected an array of numbers, got {}", other.type_str()))),
+        }
+    }
+
+    fn vec3_of(&self, key: &str, v: &Value) -> Result<DVec3> {
+        let n = self.numbers(key, v)?;
+        match n.as_slice() {
+            [x, y, z] => Ok(DVec3::new(*x, *y, *z)),
+            _ => Err(self.error(key, format!("expected 3 numbers [x, y, z], got {}", n.len()))),
+        }
+    }
+
+    /// A required 3-vector.
+    pub fn vec3(&mut self, key: &str) -> Result<DVec3> {
+        let v = self.required(key)?;
+        self.vec3_of(key, &v)
+    }
+
+    /// An optional 3-vector.
+    pub fn vec3_or(&mut self, key: &str, default: DVec3) -> Result<DVec3> {
+        match self.take(key) {
+            Some(v) => self.vec3_of(key, &v),
+            None => Ok(default),
+        }
+    }
+
+    /// An optional non-zero 3-vector, normalised.
+    pub fn direction_or(&mut self, key: &str, default: DVec3) -> Result<DVec3> {
+        let v = self.vec3_or(key, default)?;
+        v.try_normalize().ok_or_else(|| self.error(key, "must be a non-zero vector"))
+    }
+
+    /// A required list of 3-vectors.
+    pub fn vec3_list(&mut self, key: &str) -> Result<Vec<DVec3>> {
+        match self.required(key)? {
+            Value::Array(a) => a.iter().map(|v| self.vec3_of(key, v)).collect(),
+            other => Err(self.error(key, format!("expected an array of [x, y, z], got {}", other.type_str()))),
+        }
+    }
+
+    /// An optional list of numbers.
+    pub fn f64_list_opt(&mut self, key: &str) -> Result<Option<Vec<f64>>> {
+        match self.take(key) {
+            Some(v) => self.numbers(key, &v).map(Some),
+            None => Ok(None),
+        }
+    }
+
+    /// A required list of exactly `N` non-negative integers.
+    pub fn counts<const N: usize>(&mut self, key: &str) -> Result<[usize; N]> {
+        let v = self.required(key)?;
+        let Value::Array(a) = &v else {
+            return Err(self.error(key, format!("expected {N} integers, got {}", v.type_str())));
+        };
+        let ints: Vec<usize> = a
+            .iter()
+            .map(|x| match x {
+                Value::Integer(i) if *i >= 0 => Ok(*i as usize),
+                other => Err(self.error(key, format!("expected non-negative integers, got {other}"))),
+            })
+            .collect::<Result<_>>()?;
+        ints.try_into()
+            .map_err(|v: Vec<usize>| self.error(key, format!("expected {N} integers, got {}", v.len())))
+    }
+
+    /// Fails at the first key that was never read, naming the keys this table accepts.
+    pub fn finish(self) -> Result<()> {
+        match self.entries.iter().find(|(_, _, used)| !used) {
+            None => Ok(()),
+            Some((k, _, _)) => Err(self.source.error_at(
+                k.span().start,
+                format!("{}: unknown key `{}` (expected one of: {})", self.what, k.get_ref(), self.asked.join(", ")),
+            )),
+        }
+    }
+}

@@ -1,0 +1,68 @@
+//! The `grinlight` binary: output files and error behaviour.
+
+use std::process::Command;
+
+fn grinlight(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_grinlight")).args(args).output().expect("run grinlight")
+}
+
+fn temp(name: &str) -> std::path::PathBuf {
+    std::env::temp_dir().join(format!("grinlight-cli-{}-{name}", std::process::id()))
+}
+
+#[test]
+fn trace_writes_a_csv_from_start_to_end_and_a_png() {
+    let csv = temp("path.csv");
+    let png = temp("path.png");
+    let out = grinlight(&[
+        "trace", "scenes/media.toml", "--medium", "luneburg", "--from", "-0.8,0.6,0", "--dir", "2,0,0",
+        "--length", "1.5", "--csv", csv.to_str().unwrap(), "--plot", png.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.contains("reason: length reached"), "{stdout}");
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let rows: Vec<Vec<f64>> = text.lines().skip(1).map(|l| l.split(',').map(|v| v.parse().unwrap()).collect()).collect();
+    assert_eq!(text.lines().next().unwrap(), "step,s,x,y,z,dx,dy,dz,n");
+    let first = &rows[0];
+    assert_eq!(&first[..8], &[0.0, 0.0, -0.8, 0.6, 0.0, 1.0, 0.0, 0.0]);
+    let last = rows.last().unwrap();
+    assert!((last[1] - 1.5).abs() < 1e-12, "last row at s = {}", last[1]);
+    // The summary's step count is the CSV's rows minus the start row.
+    let steps: usize = stdout.split("steps ").nth(1).unwrap().split_whitespace().next().unwrap().parse().unwrap();
+    assert_eq!(rows.len(), steps + 1);
+    // n in the CSV is the Luneburg index at the row's position.
+    for r in &rows {
+        let r2 = r[2] * r[2] + r[3] * r[3] + r[4] * r[4];
+        let n = if r2 > 1.0 { 1.0 } else { (2.0 - r2).sqrt() };
+        assert!((r[8] - n).abs() < 1e-12);
+    }
+    let png_bytes = std::fs::read(&png).unwrap();
+    assert_eq!(&png_bytes[..8], b"\x89PNG\r\n\x1a\n");
+    let _ = std::fs::remove_file(csv);
+    let _ = std::fs::remove_file(png);
+}
+
+#[test]
+fn bad_input_fails_with_a_message_and_no_panic() {
+    let cases: &[(&[&str], &str)] = &[
+        (&["trace", "scenes/media.toml", "--medium", "nope", "--from", "0,0,0", "--dir", "0,0,1", "--length", "1"], "no medium named 'nope'"),
+        (&["trace", "scenes/missing.toml", "--medium", "a", "--from", "0,0,0", "--dir", "0,0,1", "--length", "1"], "scenes/missing.toml"),
+        (&["trace", "scenes/media.toml", "--medium", "luneburg", "--from", "0,0", "--dir", "0,0,1", "--length", "1"], "expected X,Y,Z"),
+        (&["trace", "scenes/media.toml", "--medium", "luneburg", "--from", "0,0,0", "--dir", "0,0,0", "--length", "1"], "--dir"),
+        (&["trace", "scenes/media.toml", "--medium", "luneburg", "--from", "0,0,0", "--dir", "0,0,1", "--length", "-1"], "--length"),
+        (&["trace", "scenes/media.toml", "--medium", "luneburg", "--from", "0,0,0", "--dir", "0,0,1", "--length", "1", "--control", "fixed"], "--step"),
+        (&["trace", "scenes/media.toml", "--medium", "luneburg", "--from", "0,0,0", "--dir", "0,0,1", "--length", "1", "--tol", "0"], "--tol"),
+        (&["trace", "scenes/media.toml", "--medium", "luneburg", "--from", "0,0,0", "--dir", "0,0,1", "--length", "1", "--control", "tessendorf", "--tmax", "1e-4", "--tmin", "1e-2"], "--tmin"),
+        (&["trace", "scenes/media.toml", "--medium", "black_hole", "--from", "0,0,0", "--dir", "0,0,1", "--length", "1"], "captures rays"),
+        (&["trace", "scenes/media.toml", "--medium", "luneburg", "--from", "nan,0,0", "--dir", "0,0,1", "--length", "1"], "not finite"),
+        (&["trace", "scenes/media.toml", "--medium", "luneburg", "--from", "0,0,0", "--dir", "0,0,1", "--length", "1", "--stepper", "euler"], "unknown stepper"),
+    ];
+    for (args, needle) in cases {
+        let out = grinlight(args);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success(), "{args:?} succeeded");
+        assert!(!stderr.contains("panicked"), "{args:?} panicked: {stderr}");
+        assert!(stderr.contains(needle), "{args:?}: '{stderr}' lacks '{needle}'");
+    }
+}

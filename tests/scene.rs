@@ -1,0 +1,110 @@
+//! Scene files: every shipped scene loads; malformed ones fail with file:line:col and the key.
+
+use grinlight::error::Error;
+use grinlight::scene::load::parse_scene;
+use std::path::Path;
+
+#[test]
+fn every_shipped_scene_loads() {
+    let mut count = 0;
+    for entry in std::fs::read_dir("scenes").unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "toml") {
+            let scene = grinlight::scene::load_scene(&path).unwrap_or_else(|e| panic!("{e}"));
+            assert!(scene.medium_names().count() > 0, "{}", path.display());
+            count += 1;
+        }
+    }
+    assert!(count > 0);
+}
+
+/// (scene text, expected line, expected column, text the message must contain)
+const BAD: &[(&str, usize, usize, &str)] = &[
+    // Unknown key: at the key.
+    ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = 1.5\ncolour = 3\n", 5, 1, "unknown key `colour`"),
+    // Missing key: at the table.
+    ("[[medium]]\nname = \"a\"\nprofile = \"sech\"\nn0 = 1.5\n", 1, 1, "key `g`: is missing"),
+    // Wrong type.
+    ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = \"high\"\n", 4, 1, "key `n`: expected a number, got string"),
+    // Unknown profile.
+    ("[[medium]]\nname = \"a\"\nprofile = \"wobbly\"\n", 3, 1, "unknown profile 'wobbly'"),
+    // n ≤ 0.
+    ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = -1.0\n", 4, 1, "key `n`: must be > 0"),
+    // Zero radius.
+    ("[[medium]]\nname = \"l\"\nprofile = \"luneburg\"\nradius = 0.0\n", 4, 1, "key `radius`"),
+    // Negative rs.
+    ("[[medium]]\nname = \"bh\"\nprofile = \"black_hole\"\nrs = -0.01\n", 4, 1, "key `rs`"),
+    // Negative charge, indented key.
+    ("[[medium]]\nname = \"bh\"\nprofile = \"black_hole\"\nrs = 0.01\n  q = -0.1\n", 5, 3, "key `q`"),
+    // Zero axis.
+    ("[[medium]]\nname = \"f\"\nprofile = \"parabolic\"\nn0 = 1.5\na = 0.1\naxis = [0, 0, 0]\n", 6, 1, "key `axis`: must be a non-zero"),
+    // Vector of the wrong length.
+    ("[[medium]]\nname = \"f\"\nprofile = \"linear\"\nn0 = 1.0\ngradient = [0.0, 1.0]\n", 5, 1, "key `gradient`: expected 3 numbers"),
+    // Duplicate name (second table).
+    ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = 1.0\n\n[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = 2.0\n", 7, 1, "already defined"),
+    // Empty name.
+    ("[[medium]]\nname = \"\"\nprofile = \"uniform\"\nn = 1.0\n", 2, 1, "key `name`"),
+    // Name of the wrong type.
+    ("[[medium]]\nname = 3\nprofile = \"uniform\"\nn = 1.0\n", 2, 1, "expected a string"),
+    // Grid: wrong count.
+    ("[[medium]]\nname = \"g\"\nprofile = \"grid\"\nbounds = [[0,0,0],[1,1,1]]\ndims = [2,2,2]\nvalues = [1.0, 1.0]\n", 6, 1, "expected 8 values"),
+    // Grid: non-positive value.
+    ("[[medium]]\nname = \"g\"\nprofile = \"grid\"\nbounds = [[0,0,0],[1,1,1]]\ndims = [2,2,2]\nvalues = [1,1,1,1,1,1,1,0]\n", 6, 1, "value #7"),
+    // Grid: too few nodes.
+    ("[[medium]]\nname = \"g\"\nprofile = \"grid\"\nbounds = [[0,0,0],[1,1,1]]\ndims = [1,2,2]\nvalues = [1,1,1,1]\n", 5, 1, "key `dims`"),
+    // Grid: negative dims.
+    ("[[medium]]\nname = \"g\"\nprofile = \"grid\"\nbounds = [[0,0,0],[1,1,1]]\ndims = [2,-2,2]\nvalues = [1,1,1,1]\n", 5, 1, "non-negative integers"),
+    // Grid: empty box.
+    ("[[medium]]\nname = \"g\"\nprofile = \"grid\"\nbounds = [[0,0,0],[0,1,1]]\ndims = [2,2,2]\nvalues = [1,1,1,1,1,1,1,1]\n", 4, 1, "key `bounds`"),
+    // Grid: both values and file.
+    ("[[medium]]\nname = \"g\"\nprofile = \"grid\"\nbounds = [[0,0,0],[1,1,1]]\ndims = [2,2,2]\nvalues = [1,1,1,1,1,1,1,1]\nfile = \"x.txt\"\n", 6, 1, "exactly one"),
+    // Grid: missing file.
+    ("[[medium]]\nname = \"g\"\nprofile = \"grid\"\nbounds = [[0,0,0],[1,1,1]]\ndims = [2,2,2]\nfile = \"no_such_grid.txt\"\n", 6, 1, "cannot read"),
+    // Not TOML at all.
+    ("[[medium]\nname = 1\n", 1, 9, "invalid table header"),
+    // Unknown top-level table.
+    ("[camera]\nfov = 3\n", 1, 2, "unknown field `camera`"),
+    // Infinite index.
+    ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = inf\n", 4, 1, "must be finite"),
+    // Non-finite vector component.
+    ("[[medium]]\nname = \"e\"\nprofile = \"exponential\"\nn0 = 1.0\ngradient = [0.0, nan, 0.0]\n", 5, 1, "key `gradient`: must be finite"),
+    // [[medium]] that is not an array of tables.
+    ("medium = 3\n", 1, 10, "invalid type"),
+];
+
+#[test]
+fn malformed_scenes_are_rejected_with_file_line_and_column() {
+    for (i, (text, line, col, needle)) in BAD.iter().enumerate() {
+        let path = Path::new("scenes/bad.toml");
+        let err = match parse_scene(path, text.to_string()) {
+            Ok(_) => panic!("case {i} was accepted:\n{text}"),
+            Err(e) => e,
+        };
+        let msg = err.to_string();
+        println!("case {i}: {msg}");
+        match err {
+            Error::Scene { path: p, line: l, col: c, message } => {
+                assert_eq!(p, path);
+                assert!(message.contains(needle), "case {i}: '{message}' lacks '{needle}'");
+                assert_eq!((l, c), (*line, *col), "case {i}: {msg}");
+                assert!(msg.starts_with(&format!("scenes/bad.toml:{l}:{c}: ")), "case {i}: {msg}");
+            }
+            other => panic!("case {i}: not a scene error: {other}"),
+        }
+    }
+}
+
+#[test]
+fn a_grid_file_is_read_relative_to_the_scene() {
+    let dir = std::env::temp_dir().join(format!("grinlight-grid-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("n.txt"), "1 1.2\n1 1.2\n1 1.2\n1 1.2\n").unwrap();
+    let text = "[[medium]]\nname = \"g\"\nprofile = \"grid\"\nbounds = [[0,0,0],[1,1,1]]\ndims = [2,2,2]\nfile = \"n.txt\"\n";
+    let scene = parse_scene(&dir.join("scene.toml"), text.to_string()).unwrap();
+    let s = scene.medium("g").unwrap().sample(glam::DVec3::new(0.25, 0.5, 0.5)).unwrap();
+    // Trilinear: n = 1 + 0.2 x, ∇n = (0.2, 0, 0), exactly.
+    assert!((s.n - 1.05).abs() < 1e-15 && (s.grad - glam::DVec3::new(0.2, 0.0, 0.0)).length() < 1e-15);
+    std::fs::remove_dir_all(&dir).unwrap();
+    let missing = scene.medium("nope").err().expect("no such medium");
+    assert!(missing.to_string().contains("no medium named 'nope'"));
+}
