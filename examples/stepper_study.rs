@@ -43,7 +43,14 @@ fn run(case: &Case, kind: StepperKind, control: StepControl) -> (MarchOutcome, f
     let mut out = None;
     for _ in 0..5 {
         let t = Instant::now();
-        let o = march_with(kind, case.medium.as_ref(), control, start, &case.limits, |_, _| {});
+        let o = march_with(
+            kind,
+            case.medium.as_ref(),
+            control,
+            start,
+            &case.limits,
+            |_, _| {},
+        );
         times.push(t.elapsed().as_secs_f64());
         out = Some(o);
         if times[0] > 2.0 {
@@ -54,12 +61,29 @@ fn run(case: &Case, kind: StepperKind, control: StepControl) -> (MarchOutcome, f
 }
 
 fn black_hole_case(name: &'static str, b_rs: f64, reference: Option<DVec3>) -> (Case, DVec3) {
-    let hole = BlackHole { center: DVec3::ZERO, rs: 0.01, q: 0.1 };
+    let hole = BlackHole {
+        center: DVec3::ZERO,
+        rs: 0.01,
+        q: 0.1,
+    };
     let start = (DVec3::new(-5.0, b_rs * 0.01, 0.0), DVec3::X);
-    let limits = MarchLimits { length: 10.0, max_steps: 1_000_000, bounds: Bounds::Unbounded };
+    let limits = MarchLimits {
+        length: 10.0,
+        max_steps: 1_000_000,
+        bounds: Bounds::Unbounded,
+    };
     let reference = reference.unwrap_or_else(|| {
         let s = RayState::new(&hole, start.0, start.1).unwrap();
-        march_with(StepperKind::Rk4, &hole, StepControl::Adaptive { tolerance: 1e-14 }, s, &limits, |_, _| {}).state.position
+        march_with(
+            StepperKind::Rk4,
+            &hole,
+            StepControl::Adaptive { tolerance: 1e-14 },
+            s,
+            &limits,
+            |_, _| {},
+        )
+        .state
+        .position
     });
     let case = Case {
         name,
@@ -78,9 +102,20 @@ fn cases() -> Vec<Case> {
     let slope = 0.1;
     let fiber = Case {
         name: "sech fiber, 10 periods",
-        medium: Box::new(SechFiber { n0: 1.5, g, axis: Axis { center: DVec3::ZERO, axis: DVec3::Z } }),
+        medium: Box::new(SechFiber {
+            n0: 1.5,
+            g,
+            axis: Axis {
+                center: DVec3::ZERO,
+                axis: DVec3::Z,
+            },
+        }),
         start: (DVec3::new(x0, 0.0, 0.0), DVec3::new(slope, 0.0, 1.0)),
-        limits: MarchLimits { length: 10.0 * std::f64::consts::TAU / g * 1.05, max_steps: 2_000_000, bounds: Bounds::Unbounded },
+        limits: MarchLimits {
+            length: 10.0 * std::f64::consts::TAU / g * 1.05,
+            max_steps: 2_000_000,
+            bounds: Bounds::Unbounded,
+        },
         fixed: vec![0.5, 0.1, 0.02, 0.004, 0.0008],
         error: Box::new(move |o| {
             let p = o.state.position;
@@ -92,9 +127,19 @@ fn cases() -> Vec<Case> {
     let h = 0.5f64;
     let lune = Case {
         name: "Luneburg crossing",
-        medium: Box::new(Luneburg { center: DVec3::ZERO, radius: 1.0 }),
+        medium: Box::new(Luneburg {
+            center: DVec3::ZERO,
+            radius: 1.0,
+        }),
         start: (DVec3::new(-(1.0 - h * h).sqrt(), h, 0.0), DVec3::X),
-        limits: MarchLimits { length: 10.0, max_steps: 2_000_000, bounds: Bounds::Ball { center: DVec3::ZERO, radius: 1.0 } },
+        limits: MarchLimits {
+            length: 10.0,
+            max_steps: 2_000_000,
+            bounds: Bounds::Ball {
+                center: DVec3::ZERO,
+                radius: 1.0,
+            },
+        },
         fixed: vec![0.2, 0.05, 0.01, 0.002, 0.0004],
         error: Box::new(|o| (o.state.position - DVec3::X).length()),
     };
@@ -103,8 +148,19 @@ fn cases() -> Vec<Case> {
     // The references from RK4 agree with the exact arc at tight tolerance:
     for (c, r) in [(&bh3, r3), (&bh20, r20)] {
         let s = RayState::new(c.medium.as_ref(), c.start.0, c.start.1).unwrap();
-        let arc = march_with(StepperKind::Arc, c.medium.as_ref(), StepControl::Adaptive { tolerance: 1e-12 }, s, &c.limits, |_, _| {});
-        println!("# {}: reference end {r:.9}, exact arc at 1e-12 differs by {:.2e}", c.name, (arc.state.position - r).length());
+        let arc = march_with(
+            StepperKind::Arc,
+            c.medium.as_ref(),
+            StepControl::Adaptive { tolerance: 1e-12 },
+            s,
+            &c.limits,
+            |_, _| {},
+        );
+        println!(
+            "# {}: reference end {r:.9}, exact arc at 1e-12 differs by {:.2e}",
+            c.name,
+            (arc.state.position - r).length()
+        );
     }
     vec![fiber, lune, bh3, bh20]
 }
@@ -112,7 +168,10 @@ fn cases() -> Vec<Case> {
 fn controls(case: &Case) -> Vec<(String, StepControl)> {
     let mut v = Vec::new();
     for tol in [1e-4, 1e-6, 1e-8, 1e-10, 1e-12] {
-        v.push((format!("adaptive tol={tol:.0e}"), StepControl::Adaptive { tolerance: tol }));
+        v.push((
+            format!("adaptive tol={tol:.0e}"),
+            StepControl::Adaptive { tolerance: tol },
+        ));
     }
     for &step in &case.fixed {
         v.push((format!("fixed h={step}"), StepControl::Fixed { step }));
@@ -120,7 +179,12 @@ fn controls(case: &Case) -> Vec<(String, StepControl)> {
     for (t_max, t_min) in [(1e-1, 1e-4), (1e-2, 1e-4), (1e-3, 1e-5)] {
         v.push((
             format!("tessendorf Tmax={t_max:.0e} Tmin={t_min:.0e}"),
-            StepControl::Tessendorf { initial_step: case.fixed[1], t_max, t_min, seed: 7 },
+            StepControl::Tessendorf {
+                initial_step: case.fixed[1],
+                t_max,
+                t_min,
+                seed: 7,
+            },
         ));
     }
     v
@@ -135,22 +199,44 @@ fn step_costs() {
         let mut acc = DVec3::ZERO;
         for i in 0..n {
             let f = DVec3::new(0.3, 0.1 + 1e-9 * i as f64, 2.0);
-            let seg = CurvedSegment::new(black_box(DVec3::ZERO), black_box(DVec3::new(0.6, 0.0, 0.8)), black_box(f));
+            let seg = CurvedSegment::new(
+                black_box(DVec3::ZERO),
+                black_box(DVec3::new(0.6, 0.0, 0.8)),
+                black_box(f),
+            );
             acc += seg.at(black_box(0.37)).position;
         }
         black_box(acc);
         times.push(t.elapsed().as_secs_f64() / n as f64 * 1e9);
     }
-    println!("exact arc, one segment (build + evaluate): {:.1} ns (median of 5)", median(times));
-    let medium = ExponentialMedium { n0: 1.0, gradient: DVec3::new(0.0, 0.3, 0.1), origin: DVec3::ZERO };
+    println!(
+        "exact arc, one segment (build + evaluate): {:.1} ns (median of 5)",
+        median(times)
+    );
+    let medium = ExponentialMedium {
+        n0: 1.0,
+        gradient: DVec3::new(0.0, 0.3, 0.1),
+        origin: DVec3::ZERO,
+    };
     for kind in [StepperKind::Arc, StepperKind::Rk4, StepperKind::Snell] {
         let start = RayState::new(&medium, DVec3::ZERO, DVec3::new(1.0, -0.5, 0.2)).unwrap();
         let steps = 1_000_000u64;
-        let limits = MarchLimits { length: steps as f64 * 1e-5, max_steps: steps + 10, bounds: Bounds::Unbounded };
+        let limits = MarchLimits {
+            length: steps as f64 * 1e-5,
+            max_steps: steps + 10,
+            bounds: Bounds::Unbounded,
+        };
         let mut times = Vec::new();
         for _ in 0..5 {
             let t = Instant::now();
-            let o = march_with(kind, &medium, StepControl::Fixed { step: 1e-5 }, start, &limits, |_, _| {});
+            let o = march_with(
+                kind,
+                &medium,
+                StepControl::Fixed { step: 1e-5 },
+                start,
+                &limits,
+                |_, _| {},
+            );
             times.push(t.elapsed().as_secs_f64() / o.steps as f64 * 1e9);
         }
         println!("{} step in the exponential medium (incl. medium samples, march loop): {:.1} ns (median of 5)", kind.name(), median(times));
@@ -161,7 +247,10 @@ fn main() -> std::io::Result<()> {
     step_costs();
     std::fs::create_dir_all("out")?;
     let mut csv = std::fs::File::create("out/stepper_study.csv")?;
-    writeln!(csv, "case,stepper,control,error,time_s,steps,attempts,reason")?;
+    writeln!(
+        csv,
+        "case,stepper,control,error,time_s,steps,attempts,reason"
+    )?;
     let cases = cases();
     let mut img = plot::canvas(1400, 1100);
     let mut best = Vec::new();
@@ -175,9 +264,31 @@ fn main() -> std::io::Result<()> {
             for (label, control) in controls(case) {
                 let (out, t) = run(case, kind, control);
                 let err = (case.error)(&out);
-                println!("| {} | {label} | {err:.2e} | {:.3e} s | {} | {} | {} |", kind.name(), t, out.steps, out.attempts, out.reason.name());
-                writeln!(csv, "{},{},{label},{err:e},{t:e},{},{},{}", case.name, kind.name(), out.steps, out.attempts, out.reason.name())?;
-                let family = ki * 3 + if label.starts_with("adaptive") { 0 } else if label.starts_with("fixed") { 1 } else { 2 };
+                println!(
+                    "| {} | {label} | {err:.2e} | {:.3e} s | {} | {} | {} |",
+                    kind.name(),
+                    t,
+                    out.steps,
+                    out.attempts,
+                    out.reason.name()
+                );
+                writeln!(
+                    csv,
+                    "{},{},{label},{err:e},{t:e},{},{},{}",
+                    case.name,
+                    kind.name(),
+                    out.steps,
+                    out.attempts,
+                    out.reason.name()
+                )?;
+                let family = ki * 3
+                    + if label.starts_with("adaptive") {
+                        0
+                    } else if label.starts_with("fixed") {
+                        1
+                    } else {
+                        2
+                    };
                 let e = err.max(1e-16);
                 match series.iter_mut().find(|(f, _)| *f == family) {
                     Some((_, v)) => v.push((t, e)),
@@ -192,7 +303,13 @@ fn main() -> std::io::Result<()> {
         let (col, row) = ((ci % 2) as u32, (ci / 2) as u32);
         let xr = plot::range_of(points.iter().map(|p| p.0));
         let yr = plot::range_of(points.iter().map(|p| p.1));
-        let mut panel = Panel::new(&mut img, (110 + col * 690, 60 + row * 530, 560, 430), (xr.0.max(xr.1 * 1e-8), xr.1 * 1.5), (yr.0.max(1e-17), yr.1 * 2.0), (true, true));
+        let mut panel = Panel::new(
+            &mut img,
+            (110 + col * 690, 60 + row * 530, 560, 430),
+            (xr.0.max(xr.1 * 1e-8), xr.1 * 1.5),
+            (yr.0.max(1e-17), yr.1 * 2.0),
+            (true, true),
+        );
         for (family, mut pts) in series {
             pts.sort_by(|a, b| a.0.total_cmp(&b.0));
             let c = plot::PALETTE[family % plot::PALETTE.len()];
@@ -205,7 +322,8 @@ fn main() -> std::io::Result<()> {
         }
         panel.axes();
     }
-    plot::save(&img, std::path::Path::new("out/stepper_study.png")).map_err(std::io::Error::other)?;
+    plot::save(&img, std::path::Path::new("out/stepper_study.png"))
+        .map_err(std::io::Error::other)?;
     println!("\nwrote out/stepper_study.csv and out/stepper_study.png (x: time per ray [s], y: error; colours: arc adaptive/fixed/tessendorf = red/blue/green, rk4 = magenta/yellow/teal, snell = violet/orange/red; tessendorf unconnected)");
     Ok(())
 }

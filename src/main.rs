@@ -10,7 +10,11 @@ use std::io::Write;
 use std::path::PathBuf;
 
 #[derive(Parser)]
-#[command(name = "grinlight", version, about = "A renderer for light that bends in gradient-index media")]
+#[command(
+    name = "grinlight",
+    version,
+    about = "A renderer for light that bends in gradient-index media"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -86,7 +90,9 @@ fn parse_vec(s: &str) -> std::result::Result<DVec3, String> {
     }
     let mut v = [0.0; 3];
     for (slot, p) in v.iter_mut().zip(&parts) {
-        *slot = p.parse::<f64>().map_err(|_| format!("'{p}' is not a number"))?;
+        *slot = p
+            .parse::<f64>()
+            .map_err(|_| format!("'{p}' is not a number"))?;
         if !slot.is_finite() {
             return Err(format!("'{p}' is not finite"));
         }
@@ -98,14 +104,18 @@ fn positive(name: &str, v: f64) -> std::result::Result<f64, Error> {
     if v.is_finite() && v > 0.0 {
         Ok(v)
     } else {
-        Err(Error::Usage(format!("--{name} must be a finite number > 0, got {v}")))
+        Err(Error::Usage(format!(
+            "--{name} must be a finite number > 0, got {v}"
+        )))
     }
 }
 
 fn main() {
     if let Err(e) = run(Cli::parse()) {
         // A closed pipe (`grinlight trace … | head`) is not an error worth a message.
-        if e.downcast_ref::<std::io::Error>().is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe) {
+        if e.downcast_ref::<std::io::Error>()
+            .is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe)
+        {
             return;
         }
         eprintln!("error: {e}");
@@ -147,11 +157,17 @@ fn run(cli: Cli) -> Result<()> {
                     tolerance: positive("tol", tol.unwrap_or(stepper.default_tolerance()))?,
                 },
                 Control::Fixed => StepControl::Fixed {
-                    step: positive("step", step.ok_or_else(|| Error::Usage("--control fixed needs --step".into()))?)?,
+                    step: positive(
+                        "step",
+                        step.ok_or_else(|| Error::Usage("--control fixed needs --step".into()))?,
+                    )?,
                 },
                 Control::Tessendorf => {
                     if !(tmin >= 0.0 && tmax > tmin) {
-                        return Err(Error::Usage(format!("need 0 ≤ --tmin < --tmax, got {tmin} and {tmax}")).into());
+                        return Err(Error::Usage(format!(
+                            "need 0 ≤ --tmin < --tmax, got {tmin} and {tmax}"
+                        ))
+                        .into());
                     }
                     StepControl::Tessendorf {
                         initial_step: positive("step", step.unwrap_or_else(default_step))?,
@@ -167,7 +183,11 @@ fn run(cli: Cli) -> Result<()> {
                      cannot bend a ray there and it will run straight; use --stepper rk4 or arc"
                 );
             }
-            let limits = MarchLimits { length, max_steps, bounds: Bounds::Unbounded };
+            let limits = MarchLimits {
+                length,
+                max_steps,
+                bounds: Bounds::Unbounded,
+            };
             let (out, points) = trace::trace_path(medium, stepper, control, start, &limits);
             let mut stdout = std::io::stdout().lock();
             writeln!(stdout, "{}", trace::summary(&out))?;

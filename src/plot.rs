@@ -83,9 +83,21 @@ pub fn range_of(values: impl Iterator<Item = f64>) -> (f64, f64) {
 impl<'a> Panel<'a> {
     /// A panel at pixel rectangle `px` showing data ranges `x`, `y` (in data units; with
     /// `log` set on an axis the range is given in data units and shown in decades).
-    pub fn new(img: &'a mut RgbImage, px: (u32, u32, u32, u32), x: (f64, f64), y: (f64, f64), log: (bool, bool)) -> Self {
+    pub fn new(
+        img: &'a mut RgbImage,
+        px: (u32, u32, u32, u32),
+        x: (f64, f64),
+        y: (f64, f64),
+        log: (bool, bool),
+    ) -> Self {
         let t = |r: (f64, f64), l: bool| if l { (r.0.log10(), r.1.log10()) } else { r };
-        Self { img, px, x: t(x, log.0), y: t(y, log.1), log }
+        Self {
+            img,
+            px,
+            x: t(x, log.0),
+            y: t(y, log.1),
+            log,
+        }
     }
 
     fn to_px(&self, x: f64, y: f64) -> (f64, f64) {
@@ -114,8 +126,16 @@ impl<'a> Panel<'a> {
                 let x = self.x.0 + (i as f64 + 0.5) / w as f64 * (self.x.1 - self.x.0);
                 let y = self.y.1 - (j as f64 + 0.5) / h as f64 * (self.y.1 - self.y.0);
                 let v = f(x, y);
-                let u = if range.1 > range.0 { ((v - range.0) / (range.1 - range.0)).clamp(0.0, 1.0) } else { 0.5 };
-                let g = if v.is_finite() { (90.0 + 150.0 * u) as u8 } else { 0 };
+                let u = if range.1 > range.0 {
+                    ((v - range.0) / (range.1 - range.0)).clamp(0.0, 1.0)
+                } else {
+                    0.5
+                };
+                let g = if v.is_finite() {
+                    (90.0 + 150.0 * u) as u8
+                } else {
+                    0
+                };
                 self.img.put_pixel(l + i, t + j, Rgb([g, g, g]));
             }
         }
@@ -128,7 +148,11 @@ impl<'a> Panel<'a> {
             let n = ((b.0 - a.0).abs().max((b.1 - a.1).abs()).ceil() as usize).clamp(1, 100_000);
             for k in 0..=n {
                 let u = k as f64 / n as f64;
-                self.put((a.0 + u * (b.0 - a.0)) as i64, (a.1 + u * (b.1 - a.1)) as i64, c);
+                self.put(
+                    (a.0 + u * (b.0 - a.0)) as i64,
+                    (a.1 + u * (b.1 - a.1)) as i64,
+                    c,
+                );
             }
         }
     }
@@ -154,11 +178,32 @@ impl<'a> Panel<'a> {
             self.img.put_pixel(l, t + j, Rgb([0, 0, 0]));
             self.img.put_pixel(l + w - 1, t + j, Rgb([0, 0, 0]));
         }
-        let label = |v: f64, log: bool| if log { format!("1e{}", v.round() as i64) } else { format!("{v:.3}") };
-        let (x0, x1, y0, y1) = (label(self.x.0, self.log.0), label(self.x.1, self.log.0), label(self.y.0, self.log.1), label(self.y.1, self.log.1));
+        let label = |v: f64, log: bool| {
+            if log {
+                format!("1e{}", v.round() as i64)
+            } else {
+                format!("{v:.3}")
+            }
+        };
+        let (x0, x1, y0, y1) = (
+            label(self.x.0, self.log.0),
+            label(self.x.1, self.log.0),
+            label(self.y.0, self.log.1),
+            label(self.y.1, self.log.1),
+        );
         text(self.img, l, t + h + 4, &x0);
-        text(self.img, (l + w).saturating_sub(8 * x1.len() as u32), t + h + 4, &x1);
-        text(self.img, l.saturating_sub(8 * y0.len() as u32 + 4), t + h - 10, &y0);
+        text(
+            self.img,
+            (l + w).saturating_sub(8 * x1.len() as u32),
+            t + h + 4,
+            &x1,
+        );
+        text(
+            self.img,
+            l.saturating_sub(8 * y0.len() as u32 + 4),
+            t + h - 10,
+            &y0,
+        );
         text(self.img, l.saturating_sub(8 * y1.len() as u32 + 4), t, &y1);
     }
 }

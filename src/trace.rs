@@ -72,7 +72,15 @@ pub fn write_csv(points: &[PathPoint], path: &Path) -> Result<()> {
 /// own scale per axis (so thin fiber paths stay visible). Returns a legend line.
 pub fn plot_path(medium: &dyn Medium, points: &[PathPoint], path: &Path) -> Result<String> {
     let pos: Vec<DVec3> = points.iter().map(|p| p.state.position).collect();
-    let ranges: Vec<(f64, f64)> = (0..3).map(|a| plot::range_of(pos.iter().map(|p| p[a]))).collect();
+    let mut ranges: Vec<(f64, f64)> = (0..3)
+        .map(|a| plot::range_of(pos.iter().map(|p| p[a])))
+        .collect();
+    // A flat coordinate (a planar path) still gets a panel showing the index around it.
+    let widest = ranges.iter().map(|r| r.1 - r.0).fold(0.0, f64::max);
+    for r in &mut ranges {
+        let grow = 0.5 * (0.1 * widest - (r.1 - r.0)).max(0.0);
+        *r = (r.0 - grow, r.1 + grow);
+    }
     let mean = pos.iter().copied().sum::<DVec3>() / pos.len().max(1) as f64;
     let mut axes = [0usize, 1, 2];
     axes.sort_by(|&a, &b| (ranges[b].1 - ranges[b].0).total_cmp(&(ranges[a].1 - ranges[a].0)));
@@ -80,7 +88,10 @@ pub fn plot_path(medium: &dyn Medium, points: &[PathPoint], path: &Path) -> Resu
     let (w, h, margin) = (520u32, 420u32, 70u32);
     let mut img = plot::canvas(2 * (w + 2 * margin), h + 2 * margin);
     let mut legend = Vec::new();
-    for (k, (u, v)) in [(axes[0], axes[1]), (axes[0], axes[2])].into_iter().enumerate() {
+    for (k, (u, v)) in [(axes[0], axes[1]), (axes[0], axes[2])]
+        .into_iter()
+        .enumerate()
+    {
         let hidden = 3 - u - v;
         let at = |x: f64, y: f64| {
             let mut p = mean;
@@ -99,7 +110,13 @@ pub fn plot_path(medium: &dyn Medium, points: &[PathPoint], path: &Path) -> Resu
         }
         let n_range = plot::range_of(samples.into_iter());
         let left = k as u32 * (w + 2 * margin) + margin;
-        let mut panel = Panel::new(&mut img, (left, margin, w, h), ranges[u], ranges[v], (false, false));
+        let mut panel = Panel::new(
+            &mut img,
+            (left, margin, w, h),
+            ranges[u],
+            ranges[v],
+            (false, false),
+        );
         panel.shade(n_range, at);
         let line: Vec<(f64, f64)> = pos.iter().map(|p| (p[u], p[v])).collect();
         panel.polyline(&line, plot::PALETTE[0]);

@@ -3,7 +3,10 @@
 use std::process::Command;
 
 fn grinlight(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_grinlight")).args(args).output().expect("run grinlight")
+    Command::new(env!("CARGO_BIN_EXE_grinlight"))
+        .args(args)
+        .output()
+        .expect("run grinlight")
 }
 
 fn temp(name: &str) -> std::path::PathBuf {
@@ -15,21 +18,49 @@ fn trace_writes_a_csv_from_start_to_end_and_a_png() {
     let csv = temp("path.csv");
     let png = temp("path.png");
     let out = grinlight(&[
-        "trace", "scenes/media.toml", "--medium", "luneburg", "--from", "-0.8,0.6,0", "--dir", "2,0,0",
-        "--length", "1.5", "--csv", csv.to_str().unwrap(), "--plot", png.to_str().unwrap(),
+        "trace",
+        "scenes/media.toml",
+        "--medium",
+        "luneburg",
+        "--from",
+        "-0.8,0.6,0",
+        "--dir",
+        "2,0,0",
+        "--length",
+        "1.5",
+        "--csv",
+        csv.to_str().unwrap(),
+        "--plot",
+        png.to_str().unwrap(),
     ]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(stdout.contains("reason: length reached"), "{stdout}");
     let text = std::fs::read_to_string(&csv).unwrap();
-    let rows: Vec<Vec<f64>> = text.lines().skip(1).map(|l| l.split(',').map(|v| v.parse().unwrap()).collect()).collect();
+    let rows: Vec<Vec<f64>> = text
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
     assert_eq!(text.lines().next().unwrap(), "step,s,x,y,z,dx,dy,dz,n");
     let first = &rows[0];
     assert_eq!(&first[..8], &[0.0, 0.0, -0.8, 0.6, 0.0, 1.0, 0.0, 0.0]);
     let last = rows.last().unwrap();
     assert!((last[1] - 1.5).abs() < 1e-12, "last row at s = {}", last[1]);
     // The summary's step count is the CSV's rows minus the start row.
-    let steps: usize = stdout.split("steps ").nth(1).unwrap().split_whitespace().next().unwrap().parse().unwrap();
+    let steps: usize = stdout
+        .split("steps ")
+        .nth(1)
+        .unwrap()
+        .split_whitespace()
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
     assert_eq!(rows.len(), steps + 1);
     // n in the CSV is the Luneburg index at the row's position.
     for r in &rows {
@@ -43,26 +74,91 @@ fn trace_writes_a_csv_from_start_to_end_and_a_png() {
     let _ = std::fs::remove_file(png);
 }
 
+/// A trace command line: `trace SCENE --medium M --from F --dir D --length L` plus `extra`,
+/// given as one whitespace-separated string.
+fn trace_args(
+    scene: &str,
+    medium: &str,
+    from: &str,
+    dir: &str,
+    length: &str,
+    extra: &str,
+) -> Vec<String> {
+    let mut v: Vec<String> = [
+        "trace", scene, "--medium", medium, "--from", from, "--dir", dir, "--length", length,
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect();
+    v.extend(extra.split_whitespace().map(str::to_string));
+    v
+}
+
 #[test]
 fn bad_input_fails_with_a_message_and_no_panic() {
-    let cases: &[(&[&str], &str)] = &[
-        (&["trace", "scenes/media.toml", "--medium", "nope", "--from", "0,0,0", "--dir", "0,0,1", "--length", "1"], "no medium named 'nope'"),
-        (&["trace", "scenes/missing.toml", "--medium", "a", "--from", "0,0,0", "--dir", "0,0,1", "--length", "1"], "scenes/missing.toml"),
-        (&["trace", "scenes/media.toml", "--medium", "luneburg", "--from", "0,0", "--dir", "0,0,1", "--length", "1"], "expected X,Y,Z"),
-        (&["trace", "scenes/media.toml", "--medium", "luneburg", "--from", "0,0,0", "--dir", "0,0,0", "--length", "1"], "--dir"),
-        (&["trace", "scenes/media.toml", "--medium", "luneburg", "--from", "0,0,0", "--dir", "0,0,1", "--length", "-1"], "--length"),
-        (&["trace", "scenes/media.toml", "--medium", "luneburg", "--from", "0,0,0", "--dir", "0,0,1", "--length", "1", "--control", "fixed"], "--step"),
-        (&["trace", "scenes/media.toml", "--medium", "luneburg", "--from", "0,0,0", "--dir", "0,0,1", "--length", "1", "--tol", "0"], "--tol"),
-        (&["trace", "scenes/media.toml", "--medium", "luneburg", "--from", "0,0,0", "--dir", "0,0,1", "--length", "1", "--control", "tessendorf", "--tmax", "1e-4", "--tmin", "1e-2"], "--tmin"),
-        (&["trace", "scenes/media.toml", "--medium", "black_hole", "--from", "0,0,0", "--dir", "0,0,1", "--length", "1"], "captures rays"),
-        (&["trace", "scenes/media.toml", "--medium", "luneburg", "--from", "nan,0,0", "--dir", "0,0,1", "--length", "1"], "not finite"),
-        (&["trace", "scenes/media.toml", "--medium", "luneburg", "--from", "0,0,0", "--dir", "0,0,1", "--length", "1", "--stepper", "euler"], "unknown stepper"),
+    let media = "scenes/media.toml";
+    let cases = [
+        (
+            trace_args(media, "nope", "0,0,0", "0,0,1", "1", ""),
+            "no medium named 'nope'",
+        ),
+        (
+            trace_args("scenes/missing.toml", "a", "0,0,0", "0,0,1", "1", ""),
+            "scenes/missing.toml",
+        ),
+        (
+            trace_args(media, "luneburg", "0,0", "0,0,1", "1", ""),
+            "expected X,Y,Z",
+        ),
+        (
+            trace_args(media, "luneburg", "0,0,0", "0,0,0", "1", ""),
+            "--dir",
+        ),
+        (
+            trace_args(media, "luneburg", "0,0,0", "0,0,1", "-1", ""),
+            "--length",
+        ),
+        (
+            trace_args(media, "luneburg", "0,0,0", "0,0,1", "1", "--control fixed"),
+            "--step",
+        ),
+        (
+            trace_args(media, "luneburg", "0,0,0", "0,0,1", "1", "--tol 0"),
+            "--tol",
+        ),
+        (
+            trace_args(
+                media,
+                "luneburg",
+                "0,0,0",
+                "0,0,1",
+                "1",
+                "--control tessendorf --tmax 1e-4 --tmin 1e-2",
+            ),
+            "--tmin",
+        ),
+        (
+            trace_args(media, "black_hole", "0,0,0", "0,0,1", "1", ""),
+            "captures rays",
+        ),
+        (
+            trace_args(media, "luneburg", "nan,0,0", "0,0,1", "1", ""),
+            "not finite",
+        ),
+        (
+            trace_args(media, "luneburg", "0,0,0", "0,0,1", "1", "--stepper euler"),
+            "unknown stepper",
+        ),
     ];
-    for (args, needle) in cases {
-        let out = grinlight(args);
+    for (args, needle) in &cases {
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let out = grinlight(&args);
         let stderr = String::from_utf8_lossy(&out.stderr);
         assert!(!out.status.success(), "{args:?} succeeded");
         assert!(!stderr.contains("panicked"), "{args:?} panicked: {stderr}");
-        assert!(stderr.contains(needle), "{args:?}: '{stderr}' lacks '{needle}'");
+        assert!(
+            stderr.contains(needle),
+            "{args:?}: '{stderr}' lacks '{needle}'"
+        );
     }
 }

@@ -5,20 +5,30 @@ mod common;
 use common::bigarc;
 use glam::DVec3;
 use grinlight::curve::CurvedSegment;
-use rand::{Rng, SeedableRng};
+use rand::Rng;
 use rand_pcg::Pcg64Mcg;
 
 /// Position error relative to the step length s and absolute direction error.
 fn errors(t0: DVec3, force: DVec3, s: f64) -> (f64, f64) {
     let got = CurvedSegment::new(DVec3::ZERO, t0, force).at(s);
     let (x_ref, t_ref) = bigarc::exact_arc(t0, force, s);
-    assert!(got.position.is_finite() && got.direction.is_finite(), "non-finite for t0={t0} F={force} s={s}");
-    ((got.position - x_ref).length() / s, (got.direction - t_ref).length())
+    assert!(
+        got.position.is_finite() && got.direction.is_finite(),
+        "non-finite for t0={t0} F={force} s={s}"
+    );
+    (
+        (got.position - x_ref).length() / s,
+        (got.direction - t_ref).length(),
+    )
 }
 
 fn random_unit(rng: &mut Pcg64Mcg) -> DVec3 {
     loop {
-        let v = DVec3::new(rng.gen_range(-1.0..1.0), rng.gen_range(-1.0..1.0), rng.gen_range(-1.0..1.0));
+        let v = DVec3::new(
+            rng.gen_range(-1.0..1.0),
+            rng.gen_range(-1.0..1.0),
+            rng.gen_range(-1.0..1.0),
+        );
         if (0.1..1.0).contains(&v.length()) {
             return v.normalize();
         }
@@ -36,7 +46,7 @@ fn log_uniform(rng: &mut Pcg64Mcg, lo: f64, hi: f64) -> f64 {
 /// reference's ~1e-90; 1e-12 leaves room for the ~ε·ln(2/σ) conditioning near β = π.
 #[test]
 fn exact_arc_matches_320_bit_reference_on_random_cases() {
-    let mut rng = Pcg64Mcg::new(0x5eed_a4c);
+    let mut rng = Pcg64Mcg::new(0x05ee_da4c);
     let (mut worst_x, mut worst_t) = (0.0f64, 0.0f64);
     for i in 0..3000 {
         let beta = match i % 3 {
@@ -45,14 +55,20 @@ fn exact_arc_matches_320_bit_reference_on_random_cases() {
             _ => std::f64::consts::PI - log_uniform(&mut rng, 1e-9, 1.0),
         };
         let f_hat = random_unit(&mut rng);
-        let p = (random_unit(&mut rng) - f_hat * 0.0).cross(f_hat).normalize();
+        let p = (random_unit(&mut rng) - f_hat * 0.0)
+            .cross(f_hat)
+            .normalize();
         let t0 = beta.cos() * f_hat + beta.sin() * p;
         let force = f_hat * log_uniform(&mut rng, 1e-6, 1e3);
         let s = log_uniform(&mut rng, 1e-8, 50.0);
         let (ex, et) = errors(t0, force, s);
         worst_x = worst_x.max(ex);
         worst_t = worst_t.max(et);
-        assert!(ex <= 1e-12 && et <= 1e-12, "case {i}: β={beta} |F|={} s={s}: position {ex:e}, direction {et:e}", force.length());
+        assert!(
+            ex <= 1e-12 && et <= 1e-12,
+            "case {i}: β={beta} |F|={} s={s}: position {ex:e}, direction {et:e}",
+            force.length()
+        );
     }
     println!("worst relative position error {worst_x:e}, direction error {worst_t:e}");
 }
@@ -84,6 +100,10 @@ fn exact_arc_stress_cases_are_finite_and_accurate() {
         assert!(ex <= 1e-12 && et <= 1e-12, "s={s}: {ex:e} {et:e}");
     }
     // sin β = 1e-300 along F: essentially straight.
-    let (ex, et) = errors(DVec3::new(1e-300, 0.0, 1.0), DVec3::new(0.0, 0.0, 2.0), 10.0);
+    let (ex, et) = errors(
+        DVec3::new(1e-300, 0.0, 1.0),
+        DVec3::new(0.0, 0.0, 2.0),
+        10.0,
+    );
     assert!(ex <= 1e-12 && et <= 1e-12);
 }

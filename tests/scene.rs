@@ -83,11 +83,22 @@ fn malformed_scenes_are_rejected_with_file_line_and_column() {
         let msg = err.to_string();
         println!("case {i}: {msg}");
         match err {
-            Error::Scene { path: p, line: l, col: c, message } => {
+            Error::Scene {
+                path: p,
+                line: l,
+                col: c,
+                message,
+            } => {
                 assert_eq!(p, path);
-                assert!(message.contains(needle), "case {i}: '{message}' lacks '{needle}'");
+                assert!(
+                    message.contains(needle),
+                    "case {i}: '{message}' lacks '{needle}'"
+                );
                 assert_eq!((l, c), (*line, *col), "case {i}: {msg}");
-                assert!(msg.starts_with(&format!("scenes/bad.toml:{l}:{c}: ")), "case {i}: {msg}");
+                assert!(
+                    msg.starts_with(&format!("scenes/bad.toml:{l}:{c}: ")),
+                    "case {i}: {msg}"
+                );
             }
             other => panic!("case {i}: not a scene error: {other}"),
         }
@@ -101,9 +112,15 @@ fn a_grid_file_is_read_relative_to_the_scene() {
     std::fs::write(dir.join("n.txt"), "1 1.2\n1 1.2\n1 1.2\n1 1.2\n").unwrap();
     let text = "[[medium]]\nname = \"g\"\nprofile = \"grid\"\nbounds = [[0,0,0],[1,1,1]]\ndims = [2,2,2]\nfile = \"n.txt\"\n";
     let scene = parse_scene(&dir.join("scene.toml"), text.to_string()).unwrap();
-    let s = scene.medium("g").unwrap().sample(glam::DVec3::new(0.25, 0.5, 0.5)).unwrap();
+    let s = scene
+        .medium("g")
+        .unwrap()
+        .sample(glam::DVec3::new(0.25, 0.5, 0.5))
+        .unwrap();
     // Trilinear: n = 1 + 0.2 x, ∇n = (0.2, 0, 0), exactly.
-    assert!((s.n - 1.05).abs() < 1e-15 && (s.grad - glam::DVec3::new(0.2, 0.0, 0.0)).length() < 1e-15);
+    assert!(
+        (s.n - 1.05).abs() < 1e-15 && (s.grad - glam::DVec3::new(0.2, 0.0, 0.0)).length() < 1e-15
+    );
     std::fs::remove_dir_all(&dir).unwrap();
     let missing = scene.medium("nope").err().expect("no such medium");
     assert!(missing.to_string().contains("no medium named 'nope'"));

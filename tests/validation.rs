@@ -22,14 +22,24 @@ fn trace(
     bounds: Bounds,
 ) -> MarchOutcome {
     let start = RayState::new(medium, from, dir).expect("start outside capture region");
-    let limits = MarchLimits { length, max_steps: 5_000_000, bounds };
+    let limits = MarchLimits {
+        length,
+        max_steps: 5_000_000,
+        bounds,
+    };
     let out = march_with(kind, medium, control, start, &limits, |_, _| {});
-    assert!(out.state.position.is_finite() && out.state.direction.is_finite(), "{kind:?}: non-finite end");
+    assert!(
+        out.state.position.is_finite() && out.state.direction.is_finite(),
+        "{kind:?}: non-finite end"
+    );
     out
 }
 
 fn z_fiber<M>(make: impl Fn(Axis) -> M) -> M {
-    make(Axis { center: DVec3::ZERO, axis: DVec3::Z })
+    make(Axis {
+        center: DVec3::ZERO,
+        axis: DVec3::Z,
+    })
 }
 
 /// Exact meridional path of the sech fiber n0 sech(g x): sinh(g x) is harmonic in z with
@@ -44,12 +54,22 @@ fn sech_exact_x(g: f64, x0: f64, slope: f64, z: f64) -> f64 {
 #[test]
 fn exponential_medium_single_arc_step_is_exact() {
     let grad = DVec3::new(0.2, -0.5, 0.3);
-    let medium = ExponentialMedium { n0: 1.3, gradient: grad, origin: DVec3::ZERO };
+    let medium = ExponentialMedium {
+        n0: 1.3,
+        gradient: grad,
+        origin: DVec3::ZERO,
+    };
     let rhs = |t: DVec3| grad - t * t.dot(grad);
-    for dir in [DVec3::new(1.0, 0.0, 0.0), DVec3::new(0.2, 0.9, -0.1), -grad, DVec3::new(-0.3, 1.0, -0.5)] {
+    for dir in [
+        DVec3::new(1.0, 0.0, 0.0),
+        DVec3::new(0.2, 0.9, -0.1),
+        -grad,
+        DVec3::new(-0.3, 1.0, -0.5),
+    ] {
         let s = 2.0;
         let start = RayState::new(&medium, DVec3::new(0.1, 0.2, 0.3), dir).unwrap();
-        let got = CurvedSegment::new(start.position, start.direction, start.index.log_gradient()).at(s);
+        let got =
+            CurvedSegment::new(start.position, start.direction, start.index.log_gradient()).at(s);
         // RK4 with Kahan-compensated accumulation, so 20 000 steps add no visible rounding.
         let (mut x, mut t) = (start.position, start.direction);
         let (mut cx, mut ct) = (DVec3::ZERO, DVec3::ZERO);
@@ -73,10 +93,24 @@ fn exponential_medium_single_arc_step_is_exact() {
         // reference's error is truncation (~1e-16) plus a few ulps.
         let ex = (got.position - x).length() / s;
         let et = (got.direction - t.normalize()).length();
-        assert!(ex < 1e-12 && et < 1e-12, "dir {dir}: position {ex:e}, direction {et:e}");
+        assert!(
+            ex < 1e-12 && et < 1e-12,
+            "dir {dir}: position {ex:e}, direction {et:e}"
+        );
         // And the engine's march with the arc stepper takes it in one step.
-        let limits = MarchLimits { length: s, max_steps: 10, bounds: Bounds::Unbounded };
-        let out = march_with(StepperKind::Arc, &medium, StepControl::Fixed { step: s }, start, &limits, |_, _| {});
+        let limits = MarchLimits {
+            length: s,
+            max_steps: 10,
+            bounds: Bounds::Unbounded,
+        };
+        let out = march_with(
+            StepperKind::Arc,
+            &medium,
+            StepControl::Fixed { step: s },
+            start,
+            &limits,
+            |_, _| {},
+        );
         assert_eq!(out.steps, 1);
         assert!((out.state.position - x).length() / s < 1e-12);
     }
@@ -90,12 +124,24 @@ fn measured_order(kind: StepperKind, steps: &[f64]) -> Vec<f64> {
     let errors: Vec<f64> = steps
         .iter()
         .map(|&h| {
-            let out = trace(&fiber, kind, StepControl::Fixed { step: h }, DVec3::new(x0, 0.0, 0.0), DVec3::new(slope, 0.0, 1.0), 20.0, Bounds::Unbounded);
+            let out = trace(
+                &fiber,
+                kind,
+                StepControl::Fixed { step: h },
+                DVec3::new(x0, 0.0, 0.0),
+                DVec3::new(slope, 0.0, 1.0),
+                20.0,
+                Bounds::Unbounded,
+            );
             let p = out.state.position;
             (p.x - sech_exact_x(g, x0, slope, p.z)).abs()
         })
         .collect();
-    let orders: Vec<f64> = errors.windows(2).zip(steps.windows(2)).map(|(e, h)| (e[0] / e[1]).ln() / (h[0] / h[1]).ln()).collect();
+    let orders: Vec<f64> = errors
+        .windows(2)
+        .zip(steps.windows(2))
+        .map(|(e, h)| (e[0] / e[1]).ln() / (h[0] / h[1]).ln())
+        .collect();
     println!("{kind:?}: h {steps:?} errors {errors:?} orders {orders:?}");
     orders
 }
@@ -141,14 +187,34 @@ fn sech_fiber_rays_follow_the_exact_path_with_every_stepper() {
         // Snell steps cannot leave an exact turning point (see SnellSteps), so every stepper
         // is checked on a ray launched with a slope; arc and RK4 also on the ray
         // x(z) = asinh(sinh(g x0) cos(g z))/g launched parallel to the axis.
-        let slopes: &[f64] = if kind == StepperKind::Snell { &[0.1] } else { &[0.0, 0.1] };
+        let slopes: &[f64] = if kind == StepperKind::Snell {
+            &[0.1]
+        } else {
+            &[0.0, 0.1]
+        };
         for &slope in slopes {
-            let out = trace(&fiber, kind, StepControl::default_for(kind), DVec3::new(0.5, 0.0, 0.0), DVec3::new(slope, 0.0, 1.0), length, Bounds::Unbounded);
+            let out = trace(
+                &fiber,
+                kind,
+                StepControl::default_for(kind),
+                DVec3::new(0.5, 0.0, 0.0),
+                DVec3::new(slope, 0.0, 1.0),
+                length,
+                Bounds::Unbounded,
+            );
             assert_eq!(out.reason, Termination::LengthReached);
             let p = out.state.position;
-            let err = (p.x - sech_exact_x(g, 0.5, slope, p.z)).abs().max(p.y.abs());
-            println!("{kind:?} slope {slope}: error {err:e} in {} steps", out.steps);
-            assert!(err <= default_bound(kind, out.arclength), "{kind:?} slope {slope}: {err:e}");
+            let err = (p.x - sech_exact_x(g, 0.5, slope, p.z))
+                .abs()
+                .max(p.y.abs());
+            println!(
+                "{kind:?} slope {slope}: error {err:e} in {} steps",
+                out.steps
+            );
+            assert!(
+                err <= default_bound(kind, out.arclength),
+                "{kind:?} slope {slope}: {err:e}"
+            );
         }
     }
 }
@@ -157,8 +223,20 @@ fn sech_fiber_rays_follow_the_exact_path_with_every_stepper() {
 /// is not bent (documented in SnellSteps); this pins that behaviour so a change is noticed.
 #[test]
 fn snell_steps_do_not_leave_an_exact_turning_point() {
-    let fiber = z_fiber(|axis| SechFiber { n0: 1.5, g: 1.0, axis });
-    let out = trace(&fiber, StepperKind::Snell, StepControl::Fixed { step: 0.01 }, DVec3::new(0.5, 0.0, 0.0), DVec3::Z, 5.0, Bounds::Unbounded);
+    let fiber = z_fiber(|axis| SechFiber {
+        n0: 1.5,
+        g: 1.0,
+        axis,
+    });
+    let out = trace(
+        &fiber,
+        StepperKind::Snell,
+        StepControl::Fixed { step: 0.01 },
+        DVec3::new(0.5, 0.0, 0.0),
+        DVec3::Z,
+        5.0,
+        Bounds::Unbounded,
+    );
     assert_eq!(out.state.position.x, 0.5);
 }
 
@@ -175,14 +253,32 @@ fn parabolic_rod_has_the_paraxial_pitch() {
     let amp = theta / a.sqrt();
     for kind in StepperKind::ALL {
         for (zmax, halves) in [(0.5 * pitch, 1.0), (pitch, 2.0)] {
-            let bounds = Bounds::Box { min: DVec3::new(-1.0, -1.0, -1.0), max: DVec3::new(1.0, 1.0, zmax) };
-            let out = trace(&rod, kind, StepControl::default_for(kind), DVec3::ZERO, DVec3::new(theta, 0.0, 1.0), 2.0 * pitch, bounds);
+            let bounds = Bounds::Box {
+                min: DVec3::new(-1.0, -1.0, -1.0),
+                max: DVec3::new(1.0, 1.0, zmax),
+            };
+            let out = trace(
+                &rod,
+                kind,
+                StepControl::default_for(kind),
+                DVec3::ZERO,
+                DVec3::new(theta, 0.0, 1.0),
+                2.0 * pitch,
+                bounds,
+            );
             assert_eq!(out.reason, Termination::LeftBounds);
             assert!((out.state.position.z - zmax).abs() < 1e-9);
             let nonlinear = amp * std::f64::consts::PI * halves * 5.0 / 16.0 * a * amp * amp;
             let bound = 2.0 * nonlinear + default_bound(kind, out.arclength);
-            println!("{kind:?} z={zmax:.4}: x = {:e} (bound {bound:e})", out.state.position.x);
-            assert!(out.state.position.x.abs() <= bound, "{kind:?}: x({zmax}) = {:e}", out.state.position.x);
+            println!(
+                "{kind:?} z={zmax:.4}: x = {:e} (bound {bound:e})",
+                out.state.position.x
+            );
+            assert!(
+                out.state.position.x.abs() <= bound,
+                "{kind:?}: x({zmax}) = {:e}",
+                out.state.position.x
+            );
         }
     }
 }
@@ -190,16 +286,33 @@ fn parabolic_rod_has_the_paraxial_pitch() {
 /// Luneburg lens: rays parallel to +x entering at heights h exit at the focus (R, 0, 0).
 #[test]
 fn luneburg_lens_focuses_parallel_rays_on_the_antipode() {
-    let lens = Luneburg { center: DVec3::ZERO, radius: 1.0 };
-    let ball = Bounds::Ball { center: DVec3::ZERO, radius: 1.0 };
+    let lens = Luneburg {
+        center: DVec3::ZERO,
+        radius: 1.0,
+    };
+    let ball = Bounds::Ball {
+        center: DVec3::ZERO,
+        radius: 1.0,
+    };
     for kind in StepperKind::ALL {
         for h in [0.05, 0.3, 0.6, 0.9] {
             let entry = DVec3::new(-(1.0f64 - h * h).sqrt(), h, 0.0);
-            let out = trace(&lens, kind, StepControl::default_for(kind), entry, DVec3::X, 10.0, ball);
+            let out = trace(
+                &lens,
+                kind,
+                StepControl::default_for(kind),
+                entry,
+                DVec3::X,
+                10.0,
+                ball,
+            );
             assert_eq!(out.reason, Termination::LeftBounds, "{kind:?} h={h}");
             let err = (out.state.position - DVec3::X).length();
             println!("{kind:?} h={h}: focus error {err:e}");
-            assert!(err <= default_bound(kind, out.arclength), "{kind:?} h={h}: {err:e}");
+            assert!(
+                err <= default_bound(kind, out.arclength),
+                "{kind:?} h={h}: {err:e}"
+            );
         }
     }
 }
@@ -213,19 +326,38 @@ fn luneburg_lens_focuses_parallel_rays_on_the_antipode() {
 /// ("whispering gallery", see `snell_steps_trap_at_a_spherical_turning_point`).
 #[test]
 fn fisheye_images_p0_onto_its_antipodal_conjugate() {
-    let eye = FishEye { n0: 2.0, center: DVec3::ZERO, radius: 1.0 };
+    let eye = FishEye {
+        n0: 2.0,
+        center: DVec3::ZERO,
+        radius: 1.0,
+    };
     let p0 = DVec3::new(0.6, 0.2, -0.3);
     let q = -p0 / p0.length_squared();
     for kind in [StepperKind::Arc, StepperKind::Rk4] {
-        for t0 in [DVec3::new(0.0, 1.0, 0.0), DVec3::new(-1.0, 0.3, 0.5), DVec3::new(0.2, -0.1, 1.0)] {
+        for t0 in [
+            DVec3::new(0.0, 1.0, 0.0),
+            DVec3::new(-1.0, 0.3, 0.5),
+            DVec3::new(0.2, -0.1, 1.0),
+        ] {
             let t = t0.normalize();
             let chord = q - p0;
             let phi = t.dot(chord.normalize()).clamp(-1.0, 1.0).acos();
             let length = 2.0 * phi * chord.length() / (2.0 * phi.sin());
-            let out = trace(&eye, kind, StepControl::default_for(kind), p0, t, length, Bounds::Unbounded);
+            let out = trace(
+                &eye,
+                kind,
+                StepControl::default_for(kind),
+                p0,
+                t,
+                length,
+                Bounds::Unbounded,
+            );
             let err = (out.state.position - q).length();
             println!("{kind:?} t0={t0}: error {err:e}");
-            assert!(err <= default_bound(kind, length), "{kind:?} t0={t0}: {err:e}");
+            assert!(
+                err <= default_bound(kind, length),
+                "{kind:?} t0={t0}: {err:e}"
+            );
         }
     }
 }
@@ -235,13 +367,36 @@ fn fisheye_images_p0_onto_its_antipodal_conjugate() {
 /// r = 2), each step's total internal reflection keeps the ray on the sphere r = 2 instead.
 #[test]
 fn snell_steps_trap_at_a_spherical_turning_point() {
-    let eye = FishEye { n0: 2.0, center: DVec3::ZERO, radius: 1.0 };
+    let eye = FishEye {
+        n0: 2.0,
+        center: DVec3::ZERO,
+        radius: 1.0,
+    };
     let p0 = DVec3::new(2.0, 0.0, 0.0);
-    let snell = trace(&eye, StepperKind::Snell, StepControl::Fixed { step: 1e-3 }, p0, DVec3::Y, 3.0, Bounds::Unbounded);
-    let rk4 = trace(&eye, StepperKind::Rk4, StepControl::default_for(StepperKind::Rk4), p0, DVec3::Y, 3.0, Bounds::Unbounded);
+    let snell = trace(
+        &eye,
+        StepperKind::Snell,
+        StepControl::Fixed { step: 1e-3 },
+        p0,
+        DVec3::Y,
+        3.0,
+        Bounds::Unbounded,
+    );
+    let rk4 = trace(
+        &eye,
+        StepperKind::Rk4,
+        StepControl::default_for(StepperKind::Rk4),
+        p0,
+        DVec3::Y,
+        3.0,
+        Bounds::Unbounded,
+    );
     let (r_snell, r_rk4) = (snell.state.position.length(), rk4.state.position.length());
     println!("after 3 units: Snell r = {r_snell}, RK4 r = {r_rk4}");
-    assert!((r_snell - 2.0).abs() < 1e-3, "Snell left the sphere: r = {r_snell}");
+    assert!(
+        (r_snell - 2.0).abs() < 1e-3,
+        "Snell left the sphere: r = {r_snell}"
+    );
     assert!(r_rk4 < 1.5, "the true ray turns inward: r = {r_rk4}");
 }
 
@@ -257,7 +412,11 @@ fn deflection(out: &MarchOutcome, incoming: DVec3) -> f64 {
 fn black_hole_deflection_matches_quadrature_and_weak_field() {
     let rs = 0.01;
     let q = 0.1;
-    let hole = BlackHole { center: DVec3::ZERO, rs, q };
+    let hole = BlackHole {
+        center: DVec3::ZERO,
+        rs,
+        q,
+    };
     let mut weak = Vec::new();
     for b in [6.0, 20.0, 100.0, 1000.0] {
         // Start 1e4·b away. There n = 1 + rs/D + …, so the launched ray's Bouguer invariant
@@ -268,7 +427,15 @@ fn black_hole_deflection_matches_quadrature_and_weak_field() {
         let b_invariant = b * hole.sample(from).unwrap().n;
         let exact = common::reference::black_hole_deflection(b_invariant, q).expect("not captured");
         for kind in [StepperKind::Rk4, StepperKind::Arc] {
-            let out = trace(&hole, kind, StepControl::default_for(kind), DVec3::new(-d, b * rs, 0.0), DVec3::X, 2.0 * d, Bounds::Unbounded);
+            let out = trace(
+                &hole,
+                kind,
+                StepControl::default_for(kind),
+                DVec3::new(-d, b * rs, 0.0),
+                DVec3::X,
+                2.0 * d,
+                Bounds::Unbounded,
+            );
             assert_eq!(out.reason, Termination::LengthReached);
             let phi = deflection(&out, DVec3::X);
             let rel = (phi - exact).abs() / exact;
@@ -277,7 +444,10 @@ fn black_hole_deflection_matches_quadrature_and_weak_field() {
             // direction error, the far-field tail 2e-8, the quadrature 1e-12.
             assert!(rel <= 1e-5, "{kind:?} b={b}: {rel:e}");
         }
-        weak.push((b, common::reference::black_hole_deflection(b, q).unwrap() / (2.0 / b) - 1.0));
+        weak.push((
+            b,
+            common::reference::black_hole_deflection(b, q).unwrap() / (2.0 / b) - 1.0,
+        ));
     }
     // Weak field: φ/(2 rs/b) − 1 falls as c1 rs/b (measured c1 ≈ 2.35 for this index
     // model; GR's is 15π/32 ≈ 1.47, DESIGN §7). The next term, ~c2 rs²/b² with c2 ≈ 7, makes
@@ -285,7 +455,10 @@ fn black_hole_deflection_matches_quadrature_and_weak_field() {
     // the ratio is within 0.3 % of 1.
     println!("deflection/(2rs/b) − 1: {weak:?}");
     let (c100, c1000) = (weak[2].1 * weak[2].0, weak[3].1 * weak[3].0);
-    assert!((c100 / c1000 - 1.0).abs() < 0.05, "(ratio − 1)·b: {c100} vs {c1000}");
+    assert!(
+        (c100 / c1000 - 1.0).abs() < 0.05,
+        "(ratio − 1)·b: {c100} vs {c1000}"
+    );
     assert!(weak[3].1.abs() < 3e-3);
 }
 
@@ -293,22 +466,49 @@ fn black_hole_deflection_matches_quadrature_and_weak_field() {
 /// every stepper and control, never NaN and never running away.
 #[test]
 fn black_hole_captures_rays_aimed_at_it() {
-    let hole = BlackHole { center: DVec3::ZERO, rs: 0.01, q: 0.1 };
+    let hole = BlackHole {
+        center: DVec3::ZERO,
+        rs: 0.01,
+        q: 0.1,
+    };
     for kind in StepperKind::ALL {
         for control in [
             StepControl::default_for(kind),
             StepControl::Fixed { step: 1e-3 },
         ] {
             for b in [0.0, 0.5, 2.0, 3.0] {
-                let out = trace(&hole, kind, control, DVec3::new(-5.0, b * 0.01, 0.0), DVec3::X, 20.0, Bounds::Unbounded);
+                let out = trace(
+                    &hole,
+                    kind,
+                    control,
+                    DVec3::new(-5.0, b * 0.01, 0.0),
+                    DVec3::X,
+                    20.0,
+                    Bounds::Unbounded,
+                );
                 let r = out.state.position.length() / 0.01;
-                println!("{kind:?} {control:?} b={b}: {} at r = {r:.6} rs after {} steps", out.reason.name(), out.steps);
-                assert!(matches!(out.reason, Termination::Captured | Termination::StepUnderflow), "{kind:?} {control:?} b={b}: {:?} at r={r}", out.reason);
+                println!(
+                    "{kind:?} {control:?} b={b}: {} at r = {r:.6} rs after {} steps",
+                    out.reason.name(),
+                    out.steps
+                );
+                assert!(
+                    matches!(
+                        out.reason,
+                        Termination::Captured | Termination::StepUnderflow
+                    ),
+                    "{kind:?} {control:?} b={b}: {:?} at r={r}",
+                    out.reason
+                );
                 // Adaptive marches stop at the capture margin (1e-9 above the horizon
                 // ρ+ = 0.98990); a fixed step of 0.1 rs stops at the last state before a
                 // sample fell inside, at most two steps out (RK4's stage points reach one
                 // step ahead, further where n∇n is huge).
-                let reach = if let StepControl::Fixed { step } = control { 2.0 * step / 0.01 } else { 1e-6 };
+                let reach = if let StepControl::Fixed { step } = control {
+                    2.0 * step / 0.01
+                } else {
+                    1e-6
+                };
                 assert!(r < 0.9899 + reach, "{kind:?} b={b}: stopped at r = {r} rs");
             }
         }
@@ -322,20 +522,57 @@ fn black_hole_captures_rays_aimed_at_it() {
 /// steps where F ~ 1/(distance to the horizon)).
 #[test]
 fn tessendorf_control_reproduces_the_seed_while_adaptive_ends_quickly() {
-    let hole = BlackHole { center: DVec3::ZERO, rs: 0.01, q: 0.1 };
+    let hole = BlackHole {
+        center: DVec3::ZERO,
+        rs: 0.01,
+        q: 0.1,
+    };
     let from = DVec3::new(-5.0, 0.001, 0.0);
     let start = RayState::new(&hole, from, DVec3::X).unwrap();
-    let limits = MarchLimits { length: 20.0, max_steps: 100_000, bounds: Bounds::Unbounded };
-    let seed = StepControl::Tessendorf { initial_step: 0.1, t_max: 1e-2, t_min: 1e-4, seed: 1 };
+    let limits = MarchLimits {
+        length: 20.0,
+        max_steps: 100_000,
+        bounds: Bounds::Unbounded,
+    };
+    let seed = StepControl::Tessendorf {
+        initial_step: 0.1,
+        t_max: 1e-2,
+        t_min: 1e-4,
+        seed: 1,
+    };
     for kind in [StepperKind::Arc, StepperKind::Rk4] {
         let out = march_with(kind, &hole, seed, start, &limits, |_, _| {});
-        println!("{kind:?} tessendorf: {} after {} attempts, min step {:e}", out.reason.name(), out.attempts, out.min_step);
+        println!(
+            "{kind:?} tessendorf: {} after {} attempts, min step {:e}",
+            out.reason.name(),
+            out.attempts,
+            out.min_step
+        );
         assert_eq!(out.reason, Termination::MaxSteps);
-        assert!(out.min_step < 1e-12, "step did not collapse: {:e}", out.min_step);
+        assert!(
+            out.min_step < 1e-12,
+            "step did not collapse: {:e}",
+            out.min_step
+        );
         assert!(out.state.position.is_finite());
-        let adaptive = march_with(kind, &hole, StepControl::default_for(kind), start, &limits, |_, _| {});
-        println!("{kind:?} adaptive: {} after {} attempts", adaptive.reason.name(), adaptive.attempts);
+        let adaptive = march_with(
+            kind,
+            &hole,
+            StepControl::default_for(kind),
+            start,
+            &limits,
+            |_, _| {},
+        );
+        println!(
+            "{kind:?} adaptive: {} after {} attempts",
+            adaptive.reason.name(),
+            adaptive.attempts
+        );
         assert_eq!(adaptive.reason, Termination::Captured);
-        assert!(adaptive.attempts <= limits.max_steps / 10, "{kind:?}: {} attempts", adaptive.attempts);
+        assert!(
+            adaptive.attempts <= limits.max_steps / 10,
+            "{kind:?}: {} attempts",
+            adaptive.attempts
+        );
     }
 }

@@ -201,7 +201,7 @@ where
             StepControl::Adaptive { tolerance } => {
                 let h_try = h_try.min(medium.step_hint(state.position));
                 let floor = round_off_floor(&state);
-                if !(h_try > floor) {
+                if h_try <= floor || h_try.is_nan() {
                     out.reason = Termination::StepUnderflow;
                     return out;
                 }
@@ -221,7 +221,8 @@ where
                 let p = f64::from(stepper.order());
                 // What a step may err by: the tolerance per unit length, and never less than
                 // the rounding of the position itself (else tight tolerances stall).
-                let allowed = tolerance * h_try + 16.0 * f64::EPSILON * state.position.abs().max_element();
+                let allowed =
+                    tolerance * h_try + 16.0 * f64::EPSILON * state.position.abs().max_element();
                 let factor = 0.9 * (allowed / est.error).powf(1.0 / p);
                 if est.error > allowed {
                     h = h_try * factor.clamp(0.1, 0.9);
@@ -272,7 +273,12 @@ fn step_request(requested: f64, step: &super::stepper::Step, target: f64) -> f64
     requested * target / step.length
 }
 
-fn accept<O: FnMut(f64, &RayState)>(out: &mut MarchOutcome, state: RayState, len: f64, observe: &mut O) {
+fn accept<O: FnMut(f64, &RayState)>(
+    out: &mut MarchOutcome,
+    state: RayState,
+    len: f64,
+    observe: &mut O,
+) {
     out.optical_path += optical_path_length(&out.state.index, &state.index, len);
     out.arclength += len;
     out.steps += 1;
@@ -300,14 +306,24 @@ fn relative_force_change(a: &RayState, b: &RayState) -> f64 {
 /// The state where a step of length `h` from `state` crosses the boundary, by the Illinois
 /// variant of regula falsi on the step length (the boundary's signed distance changes sign
 /// on [0, h]); to ~1e-12 of the region's scale.
-fn locate_exit<S, M>(stepper: &S, medium: &M, state: &RayState, h: f64, limits: &MarchLimits) -> (RayState, f64)
+fn locate_exit<S, M>(
+    stepper: &S,
+    medium: &M,
+    state: &RayState,
+    h: f64,
+    limits: &MarchLimits,
+) -> (RayState, f64)
 where
     S: Stepper,
     M: Medium + ?Sized,
 {
     let sd = |hh: f64| -> Option<(f64, RayState, f64)> {
         let s = stepper.step(medium, state, hh)?;
-        Some((limits.bounds.signed_distance(s.state.position), s.state, s.length))
+        Some((
+            limits.bounds.signed_distance(s.state.position),
+            s.state,
+            s.length,
+        ))
     };
     let tol = 1e-12 * limits.bounds.scale();
     let (mut a, mut fa) = (0.0, limits.bounds.signed_distance(state.position).min(0.0));

@@ -136,17 +136,21 @@ impl CurvedSegment {
             let q = sigma * sigma;
             let (c2, x2) = (c * c, x * x);
             let (x3, x4) = (x2 * x, x2 * x2);
-            let tanh = c + q * x - c * q * x2 + q * (3.0 * c2 - 1.0) * x3 / 3.0
+            let tanh = c + q * x - c * q * x2
+                + q * (3.0 * c2 - 1.0) * x3 / 3.0
                 + c * q * (2.0 - 3.0 * c2) * x4 / 3.0;
-            let poly_sech = 1.0 - c * x + (2.0 * c2 - 1.0) * x2 / 2.0
+            let poly_sech = 1.0 - c * x
+                + (2.0 * c2 - 1.0) * x2 / 2.0
                 + c * (5.0 - 6.0 * c2) * x3 / 6.0
                 + (24.0 * c2 * c2 - 28.0 * c2 + 5.0) * x4 / 24.0;
             let along = s
-                * (c + q * x / 2.0 - c * q * x2 / 3.0 + q * (3.0 * c2 - 1.0) * x3 / 12.0
+                * (c + q * x / 2.0 - c * q * x2 / 3.0
+                    + q * (3.0 * c2 - 1.0) * x3 / 12.0
                     + c * q * (2.0 - 3.0 * c2) * x4 / 15.0);
             let across = s
                 * sigma
-                * (1.0 - c * x / 2.0 + (2.0 * c2 - 1.0) * x2 / 6.0
+                * (1.0 - c * x / 2.0
+                    + (2.0 * c2 - 1.0) * x2 / 6.0
                     + c * (5.0 - 6.0 * c2) * x3 / 24.0
                     + (24.0 * c2 * c2 - 28.0 * c2 + 5.0) * x4 / 120.0);
             return (along, across, tanh, sigma * poly_sech);
@@ -179,7 +183,11 @@ impl CurvedSegment {
         let tau = x + tau0;
         let (l, delta) = if tau <= 0.0 {
             // Still heading against F: e^τ − e^τ0 = e^τ0 expm1(x), accurate for small x.
-            let diff = if x < 1.0 { e0 * x.exp_m1() } else { tau.exp() - e0 };
+            let diff = if x < 1.0 {
+                e0 * x.exp_m1()
+            } else {
+                tau.exp() - e0
+            };
             (
                 -x + (2.0 * tau).exp().ln_1p() - (e0 * e0).ln_1p(),
                 2.0 * (diff / (1.0 + e0 * tau.exp())).atan(),

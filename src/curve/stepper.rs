@@ -89,26 +89,39 @@ pub trait Stepper: Sync {
     /// Global order p of the method: the position error after a fixed length scales as hᵖ.
     fn order(&self) -> u32;
 
-    /// A step with a local error estimate. The default is step doubling (Richardson): one
-    /// step of h against two of h/2, whose result is returned; error = |difference|/(2ᵖ − 1).
+    /// A step with a local error estimate. The default is [`step_doubling`] in arclength.
     fn estimated_step<M: Medium + ?Sized>(
         &self,
         medium: &M,
         state: &RayState,
         h: f64,
     ) -> Option<EstimatedStep> {
-        let full = self.step(medium, state, h)?;
-        let half = self.step(medium, state, 0.5 * h)?;
-        let second = self.step(medium, &half.state, 0.5 * h)?;
-        let scale = f64::from((1u32 << self.order()) - 1);
-        Some(EstimatedStep {
-            step: Step {
-                state: second.state,
-                length: half.length + second.length,
-            },
-            error: step_discrepancy(&second.state, &full.state, h) / scale,
+        step_doubling(self.order(), state, h, h, |s, size| {
+            self.step(medium, s, size)
         })
     }
+}
+
+/// Step doubling (Richardson): one step of `size` against two of `size`/2, whose result is
+/// returned, with error = [`step_discrepancy`]/(2ᵖ − 1) for a method of order p. `size` is in
+/// the stepper's own parameter (arclength, or optical time for RK4); `h` is the arclength.
+pub fn step_doubling(
+    order: u32,
+    state: &RayState,
+    size: f64,
+    h: f64,
+    step: impl Fn(&RayState, f64) -> Option<Step>,
+) -> Option<EstimatedStep> {
+    let full = step(state, size)?;
+    let half = step(state, 0.5 * size)?;
+    let second = step(&half.state, 0.5 * size)?;
+    Some(EstimatedStep {
+        step: Step {
+            state: second.state,
+            length: half.length + second.length,
+        },
+        error: step_discrepancy(&second.state, &full.state, h) / f64::from((1u32 << order) - 1),
+    })
 }
 
 /// Tessendorf's exact arc (seed 000 §2–3, DESIGN §5) with F = ∇ln n frozen over the step at
@@ -233,15 +246,8 @@ impl Stepper for Rk4Sharma {
         h: f64,
     ) -> Option<EstimatedStep> {
         let dt = h / state.index.n;
-        let full = Self::optical_step(medium, state, dt)?;
-        let half = Self::optical_step(medium, state, 0.5 * dt)?;
-        let second = Self::optical_step(medium, &half.state, 0.5 * dt)?;
-        Some(EstimatedStep {
-            step: Step {
-                state: second.state,
-                length: half.length + second.length,
-            },
-            error: step_discrepancy(&second.state, &full.state, h) / 15.0,
+        step_doubling(4, state, dt, h, |s, size| {
+            Self::optical_step(medium, s, size)
         })
     }
 }

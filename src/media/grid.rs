@@ -71,7 +71,12 @@ impl GridMedium {
         {
             return Err(GridError::BadValue { index, value });
         }
-        let cell = (max - min) / DVec3::new(dims[0] as f64 - 1.0, dims[1] as f64 - 1.0, dims[2] as f64 - 1.0);
+        let cell = (max - min)
+            / DVec3::new(
+                dims[0] as f64 - 1.0,
+                dims[1] as f64 - 1.0,
+                dims[2] as f64 - 1.0,
+            );
         Ok(Self {
             min,
             max,

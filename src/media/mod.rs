@@ -28,7 +28,10 @@ pub struct IndexSample {
 impl IndexSample {
     /// A sample of a constant index.
     pub fn constant(n: f64) -> Self {
-        Self { n, grad: DVec3::ZERO }
+        Self {
+            n,
+            grad: DVec3::ZERO,
+        }
     }
 
     /// F = ∇ln n = ∇n / n, the "force" of the ray equation dt̂/ds = F − t̂ (t̂·F) (1/length).

@@ -36,7 +36,10 @@ pub struct LinearMedium {
 impl Medium for LinearMedium {
     fn sample(&self, p: DVec3) -> Option<IndexSample> {
         let n = self.n0 + self.gradient.dot(p - self.origin);
-        (n > 0.0).then_some(IndexSample { n, grad: self.gradient })
+        (n > 0.0).then_some(IndexSample {
+            n,
+            grad: self.gradient,
+        })
     }
     /// ∇ln n = ∇n/n changes by a factor e over ~n/|∇n|.
     fn step_hint(&self, p: DVec3) -> f64 {

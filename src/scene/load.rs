@@ -69,7 +69,11 @@ impl Scene {
                 Error::Usage(format!(
                     "{}: no medium named '{name}' (the scene has: {})",
                     self.path.display(),
-                    if known.is_empty() { "none".to_string() } else { known.join(", ") }
+                    if known.is_empty() {
+                        "none".to_string()
+                    } else {
+                        known.join(", ")
+                    }
                 ))
             })
     }
@@ -97,7 +101,11 @@ pub fn parse_scene(path: &Path, text: String) -> Result<Scene> {
         let mut t = TableReader::new(&source, span, "[[medium]]", table.into_inner());
         let name = t.string("name")?;
         t.check("name", !name.is_empty(), "must not be empty")?;
-        t.check("name", media.iter().all(|(n, _)| *n != name), format!("a medium named '{name}' is already defined"))?;
+        t.check(
+            "name",
+            media.iter().all(|(n, _)| *n != name),
+            format!("a medium named '{name}' is already defined"),
+        )?;
         t.describe(format!("medium '{name}'"));
         let medium = read_medium(&mut t, source.dir())?;
         t.finish()?;

@@ -4,14 +4,22 @@
 use super::table::TableReader;
 use crate::error::Result;
 use crate::media::{
-    Axis, BlackHole, ExponentialMedium, FishEye, GridError, GridMedium, LinearMedium, Luneburg, Medium,
-    ParabolicFiber, SechFiber, UniformMedium,
+    Axis, BlackHole, ExponentialMedium, FishEye, GridError, GridMedium, LinearMedium, Luneburg,
+    Medium, ParabolicFiber, SechFiber, UniformMedium,
 };
 use glam::DVec3;
 
 /// The profile names a `[[medium]]` table may give.
 pub const PROFILES: &[&str] = &[
-    "uniform", "linear", "exponential", "parabolic", "sech", "luneburg", "fisheye", "black_hole", "grid",
+    "uniform",
+    "linear",
+    "exponential",
+    "parabolic",
+    "sech",
+    "luneburg",
+    "fisheye",
+    "black_hole",
+    "grid",
 ];
 
 /// Reads one `[[medium]]` table (its `name` already taken) and builds the medium.
@@ -24,7 +32,9 @@ pub fn read_medium(t: &mut TableReader, dir: &std::path::Path) -> Result<Box<dyn
         })
     };
     Ok(match profile.as_str() {
-        "uniform" => Box::new(UniformMedium { n: t.positive("n")? }),
+        "uniform" => Box::new(UniformMedium {
+            n: t.positive("n")?,
+        }),
         "linear" => Box::new(LinearMedium {
             n0: t.positive("n0")?,
             gradient: t.vec3("gradient")?,
@@ -65,7 +75,10 @@ pub fn read_medium(t: &mut TableReader, dir: &std::path::Path) -> Result<Box<dyn
         other => {
             return Err(t.error(
                 "profile",
-                format!("unknown profile '{other}' (expected one of: {})", PROFILES.join(", ")),
+                format!(
+                    "unknown profile '{other}' (expected one of: {})",
+                    PROFILES.join(", ")
+                ),
             ))
         }
     })
@@ -100,8 +113,12 @@ fn read_grid_file(t: &TableReader, path: &std::path::Path) -> Result<Vec<f64>> {
     text.split_whitespace()
         .enumerate()
         .map(|(i, w)| {
-            w.parse::<f64>()
-                .map_err(|_| t.error("file", format!("{}: value #{i} '{w}' is not a number", path.display())))
+            w.parse::<f64>().map_err(|_| {
+                t.error(
+                    "file",
+                    format!("{}: value #{i} '{w}' is not a number", path.display()),
+                )
+            })
         })
         .collect()
 }

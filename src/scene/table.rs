@@ -24,7 +24,12 @@ pub struct TableReader<'a> {
 
 impl<'a> TableReader<'a> {
     /// A reader of `table`, which spans `span` in `source`.
-    pub fn new(source: &'a Source, span: Range<usize>, what: impl Into<String>, table: SpannedTable) -> Self {
+    pub fn new(
+        source: &'a Source,
+        span: Range<usize>,
+        what: impl Into<String>,
+        table: SpannedTable,
+    ) -> Self {
         Self {
             source,
             span,
@@ -46,14 +51,18 @@ impl<'a> TableReader<'a> {
             .iter()
             .find(|(k, _, _)| k.get_ref() == key)
             .map_or(self.span.start, |(k, _, _)| k.span().start);
-        self.source.error_at(at, format!("{}: key `{key}`: {message}", self.what))
+        self.source
+            .error_at(at, format!("{}: key `{key}`: {message}", self.what))
     }
 
     fn take(&mut self, key: &str) -> Option<Value> {
         if !self.asked.iter().any(|k| k == key) {
             self.asked.push(key.to_string());
         }
-        let entry = self.entries.iter_mut().find(|(k, _, _)| k.get_ref() == key)?;
+        let entry = self
+            .entries
+            .iter_mut()
+            .find(|(k, _, _)| k.get_ref() == key)?;
         entry.2 = true;
         Some(entry.1.get_ref().clone())
     }
@@ -66,7 +75,9 @@ impl<'a> TableReader<'a> {
         let x = match v {
             Value::Float(f) => *f,
             Value::Integer(i) => *i as f64,
-            other => return Err(self.error(key, format!("expected a number, got {}", other.type_str()))),
+            other => {
+                return Err(self.error(key, format!("expected a number, got {}", other.type_str())))
+            }
         };
         if x.is_finite() {
             Ok(x)
@@ -118,14 +129,19 @@ impl<'a> TableReader<'a> {
         match self.take(key) {
             None => Ok(None),
             Some(Value::String(s)) => Ok(Some(s)),
-            Some(other) => Err(self.error(key, format!("expected a string, got {}", other.type_str()))),
+            Some(other) => {
+                Err(self.error(key, format!("expected a string, got {}", other.type_str())))
+            }
         }
     }
 
     fn numbers(&self, key: &str, v: &Value) -> Result<Vec<f64>> {
         match v {
             Value::Array(a) => a.iter().map(|x| self.number(key, x)).collect(),
-            other => Err(self.error(key, format!("expected an array of numbers, got {}", other.type_str()))),
+            other => Err(self.error(
+                key,
+                format!("expected an array of numbers, got {}", other.type_str()),
+            )),
         }
     }
 
@@ -133,7 +149,10 @@ impl<'a> TableReader<'a> {
         let n = self.numbers(key, v)?;
         match n.as_slice() {
             [x, y, z] => Ok(DVec3::new(*x, *y, *z)),
-            _ => Err(self.error(key, format!("expected 3 numbers [x, y, z], got {}", n.len()))),
+            _ => Err(self.error(
+                key,
+                format!("expected 3 numbers [x, y, z], got {}", n.len()),
+            )),
         }
     }
 
@@ -154,14 +173,18 @@ impl<'a> TableReader<'a> {
     /// An optional non-zero 3-vector, normalised.
     pub fn direction_or(&mut self, key: &str, default: DVec3) -> Result<DVec3> {
         let v = self.vec3_or(key, default)?;
-        v.try_normalize().ok_or_else(|| self.error(key, "must be a non-zero vector"))
+        v.try_normalize()
+            .ok_or_else(|| self.error(key, "must be a non-zero vector"))
     }
 
     /// A required list of 3-vectors.
     pub fn vec3_list(&mut self, key: &str) -> Result<Vec<DVec3>> {
         match self.required(key)? {
             Value::Array(a) => a.iter().map(|v| self.vec3_of(key, v)).collect(),
-            other => Err(self.error(key, format!("expected an array of [x, y, z], got {}", other.type_str()))),
+            other => Err(self.error(
+                key,
+                format!("expected an array of [x, y, z], got {}", other.type_str()),
+            )),
         }
     }
 
@@ -183,11 +206,14 @@ impl<'a> TableReader<'a> {
             .iter()
             .map(|x| match x {
                 Value::Integer(i) if *i >= 0 => Ok(*i as usize),
-                other => Err(self.error(key, format!("expected non-negative integers, got {other}"))),
+                other => {
+                    Err(self.error(key, format!("expected non-negative integers, got {other}")))
+                }
             })
             .collect::<Result<_>>()?;
-        ints.try_into()
-            .map_err(|v: Vec<usize>| self.error(key, format!("expected {N} integers, got {}", v.len())))
+        ints.try_into().map_err(|v: Vec<usize>| {
+            self.error(key, format!("expected {N} integers, got {}", v.len()))
+        })
     }
 
     /// Fails at the first key that was never read, naming the keys this table accepts.
@@ -196,7 +222,12 @@ impl<'a> TableReader<'a> {
             None => Ok(()),
             Some((k, _, _)) => Err(self.source.error_at(
                 k.span().start,
-                format!("{}: unknown key `{}` (expected one of: {})", self.what, k.get_ref(), self.asked.join(", ")),
+                format!(
+                    "{}: unknown key `{}` (expected one of: {})",
+                    self.what,
+                    k.get_ref(),
+                    self.asked.join(", ")
+                ),
             )),
         }
     }

@@ -19,7 +19,8 @@ fn bf(x: f64) -> BigFloat {
 
 fn to_f64(x: &BigFloat) -> f64 {
     let s = format!("{x}");
-    s.parse::<f64>().unwrap_or_else(|_| panic!("cannot parse {s}"))
+    s.parse::<f64>()
+        .unwrap_or_else(|_| panic!("cannot parse {s}"))
 }
 
 impl V {
@@ -35,23 +36,18 @@ impl V {
     }
     fn cross(&self, o: &V) -> V {
         let (a, b) = (&self.0, &o.0);
-        let d = |i: usize, j: usize, k: usize| a[i].mul(&b[j], P, RM).sub(&a[j].mul(&b[i], P, RM), P, RM).clone_with(k);
-        V([d(1, 2, 0), d(2, 0, 1), d(0, 1, 2)])
+        let d = |i: usize, j: usize| a[i].mul(&b[j], P, RM).sub(&a[j].mul(&b[i], P, RM), P, RM);
+        V([d(1, 2), d(2, 0), d(0, 1)])
     }
     fn norm(&self) -> BigFloat {
         self.dot(self).sqrt(P, RM)
     }
     fn scale(&self, k: &BigFloat) -> V {
-        V([self.0[0].mul(k, P, RM), self.0[1].mul(k, P, RM), self.0[2].mul(k, P, RM)])
-    }
-}
-
-trait CloneWith {
-    fn clone_with(self, _k: usize) -> Self;
-}
-impl CloneWith for BigFloat {
-    fn clone_with(self, _k: usize) -> Self {
-        self
+        V([
+            self.0[0].mul(k, P, RM),
+            self.0[1].mul(k, P, RM),
+            self.0[2].mul(k, P, RM),
+        ])
     }
 }
 
@@ -78,7 +74,9 @@ pub fn exact_arc(t0: DVec3, force: DVec3, s: f64) -> (DVec3, DVec3) {
     let x = fnorm.mul(&bf(s), P, RM);
     let tau = tau0.add(&x, P, RM);
     let e_tau = e_tau0.mul(&x.exp(P, RM, &mut cc), P, RM);
-    let cosh_ratio = tau.cosh(P, RM, &mut cc).div(&tau0.cosh(P, RM, &mut cc), P, RM);
+    let cosh_ratio = tau
+        .cosh(P, RM, &mut cc)
+        .div(&tau0.cosh(P, RM, &mut cc), P, RM);
     let along = cosh_ratio.ln(P, RM, &mut cc).div(&fnorm, P, RM);
     let across = e_tau
         .atan(P, RM, &mut cc)

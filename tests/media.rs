@@ -1,0 +1,197 @@
+//! Every index profile's gradient against central differences of its own n, and the values
+//! the profiles promise at known points.
+
+use glam::DVec3;
+use grinlight::media::*;
+use rand::{Rng, SeedableRng};
+
+fn media() -> Vec<(&'static str, Box<dyn Medium>)> {
+    let axis = Axis {
+        center: DVec3::new(0.1, -0.2, 0.0),
+        axis: DVec3::new(0.0, 0.6, 0.8),
+    };
+    let grid_values: Vec<f64> = (0..4 * 3 * 5)
+        .map(|i| 1.0 + 0.01 * ((i * 37) % 11) as f64)
+        .collect();
+    vec![
+        (
+            "linear",
+            Box::new(LinearMedium {
+                n0: 1.2,
+                gradient: DVec3::new(0.01, 0.05, -0.02),
+                origin: DVec3::ONE,
+            }),
+        ),
+        (
+            "exponential",
+            Box::new(ExponentialMedium {
+                n0: 1.1,
+                gradient: DVec3::new(0.1, -0.3, 0.2),
+                origin: DVec3::ZERO,
+            }),
+        ),
+        (
+            "parabolic",
+            Box::new(ParabolicFiber {
+                n0: 1.5,
+                a: 0.2,
+                axis,
+            }),
+        ),
+        (
+            "sech",
+            Box::new(SechFiber {
+                n0: 1.5,
+                g: 0.7,
+                axis,
+            }),
+        ),
+        (
+            "luneburg",
+            Box::new(Luneburg {
+                center: DVec3::new(0.0, 0.1, 0.0),
+                radius: 1.3,
+            }),
+        ),
+        (
+            "fisheye",
+            Box::new(FishEye {
+                n0: 2.0,
+                center: DVec3::ZERO,
+                radius: 0.8,
+            }),
+        ),
+        (
+            "black_hole",
+            Box::new(BlackHole {
+                center: DVec3::ZERO,
+                rs: 0.1,
+                q: 0.3,
+            }),
+        ),
+        (
+            "grid",
+            Box::new(
+                GridMedium::new(
+                    DVec3::splat(-1.0),
+                    DVec3::new(1.0, 1.5, 1.0),
+                    [4, 3, 5],
+                    grid_values,
+                )
+                .unwrap(),
+            ),
+        ),
+    ]
+}
+
+/// Central differences with h = 1e-6 err by ~h²·n‴ ≈ 1e-12 plus rounding ε·n/h ≈ 2e-10; the
+/// tolerance 1e-7·(1 + |∇n|) leaves a wide margin. Grid points sit inside cells (the
+/// interpolant's gradient is discontinuous across cell faces) and the Luneburg points off its
+/// surface.
+#[test]
+fn gradients_match_central_differences() {
+    let mut rng = rand_pcg::Pcg64Mcg::seed_from_u64(11);
+    for (name, m) in media() {
+        let mut checked = 0;
+        while checked < 200 {
+            let p = DVec3::new(
+                rng.gen_range(-1.0..1.0),
+                rng.gen_range(-1.0..1.0),
+                rng.gen_range(-1.0..1.0),
+            );
+            let Some(s) = m.sample(p) else { continue };
+            let h = 1e-6;
+            let mut fd = DVec3::ZERO;
+            let mut ok = true;
+            for a in 0..3 {
+                let mut e = DVec3::ZERO;
+                e[a] = h;
+                match (m.sample(p + e), m.sample(p - e)) {
+                    (Some(u), Some(v)) => fd[a] = (u.n - v.n) / (2.0 * h),
+                    _ => ok = false,
+                }
+            }
+            let near_kink = match name {
+                "grid" => {
+                    let u = (p + 1.0) * DVec3::new(1.5, 0.8, 2.0);
+                    (u - u.round()).abs().min_element() < 1e-4
+                }
+                "luneburg" => ((p - DVec3::new(0.0, 0.1, 0.0)).length() - 1.3).abs() < 1e-4,
+                _ => false,
+            };
+            if !ok || near_kink {
+                continue;
+            }
+            let err = (fd - s.grad).length();
+            assert!(
+                err <= 1e-7 * (1.0 + s.grad.length()),
+                "{name} at {p}: ∇n {} vs differences {fd} ({err:e})",
+                s.grad
+            );
+            assert!(s.n > 0.0 && s.n.is_finite());
+            checked += 1;
+        }
+    }
+}
+
+#[test]
+fn profiles_have_their_defining_values() {
+    let lune = Luneburg {
+        center: DVec3::ZERO,
+        radius: 2.0,
+    };
+    assert_eq!(lune.sample(DVec3::ZERO).unwrap().n, 2f64.sqrt());
+    assert_eq!(lune.sample(DVec3::new(2.0, 0.0, 0.0)).unwrap().n, 1.0);
+    assert_eq!(lune.sample(DVec3::new(3.0, 0.0, 0.0)).unwrap().n, 1.0);
+    let eye = FishEye {
+        n0: 2.0,
+        center: DVec3::ZERO,
+        radius: 1.0,
+    };
+    assert_eq!(eye.sample(DVec3::X).unwrap().n, 1.0);
+    // Black hole: n = ρ²/(ρ² − ρ + q²); captured at and inside the horizon and at the centre.
+    let hole = BlackHole {
+        center: DVec3::ZERO,
+        rs: 0.5,
+        q: 0.1,
+    };
+    let s = hole.sample(DVec3::new(1.0, 0.0, 0.0)).unwrap(); // ρ = 2
+    assert!((s.n - 4.0 / (4.0 - 2.0 + 0.01)).abs() < 1e-15);
+    let horizon = hole.horizon() * 0.5;
+    assert!(hole.sample(DVec3::new(horizon, 0.0, 0.0)).is_none());
+    assert!(hole
+        .sample(DVec3::new(horizon * (1.0 + 1e-6), 0.0, 0.0))
+        .is_some());
+    assert!(hole.sample(DVec3::ZERO).is_none());
+    // q > 1/2: no horizon; only the centre captures.
+    let naked = BlackHole {
+        center: DVec3::ZERO,
+        rs: 1.0,
+        q: 0.6,
+    };
+    assert_eq!(naked.horizon(), 0.0);
+    assert!(naked.sample(DVec3::new(0.3, 0.0, 0.0)).is_some());
+    // Parabolic fiber: n ≤ 0 beyond r = √(2/a) captures.
+    let rod = ParabolicFiber {
+        n0: 1.5,
+        a: 2.0,
+        axis: Axis {
+            center: DVec3::ZERO,
+            axis: DVec3::Z,
+        },
+    };
+    assert!(rod.sample(DVec3::new(1.0, 0.0, 5.0)).is_none());
+    assert!((rod.sample(DVec3::new(0.5, 0.0, 5.0)).unwrap().n - 1.5 * 0.75).abs() < 1e-15);
+    // Grid: exact at the nodes, clamped outside.
+    let g = GridMedium::new(
+        DVec3::ZERO,
+        DVec3::ONE,
+        [2, 2, 2],
+        vec![1.0, 2.0, 1.0, 2.0, 1.0, 2.0, 1.0, 2.0],
+    )
+    .unwrap();
+    assert_eq!(g.sample(DVec3::new(1.0, 0.0, 0.0)).unwrap().n, 2.0);
+    let outside = g.sample(DVec3::new(3.0, 0.5, 0.5)).unwrap();
+    assert_eq!((outside.n, outside.grad), (2.0, DVec3::ZERO));
+    assert!(UniformMedium { n: 1.3 }.is_uniform());
+}
