@@ -101,7 +101,7 @@ fn cases() -> Vec<Case> {
     let x0 = 0.5;
     let slope = 0.1;
     let fiber = Case {
-        name: "sech fiber, 10 periods",
+        name: "sech fiber 10 periods",
         medium: Box::new(SechFiber {
             n0: 1.5,
             g,
@@ -324,6 +324,6 @@ fn main() -> std::io::Result<()> {
     }
     plot::save(&img, std::path::Path::new("out/stepper_study.png"))
         .map_err(std::io::Error::other)?;
-    println!("\nwrote out/stepper_study.csv and out/stepper_study.png (x: time per ray [s], y: error; colours: arc adaptive/fixed/tessendorf = red/blue/green, rk4 = magenta/yellow/teal, snell = violet/orange/red; tessendorf unconnected)");
+    println!("\nwrote out/stepper_study.csv and out/stepper_study.png (x: time per ray [s], y: error; colours: arc adaptive/fixed/tessendorf = red/blue/green, rk4 = magenta/yellow/teal, snell = violet/orange/grey; tessendorf unconnected)");
     Ok(())
 }

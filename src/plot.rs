@@ -10,7 +10,7 @@ use std::path::Path;
 pub type Color = [u8; 3];
 
 /// Distinct series colours.
-pub const PALETTE: [Color; 8] = [
+pub const PALETTE: [Color; 9] = [
     [220, 50, 47],
     [38, 139, 210],
     [133, 153, 0],
@@ -19,6 +19,7 @@ pub const PALETTE: [Color; 8] = [
     [42, 161, 152],
     [108, 113, 196],
     [203, 75, 22],
+    [88, 110, 117],
 ];
 
 /// 3×5 glyphs for tick labels, rows top to bottom, 3 bits each (MSB left).
