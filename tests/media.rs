@@ -195,3 +195,51 @@ fn profiles_have_their_defining_values() {
     assert_eq!((outside.n, outside.grad), (2.0, DVec3::ZERO));
     assert!(UniformMedium { n: 1.3 }.is_uniform());
 }
+
+/// A medium of constant index 1.5 with absorption rising linearly along x, σa = 0.2 + 0.1 x.
+struct Absorbing;
+
+impl Medium for Absorbing {
+    fn sample(&self, _p: DVec3) -> Option<IndexSample> {
+        Some(IndexSample::constant(1.5))
+    }
+    fn absorption(&self, p: DVec3) -> f64 {
+        0.2 + 0.1 * p.x
+    }
+    fn step_hint(&self, _p: DVec3) -> f64 {
+        0.3
+    }
+}
+
+/// The march integrates ∫σa ds and ∫n ds along the path: for σa linear along a straight ray
+/// the trapezoid rule is exact, ∫₀⁴ (0.2 + 0.1 s) ds = 1.6, and ∫ n ds = 1.5·4 = 6.
+#[test]
+fn march_accumulates_optical_depth_and_optical_path() {
+    use grinlight::curve::{march_with, Bounds, MarchLimits, RayState, StepControl, StepperKind};
+    let start = RayState::new(&Absorbing, DVec3::ZERO, DVec3::X).unwrap();
+    let limits = MarchLimits {
+        length: 4.0,
+        max_steps: 1000,
+        bounds: Bounds::Unbounded,
+    };
+    for kind in StepperKind::ALL {
+        let out = march_with(
+            kind,
+            &Absorbing,
+            StepControl::default_for(kind),
+            start,
+            &limits,
+            |_, _| {},
+        );
+        assert!(
+            (out.optical_depth - 1.6).abs() < 1e-12,
+            "{kind:?}: {}",
+            out.optical_depth
+        );
+        assert!(
+            (out.optical_path - 6.0).abs() < 1e-12,
+            "{kind:?}: {}",
+            out.optical_path
+        );
+    }
+}

@@ -96,6 +96,9 @@ pub struct MarchOutcome {
     pub arclength: f64,
     /// Optical path length ∫ n ds travelled (trapezoid rule per step).
     pub optical_path: f64,
+    /// Optical depth ∫ σa ds of absorption travelled (trapezoid rule per step); the ray's
+    /// transmittance is exp(−optical_depth).
+    pub optical_depth: f64,
     /// Accepted steps.
     pub steps: u64,
     /// Step attempts, accepted and rejected.
@@ -125,6 +128,7 @@ where
         state: start,
         arclength: 0.0,
         optical_path: 0.0,
+        optical_depth: 0.0,
         steps: 0,
         attempts: 0,
         min_step: f64::INFINITY,
@@ -245,11 +249,11 @@ where
         }
         if leaves(limits, step.state.position) {
             let (exit, len) = locate_exit(stepper, medium, &state, step.length, limits);
-            accept(&mut out, exit, len, &mut observe);
+            accept(&mut out, medium, exit, len, &mut observe);
             out.reason = Termination::LeftBounds;
             return out;
         }
-        accept(&mut out, step.state, step.length, &mut observe);
+        accept(&mut out, medium, step.state, step.length, &mut observe);
         h = next_h;
     }
 }
@@ -273,13 +277,16 @@ fn step_request(requested: f64, step: &super::stepper::Step, target: f64) -> f64
     requested * target / step.length
 }
 
-fn accept<O: FnMut(f64, &RayState)>(
+fn accept<M: Medium + ?Sized, O: FnMut(f64, &RayState)>(
     out: &mut MarchOutcome,
+    medium: &M,
     state: RayState,
     len: f64,
     observe: &mut O,
 ) {
     out.optical_path += optical_path_length(&out.state.index, &state.index, len);
+    out.optical_depth +=
+        0.5 * (medium.absorption(out.state.position) + medium.absorption(state.position)) * len;
     out.arclength += len;
     out.steps += 1;
     out.min_step = out.min_step.min(len);

@@ -117,16 +117,6 @@ impl CurvedSegment {
         }
     }
 
-    /// The segment's start.
-    pub fn origin(&self) -> DVec3 {
-        self.origin
-    }
-
-    /// |F| (1/length): the curvature scale; 0 for a straight segment.
-    pub fn force(&self) -> f64 {
-        self.f
-    }
-
     /// The in-plane components (along F̂, along p̂) of x(s) − x0 and of t̂(s).
     /// Returns (L/|F|, Δ/|F|, tanh τ, sech τ).
     fn components(&self, s: f64) -> (f64, f64, f64, f64) {
@@ -214,12 +204,6 @@ impl CurvedSegment {
             position: self.origin + along * self.f_hat + across * self.p_hat,
             direction: (tanh * self.f_hat + sech * self.p_hat).normalize(),
         }
-    }
-
-    /// Largest distance of the arc over [0, s] from its chord: bounds the box that holds it.
-    /// The curvature |F| sin θ ≤ |F|, so the sagitta is at most |F| s²/8.
-    pub fn max_deviation(&self, s: f64) -> f64 {
-        0.125 * self.f * s * s
     }
 
     /// Signed distance of x(s) from the plane through `point` with unit `normal`, and its

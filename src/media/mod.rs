@@ -69,8 +69,3 @@ pub trait Medium: Send + Sync {
 pub fn optical_path_length(a: &IndexSample, b: &IndexSample, ds: f64) -> f64 {
     0.5 * (a.n + b.n) * ds
 }
-
-/// Transmittance exp(−∫ σa ds) of a step from the absorption coefficients at its two ends.
-pub fn transmittance(sigma_a0: f64, sigma_a1: f64, ds: f64) -> f64 {
-    (-0.5 * (sigma_a0 + sigma_a1) * ds).exp()
-}
