@@ -49,7 +49,7 @@ fn run(case: &Case, kind: StepperKind, control: StepControl) -> (MarchOutcome, f
             control,
             start,
             &case.limits,
-            |_, _| {},
+            |_, _| std::ops::ControlFlow::Continue(()),
         );
         times.push(t.elapsed().as_secs_f64());
         out = Some(o);
@@ -80,7 +80,7 @@ fn black_hole_case(name: &'static str, b_rs: f64, reference: Option<DVec3>) -> (
             StepControl::Adaptive { tolerance: 1e-14 },
             s,
             &limits,
-            |_, _| {},
+            |_, _| std::ops::ControlFlow::Continue(()),
         )
         .state
         .position
@@ -154,7 +154,7 @@ fn cases() -> Vec<Case> {
             StepControl::Adaptive { tolerance: 1e-12 },
             s,
             &c.limits,
-            |_, _| {},
+            |_, _| std::ops::ControlFlow::Continue(()),
         );
         println!(
             "# {}: reference end {r:.9}, exact arc at 1e-12 differs by {:.2e}",
@@ -235,7 +235,7 @@ fn step_costs() {
                 StepControl::Fixed { step: 1e-5 },
                 start,
                 &limits,
-                |_, _| {},
+                |_, _| std::ops::ControlFlow::Continue(()),
             );
             times.push(t.elapsed().as_secs_f64() / o.steps as f64 * 1e9);
         }

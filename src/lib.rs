@@ -13,15 +13,17 @@
 //! let fiber = SechFiber { n0: 1.5, g: 1.0, axis: grinlight::media::Axis { center: DVec3::ZERO, axis: DVec3::Z } };
 //! let start = RayState::new(&fiber, DVec3::new(0.1, 0.0, 0.0), DVec3::Z).unwrap();
 //! let limits = MarchLimits { length: 20.0, max_steps: 100_000, bounds: Bounds::Unbounded };
-//! let out = march(&ExactArc, &fiber, StepControl::default_for(StepperKind::Arc), start, &limits, |_, _| {});
+//! let out = march(&ExactArc, &fiber, StepControl::default_for(StepperKind::Arc), start, &limits, |_, _| std::ops::ControlFlow::Continue(()));
 //! assert_eq!(out.reason, Termination::LengthReached);
 //! ```
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+pub mod accel;
 pub mod curve;
 pub mod error;
 pub mod media;
 pub mod plot;
 pub mod scene;
+pub mod shapes;
 pub mod trace;

@@ -27,7 +27,8 @@ pub fn trace_path(
 ) -> (MarchOutcome, Vec<PathPoint>) {
     let mut points = Vec::new();
     let out = march_with(kind, medium, control, start, limits, |s, st| {
-        points.push(PathPoint { s, state: *st })
+        points.push(PathPoint { s, state: *st });
+        std::ops::ControlFlow::Continue(())
     });
     (out, points)
 }

@@ -229,7 +229,7 @@ fn march_accumulates_optical_depth_and_optical_path() {
             StepControl::default_for(kind),
             start,
             &limits,
-            |_, _| {},
+            |_, _| std::ops::ControlFlow::Continue(()),
         );
         assert!(
             (out.optical_depth - 1.6).abs() < 1e-12,

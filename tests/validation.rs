@@ -27,7 +27,7 @@ fn trace(
         max_steps: 5_000_000,
         bounds,
     };
-    let out = march_with(kind, medium, control, start, &limits, |_, _| {});
+    let out = march_with(kind, medium, control, start, &limits, |_, _| std::ops::ControlFlow::Continue(()));
     assert!(
         out.state.position.is_finite() && out.state.direction.is_finite(),
         "{kind:?}: non-finite end"
@@ -109,7 +109,7 @@ fn exponential_medium_single_arc_step_is_exact() {
             StepControl::Fixed { step: s },
             start,
             &limits,
-            |_, _| {},
+            |_, _| std::ops::ControlFlow::Continue(()),
         );
         assert_eq!(out.steps, 1);
         assert!((out.state.position - x).length() / s < 1e-12);
@@ -541,7 +541,7 @@ fn tessendorf_control_reproduces_the_seed_while_adaptive_ends_quickly() {
         seed: 1,
     };
     for kind in [StepperKind::Arc, StepperKind::Rk4] {
-        let out = march_with(kind, &hole, seed, start, &limits, |_, _| {});
+        let out = march_with(kind, &hole, seed, start, &limits, |_, _| std::ops::ControlFlow::Continue(()));
         println!(
             "{kind:?} tessendorf: {} after {} attempts, min step {:e}",
             out.reason.name(),
@@ -561,7 +561,7 @@ fn tessendorf_control_reproduces_the_seed_while_adaptive_ends_quickly() {
             StepControl::default_for(kind),
             start,
             &limits,
-            |_, _| {},
+            |_, _| std::ops::ControlFlow::Continue(()),
         );
         println!(
             "{kind:?} adaptive: {} after {} attempts",

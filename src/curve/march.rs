@@ -4,6 +4,7 @@ use super::bounds::Bounds;
 use super::stepper::{ExactArc, RayState, Rk4Sharma, SnellSteps, Stepper, StepperKind};
 use crate::media::{optical_path_length, Medium};
 use rand::Rng;
+use std::ops::ControlFlow;
 use rand_pcg::Pcg64Mcg;
 
 /// How step lengths are chosen.
@@ -61,6 +62,8 @@ pub enum Termination {
     StepUnderflow,
     /// The step limit (N_max) was reached first.
     MaxSteps,
+    /// The caller's observer stopped the march (e.g. the step crossed a surface).
+    Stopped,
 }
 
 impl Termination {
@@ -72,6 +75,7 @@ impl Termination {
             Termination::Captured => "captured",
             Termination::StepUnderflow => "step underflow",
             Termination::MaxSteps => "max steps",
+            Termination::Stopped => "stopped",
         }
     }
 }
@@ -110,7 +114,8 @@ pub struct MarchOutcome {
 }
 
 /// Marches a ray from `start` with `stepper` under `control` until one of `limits` ends it.
-/// `observe` sees every accepted state (the start first) with its arclength.
+/// `observe` sees every accepted state (the start first) with its arclength; returning
+/// `ControlFlow::Break` ends the march with [`Termination::Stopped`] at that state.
 pub fn march<S, M, O>(
     stepper: &S,
     medium: &M,
@@ -122,7 +127,7 @@ pub fn march<S, M, O>(
 where
     S: Stepper,
     M: Medium + ?Sized,
-    O: FnMut(f64, &RayState),
+    O: FnMut(f64, &RayState) -> ControlFlow<()>,
 {
     let mut out = MarchOutcome {
         state: start,
@@ -134,7 +139,10 @@ where
         min_step: f64::INFINITY,
         reason: Termination::LengthReached,
     };
-    observe(0.0, &start);
+    if observe(0.0, &start).is_break() {
+        out.reason = Termination::Stopped;
+        return out;
+    }
     let mut rng = match control {
         StepControl::Tessendorf { seed, .. } => Some(Pcg64Mcg::new(u128::from(seed) | 1)),
         _ => None,
@@ -249,11 +257,14 @@ where
         }
         if leaves(limits, step.state.position) {
             let (exit, len) = locate_exit(stepper, medium, &state, step.length, limits);
-            accept(&mut out, medium, exit, len, &mut observe);
-            out.reason = Termination::LeftBounds;
+            let flow = accept(&mut out, medium, exit, len, &mut observe);
+            out.reason = if flow.is_break() { Termination::Stopped } else { Termination::LeftBounds };
             return out;
         }
-        accept(&mut out, medium, step.state, step.length, &mut observe);
+        if accept(&mut out, medium, step.state, step.length, &mut observe).is_break() {
+            out.reason = Termination::Stopped;
+            return out;
+        }
         h = next_h;
     }
 }
@@ -277,13 +288,13 @@ fn step_request(requested: f64, step: &super::stepper::Step, target: f64) -> f64
     requested * target / step.length
 }
 
-fn accept<M: Medium + ?Sized, O: FnMut(f64, &RayState)>(
+fn accept<M: Medium + ?Sized, O: FnMut(f64, &RayState) -> ControlFlow<()>>(
     out: &mut MarchOutcome,
     medium: &M,
     state: RayState,
     len: f64,
     observe: &mut O,
-) {
+) -> ControlFlow<()> {
     out.optical_path += optical_path_length(&out.state.index, &state.index, len);
     out.optical_depth +=
         0.5 * (medium.absorption(out.state.position) + medium.absorption(state.position)) * len;
@@ -291,7 +302,7 @@ fn accept<M: Medium + ?Sized, O: FnMut(f64, &RayState)>(
     out.steps += 1;
     out.min_step = out.min_step.min(len);
     out.state = state;
-    observe(out.arclength, &state);
+    observe(out.arclength, &state)
 }
 
 fn leaves(limits: &MarchLimits, p: glam::DVec3) -> bool {
@@ -376,7 +387,7 @@ pub fn march_with<M, O>(
 ) -> MarchOutcome
 where
     M: Medium + ?Sized,
-    O: FnMut(f64, &RayState),
+    O: FnMut(f64, &RayState) -> ControlFlow<()>,
 {
     match kind {
         StepperKind::Arc => march(&ExactArc, medium, control, start, limits, observe),

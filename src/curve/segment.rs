@@ -117,6 +117,17 @@ impl CurvedSegment {
         }
     }
 
+    /// |F| (1/length): the curvature bound of the segment; 0 when straight.
+    pub fn force(&self) -> f64 {
+        self.f
+    }
+
+    /// Largest distance of the arc over [0, s] from its chord: the curvature |F| sin θ ≤ |F|,
+    /// so the sagitta is at most |F| s²/8. Bounds the box that holds the arc.
+    pub fn max_deviation(&self, s: f64) -> f64 {
+        0.125 * self.f * s * s
+    }
+
     /// The in-plane components (along F̂, along p̂) of x(s) − x0 and of t̂(s).
     /// Returns (L/|F|, Δ/|F|, tanh τ, sech τ).
     fn components(&self, s: f64) -> (f64, f64, f64, f64) {

@@ -1,0 +1,105 @@
+//! The acceleration structure: an obvhs `Bvh2` over the primitives' bounds. The BVH knows
+//! nothing of primitives: f32 boxes are padded outward, and the closures do the exact f64 test.
+
+use crate::curve::CurvedSegment;
+use crate::shapes::{Hit, Primitive};
+use glam::{DVec3, Vec3A};
+use obvhs::aabb::Aabb;
+use obvhs::bvh2::builder::build_bvh2;
+use obvhs::bvh2::Bvh2;
+use obvhs::ray::{Ray, RayHit};
+use obvhs::{BvhBuildParams, Boundable};
+
+/// A primitive's f32 box, rounded outward so it contains the f64 primitive.
+struct Bounds(Aabb);
+
+impl Boundable for Bounds {
+    fn aabb(&self) -> Aabb {
+        self.0
+    }
+}
+
+/// f32 box containing the f64 box [lo, hi].
+fn padded(lo: DVec3, hi: DVec3) -> Aabb {
+    let pad = |v: DVec3| v.abs() * 1e-6 + DVec3::splat(1e-6);
+    Aabb::new(Vec3A::from((lo - pad(lo)).as_vec3()), Vec3A::from((hi + pad(hi)).as_vec3()))
+}
+
+/// Primitives with a BVH over them; a hit reports the primitive's index in `primitives`.
+pub struct Accel {
+    primitives: Vec<Primitive>,
+    bvh: Bvh2,
+}
+
+impl Accel {
+    /// Builds the BVH.
+    pub fn new(primitives: Vec<Primitive>) -> Self {
+        let bounds: Vec<Bounds> = primitives
+            .iter()
+            .map(|p| {
+                let (lo, hi) = p.bounds();
+                Bounds(padded(lo, hi))
+            })
+            .collect();
+        let bvh = if bounds.is_empty() {
+            Bvh2::default()
+        } else {
+            build_bvh2(&bounds, BvhBuildParams::medium_build(), &mut Default::default())
+        };
+        Self { primitives, bvh }
+    }
+
+    /// The primitives.
+    pub fn primitives(&self) -> &[Primitive] {
+        &self.primitives
+    }
+
+    /// Nearest hit of the straight ray o + t d (d unit), t ∈ (t_min, t_max): (primitive, hit).
+    pub fn intersect_ray(&self, o: DVec3, d: DVec3, t_min: f64, t_max: f64) -> Option<(usize, Hit)> {
+        if self.primitives.is_empty() {
+            return None;
+        }
+        let ray = Ray::new(Vec3A::from(o.as_vec3()), Vec3A::from(d.as_vec3()), 0.0, f32::INFINITY);
+        let mut best: Option<(usize, Hit)> = None;
+        let mut hit = RayHit::none();
+        self.bvh.ray_traverse(ray, &mut hit, |_, i| {
+            let id = self.bvh.primitive_indices[i] as usize;
+            let limit = best.map_or(t_max, |(_, h)| h.t);
+            match self.primitives[id].intersect_ray(o, d, t_min, limit) {
+                Some(h) => {
+                    best = Some((id, h));
+                    // Round up: the f32 bound must not cull a node holding an f64 tie.
+                    (h.t as f32).next_up()
+                }
+                None => f32::INFINITY,
+            }
+        });
+        best
+    }
+
+    /// Nearest crossing of a curved segment with any primitive at arclength s ∈ (s_min, length].
+    /// Candidates are the primitives whose boxes meet the segment's box: its chord's box grown
+    /// by its largest deviation from the chord.
+    pub fn intersect_segment(&self, seg: &CurvedSegment, s_min: f64, length: f64) -> Option<(usize, Hit)> {
+        if self.primitives.is_empty() {
+            return None;
+        }
+        let a = seg.at(0.0).position;
+        let b = seg.at(length).position;
+        let grow = DVec3::splat(seg.max_deviation(length));
+        let query = padded(a.min(b) - grow, a.max(b) + grow);
+        let mut best: Option<(usize, Hit)> = None;
+        self.bvh.aabb_traverse(query, |bvh, node_index| {
+            let node = &bvh.nodes[node_index as usize];
+            for i in node.first_index..node.first_index + node.prim_count {
+                let id = bvh.primitive_indices[i as usize] as usize;
+                let limit = best.map_or(length, |(_, h)| h.t);
+                if let Some(h) = self.primitives[id].intersect_segment(seg, s_min, limit) {
+                    best = Some((id, h));
+                }
+            }
+            true
+        });
+        best
+    }
+}

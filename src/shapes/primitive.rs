@@ -1,0 +1,249 @@
+//! The primitives: sphere, open cylinder (tube), parallelogram (quad), disk and triangle.
+
+use crate::curve::CurvedSegment;
+use glam::DVec3;
+
+/// Where a ray meets a primitive.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Hit {
+    /// Distance along a straight ray, or arclength along a curved segment.
+    pub t: f64,
+    /// Unit geometric normal at the hit: outward for spheres and tubes, the primitive's own
+    /// normal for quads, disks and triangles (not flipped toward the ray).
+    pub normal: DVec3,
+}
+
+/// A surface primitive. Vectors in scene units.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Primitive {
+    /// A sphere.
+    Sphere {
+        /// Centre.
+        center: DVec3,
+        /// Radius.
+        radius: f64,
+    },
+    /// The side of a cylinder of `radius` from `base` along the unit `axis` for `height`
+    /// (no caps: capped cylinders add two disks).
+    Tube {
+        /// Centre of the base circle.
+        base: DVec3,
+        /// Unit axis.
+        axis: DVec3,
+        /// Radius.
+        radius: f64,
+        /// Length along the axis.
+        height: f64,
+    },
+    /// The parallelogram origin + u·e1 + v·e2, u, v ∈ [0, 1], normal e1 × e2 normalised.
+    Quad {
+        /// Corner v0.
+        origin: DVec3,
+        /// v1 − v0.
+        e1: DVec3,
+        /// v3 − v0.
+        e2: DVec3,
+    },
+    /// A disk.
+    Disk {
+        /// Centre.
+        center: DVec3,
+        /// Unit normal.
+        normal: DVec3,
+        /// Radius.
+        radius: f64,
+    },
+    /// The triangle v0, v0 + e1, v0 + e2, normal e1 × e2 normalised.
+    Triangle {
+        /// First vertex.
+        v0: DVec3,
+        /// v1 − v0.
+        e1: DVec3,
+        /// v2 − v0.
+        e2: DVec3,
+    },
+}
+
+impl Primitive {
+    /// A triangle from three vertices.
+    pub fn triangle(a: DVec3, b: DVec3, c: DVec3) -> Self {
+        Primitive::Triangle { v0: a, e1: b - a, e2: c - a }
+    }
+
+    /// Axis-aligned bounds (min, max).
+    pub fn bounds(&self) -> (DVec3, DVec3) {
+        match *self {
+            Primitive::Sphere { center, radius } => (center - radius, center + radius),
+            Primitive::Tube { base, axis, radius, height } => {
+                // Each end circle's extent along world axis i is r·√(1 − a_i²).
+                let ext = radius * (DVec3::ONE - axis * axis).max(DVec3::ZERO).sqrt();
+                let top = base + axis * height;
+                (base.min(top) - ext, base.max(top) + ext)
+            }
+            Primitive::Quad { origin, e1, e2 } => {
+                let pts = [origin, origin + e1, origin + e2, origin + e1 + e2];
+                corners(&pts)
+            }
+            Primitive::Disk { center, normal, radius } => {
+                let ext = radius * (DVec3::ONE - normal * normal).max(DVec3::ZERO).sqrt();
+                (center - ext, center + ext)
+            }
+            Primitive::Triangle { v0, e1, e2 } => corners(&[v0, v0 + e1, v0 + e2]),
+        }
+    }
+
+    /// The plane of a planar primitive: (a point on it, unit normal).
+    fn plane(&self) -> Option<(DVec3, DVec3)> {
+        match *self {
+            Primitive::Quad { origin, e1, e2 } => Some((origin, e1.cross(e2).normalize())),
+            Primitive::Disk { center, normal, .. } => Some((center, normal)),
+            Primitive::Triangle { v0, e1, e2 } => Some((v0, e1.cross(e2).normalize())),
+            _ => None,
+        }
+    }
+
+    /// Whether a point of a planar primitive's plane lies on the primitive (edges included).
+    fn contains_planar(&self, p: DVec3) -> bool {
+        match *self {
+            Primitive::Quad { origin, e1, e2 } => {
+                let (u, v) = plane_coordinates(p - origin, e1, e2);
+                (0.0..=1.0).contains(&u) && (0.0..=1.0).contains(&v)
+            }
+            Primitive::Disk { center, radius, .. } => (p - center).length_squared() <= radius * radius,
+            Primitive::Triangle { v0, e1, e2 } => {
+                let (u, v) = plane_coordinates(p - v0, e1, e2);
+                u >= 0.0 && v >= 0.0 && u + v <= 1.0
+            }
+            _ => false,
+        }
+    }
+
+    /// Nearest hit of the straight ray o + t d (d unit) with t ∈ (t_min, t_max).
+    pub fn intersect_ray(&self, o: DVec3, d: DVec3, t_min: f64, t_max: f64) -> Option<Hit> {
+        let valid = |t: f64| t > t_min && t < t_max;
+        match *self {
+            Primitive::Sphere { center, radius } => {
+                // Hearn & Baker: discriminant from the perpendicular offset (no cancellation).
+                let oc = o - center;
+                let b = oc.dot(d);
+                let perp = oc - b * d;
+                let disc = radius * radius - perp.length_squared();
+                if disc < 0.0 {
+                    return None;
+                }
+                let q = -b - b.signum() * disc.sqrt();
+                let c = oc.length_squared() - radius * radius;
+                let (t0, t1) = ordered(q, if q != 0.0 { c / q } else { 0.0 });
+                [t0, t1].into_iter().find(|&t| valid(t)).map(|t| Hit {
+                    t,
+                    normal: (o + t * d - center) / radius,
+                })
+            }
+            Primitive::Tube { base, axis, radius, height } => {
+                let oc = o - base;
+                let dp = d - axis * d.dot(axis);
+                let op = oc - axis * oc.dot(axis);
+                let a = dp.length_squared();
+                if a == 0.0 {
+                    return None;
+                }
+                let b = op.dot(dp);
+                let c = op.length_squared() - radius * radius;
+                let disc = b * b - a * c;
+                if disc < 0.0 {
+                    return None;
+                }
+                let q = -b - b.signum() * disc.sqrt();
+                let (t0, t1) = ordered(q / a, if q != 0.0 { c / q } else { 0.0 });
+                [t0, t1].into_iter().find_map(|t| {
+                    let h = (oc + t * d).dot(axis);
+                    (valid(t) && (0.0..=height).contains(&h)).then(|| {
+                        let p = oc + t * d;
+                        Hit { t, normal: (p - axis * p.dot(axis)).normalize() }
+                    })
+                })
+            }
+            _ => {
+                let (p0, n) = self.plane()?;
+                let denom = d.dot(n);
+                if denom == 0.0 {
+                    return None;
+                }
+                let t = (p0 - o).dot(n) / denom;
+                (valid(t) && self.contains_planar(o + t * d)).then_some(Hit { t, normal: n })
+            }
+        }
+    }
+
+    /// The primitive's implicit function g(x) (zero on the surface) and its gradient, used to
+    /// find where a curved segment crosses it.
+    pub(crate) fn implicit(&self, x: DVec3) -> (f64, DVec3) {
+        match *self {
+            Primitive::Sphere { center, radius } => {
+                let d = x - center;
+                (d.length_squared() - radius * radius, 2.0 * d)
+            }
+            Primitive::Tube { base, axis, radius, .. } => {
+                let d = x - base;
+                let p = d - axis * d.dot(axis);
+                (p.length_squared() - radius * radius, 2.0 * p)
+            }
+            _ => {
+                let (p0, n) = self.plane().expect("planar");
+                ((x - p0).dot(n), n)
+            }
+        }
+    }
+
+    /// Whether a point where the implicit function vanishes is on the primitive proper.
+    pub(crate) fn accepts(&self, x: DVec3) -> bool {
+        match *self {
+            Primitive::Sphere { .. } => true,
+            Primitive::Tube { base, axis, height, .. } => (0.0..=height).contains(&(x - base).dot(axis)),
+            _ => self.contains_planar(x),
+        }
+    }
+
+    /// The unit geometric normal at a surface point (convention as in [`Hit`]).
+    pub fn normal_at(&self, x: DVec3) -> DVec3 {
+        match *self {
+            Primitive::Sphere { center, .. } => (x - center).normalize(),
+            Primitive::Tube { base, axis, .. } => {
+                let d = x - base;
+                (d - axis * d.dot(axis)).normalize()
+            }
+            _ => self.plane().expect("planar").1,
+        }
+    }
+
+    /// Nearest crossing of a curved segment with the primitive at arclength s ∈ (s_min, length].
+    pub fn intersect_segment(&self, seg: &CurvedSegment, s_min: f64, length: f64) -> Option<Hit> {
+        super::segment_roots(seg, length, |x| self.implicit(x))
+            .into_iter()
+            .filter(|&s| s > s_min)
+            .find_map(|s| {
+                let x = seg.at(s).position;
+                self.accepts(x).then(|| Hit { t: s, normal: self.normal_at(x) })
+            })
+    }
+}
+
+fn ordered(a: f64, b: f64) -> (f64, f64) {
+    if a <= b {
+        (a, b)
+    } else {
+        (b, a)
+    }
+}
+
+fn corners(pts: &[DVec3]) -> (DVec3, DVec3) {
+    pts.iter().fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &p| (lo.min(p), hi.max(p)))
+}
+
+/// Coordinates (u, v) of an in-plane vector r = u e1 + v e2.
+fn plane_coordinates(r: DVec3, e1: DVec3, e2: DVec3) -> (f64, f64) {
+    let (a, b, c) = (e1.dot(e1), e1.dot(e2), e2.dot(e2));
+    let (p, q) = (r.dot(e1), r.dot(e2));
+    let det = a * c - b * b;
+    ((c * p - b * q) / det, (a * q - b * p) / det)
+}
