@@ -8,7 +8,7 @@ use obvhs::aabb::Aabb;
 use obvhs::bvh2::builder::build_bvh2;
 use obvhs::bvh2::Bvh2;
 use obvhs::ray::{Ray, RayHit};
-use obvhs::{BvhBuildParams, Boundable};
+use obvhs::{Boundable, BvhBuildParams};
 
 /// A primitive's f32 box, rounded outward so it contains the f64 primitive.
 struct Bounds(Aabb);
@@ -22,7 +22,10 @@ impl Boundable for Bounds {
 /// f32 box containing the f64 box [lo, hi].
 fn padded(lo: DVec3, hi: DVec3) -> Aabb {
     let pad = |v: DVec3| v.abs() * 1e-6 + DVec3::splat(1e-6);
-    Aabb::new(Vec3A::from((lo - pad(lo)).as_vec3()), Vec3A::from((hi + pad(hi)).as_vec3()))
+    Aabb::new(
+        Vec3A::from((lo - pad(lo)).as_vec3()),
+        Vec3A::from((hi + pad(hi)).as_vec3()),
+    )
 }
 
 /// Primitives with a BVH over them; a hit reports the primitive's index in `primitives`.
@@ -44,7 +47,11 @@ impl Accel {
         let bvh = if bounds.is_empty() {
             Bvh2::default()
         } else {
-            build_bvh2(&bounds, BvhBuildParams::medium_build(), &mut Default::default())
+            build_bvh2(
+                &bounds,
+                BvhBuildParams::medium_build(),
+                &mut Default::default(),
+            )
         };
         Self { primitives, bvh }
     }
@@ -55,11 +62,22 @@ impl Accel {
     }
 
     /// Nearest hit of the straight ray o + t d (d unit), t ∈ (t_min, t_max): (primitive, hit).
-    pub fn intersect_ray(&self, o: DVec3, d: DVec3, t_min: f64, t_max: f64) -> Option<(usize, Hit)> {
+    pub fn intersect_ray(
+        &self,
+        o: DVec3,
+        d: DVec3,
+        t_min: f64,
+        t_max: f64,
+    ) -> Option<(usize, Hit)> {
         if self.primitives.is_empty() {
             return None;
         }
-        let ray = Ray::new(Vec3A::from(o.as_vec3()), Vec3A::from(d.as_vec3()), 0.0, f32::INFINITY);
+        let ray = Ray::new(
+            Vec3A::from(o.as_vec3()),
+            Vec3A::from(d.as_vec3()),
+            0.0,
+            f32::INFINITY,
+        );
         let mut best: Option<(usize, Hit)> = None;
         let mut hit = RayHit::none();
         self.bvh.ray_traverse(ray, &mut hit, |_, i| {
@@ -80,7 +98,12 @@ impl Accel {
     /// Nearest crossing of a curved segment with any primitive at arclength s ∈ (s_min, length].
     /// Candidates are the primitives whose boxes meet the segment's box: its chord's box grown
     /// by its largest deviation from the chord.
-    pub fn intersect_segment(&self, seg: &CurvedSegment, s_min: f64, length: f64) -> Option<(usize, Hit)> {
+    pub fn intersect_segment(
+        &self,
+        seg: &CurvedSegment,
+        s_min: f64,
+        length: f64,
+    ) -> Option<(usize, Hit)> {
         if self.primitives.is_empty() {
             return None;
         }

@@ -20,10 +20,17 @@
 #![warn(missing_docs)]
 
 pub mod accel;
+pub mod camera;
+pub mod color;
 pub mod curve;
+pub mod environment;
 pub mod error;
+pub mod film;
+pub mod lights;
+pub mod material;
 pub mod media;
 pub mod plot;
+pub mod render;
 pub mod scene;
 pub mod shapes;
 pub mod trace;

@@ -32,6 +32,29 @@ enum Control {
 
 #[derive(Subcommand)]
 enum Command {
+    /// Render a scene's camera view to a multi-layer EXR and a PNG preview.
+    Render {
+        /// Scene file (TOML).
+        scene: PathBuf,
+        /// Output EXR (default: [output] path, else <scene name>.exr here).
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+        /// Samples per pixel (overrides [render] spp).
+        #[arg(long)]
+        spp: Option<u32>,
+        /// Seed (overrides [render] seed).
+        #[arg(long)]
+        seed: Option<u64>,
+        /// Worker threads (overrides [render] threads; 0 = all cores).
+        #[arg(long)]
+        threads: Option<usize>,
+        /// Image width (overrides [camera] width; the vertical field of view is kept).
+        #[arg(long)]
+        width: Option<u32>,
+        /// Image height (overrides [camera] height).
+        #[arg(long)]
+        height: Option<u32>,
+    },
     /// Trace one ray through a medium of a scene (unbounded) and print where it ends.
     Trace {
         /// Scene file (TOML).
@@ -100,6 +123,81 @@ fn parse_vec(s: &str) -> std::result::Result<DVec3, String> {
     Ok(DVec3::from_array(v))
 }
 
+#[allow(clippy::too_many_arguments)]
+fn render(
+    scene_path: PathBuf,
+    output: Option<PathBuf>,
+    spp: Option<u32>,
+    seed: Option<u64>,
+    threads: Option<usize>,
+    width: Option<u32>,
+    height: Option<u32>,
+) -> Result<()> {
+    let mut scene = scene::load_scene(&scene_path)?;
+    if let Some(n) = spp {
+        scene.render.spp = n.max(1);
+    }
+    if let Some(s) = seed {
+        scene.render.seed = s;
+    }
+    let threads = threads.unwrap_or(scene.render.threads);
+    let Some(camera) = scene.camera.as_mut() else {
+        return Err(Error::Usage(format!(
+            "{}: the scene has no [camera] to render",
+            scene_path.display()
+        ))
+        .into());
+    };
+    for (flag, v) in [("--width", width), ("--height", height)] {
+        if v.is_some_and(|v| v == 0 || v > 65_536) {
+            return Err(Error::Usage(format!("{flag} must be in 1..=65536")).into());
+        }
+    }
+    camera.width = width.unwrap_or(camera.width);
+    camera.height = height.unwrap_or(camera.height);
+    let (w, h) = (camera.width, camera.height);
+    let exr = output
+        .or_else(|| scene.output.path.clone())
+        .unwrap_or_else(|| {
+            PathBuf::from(scene_path.file_stem().unwrap_or_default()).with_extension("exr")
+        });
+    let tiles = (w as u64).div_ceil(16) * (h as u64).div_ceil(16);
+    let bar = indicatif::ProgressBar::new(tiles).with_style(
+        indicatif::ProgressStyle::with_template(
+            "{elapsed_precise} [{bar:40}] {pos}/{len} tiles, ETA {eta}",
+        )
+        .expect("valid template"),
+    );
+    let start = std::time::Instant::now();
+    let (film, stats) = grinlight::render::render(&scene, threads, &|| bar.inc(1))?;
+    bar.finish_and_clear();
+    let seconds = start.elapsed().as_secs_f64();
+    // Write every file before printing, so a closed stdout cannot cut the outputs short.
+    film.write_exr(&exr)?;
+    let png = scene.output.png.then(|| exr.with_extension("png"));
+    if let Some(png) = &png {
+        film.write_png(png, scene.output.exposure)?;
+    }
+    let mut stdout = std::io::stdout().lock();
+    writeln!(
+        stdout,
+        "rendered {} ({w}×{h}, {} spp) in {seconds:.2} s",
+        scene_path.display(),
+        scene.render.spp
+    )?;
+    writeln!(stdout, "{}", stats.summary())?;
+    writeln!(
+        stdout,
+        "wrote {} (layers: {})",
+        exr.display(),
+        grinlight::film::LAYERS.join(", ")
+    )?;
+    if let Some(png) = png {
+        writeln!(stdout, "wrote {}", png.display())?;
+    }
+    Ok(())
+}
+
 fn positive(name: &str, v: f64) -> std::result::Result<f64, Error> {
     if v.is_finite() && v > 0.0 {
         Ok(v)
@@ -125,6 +223,15 @@ fn main() {
 
 fn run(cli: Cli) -> Result<()> {
     match cli.command {
+        Command::Render {
+            scene,
+            output,
+            spp,
+            seed,
+            threads,
+            width,
+            height,
+        } => render(scene, output, spp, seed, threads, width, height),
         Command::Trace {
             scene,
             medium,
@@ -189,14 +296,20 @@ fn run(cli: Cli) -> Result<()> {
                 bounds: Bounds::Unbounded,
             };
             let (out, points) = trace::trace_path(medium, stepper, control, start, &limits);
+            // Write every file before printing, so a closed stdout cannot cut the outputs short.
+            if let Some(path) = &csv {
+                trace::write_csv(&points, path)?;
+            }
+            let legend = match &plot {
+                Some(path) => Some(trace::plot_path(medium, &points, path)?),
+                None => None,
+            };
             let mut stdout = std::io::stdout().lock();
             writeln!(stdout, "{}", trace::summary(&out))?;
             if let Some(path) = csv {
-                trace::write_csv(&points, &path)?;
                 writeln!(stdout, "wrote {} ({} rows)", path.display(), points.len())?;
             }
-            if let Some(path) = plot {
-                let legend = trace::plot_path(medium, &points, &path)?;
+            if let (Some(path), Some(legend)) = (plot, legend) {
                 writeln!(stdout, "wrote {}: {legend}", path.display())?;
             }
             Ok(())

@@ -11,7 +11,12 @@ fn every_shipped_scene_loads() {
         let path = entry.unwrap().path();
         if path.extension().is_some_and(|e| e == "toml") {
             let scene = grinlight::scene::load_scene(&path).unwrap_or_else(|e| panic!("{e}"));
-            assert!(scene.medium_names().count() > 0, "{}", path.display());
+            // A scene holds something to look at or to trace: a camera or a medium.
+            assert!(
+                scene.camera.is_some() || scene.medium_names().count() > 0,
+                "{}",
+                path.display()
+            );
             count += 1;
         }
     }
@@ -63,7 +68,33 @@ const BAD: &[(&str, usize, usize, &str)] = &[
     // Not TOML at all.
     ("[[medium]\nname = 1\n", 1, 9, "invalid table header"),
     // Unknown top-level table.
-    ("[camera]\nfov = 3\n", 1, 2, "unknown field `camera`"),
+    ("[kamera]\nfov = 3\n", 1, 2, "unknown field `kamera`"),
+    // Camera: missing position (at the table), unknown key, look_at = position, both fovs.
+    ("[camera]\nlook_at = [0, 0, 0]\nfov_y_deg = 40\n", 1, 1, "[camera]: key `position`: is missing"),
+    ("[camera]\nposition = [0, 0, 1]\nlook_at = [0, 0, 0]\nfov_y_deg = 40\nfov = 3\n", 5, 1, "unknown key `fov`"),
+    ("[camera]\nposition = [0, 0, 1]\nlook_at = [0, 0, 1]\nfov_y_deg = 40\n", 3, 1, "look_at equals position"),
+    ("[camera]\nposition = [0, 0, 1]\nlook_at = [0, 0, 0]\nfov_y_deg = 40\nfov_x_deg = 50\n", 4, 1, "exactly one of `fov_y_deg`"),
+    ("[camera]\nposition = [0, 0, 1]\nlook_at = [0, 0, 0]\nfov_y_deg = 190\n", 4, 1, "(0°, 179°)"),
+    // Render: unknown stepper, negative tolerance.
+    ("[render]\nstepper = \"euler\"\n", 2, 1, "key `stepper`"),
+    ("[render]\ntolerance = -1e-9\n", 2, 1, "key `tolerance`: must be > 0"),
+    // Material: unknown type, albedo above 1, dielectric without interior.
+    ("[[material]]\nname = \"m\"\ntype = \"velvet\"\n", 3, 1, "unknown material type 'velvet'"),
+    ("[[material]]\nname = \"m\"\ntype = \"diffuse\"\nalbedo = [0.5, 1.5, 0.5]\n", 4, 1, "reflectance must be ≤ 1"),
+    ("[[material]]\nname = \"m\"\ntype = \"dielectric\"\n", 1, 1, "exactly one of `ior` and `interior`"),
+    ("[[material]]\nname = \"m\"\ntype = \"dielectric\"\ninterior = \"nothing\"\n", 4, 1, "no medium named 'nothing'"),
+    // Shape: negative radius, unknown material, missing mesh file, non-parallelogram quad.
+    ("[[material]]\nname = \"m\"\ntype = \"diffuse\"\nalbedo = [0.5, 0.5, 0.5]\n[[shape]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = -1\nmaterial = \"m\"\n", 8, 1, "key `radius`: must be > 0"),
+    ("[[shape]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"nope\"\n", 5, 1, "no material named 'nope'"),
+    ("[[shape]]\ntype = \"mesh\"\nfile = \"no_such_mesh.obj\"\nmaterial = \"m\"\n", 3, 1, "cannot load"),
+    ("[[shape]]\ntype = \"quad\"\nvertices = [[0,0,0],[1,0,0],[1,2,0],[0,1,0]]\nmaterial = \"m\"\n", 3, 1, "not a parallelogram"),
+    // Light: zero-area quad, missing environment file, LED with negative power, unknown type.
+    ("[[light]]\ntype = \"quad\"\nvertices = [[0,0,0],[1,0,0],[2,0,0],[1,0,0]]\nradiance = [1, 1, 1]\n", 3, 1, "zero area"),
+    ("[[light]]\ntype = \"environment\"\nfile = \"no_such_sky.exr\"\n", 3, 1, "cannot read"),
+    ("[[light]]\ntype = \"led\"\ncenter = [0, 0, 0]\nradius = 0.1\npower = -2\n", 5, 1, "key `power`: must be > 0"),
+    ("[[light]]\ntype = \"laser\"\n", 2, 1, "unknown light type 'laser'"),
+    // Ambient naming nothing.
+    ("ambient = \"space\"\n", 1, 11, "no medium named 'space'"),
     // Infinite index.
     ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = inf\n", 4, 1, "must be finite"),
     // Non-finite vector component.

@@ -8,16 +8,36 @@ use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 
 fn rv(rng: &mut Pcg64Mcg) -> DVec3 {
-    DVec3::new(rng.gen_range(-1.0..1.0), rng.gen_range(-1.0..1.0), rng.gen_range(-1.0..1.0))
+    DVec3::new(
+        rng.gen_range(-1.0..1.0),
+        rng.gen_range(-1.0..1.0),
+        rng.gen_range(-1.0..1.0),
+    )
 }
 
 fn primitives(rng: &mut Pcg64Mcg) -> Vec<Primitive> {
     let mut v = Vec::new();
     for _ in 0..6 {
-        v.push(Primitive::Sphere { center: rv(rng), radius: rng.gen_range(0.1..0.6) });
-        v.push(Primitive::Tube { base: rv(rng), axis: rv(rng).normalize(), radius: rng.gen_range(0.1..0.5), height: rng.gen_range(0.2..1.0) });
-        v.push(Primitive::Quad { origin: rv(rng), e1: rv(rng), e2: rv(rng) });
-        v.push(Primitive::Disk { center: rv(rng), normal: rv(rng).normalize(), radius: rng.gen_range(0.1..0.7) });
+        v.push(Primitive::Sphere {
+            center: rv(rng),
+            radius: rng.gen_range(0.1..0.6),
+        });
+        v.push(Primitive::Tube {
+            base: rv(rng),
+            axis: rv(rng).normalize(),
+            radius: rng.gen_range(0.1..0.5),
+            height: rng.gen_range(0.2..1.0),
+        });
+        v.push(Primitive::Quad {
+            origin: rv(rng),
+            e1: rv(rng),
+            e2: rv(rng),
+        });
+        v.push(Primitive::Disk {
+            center: rv(rng),
+            normal: rv(rng).normalize(),
+            radius: rng.gen_range(0.1..0.7),
+        });
         v.push(Primitive::triangle(rv(rng), rv(rng), rv(rng)));
     }
     v
@@ -58,7 +78,9 @@ fn brute_force(p: &Primitive, path: impl Fn(f64) -> DVec3, s_min: f64, length: f
 fn signed(p: &Primitive, x: DVec3) -> f64 {
     match *p {
         Primitive::Sphere { center, radius } => (x - center).length() - radius,
-        Primitive::Tube { base, axis, radius, .. } => {
+        Primitive::Tube {
+            base, axis, radius, ..
+        } => {
             let d = x - base;
             (d - axis * d.dot(axis)).length() - radius
         }
@@ -71,7 +93,9 @@ fn signed(p: &Primitive, x: DVec3) -> f64 {
 fn on_primitive(p: &Primitive, x: DVec3) -> bool {
     match *p {
         Primitive::Sphere { .. } => true,
-        Primitive::Tube { base, axis, height, .. } => (0.0..=height).contains(&(x - base).dot(axis)),
+        Primitive::Tube {
+            base, axis, height, ..
+        } => (0.0..=height).contains(&(x - base).dot(axis)),
         Primitive::Quad { origin, e1, e2 } => {
             // Barycentric-free test: x in the parallelogram iff both in-plane coordinates in [0,1].
             let n = e1.cross(e2);
@@ -151,10 +175,16 @@ fn curved_hits_match_brute_force() {
 #[test]
 fn bvh_equals_a_loop_over_all_primitives() {
     let mut rng = Pcg64Mcg::seed_from_u64(7);
-    let prims: Vec<Primitive> = (0..120).flat_map(|_| primitives(&mut rng).into_iter().take(5)).collect();
+    let prims: Vec<Primitive> = (0..120)
+        .flat_map(|_| primitives(&mut rng).into_iter().take(5))
+        .collect();
     let accel = Accel::new(prims.clone());
     let nearest = |f: &dyn Fn(&Primitive) -> Option<f64>| {
-        prims.iter().enumerate().filter_map(|(i, p)| f(p).map(|t| (i, t))).min_by(|a, b| a.1.total_cmp(&b.1))
+        prims
+            .iter()
+            .enumerate()
+            .filter_map(|(i, p)| f(p).map(|t| (i, t)))
+            .min_by(|a, b| a.1.total_cmp(&b.1))
     };
     for _ in 0..300 {
         let o = rv(&mut rng) * 2.0;
@@ -166,9 +196,14 @@ fn bvh_equals_a_loop_over_all_primitives() {
         // Same primitive, same arclength to 1e-12 relative (the refinement's tolerance; the
         // BVH search refines on a shorter bracket once a nearer hit is known).
         let want = nearest(&|p| p.intersect_segment(&seg, 0.0, 1.5).map(|h| h.t));
-        let got = accel.intersect_segment(&seg, 0.0, 1.5).map(|(i, h)| (i, h.t));
+        let got = accel
+            .intersect_segment(&seg, 0.0, 1.5)
+            .map(|(i, h)| (i, h.t));
         match (got, want) {
-            (Some((gi, gt)), Some((wi, wt))) => assert!(gi == wi && (gt - wt).abs() <= 1e-12 * wt, "{got:?} vs {want:?}"),
+            (Some((gi, gt)), Some((wi, wt))) => assert!(
+                gi == wi && (gt - wt).abs() <= 1e-12 * wt,
+                "{got:?} vs {want:?}"
+            ),
             _ => assert_eq!(got, want),
         }
     }

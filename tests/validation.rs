@@ -27,7 +27,9 @@ fn trace(
         max_steps: 5_000_000,
         bounds,
     };
-    let out = march_with(kind, medium, control, start, &limits, |_, _| std::ops::ControlFlow::Continue(()));
+    let out = march_with(kind, medium, control, start, &limits, |_, _| {
+        std::ops::ControlFlow::Continue(())
+    });
     assert!(
         out.state.position.is_finite() && out.state.direction.is_finite(),
         "{kind:?}: non-finite end"
@@ -541,7 +543,9 @@ fn tessendorf_control_reproduces_the_seed_while_adaptive_ends_quickly() {
         seed: 1,
     };
     for kind in [StepperKind::Arc, StepperKind::Rk4] {
-        let out = march_with(kind, &hole, seed, start, &limits, |_, _| std::ops::ControlFlow::Continue(()));
+        let out = march_with(kind, &hole, seed, start, &limits, |_, _| {
+            std::ops::ControlFlow::Continue(())
+        });
         println!(
             "{kind:?} tessendorf: {} after {} attempts, min step {:e}",
             out.reason.name(),

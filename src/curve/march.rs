@@ -4,8 +4,8 @@ use super::bounds::Bounds;
 use super::stepper::{ExactArc, RayState, Rk4Sharma, SnellSteps, Stepper, StepperKind};
 use crate::media::{optical_path_length, Medium};
 use rand::Rng;
-use std::ops::ControlFlow;
 use rand_pcg::Pcg64Mcg;
+use std::ops::ControlFlow;
 
 /// How step lengths are chosen.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -258,7 +258,11 @@ where
         if leaves(limits, step.state.position) {
             let (exit, len) = locate_exit(stepper, medium, &state, step.length, limits);
             let flow = accept(&mut out, medium, exit, len, &mut observe);
-            out.reason = if flow.is_break() { Termination::Stopped } else { Termination::LeftBounds };
+            out.reason = if flow.is_break() {
+                Termination::Stopped
+            } else {
+                Termination::LeftBounds
+            };
             return out;
         }
         if accept(&mut out, medium, step.state, step.length, &mut observe).is_break() {

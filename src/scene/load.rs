@@ -2,9 +2,18 @@
 //! error located at file:line:col and naming the key.
 
 use super::media::read_medium;
+use super::objects::{
+    read_camera, read_environment, read_light, read_material, read_output, read_render, read_shape,
+    Interior, OutputSettings, RenderSettings,
+};
 use super::table::{SpannedTable, TableReader};
+use crate::accel::Accel;
+use crate::camera::Camera;
+use crate::environment::Environment;
 use crate::error::{Error, Result};
-use crate::media::Medium;
+use crate::lights::Light;
+use crate::material::Material;
+use crate::media::{Medium, UniformMedium};
 use std::path::{Path, PathBuf};
 use toml::Spanned;
 
@@ -49,12 +58,49 @@ impl Source {
 struct SceneFile {
     #[serde(default)]
     medium: Vec<Spanned<SpannedTable>>,
+    #[serde(default)]
+    material: Vec<Spanned<SpannedTable>>,
+    #[serde(default)]
+    shape: Vec<Spanned<SpannedTable>>,
+    #[serde(default)]
+    light: Vec<Spanned<SpannedTable>>,
+    camera: Option<Spanned<SpannedTable>>,
+    render: Option<Spanned<SpannedTable>>,
+    output: Option<Spanned<SpannedTable>>,
+    ambient: Option<Spanned<String>>,
+}
+
+/// A surface of the scene: what it is made of and what fills it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Surface {
+    /// Index into [`Scene::materials`].
+    pub material: usize,
+    /// Index into the scene's media of what is inside (dielectrics), if anything.
+    pub interior: Option<usize>,
 }
 
 /// A validated scene, immutable and shareable across threads.
 pub struct Scene {
-    media: Vec<(String, Box<dyn Medium>)>,
     path: PathBuf,
+    media: Vec<(String, Box<dyn Medium>)>,
+    /// The medium filling space outside all shapes (None: vacuum, n = 1).
+    pub ambient: Option<usize>,
+    /// Materials by index.
+    pub materials: Vec<Material>,
+    /// Per primitive of [`Scene::accel`], its surface.
+    pub surfaces: Vec<Surface>,
+    /// The primitives and their BVH.
+    pub accel: Accel,
+    /// Lights (the environment apart).
+    pub lights: Vec<Light>,
+    /// What escaping rays see (None: black).
+    pub environment: Option<Environment>,
+    /// The camera, if the scene has one.
+    pub camera: Option<Camera>,
+    /// `[render]`.
+    pub render: RenderSettings,
+    /// `[output]`.
+    pub output: OutputSettings,
 }
 
 impl Scene {
@@ -78,9 +124,19 @@ impl Scene {
             })
     }
 
+    /// The medium at index `i` (see [`Surface::interior`] and [`Scene::ambient`]).
+    pub fn medium_at(&self, i: usize) -> &dyn Medium {
+        self.media[i].1.as_ref()
+    }
+
     /// Names of all media, in file order.
     pub fn medium_names(&self) -> impl Iterator<Item = &str> {
         self.media.iter().map(|(n, _)| n.as_str())
+    }
+
+    /// The scene file.
+    pub fn path(&self) -> &Path {
+        &self.path
     }
 }
 
@@ -95,26 +151,176 @@ pub fn parse_scene(path: &Path, text: String) -> Result<Scene> {
         let message = e.message().trim().replace('\n', " ");
         source.error_at(offset, message)
     })?;
+    let dir = source.dir().to_path_buf();
+    let reader = |table: Spanned<SpannedTable>, what: &str| {
+        let span = table.span();
+        TableReader::new(&source, span, what, table.into_inner())
+    };
+    // Media, by name.
     let mut media: Vec<(String, Box<dyn Medium>)> = Vec::new();
     for table in file.medium {
-        let span = table.span();
-        let mut t = TableReader::new(&source, span, "[[medium]]", table.into_inner());
-        let name = t.string("name")?;
-        t.check("name", !name.is_empty(), "must not be empty")?;
-        t.check(
-            "name",
-            media.iter().all(|(n, _)| *n != name),
-            format!("a medium named '{name}' is already defined"),
-        )?;
-        t.describe(format!("medium '{name}'"));
-        let medium = read_medium(&mut t, source.dir())?;
+        let mut t = reader(table, "[[medium]]");
+        let name = named(&mut t, media.iter().map(|(n, _)| n.as_str()), "medium")?;
+        let medium = read_medium(&mut t, &dir)?;
         t.finish()?;
         media.push((name, medium));
     }
+    let medium_index =
+        |t: &TableReader, key: &str, name: &str, media: &[(String, Box<dyn Medium>)]| {
+            media
+                .iter()
+                .position(|(n, _)| n == name)
+                .ok_or_else(|| t.error(key, format!("no medium named '{name}'")))
+        };
+    // Materials, by name; a dielectric's `ior` becomes an anonymous uniform medium.
+    let mut materials = Vec::new();
+    let mut material_names: Vec<String> = Vec::new();
+    let mut material_interiors = Vec::new();
+    for table in file.material {
+        let mut t = reader(table, "[[material]]");
+        let name = named(
+            &mut t,
+            material_names.iter().map(String::as_str),
+            "material",
+        )?;
+        let (material, interior) = read_material(&mut t)?;
+        let interior = match interior {
+            None => None,
+            Some(Interior::Medium(m)) => Some(medium_index(&t, "interior", &m, &media)?),
+            Some(Interior::Ior(n)) => {
+                media.push((format!("{name} (ior {n})"), Box::new(UniformMedium { n })));
+                Some(media.len() - 1)
+            }
+        };
+        t.finish()?;
+        materials.push(material);
+        material_names.push(name);
+        material_interiors.push(interior);
+    }
+    // Shapes.
+    let mut primitives = Vec::new();
+    let mut surfaces = Vec::new();
+    for table in file.shape {
+        let mut t = reader(table, "[[shape]]");
+        let desc = read_shape(&mut t, &dir)?;
+        let material = material_names
+            .iter()
+            .position(|n| *n == desc.material)
+            .ok_or_else(|| t.error("material", format!("no material named '{}'", desc.material)))?;
+        let interior = match &desc.interior {
+            Some(m) => Some(medium_index(&t, "interior", m, &media)?),
+            None => material_interiors[material],
+        };
+        t.check(
+            "material",
+            !matches!(materials[material], Material::Dielectric) || interior.is_some(),
+            "a dielectric shape needs an interior",
+        )?;
+        t.finish()?;
+        let surface = Surface { material, interior };
+        surfaces.extend(std::iter::repeat_n(surface, desc.primitives.len()));
+        primitives.extend(desc.primitives);
+    }
+    // Lights; area lights are also emissive surfaces.
+    let mut lights = Vec::new();
+    let mut environment = None;
+    for table in file.light {
+        let mut t = reader(table, "[[light]]");
+        let kind = t.string("type")?;
+        if kind == "environment" {
+            t.check(
+                "type",
+                environment.is_none(),
+                "only one environment light is allowed",
+            )?;
+            environment = Some(read_environment(&mut t, &dir)?);
+        } else {
+            let (light, visible) = read_light(&mut t, &kind)?;
+            if let (Some(prim), Light::Area { radiance, .. }) = (visible, &light) {
+                materials.push(Material::Emissive {
+                    radiance: *radiance,
+                });
+                surfaces.push(Surface {
+                    material: materials.len() - 1,
+                    interior: None,
+                });
+                primitives.push(prim);
+            }
+            lights.push(light);
+        }
+        t.finish()?;
+    }
+    let ambient = match &file.ambient {
+        None => None,
+        Some(name) => Some(
+            media
+                .iter()
+                .position(|(n, _)| n == name.get_ref())
+                .ok_or_else(|| {
+                    source.error_at(
+                        name.span().start,
+                        format!("key `ambient`: no medium named '{}'", name.get_ref()),
+                    )
+                })?,
+        ),
+    };
+    let camera = file
+        .camera
+        .map(|table| {
+            let mut t = reader(table, "[camera]");
+            let c = read_camera(&mut t)?;
+            t.finish()?;
+            Ok::<_, Error>(c)
+        })
+        .transpose()?;
+    let render = match file.render {
+        Some(table) => {
+            let mut t = reader(table, "[render]");
+            let r = read_render(&mut t)?;
+            t.finish()?;
+            r
+        }
+        None => RenderSettings::default(),
+    };
+    let output = match file.output {
+        Some(table) => {
+            let mut t = reader(table, "[output]");
+            let o = read_output(&mut t, &dir)?;
+            t.finish()?;
+            o
+        }
+        None => OutputSettings::default(),
+    };
     Ok(Scene {
-        media,
         path: source.path.clone(),
+        media,
+        ambient,
+        materials,
+        surfaces,
+        accel: Accel::new(primitives),
+        lights,
+        environment,
+        camera,
+        render,
+        output,
     })
+}
+
+/// Reads a table's `name`: non-empty and not among `taken`. Later messages name the table.
+fn named<'a>(
+    t: &mut TableReader,
+    mut taken: impl Iterator<Item = &'a str>,
+    what: &str,
+) -> Result<String> {
+    let name = t.string("name")?;
+    t.check("name", !name.is_empty(), "must not be empty")?;
+    t.check(
+        "name",
+        !taken.any(|n| n == name),
+        format!("a {what} named '{name}' is already defined"),
+    )?;
+    t.describe(format!("{what} '{name}'"));
+    Ok(name)
 }
 
 /// Reads, parses and builds the scene file at `path`.

@@ -3,6 +3,7 @@
 
 pub mod load;
 pub mod media;
+pub mod objects;
 pub mod table;
 
-pub use load::{load_scene, Scene};
+pub use load::{load_scene, Scene, Surface};

@@ -216,6 +216,60 @@ impl<'a> TableReader<'a> {
         })
     }
 
+    /// An optional positive integer (≥ 1).
+    pub fn count_or(&mut self, key: &str, default: u64) -> Result<u64> {
+        match self.take(key) {
+            None => Ok(default),
+            Some(Value::Integer(i)) if i >= 1 => Ok(i as u64),
+            Some(other) => Err(self.error(key, format!("expected an integer ≥ 1, got {other}"))),
+        }
+    }
+
+    /// An optional non-negative integer.
+    pub fn natural_or(&mut self, key: &str, default: u64) -> Result<u64> {
+        match self.take(key) {
+            None => Ok(default),
+            Some(Value::Integer(i)) if i >= 0 => Ok(i as u64),
+            Some(other) => Err(self.error(key, format!("expected an integer ≥ 0, got {other}"))),
+        }
+    }
+
+    /// An optional boolean.
+    pub fn bool_or(&mut self, key: &str, default: bool) -> Result<bool> {
+        match self.take(key) {
+            None => Ok(default),
+            Some(Value::Boolean(b)) => Ok(b),
+            Some(other) => Err(self.error(
+                key,
+                format!("expected true or false, got {}", other.type_str()),
+            )),
+        }
+    }
+
+    /// Whether the table has `key` (without reading it).
+    pub fn has(&self, key: &str) -> bool {
+        self.entries.iter().any(|(k, _, _)| k.get_ref() == key)
+    }
+
+    /// An RGB triple of non-negative numbers; a single number means grey.
+    pub fn rgb_or(&mut self, key: &str, default: Option<DVec3>) -> Result<DVec3> {
+        let v = match (self.take(key), default) {
+            (Some(v), _) => v,
+            (None, Some(d)) => return Ok(d),
+            (None, None) => return Err(self.error(key, "is missing")),
+        };
+        let c = match &v {
+            Value::Float(_) | Value::Integer(_) => DVec3::splat(self.number(key, &v)?),
+            _ => self.vec3_of(key, &v)?,
+        };
+        self.check(
+            key,
+            c.min_element() >= 0.0,
+            format!("must not be negative, got {c}"),
+        )?;
+        Ok(c)
+    }
+
     /// Fails at the first key that was never read, naming the keys this table accepts.
     pub fn finish(self) -> Result<()> {
         match self.entries.iter().find(|(_, _, used)| !used) {

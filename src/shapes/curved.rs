@@ -11,7 +11,11 @@ use glam::DVec3;
 /// a root; a piece whose ends share a sign but whose slope f′ = ∇g·t̂ turns toward zero may
 /// dip across it twice (a curved path entering and leaving, DESIGN §5), so its extremum is
 /// located by bisection on f′ and tested too.
-pub fn segment_roots(seg: &CurvedSegment, length: f64, g: impl Fn(DVec3) -> (f64, DVec3)) -> Vec<f64> {
+pub fn segment_roots(
+    seg: &CurvedSegment,
+    length: f64,
+    g: impl Fn(DVec3) -> (f64, DVec3),
+) -> Vec<f64> {
     let eval = |s: f64| {
         let p = seg.at(s);
         let (v, grad) = g(p.position);
@@ -64,7 +68,11 @@ fn refine(eval: &impl Fn(f64) -> (f64, f64), mut a: f64, mut b: f64, fa: f64) ->
             a = s;
         }
         let newton = s - f / df;
-        let next = if df != 0.0 && newton > a && newton < b { newton } else { 0.5 * (a + b) };
+        let next = if df != 0.0 && newton > a && newton < b {
+            newton
+        } else {
+            0.5 * (a + b)
+        };
         if (next - s).abs() <= 1e-14 * s.abs().max(b) || b - a <= 1e-15 * b {
             return next;
         }

@@ -67,14 +67,23 @@ pub enum Primitive {
 impl Primitive {
     /// A triangle from three vertices.
     pub fn triangle(a: DVec3, b: DVec3, c: DVec3) -> Self {
-        Primitive::Triangle { v0: a, e1: b - a, e2: c - a }
+        Primitive::Triangle {
+            v0: a,
+            e1: b - a,
+            e2: c - a,
+        }
     }
 
     /// Axis-aligned bounds (min, max).
     pub fn bounds(&self) -> (DVec3, DVec3) {
         match *self {
             Primitive::Sphere { center, radius } => (center - radius, center + radius),
-            Primitive::Tube { base, axis, radius, height } => {
+            Primitive::Tube {
+                base,
+                axis,
+                radius,
+                height,
+            } => {
                 // Each end circle's extent along world axis i is r·√(1 − a_i²).
                 let ext = radius * (DVec3::ONE - axis * axis).max(DVec3::ZERO).sqrt();
                 let top = base + axis * height;
@@ -84,7 +93,11 @@ impl Primitive {
                 let pts = [origin, origin + e1, origin + e2, origin + e1 + e2];
                 corners(&pts)
             }
-            Primitive::Disk { center, normal, radius } => {
+            Primitive::Disk {
+                center,
+                normal,
+                radius,
+            } => {
                 let ext = radius * (DVec3::ONE - normal * normal).max(DVec3::ZERO).sqrt();
                 (center - ext, center + ext)
             }
@@ -109,7 +122,9 @@ impl Primitive {
                 let (u, v) = plane_coordinates(p - origin, e1, e2);
                 (0.0..=1.0).contains(&u) && (0.0..=1.0).contains(&v)
             }
-            Primitive::Disk { center, radius, .. } => (p - center).length_squared() <= radius * radius,
+            Primitive::Disk { center, radius, .. } => {
+                (p - center).length_squared() <= radius * radius
+            }
             Primitive::Triangle { v0, e1, e2 } => {
                 let (u, v) = plane_coordinates(p - v0, e1, e2);
                 u >= 0.0 && v >= 0.0 && u + v <= 1.0
@@ -139,7 +154,12 @@ impl Primitive {
                     normal: (o + t * d - center) / radius,
                 })
             }
-            Primitive::Tube { base, axis, radius, height } => {
+            Primitive::Tube {
+                base,
+                axis,
+                radius,
+                height,
+            } => {
                 let oc = o - base;
                 let dp = d - axis * d.dot(axis);
                 let op = oc - axis * oc.dot(axis);
@@ -159,7 +179,10 @@ impl Primitive {
                     let h = (oc + t * d).dot(axis);
                     (valid(t) && (0.0..=height).contains(&h)).then(|| {
                         let p = oc + t * d;
-                        Hit { t, normal: (p - axis * p.dot(axis)).normalize() }
+                        Hit {
+                            t,
+                            normal: (p - axis * p.dot(axis)).normalize(),
+                        }
                     })
                 })
             }
@@ -183,7 +206,9 @@ impl Primitive {
                 let d = x - center;
                 (d.length_squared() - radius * radius, 2.0 * d)
             }
-            Primitive::Tube { base, axis, radius, .. } => {
+            Primitive::Tube {
+                base, axis, radius, ..
+            } => {
                 let d = x - base;
                 let p = d - axis * d.dot(axis);
                 (p.length_squared() - radius * radius, 2.0 * p)
@@ -199,7 +224,9 @@ impl Primitive {
     pub(crate) fn accepts(&self, x: DVec3) -> bool {
         match *self {
             Primitive::Sphere { .. } => true,
-            Primitive::Tube { base, axis, height, .. } => (0.0..=height).contains(&(x - base).dot(axis)),
+            Primitive::Tube {
+                base, axis, height, ..
+            } => (0.0..=height).contains(&(x - base).dot(axis)),
             _ => self.contains_planar(x),
         }
     }
@@ -223,7 +250,10 @@ impl Primitive {
             .filter(|&s| s > s_min)
             .find_map(|s| {
                 let x = seg.at(s).position;
-                self.accepts(x).then(|| Hit { t: s, normal: self.normal_at(x) })
+                self.accepts(x).then(|| Hit {
+                    t: s,
+                    normal: self.normal_at(x),
+                })
             })
     }
 }
@@ -237,7 +267,10 @@ fn ordered(a: f64, b: f64) -> (f64, f64) {
 }
 
 fn corners(pts: &[DVec3]) -> (DVec3, DVec3) {
-    pts.iter().fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &p| (lo.min(p), hi.max(p)))
+    pts.iter()
+        .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &p| {
+            (lo.min(p), hi.max(p))
+        })
 }
 
 /// Coordinates (u, v) of an in-plane vector r = u e1 + v e2.

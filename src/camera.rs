@@ -1,0 +1,86 @@
+//! The pinhole / thin-lens camera, in the conventions of `../shared/refs/README.md`:
+//! f = normalize(look_at − position), r = normalize(f × up), u′ = r × f; for pixel (px, py),
+//! py = 0 the top row, and a sample (u, v) ∈ [0,1)²:
+//! x = (2(px+u)/W − 1)·tan(fov_y/2)·W/H, y = (1 − 2(py+v)/H)·tan(fov_y/2),
+//! dir = normalize(f + x r + y u′).
+
+use glam::DVec3;
+
+/// A camera producing primary rays.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Camera {
+    /// Eye position.
+    pub position: DVec3,
+    forward: DVec3,
+    right: DVec3,
+    up: DVec3,
+    tan_half_fov_y: f64,
+    /// Image width in pixels.
+    pub width: u32,
+    /// Image height in pixels.
+    pub height: u32,
+    /// Thin lens: aperture radius and focus distance (scene units); `None` for a pinhole.
+    pub lens: Option<(f64, f64)>,
+}
+
+impl Camera {
+    /// A camera looking from `position` at `look_at` with full vertical field of view
+    /// `fov_y_deg`. Fails (with the reason) when the view direction is zero or parallel to `up`.
+    pub fn new(
+        position: DVec3,
+        look_at: DVec3,
+        up: DVec3,
+        fov_y_deg: f64,
+        width: u32,
+        height: u32,
+    ) -> Result<Self, &'static str> {
+        let forward = (look_at - position)
+            .try_normalize()
+            .ok_or("look_at equals position")?;
+        let right = forward
+            .cross(up)
+            .try_normalize()
+            .ok_or("up is parallel to the view direction")?;
+        Ok(Self {
+            position,
+            forward,
+            right,
+            up: right.cross(forward),
+            tan_half_fov_y: (0.5 * fov_y_deg.to_radians()).tan(),
+            width,
+            height,
+            lens: None,
+        })
+    }
+
+    /// The full vertical field of view (degrees) that gives a horizontal one of `fov_x_deg`.
+    pub fn fov_y_from_x(fov_x_deg: f64, width: u32, height: u32) -> f64 {
+        2.0 * ((0.5 * fov_x_deg.to_radians()).tan() * height as f64 / width as f64)
+            .atan()
+            .to_degrees()
+    }
+
+    /// Unit direction of the pinhole ray through pixel (px, py) at sub-pixel (u, v).
+    pub fn direction(&self, px: u32, py: u32, u: f64, v: f64) -> DVec3 {
+        let (w, h) = (self.width as f64, self.height as f64);
+        let x = (2.0 * (px as f64 + u) / w - 1.0) * self.tan_half_fov_y * w / h;
+        let y = (1.0 - 2.0 * (py as f64 + v) / h) * self.tan_half_fov_y;
+        (self.forward + x * self.right + y * self.up).normalize()
+    }
+
+    /// Origin and unit direction of a primary ray; `lens_uv` ∈ [0,1)² samples the aperture.
+    pub fn ray(&self, px: u32, py: u32, u: f64, v: f64, lens_uv: (f64, f64)) -> (DVec3, DVec3) {
+        let d = self.direction(px, py, u, v);
+        match self.lens {
+            None => (self.position, d),
+            Some((radius, focus)) => {
+                // The pinhole ray's point at depth `focus` along the view axis stays sharp.
+                let focal_point = self.position + d * (focus / d.dot(self.forward));
+                let r = radius * lens_uv.0.sqrt();
+                let phi = std::f64::consts::TAU * lens_uv.1;
+                let origin = self.position + r * (phi.cos() * self.right + phi.sin() * self.up);
+                (origin, (focal_point - origin).normalize())
+            }
+        }
+    }
+}

@@ -1,0 +1,129 @@
+//! What a ray that leaves the scene sees: a lat-long image or a procedural sky.
+//! Lat-long convention: u = 0.5 + atan2(x, −z)/2π (−z at the centre), v = acos(y)/π (+y at the
+//! top row); the map is turned by `rotation` about +y.
+
+use crate::color::Rgb;
+use glam::DVec3;
+use std::f64::consts::{PI, TAU};
+
+/// The source of environment radiance.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Sky {
+    /// A lat-long image, linear RGB, row-major from the top.
+    Image {
+        /// Width in pixels.
+        width: usize,
+        /// Height in pixels.
+        height: usize,
+        /// Pixels.
+        pixels: Vec<[f32; 3]>,
+    },
+    /// Random stars on black, deterministic in `seed` (about 2 stars per square degree on
+    /// average, denser toward the poles where lat-long cells are smaller).
+    Starfield {
+        /// Seed of the star positions.
+        seed: u64,
+    },
+    /// A lat-long checkerboard of `squares` × `squares`/2 cells, 1 and 0.1.
+    Checker {
+        /// Cells around the equator.
+        squares: u32,
+    },
+}
+
+/// An environment: a sky, turned and scaled.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Environment {
+    /// The source.
+    pub sky: Sky,
+    /// Rotation about +y (radians).
+    pub rotation: f64,
+    /// Radiance multiplier.
+    pub scale: f64,
+}
+
+/// Star cells per 2π of longitude (cell ≈ 0.18°) and the chance that a cell holds a star.
+const STAR_CELLS: f64 = 2048.0;
+const STAR_CHANCE: f64 = 0.04;
+/// Angular radius of a star's disc (radians, ≈ 0.05°): small against a pixel of the
+/// 1920×1080, 40° view (0.02°) only by a few pixels, so stars render as soft points.
+const STAR_RADIUS: f64 = 8e-4;
+
+impl Environment {
+    /// Radiance arriving from unit direction `d` (travelling along −d toward the scene).
+    pub fn radiance(&self, d: DVec3) -> Rgb {
+        let (s, c) = self.rotation.sin_cos();
+        let d = DVec3::new(c * d.x - s * d.z, d.y, s * d.x + c * d.z);
+        let u = 0.5 + d.x.atan2(-d.z) / TAU;
+        let v = d.y.clamp(-1.0, 1.0).acos() / PI;
+        self.scale
+            * match &self.sky {
+                Sky::Image {
+                    width,
+                    height,
+                    pixels,
+                } => {
+                    let x = ((u * *width as f64) as usize).min(width - 1);
+                    let y = ((v * *height as f64) as usize).min(height - 1);
+                    let p = pixels[y * width + x];
+                    Rgb::new(p[0] as f64, p[1] as f64, p[2] as f64)
+                }
+                Sky::Starfield { seed } => starfield(*seed, d, u, v),
+                Sky::Checker { squares } => {
+                    let n = *squares as f64;
+                    let odd = ((u * n).floor() + (v * n * 0.5).floor()) as i64 % 2 == 0;
+                    Rgb::splat(if odd { 1.0 } else { 0.1 })
+                }
+            }
+    }
+}
+
+/// 64-bit mix (splitmix64 finaliser) for hashing star cells.
+fn mix(mut z: u64) -> u64 {
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^ (z >> 31)
+}
+
+fn unit(h: u64) -> f64 {
+    (h >> 11) as f64 / (1u64 << 53) as f64
+}
+
+/// Stars: each lat-long cell holds a star with probability STAR_CHANCE at a hashed position,
+/// with a hashed brightness (heavy-tailed) and colour temperature; the 3×3 neighbouring cells
+/// are searched so discs are not cut at cell edges.
+fn starfield(seed: u64, d: DVec3, u: f64, v: f64) -> Rgb {
+    let (nu, nv) = (STAR_CELLS, STAR_CELLS / 2.0);
+    let (cu, cv) = ((u * nu).floor() as i64, (v * nv).floor() as i64);
+    let mut sum = Rgb::ZERO;
+    for dv in -1..=1 {
+        let row = cv + dv;
+        if row < 0 || row >= nv as i64 {
+            continue;
+        }
+        for du in -1..=1 {
+            let col = (cu + du).rem_euclid(nu as i64);
+            let h = mix(seed ^ mix((row as u64) << 32 | col as u64));
+            if unit(h) >= STAR_CHANCE {
+                continue;
+            }
+            let su = (col as f64 + unit(mix(h ^ 1))) / nu;
+            let sv = (row as f64 + unit(mix(h ^ 2))) / nv;
+            let (phi, theta) = ((su - 0.5) * TAU, sv * PI);
+            let star = DVec3::new(
+                theta.sin() * phi.sin(),
+                theta.cos(),
+                -theta.sin() * phi.cos(),
+            );
+            let ang = d.dot(star).clamp(-1.0, 1.0).acos();
+            if ang < STAR_RADIUS {
+                let brightness = 0.5 / (1e-3 + unit(mix(h ^ 3))).powf(0.7);
+                let warm = unit(mix(h ^ 4));
+                let color = Rgb::new(1.0, 0.85 + 0.15 * warm, 0.7 + 0.3 * (1.0 - warm));
+                let w = 1.0 - ang / STAR_RADIUS;
+                sum += color * (brightness * w * w);
+            }
+        }
+    }
+    sum
+}

@@ -1,0 +1,78 @@
+//! Render statistics, summed over tiles in a fixed order.
+
+use crate::curve::Termination;
+
+/// Counts of what the render did.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Stats {
+    /// Camera rays (samples).
+    pub camera_rays: u64,
+    /// Straight ray traversals.
+    pub straight_rays: u64,
+    /// Curved marches.
+    pub curved_marches: u64,
+    /// Accepted curved steps.
+    pub curved_steps: u64,
+    /// Curved march endings, by [`Termination`] (in `ENDS` order).
+    pub ends: [u64; 6],
+    /// Paths that ended at the depth limit.
+    pub depth_limited: u64,
+}
+
+const ENDS: [Termination; 6] = [
+    Termination::LengthReached,
+    Termination::LeftBounds,
+    Termination::Captured,
+    Termination::StepUnderflow,
+    Termination::MaxSteps,
+    Termination::Stopped,
+];
+
+impl Stats {
+    /// Counts one march ending.
+    pub fn record_end(&mut self, reason: Termination) {
+        if let Some(i) = ENDS.iter().position(|r| *r == reason) {
+            self.ends[i] += 1;
+        }
+    }
+
+    /// Adds another tile's counts.
+    pub fn add(&mut self, o: &Stats) {
+        self.camera_rays += o.camera_rays;
+        self.straight_rays += o.straight_rays;
+        self.curved_marches += o.curved_marches;
+        self.curved_steps += o.curved_steps;
+        self.depth_limited += o.depth_limited;
+        for (a, b) in self.ends.iter_mut().zip(o.ends) {
+            *a += b;
+        }
+    }
+
+    /// A multi-line summary.
+    pub fn summary(&self) -> String {
+        let ends: Vec<String> = ENDS
+            .iter()
+            .zip(self.ends)
+            .filter(|(_, n)| *n > 0)
+            .map(|(r, n)| {
+                format!(
+                    "{} {n}",
+                    if *r == Termination::Stopped {
+                        "surface hit"
+                    } else {
+                        r.name()
+                    }
+                )
+            })
+            .collect();
+        format!(
+            "camera rays {}, straight traversals {}, curved marches {} ({} steps; ends: {}), paths cut at max_depth {}",
+            self.camera_rays,
+            self.straight_rays,
+            self.curved_marches,
+            self.curved_steps,
+            if ends.is_empty() { "none".into() } else { ends.join(", ") },
+            self.depth_limited
+        )
+    }
+}

@@ -1,0 +1,525 @@
+//! `[camera]`, `[render]`, `[output]`, `[[material]]`, `[[shape]]` and `[[light]]` tables.
+//! Every key's unit and default is listed in `docs/scene-format.md`.
+
+use super::table::TableReader;
+use crate::camera::Camera;
+use crate::curve::{StepControl, StepperKind};
+use crate::environment::{Environment, Sky};
+use crate::error::Result;
+use crate::lights::{Emitter, Light};
+use crate::material::Material;
+use crate::shapes::Primitive;
+use glam::{DMat3, DVec3};
+use std::path::{Path, PathBuf};
+
+/// Render settings (`[render]`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct RenderSettings {
+    /// Camera samples per pixel.
+    pub spp: u32,
+    /// Seed of every random stream.
+    pub seed: u64,
+    /// Maximum number of surface interactions along a camera path.
+    pub max_depth: u32,
+    /// Worker threads (0: all cores).
+    pub threads: usize,
+    /// Stepper in gradient media.
+    pub stepper: StepperKind,
+    /// Step control in gradient media.
+    pub control: StepControl,
+    /// Step limit (N_max) per curved march.
+    pub max_steps: u64,
+    /// Radius around the scene centre beyond which a ray in a gradient ambient medium counts
+    /// as escaped (None: 10× the scene's extent including the camera).
+    pub world_radius: Option<f64>,
+}
+
+impl Default for RenderSettings {
+    fn default() -> Self {
+        Self {
+            spp: 16,
+            seed: 0,
+            max_depth: 64,
+            threads: 0,
+            stepper: StepperKind::Rk4,
+            control: StepControl::default_for(StepperKind::Rk4),
+            max_steps: 1_000_000,
+            world_radius: None,
+        }
+    }
+}
+
+/// Output settings (`[output]`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct OutputSettings {
+    /// The EXR path (None: `<scene stem>.exr` in the working directory).
+    pub path: Option<PathBuf>,
+    /// Whether to write the PNG preview next to it.
+    pub png: bool,
+    /// Exposure multiplier of the preview.
+    pub exposure: f32,
+}
+
+impl Default for OutputSettings {
+    fn default() -> Self {
+        Self {
+            path: None,
+            png: true,
+            exposure: 1.0,
+        }
+    }
+}
+
+/// What fills a dielectric: a named medium or a constant index.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Interior {
+    /// A `[[medium]]` by name.
+    Medium(String),
+    /// A uniform index.
+    Ior(f64),
+}
+
+/// A shape before names are resolved.
+pub struct ShapeDesc {
+    /// Its primitives.
+    pub primitives: Vec<Primitive>,
+    /// Material name.
+    pub material: String,
+    /// Interior override.
+    pub interior: Option<String>,
+}
+
+/// `[camera]`.
+pub fn read_camera(t: &mut TableReader) -> Result<Camera> {
+    let position = t.vec3("position")?;
+    let look_at = t.vec3("look_at")?;
+    let up = t.vec3_or("up", DVec3::Y)?;
+    let width = t.count_or("width", 640)?;
+    let height = t.count_or("height", 480)?;
+    t.check("width", width <= 65_536, "must be at most 65536")?;
+    t.check("height", height <= 65_536, "must be at most 65536")?;
+    let (width, height) = (width as u32, height as u32);
+    let fov_y = match (t.has("fov_y_deg"), t.has("fov_x_deg")) {
+        (true, false) => t.f64("fov_y_deg")?,
+        (false, true) => Camera::fov_y_from_x(t.f64("fov_x_deg")?, width, height),
+        _ => {
+            return Err(t.error(
+                "fov_y_deg",
+                "give exactly one of `fov_y_deg` and `fov_x_deg`",
+            ))
+        }
+    };
+    let key = if t.has("fov_y_deg") {
+        "fov_y_deg"
+    } else {
+        "fov_x_deg"
+    };
+    t.check(
+        key,
+        fov_y > 0.0 && fov_y < 179.0,
+        "the field of view must be in (0°, 179°)",
+    )?;
+    let mut camera = Camera::new(position, look_at, up, fov_y, width, height)
+        .map_err(|e| t.error("look_at", e))?;
+    let aperture = t.f64_or("aperture_radius", 0.0)?;
+    t.check("aperture_radius", aperture >= 0.0, "must be ≥ 0")?;
+    if aperture > 0.0 {
+        let focus = t.positive("focus_distance")?;
+        camera.lens = Some((aperture, focus));
+    }
+    Ok(camera)
+}
+
+/// `[render]`.
+pub fn read_render(t: &mut TableReader) -> Result<RenderSettings> {
+    let stepper: StepperKind = t.string_opt("stepper")?.map_or(Ok(StepperKind::Rk4), |s| {
+        s.parse().map_err(|e: String| t.error("stepper", e))
+    })?;
+    let control = match t.string_opt("control")?.as_deref().unwrap_or("adaptive") {
+        "adaptive" => {
+            let tolerance = t.f64_or("tolerance", stepper.default_tolerance())?;
+            t.check("tolerance", tolerance > 0.0, "must be > 0")?;
+            StepControl::Adaptive { tolerance }
+        }
+        "fixed" => StepControl::Fixed {
+            step: t.positive("step")?,
+        },
+        "tessendorf" => {
+            let (t_max, t_min) = (t.f64_or("t_max", 1e-2)?, t.f64_or("t_min", 1e-4)?);
+            t.check(
+                "t_max",
+                t_min >= 0.0 && t_max > t_min,
+                "need 0 ≤ t_min < t_max",
+            )?;
+            StepControl::Tessendorf {
+                initial_step: t.positive("step")?,
+                t_max,
+                t_min,
+                seed: 1,
+            }
+        }
+        other => {
+            return Err(t.error(
+                "control",
+                format!("unknown control '{other}' (adaptive, fixed, tessendorf)"),
+            ))
+        }
+    };
+    let world_radius = if t.has("world_radius") {
+        Some(t.positive("world_radius")?)
+    } else {
+        None
+    };
+    Ok(RenderSettings {
+        spp: t.count_or("spp", 16)?.min(u32::MAX as u64) as u32,
+        seed: t.natural_or("seed", 0)?,
+        max_depth: t.count_or("max_depth", 64)?.min(10_000) as u32,
+        threads: t.natural_or("threads", 0)? as usize,
+        stepper,
+        control,
+        max_steps: t.count_or("max_steps", 1_000_000)?,
+        world_radius,
+    })
+}
+
+/// `[output]`; relative paths are relative to the scene file's directory `dir`.
+pub fn read_output(t: &mut TableReader, dir: &Path) -> Result<OutputSettings> {
+    let exposure = t.f64_or("exposure", 1.0)?;
+    t.check("exposure", exposure > 0.0, "must be > 0")?;
+    Ok(OutputSettings {
+        path: t.string_opt("path")?.map(|p| dir.join(p)),
+        png: t.bool_or("png", true)?,
+        exposure: exposure as f32,
+    })
+}
+
+fn unit_color(t: &mut TableReader, key: &str, default: Option<DVec3>) -> Result<DVec3> {
+    let c = t.rgb_or(key, default)?;
+    t.check(
+        key,
+        c.max_element() <= 1.0,
+        format!("a reflectance must be ≤ 1, got {c}"),
+    )?;
+    Ok(c)
+}
+
+/// A material and, for a dielectric, what fills it.
+pub fn read_material(t: &mut TableReader) -> Result<(Material, Option<Interior>)> {
+    let kind = t.string("type")?;
+    Ok(match kind.as_str() {
+        "diffuse" => (
+            Material::Diffuse {
+                albedo: unit_color(t, "albedo", None)?,
+            },
+            None,
+        ),
+        "mirror" => (
+            Material::Mirror {
+                reflectance: unit_color(t, "reflectance", Some(DVec3::ONE))?,
+            },
+            None,
+        ),
+        "emissive" => (
+            Material::Emissive {
+                radiance: t.rgb_or("radiance", None)?,
+            },
+            None,
+        ),
+        "dielectric" => {
+            let interior = match (t.has("ior"), t.has("interior")) {
+                (true, false) => Interior::Ior(t.positive("ior")?),
+                (false, true) => Interior::Medium(t.string("interior")?),
+                _ => {
+                    return Err(t.error(
+                        "ior",
+                        "give exactly one of `ior` and `interior` (a medium name)",
+                    ))
+                }
+            };
+            (Material::Dielectric, Some(interior))
+        }
+        other => {
+            return Err(t.error(
+                "type",
+                format!("unknown material type '{other}' (diffuse, mirror, dielectric, emissive)"),
+            ))
+        }
+    })
+}
+
+/// The parallelogram of four vertices v0..v3 (refs convention: triangles (v0,v1,v2), (v0,v2,v3)).
+fn parallelogram(t: &mut TableReader, key: &str) -> Result<(DVec3, DVec3, DVec3)> {
+    let v = t.vec3_list(key)?;
+    t.check(
+        key,
+        v.len() == 4,
+        format!("expected 4 vertices, got {}", v.len()),
+    )?;
+    let (e1, e2) = (v[1] - v[0], v[3] - v[0]);
+    let scale = e1.length().max(e2.length());
+    t.check(
+        key,
+        (v[0] + e1 + e2 - v[2]).length() <= 1e-9 * scale.max(1e-300),
+        "the 4 vertices are not a parallelogram (v2 must be v1 + v3 − v0)",
+    )?;
+    t.check(key, e1.cross(e2).length() > 0.0, "the quad has zero area")?;
+    Ok((v[0], e1, e2))
+}
+
+/// `[[shape]]`; mesh files are relative to `dir`.
+pub fn read_shape(t: &mut TableReader, dir: &Path) -> Result<ShapeDesc> {
+    let kind = t.string("type")?;
+    let primitives = match kind.as_str() {
+        "sphere" => vec![Primitive::Sphere {
+            center: t.vec3("center")?,
+            radius: t.positive("radius")?,
+        }],
+        "cylinder" => {
+            let base = t.vec3("base")?;
+            let axis = t.direction_or("axis", DVec3::Z)?;
+            let radius = t.positive("radius")?;
+            let height = t.positive("height")?;
+            let mut p = vec![Primitive::Tube {
+                base,
+                axis,
+                radius,
+                height,
+            }];
+            if t.bool_or("capped", true)? {
+                p.push(Primitive::Disk {
+                    center: base,
+                    normal: -axis,
+                    radius,
+                });
+                p.push(Primitive::Disk {
+                    center: base + axis * height,
+                    normal: axis,
+                    radius,
+                });
+            }
+            p
+        }
+        "box" => {
+            let (lo, hi) = (t.vec3("min")?, t.vec3("max")?);
+            t.check(
+                "max",
+                lo.cmplt(hi).all(),
+                "every component of `max` must exceed `min`",
+            )?;
+            box_faces(lo, hi)
+        }
+        "quad" => {
+            let (origin, e1, e2) = parallelogram(t, "vertices")?;
+            vec![Primitive::Quad { origin, e1, e2 }]
+        }
+        "disk" => vec![Primitive::Disk {
+            center: t.vec3("center")?,
+            normal: t.direction_or("normal", DVec3::Y)?,
+            radius: t.positive("radius")?,
+        }],
+        "mesh" => read_mesh(t, dir)?,
+        other => {
+            return Err(t.error(
+                "type",
+                format!("unknown shape type '{other}' (sphere, cylinder, box, quad, disk, mesh)"),
+            ))
+        }
+    };
+    Ok(ShapeDesc {
+        primitives,
+        material: t.string("material")?,
+        interior: t.string_opt("interior")?,
+    })
+}
+
+/// The six outward-facing quads of an axis-aligned box.
+fn box_faces(lo: DVec3, hi: DVec3) -> Vec<Primitive> {
+    let d = hi - lo;
+    let (x, y, z) = (DVec3::X * d.x, DVec3::Y * d.y, DVec3::Z * d.z);
+    vec![
+        Primitive::Quad {
+            origin: lo,
+            e1: y,
+            e2: x,
+        }, // −z
+        Primitive::Quad {
+            origin: lo + z,
+            e1: x,
+            e2: y,
+        }, // +z
+        Primitive::Quad {
+            origin: lo,
+            e1: z,
+            e2: y,
+        }, // −x
+        Primitive::Quad {
+            origin: lo + x,
+            e1: y,
+            e2: z,
+        }, // +x
+        Primitive::Quad {
+            origin: lo,
+            e1: x,
+            e2: z,
+        }, // −y
+        Primitive::Quad {
+            origin: lo + y,
+            e1: z,
+            e2: x,
+        }, // +y
+    ]
+}
+
+fn read_mesh(t: &mut TableReader, dir: &Path) -> Result<Vec<Primitive>> {
+    let file = t.string("file")?;
+    let translate = t.vec3_or("translate", DVec3::ZERO)?;
+    let scale = t.f64_or("scale", 1.0)?;
+    t.check("scale", scale != 0.0, "must not be 0")?;
+    let rot = t.vec3_or("rotate_deg", DVec3::ZERO)?;
+    let m = DMat3::from_rotation_z(rot.z.to_radians())
+        * DMat3::from_rotation_y(rot.y.to_radians())
+        * DMat3::from_rotation_x(rot.x.to_radians());
+    let path = dir.join(&file);
+    let (models, _) = tobj::load_obj(
+        &path,
+        &tobj::LoadOptions {
+            triangulate: true,
+            single_index: true,
+            ..Default::default()
+        },
+    )
+    .map_err(|e| t.error("file", format!("cannot load {}: {e}", path.display())))?;
+    let mut tris = Vec::new();
+    for model in &models {
+        let pos = &model.mesh.positions;
+        let vertex = |i: u32| {
+            let i = i as usize * 3;
+            translate
+                + m * (scale * DVec3::new(pos[i] as f64, pos[i + 1] as f64, pos[i + 2] as f64))
+        };
+        for f in model.mesh.indices.chunks_exact(3) {
+            let (a, b, c) = (vertex(f[0]), vertex(f[1]), vertex(f[2]));
+            if (b - a).cross(c - a).length_squared() > 0.0 {
+                tris.push(Primitive::triangle(a, b, c));
+            }
+        }
+    }
+    t.check(
+        "file",
+        !tris.is_empty(),
+        format!("{} has no triangles", path.display()),
+    )?;
+    Ok(tris)
+}
+
+/// A light of type `kind` (not `environment`) and, for area lights, the emissive primitive
+/// the camera sees.
+pub fn read_light(t: &mut TableReader, kind: &str) -> Result<(Light, Option<Primitive>)> {
+    let area = |t: &mut TableReader, emitter: Emitter| -> Result<(Light, Option<Primitive>)> {
+        let radiance = t.rgb_or("radiance", None)?;
+        let prim = match emitter {
+            Emitter::Quad { origin, e1, e2 } => Primitive::Quad { origin, e1, e2 },
+            Emitter::Disk {
+                center,
+                normal,
+                radius,
+            } => Primitive::Disk {
+                center,
+                normal,
+                radius,
+            },
+        };
+        Ok((Light::Area { emitter, radiance }, Some(prim)))
+    };
+    Ok(match kind {
+        "point" => (Light::Point { position: t.vec3("position")?, intensity: t.rgb_or("intensity", None)? }, None),
+        "spot" => {
+            let position = t.vec3("position")?;
+            let direction = t.direction_or("direction", -DVec3::Y)?;
+            let intensity = t.rgb_or("intensity", None)?;
+            let cone = t.f64("cone_deg")?;
+            t.check("cone_deg", cone > 0.0 && cone <= 180.0, "must be in (0°, 180°]")?;
+            let falloff = t.f64_or("falloff_deg", cone)?;
+            t.check("falloff_deg", (0.0..=cone).contains(&falloff), "must be in [0°, cone_deg]")?;
+            let light = Light::Spot {
+                position,
+                direction,
+                intensity,
+                cos_inner: falloff.to_radians().cos(),
+                cos_outer: cone.to_radians().cos(),
+            };
+            (light, None)
+        }
+        "quad" => {
+            let (origin, e1, e2) = parallelogram(t, "vertices")?;
+            area(t, Emitter::Quad { origin, e1, e2 })?
+        }
+        "disk" => {
+            let emitter = Emitter::Disk {
+                center: t.vec3("center")?,
+                normal: t.direction_or("normal", -DVec3::Y)?,
+                radius: t.positive("radius")?,
+            };
+            area(t, emitter)?
+        }
+        "led" => {
+            let emitter = Emitter::Disk {
+                center: t.vec3("center")?,
+                normal: t.direction_or("normal", DVec3::Z)?,
+                radius: t.positive("radius")?,
+            };
+            let power = t.positive("power")?;
+            let m = t.f64_or("m", 1.0)?;
+            t.check("m", m >= 0.0, "must be ≥ 0")?;
+            let color = t.rgb_or("color", Some(DVec3::ONE))?;
+            let peak_intensity = color * (power * (m + 1.0) / std::f64::consts::TAU);
+            (Light::Led { emitter, peak_intensity, m }, None)
+        }
+        "directional" => (
+            Light::Directional { direction: t.direction_or("direction", -DVec3::Y)?, irradiance: t.rgb_or("irradiance", None)? },
+            None,
+        ),
+        other => return Err(t.error("type", format!("unknown light type '{other}' (point, spot, quad, disk, led, directional, environment)"))),
+    })
+}
+
+/// A `[[light]]` of type `environment`; image files are relative to `dir`.
+pub fn read_environment(t: &mut TableReader, dir: &Path) -> Result<Environment> {
+    let sky = match (t.string_opt("file")?, t.string_opt("sky")?) {
+        (Some(file), None) => {
+            let path = dir.join(file);
+            let img = image::open(&path)
+                .map_err(|e| t.error("file", format!("cannot read {}: {e}", path.display())))?
+                .to_rgb32f();
+            Sky::Image {
+                width: img.width() as usize,
+                height: img.height() as usize,
+                pixels: img.pixels().map(|p| p.0).collect(),
+            }
+        }
+        (None, Some(sky)) => match sky.as_str() {
+            "starfield" => Sky::Starfield {
+                seed: t.natural_or("seed", 1)?,
+            },
+            "checker" => Sky::Checker {
+                squares: t.count_or("squares", 24)?.min(1 << 20) as u32,
+            },
+            other => {
+                return Err(t.error("sky", format!("unknown sky '{other}' (starfield, checker)")))
+            }
+        },
+        _ => {
+            return Err(t.error(
+                "file",
+                "give exactly one of `file` (a lat-long EXR or HDR) and `sky`",
+            ))
+        }
+    };
+    let scale = t.f64_or("scale", 1.0)?;
+    t.check("scale", scale >= 0.0, "must be ≥ 0")?;
+    Ok(Environment {
+        sky,
+        rotation: t.f64_or("rotation_deg", 0.0)?.to_radians(),
+        scale,
+    })
+}
