@@ -3,6 +3,8 @@
 //! top row); the map is turned by `rotation` about +y.
 
 use crate::color::Rgb;
+use crate::lights::{covering_disk, Emission, SceneBall};
+use crate::sampling::{uniform_sphere, UNIFORM_SPHERE_PDF};
 use glam::DVec3;
 use std::f64::consts::{PI, TAU};
 
@@ -75,6 +77,41 @@ impl Environment {
                     Rgb::splat(if odd { 1.0 } else { 0.1 })
                 }
             }
+    }
+}
+
+impl Environment {
+    /// A photon of environment light for four uniform numbers: its direction of arrival is
+    /// uniform over the sphere and it starts on a disk covering the scene ball, so the power
+    /// estimate is L(ω)·area/pdf(ω) (see [`Emission`]).
+    pub fn emit(&self, u: [f64; 4], ball: SceneBall) -> Emission {
+        let from = uniform_sphere((u[0], u[1]));
+        let direction = -from;
+        let (origin, area) = covering_disk(ball, direction, (u[2], u[3]));
+        Emission {
+            origin,
+            direction,
+            power: self.radiance(from) * (area / UNIFORM_SPHERE_PDF),
+        }
+    }
+
+    /// A weight for choosing the environment among the lights: its power through the
+    /// covering disk (W, mean over channels), with the mean radiance taken over a fixed
+    /// 64 × 128 grid of directions (equal solid angle per cell).
+    pub fn selection_power(&self, ball: SceneBall) -> f64 {
+        let (rows, cols) = (64, 128);
+        let mut sum = Rgb::ZERO;
+        for i in 0..rows {
+            for j in 0..cols {
+                let u = (
+                    (i as f64 + 0.5) / rows as f64,
+                    (j as f64 + 0.5) / cols as f64,
+                );
+                sum += self.radiance(uniform_sphere(u));
+            }
+        }
+        let mean = sum / (rows * cols) as f64;
+        mean.element_sum() / 3.0 * 4.0 * PI * PI * ball.1 * ball.1
     }
 }
 

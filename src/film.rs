@@ -6,8 +6,36 @@ use crate::error::{Error, Result};
 use exr::prelude::*;
 use std::path::Path;
 
-/// The components, in layer order. `beauty` is the sum of the others' radiance terms.
-pub const LAYERS: [&str; 5] = ["beauty", "direct", "emitted", "albedo", "normal"];
+/// The layers, in order. `beauty` = direct + caustic + secondary + emitted (radiance,
+/// W/(m²·sr)); `albedo` and `normal` describe the first diffuse surface seen.
+pub const LAYERS: [&str; 7] = [
+    "beauty",
+    "direct",
+    "caustic",
+    "secondary",
+    "emitted",
+    "albedo",
+    "normal",
+];
+
+/// A layer (film plane) by its index in [`LAYERS`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Plane {
+    /// The sum of the radiance components.
+    Beauty,
+    /// Light sampling with a straight shadow connection.
+    Direct,
+    /// The caustic map's estimate.
+    Caustic,
+    /// The final gather over the global map.
+    Secondary,
+    /// Emission and environment seen directly or along the camera's specular chain.
+    Emitted,
+    /// Albedo of the first diffuse surface.
+    Albedo,
+    /// Normal of the first diffuse surface (facing the camera path).
+    Normal,
+}
 
 /// Per-pixel averages of every layer.
 #[derive(Clone, Debug)]
@@ -33,11 +61,10 @@ impl Film {
         }
     }
 
-    /// Stores the mean of `sum` over `count` samples at pixel (x, y).
-    pub fn set_mean(&mut self, x: usize, y: usize, sum: &PixelSample, count: u32) {
-        for (plane, value) in self.planes.iter_mut().zip(sum) {
-            let m = *value / count as f64;
-            plane[y * self.width + x] = [m.x as f32, m.y as f32, m.z as f32];
+    /// Stores every layer's value at pixel (x, y).
+    pub fn set(&mut self, x: usize, y: usize, value: &PixelSample) {
+        for (plane, v) in self.planes.iter_mut().zip(value) {
+            plane[y * self.width + x] = v.as_vec3().to_array();
         }
     }
 
@@ -114,4 +141,52 @@ pub fn read_exr_layer(path: &Path, name: Option<&str>) -> Result<(usize, usize, 
         size.height(),
         layer.channel_data.pixels.1.clone(),
     ))
+}
+
+/// Averages `factor` × `factor` pixel squares of a `width` × `height` plane (box filter), as
+/// needed to compare a smaller render with a reference; the sizes must divide.
+pub fn downsample(plane: &[[f32; 3]], width: usize, height: usize, factor: usize) -> Vec<[f32; 3]> {
+    let (w, h) = (width / factor, height / factor);
+    let mut out = vec![[0.0f32; 3]; w * h];
+    let scale = 1.0 / (factor * factor) as f32;
+    for y in 0..h * factor {
+        for x in 0..w * factor {
+            let o = &mut out[(y / factor) * w + x / factor];
+            for c in 0..3 {
+                o[c] += plane[y * width + x][c] * scale;
+            }
+        }
+    }
+    out
+}
+
+/// How a render compares with a reference of the same size: the ratio of their means over the
+/// whole image (all channels) and the ratios over `block` × `block` pixel blocks, row by row.
+/// Blocks whose reference mean is zero are left out.
+pub fn mean_ratios(
+    render: &[[f32; 3]],
+    reference: &[[f32; 3]],
+    width: usize,
+    block: usize,
+) -> (f64, Vec<f64>) {
+    let sum = |p: &[f32; 3]| p.iter().map(|&c| c as f64).sum::<f64>();
+    let total = |img: &[[f32; 3]]| img.iter().map(sum).sum::<f64>();
+    let overall = total(render) / total(reference);
+    let height = render.len() / width;
+    let mut blocks = Vec::new();
+    for by in 0..height / block {
+        for bx in 0..width / block {
+            let (mut a, mut b) = (0.0, 0.0);
+            for y in by * block..(by + 1) * block {
+                for x in bx * block..(bx + 1) * block {
+                    a += sum(&render[y * width + x]);
+                    b += sum(&reference[y * width + x]);
+                }
+            }
+            if b > 0.0 {
+                blocks.push(a / b);
+            }
+        }
+    }
+    (overall, blocks)
 }

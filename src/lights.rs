@@ -2,9 +2,40 @@
 //! Radiometry per RGB channel: intensity W/sr, radiance W/(m²·sr), irradiance W/m².
 
 use crate::color::Rgb;
+use crate::sampling::{
+    cosine_hemisphere, power_cosine_hemisphere, uniform_cone, uniform_disk, uniform_sphere, Frame,
+};
 use glam::DVec3;
 use std::f64::consts::{PI, TAU};
 
+/// One photon leaving a light: where, which way, and the light's power as this sample
+/// estimates it (W per channel): the emitted radiance (or intensity) over the joint pdf of the
+/// position and direction. Averaged over many samples it is the light's total power, so a
+/// photon emitted with probability p among N carries `power / (p N)`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Emission {
+    /// Start point.
+    pub origin: DVec3,
+    /// Unit direction of travel.
+    pub direction: DVec3,
+    /// Power estimate, W per channel.
+    pub power: Rgb,
+}
+
+/// The sphere (centre, radius) that holds the scene: parallel and environment light is
+/// emitted from a disk of this radius that covers it.
+pub type SceneBall = (DVec3, f64);
+
+/// A disk of radius `ball.1` perpendicular to unit `direction`, upstream of the scene ball,
+/// sampled uniformly: the start of a parallel-light photon, and the disk's area.
+pub fn covering_disk(ball: SceneBall, direction: DVec3, uv: (f64, f64)) -> (DVec3, f64) {
+    let (center, radius) = ball;
+    let (x, y) = uniform_disk(uv);
+    let frame = Frame::new(direction);
+    let origin =
+        center - direction * (2.0 * radius) + frame.to_world(DVec3::new(x, y, 0.0)) * radius;
+    (origin, PI * radius * radius)
+}
 /// The emitting surface of an area light.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Emitter {
@@ -193,6 +224,89 @@ impl Light {
                 irradiance: *irradiance,
             }),
         }
+    }
+}
+
+impl Light {
+    /// A photon from this light for four uniform numbers `u` (see [`Emission`]); `None` when
+    /// this sample emits nothing (a spot's falloff edge). `ball` bounds the scene, for
+    /// directional light.
+    pub fn emit(&self, u: [f64; 4], ball: SceneBall) -> Option<Emission> {
+        let emission = |origin, direction, power| {
+            Some(Emission {
+                origin,
+                direction,
+                power,
+            })
+        };
+        match self {
+            Light::Point {
+                position,
+                intensity,
+            } => emission(
+                *position,
+                uniform_sphere((u[0], u[1])),
+                *intensity * (4.0 * PI),
+            ),
+            Light::Spot {
+                position,
+                direction,
+                intensity,
+                cos_inner,
+                cos_outer,
+            } => {
+                let local = uniform_cone(*cos_outer, (u[0], u[1]));
+                let f = smoothstep(*cos_outer, *cos_inner, local.z);
+                (f > 0.0).then_some(())?;
+                let solid_angle = TAU * (1.0 - cos_outer);
+                emission(
+                    *position,
+                    Frame::new(*direction).to_world(local),
+                    *intensity * (f * solid_angle),
+                )
+            }
+            Light::Area { emitter, radiance } => emission(
+                emitter.sample((u[0], u[1])),
+                Frame::new(emitter.normal()).to_world(cosine_hemisphere((u[2], u[3]))),
+                *radiance * (PI * emitter.area()),
+            ),
+            Light::Led {
+                emitter,
+                peak_intensity,
+                m,
+            } => emission(
+                emitter.sample((u[0], u[1])),
+                Frame::new(emitter.normal()).to_world(power_cosine_hemisphere(*m, (u[2], u[3]))),
+                *peak_intensity * (TAU / (m + 1.0)),
+            ),
+            Light::Directional {
+                direction,
+                irradiance,
+            } => {
+                let (origin, area) = covering_disk(ball, *direction, (u[0], u[1]));
+                emission(origin, *direction, *irradiance * area)
+            }
+        }
+    }
+
+    /// A weight for choosing among lights, proportional to the light's power (W, mean over
+    /// channels); exact except for a spot, where the falloff is taken as linear in cos θ.
+    pub fn selection_power(&self, ball: SceneBall) -> f64 {
+        let p = match self {
+            Light::Point { intensity, .. } => *intensity * (4.0 * PI),
+            Light::Spot {
+                intensity,
+                cos_inner,
+                cos_outer,
+                ..
+            } => *intensity * (TAU * (1.0 - 0.5 * (cos_inner + cos_outer))),
+            Light::Area { emitter, radiance } => *radiance * (PI * emitter.area()),
+            Light::Led {
+                peak_intensity, m, ..
+            } => *peak_intensity * (TAU / (m + 1.0)),
+            Light::Directional { irradiance, .. } => *irradiance * (PI * ball.1 * ball.1),
+        };
+        p.element_sum() / 3.0
     }
 }
 

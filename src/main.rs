@@ -5,6 +5,7 @@ use clap::{Parser, Subcommand, ValueEnum};
 use glam::DVec3;
 use grinlight::curve::{Bounds, MarchLimits, RayState, StepControl, StepperKind};
 use grinlight::error::Error;
+use grinlight::render::Progress;
 use grinlight::{scene, trace};
 use std::io::Write;
 use std::path::PathBuf;
@@ -33,28 +34,7 @@ enum Control {
 #[derive(Subcommand)]
 enum Command {
     /// Render a scene's camera view to a multi-layer EXR and a PNG preview.
-    Render {
-        /// Scene file (TOML).
-        scene: PathBuf,
-        /// Output EXR (default: [output] path, else <scene name>.exr here).
-        #[arg(short, long)]
-        output: Option<PathBuf>,
-        /// Samples per pixel (overrides [render] spp).
-        #[arg(long)]
-        spp: Option<u32>,
-        /// Seed (overrides [render] seed).
-        #[arg(long)]
-        seed: Option<u64>,
-        /// Worker threads (overrides [render] threads; 0 = all cores).
-        #[arg(long)]
-        threads: Option<usize>,
-        /// Image width (overrides [camera] width; the vertical field of view is kept).
-        #[arg(long)]
-        width: Option<u32>,
-        /// Image height (overrides [camera] height).
-        #[arg(long)]
-        height: Option<u32>,
-    },
+    Render(RenderArgs),
     /// Trace one ray through a medium of a scene (unbounded) and print where it ends.
     Trace {
         /// Scene file (TOML).
@@ -106,6 +86,55 @@ enum Command {
     },
 }
 
+/// `grinlight render` options; each overrides the scene's `[render]` / `[camera]` key.
+#[derive(clap::Args)]
+struct RenderArgs {
+    /// Scene file (TOML).
+    scene: PathBuf,
+    /// Output EXR (default: [output] path, else <scene name>.exr here).
+    #[arg(short, long)]
+    output: Option<PathBuf>,
+    /// Camera samples per pixel per pass.
+    #[arg(long)]
+    spp: Option<u32>,
+    /// Seed.
+    #[arg(long)]
+    seed: Option<u64>,
+    /// Worker threads (0 = all cores).
+    #[arg(long)]
+    threads: Option<usize>,
+    /// Image width (the vertical field of view is kept).
+    #[arg(long)]
+    width: Option<u32>,
+    /// Image height.
+    #[arg(long)]
+    height: Option<u32>,
+    /// Global-map photons per pass.
+    #[arg(long)]
+    photons: Option<u64>,
+    /// Caustic-map photons per pass.
+    #[arg(long)]
+    caustic_photons: Option<u64>,
+    /// Final-gather rays per camera sample (0: no secondary light).
+    #[arg(long)]
+    gather: Option<u32>,
+    /// Photon gather radius (scene units): initial caustic radius, largest global radius.
+    #[arg(long)]
+    radius: Option<f64>,
+    /// k of the k-nearest-photon radius.
+    #[arg(long)]
+    knn: Option<u32>,
+    /// Progressive passes (photon pass + camera pass; the caustic radius shrinks).
+    #[arg(long)]
+    passes: Option<u32>,
+    /// Start no new pass after this many seconds (with no --passes: as many as fit).
+    #[arg(long)]
+    time_budget: Option<f64>,
+    /// Write the EXR (and PNG) every N passes, not only at the end.
+    #[arg(long)]
+    checkpoint: Option<u32>,
+}
+
 fn parse_vec(s: &str) -> std::result::Result<DVec3, String> {
     let parts: Vec<&str> = s.split(',').map(str::trim).collect();
     if parts.len() != 3 {
@@ -123,24 +152,27 @@ fn parse_vec(s: &str) -> std::result::Result<DVec3, String> {
     Ok(DVec3::from_array(v))
 }
 
-#[allow(clippy::too_many_arguments)]
-fn render(
-    scene_path: PathBuf,
-    output: Option<PathBuf>,
-    spp: Option<u32>,
-    seed: Option<u64>,
-    threads: Option<usize>,
-    width: Option<u32>,
-    height: Option<u32>,
-) -> Result<()> {
+fn render(args: RenderArgs) -> Result<()> {
+    let scene_path = args.scene;
     let mut scene = scene::load_scene(&scene_path)?;
-    if let Some(n) = spp {
-        scene.render.spp = n.max(1);
+    let settings = &mut scene.render;
+    settings.spp = args.spp.map_or(settings.spp, |n| n.max(1));
+    settings.seed = args.seed.unwrap_or(settings.seed);
+    settings.photons = args.photons.unwrap_or(settings.photons);
+    settings.caustic_photons = args.caustic_photons.unwrap_or(settings.caustic_photons);
+    settings.gather = args.gather.unwrap_or(settings.gather);
+    settings.knn = args.knn.map_or(settings.knn, |k| k.max(1));
+    if let Some(r) = args.radius {
+        settings.radius = Some(positive("radius", r)?);
     }
-    if let Some(s) = seed {
-        scene.render.seed = s;
+    if let Some(b) = args.time_budget {
+        settings.time_budget = Some(positive("time-budget", b)?);
+        if args.passes.is_none() {
+            settings.passes = u32::MAX;
+        }
     }
-    let threads = threads.unwrap_or(scene.render.threads);
+    settings.passes = args.passes.map_or(settings.passes, |p| p.max(1));
+    let threads = args.threads.unwrap_or(settings.threads);
     let Some(camera) = scene.camera.as_mut() else {
         return Err(Error::Usage(format!(
             "{}: the scene has no [camera] to render",
@@ -148,44 +180,69 @@ fn render(
         ))
         .into());
     };
-    for (flag, v) in [("--width", width), ("--height", height)] {
+    for (flag, v) in [("--width", args.width), ("--height", args.height)] {
         if v.is_some_and(|v| v == 0 || v > 65_536) {
             return Err(Error::Usage(format!("{flag} must be in 1..=65536")).into());
         }
     }
-    camera.width = width.unwrap_or(camera.width);
-    camera.height = height.unwrap_or(camera.height);
+    camera.width = args.width.unwrap_or(camera.width);
+    camera.height = args.height.unwrap_or(camera.height);
     let (w, h) = (camera.width, camera.height);
-    let exr = output
+    let exr = args
+        .output
         .or_else(|| scene.output.path.clone())
         .unwrap_or_else(|| {
             PathBuf::from(scene_path.file_stem().unwrap_or_default()).with_extension("exr")
         });
+    let png = scene.output.png.then(|| exr.with_extension("png"));
+    let write = |film: &grinlight::film::Film| -> grinlight::error::Result<()> {
+        film.write_exr(&exr)?;
+        if let Some(png) = &png {
+            film.write_png(png, scene.output.exposure)?;
+        }
+        Ok(())
+    };
     let tiles = (w as u64).div_ceil(16) * (h as u64).div_ceil(16);
-    let bar = indicatif::ProgressBar::new(tiles).with_style(
-        indicatif::ProgressStyle::with_template(
-            "{elapsed_precise} [{bar:40}] {pos}/{len} tiles, ETA {eta}",
-        )
-        .expect("valid template"),
+    let passes = scene.render.passes;
+    let bar = indicatif::ProgressBar::new(tiles * passes as u64).with_style(
+        indicatif::ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {msg} ETA {eta}")
+            .expect("valid template"),
     );
+    let budget = scene.render.time_budget;
+    let progress = |p: Progress| match p {
+        Progress::Pass(i) => bar.set_message(match (budget, passes) {
+            (Some(b), u32::MAX) => format!("pass {} (budget {b} s)", i + 1),
+            _ => format!("pass {}/{passes}", i + 1),
+        }),
+        Progress::Tile => bar.inc(1),
+    };
+    let checkpoint = args.checkpoint.unwrap_or(0);
     let start = std::time::Instant::now();
-    let (film, stats) = grinlight::render::render(&scene, threads, &|| bar.inc(1))?;
+    let mut on_pass = |done: u32, film: &grinlight::film::Film| {
+        if checkpoint > 0 && done % checkpoint == 0 {
+            write(film)?;
+            bar.println(format!(
+                "pass {done}: wrote {} at {:.1} s",
+                exr.display(),
+                start.elapsed().as_secs_f64()
+            ));
+        }
+        Ok(())
+    };
+    let (film, report) = grinlight::render::render(&scene, threads, &progress, &mut on_pass)?;
     bar.finish_and_clear();
     let seconds = start.elapsed().as_secs_f64();
     // Write every file before printing, so a closed stdout cannot cut the outputs short.
-    film.write_exr(&exr)?;
-    let png = scene.output.png.then(|| exr.with_extension("png"));
-    if let Some(png) = &png {
-        film.write_png(png, scene.output.exposure)?;
-    }
+    write(&film)?;
     let mut stdout = std::io::stdout().lock();
     writeln!(
         stdout,
-        "rendered {} ({w}×{h}, {} spp) in {seconds:.2} s",
+        "rendered {} ({w}×{h}, {} spp × {} passes) in {seconds:.2} s",
         scene_path.display(),
-        scene.render.spp
+        scene.render.spp,
+        report.passes
     )?;
-    writeln!(stdout, "{}", stats.summary())?;
+    writeln!(stdout, "{}", report.summary())?;
     writeln!(
         stdout,
         "wrote {} (layers: {})",
@@ -223,15 +280,7 @@ fn main() {
 
 fn run(cli: Cli) -> Result<()> {
     match cli.command {
-        Command::Render {
-            scene,
-            output,
-            spp,
-            seed,
-            threads,
-            width,
-            height,
-        } => render(scene, output, spp, seed, threads, width, height),
+        Command::Render(args) => render(args),
         Command::Trace {
             scene,
             medium,

@@ -1,56 +1,151 @@
-//! The camera pass: primary rays through specular chains and curved paths to the first
-//! diffuse surface, direct light by light sampling where a straight shadow connection is
-//! valid, emission and environment, written to the film's layers. Tiles run in parallel on a
-//! local rayon pool; every sample's random stream is keyed by (seed, pixel, sample), so the
-//! image does not depend on the thread count.
+//! The render: passes of (photon pass, camera pass). A camera path follows specular chains and
+//! curved paths to its first diffuse surface — the visible point — where the luminance
+//! components of seed 004 §4 are estimated:
+//! - **direct**: light sampling, only where a straight shadow connection is valid (the point
+//!   lies in a uniform medium and the shadow ray meets no surface); environment light by a
+//!   cosine-sampled ray that escapes straight;
+//! - **caustic**: the caustic map (L (S|G)+ D paths: exactly the light the direct estimate
+//!   cannot connect to), progressive over passes (SPPM: per-pixel radius shrinking with α);
+//! - **secondary**: a final gather (cosine rays, the global map's estimate where they land on a
+//!   diffuse surface; the only place the global map is looked at directly).
+//!
+//! Emission seen along the camera's specular chain and the environment behind it go to
+//! `emitted`; `beauty` = direct + caustic + secondary + emitted. Every random stream is keyed
+//! by (seed, pass, pixel, sample) or (seed, pass, photon), so the image does not depend on the
+//! thread count.
 
-mod stats;
-mod transport;
-
-pub use stats::Stats;
-pub use transport::{Event, Tracer};
+mod visible;
 
 use crate::color::Rgb;
 use crate::error::{Error, Result};
-use crate::film::{Film, PixelSample};
-use crate::material::{fresnel, reflect, refract, Material};
+use crate::film::{Film, PixelSample, Plane};
+use crate::photon::{shoot, Batch, PhotonMap, Sources};
+use crate::sampling::{stream, Purpose};
 use crate::scene::Scene;
-use glam::DVec3;
+use crate::transport::{Stats, Tracer};
 use rand::Rng;
-use rand_pcg::Pcg64Mcg;
 use rayon::prelude::*;
-use std::f64::consts::FRAC_1_PI;
-
-/// The summed samples of a tile's pixels: (x, y, sum).
-type TilePixels = Vec<(usize, usize, PixelSample)>;
+use std::f64::consts::PI;
+use std::time::Instant;
+use visible::{camera_path, Components};
 
 /// Tile edge in pixels.
 const TILE: usize = 16;
 
-/// A random stream for one (seed, pixel, sample): splitmix-hashed into a PCG state.
-pub fn stream(seed: u64, pixel: u64, sample: u64) -> Pcg64Mcg {
-    let mix = |mut z: u64| {
-        z = z.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
-    };
-    let a = mix(seed ^ mix(pixel ^ mix(sample)));
-    let b = mix(a ^ 0x5851_f42d_4c95_7f2d);
-    Pcg64Mcg::new(((a as u128) << 64) | b as u128)
+/// The SPPM radius-reduction parameter α (Hachisuka and Jensen 2009): the fraction of new
+/// photons kept per pass.
+pub const ALPHA: f64 = 2.0 / 3.0;
+
+/// What the render reports as it goes.
+#[derive(Clone, Copy, Debug)]
+pub enum Progress {
+    /// A pass starts (0-based), with its photon pass.
+    Pass(u32),
+    /// One camera tile of the current pass is done.
+    Tile,
 }
 
-/// Offset of a point off a surface toward the side of unit `side` (scene-scale relative).
-fn offset(p: DVec3, side: DVec3) -> DVec3 {
-    p + side * (1e-9 * (1.0 + p.abs().max_element()))
+/// Which photon maps a scene needs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Plan {
+    /// A caustic map: some light path can meet a specular surface or a gradient medium
+    /// before a diffuse one.
+    pub caustic: bool,
+    /// A global map: secondary light is on (`gather` > 0) and something is diffuse.
+    pub global: bool,
 }
 
-/// Renders the scene's camera view. `progress` is called once per finished tile.
+impl Plan {
+    /// What `scene` needs: nothing without diffuse surfaces or without emitters.
+    pub fn of(scene: &Scene) -> Self {
+        use crate::material::Material;
+        let has = |f: fn(&Material) -> bool| {
+            scene
+                .surfaces
+                .iter()
+                .any(|s| f(&scene.materials[s.material]))
+        };
+        let diffuse = has(|m| matches!(m, Material::Diffuse { .. }));
+        let emits = !scene.lights.is_empty() || scene.environment.is_some();
+        let specular = has(|m| matches!(m, Material::Mirror { .. } | Material::Dielectric));
+        let gradient = scene
+            .ambient
+            .is_some_and(|m| !scene.medium_at(m).is_uniform())
+            || scene
+                .surfaces
+                .iter()
+                .any(|s| s.interior.is_some_and(|m| !scene.medium_at(m).is_uniform()));
+        Self {
+            caustic: diffuse && emits && (specular || gradient) && scene.render.caustic_photons > 0,
+            global: diffuse && emits && scene.render.gather > 0 && scene.render.photons > 0,
+        }
+    }
+}
+
+/// Timings and photon counts of a render.
+#[derive(Clone, Debug, Default)]
+pub struct Report {
+    /// Passes run.
+    pub passes: u32,
+    /// Transport counts, summed over both passes of every pass.
+    pub stats: Stats,
+    /// Photons stored in the caustic and global maps, summed over passes.
+    pub stored: (u64, u64),
+    /// Seconds tracing photons, building the maps (kd-trees and the global map's precomputed
+    /// irradiance), and in the camera pass (which includes the photon queries).
+    pub seconds: (f64, f64, f64),
+}
+
+impl Report {
+    /// A multi-line summary.
+    pub fn summary(&self) -> String {
+        let (trace, build, camera) = self.seconds;
+        let rate = if trace > 0.0 {
+            self.stats.photons_emitted as f64 / trace
+        } else {
+            0.0
+        };
+        format!(
+            "{} pass(es); photons: {} emitted ({rate:.0}/s), caustic map {} stored, global map {} stored; \
+             photon tracing {trace:.2} s, map build {build:.3} s, camera pass {camera:.2} s\n{}",
+            self.passes,
+            self.stats.photons_emitted,
+            self.stored.0,
+            self.stored.1,
+            self.stats.summary()
+        )
+    }
+}
+
+/// One pixel's accumulators over passes.
+#[derive(Clone, Debug, Default)]
+struct PixelState {
+    /// Sums over passes of each pass's mean, per layer (the caustic slot is unused).
+    sum: PixelSample,
+    /// SPPM squared radius (0: not set yet).
+    r2: f64,
+    /// SPPM accumulated photon count N.
+    n: f64,
+    /// SPPM accumulated flux τ (already weighted by throughput, BRDF and kernel).
+    tau: Rgb,
+}
+
+/// A tile: its top-left pixel, width, and its pixels' states, row by row.
+struct Tile {
+    x0: usize,
+    y0: usize,
+    width: usize,
+    pixels: Vec<PixelState>,
+}
+
+/// Renders the scene's camera view. `progress` is told of every pass and tile; `on_pass` gets
+/// the film after every pass (for intermediate images) and may stop the render with an error.
 pub fn render(
     scene: &Scene,
     threads: usize,
-    progress: &(dyn Fn() + Sync),
-) -> Result<(Film, Stats)> {
+    progress: &(dyn Fn(Progress) + Sync),
+    on_pass: &mut dyn FnMut(u32, &Film) -> Result<()>,
+) -> Result<(Film, Report)> {
     let camera = scene.camera.as_ref().ok_or_else(|| {
         Error::Usage(format!(
             "{}: the scene has no [camera]",
@@ -58,177 +153,183 @@ pub fn render(
         ))
     })?;
     let (w, h) = (camera.width as usize, camera.height as usize);
-    let tiles: Vec<(usize, usize)> = (0..h.div_ceil(TILE))
-        .flat_map(|ty| (0..w.div_ceil(TILE)).map(move |tx| (tx, ty)))
-        .collect();
+    let mut tiles: Vec<Tile> = Vec::new();
+    for ty in 0..h.div_ceil(TILE) {
+        for tx in 0..w.div_ceil(TILE) {
+            let (x0, y0) = (tx * TILE, ty * TILE);
+            let (x1, y1) = ((x0 + TILE).min(w), (y0 + TILE).min(h));
+            tiles.push(Tile {
+                x0,
+                y0,
+                width: x1 - x0,
+                pixels: vec![PixelState::default(); (x1 - x0) * (y1 - y0)],
+            });
+        }
+    }
     let tracer = Tracer::new(scene);
+    let sources = Sources::new(&tracer);
+    let plan = Plan::of(scene);
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
         .map_err(|e| Error::Usage(format!("cannot start {threads} threads: {e}")))?;
-    let spp = scene.render.spp;
-    let results: Vec<(TilePixels, Stats)> = pool.install(|| {
-        tiles
-            .par_iter()
-            .map(|&(tx, ty)| {
-                let mut stats = Stats::default();
-                let mut pixels = Vec::new();
-                for y in ty * TILE..((ty + 1) * TILE).min(h) {
-                    for x in tx * TILE..((tx + 1) * TILE).min(w) {
-                        let mut sum: PixelSample = [Rgb::ZERO; 5];
-                        for s in 0..spp {
-                            let mut rng = stream(scene.render.seed, (y * w + x) as u64, s as u64);
-                            let (u, v) = (rng.gen::<f64>(), rng.gen::<f64>());
-                            let (o, d) =
-                                camera.ray(x as u32, y as u32, u, v, (rng.gen(), rng.gen()));
-                            stats.camera_rays += 1;
-                            let sample = camera_path(&tracer, o, d, &mut rng, &mut stats);
-                            for (a, b) in sum.iter_mut().zip(sample) {
-                                *a += b;
-                            }
-                        }
-                        pixels.push((x, y, sum));
-                    }
-                }
-                progress();
-                (pixels, stats)
-            })
-            .collect()
-    });
+    let settings = &scene.render;
+    let max_radius = settings.radius.unwrap_or(0.05 * tracer.ball.1);
+    let start = Instant::now();
+    let mut report = Report::default();
     let mut film = Film::new(w, h);
-    let mut stats = Stats::default();
-    for (pixels, s) in &results {
-        for (x, y, sum) in pixels {
-            film.set_mean(*x, *y, sum, spp);
-        }
-        stats.add(s);
-    }
-    Ok((film, stats))
-}
-
-/// Layers of one camera sample: beauty, direct, emitted, albedo, normal.
-fn camera_path(
-    tracer: &Tracer,
-    mut origin: DVec3,
-    mut dir: DVec3,
-    rng: &mut Pcg64Mcg,
-    stats: &mut Stats,
-) -> PixelSample {
-    let scene = tracer.scene;
-    let mut medium = scene.ambient;
-    let mut throughput = Rgb::ONE;
-    let (mut direct, mut emitted, mut albedo_aov, mut normal_aov) =
-        (Rgb::ZERO, Rgb::ZERO, Rgb::ZERO, Rgb::ZERO);
-    let mut depth = 0;
-    loop {
-        if depth == scene.render.max_depth {
-            stats.depth_limited += 1;
+    for pass in 0..settings.passes {
+        if pass > 0
+            && settings
+                .time_budget
+                .is_some_and(|b| start.elapsed().as_secs_f64() >= b)
+        {
             break;
         }
-        depth += 1;
-        let (prim, position, normal, incoming) = match tracer.next_event(origin, dir, medium, stats)
-        {
-            Event::Surface {
-                prim,
-                position,
-                normal,
-                direction,
-            } => (prim, position, normal, direction),
-            Event::Escaped(d) => {
-                if medium == scene.ambient {
-                    if let Some(env) = &scene.environment {
-                        emitted += throughput * env.radiance(d);
-                    }
-                }
-                break;
+        progress(Progress::Pass(pass));
+        let max_r2 = max_radius * max_radius;
+        let build = |batch: Batch, count: u64, report: &mut Report| {
+            let t0 = Instant::now();
+            let (photons, stats) =
+                pool.install(|| shoot(&tracer, &sources, batch, pass as u64, count));
+            let t1 = Instant::now();
+            let mut map = PhotonMap::new(photons);
+            if batch == Batch::Global {
+                pool.install(|| map.precompute_irradiance(settings.knn as usize, max_r2));
             }
-            Event::Lost => break,
+            report.seconds.0 += (t1 - t0).as_secs_f64();
+            report.seconds.1 += t1.elapsed().as_secs_f64();
+            report.stats.add(&stats);
+            map
         };
-        let surface = scene.surfaces[prim];
-        let front = incoming.dot(normal) < 0.0;
-        let facing = if front { normal } else { -normal };
-        match &scene.materials[surface.material] {
-            Material::Emissive { radiance } => {
-                if front {
-                    emitted += throughput * *radiance;
-                }
-                break;
-            }
-            Material::Diffuse { albedo } => {
-                albedo_aov = *albedo;
-                normal_aov = facing;
-                let uniform_here = medium.is_none_or(|m| scene.medium_at(m).is_uniform());
-                if uniform_here {
-                    direct += throughput
-                        * *albedo
-                        * FRAC_1_PI
-                        * direct_irradiance(tracer, position, facing, rng);
-                }
-                break;
-            }
-            Material::Mirror { reflectance } => {
-                throughput *= *reflectance;
-                dir = reflect(incoming, facing);
-                origin = offset(position, facing);
-            }
-            Material::Dielectric => {
-                let inside = surface
-                    .interior
-                    .expect("dielectrics have an interior (checked on load)");
-                let to = if front { Some(inside) } else { scene.ambient };
-                let index = |m: Option<usize>| {
-                    m.map_or(Some(1.0), |i| {
-                        scene.medium_at(i).sample(position).map(|s| s.n)
-                    })
-                };
-                let (Some(n1), Some(n2)) = (index(medium), index(to)) else {
-                    break;
-                };
-                let cos_i = -incoming.dot(facing);
-                let (r, cos_t) = fresnel(cos_i, n1, n2);
-                if rng.gen::<f64>() < r {
-                    dir = reflect(incoming, facing);
-                    origin = offset(position, facing);
-                } else {
-                    dir = refract(incoming, facing, n1, n2, cos_t);
-                    origin = offset(position, -facing);
-                    medium = to;
-                }
-            }
+        let caustic = plan
+            .caustic
+            .then(|| build(Batch::Caustic, settings.caustic_photons, &mut report));
+        let global = plan
+            .global
+            .then(|| build(Batch::Global, settings.photons, &mut report));
+        report.stored.0 += caustic.as_ref().map_or(0, |m| m.len() as u64);
+        report.stored.1 += global.as_ref().map_or(0, |m| m.len() as u64);
+        let maps = Maps {
+            caustic: caustic.as_ref(),
+            global: global.as_ref(),
+            knn: settings.knn as usize,
+            max_r2,
+            initial_r2: settings.radius.map(|r| r * r),
+        };
+        let t0 = Instant::now();
+        let stats: Vec<Stats> = pool.install(|| {
+            tiles
+                .par_iter_mut()
+                .map(|tile| {
+                    let mut stats = Stats::default();
+                    camera_tile(&tracer, &maps, pass, tile, &mut stats);
+                    progress(Progress::Tile);
+                    stats
+                })
+                .collect()
+        });
+        report.seconds.2 += t0.elapsed().as_secs_f64();
+        for s in &stats {
+            report.stats.add(s);
         }
+        report.passes = pass + 1;
+        film = develop(&tiles, w, h, report.passes);
+        on_pass(report.passes, &film)?;
     }
-    [direct + emitted, direct, emitted, albedo_aov, normal_aov]
+    Ok((film, report))
 }
 
-/// Irradiance-weighted cosine sum Σ E·cos θ over one sample of every light at a point with
-/// unit `normal` (facing the arriving ray), through straight shadow rays; a shadow ray that
-/// meets any surface (a glass or GRIN object included) carries nothing: light through those
-/// is the photon maps' part.
-fn direct_irradiance(tracer: &Tracer, p: DVec3, normal: DVec3, rng: &mut Pcg64Mcg) -> Rgb {
+/// The photon maps of a pass and how to query them.
+struct Maps<'a> {
+    caustic: Option<&'a PhotonMap>,
+    global: Option<&'a PhotonMap>,
+    knn: usize,
+    /// Largest squared radius of a k-nearest query.
+    max_r2: f64,
+    /// A fixed initial squared radius of the caustic estimate (None: k-nearest).
+    initial_r2: Option<f64>,
+}
+
+/// One pass of camera samples over a tile, updating its pixels' accumulators.
+fn camera_tile(tracer: &Tracer, maps: &Maps, pass: u32, tile: &mut Tile, stats: &mut Stats) {
     let scene = tracer.scene;
-    let origin = offset(p, normal);
-    let mut sum = Rgb::ZERO;
-    for light in &scene.lights {
-        let uv = (rng.gen::<f64>(), rng.gen::<f64>());
-        let Some(inc) = light.sample_incident(origin, uv) else {
-            continue;
-        };
-        let cos = inc.wi.dot(normal);
-        if cos <= 0.0 {
-            continue;
+    let camera = scene.camera.as_ref().expect("render() checked the camera");
+    let (w, h) = (camera.width as u64, camera.height as u64);
+    let spp = scene.render.spp.max(1);
+    for (i, state) in tile.pixels.iter_mut().enumerate() {
+        let (x, y) = (tile.x0 + i % tile.width, tile.y0 + i / tile.width);
+        let pixel = y as u64 * w + x as u64;
+        let mut mean = PixelSample::default();
+        let (mut phi, mut m) = (Rgb::ZERO, 0.0);
+        for s in 0..spp {
+            let mut rng = stream(
+                scene.render.seed,
+                Purpose::Camera,
+                pass as u64 * w * h + pixel,
+                s as u64,
+            );
+            let (u, v) = (rng.gen::<f64>(), rng.gen::<f64>());
+            let (o, d) = camera.ray(x as u32, y as u32, u, v, (rng.gen(), rng.gen()));
+            stats.camera_rays += 1;
+            let c: Components = camera_path(tracer, o, d, &mut rng, stats);
+            mean[Plane::Emitted as usize] += c.emitted;
+            let Some(vp) = c.visible else { continue };
+            mean[Plane::Albedo as usize] += vp.albedo;
+            mean[Plane::Normal as usize] += vp.normal;
+            mean[Plane::Direct as usize] += visible::direct(tracer, &vp, &mut rng);
+            if let Some(global) = maps.global {
+                mean[Plane::Secondary as usize] +=
+                    visible::secondary(tracer, global, maps.max_r2, &vp, &mut rng, stats);
+            }
+            if let Some(caustic) = maps.caustic {
+                if state.r2 == 0.0 {
+                    state.r2 = maps.initial_r2.unwrap_or_else(|| {
+                        caustic.knn_radius2(vp.position, vp.normal, maps.knn, maps.max_r2)
+                    });
+                }
+                let (irradiance, count) = caustic.irradiance(vp.position, vp.normal, state.r2);
+                // τ is kept so that L = τ / (π r² · passes): Φ-weighted sum of the BRDF times
+                // the kernel, (albedo/π)·E·π r² with E the kernel irradiance estimate.
+                phi += vp.throughput * vp.albedo * irradiance * state.r2;
+                m += count as f64;
+            }
         }
-        let reach = if inc.distance.is_finite() {
-            inc.distance * (1.0 - 1e-7)
-        } else {
-            f64::INFINITY
-        };
-        if scene
-            .accel
-            .intersect_ray(origin, inc.wi, 0.0, reach)
-            .is_none()
-        {
-            sum += inc.irradiance * cos;
+        for layer in [
+            Plane::Direct,
+            Plane::Secondary,
+            Plane::Emitted,
+            Plane::Albedo,
+            Plane::Normal,
+        ] {
+            state.sum[layer as usize] += mean[layer as usize] / spp as f64;
+        }
+        let (phi, m) = (phi / spp as f64, m / spp as f64);
+        if m > 0.0 {
+            let ratio = (state.n + ALPHA * m) / (state.n + m);
+            state.r2 *= ratio;
+            state.tau = (state.tau + phi) * ratio;
+            state.n += ALPHA * m;
         }
     }
-    sum
+}
+
+/// The film of the accumulators after `passes` passes.
+fn develop(tiles: &[Tile], w: usize, h: usize, passes: u32) -> Film {
+    let mut film = Film::new(w, h);
+    let p = passes as f64;
+    for tile in tiles {
+        for (i, state) in tile.pixels.iter().enumerate() {
+            let mut value = state.sum.map(|v| v / p);
+            if state.r2 > 0.0 {
+                value[Plane::Caustic as usize] = state.tau / (PI * state.r2 * p);
+            }
+            value[Plane::Beauty as usize] = value[Plane::Direct as usize]
+                + value[Plane::Caustic as usize]
+                + value[Plane::Secondary as usize]
+                + value[Plane::Emitted as usize];
+            film.set(tile.x0 + i % tile.width, tile.y0 + i / tile.width, &value);
+        }
+    }
+    film
 }

@@ -32,6 +32,21 @@ pub struct RenderSettings {
     /// Radius around the scene centre beyond which a ray in a gradient ambient medium counts
     /// as escaped (None: 10× the scene's extent including the camera).
     pub world_radius: Option<f64>,
+    /// Photons per pass for the global map.
+    pub photons: u64,
+    /// Photons per pass for the caustic map.
+    pub caustic_photons: u64,
+    /// Final-gather rays per camera sample at its first diffuse hit (0: no secondary light).
+    pub gather: u32,
+    /// Photon gather radius (scene units): the caustic estimate's initial radius and the
+    /// global estimate's largest (None: the k-nearest radius, at most 5 % of the scene's size).
+    pub radius: Option<f64>,
+    /// k of the k-nearest-photon radius.
+    pub knn: u32,
+    /// Progressive passes: photon pass + camera pass each, the caustic radius shrinking.
+    pub passes: u32,
+    /// Stop starting new passes after this many seconds (None: run all `passes`).
+    pub time_budget: Option<f64>,
 }
 
 impl Default for RenderSettings {
@@ -45,6 +60,13 @@ impl Default for RenderSettings {
             control: StepControl::default_for(StepperKind::Rk4),
             max_steps: 1_000_000,
             world_radius: None,
+            photons: 100_000,
+            caustic_photons: 100_000,
+            gather: 16,
+            radius: None,
+            knn: 16,
+            passes: 1,
+            time_budget: None,
         }
     }
 }
@@ -165,11 +187,10 @@ pub fn read_render(t: &mut TableReader) -> Result<RenderSettings> {
             ))
         }
     };
-    let world_radius = if t.has("world_radius") {
-        Some(t.positive("world_radius")?)
-    } else {
-        None
-    };
+    let world_radius = optional_positive(t, "world_radius")?;
+    let radius = optional_positive(t, "radius")?;
+    let time_budget = optional_positive(t, "time_budget")?;
+    let defaults = RenderSettings::default();
     Ok(RenderSettings {
         spp: t.count_or("spp", 16)?.min(u32::MAX as u64) as u32,
         seed: t.natural_or("seed", 0)?,
@@ -179,7 +200,25 @@ pub fn read_render(t: &mut TableReader) -> Result<RenderSettings> {
         control,
         max_steps: t.count_or("max_steps", 1_000_000)?,
         world_radius,
+        photons: t.natural_or("photons", defaults.photons)?,
+        caustic_photons: t.natural_or("caustic_photons", defaults.caustic_photons)?,
+        gather: t.natural_or("gather", defaults.gather as u64)?.min(1 << 16) as u32,
+        radius,
+        knn: t.count_or("knn", defaults.knn as u64)?.min(1 << 16) as u32,
+        passes: t
+            .count_or("passes", defaults.passes as u64)?
+            .min(u32::MAX as u64) as u32,
+        time_budget,
     })
+}
+
+/// A key that is either absent or a finite number > 0.
+fn optional_positive(t: &mut TableReader, key: &str) -> Result<Option<f64>> {
+    if t.has(key) {
+        Ok(Some(t.positive(key)?))
+    } else {
+        Ok(None)
+    }
 }
 
 /// `[output]`; relative paths are relative to the scene file's directory `dir`.

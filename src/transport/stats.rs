@@ -17,6 +17,10 @@ pub struct Stats {
     pub ends: [u64; 6],
     /// Paths that ended at the depth limit.
     pub depth_limited: u64,
+    /// Photons emitted.
+    pub photons_emitted: u64,
+    /// Gather rays of the final gather.
+    pub gather_rays: u64,
 }
 
 const ENDS: [Termination; 6] = [
@@ -43,6 +47,8 @@ impl Stats {
         self.curved_marches += o.curved_marches;
         self.curved_steps += o.curved_steps;
         self.depth_limited += o.depth_limited;
+        self.photons_emitted += o.photons_emitted;
+        self.gather_rays += o.gather_rays;
         for (a, b) in self.ends.iter_mut().zip(o.ends) {
             *a += b;
         }
@@ -66,8 +72,10 @@ impl Stats {
             })
             .collect();
         format!(
-            "camera rays {}, straight traversals {}, curved marches {} ({} steps; ends: {}), paths cut at max_depth {}",
+            "camera rays {}, photons {}, gather rays {}, straight traversals {}, curved marches {} ({} steps; ends: {}), paths cut at max_depth {}",
             self.camera_rays,
+            self.photons_emitted,
+            self.gather_rays,
             self.straight_rays,
             self.curved_marches,
             self.curved_steps,

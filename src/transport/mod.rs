@@ -1,11 +1,17 @@
 //! Moving a ray through the scene to its next event: straight through uniform media (BVH ray
 //! traversal), curved through gradient media (the march, each accepted step tested against
-//! the BVH as an exact arc).
+//! the BVH as an exact arc). Shared by the camera pass and the photon pass, together with the
+//! specular interactions (mirror reflection, Fresnel reflection and refraction) both follow.
 
-use super::stats::Stats;
+mod stats;
+
+use crate::color::Rgb;
 use crate::curve::{march_with, Bounds, CurvedSegment, MarchLimits, RayState, Termination};
-use crate::scene::Scene;
+use crate::lights::SceneBall;
+use crate::material::{fresnel, reflect, refract, Material};
+use crate::scene::{Scene, Surface};
 use glam::DVec3;
+pub use stats::Stats;
 use std::ops::ControlFlow;
 
 /// What a ray meets next.
@@ -30,10 +36,32 @@ pub enum Event {
     Lost,
 }
 
-/// Where rays travel: the scene and the sphere beyond which they count as escaped.
+/// A ray leaving a specular surface (mirror or dielectric).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Bounce {
+    /// Start, offset off the surface to the side the ray leaves on.
+    pub origin: DVec3,
+    /// Unit direction.
+    pub direction: DVec3,
+    /// The medium it travels in (None: vacuum).
+    pub medium: Option<usize>,
+    /// Throughput factor (the mirror's reflectance; 1 for a dielectric, whose Fresnel
+    /// choice between reflection and refraction is sampled).
+    pub weight: Rgb,
+}
+
+/// Offset of a point off a surface toward the side of unit `side` (scene-scale relative).
+pub fn offset(p: DVec3, side: DVec3) -> DVec3 {
+    p + side * (1e-9 * (1.0 + p.abs().max_element()))
+}
+
+/// Where rays travel: the scene, the sphere holding everything in it, and the sphere beyond
+/// which rays count as escaped.
 pub struct Tracer<'a> {
     /// The scene.
     pub scene: &'a Scene,
+    /// The smallest axis-aligned-box sphere around the primitives and the camera.
+    pub ball: SceneBall,
     /// The world sphere.
     pub world: Bounds,
 }
@@ -61,7 +89,59 @@ impl<'a> Tracer<'a> {
         let radius = scene.render.world_radius.unwrap_or(10.0 * extent.max(1.0));
         Self {
             scene,
+            ball: (center, extent.max(1e-9)),
             world: Bounds::Ball { center, radius },
+        }
+    }
+
+    /// What the specular surface `surface` does to a ray arriving along unit `incoming` in
+    /// `medium` at `position`, where the surface's geometric normal is `normal`: a mirror
+    /// reflects; a dielectric reflects with the Fresnel probability (decided by `u` ∈ [0,1))
+    /// and refracts otherwise, with n evaluated at the hit point on each side. `None` for a
+    /// diffuse or emissive surface, or where a side's index cannot be evaluated (a singular
+    /// medium).
+    pub fn specular_bounce(
+        &self,
+        surface: Surface,
+        medium: Option<usize>,
+        position: DVec3,
+        incoming: DVec3,
+        normal: DVec3,
+        u: f64,
+    ) -> Option<Bounce> {
+        let scene = self.scene;
+        let front = incoming.dot(normal) < 0.0;
+        let facing = if front { normal } else { -normal };
+        let reflected = |weight| Bounce {
+            origin: offset(position, facing),
+            direction: reflect(incoming, facing),
+            medium,
+            weight,
+        };
+        match &scene.materials[surface.material] {
+            Material::Mirror { reflectance } => Some(reflected(*reflectance)),
+            Material::Dielectric => {
+                let inside = surface.interior?;
+                let to = if front { Some(inside) } else { scene.ambient };
+                let index = |m: Option<usize>| {
+                    m.map_or(Some(1.0), |i| {
+                        scene.medium_at(i).sample(position).map(|s| s.n)
+                    })
+                };
+                let (n1, n2) = (index(medium)?, index(to)?);
+                let (r, cos_t) = fresnel(-incoming.dot(facing), n1, n2);
+                if u < r {
+                    Some(reflected(Rgb::ONE))
+                } else {
+                    Some(Bounce {
+                        origin: offset(position, -facing),
+                        direction: refract(incoming, facing, n1, n2, cos_t),
+                        medium: to,
+                        weight: Rgb::ONE,
+                    })
+                }
+            }
+            Material::Diffuse { .. } | Material::Emissive { .. } => None,
         }
     }
 

@@ -1,0 +1,224 @@
+//! The forward photon pass (seed 004 §4, Jensen's photon mapping): photons leave the lights in
+//! proportion to their power, travel with the same transport as camera rays (curved in
+//! gradient media, Fresnel at dielectrics, mirrors), and are stored at diffuse hits.
+//!
+//! Two maps, each from its own batch of photons:
+//! - **caustic**: photons whose path is L (S|G)+ D — at least one specular bounce or one
+//!   traversal of a non-uniform medium before the first diffuse hit — stored at that hit;
+//! - **global**: every diffuse hit of every photon, followed by Lambertian bounces with
+//!   Russian roulette on the albedo.
+//!
+//! Photon `i` of pass `p` draws from the stream (seed, batch, p, i), and photons are traced in
+//! fixed chunks whose results are concatenated in order, so a map does not depend on the
+//! thread count.
+
+mod map;
+
+pub use map::{Photon, PhotonMap};
+
+use crate::environment::Environment;
+use crate::lights::{Emission, Light};
+use crate::material::Material;
+use crate::sampling::{cosine_hemisphere, stream, Frame, Purpose};
+use crate::transport::{offset, Event, Stats, Tracer};
+use rand::Rng;
+use rayon::prelude::*;
+
+/// Photons per chunk of parallel work.
+const CHUNK: u64 = 4096;
+
+/// Something that emits photons.
+#[derive(Clone, Copy)]
+enum Source<'a> {
+    Light(&'a Light),
+    Environment(&'a Environment),
+}
+
+/// The scene's photon sources with a discrete distribution proportional to their power.
+pub struct Sources<'a> {
+    sources: Vec<Source<'a>>,
+    /// Cumulative selection probabilities, the last one 1.
+    cdf: Vec<f64>,
+}
+
+impl<'a> Sources<'a> {
+    /// The lights and the environment of the tracer's scene; sources of zero power are left
+    /// out.
+    pub fn new(tracer: &Tracer<'a>) -> Self {
+        let scene = tracer.scene;
+        let mut sources = Vec::new();
+        let mut weights = Vec::new();
+        for light in &scene.lights {
+            sources.push(Source::Light(light));
+            weights.push(light.selection_power(tracer.ball));
+        }
+        if let Some(env) = &scene.environment {
+            sources.push(Source::Environment(env));
+            weights.push(env.selection_power(tracer.ball));
+        }
+        let total: f64 = weights.iter().filter(|w| w.is_finite() && **w > 0.0).sum();
+        let mut kept = Vec::new();
+        let mut cdf = Vec::new();
+        let mut acc = 0.0;
+        for (s, w) in sources.into_iter().zip(weights) {
+            if w.is_finite() && w > 0.0 {
+                acc += w / total;
+                kept.push(s);
+                cdf.push(acc);
+            }
+        }
+        if let Some(last) = cdf.last_mut() {
+            *last = 1.0;
+        }
+        Self { sources: kept, cdf }
+    }
+
+    /// True when nothing emits.
+    pub fn is_empty(&self) -> bool {
+        self.sources.is_empty()
+    }
+
+    /// Emission for uniform numbers `u` (u[0] picks the source), with the power divided by
+    /// the selection probability.
+    fn emit(&self, tracer: &Tracer, u: [f64; 5]) -> Option<Emission> {
+        let i = self
+            .cdf
+            .partition_point(|c| *c <= u[0])
+            .min(self.cdf.len() - 1);
+        let p = self.cdf[i] - if i == 0 { 0.0 } else { self.cdf[i - 1] };
+        let rest = [u[1], u[2], u[3], u[4]];
+        let e = match self.sources[i] {
+            Source::Light(l) => l.emit(rest, tracer.ball)?,
+            Source::Environment(env) => env.emit(rest, tracer.ball),
+        };
+        Some(Emission {
+            power: e.power / p,
+            ..e
+        })
+    }
+}
+
+/// Which map a batch of photons fills.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Batch {
+    /// The caustic map: stored at the first diffuse hit after a specular bounce or a gradient
+    /// medium; the photon ends there.
+    Caustic,
+    /// The global map: stored at every diffuse hit.
+    Global,
+}
+
+/// Traces `count` photons of pass `pass` and returns the stored ones, in photon order, with
+/// the transport statistics. Runs on the current rayon pool.
+pub fn shoot(
+    tracer: &Tracer,
+    sources: &Sources,
+    batch: Batch,
+    pass: u64,
+    count: u64,
+) -> (Vec<Photon>, Stats) {
+    if sources.is_empty() || count == 0 {
+        return (Vec::new(), Stats::default());
+    }
+    let purpose = match batch {
+        Batch::Caustic => Purpose::CausticPhotons,
+        Batch::Global => Purpose::GlobalPhotons,
+    };
+    let chunks: Vec<(Vec<Photon>, Stats)> = (0..count.div_ceil(CHUNK))
+        .into_par_iter()
+        .map(|c| {
+            let mut stored = Vec::new();
+            let mut stats = Stats::default();
+            for i in c * CHUNK..((c + 1) * CHUNK).min(count) {
+                let mut rng = stream(tracer.scene.render.seed, purpose, pass, i);
+                let u = [rng.gen(), rng.gen(), rng.gen(), rng.gen(), rng.gen()];
+                stats.photons_emitted += 1;
+                if let Some(e) = sources.emit(tracer, u) {
+                    trace_photon(tracer, e, count, batch, &mut rng, &mut stored, &mut stats);
+                }
+            }
+            (stored, stats)
+        })
+        .collect();
+    let mut photons = Vec::new();
+    let mut stats = Stats::default();
+    for (p, s) in chunks {
+        photons.extend(p);
+        stats.add(&s);
+    }
+    (photons, stats)
+}
+
+/// Follows one photon from its emission, storing it into `stored` as `batch` says.
+fn trace_photon(
+    tracer: &Tracer,
+    e: Emission,
+    count: u64,
+    batch: Batch,
+    rng: &mut impl Rng,
+    stored: &mut Vec<Photon>,
+    stats: &mut Stats,
+) {
+    let scene = tracer.scene;
+    let mut power = e.power / count as f64;
+    let (mut origin, mut dir, mut medium) = (e.origin, e.direction, scene.ambient);
+    // Whether the path so far holds a specular bounce or a gradient-medium traversal.
+    let mut bent = false;
+    for _ in 0..scene.render.max_depth {
+        bent |= medium.is_some_and(|m| !scene.medium_at(m).is_uniform());
+        let Event::Surface {
+            prim,
+            position,
+            normal,
+            direction,
+        } = tracer.next_event(origin, dir, medium, stats)
+        else {
+            return;
+        };
+        let surface = scene.surfaces[prim];
+        let facing = if direction.dot(normal) < 0.0 {
+            normal
+        } else {
+            -normal
+        };
+        match &scene.materials[surface.material] {
+            Material::Emissive { .. } => return,
+            Material::Diffuse { albedo } => {
+                let photon = Photon {
+                    position,
+                    normal: facing,
+                    power: power.as_vec3().to_array(),
+                };
+                if batch == Batch::Caustic {
+                    if bent {
+                        stored.push(photon);
+                    }
+                    return;
+                }
+                stored.push(photon);
+                let survive = albedo.max_element();
+                if rng.gen::<f64>() >= survive {
+                    return;
+                }
+                power *= *albedo / survive;
+                dir = Frame::new(facing).to_world(cosine_hemisphere((rng.gen(), rng.gen())));
+                origin = offset(position, facing);
+            }
+            Material::Mirror { .. } | Material::Dielectric => {
+                let Some(b) =
+                    tracer.specular_bounce(surface, medium, position, direction, normal, rng.gen())
+                else {
+                    return;
+                };
+                // Russian roulette on a lossy mirror keeps photon powers equal in size.
+                let survive = b.weight.max_element();
+                if survive < 1.0 && rng.gen::<f64>() >= survive {
+                    return;
+                }
+                power *= b.weight / survive.clamp(f64::MIN_POSITIVE, 1.0);
+                (origin, dir, medium) = (b.origin, b.direction, b.medium);
+                bent = true;
+            }
+        }
+    }
+}

@@ -1,0 +1,212 @@
+//! A camera path to its visible point (the first diffuse surface after the specular and
+//! curved chain), and the direct and secondary estimates there. Radiance per RGB channel,
+//! W/(m²·sr); Lambertian BRDF = albedo/π.
+
+use crate::color::Rgb;
+use crate::material::Material;
+use crate::photon::PhotonMap;
+use crate::sampling::{cosine_hemisphere, Frame};
+use crate::transport::{offset, Event, Stats, Tracer};
+use glam::DVec3;
+use rand::Rng;
+use std::f64::consts::FRAC_1_PI;
+
+/// The first diffuse surface a camera path meets.
+#[derive(Clone, Copy, Debug)]
+pub struct VisiblePoint {
+    /// Where.
+    pub position: DVec3,
+    /// Unit normal of the side the path arrived on.
+    pub normal: DVec3,
+    /// Albedo of the surface.
+    pub albedo: Rgb,
+    /// Throughput of the camera path up to here (mirror reflectances).
+    pub throughput: Rgb,
+    /// The medium the path arrived in (None: vacuum).
+    pub medium: Option<usize>,
+}
+
+/// What one camera path found.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Components {
+    /// Emission and environment radiance met along the specular chain.
+    pub emitted: Rgb,
+    /// The visible point, if the path reached a diffuse surface.
+    pub visible: Option<VisiblePoint>,
+}
+
+/// Follows a camera ray through mirrors, dielectrics and curved media to its visible point.
+pub fn camera_path(
+    tracer: &Tracer,
+    mut origin: DVec3,
+    mut dir: DVec3,
+    rng: &mut impl Rng,
+    stats: &mut Stats,
+) -> Components {
+    let scene = tracer.scene;
+    let mut medium = scene.ambient;
+    let mut throughput = Rgb::ONE;
+    let mut out = Components::default();
+    for _ in 0..scene.render.max_depth {
+        let (prim, position, normal, incoming) = match tracer.next_event(origin, dir, medium, stats)
+        {
+            Event::Surface {
+                prim,
+                position,
+                normal,
+                direction,
+            } => (prim, position, normal, direction),
+            Event::Escaped(d) => {
+                if let (true, Some(env)) = (medium == scene.ambient, &scene.environment) {
+                    out.emitted += throughput * env.radiance(d);
+                }
+                return out;
+            }
+            Event::Lost => return out,
+        };
+        let surface = scene.surfaces[prim];
+        let front = incoming.dot(normal) < 0.0;
+        match &scene.materials[surface.material] {
+            Material::Emissive { radiance } => {
+                if front {
+                    out.emitted += throughput * *radiance;
+                }
+                return out;
+            }
+            Material::Diffuse { albedo } => {
+                out.visible = Some(VisiblePoint {
+                    position,
+                    normal: if front { normal } else { -normal },
+                    albedo: *albedo,
+                    throughput,
+                    medium,
+                });
+                return out;
+            }
+            Material::Mirror { .. } | Material::Dielectric => {
+                let Some(b) =
+                    tracer.specular_bounce(surface, medium, position, incoming, normal, rng.gen())
+                else {
+                    return out;
+                };
+                throughput *= b.weight;
+                (origin, dir, medium) = (b.origin, b.direction, b.medium);
+            }
+        }
+    }
+    stats.depth_limited += 1;
+    out
+}
+
+/// Direct light at a visible point, by one sample of every light through straight shadow
+/// rays, and environment light by one cosine-sampled ray that escapes straight. Zero where
+/// the point lies in a non-uniform medium; a shadow ray that meets any surface (glass or a
+/// GRIN object included) carries nothing: that light is the caustic map's.
+pub fn direct(tracer: &Tracer, vp: &VisiblePoint, rng: &mut impl Rng) -> Rgb {
+    let scene = tracer.scene;
+    if !vp.medium.is_none_or(|m| scene.medium_at(m).is_uniform()) {
+        return Rgb::ZERO;
+    }
+    let origin = offset(vp.position, vp.normal);
+    let mut irradiance = Rgb::ZERO;
+    for light in &scene.lights {
+        let Some(inc) = light.sample_incident(origin, (rng.gen(), rng.gen())) else {
+            continue;
+        };
+        let cos = inc.wi.dot(vp.normal);
+        if cos <= 0.0 {
+            continue;
+        }
+        let reach = if inc.distance.is_finite() {
+            inc.distance * (1.0 - 1e-7)
+        } else {
+            f64::INFINITY
+        };
+        if scene
+            .accel
+            .intersect_ray(origin, inc.wi, 0.0, reach)
+            .is_none()
+        {
+            irradiance += inc.irradiance * cos;
+        }
+    }
+    let mut radiance = vp.albedo * FRAC_1_PI * irradiance;
+    if let (true, Some(env)) = (vp.medium == scene.ambient, &scene.environment) {
+        // Cosine sampling: f cos θ / pdf = albedo.
+        let d = Frame::new(vp.normal).to_world(cosine_hemisphere((rng.gen(), rng.gen())));
+        if scene
+            .accel
+            .intersect_ray(origin, d, 0.0, f64::INFINITY)
+            .is_none()
+        {
+            radiance += vp.albedo * env.radiance(d);
+        }
+    }
+    vp.throughput * radiance
+}
+
+/// Secondary light at a visible point: `gather` cosine rays (from the scene settings), each
+/// followed through specular surfaces to a diffuse one, where the global map's precomputed
+/// k-nearest irradiance of the nearest photon gives the radiance leaving it. Emission and environment met by gather rays are
+/// not counted: that light is the direct or caustic part.
+pub fn secondary(
+    tracer: &Tracer,
+    global: &PhotonMap,
+    max_r2: f64,
+    vp: &VisiblePoint,
+    rng: &mut impl Rng,
+    stats: &mut Stats,
+) -> Rgb {
+    let scene = tracer.scene;
+    let gather = scene.render.gather;
+    let frame = Frame::new(vp.normal);
+    let mut sum = Rgb::ZERO;
+    for _ in 0..gather {
+        stats.gather_rays += 1;
+        let mut dir = frame.to_world(cosine_hemisphere((rng.gen(), rng.gen())));
+        let mut origin = offset(vp.position, vp.normal);
+        let mut medium = vp.medium;
+        let mut weight = Rgb::ONE;
+        for _ in 0..scene.render.max_depth {
+            let Event::Surface {
+                prim,
+                position,
+                normal,
+                direction,
+            } = tracer.next_event(origin, dir, medium, stats)
+            else {
+                break;
+            };
+            let surface = scene.surfaces[prim];
+            match &scene.materials[surface.material] {
+                Material::Diffuse { albedo } => {
+                    let facing = if direction.dot(normal) < 0.0 {
+                        normal
+                    } else {
+                        -normal
+                    };
+                    let e = global.nearest_irradiance(position, facing, max_r2);
+                    sum += weight * *albedo * FRAC_1_PI * e;
+                    break;
+                }
+                Material::Emissive { .. } => break,
+                Material::Mirror { .. } | Material::Dielectric => {
+                    let Some(b) = tracer.specular_bounce(
+                        surface,
+                        medium,
+                        position,
+                        direction,
+                        normal,
+                        rng.gen(),
+                    ) else {
+                        break;
+                    };
+                    weight *= b.weight;
+                    (origin, dir, medium) = (b.origin, b.direction, b.medium);
+                }
+            }
+        }
+    }
+    // Cosine sampling: (albedo/π) L cos θ / pdf = albedo · L per ray.
+    vp.throughput * vp.albedo * sum / gather.max(1) as f64
+}

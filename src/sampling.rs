@@ -1,0 +1,105 @@
+//! Random streams and warps. Every random number of a render comes from a stream keyed by
+//! (seed, stream, index) — e.g. (seed, pass·pixels + pixel, sample) for camera samples and
+//! (seed, pass, photon) for photons — so an image does not depend on how work is split over
+//! threads. Warps map uniform numbers in [0,1)² to directions with a known density (solid
+//! angle, 1/sr); each is checked by a χ² test against its pdf.
+
+use glam::DVec3;
+use rand_pcg::Pcg64Mcg;
+use std::f64::consts::{PI, TAU};
+
+/// Which part of a render a stream belongs to (keeps camera and photon streams apart).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Purpose {
+    /// Camera samples.
+    Camera = 1,
+    /// Caustic photons.
+    CausticPhotons = 2,
+    /// Global photons.
+    GlobalPhotons = 3,
+}
+
+/// The random stream for (seed, purpose, a, b): splitmix-hashed into a PCG state.
+pub fn stream(seed: u64, purpose: Purpose, a: u64, b: u64) -> Pcg64Mcg {
+    let mix = |mut z: u64| {
+        z = z.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^ (z >> 31)
+    };
+    let h = mix(seed ^ mix(purpose as u64 ^ mix(a ^ mix(b))));
+    let l = mix(h ^ 0x5851_f42d_4c95_7f2d);
+    Pcg64Mcg::new(((h as u128) << 64) | l as u128)
+}
+
+/// An orthonormal frame (t, b, n) around a unit vector n.
+#[derive(Clone, Copy, Debug)]
+pub struct Frame {
+    t: DVec3,
+    b: DVec3,
+    n: DVec3,
+}
+
+impl Frame {
+    /// The frame of unit `n`.
+    pub fn new(n: DVec3) -> Self {
+        let t = n.any_orthonormal_vector();
+        Self {
+            t,
+            b: n.cross(t),
+            n,
+        }
+    }
+
+    /// The world vector of local coordinates (x, y, z) (z along n).
+    pub fn to_world(&self, v: DVec3) -> DVec3 {
+        v.x * self.t + v.y * self.b + v.z * self.n
+    }
+}
+
+/// A unit vector at polar cosine `cos` about +z and azimuth 2π·`u`.
+fn polar(cos: f64, u: f64) -> DVec3 {
+    let sin = (1.0 - cos * cos).max(0.0).sqrt();
+    let phi = TAU * u;
+    DVec3::new(sin * phi.cos(), sin * phi.sin(), cos)
+}
+
+/// Cosine-weighted hemisphere about +z: pdf cos θ / π.
+pub fn cosine_hemisphere(uv: (f64, f64)) -> DVec3 {
+    polar((1.0 - uv.0).sqrt(), uv.1)
+}
+
+/// The "power cosine" lobe about +z: pdf (m + 1) cos^m θ / 2π on the hemisphere (m ≥ 0);
+/// m = 1 is [`cosine_hemisphere`]'s density, m = 0 the uniform hemisphere.
+pub fn power_cosine_hemisphere(m: f64, uv: (f64, f64)) -> DVec3 {
+    polar((1.0 - uv.0).powf(1.0 / (m + 1.0)), uv.1)
+}
+
+/// Uniform over the sphere: pdf 1/4π.
+pub fn uniform_sphere(uv: (f64, f64)) -> DVec3 {
+    polar(1.0 - 2.0 * uv.0, uv.1)
+}
+
+/// Uniform inside the cone of half-angle acos(`cos_max`) about +z: pdf 1/(2π(1 − cos_max)).
+pub fn uniform_cone(cos_max: f64, uv: (f64, f64)) -> DVec3 {
+    polar(1.0 - uv.0 * (1.0 - cos_max), uv.1)
+}
+
+/// Uniform on the unit disk in the xy plane (polar map): density 1/π.
+pub fn uniform_disk(uv: (f64, f64)) -> (f64, f64) {
+    let r = uv.0.sqrt();
+    let phi = TAU * uv.1;
+    (r * phi.cos(), r * phi.sin())
+}
+
+/// Pdf of [`power_cosine_hemisphere`] at a direction with polar cosine `cos` (1/sr).
+pub fn power_cosine_pdf(m: f64, cos: f64) -> f64 {
+    if cos <= 0.0 {
+        0.0
+    } else {
+        (m + 1.0) * cos.powf(m) / TAU
+    }
+}
+
+/// Pdf of [`uniform_sphere`] (1/sr).
+pub const UNIFORM_SPHERE_PDF: f64 = 0.25 / PI;
