@@ -257,6 +257,7 @@ fn camera_tile(tracer: &Tracer, maps: &Maps, pass: u32, tile: &mut Tile, stats: 
     let camera = scene.camera.as_ref().expect("render() checked the camera");
     let (w, h) = (camera.width as u64, camera.height as u64);
     let spp = scene.render.spp.max(1);
+    let strata = spp.isqrt();
     for (i, state) in tile.pixels.iter_mut().enumerate() {
         let (x, y) = (tile.x0 + i % tile.width, tile.y0 + i / tile.width);
         let pixel = y as u64 * w + x as u64;
@@ -269,7 +270,14 @@ fn camera_tile(tracer: &Tracer, maps: &Maps, pass: u32, tile: &mut Tile, stats: 
                 pass as u64 * w * h + pixel,
                 s as u64,
             );
-            let (u, v) = (rng.gen::<f64>(), rng.gen::<f64>());
+            // Stratified over the pixel: sample s of the first n² lies in cell (s mod n,
+            // s div n) of an n × n grid, n = ⌊√spp⌋ (sharp edges such as an emitter's
+            // converge much faster); any further samples are uniform.
+            let (mut u, mut v) = (rng.gen::<f64>(), rng.gen::<f64>());
+            if s < strata * strata {
+                u = ((s % strata) as f64 + u) / strata as f64;
+                v = ((s / strata) as f64 + v) / strata as f64;
+            }
             let (o, d) = camera.ray(x as u32, y as u32, u, v, (rng.gen(), rng.gen()));
             stats.camera_rays += 1;
             let c: Components = camera_path(tracer, o, d, &mut rng, stats);

@@ -1,0 +1,177 @@
+//! Photon mapping and the render against exact answers and an independent reference.
+
+use grinlight::film::{downsample, mean_ratios, read_exr_layer};
+use grinlight::photon::{shoot, Batch, Sources};
+use grinlight::scene::load::parse_scene;
+use grinlight::transport::Tracer;
+use std::f64::consts::PI;
+use std::path::Path;
+
+fn render(scene: &grinlight::scene::Scene, threads: usize) -> grinlight::film::Film {
+    grinlight::render::render(scene, threads, &|_| {}, &mut |_, _| Ok(()))
+        .unwrap()
+        .0
+}
+
+/// A black (albedo 0) disk of radius R at distance h below a source: photons are stored at
+/// their first hit only, so the stored flux is the flux onto the disk. Point light of
+/// intensity I: I·2π(1 − cos θ), tan θ = R/h. LED of power P with I ∝ cos^m θ (a 1 µm disk,
+/// facing the receiver): P(1 − cos^{m+1} θ). Binomial noise of 2·10⁵ photons with a hit
+/// fraction f ≥ 0.2 is ≤ 0.5 % relative; tolerance 2 %.
+#[test]
+fn photon_flux_onto_a_disk_matches_the_closed_form() {
+    let (r, h) = (1.0f64, 1.5f64);
+    let cos_t = h / (r * r + h * h).sqrt();
+    let receiver = "[[material]]\nname = \"black\"\ntype = \"diffuse\"\nalbedo = [0, 0, 0]\n\
+        [[shape]]\ntype = \"disk\"\ncenter = [0, 0, 0]\nnormal = [0, 1, 0]\nradius = 1.0\nmaterial = \"black\"\n";
+    let m = 2.0;
+    let cases = [
+        (
+            "[[light]]\ntype = \"point\"\nposition = [0, 1.5, 0]\nintensity = [1, 2, 3]\n",
+            [1.0, 2.0, 3.0].map(|i| i * 2.0 * PI * (1.0 - cos_t)),
+        ),
+        (
+            "[[light]]\ntype = \"led\"\ncenter = [0, 1.5, 0]\nnormal = [0, -1, 0]\nradius = 1e-6\npower = 0.5\nm = 2.0\n",
+            [0.5 * (1.0 - cos_t.powf(m + 1.0)); 3],
+        ),
+    ];
+    for (light, want) in cases {
+        let scene = parse_scene(Path::new("flux.toml"), format!("{receiver}{light}")).unwrap();
+        let tracer = Tracer::new(&scene);
+        let sources = Sources::new(&tracer);
+        let (photons, stats) = shoot(&tracer, &sources, Batch::Global, 0, 200_000);
+        assert_eq!(stats.photons_emitted, 200_000);
+        let mut sum = [0.0f64; 3];
+        for p in &photons {
+            for c in 0..3 {
+                sum[c] += p.power[c] as f64;
+            }
+        }
+        for c in 0..3 {
+            assert!(
+                (sum[c] / want[c] - 1.0).abs() < 0.02,
+                "{light}: channel {c}: {} vs {}",
+                sum[c],
+                want[c]
+            );
+        }
+    }
+}
+
+/// `scenes/cornell_diffuse.toml` against the independent Mitsuba reference (16384 spp), at
+/// 128 × 128 (the reference averaged over 2 × 2 pixels). The render is deterministic (fixed
+/// seed); its noise with 64 stratified samples per pixel and 4·10⁵ photons is ~0.3 % of a
+/// block's mean away from the emitter and ~1 % on the blocks holding the emitter's edge.
+/// The photon estimate's own bias is largest in the room's corners (the k-nearest disk
+/// reaches past the wall's edge): ~2 % there, measured. Bars from the issue: mean ratio
+/// within 1 %, every 16 × 16 block within 3 %.
+#[test]
+fn cornell_diffuse_matches_the_reference() {
+    let mut scene = grinlight::scene::load_scene(Path::new("scenes/cornell_diffuse.toml")).unwrap();
+    scene.render.spp = 64;
+    scene.render.gather = 2;
+    scene.render.photons = 400_000;
+    let camera = scene.camera.as_mut().unwrap();
+    (camera.width, camera.height) = (128, 128);
+    let film = render(&scene, 0);
+    let (rw, rh, reference) = read_exr_layer(
+        Path::new("../shared/refs/cornell_diffuse.reference.exr"),
+        None,
+    )
+    .unwrap();
+    let reference = downsample(&reference, rw, rh, rw / 128);
+    let (overall, blocks) = mean_ratios(film.layer("beauty").unwrap(), &reference, 128, 16);
+    let worst = blocks.iter().map(|r| (r - 1.0).abs()).fold(0.0, f64::max);
+    println!("mean ratio {overall:.4}, worst block {worst:.4}");
+    assert!((overall - 1.0).abs() < 0.01, "mean ratio {overall}");
+    assert_eq!(blocks.len(), 64);
+    assert!(worst < 0.03, "a block is off by {worst}: {blocks:?}");
+    // The components add up, and each is finite and non-negative.
+    let layer = |n: &str| film.layer(n).unwrap();
+    for i in 0..128 * 128 {
+        for c in 0..3 {
+            let parts = ["direct", "caustic", "secondary", "emitted"].map(|n| layer(n)[i][c]);
+            assert!(parts.iter().all(|v| v.is_finite() && *v >= 0.0));
+            let sum: f32 = parts.iter().sum();
+            assert!((layer("beauty")[i][c] - sum).abs() <= 1e-5 * sum.max(1.0));
+        }
+    }
+}
+
+/// The same seed gives the same EXR with 1 and 2 threads, with both photon maps, two
+/// progressive passes and a curved (GRIN) object in view.
+#[test]
+fn one_and_two_threads_write_the_same_exr() {
+    let mut scene = grinlight::scene::load_scene(Path::new("scenes/cornell_caustic.toml")).unwrap();
+    scene.render.spp = 2;
+    scene.render.passes = 2;
+    scene.render.photons = 20_000;
+    scene.render.caustic_photons = 20_000;
+    scene.render.gather = 2;
+    let camera = scene.camera.as_mut().unwrap();
+    (camera.width, camera.height) = (40, 30);
+    let dir = std::env::temp_dir().join(format!("grinlight-det-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut bytes = Vec::new();
+    for threads in [1, 2] {
+        let path = dir.join(format!("t{threads}.exr"));
+        render(&scene, threads).write_exr(&path).unwrap();
+        bytes.push(std::fs::read(&path).unwrap());
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+    assert!(bytes[0] == bytes[1], "the EXR depends on the thread count");
+    let luneburg = grinlight::scene::load_scene(Path::new("scenes/luneburg.toml")).unwrap();
+    let mut small = luneburg;
+    small.render.spp = 1;
+    small.render.photons = 5_000;
+    small.render.caustic_photons = 5_000;
+    let camera = small.camera.as_mut().unwrap();
+    (camera.width, camera.height) = (24, 18);
+    let (a, b) = (render(&small, 1), render(&small, 2));
+    assert!(
+        a.planes == b.planes,
+        "the Luneburg render depends on the thread count"
+    );
+}
+
+/// A closed diffuse sphere (albedo a) whose inside emits radiance Le uniformly — here a
+/// point light at the centre of intensity I, which gives every inner point the irradiance
+/// of a uniform emitter, E₀ = I/R² — reaches L = (a/π)·E₀/(1 − a) in total: direct a E₀/π
+/// plus secondary a² E₀/(π(1 − a)) (the inside of a sphere sees itself, so each bounce adds
+/// a uniform irradiance a·E). Camera at the centre; with 2·10⁵ photons and 32 gather rays
+/// per sample the image mean is within 1 % of the total (noise ~0.3 %), tolerance 2 %.
+#[test]
+fn furnace_sphere_reaches_the_analytic_radiance() {
+    let (a, i, r) = (0.5f64, 3.0f64, 2.0f64);
+    let text = format!(
+        "[camera]\nposition = [0, 0, 0]\nlook_at = [0, 0, -1]\nfov_y_deg = 60\nwidth = 16\nheight = 16\n\
+         [render]\nspp = 4\ngather = 32\nphotons = 200000\n\
+         [[material]]\nname = \"grey\"\ntype = \"diffuse\"\nalbedo = [{a}, {a}, {a}]\n\
+         [[shape]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = {r}\nmaterial = \"grey\"\n\
+         [[light]]\ntype = \"point\"\nposition = [0, 0, 0.0]\nintensity = [{i}, {i}, {i}]\n"
+    );
+    let scene = parse_scene(Path::new("furnace.toml"), text).unwrap();
+    let film = render(&scene, 0);
+    let e0 = i / (r * r);
+    let mean = |n: &str| {
+        film.layer(n)
+            .unwrap()
+            .iter()
+            .map(|p| p[0] as f64)
+            .sum::<f64>()
+            / 256.0
+    };
+    let (direct, secondary, beauty) = (mean("direct"), mean("secondary"), mean("beauty"));
+    println!("direct {direct:.5}, secondary {secondary:.5}, beauty {beauty:.5}");
+    let want_direct = a * e0 / PI;
+    let want_total = want_direct / (1.0 - a);
+    // Direct light from a point light is exact per sample; the film holds f32 (ε ≈ 6e-8).
+    assert!(
+        (direct / want_direct - 1.0).abs() < 1e-6,
+        "direct {direct} vs {want_direct}"
+    );
+    assert!(
+        (beauty / want_total - 1.0).abs() < 0.02,
+        "total {beauty} vs {want_total}"
+    );
+}
