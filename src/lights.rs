@@ -153,6 +153,9 @@ pub struct Incident {
     /// Irradiance estimate on a surface facing the light (W/m²): multiply by the BRDF and
     /// the receiving cosine.
     pub irradiance: Rgb,
+    /// Solid-angle density of this sample's direction (1/sr): d²/(cos θ_light · area) for
+    /// an area light, ∞ for lights no other strategy can find (point, spot, LED, directional).
+    pub pdf: f64,
 }
 
 impl Light {
@@ -173,6 +176,7 @@ impl Light {
                     wi,
                     distance: d,
                     irradiance: *intensity / (d * d),
+                    pdf: f64::INFINITY,
                 })
             }
             Light::Spot {
@@ -189,6 +193,7 @@ impl Light {
                     wi,
                     distance: d,
                     irradiance: *intensity * f / (d * d),
+                    pdf: f64::INFINITY,
                 })
             }
             Light::Area { emitter, radiance } => {
@@ -199,6 +204,7 @@ impl Light {
                     wi,
                     distance: d,
                     irradiance: *radiance * (cos_l * emitter.area() / (d * d)),
+                    pdf: d * d / (cos_l * emitter.area()),
                 })
             }
             Light::Led {
@@ -213,6 +219,7 @@ impl Light {
                     wi,
                     distance: d,
                     irradiance: *peak_intensity * (cos_l.powf(*m) / (d * d)),
+                    pdf: f64::INFINITY,
                 })
             }
             Light::Directional {
@@ -222,6 +229,7 @@ impl Light {
                 wi: -*direction,
                 distance: f64::INFINITY,
                 irradiance: *irradiance,
+                pdf: f64::INFINITY,
             }),
         }
     }

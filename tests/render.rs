@@ -41,12 +41,9 @@ fn photon_flux_onto_a_disk_matches_the_closed_form() {
         let sources = Sources::new(&tracer);
         let (photons, stats) = shoot(&tracer, &sources, Batch::Global, 0, 200_000);
         assert_eq!(stats.photons_emitted, 200_000);
-        let mut sum = [0.0f64; 3];
-        for p in &photons {
-            for c in 0..3 {
-                sum[c] += p.power[c] as f64;
-            }
-        }
+        let sum = photons.iter().fold([0.0f64; 3], |acc, p| {
+            [0, 1, 2].map(|c| acc[c] + p.power[c] as f64)
+        });
         for c in 0..3 {
             assert!(
                 (sum[c] / want[c] - 1.0).abs() < 0.02,

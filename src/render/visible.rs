@@ -3,6 +3,7 @@
 //! W/(m²·sr); Lambertian BRDF = albedo/π.
 
 use crate::color::Rgb;
+use crate::lights::Light;
 use crate::material::Material;
 use crate::photon::PhotonMap;
 use crate::sampling::{cosine_hemisphere, Frame};
@@ -98,17 +99,27 @@ pub fn camera_path(
     out
 }
 
-/// Direct light at a visible point, by one sample of every light through straight shadow
-/// rays, and environment light by one cosine-sampled ray that escapes straight. Zero where
-/// the point lies in a non-uniform medium; a shadow ray that meets any surface (glass or a
-/// GRIN object included) carries nothing: that light is the caustic map's.
+/// Direct light at a visible point, where a straight connection is valid (the point lies in
+/// a uniform medium): one light sample of every light through a straight shadow ray, and one
+/// cosine-sampled (BSDF) ray, combined by multiple importance sampling with the power
+/// heuristic for area lights (the only lights both strategies can find); the same ray
+/// collects environment light when it escapes. A shadow ray or BSDF ray that meets another
+/// surface first (glass or a GRIN object included) carries nothing: that light is the
+/// caustic map's. Zero in a non-uniform medium.
 pub fn direct(tracer: &Tracer, vp: &VisiblePoint, rng: &mut impl Rng) -> Rgb {
     let scene = tracer.scene;
     if !vp.medium.is_none_or(|m| scene.medium_at(m).is_uniform()) {
         return Rgb::ZERO;
     }
+    let power = |a: f64, b: f64| {
+        if a.is_infinite() {
+            1.0
+        } else {
+            a * a / (a * a + b * b)
+        }
+    };
     let origin = offset(vp.position, vp.normal);
-    let mut irradiance = Rgb::ZERO;
+    let mut radiance = Rgb::ZERO;
     for light in &scene.lights {
         let Some(inc) = light.sample_incident(origin, (rng.gen(), rng.gen())) else {
             continue;
@@ -127,19 +138,32 @@ pub fn direct(tracer: &Tracer, vp: &VisiblePoint, rng: &mut impl Rng) -> Rgb {
             .intersect_ray(origin, inc.wi, 0.0, reach)
             .is_none()
         {
-            irradiance += inc.irradiance * cos;
+            let weight = power(inc.pdf, cos * FRAC_1_PI);
+            radiance += vp.albedo * FRAC_1_PI * inc.irradiance * (cos * weight);
         }
     }
-    let mut radiance = vp.albedo * FRAC_1_PI * irradiance;
-    if let (true, Some(env)) = (vp.medium == scene.ambient, &scene.environment) {
-        // Cosine sampling: f cos θ / pdf = albedo.
-        let d = Frame::new(vp.normal).to_world(cosine_hemisphere((rng.gen(), rng.gen())));
-        if scene
-            .accel
-            .intersect_ray(origin, d, 0.0, f64::INFINITY)
-            .is_none()
-        {
-            radiance += vp.albedo * env.radiance(d);
+    // The BSDF sample: f cos θ / pdf = albedo for cosine sampling.
+    let d = Frame::new(vp.normal).to_world(cosine_hemisphere((rng.gen(), rng.gen())));
+    match scene.accel.intersect_ray(origin, d, 0.0, f64::INFINITY) {
+        None => {
+            if let (true, Some(env)) = (vp.medium == scene.ambient, &scene.environment) {
+                radiance += vp.albedo * env.radiance(d);
+            }
+        }
+        Some((prim, hit)) => {
+            let surface = scene.surfaces[prim];
+            let cos_l = -d.dot(hit.normal);
+            if let (Some(l), true) = (surface.light, cos_l > 0.0) {
+                if let Light::Area {
+                    emitter,
+                    radiance: le,
+                } = &scene.lights[l]
+                {
+                    let pdf_light = hit.t * hit.t / (cos_l * emitter.area());
+                    let pdf_bsdf = d.dot(vp.normal) * FRAC_1_PI;
+                    radiance += vp.albedo * *le * power(pdf_bsdf, pdf_light);
+                }
+            }
         }
     }
     vp.throughput * radiance

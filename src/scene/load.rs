@@ -77,6 +77,8 @@ pub struct Surface {
     pub material: usize,
     /// Index into the scene's media of what is inside (dielectrics), if anything.
     pub interior: Option<usize>,
+    /// Index into [`Scene::lights`] when this primitive is an area light's emitting surface.
+    pub light: Option<usize>,
 }
 
 /// A validated scene, immutable and shareable across threads.
@@ -217,7 +219,11 @@ pub fn parse_scene(path: &Path, text: String) -> Result<Scene> {
             "a dielectric shape needs an interior",
         )?;
         t.finish()?;
-        let surface = Surface { material, interior };
+        let surface = Surface {
+            material,
+            interior,
+            light: None,
+        };
         surfaces.extend(std::iter::repeat_n(surface, desc.primitives.len()));
         primitives.extend(desc.primitives);
     }
@@ -243,6 +249,7 @@ pub fn parse_scene(path: &Path, text: String) -> Result<Scene> {
                 surfaces.push(Surface {
                     material: materials.len() - 1,
                     interior: None,
+                    light: Some(lights.len()),
                 });
                 primitives.push(prim);
             }
