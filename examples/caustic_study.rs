@@ -4,18 +4,28 @@
 //! where the reference's caustic layer holds ≥ 10 % of its beauty; the error is the RMSE of
 //! `beauty` there (linear radiance, all channels).
 //!
-//! `cargo run --release --example caustic_study -- [REFERENCE_SECONDS]` (default 300);
-//! writes `out/caustic_study.csv`.
+//! `cargo run --release --example caustic_study -- [REFERENCE_SECONDS] [CAUSTIC_PHOTONS] [SPP]
+//! [GATHER] [MAX_BUDGET]` (defaults 300 s, 100000 per pass, 4, 2 for the timed runs, 80 s); the reference (300 000
+//! caustic photons, 4 spp, 2 gather rays per pass) is kept in `out/caustic_reference.exr` and
+//! reused while that file exists; writes `out/caustic_study.csv`.
 
-use grinlight::film::Film;
+use grinlight::film::{read_exr_layer, Film};
 use std::io::Write;
 use std::path::Path;
 
-fn run(seconds: f64, seed: u64) -> Result<(Film, f64, u32), Box<dyn std::error::Error>> {
+/// Settings of a run: caustic photons per pass, spp per pass, gather rays.
+type Settings = (u64, u32, u32);
+
+fn run(
+    seconds: f64,
+    seed: u64,
+    (caustic, spp, gather): Settings,
+) -> Result<(Film, f64, u32), Box<dyn std::error::Error>> {
     let mut scene = grinlight::scene::load_scene(Path::new("scenes/cornell_caustic.toml"))?;
     scene.render.seed = seed;
-    scene.render.spp = 4;
-    scene.render.gather = 2;
+    scene.render.spp = spp;
+    scene.render.gather = gather;
+    scene.render.caustic_photons = caustic;
     scene.render.passes = u32::MAX;
     scene.render.time_budget = Some(seconds);
     let t = std::time::Instant::now();
@@ -24,11 +34,23 @@ fn run(seconds: f64, seed: u64) -> Result<(Film, f64, u32), Box<dyn std::error::
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let reference_seconds: f64 = std::env::args().nth(1).map_or(Ok(300.0), |a| a.parse())?;
-    let (reference, t, passes) = run(reference_seconds, 1000)?;
-    println!("reference: {passes} passes in {t:.0} s");
-    let beauty = reference.layer("beauty").ok_or("no beauty")?;
-    let caustic = reference.layer("caustic").ok_or("no caustic")?;
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let reference_seconds: f64 = args.first().map_or(Ok(300.0), |a| a.parse())?;
+    let settings: Settings = (
+        args.get(1).map_or(Ok(100_000), |a| a.parse())?,
+        args.get(2).map_or(Ok(4), |a| a.parse())?,
+        args.get(3).map_or(Ok(2), |a| a.parse())?,
+    );
+    let cached = Path::new("out/caustic_reference.exr");
+    std::fs::create_dir_all("out")?;
+    if !cached.exists() {
+        let (reference, t, passes) = run(reference_seconds, 1000, (300_000, 4, 2))?;
+        println!("reference: {passes} passes in {t:.0} s");
+        reference.write_exr(cached)?;
+    }
+    let (w, _, beauty) = read_exr_layer(cached, Some("beauty"))?;
+    let (_, _, caustic) = read_exr_layer(cached, Some("caustic"))?;
+    assert_eq!(w, 256);
     let region: Vec<usize> = (0..beauty.len())
         .filter(|&i| {
             caustic[i][0] + caustic[i][1] + caustic[i][2]
@@ -37,7 +59,6 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         })
         .collect();
     println!("caustic region: {} pixels", region.len());
-    std::fs::create_dir_all("out")?;
     let mut csv = std::fs::File::create("out/caustic_study.csv")?;
     writeln!(csv, "budget_s,seconds,passes,rmse,mean_reference")?;
     let mean_ref = region
@@ -46,8 +67,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .sum::<f64>()
         / region.len() as f64;
     println!("| budget (s) | time (s) | passes | caustic-region RMSE |\n|---|---|---|---|");
-    for budget in [5.0, 10.0, 20.0, 40.0, 80.0] {
-        let (film, t, passes) = run(budget, 1)?;
+    let max_budget: f64 = args.get(4).map_or(Ok(80.0), |a| a.parse())?;
+    for budget in [5.0, 10.0, 20.0, 40.0, 80.0]
+        .into_iter()
+        .filter(|b| *b <= max_budget)
+    {
+        let (film, t, passes) = run(budget, 1, settings)?;
         let b = film.layer("beauty").ok_or("no beauty")?;
         let se: f64 = region
             .iter()

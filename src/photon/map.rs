@@ -115,8 +115,9 @@ impl PhotonMap {
         let ask = NonZero::new(8).expect("8 > 0");
         sites
             .tree
-            .nearest_n_within::<SquaredEuclidean>(&p.to_array(), max_r2, ask, true)
+            .nearest_n::<SquaredEuclidean>(&p.to_array(), ask)
             .iter()
+            .take_while(|nn| nn.distance <= max_r2)
             .find(|nn| {
                 self.photons[sites.photons[nn.item as usize] as usize]
                     .normal
@@ -177,15 +178,15 @@ impl PhotonMap {
         };
         let mut ask = 2 * k + 2;
         loop {
-            let candidates = tree.nearest_n_within::<SquaredEuclidean>(
-                &p.to_array(),
-                max_r2,
-                NonZero::new(ask).expect("ask > 0"),
-                true,
-            );
-            let exhausted = candidates.len() < ask;
+            // `nearest_n` prunes by the current k-th best distance; `nearest_n_within` only by
+            // `max_r2`, which costs several times more when `max_r2` is generous.
+            let candidates = tree
+                .nearest_n::<SquaredEuclidean>(&p.to_array(), NonZero::new(ask).expect("ask > 0"));
+            let exhausted =
+                candidates.len() < ask || candidates.last().is_some_and(|nn| nn.distance > max_r2);
             let found: Vec<(u32, f64)> = candidates
                 .into_iter()
+                .take_while(|nn| nn.distance <= max_r2)
                 .filter(|nn| {
                     keep(nn.item)
                         && self.photons[nn.item as usize].normal.dot(normal) >= SAME_SURFACE_COS
