@@ -112,21 +112,29 @@ impl PhotonMap {
         let Some(sites) = &self.sites else {
             return DVec3::ZERO;
         };
-        let ask = NonZero::new(8).expect("8 > 0");
+        let query = p.to_array();
+        let matches = |item: u32| {
+            self.photons[sites.photons[item as usize] as usize]
+                .normal
+                .dot(normal)
+                >= SAME_SURFACE_COS
+        };
+        let value = |item: u32| DVec3::from_array(sites.irradiance[item as usize].map(f64::from));
+        // Almost always the nearest site lies on the same surface: one cheap query.
+        let nearest = sites.tree.nearest_one::<SquaredEuclidean>(&query);
+        if nearest.distance > max_r2 {
+            return DVec3::ZERO;
+        }
+        if matches(nearest.item) {
+            return value(nearest.item);
+        }
         sites
             .tree
-            .nearest_n::<SquaredEuclidean>(&p.to_array(), ask)
+            .nearest_n::<SquaredEuclidean>(&query, NonZero::new(16).expect("16 > 0"))
             .iter()
             .take_while(|nn| nn.distance <= max_r2)
-            .find(|nn| {
-                self.photons[sites.photons[nn.item as usize] as usize]
-                    .normal
-                    .dot(normal)
-                    >= SAME_SURFACE_COS
-            })
-            .map_or(DVec3::ZERO, |nn| {
-                DVec3::from_array(sites.irradiance[nn.item as usize].map(f64::from))
-            })
+            .find(|nn| matches(nn.item))
+            .map_or(DVec3::ZERO, |nn| value(nn.item))
     }
 
     /// Number of photons.

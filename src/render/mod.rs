@@ -293,10 +293,14 @@ fn camera_tile(tracer: &Tracer, maps: &Maps, pass: u32, tile: &mut Tile, stats: 
             if let Some(caustic) = maps.caustic {
                 if state.r2 == 0.0 {
                     state.r2 = maps.initial_r2.unwrap_or_else(|| {
-                        caustic.knn_radius2(vp.position, vp.normal, maps.knn, maps.max_r2)
+                        stats.time_query(|| {
+                            caustic.knn_radius2(vp.position, vp.normal, maps.knn, maps.max_r2)
+                        })
                     });
                 }
-                let (irradiance, count) = caustic.irradiance(vp.position, vp.normal, state.r2);
+                let r2 = state.r2;
+                let (irradiance, count) =
+                    stats.time_query(|| caustic.irradiance(vp.position, vp.normal, r2));
                 // τ is kept so that L = τ / (π r² · passes): Φ-weighted sum of the BRDF times
                 // the kernel, (albedo/π)·E·π r² with E the kernel irradiance estimate.
                 phi += vp.throughput * vp.albedo * irradiance * state.r2;

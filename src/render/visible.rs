@@ -209,7 +209,8 @@ pub fn secondary(
                     } else {
                         -normal
                     };
-                    let e = global.nearest_irradiance(position, facing, max_r2);
+                    let e =
+                        stats.time_query(|| global.nearest_irradiance(position, facing, max_r2));
                     sum += weight * *albedo * FRAC_1_PI * e;
                     break;
                 }

@@ -21,6 +21,10 @@ pub struct Stats {
     pub photons_emitted: u64,
     /// Gather rays of the final gather.
     pub gather_rays: u64,
+    /// Photon-map queries of the camera pass (caustic radius and estimate, gather lookups).
+    pub photon_queries: u64,
+    /// CPU time spent in those queries, ns (summed over threads).
+    pub query_nanos: u64,
 }
 
 const ENDS: [Termination; 6] = [
@@ -33,6 +37,15 @@ const ENDS: [Termination; 6] = [
 ];
 
 impl Stats {
+    /// Runs a photon-map query, counting it and its CPU time.
+    pub fn time_query<T>(&mut self, query: impl FnOnce() -> T) -> T {
+        let t = std::time::Instant::now();
+        let out = query();
+        self.query_nanos += t.elapsed().as_nanos() as u64;
+        self.photon_queries += 1;
+        out
+    }
+
     /// Counts one march ending.
     pub fn record_end(&mut self, reason: Termination) {
         if let Some(i) = ENDS.iter().position(|r| *r == reason) {
@@ -49,6 +62,8 @@ impl Stats {
         self.depth_limited += o.depth_limited;
         self.photons_emitted += o.photons_emitted;
         self.gather_rays += o.gather_rays;
+        self.photon_queries += o.photon_queries;
+        self.query_nanos += o.query_nanos;
         for (a, b) in self.ends.iter_mut().zip(o.ends) {
             *a += b;
         }
@@ -72,10 +87,12 @@ impl Stats {
             })
             .collect();
         format!(
-            "camera rays {}, photons {}, gather rays {}, straight traversals {}, curved marches {} ({} steps; ends: {}), paths cut at max_depth {}",
+            "camera rays {}, photons {}, gather rays {}, photon queries {} ({:.2} µs each), straight traversals {}, curved marches {} ({} steps; ends: {}), paths cut at max_depth {}",
             self.camera_rays,
             self.photons_emitted,
             self.gather_rays,
+            self.photon_queries,
+            self.query_nanos as f64 * 1e-3 / self.photon_queries.max(1) as f64,
             self.straight_rays,
             self.curved_marches,
             self.curved_steps,
