@@ -56,21 +56,25 @@ fn radius_queries_match_a_brute_force_scan() {
             (DVec3::new(rng.gen(), rng.gen(), rng.gen()), DVec3::Z)
         };
         let r2: f64 = rng.gen_range(1e-4..0.05);
-        let mut got: Vec<usize> = Vec::new();
+        // The tree keeps positions turned by a fixed rotation (distances equal to ~1e-16
+        // relative), so a photon within 1e-12·r² of the sphere may fall either way.
+        let mut got = 0;
         map.for_each_within(p, n, r2, |ph, d2| {
             assert!((d2 - (ph.position - p).length_squared()).abs() < 1e-12);
-            got.push(
-                photons
-                    .iter()
-                    .position(|x| std::ptr::eq(x, ph))
-                    .unwrap_or(usize::MAX),
-            );
+            assert!(ph.normal.dot(n) >= 0.9);
+            got += 1;
         });
-        let want = photons
-            .iter()
-            .filter(|ph| (ph.position - p).length_squared() <= r2 && ph.normal.dot(n) >= 0.9)
-            .count();
-        assert_eq!(got.len(), want, "query {q} at {p} r² {r2}");
+        let count = |r2: f64| {
+            photons
+                .iter()
+                .filter(|ph| (ph.position - p).length_squared() <= r2 && ph.normal.dot(n) >= 0.9)
+                .count()
+        };
+        let (inner, outer) = (count(r2 * (1.0 - 1e-12)), count(r2 * (1.0 + 1e-12)));
+        assert!(
+            (inner..=outer).contains(&got),
+            "query {q} at {p} r² {r2}: {got} not in {inner}..={outer}"
+        );
         // k-nearest radius: the k-th smallest distance among the same-side photons.
         let mut d: Vec<f64> = photons
             .iter()
@@ -80,7 +84,11 @@ fn radius_queries_match_a_brute_force_scan() {
         d.sort_by(f64::total_cmp);
         let k = 1 + q % 40;
         let want_r2 = if d[k - 1] <= 0.5 { d[k - 1] } else { 0.5 };
-        assert_eq!(map.knn_radius2(p, n, k, 0.5), want_r2, "query {q}, k {k}");
+        let got_r2 = map.knn_radius2(p, n, k, 0.5);
+        assert!(
+            (got_r2 - want_r2).abs() <= 1e-12 * want_r2,
+            "query {q}, k {k}: {got_r2} vs {want_r2}"
+        );
     }
     // The coplanar cluster: 1000 photons at one point are all found.
     let mut at_point = 0;
