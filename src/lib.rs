@@ -31,6 +31,7 @@ pub mod material;
 pub mod media;
 pub mod photon;
 pub mod plot;
+pub mod receiver;
 pub mod render;
 pub mod sampling;
 pub mod scene;

@@ -6,7 +6,7 @@ use glam::DVec3;
 use grinlight::curve::{Bounds, MarchLimits, RayState, StepControl, StepperKind};
 use grinlight::error::Error;
 use grinlight::render::Progress;
-use grinlight::{scene, trace};
+use grinlight::{receiver, scene, trace};
 use std::io::Write;
 use std::path::PathBuf;
 
@@ -133,6 +133,56 @@ struct RenderArgs {
     /// Write the EXR (and PNG) every N passes, not only at the end.
     #[arg(long)]
     checkpoint: Option<u32>,
+    /// Photons traced for the scene's receivers.
+    #[arg(long)]
+    receiver_photons: Option<u64>,
+}
+
+/// Measures the receivers and writes, next to `exr`, per receiver `<stem>.<name>.csv` (bins),
+/// `.png` (heat map), `.radial.csv` and `.radial.png` (radial profile).
+fn measure_receivers(scene: &scene::Scene, threads: usize, exr: &std::path::Path) -> Result<()> {
+    let start = std::time::Instant::now();
+    let spinner = indicatif::ProgressBar::new_spinner().with_message(format!(
+        "tracing {} photons for {} receiver(s)",
+        scene.render.receiver_photons,
+        scene.receivers.len()
+    ));
+    spinner.enable_steady_tick(std::time::Duration::from_millis(200));
+    let (measurements, report) = grinlight::render::measure(scene, threads, 0)?;
+    spinner.finish_and_clear();
+    let stem = exr.with_extension("");
+    let name = |r: &grinlight::receiver::Receiver, ext: &str| {
+        PathBuf::from(format!("{}.{}.{ext}", stem.display(), r.name))
+    };
+    let mut lines = Vec::new();
+    for (r, m) in scene.receivers.iter().zip(&measurements) {
+        let profile = receiver::radial_profile(r, m);
+        receiver::write_csv(r, m, &name(r, "csv"))?;
+        receiver::write_png(r, m, &name(r, "png"))?;
+        receiver::write_radial_csv(&profile, &name(r, "radial.csv"))?;
+        receiver::write_radial_png(&[&profile], &name(r, "radial.png"))?;
+        lines.push(format!(
+            "receiver '{}': flux {:.6e} ± {:.1e} W; wrote {} (.png, .radial.csv, .radial.png)",
+            r.name,
+            m.flux.0,
+            m.flux.1,
+            name(r, "csv").display()
+        ));
+    }
+    let mut stdout = std::io::stdout().lock();
+    writeln!(
+        stdout,
+        "measured {} receiver(s) with {} photons in {:.2} s ({:.0} photons/s)",
+        scene.receivers.len(),
+        report.stats.photons_emitted,
+        start.elapsed().as_secs_f64(),
+        report.stats.photons_emitted as f64 / report.seconds.0.max(1e-9)
+    )?;
+    writeln!(stdout, "{}", report.stats.summary())?;
+    for l in lines {
+        writeln!(stdout, "{l}")?;
+    }
+    Ok(())
 }
 
 fn parse_vec(s: &str) -> std::result::Result<DVec3, String> {
@@ -172,10 +222,26 @@ fn render(args: RenderArgs) -> Result<()> {
         }
     }
     settings.passes = args.passes.map_or(settings.passes, |p| p.max(1));
+    settings.receiver_photons = args
+        .receiver_photons
+        .map_or(settings.receiver_photons, |n| n.max(1));
     let threads = args.threads.unwrap_or(settings.threads);
+    let exr = args
+        .output
+        .clone()
+        .or_else(|| scene.output.path.clone())
+        .unwrap_or_else(|| {
+            PathBuf::from(scene_path.file_stem().unwrap_or_default()).with_extension("exr")
+        });
+    if !scene.receivers.is_empty() {
+        measure_receivers(&scene, threads, &exr)?;
+    }
     let Some(camera) = scene.camera.as_mut() else {
+        if !scene.receivers.is_empty() {
+            return Ok(());
+        }
         return Err(Error::Usage(format!(
-            "{}: the scene has no [camera] to render",
+            "{}: the scene has no [camera] and no [[receiver]]: nothing to render",
             scene_path.display()
         ))
         .into());
@@ -188,12 +254,6 @@ fn render(args: RenderArgs) -> Result<()> {
     camera.width = args.width.unwrap_or(camera.width);
     camera.height = args.height.unwrap_or(camera.height);
     let (w, h) = (camera.width, camera.height);
-    let exr = args
-        .output
-        .or_else(|| scene.output.path.clone())
-        .unwrap_or_else(|| {
-            PathBuf::from(scene_path.file_stem().unwrap_or_default()).with_extension("exr")
-        });
     let png = scene.output.png.then(|| exr.with_extension("png"));
     let write = |film: &grinlight::film::Film| -> grinlight::error::Result<()> {
         film.write_exr(&exr)?;

@@ -19,6 +19,11 @@ pub enum Material {
     /// A smooth dielectric boundary: Fresnel reflection and Snell refraction, with the index
     /// on each side evaluated at the hit point. The inside is the shape's interior medium.
     Dielectric,
+    /// A receiver's detector plane: transparent, it records the photons crossing it.
+    Detector {
+        /// Index into the scene's receivers.
+        receiver: usize,
+    },
     /// An emitter of constant radiance from its front side (the side its normal points to),
     /// black on the back; it reflects nothing.
     Emissive {

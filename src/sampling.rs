@@ -17,6 +17,8 @@ pub enum Purpose {
     CausticPhotons = 2,
     /// Global photons.
     GlobalPhotons = 3,
+    /// Photons measured by receivers.
+    ReceiverPhotons = 4,
 }
 
 /// The random stream for (seed, purpose, a, b): splitmix-hashed into a PCG state.

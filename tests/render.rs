@@ -39,7 +39,8 @@ fn photon_flux_onto_a_disk_matches_the_closed_form() {
         let scene = parse_scene(Path::new("flux.toml"), format!("{receiver}{light}")).unwrap();
         let tracer = Tracer::new(&scene);
         let sources = Sources::new(&tracer);
-        let (photons, stats) = shoot(&tracer, &sources, Batch::Global, 0, 200_000);
+        let (sink, stats) = shoot(&tracer, &sources, Batch::Global, 0, 200_000);
+        let photons = sink.photons;
         assert_eq!(stats.photons_emitted, 200_000);
         let sum = photons.iter().fold([0.0f64; 3], |acc, p| {
             [0, 1, 2].map(|c| acc[c] + p.power[c] as f64)

@@ -37,6 +37,11 @@ fn primitives(rng: &mut Pcg64Mcg) -> Vec<Primitive> {
             center: rv(rng),
             normal: rv(rng).normalize(),
             radius: rng.gen_range(0.1..0.7),
+            inner: if rng.gen::<bool>() {
+                rng.gen_range(0.0..0.1)
+            } else {
+                0.0
+            },
         });
         v.push(Primitive::triangle(rv(rng), rv(rng), rv(rng)));
     }
@@ -103,7 +108,12 @@ fn on_primitive(p: &Primitive, x: DVec3) -> bool {
             let v = e1.cross(x - origin).dot(n) / n.length_squared();
             (0.0..=1.0).contains(&u) && (0.0..=1.0).contains(&v)
         }
-        Primitive::Disk { center, radius, .. } => (x - center).length() <= radius,
+        Primitive::Disk {
+            center,
+            radius,
+            inner,
+            ..
+        } => (inner..=radius).contains(&(x - center).length()),
         Primitive::Triangle { v0, e1, e2 } => {
             let n = e1.cross(e2);
             let u = (x - v0).cross(e2).dot(n) / n.length_squared();

@@ -19,6 +19,7 @@ pub use map::{Photon, PhotonMap};
 use crate::environment::Environment;
 use crate::lights::{Emission, Light};
 use crate::material::Material;
+use crate::receiver::Detection;
 use crate::sampling::{cosine_hemisphere, stream, Frame, Purpose};
 use crate::transport::{offset, Event, Stats, Tracer};
 use rand::Rng;
@@ -98,7 +99,7 @@ impl<'a> Sources<'a> {
     }
 }
 
-/// Which map a batch of photons fills.
+/// What a batch of photons is for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Batch {
     /// The caustic map: stored at the first diffuse hit after a specular bounce or a gradient
@@ -106,9 +107,20 @@ pub enum Batch {
     Caustic,
     /// The global map: stored at every diffuse hit.
     Global,
+    /// Receivers: nothing is stored; every crossing of a receiver is recorded.
+    Receivers,
 }
 
-/// Traces `count` photons of pass `pass` and returns the stored ones, in photon order, with
+/// What a batch leaves behind, in photon order.
+#[derive(Clone, Debug, Default)]
+pub struct Sink {
+    /// Photons stored at diffuse hits.
+    pub photons: Vec<Photon>,
+    /// Receiver crossings.
+    pub detections: Vec<Detection>,
+}
+
+/// Traces `count` photons of pass `pass` and returns what they left, in photon order, with
 /// the transport statistics. Runs on the current rayon pool.
 pub fn shoot(
     tracer: &Tracer,
@@ -116,51 +128,69 @@ pub fn shoot(
     batch: Batch,
     pass: u64,
     count: u64,
-) -> (Vec<Photon>, Stats) {
+) -> (Sink, Stats) {
     if sources.is_empty() || count == 0 {
-        return (Vec::new(), Stats::default());
+        return (Sink::default(), Stats::default());
     }
     let purpose = match batch {
         Batch::Caustic => Purpose::CausticPhotons,
         Batch::Global => Purpose::GlobalPhotons,
+        Batch::Receivers => Purpose::ReceiverPhotons,
     };
-    let chunks: Vec<(Vec<Photon>, Stats)> = (0..count.div_ceil(CHUNK))
+    let chunks: Vec<(Sink, Stats)> = (0..count.div_ceil(CHUNK))
         .into_par_iter()
         .map(|c| {
-            let mut stored = Vec::new();
+            let mut stored = Sink::default();
             let mut stats = Stats::default();
             for i in c * CHUNK..((c + 1) * CHUNK).min(count) {
                 let mut rng = stream(tracer.scene.render.seed, purpose, pass, i);
                 let u = [rng.gen(), rng.gen(), rng.gen(), rng.gen(), rng.gen()];
                 stats.photons_emitted += 1;
                 if let Some(e) = sources.emit(tracer, u) {
-                    trace_photon(tracer, e, count, batch, &mut rng, &mut stored, &mut stats);
+                    let photon = Tagged {
+                        index: i,
+                        count,
+                        batch,
+                    };
+                    trace_photon(tracer, e, photon, &mut rng, &mut stored, &mut stats);
                 }
             }
             (stored, stats)
         })
         .collect();
-    let mut photons = Vec::new();
+    let mut sink = Sink::default();
     let mut stats = Stats::default();
     for (p, s) in chunks {
-        photons.extend(p);
+        sink.photons.extend(p.photons);
+        sink.detections.extend(p.detections);
         stats.add(&s);
     }
-    (photons, stats)
+    (sink, stats)
+}
+
+/// A photon's place in its batch.
+#[derive(Clone, Copy)]
+struct Tagged {
+    /// Index in the batch.
+    index: u64,
+    /// Photons in the batch.
+    count: u64,
+    /// What the batch is for.
+    batch: Batch,
 }
 
 /// Follows one photon from its emission, storing it into `stored` as `batch` says.
 fn trace_photon(
     tracer: &Tracer,
     e: Emission,
-    count: u64,
-    batch: Batch,
+    tag: Tagged,
     rng: &mut impl Rng,
-    stored: &mut Vec<Photon>,
+    stored: &mut Sink,
     stats: &mut Stats,
 ) {
     let scene = tracer.scene;
-    let mut power = e.power / count as f64;
+    let batch = tag.batch;
+    let mut power = e.power / tag.count as f64;
     let (mut origin, mut dir, mut medium) = (e.origin, e.direction, scene.ambient);
     // Whether the path so far holds a specular bounce or a gradient-medium traversal.
     let mut bent = false;
@@ -189,13 +219,16 @@ fn trace_photon(
                     normal: facing,
                     power: power.as_vec3().to_array(),
                 };
-                if batch == Batch::Caustic {
-                    if bent {
-                        stored.push(photon);
+                match batch {
+                    Batch::Caustic => {
+                        if bent {
+                            stored.photons.push(photon);
+                        }
+                        return;
                     }
-                    return;
+                    Batch::Global => stored.photons.push(photon),
+                    Batch::Receivers => {}
                 }
-                stored.push(photon);
                 let survive = albedo.max_element();
                 if rng.gen::<f64>() >= survive {
                     return;
@@ -203,6 +236,19 @@ fn trace_photon(
                 power *= *albedo / survive;
                 dir = Frame::new(facing).to_world(cosine_hemisphere((rng.gen(), rng.gen())));
                 origin = offset(position, facing);
+            }
+            Material::Detector { receiver } => {
+                if batch == Batch::Receivers {
+                    if let Some(bin) = scene.receivers[*receiver].bin(position) {
+                        stored.detections.push(Detection {
+                            receiver: *receiver as u32,
+                            bin: bin as u32,
+                            photon: tag.index,
+                            flux: power.element_sum() / 3.0,
+                        });
+                    }
+                }
+                (origin, dir) = (offset(position, direction), direction);
             }
             Material::Mirror { .. } | Material::Dielectric => {
                 let Some(b) =

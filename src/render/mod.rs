@@ -20,6 +20,7 @@ use crate::color::Rgb;
 use crate::error::{Error, Result};
 use crate::film::{Film, PixelSample, Plane};
 use crate::photon::{shoot, Batch, PhotonMap, Sources};
+use crate::receiver::{self, Measurement};
 use crate::sampling::{stream, Purpose};
 use crate::scene::Scene;
 use crate::transport::{Stats, Tracer};
@@ -68,6 +69,7 @@ impl Plan {
         let diffuse = has(|m| matches!(m, Material::Diffuse { .. }));
         let emits = !scene.lights.is_empty() || scene.environment.is_some();
         let specular = has(|m| matches!(m, Material::Mirror { .. } | Material::Dielectric));
+        // (A receiver's detector is transparent: it neither bends nor stores light.)
         let gradient = scene
             .ambient
             .is_some_and(|m| !scene.medium_at(m).is_uniform())
@@ -190,10 +192,10 @@ pub fn render(
         let max_r2 = max_radius * max_radius;
         let build = |batch: Batch, count: u64, report: &mut Report| {
             let t0 = Instant::now();
-            let (photons, stats) =
+            let (sink, stats) =
                 pool.install(|| shoot(&tracer, &sources, batch, pass as u64, count));
             let t1 = Instant::now();
-            let mut map = PhotonMap::new(photons);
+            let mut map = PhotonMap::new(sink.photons);
             if batch == Batch::Global {
                 pool.install(|| map.precompute_irradiance(settings.knn as usize, max_r2));
             }
@@ -344,4 +346,29 @@ fn develop(tiles: &[Tile], w: usize, h: usize, passes: u32) -> Film {
         }
     }
     film
+}
+
+/// Measures the scene's receivers with `scene.render.receiver_photons` photons from its
+/// lights (stream pass `pass`), traced like global photons (diffuse bounces with Russian
+/// roulette) and recorded at every receiver crossing.
+pub fn measure(scene: &Scene, threads: usize, pass: u64) -> Result<(Vec<Measurement>, Report)> {
+    let tracer = Tracer::new(scene);
+    let sources = Sources::new(&tracer);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .map_err(|e| Error::Usage(format!("cannot start {threads} threads: {e}")))?;
+    let count = scene.render.receiver_photons;
+    let t0 = Instant::now();
+    let (sink, stats) = pool.install(|| shoot(&tracer, &sources, Batch::Receivers, pass, count));
+    let report = Report {
+        passes: 1,
+        stats,
+        seconds: (t0.elapsed().as_secs_f64(), 0.0, 0.0),
+        ..Report::default()
+    };
+    Ok((
+        receiver::measure(&scene.receivers, &sink.detections, count),
+        report,
+    ))
 }

@@ -84,7 +84,7 @@ pub fn camera_path(
                 });
                 return out;
             }
-            Material::Mirror { .. } | Material::Dielectric => {
+            Material::Mirror { .. } | Material::Dielectric | Material::Detector { .. } => {
                 let Some(b) =
                     tracer.specular_bounce(surface, medium, position, incoming, normal, rng.gen())
                 else {
@@ -215,7 +215,7 @@ pub fn secondary(
                     break;
                 }
                 Material::Emissive { .. } => break,
-                Material::Mirror { .. } | Material::Dielectric => {
+                Material::Mirror { .. } | Material::Dielectric | Material::Detector { .. } => {
                     let Some(b) = tracer.specular_bounce(
                         surface,
                         medium,

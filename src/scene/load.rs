@@ -3,8 +3,8 @@
 
 use super::media::read_medium;
 use super::objects::{
-    read_camera, read_environment, read_light, read_material, read_output, read_render, read_shape,
-    Interior, OutputSettings, RenderSettings,
+    read_camera, read_environment, read_light, read_material, read_output, read_receiver,
+    read_render, read_shape, Interior, OutputSettings, RenderSettings,
 };
 use super::table::{SpannedTable, TableReader};
 use crate::accel::Accel;
@@ -14,6 +14,7 @@ use crate::error::{Error, Result};
 use crate::lights::Light;
 use crate::material::Material;
 use crate::media::{Medium, UniformMedium};
+use crate::receiver::Receiver;
 use std::path::{Path, PathBuf};
 use toml::Spanned;
 
@@ -64,6 +65,8 @@ struct SceneFile {
     shape: Vec<Spanned<SpannedTable>>,
     #[serde(default)]
     light: Vec<Spanned<SpannedTable>>,
+    #[serde(default)]
+    receiver: Vec<Spanned<SpannedTable>>,
     camera: Option<Spanned<SpannedTable>>,
     render: Option<Spanned<SpannedTable>>,
     output: Option<Spanned<SpannedTable>>,
@@ -79,6 +82,9 @@ pub struct Surface {
     pub interior: Option<usize>,
     /// Index into [`Scene::lights`] when this primitive is an area light's emitting surface.
     pub light: Option<usize>,
+    /// Index into the scene's media of what is outside (dielectrics; None: the ambient
+    /// medium). Lets a dielectric separate two media, e.g. concentric layers of a fiber.
+    pub exterior: Option<usize>,
 }
 
 /// A validated scene, immutable and shareable across threads.
@@ -97,6 +103,8 @@ pub struct Scene {
     pub lights: Vec<Light>,
     /// What escaping rays see (None: black).
     pub environment: Option<Environment>,
+    /// Detector planes.
+    pub receivers: Vec<Receiver>,
     /// The camera, if the scene has one.
     pub camera: Option<Camera>,
     /// `[render]`.
@@ -218,11 +226,16 @@ pub fn parse_scene(path: &Path, text: String) -> Result<Scene> {
             !matches!(materials[material], Material::Dielectric) || interior.is_some(),
             "a dielectric shape needs an interior",
         )?;
+        let exterior = match t.string_opt("exterior")? {
+            Some(m) => Some(medium_index(&t, "exterior", &m, &media)?),
+            None => None,
+        };
         t.finish()?;
         let surface = Surface {
             material,
             interior,
             light: None,
+            exterior,
         };
         surfaces.extend(std::iter::repeat_n(surface, desc.primitives.len()));
         primitives.extend(desc.primitives);
@@ -250,12 +263,36 @@ pub fn parse_scene(path: &Path, text: String) -> Result<Scene> {
                     material: materials.len() - 1,
                     interior: None,
                     light: Some(lights.len()),
+                    exterior: None,
                 });
                 primitives.push(prim);
             }
             lights.push(light);
         }
         t.finish()?;
+    }
+    // Receivers: transparent detector quads.
+    let mut receivers: Vec<Receiver> = Vec::new();
+    for table in file.receiver {
+        let mut t = reader(table, "[[receiver]]");
+        let name = named(
+            &mut t,
+            receivers.iter().map(|r| r.name.as_str()),
+            "receiver",
+        )?;
+        let receiver = read_receiver(&mut t, name)?;
+        t.finish()?;
+        materials.push(Material::Detector {
+            receiver: receivers.len(),
+        });
+        surfaces.push(Surface {
+            material: materials.len() - 1,
+            interior: None,
+            light: None,
+            exterior: None,
+        });
+        primitives.push(receiver.primitive());
+        receivers.push(receiver);
     }
     let ambient = match &file.ambient {
         None => None,
@@ -307,6 +344,7 @@ pub fn parse_scene(path: &Path, text: String) -> Result<Scene> {
         accel: Accel::new(primitives),
         lights,
         environment,
+        receivers,
         camera,
         render,
         output,

@@ -8,6 +8,7 @@ use crate::environment::{Environment, Sky};
 use crate::error::Result;
 use crate::lights::{Emitter, Light};
 use crate::material::Material;
+use crate::receiver::Receiver;
 use crate::shapes::Primitive;
 use glam::{DMat3, DVec3};
 use std::path::{Path, PathBuf};
@@ -47,6 +48,8 @@ pub struct RenderSettings {
     pub passes: u32,
     /// Stop starting new passes after this many seconds (None: run all `passes`).
     pub time_budget: Option<f64>,
+    /// Photons traced for the receivers.
+    pub receiver_photons: u64,
 }
 
 impl Default for RenderSettings {
@@ -67,6 +70,7 @@ impl Default for RenderSettings {
             knn: 16,
             passes: 1,
             time_budget: None,
+            receiver_photons: 1_000_000,
         }
     }
 }
@@ -209,6 +213,7 @@ pub fn read_render(t: &mut TableReader) -> Result<RenderSettings> {
             .count_or("passes", defaults.passes as u64)?
             .min(u32::MAX as u64) as u32,
         time_budget,
+        receiver_photons: t.count_or("receiver_photons", defaults.receiver_photons)?,
     })
 }
 
@@ -329,11 +334,13 @@ pub fn read_shape(t: &mut TableReader, dir: &Path) -> Result<ShapeDesc> {
                     center: base,
                     normal: -axis,
                     radius,
+                    inner: 0.0,
                 });
                 p.push(Primitive::Disk {
                     center: base + axis * height,
                     normal: axis,
                     radius,
+                    inner: 0.0,
                 });
             }
             p
@@ -351,11 +358,23 @@ pub fn read_shape(t: &mut TableReader, dir: &Path) -> Result<ShapeDesc> {
             let (origin, e1, e2) = parallelogram(t, "vertices")?;
             vec![Primitive::Quad { origin, e1, e2 }]
         }
-        "disk" => vec![Primitive::Disk {
-            center: t.vec3("center")?,
-            normal: t.direction_or("normal", DVec3::Y)?,
-            radius: t.positive("radius")?,
-        }],
+        "disk" => {
+            let center = t.vec3("center")?;
+            let normal = t.direction_or("normal", DVec3::Y)?;
+            let radius = t.positive("radius")?;
+            let inner = t.f64_or("inner_radius", 0.0)?;
+            t.check(
+                "inner_radius",
+                (0.0..radius).contains(&inner),
+                "must be in [0, radius)",
+            )?;
+            vec![Primitive::Disk {
+                center,
+                normal,
+                radius,
+                inner,
+            }]
+        }
         "mesh" => read_mesh(t, dir)?,
         other => {
             return Err(t.error(
@@ -466,6 +485,7 @@ pub fn read_light(t: &mut TableReader, kind: &str) -> Result<(Light, Option<Prim
                 center,
                 normal,
                 radius,
+                inner: 0.0,
             },
         };
         Ok((Light::Area { emitter, radiance }, Some(prim)))
@@ -560,5 +580,37 @@ pub fn read_environment(t: &mut TableReader, dir: &Path) -> Result<Environment> 
         sky,
         rotation: t.f64_or("rotation_deg", 0.0)?.to_radians(),
         scale,
+    })
+}
+
+/// A `[[receiver]]` called `name`: a detector rectangle.
+pub fn read_receiver(t: &mut TableReader, name: String) -> Result<Receiver> {
+    let center = t.vec3("center")?;
+    let normal = t.direction_or("normal", DVec3::Z)?;
+    let up = t.direction_or("up", DVec3::Y)?;
+    let u = up.cross(normal);
+    t.check("up", u.length() > 1e-9, "must not be parallel to `normal`")?;
+    let u = u.normalize();
+    let size = t
+        .f64_list_opt("size")?
+        .ok_or_else(|| t.error("size", "is missing"))?;
+    t.check(
+        "size",
+        size.len() == 2 && size.iter().all(|s| *s > 0.0 && s.is_finite()),
+        "expected [width, height], both > 0",
+    )?;
+    let [nx, ny] = t.counts::<2>("bins")?;
+    t.check(
+        "bins",
+        (1..=4096).contains(&nx) && (1..=4096).contains(&ny),
+        "each must be in 1..=4096",
+    )?;
+    Ok(Receiver {
+        name,
+        center,
+        u,
+        v: normal.cross(u),
+        size: (size[0], size[1]),
+        bins: (nx, ny),
     })
 }

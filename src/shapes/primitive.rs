@@ -44,14 +44,16 @@ pub enum Primitive {
         /// v3 − v0.
         e2: DVec3,
     },
-    /// A disk.
+    /// A disk, or an annulus when `inner` > 0.
     Disk {
         /// Centre.
         center: DVec3,
         /// Unit normal.
         normal: DVec3,
-        /// Radius.
+        /// Outer radius.
         radius: f64,
+        /// Inner radius (0: a full disk).
+        inner: f64,
     },
     /// The triangle v0, v0 + e1, v0 + e2, normal e1 × e2 normalised.
     Triangle {
@@ -97,6 +99,7 @@ impl Primitive {
                 center,
                 normal,
                 radius,
+                ..
             } => {
                 let ext = radius * (DVec3::ONE - normal * normal).max(DVec3::ZERO).sqrt();
                 (center - ext, center + ext)
@@ -122,9 +125,12 @@ impl Primitive {
                 let (u, v) = plane_coordinates(p - origin, e1, e2);
                 (0.0..=1.0).contains(&u) && (0.0..=1.0).contains(&v)
             }
-            Primitive::Disk { center, radius, .. } => {
-                (p - center).length_squared() <= radius * radius
-            }
+            Primitive::Disk {
+                center,
+                radius,
+                inner,
+                ..
+            } => (inner * inner..=radius * radius).contains(&(p - center).length_squared()),
             Primitive::Triangle { v0, e1, e2 } => {
                 let (u, v) = plane_coordinates(p - v0, e1, e2);
                 u >= 0.0 && v >= 0.0 && u + v <= 1.0
