@@ -283,3 +283,42 @@ pub fn write_radial_png(profiles: &[&[(f64, f64, f64)]], path: &Path) -> Result<
     }
     save(&img, path)
 }
+
+/// How two measurements of one receiver agree.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Comparison {
+    /// Total flux of `b` over that of `a`.
+    pub flux_ratio: f64,
+    /// Standard error of that ratio.
+    pub flux_ratio_stderr: f64,
+    /// χ² per degree of freedom over the bins where either has a non-zero standard error:
+    /// Σ (a − b)² / (σa² + σb²) / dof. About 1 ± √(2/dof) when they agree within noise.
+    pub chi2_per_dof: f64,
+    /// The bins counted.
+    pub dof: usize,
+    /// Largest |a − b| / √(σa² + σb²) over those bins.
+    pub max_z: f64,
+}
+
+/// Compares two independent measurements of the same receiver.
+pub fn compare(a: &Measurement, b: &Measurement) -> Comparison {
+    let (mut chi2, mut dof, mut max_z) = (0.0, 0usize, 0.0f64);
+    for i in 0..a.irradiance.len().min(b.irradiance.len()) {
+        let var = a.stderr[i].powi(2) + b.stderr[i].powi(2);
+        if var > 0.0 {
+            let z2 = (a.irradiance[i] - b.irradiance[i]).powi(2) / var;
+            chi2 += z2;
+            dof += 1;
+            max_z = max_z.max(z2.sqrt());
+        }
+    }
+    let ratio = b.flux.0 / a.flux.0;
+    Comparison {
+        flux_ratio: ratio,
+        flux_ratio_stderr: ratio
+            * ((a.flux.1 / a.flux.0).powi(2) + (b.flux.1 / b.flux.0).powi(2)).sqrt(),
+        chi2_per_dof: chi2 / dof.max(1) as f64,
+        dof,
+        max_z,
+    }
+}

@@ -28,3 +28,59 @@ fn receiver_flux_does_not_depend_on_the_step_tolerance() {
     // the receiver gets between 80 % and 95 %.
     assert!((0.008..0.0095).contains(&fine), "flux {fine}");
 }
+
+fn measure(scene: &grinlight::scene::Scene, pass: u64) -> grinlight::receiver::Measurement {
+    grinlight::render::measure(scene, 0, pass)
+        .unwrap()
+        .0
+        .remove(0)
+}
+
+/// `validate` in small: the GRIN fiber and its layered twin (Δn = 0.005) light the receiver
+/// alike within noise, judged against the same statistic for two independent GRIN runs (χ²
+/// per bin is inflated above 1 by bins holding few photons, so the GRIN-vs-GRIN value is the
+/// yardstick); a twin built from a wrong index (n0 = 1.7 instead of 1.5) is caught.
+#[test]
+fn layered_twin_matches_the_grin_fiber_and_a_wrong_twin_does_not() {
+    let photons = 60_000;
+    let path = Path::new("scenes/fiber_led.toml");
+    let load = |text: Option<String>| {
+        let mut s = match text {
+            Some(t) => grinlight::scene::load::parse_scene(path, t).unwrap(),
+            None => load_scene(path).unwrap(),
+        };
+        s.render.receiver_photons = photons;
+        s
+    };
+    let grin = load(None);
+    let a = measure(&grin, 0);
+    let baseline = grinlight::receiver::compare(&a, &measure(&grin, 7));
+    let mut twin = load(None);
+    let layers = twin.layer_fiber(0.005).unwrap();
+    assert_eq!(layers.len(), 4);
+    let good = grinlight::receiver::compare(&a, &measure(&twin, 1));
+    let text = std::fs::read_to_string(path)
+        .unwrap()
+        .replace("n0 = 1.5", "n0 = 1.7");
+    let mut wrong = load(Some(text));
+    wrong.layer_fiber(0.005).unwrap();
+    let bad = grinlight::receiver::compare(&a, &measure(&wrong, 2));
+    println!("GRIN vs GRIN {baseline:?}\nGRIN vs layered {good:?}\nGRIN vs wrong {bad:?}");
+    let z = |c: &grinlight::receiver::Comparison| (c.flux_ratio - 1.0) / c.flux_ratio_stderr;
+    assert!(
+        z(&good).abs() < 4.0,
+        "flux ratio {} ± {}",
+        good.flux_ratio,
+        good.flux_ratio_stderr
+    );
+    // χ²/dof has a standard deviation of about √(2/dof) ≈ 0.03 here; allow 0.15 above the
+    // GRIN-vs-GRIN value.
+    assert!(
+        good.chi2_per_dof < baseline.chi2_per_dof + 0.15,
+        "{good:?} vs {baseline:?}"
+    );
+    assert!(
+        z(&bad).abs() > 4.0 || bad.chi2_per_dof > baseline.chi2_per_dof + 0.15,
+        "{bad:?}"
+    );
+}

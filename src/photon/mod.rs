@@ -267,4 +267,5 @@ fn trace_photon(
             }
         }
     }
+    stats.depth_limited += 1;
 }

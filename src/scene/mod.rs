@@ -6,4 +6,4 @@ pub mod media;
 pub mod objects;
 pub mod table;
 
-pub use load::{load_scene, Scene, Surface};
+pub use load::{load_scene, Layer, Scene, Surface};
