@@ -21,7 +21,7 @@ use crate::lights::{Emission, Light};
 use crate::material::Material;
 use crate::receiver::Detection;
 use crate::sampling::{cosine_hemisphere, stream, Frame, Purpose};
-use crate::transport::{offset, Event, Stats, Tracer};
+use crate::transport::{facing, offset, Event, Stats, Tracer};
 use rand::Rng;
 use rayon::prelude::*;
 
@@ -206,11 +206,7 @@ fn trace_photon(
             return;
         };
         let surface = scene.surfaces[prim];
-        let facing = if direction.dot(normal) < 0.0 {
-            normal
-        } else {
-            -normal
-        };
+        let facing = facing(normal, direction);
         match &scene.materials[surface.material] {
             Material::Emissive { .. } => return,
             Material::Diffuse { albedo } => {

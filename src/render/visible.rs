@@ -7,7 +7,7 @@ use crate::lights::Light;
 use crate::material::Material;
 use crate::photon::PhotonMap;
 use crate::sampling::{cosine_hemisphere, Frame};
-use crate::transport::{offset, Event, Stats, Tracer};
+use crate::transport::{facing, offset, Event, Stats, Tracer};
 use glam::DVec3;
 use rand::Rng;
 use std::f64::consts::FRAC_1_PI;
@@ -66,10 +66,10 @@ pub fn camera_path(
             Event::Lost => return out,
         };
         let surface = scene.surfaces[prim];
-        let front = incoming.dot(normal) < 0.0;
+        let side = facing(normal, incoming);
         match &scene.materials[surface.material] {
             Material::Emissive { radiance } => {
-                if front {
+                if side == normal {
                     out.emitted += throughput * *radiance;
                 }
                 return out;
@@ -77,7 +77,7 @@ pub fn camera_path(
             Material::Diffuse { albedo } => {
                 out.visible = Some(VisiblePoint {
                     position,
-                    normal: if front { normal } else { -normal },
+                    normal: side,
                     albedo: *albedo,
                     throughput,
                     medium,
@@ -204,11 +204,7 @@ pub fn secondary(
             let surface = scene.surfaces[prim];
             match &scene.materials[surface.material] {
                 Material::Diffuse { albedo } => {
-                    let facing = if direction.dot(normal) < 0.0 {
-                        normal
-                    } else {
-                        -normal
-                    };
+                    let facing = facing(normal, direction);
                     let e =
                         stats.time_query(|| global.nearest_irradiance(position, facing, max_r2));
                     sum += weight * *albedo * FRAC_1_PI * e;

@@ -53,6 +53,16 @@ pub struct Bounce {
     pub weight: Rgb,
 }
 
+/// The unit normal of the side of a surface a ray arrives on: `normal` (the geometric one)
+/// flipped to face against `direction`.
+pub fn facing(normal: DVec3, direction: DVec3) -> DVec3 {
+    if direction.dot(normal) < 0.0 {
+        normal
+    } else {
+        -normal
+    }
+}
+
 /// Offset of a point off a surface toward the side of unit `side` (scene-scale relative).
 pub fn offset(p: DVec3, side: DVec3) -> DVec3 {
     p + side * (1e-9 * (1.0 + p.abs().max_element()))
@@ -113,8 +123,8 @@ impl<'a> Tracer<'a> {
         u: f64,
     ) -> Option<Bounce> {
         let scene = self.scene;
-        let front = incoming.dot(normal) < 0.0;
-        let facing = if front { normal } else { -normal };
+        let facing = facing(normal, incoming);
+        let front = facing == normal;
         let reflected = |weight| Bounce {
             origin: offset(position, facing),
             direction: reflect(incoming, facing),
