@@ -227,6 +227,14 @@ pub fn parse_scene(path: &Path, text: String) -> Result<Scene> {
             !matches!(materials[material], Material::Dielectric) || interior.is_some(),
             "a dielectric shape needs an interior",
         )?;
+        // An emissive shape would be seen but would light nothing (it is neither sampled
+        // nor a photon source): refuse it rather than render it silently wrong.
+        t.check(
+            "material",
+            !matches!(materials[material], Material::Emissive { .. }),
+            "an emissive material on a [[shape]] would light nothing; make it a [[light]] \
+             (quad or disk, with `radiance`)",
+        )?;
         let exterior = match t.string_opt("exterior")? {
             Some(m) => Some(medium_index(&t, "exterior", &m, &media)?),
             None => None,
