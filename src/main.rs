@@ -358,6 +358,14 @@ fn validate(
     let rec = &grin.receivers[0];
     let t = std::time::Instant::now();
     let (reference, _) = grinlight::render::measure(&grin, threads, 0)?;
+    if reference[0].flux.0 <= 0.0 {
+        return Err(Error::Usage(format!(
+            "{}: receiver '{}' received no light from the GRIN fiber: nothing to compare",
+            path.display(),
+            rec.name
+        ))
+        .into());
+    }
     let mut stdout = std::io::stdout().lock();
     writeln!(
         stdout,

@@ -171,10 +171,7 @@ pub fn render(
     let tracer = Tracer::new(scene);
     let sources = Sources::new(&tracer);
     let plan = Plan::of(scene);
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .map_err(|e| Error::Usage(format!("cannot start {threads} threads: {e}")))?;
+    let pool = thread_pool(threads)?;
     let settings = &scene.render;
     let max_radius = settings.radius.unwrap_or(0.05 * tracer.ball.1);
     let start = Instant::now();
@@ -354,10 +351,7 @@ fn develop(tiles: &[Tile], w: usize, h: usize, passes: u32) -> Film {
 pub fn measure(scene: &Scene, threads: usize, pass: u64) -> Result<(Vec<Measurement>, Report)> {
     let tracer = Tracer::new(scene);
     let sources = Sources::new(&tracer);
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .map_err(|e| Error::Usage(format!("cannot start {threads} threads: {e}")))?;
+    let pool = thread_pool(threads)?;
     let count = scene.render.receiver_photons;
     let t0 = Instant::now();
     let (sink, stats) = pool.install(|| shoot(&tracer, &sources, Batch::Receivers, pass, count));
@@ -371,4 +365,13 @@ pub fn measure(scene: &Scene, threads: usize, pass: u64) -> Result<(Vec<Measurem
         receiver::measure(&scene.receivers, &sink.detections, count),
         report,
     ))
+}
+
+/// A local pool of `threads` workers (0: one per core), so a render never touches rayon's
+/// global pool.
+fn thread_pool(threads: usize) -> Result<rayon::ThreadPool> {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .map_err(|e| Error::Usage(format!("cannot start {threads} threads: {e}")))
 }
