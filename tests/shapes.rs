@@ -218,3 +218,78 @@ fn bvh_equals_a_loop_over_all_primitives() {
         }
     }
 }
+
+/// A layered fiber's 60 coaxial tubes and their annular caps (which the accelerator takes out of
+/// the BVH and searches by radius) give the same nearest hit as a loop over all primitives: for
+/// rays starting inside the stack, a rounding error off a layer boundary (as after a
+/// refraction), and outside it, straight and curved.
+#[test]
+fn coaxial_stack_equals_a_loop_over_all_primitives() {
+    let mut rng = Pcg64Mcg::seed_from_u64(11);
+    let (base, axis, height) = (DVec3::new(0.1, -0.2, -1.0), rv(&mut rng).normalize(), 2.0);
+    let radii: Vec<f64> = (1..=60).map(|i| 0.5 * (i as f64 / 60.0).sqrt()).collect();
+    let mut prims: Vec<Primitive> = primitives(&mut rng);
+    for (i, &radius) in radii.iter().enumerate() {
+        let inner = if i == 0 { 0.0 } else { radii[i - 1] };
+        prims.push(Primitive::Tube {
+            base,
+            axis,
+            radius,
+            height,
+        });
+        for (center, normal) in [(base, -axis), (base + axis * height, axis)] {
+            prims.push(Primitive::Disk {
+                center,
+                normal,
+                radius,
+                inner,
+            });
+        }
+    }
+    let accel = Accel::new(prims.clone());
+    let nearest = |f: &dyn Fn(&Primitive) -> Option<f64>| {
+        prims
+            .iter()
+            .enumerate()
+            .filter_map(|(i, p)| f(p).map(|t| (i, t)))
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+    };
+    let frame = |h: f64, r: f64, phi: f64| {
+        let u = axis.any_orthonormal_vector();
+        let v = axis.cross(u);
+        base + axis * h + (u * phi.cos() + v * phi.sin()) * r
+    };
+    let mut stack_hits = 0;
+    for case in 0..3000 {
+        let phi = rng.gen_range(0.0..std::f64::consts::TAU);
+        let h = rng.gen_range(-0.5..height + 0.5);
+        let o = match case % 3 {
+            0 => frame(h, rng.gen_range(0.0..0.6), phi),
+            1 => {
+                let r = radii[rng.gen_range(0..radii.len())];
+                frame(h, r * (1.0 + rng.gen_range(-1e-12..1e-12)), phi)
+            }
+            _ => rv(&mut rng) * 2.0,
+        };
+        let d = rv(&mut rng).normalize();
+        let want = nearest(&|p| p.intersect_ray(o, d, 0.0, 10.0).map(|h| h.t));
+        let got = accel.intersect_ray(o, d, 0.0, 10.0).map(|(i, h)| (i, h.t));
+        assert_eq!(got, want, "case {case}");
+        stack_hits += usize::from(want.is_some_and(|(i, _)| i >= 30));
+        if case % 10 == 0 {
+            let seg = CurvedSegment::new(o, d, rv(&mut rng) * 3.0);
+            let want = nearest(&|p| p.intersect_segment(&seg, 0.0, 1.5).map(|h| h.t));
+            let got = accel.intersect_segment(&seg, 0.0, 1.5);
+            // The refinement stops at 1e-14 of its bracket (≤ the length 1.5), which depends on
+            // the nearest hit found so far: allow 1e-12 of the length.
+            match (got.map(|(i, h)| (i, h.t)), want) {
+                (Some((gi, gt)), Some((wi, wt))) => assert!(
+                    gi == wi && (gt - wt).abs() <= 1e-12 * 1.5,
+                    "segment case {case}: {got:?} vs {want:?}"
+                ),
+                (got, want) => assert_eq!(got, want, "segment case {case}"),
+            }
+        }
+    }
+    assert!(stack_hits > 1000, "{stack_hits} of 3000 rays hit the stack");
+}

@@ -1,5 +1,10 @@
-//! The acceleration structure: an obvhs `Bvh2` over the primitives' bounds. The BVH knows
-//! nothing of primitives: f32 boxes are padded outward, and the closures do the exact f64 test.
+//! The acceleration structure: an obvhs `Bvh2` over the primitives' bounds, except stacks of
+//! coaxial tubes ([`coaxial`]), which a BVH cannot prune. The BVH knows nothing of primitives:
+//! f32 boxes are padded outward, and the closures do the exact f64 test.
+
+mod coaxial;
+
+use coaxial::CoaxialStack;
 
 use crate::curve::CurvedSegment;
 use crate::shapes::{Hit, Primitive};
@@ -31,16 +36,22 @@ fn padded(lo: DVec3, hi: DVec3) -> Aabb {
 /// Primitives with a BVH over them; a hit reports the primitive's index in `primitives`.
 pub struct Accel {
     primitives: Vec<Primitive>,
+    /// Over the primitives not in a stack; leaf `i` is primitive `in_bvh[i]`.
     bvh: Bvh2,
+    in_bvh: Vec<usize>,
+    stacks: Vec<CoaxialStack>,
 }
 
 impl Accel {
     /// Builds the BVH.
     pub fn new(primitives: Vec<Primitive>) -> Self {
-        let bounds: Vec<Bounds> = primitives
+        let mut taken = vec![false; primitives.len()];
+        let stacks = CoaxialStack::gather(&primitives, &mut taken);
+        let in_bvh: Vec<usize> = (0..primitives.len()).filter(|&i| !taken[i]).collect();
+        let bounds: Vec<Bounds> = in_bvh
             .iter()
-            .map(|p| {
-                let (lo, hi) = p.bounds();
+            .map(|&i| {
+                let (lo, hi) = primitives[i].bounds();
                 Bounds(padded(lo, hi))
             })
             .collect();
@@ -53,7 +64,12 @@ impl Accel {
                 &mut Default::default(),
             )
         };
-        Self { primitives, bvh }
+        Self {
+            primitives,
+            bvh,
+            in_bvh,
+            stacks,
+        }
     }
 
     /// The primitives.
@@ -69,19 +85,26 @@ impl Accel {
         t_min: f64,
         t_max: f64,
     ) -> Option<(usize, Hit)> {
-        if self.primitives.is_empty() {
-            return None;
+        let mut best: Option<(usize, Hit)> = None;
+        for stack in &self.stacks {
+            let limit = best.map_or(t_max, |(_, h)| h.t);
+            if let Some(hit) = stack.intersect_ray(&self.primitives, o, d, t_min, limit) {
+                best = Some(hit);
+            }
+        }
+        if self.in_bvh.is_empty() {
+            return best;
         }
         let ray = Ray::new(
             Vec3A::from(o.as_vec3()),
             Vec3A::from(d.as_vec3()),
             0.0,
-            f32::INFINITY,
+            // A stack's hit bounds the search (rounded up, as below).
+            best.map_or(f32::INFINITY, |(_, h)| (h.t as f32).next_up()),
         );
-        let mut best: Option<(usize, Hit)> = None;
         let mut hit = RayHit::none();
         self.bvh.ray_traverse(ray, &mut hit, |_, i| {
-            let id = self.bvh.primitive_indices[i] as usize;
+            let id = self.in_bvh[self.bvh.primitive_indices[i] as usize];
             let limit = best.map_or(t_max, |(_, h)| h.t);
             match self.primitives[id].intersect_ray(o, d, t_min, limit) {
                 Some(h) => {
@@ -104,18 +127,27 @@ impl Accel {
         s_min: f64,
         length: f64,
     ) -> Option<(usize, Hit)> {
-        if self.primitives.is_empty() {
-            return None;
-        }
         let a = seg.at(0.0).position;
         let b = seg.at(length).position;
         let grow = DVec3::splat(seg.max_deviation(length));
-        let query = padded(a.min(b) - grow, a.max(b) + grow);
+        let (lo, hi) = (a.min(b) - grow, a.max(b) + grow);
         let mut best: Option<(usize, Hit)> = None;
-        self.bvh.aabb_traverse(query, |bvh, node_index| {
+        for stack in &self.stacks {
+            let (s_lo, s_hi) = stack.bounds();
+            if lo.cmple(s_hi).all() && s_lo.cmple(hi).all() {
+                let limit = best.map_or(length, |(_, h)| h.t);
+                if let Some(hit) = stack.intersect_segment(&self.primitives, seg, s_min, limit) {
+                    best = Some(hit);
+                }
+            }
+        }
+        if self.in_bvh.is_empty() {
+            return best;
+        }
+        self.bvh.aabb_traverse(padded(lo, hi), |bvh, node_index| {
             let node = &bvh.nodes[node_index as usize];
             for i in node.first_index..node.first_index + node.prim_count {
-                let id = bvh.primitive_indices[i as usize] as usize;
+                let id = self.in_bvh[bvh.primitive_indices[i as usize] as usize];
                 let limit = best.map_or(length, |(_, h)| h.t);
                 if let Some(h) = self.primitives[id].intersect_segment(seg, s_min, limit) {
                     best = Some((id, h));
