@@ -166,7 +166,7 @@ fn measure_receivers(scene: &scene::Scene, threads: usize, exr: &std::path::Path
         scene.receivers.len()
     ));
     spinner.enable_steady_tick(std::time::Duration::from_millis(200));
-    let (measurements, report) = grinlight::render::measure(scene, threads, 0)?;
+    let (measurements, budget, report) = grinlight::render::measure(scene, threads, 0)?;
     spinner.finish_and_clear();
     let stem = exr.with_extension("");
     let name = |r: &grinlight::receiver::Receiver, ext: &str| {
@@ -200,7 +200,41 @@ fn measure_receivers(scene: &scene::Scene, threads: usize, exr: &std::path::Path
     for l in lines {
         writeln!(stdout, "{l}")?;
     }
+    writeln!(
+        stdout,
+        "{}",
+        budget_table(&budget, scene.accel.primitives())
+    )?;
     Ok(())
+}
+
+/// Where the measurement's photon power went, one line per fate with its share.
+fn budget_table(
+    b: &grinlight::photon::Budget,
+    primitives: &[grinlight::shapes::Primitive],
+) -> String {
+    let share = |w: f64| 100.0 * w / b.emitted.max(f64::MIN_POSITIVE);
+    let mut lines = vec![format!(
+        "energy budget: emitted {:.6e} W, booked {:.6e} W",
+        b.emitted,
+        b.booked()
+    )];
+    for (&p, &w) in &b.out_through {
+        lines.push(format!(
+            "  {w:.6e} W ({:6.3} %) left through {}",
+            share(w),
+            primitives[p]
+        ));
+    }
+    for (name, w) in [
+        ("reflected without entering a dielectric", b.reflected),
+        ("missed every specular surface", b.missed),
+        ("absorbed", b.absorbed),
+        ("lost (captured, out of steps or cut at max_depth)", b.lost),
+    ] {
+        lines.push(format!("  {w:.6e} W ({:6.3} %) {name}", share(w)));
+    }
+    lines.join("\n")
 }
 
 fn parse_vec(s: &str) -> std::result::Result<DVec3, String> {
@@ -357,7 +391,7 @@ fn validate(
     let grin = load()?;
     let rec = &grin.receivers[0];
     let t = std::time::Instant::now();
-    let (reference, _) = grinlight::render::measure(&grin, threads, 0)?;
+    let (reference, _, _) = grinlight::render::measure(&grin, threads, 0)?;
     if reference[0].flux.0 <= 0.0 {
         return Err(Error::Usage(format!(
             "{}: receiver '{}' received no light from the GRIN fiber: nothing to compare",
@@ -386,7 +420,7 @@ fn validate(
         let mut twin = load()?;
         let layers = twin.layer_fiber(dn)?;
         let t = std::time::Instant::now();
-        let (layered, _) = grinlight::render::measure(&twin, threads, 1 + k as u64)?;
+        let (layered, _, _) = grinlight::render::measure(&twin, threads, 1 + k as u64)?;
         let c = receiver::compare(&reference[0], &layered[0]);
         writeln!(
             stdout,

@@ -12,8 +12,10 @@
 //! fixed chunks whose results are concatenated in order, so a map does not depend on the
 //! thread count.
 
+mod budget;
 mod map;
 
+pub use budget::{Budget, Fate};
 pub use map::{Photon, PhotonMap};
 
 use crate::environment::Environment;
@@ -22,6 +24,7 @@ use crate::material::Material;
 use crate::receiver::Detection;
 use crate::sampling::{cosine_hemisphere, stream, Frame, Purpose};
 use crate::transport::{facing, offset, Event, Stats, Tracer};
+use glam::DVec3;
 use rand::Rng;
 use rayon::prelude::*;
 
@@ -118,6 +121,8 @@ pub struct Sink {
     pub photons: Vec<Photon>,
     /// Receiver crossings.
     pub detections: Vec<Detection>,
+    /// Where the photons' power went.
+    pub budget: Budget,
 }
 
 /// Traces `count` photons of pass `pass` and returns what they left, in photon order, with
@@ -152,7 +157,15 @@ pub fn shoot(
                         count,
                         batch,
                     };
-                    trace_photon(tracer, e, photon, &mut rng, &mut stored, &mut stats);
+                    trace_photon(
+                        tracer,
+                        e,
+                        photon,
+                        &mut rng,
+                        &mut stored,
+                        &mut stats,
+                        &mut |_| {},
+                    );
                 }
             }
             (stored, stats)
@@ -163,6 +176,7 @@ pub fn shoot(
     for (p, s) in chunks {
         sink.photons.extend(p.photons);
         sink.detections.extend(p.detections);
+        sink.budget.add(&p.budget);
         stats.add(&s);
     }
     (sink, stats)
@@ -179,7 +193,36 @@ struct Tagged {
     batch: Batch,
 }
 
-/// Follows one photon from its emission, storing it into `stored` as `batch` says.
+/// The paths of photons `0..count` of the receiver batch's pass `pass` (the same photons a
+/// receiver measurement with that pass traces): each path's emission point, every accepted
+/// point of its curved stretches and every surface it met, in order. Single-threaded.
+pub fn photon_paths(tracer: &Tracer, sources: &Sources, pass: u64, count: u64) -> Vec<Vec<DVec3>> {
+    let mut paths = Vec::new();
+    if sources.is_empty() {
+        return paths;
+    }
+    for i in 0..count {
+        let mut rng = stream(tracer.scene.render.seed, Purpose::ReceiverPhotons, pass, i);
+        let u = [rng.gen(), rng.gen(), rng.gen(), rng.gen(), rng.gen()];
+        if let Some(e) = sources.emit(tracer, u) {
+            let tag = Tagged {
+                index: i,
+                count,
+                batch: Batch::Receivers,
+            };
+            let mut path = Vec::new();
+            let (mut sink, mut stats) = (Sink::default(), Stats::default());
+            trace_photon(tracer, e, tag, &mut rng, &mut sink, &mut stats, &mut |p| {
+                path.push(p)
+            });
+            paths.push(path);
+        }
+    }
+    paths
+}
+
+/// Follows one photon from its emission, storing it into `stored` as `batch` says and
+/// booking its power in `stored.budget` when it ends; `path` is shown every point it passes.
 fn trace_photon(
     tracer: &Tracer,
     e: Emission,
@@ -187,81 +230,117 @@ fn trace_photon(
     rng: &mut impl Rng,
     stored: &mut Sink,
     stats: &mut Stats,
+    path: &mut dyn FnMut(DVec3),
 ) {
     let scene = tracer.scene;
     let batch = tag.batch;
     let mut power = e.power / tag.count as f64;
+    stored.budget.emitted += power.element_sum() / 3.0;
     let (mut origin, mut dir, mut medium) = (e.origin, e.direction, scene.ambient);
     // Whether the path so far holds a specular bounce or a gradient-medium traversal.
     let mut bent = false;
-    for _ in 0..scene.render.max_depth {
-        bent |= medium.is_some_and(|m| !scene.medium_at(m).is_uniform());
-        let Event::Surface {
-            prim,
-            position,
-            normal,
-            direction,
-        } = tracer.next_event(origin, dir, medium, stats)
-        else {
-            return;
-        };
-        let surface = scene.surfaces[prim];
-        let facing = facing(normal, direction);
-        match &scene.materials[surface.material] {
-            Material::Emissive { .. } => return,
-            Material::Diffuse { albedo } => {
-                let photon = Photon {
-                    position,
-                    normal: facing,
-                    power: power.as_vec3().to_array(),
-                };
-                match batch {
-                    Batch::Caustic => {
-                        if bent {
-                            stored.photons.push(photon);
+    // Whether it has met a specular reflection, whether it has entered a dielectric from the
+    // ambient medium, and where it last left one.
+    let (mut reflected, mut entered, mut left_through) = (false, false, None);
+    path(origin);
+    let fate = 'path: {
+        for _ in 0..scene.render.max_depth {
+            bent |= medium.is_some_and(|m| !scene.medium_at(m).is_uniform());
+            let (prim, position, normal, direction) =
+                match tracer.next_event_along(origin, dir, medium, stats, path) {
+                    Event::Surface {
+                        prim,
+                        position,
+                        normal,
+                        direction,
+                    } => (prim, position, normal, direction),
+                    Event::Escaped(d) => {
+                        if medium.is_none_or(|m| scene.medium_at(m).is_uniform()) {
+                            path(origin + d * tracer.ball.1);
                         }
-                        return;
+                        // Escaping from inside a dielectric (the world sphere cuts it) is lost.
+                        break 'path match left_through {
+                            Some(p) => Fate::OutThrough(p),
+                            None if entered => Fate::Lost,
+                            None if reflected => Fate::Reflected,
+                            None => Fate::Missed,
+                        };
                     }
-                    Batch::Global => stored.photons.push(photon),
-                    Batch::Receivers => {}
-                }
-                let survive = albedo.max_element();
-                if rng.gen::<f64>() >= survive {
-                    return;
-                }
-                power *= *albedo / survive;
-                dir = Frame::new(facing).to_world(cosine_hemisphere((rng.gen(), rng.gen())));
-                origin = offset(position, facing);
-            }
-            Material::Detector { receiver } => {
-                if batch == Batch::Receivers {
-                    if let Some(bin) = scene.receivers[*receiver].bin(position) {
-                        stored.detections.push(Detection {
-                            receiver: *receiver as u32,
-                            bin: bin as u32,
-                            photon: tag.index,
-                            flux: power.element_sum() / 3.0,
-                        });
-                    }
-                }
-                (origin, dir) = (offset(position, direction), direction);
-            }
-            Material::Mirror { .. } | Material::Dielectric => {
-                let Some(b) =
-                    tracer.specular_bounce(surface, medium, position, direction, normal, rng.gen())
-                else {
-                    return;
+                    Event::Lost => break 'path Fate::Lost,
                 };
-                // Russian roulette on a lossy mirror keeps photon powers equal in size.
-                let survive = b.weight.max_element();
-                if survive < 1.0 && rng.gen::<f64>() >= survive {
-                    return;
+            path(position);
+            let surface = scene.surfaces[prim];
+            let facing = facing(normal, direction);
+            match &scene.materials[surface.material] {
+                Material::Emissive { .. } => break 'path Fate::Absorbed,
+                Material::Diffuse { albedo } => {
+                    let photon = Photon {
+                        position,
+                        normal: facing,
+                        power: power.as_vec3().to_array(),
+                    };
+                    match batch {
+                        Batch::Caustic => {
+                            if bent {
+                                stored.photons.push(photon);
+                            }
+                            break 'path Fate::Absorbed;
+                        }
+                        Batch::Global => stored.photons.push(photon),
+                        Batch::Receivers => {}
+                    }
+                    let survive = albedo.max_element();
+                    if rng.gen::<f64>() >= survive {
+                        break 'path Fate::Absorbed;
+                    }
+                    power *= *albedo / survive;
+                    dir = Frame::new(facing).to_world(cosine_hemisphere((rng.gen(), rng.gen())));
+                    origin = offset(position, facing);
                 }
-                power *= b.weight / survive.clamp(f64::MIN_POSITIVE, 1.0);
-                (origin, dir, medium) = (b.origin, b.direction, b.medium);
-                bent = true;
+                Material::Detector { receiver } => {
+                    if batch == Batch::Receivers {
+                        if let Some(bin) = scene.receivers[*receiver].bin(position) {
+                            stored.detections.push(Detection {
+                                receiver: *receiver as u32,
+                                bin: bin as u32,
+                                photon: tag.index,
+                                flux: power.element_sum() / 3.0,
+                            });
+                        }
+                    }
+                    (origin, dir) = (offset(position, direction), direction);
+                }
+                Material::Mirror { .. } | Material::Dielectric => {
+                    let Some(b) = tracer.specular_bounce(
+                        surface,
+                        medium,
+                        position,
+                        direction,
+                        normal,
+                        rng.gen(),
+                    ) else {
+                        break 'path Fate::Lost;
+                    };
+                    // Russian roulette on a lossy mirror keeps photon powers equal in size.
+                    let survive = b.weight.max_element();
+                    if survive < 1.0 && rng.gen::<f64>() >= survive {
+                        break 'path Fate::Absorbed;
+                    }
+                    power *= b.weight / survive.clamp(f64::MIN_POSITIVE, 1.0);
+                    if b.medium == medium {
+                        reflected = true;
+                    } else if b.medium == scene.ambient {
+                        left_through = Some(prim);
+                    } else if medium == scene.ambient {
+                        entered = true;
+                    }
+                    (origin, dir, medium) = (b.origin, b.direction, b.medium);
+                    bent = true;
+                }
             }
         }
-    }
-    stats.depth_limited += 1;
+        stats.depth_limited += 1;
+        Fate::Lost
+    };
+    stored.budget.book(fate, power.element_sum() / 3.0);
 }

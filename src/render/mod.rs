@@ -19,7 +19,7 @@ mod visible;
 use crate::color::Rgb;
 use crate::error::{Error, Result};
 use crate::film::{Film, PixelSample, Plane};
-use crate::photon::{shoot, Batch, PhotonMap, Sources};
+use crate::photon::{shoot, Batch, Budget, PhotonMap, Sources};
 use crate::receiver::{self, Measurement};
 use crate::sampling::{stream, Purpose};
 use crate::scene::Scene;
@@ -347,8 +347,12 @@ fn develop(tiles: &[Tile], w: usize, h: usize, passes: u32) -> Film {
 
 /// Measures the scene's receivers with `scene.render.receiver_photons` photons from its
 /// lights (stream pass `pass`), traced like global photons (diffuse bounces with Russian
-/// roulette) and recorded at every receiver crossing.
-pub fn measure(scene: &Scene, threads: usize, pass: u64) -> Result<(Vec<Measurement>, Report)> {
+/// roulette) and recorded at every receiver crossing; with where their power went.
+pub fn measure(
+    scene: &Scene,
+    threads: usize,
+    pass: u64,
+) -> Result<(Vec<Measurement>, Budget, Report)> {
     let tracer = Tracer::new(scene);
     let sources = Sources::new(&tracer);
     let pool = thread_pool(threads)?;
@@ -363,6 +367,7 @@ pub fn measure(scene: &Scene, threads: usize, pass: u64) -> Result<(Vec<Measurem
     };
     Ok((
         receiver::measure(&scene.receivers, &sink.detections, count),
+        sink.budget,
         report,
     ))
 }

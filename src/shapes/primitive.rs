@@ -264,6 +264,42 @@ impl Primitive {
     }
 }
 
+/// A short description for reports, e.g. "cylinder side r 0.5 at (0, 0, 0) along (0, 0, 1)".
+impl std::fmt::Display for Primitive {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let v = |v: DVec3| format!("({}, {}, {})", v.x, v.y, v.z);
+        match *self {
+            Primitive::Sphere { center, radius } => write!(f, "sphere r {radius} at {}", v(center)),
+            Primitive::Tube {
+                base,
+                axis,
+                radius,
+                height,
+            } => write!(
+                f,
+                "cylinder side r {radius} at {} along {} for {height}",
+                v(base),
+                v(axis)
+            ),
+            Primitive::Quad { origin, .. } => write!(f, "quad at {}", v(origin)),
+            Primitive::Disk {
+                center,
+                normal,
+                radius,
+                inner,
+            } => {
+                let ring = if inner > 0.0 {
+                    format!("r {inner}–{radius}")
+                } else {
+                    format!("r {radius}")
+                };
+                write!(f, "disk {ring} at {} facing {}", v(center), v(normal))
+            }
+            Primitive::Triangle { v0, .. } => write!(f, "triangle at {}", v(v0)),
+        }
+    }
+}
+
 fn ordered(a: f64, b: f64) -> (f64, f64) {
     if a <= b {
         (a, b)

@@ -177,9 +177,22 @@ impl<'a> Tracer<'a> {
         medium: Option<usize>,
         stats: &mut Stats,
     ) -> Event {
+        self.next_event_along(origin, dir, medium, stats, &mut |_| {})
+    }
+
+    /// [`Self::next_event`], showing `path` every accepted point of a curved path between
+    /// the origin and the event (neither included; a straight ray has none).
+    pub fn next_event_along(
+        &self,
+        origin: DVec3,
+        dir: DVec3,
+        medium: Option<usize>,
+        stats: &mut Stats,
+        path: &mut dyn FnMut(DVec3),
+    ) -> Event {
         let m = medium.map(|i| self.scene.medium_at(i));
         match m {
-            Some(m) if !m.is_uniform() => self.curved(m, origin, dir, stats),
+            Some(m) if !m.is_uniform() => self.curved(m, origin, dir, stats, path),
             _ => {
                 stats.straight_rays += 1;
                 match self
@@ -205,6 +218,7 @@ impl<'a> Tracer<'a> {
         origin: DVec3,
         dir: DVec3,
         stats: &mut Stats,
+        path: &mut dyn FnMut(DVec3),
     ) -> Event {
         let settings = &self.scene.render;
         let Some(start) = RayState::new(medium, origin, dir) else {
@@ -216,7 +230,7 @@ impl<'a> Tracer<'a> {
             max_steps: settings.max_steps,
             bounds: self.world,
         };
-        let (event, out) = self.march_to_surface(medium, settings.control, start, &limits);
+        let (event, out) = self.march_to_surface(medium, settings.control, start, &limits, path);
         stats.curved_marches += 1;
         stats.curved_steps += out.steps;
         stats.record_end(out.reason);
@@ -235,7 +249,7 @@ impl<'a> Tracer<'a> {
                     bounds: Bounds::Unbounded,
                 };
                 let fine = StepControl::Fixed { step: len / 16.0 };
-                match self.march_to_surface(medium, fine, before, &sub) {
+                match self.march_to_surface(medium, fine, before, &sub, &mut |_| {}) {
                     (Some((refined, _, _)), r) => {
                         stats.curved_steps += r.steps;
                         refined
@@ -251,13 +265,15 @@ impl<'a> Tracer<'a> {
     }
 
     /// Marches from `start` until an accepted step's path meets a surface: the event, the
-    /// state before that step and the step's length, with the march's outcome.
+    /// state before that step and the step's length, with the march's outcome. `path` is
+    /// shown each accepted point before the hit.
     fn march_to_surface(
         &self,
         medium: &dyn crate::media::Medium,
         control: StepControl,
         start: RayState,
         limits: &MarchLimits,
+        path: &mut dyn FnMut(DVec3),
     ) -> (Option<(Event, RayState, f64)>, MarchOutcome) {
         let accel = &self.scene.accel;
         let mut prev = start;
@@ -310,6 +326,7 @@ impl<'a> Tracer<'a> {
                         return ControlFlow::Break(());
                     }
                 }
+                path(st.position);
                 prev = *st;
                 prev_s = s;
                 ControlFlow::Continue(())

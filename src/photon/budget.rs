@@ -1,0 +1,72 @@
+//! The energy budget of a photon batch: where each photon's power went when its path ended.
+//! Every emitted photon is booked exactly once, so the entries add up to the power emitted;
+//! what they measure is how it divides (out through which face, reflected, absorbed, lost).
+
+use std::collections::BTreeMap;
+
+/// How a photon's path ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Fate {
+    /// It escaped the scene after last leaving a dielectric into the ambient medium through
+    /// this primitive.
+    OutThrough(usize),
+    /// It escaped without ever entering a dielectric, after a specular reflection.
+    Reflected,
+    /// It escaped without a specular interaction.
+    Missed,
+    /// It ended on a diffuse or emissive surface, or a lossy mirror's Russian roulette.
+    Absorbed,
+    /// It was captured by a singular medium, ran out of steps, or was cut at `max_depth`.
+    Lost,
+}
+
+/// Power per fate, in the lights' power unit (W), as the mean over the RGB channels.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Budget {
+    /// Power of the photons emitted.
+    pub emitted: f64,
+    /// Escaped after last leaving a dielectric through a primitive, by primitive index.
+    pub out_through: BTreeMap<usize, f64>,
+    /// See [`Fate::Reflected`].
+    pub reflected: f64,
+    /// See [`Fate::Missed`].
+    pub missed: f64,
+    /// See [`Fate::Absorbed`].
+    pub absorbed: f64,
+    /// See [`Fate::Lost`].
+    pub lost: f64,
+}
+
+impl Budget {
+    /// Books a photon of `power` that ended as `fate`.
+    pub fn book(&mut self, fate: Fate, power: f64) {
+        match fate {
+            Fate::OutThrough(p) => *self.out_through.entry(p).or_default() += power,
+            Fate::Reflected => self.reflected += power,
+            Fate::Missed => self.missed += power,
+            Fate::Absorbed => self.absorbed += power,
+            Fate::Lost => self.lost += power,
+        }
+    }
+
+    /// Adds another budget's entries to this one.
+    pub fn add(&mut self, other: &Budget) {
+        self.emitted += other.emitted;
+        for (&p, &w) in &other.out_through {
+            *self.out_through.entry(p).or_default() += w;
+        }
+        self.reflected += other.reflected;
+        self.missed += other.missed;
+        self.absorbed += other.absorbed;
+        self.lost += other.lost;
+    }
+
+    /// The sum of all fates (equal to `emitted` up to rounding).
+    pub fn booked(&self) -> f64 {
+        self.out_through.values().sum::<f64>()
+            + self.reflected
+            + self.missed
+            + self.absorbed
+            + self.lost
+    }
+}
