@@ -25,6 +25,7 @@ pub mod color;
 pub mod curve;
 pub mod environment;
 pub mod error;
+pub mod fiber_figure;
 pub mod film;
 pub mod lights;
 pub mod material;

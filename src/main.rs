@@ -43,6 +43,10 @@ enum Command {
         /// Index step between layers; several, comma-separated, give a convergence table.
         #[arg(long, value_delimiter = ',', default_value = "0.005")]
         dn: Vec<f64>,
+        /// Also start a new layer wherever one reaches this width (scene units): equal-Δn
+        /// layers are wide near the axis, where paraxial rays then feel no gradient.
+        #[arg(long)]
+        max_width: Option<f64>,
         /// Photons per measurement (default: [render] receiver_photons).
         #[arg(long)]
         photons: Option<u64>,
@@ -154,11 +158,31 @@ struct RenderArgs {
     /// Photons traced for the scene's receivers.
     #[arg(long)]
     receiver_photons: Option<u64>,
+    /// Also draw the paths of the first N receiver photons through the scene's GRIN fiber,
+    /// with its index profile and the first receiver's irradiance (seed 004 fig. 5), as
+    /// <output stem>.paths.png.
+    #[arg(long)]
+    paths: Option<u64>,
 }
 
 /// Measures the receivers and writes, next to `exr`, per receiver `<stem>.<name>.csv` (bins),
-/// `.png` (heat map), `.radial.csv` and `.radial.png` (radial profile).
-fn measure_receivers(scene: &scene::Scene, threads: usize, exr: &std::path::Path) -> Result<()> {
+/// `.png` (heat map), `.radial.csv` and `.radial.png` (radial profile); with `paths` N > 0,
+/// also `<stem>.paths.png`, the fiber figure with N photon paths.
+fn measure_receivers(
+    scene: &scene::Scene,
+    threads: usize,
+    exr: &std::path::Path,
+    paths: u64,
+) -> Result<()> {
+    let fiber = match paths {
+        0 => None,
+        _ => Some(scene.grin_fiber().ok_or_else(|| {
+            Error::Usage(
+                "--paths draws a GRIN fiber: the scene has no cylinder filled with a gradient medium"
+                    .into(),
+            )
+        })?),
+    };
     let start = std::time::Instant::now();
     let spinner = indicatif::ProgressBar::new_spinner().with_message(format!(
         "tracing {} photons for {} receiver(s)",
@@ -205,6 +229,20 @@ fn measure_receivers(scene: &scene::Scene, threads: usize, exr: &std::path::Path
         "{}",
         budget_table(&budget, scene.accel.primitives())
     )?;
+    if let Some(fiber) = fiber {
+        let tracer = grinlight::transport::Tracer::new(scene);
+        let sources = grinlight::photon::Sources::new(&tracer);
+        let drawn = grinlight::photon::photon_paths(&tracer, &sources, 0, paths);
+        let out = PathBuf::from(format!("{}.paths.png", stem.display()));
+        let legend = grinlight::fiber_figure::write(
+            scene,
+            &fiber,
+            &drawn,
+            (&scene.receivers[0], &measurements[0]),
+            &out,
+        )?;
+        writeln!(stdout, "wrote {}: {legend}", out.display())?;
+    }
     Ok(())
 }
 
@@ -285,8 +323,16 @@ fn render(args: RenderArgs) -> Result<()> {
         .unwrap_or_else(|| {
             PathBuf::from(scene_path.file_stem().unwrap_or_default()).with_extension("exr")
         });
+    let paths = args.paths.unwrap_or(0);
+    if paths > 0 && scene.receivers.is_empty() {
+        return Err(Error::Usage(format!(
+            "{}: --paths shows the paths with a receiver's irradiance: the scene has no [[receiver]]",
+            scene_path.display()
+        ))
+        .into());
+    }
     if !scene.receivers.is_empty() {
-        measure_receivers(&scene, threads, &exr)?;
+        measure_receivers(&scene, threads, &exr, paths)?;
     }
     let Some(camera) = scene.camera.as_mut() else {
         if !scene.receivers.is_empty() {
@@ -372,6 +418,7 @@ fn render(args: RenderArgs) -> Result<()> {
 fn validate(
     path: &std::path::Path,
     dns: &[f64],
+    max_width: f64,
     photons: Option<u64>,
     threads: usize,
     plot: Option<PathBuf>,
@@ -412,20 +459,21 @@ fn validate(
     )?;
     writeln!(
         stdout,
-        "| Δn | layers | flux ratio (layered/GRIN) | χ²/dof | dof | max |z| | time (s) |"
+        "| Δn | layers | widest layer | flux ratio (layered/GRIN) | χ²/dof | dof | max |z| | time (s) |"
     )?;
-    writeln!(stdout, "|---|---|---|---|---|---|---|")?;
+    writeln!(stdout, "|---|---|---|---|---|---|---|---|")?;
     let mut profiles = vec![receiver::radial_profile(rec, &reference[0])];
     for (k, &dn) in dns.iter().enumerate() {
         let mut twin = load()?;
-        let layers = twin.layer_fiber(dn)?;
+        let layers = twin.layer_fiber(dn, max_width)?;
         let t = std::time::Instant::now();
         let (layered, _, _) = grinlight::render::measure(&twin, threads, 1 + k as u64)?;
         let c = receiver::compare(&reference[0], &layered[0]);
         writeln!(
             stdout,
-            "| {dn} | {} | {:.5} ± {:.5} | {:.3} | {} | {:.2} | {:.1} |",
+            "| {dn} | {} | {:.4} | {:.5} ± {:.5} | {:.3} | {} | {:.2} | {:.1} |",
             layers.len(),
+            layers.iter().map(|l| l.outer - l.inner).fold(0.0, f64::max),
             c.flux_ratio,
             c.flux_ratio_stderr,
             c.chi2_per_dof,
@@ -477,10 +525,18 @@ fn run(cli: Cli) -> Result<()> {
         Command::Validate {
             scene,
             dn,
+            max_width,
             photons,
             threads,
             plot,
-        } => validate(&scene, &dn, photons, threads, plot),
+        } => validate(
+            &scene,
+            &dn,
+            max_width.unwrap_or(f64::INFINITY),
+            photons,
+            threads,
+            plot,
+        ),
         Command::Trace {
             scene,
             medium,

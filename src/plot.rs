@@ -119,7 +119,8 @@ impl<'a> Panel<'a> {
     }
 
     /// Shades every pixel by `f(x, y)` (data coordinates) mapped linearly from `range` to
-    /// dark–light grey.
+    /// dark–light grey; NaN (e.g. a singular medium) is black, +∞ (outside, nothing to show)
+    /// white.
     pub fn shade(&mut self, range: (f64, f64), f: impl Fn(f64, f64) -> f64) {
         let (l, t, w, h) = self.px;
         for j in 0..h {
@@ -134,6 +135,8 @@ impl<'a> Panel<'a> {
                 };
                 let g = if v.is_finite() {
                     (90.0 + 150.0 * u) as u8
+                } else if v == f64::INFINITY {
+                    255
                 } else {
                     0
                 };

@@ -221,37 +221,57 @@ fn heat(t: f64) -> Color {
 pub fn write_png(rec: &Receiver, m: &Measurement, path: &Path) -> Result<()> {
     let (nx, ny) = rec.bins;
     let cell = (480 / nx.max(ny)).max(1) as u32;
+    let mut img = canvas(nx as u32 * cell + 140, (ny as u32 * cell).max(120) + 20);
+    draw_heat_map(&mut img, rec, m, (10, 10), 480);
+    save(&img, path)
+}
+
+/// Draws the irradiance as a heat map with its top-left corner at `at`, the larger side at
+/// most `size` pixels (whole pixels per bin), and a colour bar to its right labelled 0 and
+/// the maximum (130 pixels wide with its labels).
+pub fn draw_heat_map(
+    img: &mut image::RgbImage,
+    rec: &Receiver,
+    m: &Measurement,
+    at: (u32, u32),
+    size: u32,
+) {
+    let (nx, ny) = rec.bins;
+    let cell = (size / nx.max(ny) as u32).max(1);
     let (w, h) = (nx as u32 * cell, ny as u32 * cell);
-    let mut img = canvas(w + 140, h.max(120) + 20);
     let max = m
         .irradiance
         .iter()
         .cloned()
         .fold(0.0, f64::max)
         .max(f64::MIN_POSITIVE);
+    let mut put = |x: u32, y: u32, c: Color| {
+        if x < img.width() && y < img.height() {
+            img.put_pixel(x, y, image::Rgb(c));
+        }
+    };
     for (k, e) in m.irradiance.iter().enumerate() {
         let (i, j) = ((k % nx) as u32, (k / nx) as u32);
         let c = heat(e / max);
         for dy in 0..cell {
             for dx in 0..cell {
-                img.put_pixel(
-                    10 + i * cell + dx,
-                    10 + (ny as u32 - 1 - j) * cell + dy,
-                    image::Rgb(c),
+                put(
+                    at.0 + i * cell + dx,
+                    at.1 + (ny as u32 - 1 - j) * cell + dy,
+                    c,
                 );
             }
         }
     }
-    let (bx, top) = (w + 30, 10);
+    let bx = at.0 + w + 20;
     for y in 0..h {
         let c = heat(1.0 - y as f64 / h.max(1) as f64);
         for x in 0..20 {
-            img.put_pixel(bx + x, top + y, image::Rgb(c));
+            put(bx + x, at.1 + y, c);
         }
     }
-    text(&mut img, bx + 26, top, &format!("{max:.3e}"));
-    text(&mut img, bx + 26, top + h - 10, "0");
-    save(&img, path)
+    text(img, bx + 26, at.1, &format!("{max:.3e}"));
+    text(img, bx + 26, at.1 + h - 10, "0");
 }
 
 /// Plots radial profiles (r, irradiance) with ±1 standard-error bars, one colour each.

@@ -162,3 +162,58 @@ fn bad_input_fails_with_a_message_and_no_panic() {
         );
     }
 }
+
+/// `render --paths N` on the fiber writes the receiver files and the three-panel figure, whose
+/// middle panel holds the drawn paths; the energy budget is printed; without a receiver,
+/// `--paths` is refused with a message.
+#[test]
+fn render_paths_draws_the_fiber_figure() {
+    let exr = temp("fiber.exr");
+    let out = grinlight(&[
+        "render",
+        "scenes/fiber_led.toml",
+        "--receiver-photons",
+        "3000",
+        "--paths",
+        "8",
+        "-o",
+        exr.to_str().unwrap(),
+    ]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(stdout.contains("8 photon paths"), "{stdout}");
+    assert!(
+        stdout.contains("energy budget: emitted 1.000000e-2 W, booked 1.000000e-2 W"),
+        "{stdout}"
+    );
+    let stem = exr.with_extension("");
+    let figure = std::path::PathBuf::from(format!("{}.paths.png", stem.display()));
+    let img = image::open(&figure).unwrap().to_rgb8();
+    // Path colours are saturated; the middle panel's shading, axes and text are grey. The
+    // panel spans pixels x 400..1120, y 70..370 (margins 70, profile panel 260 wide).
+    let coloured = img
+        .enumerate_pixels()
+        .filter(|(x, y, p)| {
+            (400..1120).contains(x)
+                && (70..370).contains(y)
+                && p.0.iter().max().unwrap() - p.0.iter().min().unwrap() > 60
+        })
+        .count();
+    assert!(coloured > 2000, "{coloured} coloured pixels");
+    for ext in [
+        "paths.png",
+        "exit.csv",
+        "exit.png",
+        "exit.radial.csv",
+        "exit.radial.png",
+    ] {
+        std::fs::remove_file(format!("{}.{ext}", stem.display())).unwrap();
+    }
+    let out = grinlight(&["render", "scenes/cornell_diffuse.toml", "--paths", "3"]);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("no [[receiver]]"));
+}

@@ -57,14 +57,14 @@ fn layered_twin_matches_the_grin_fiber_and_a_wrong_twin_does_not() {
     let a = measure(&grin, 0);
     let baseline = grinlight::receiver::compare(&a, &measure(&grin, 7));
     let mut twin = load(None);
-    let layers = twin.layer_fiber(0.005).unwrap();
+    let layers = twin.layer_fiber(0.005, f64::INFINITY).unwrap();
     assert_eq!(layers.len(), 4);
     let good = grinlight::receiver::compare(&a, &measure(&twin, 1));
     let text = std::fs::read_to_string(path)
         .unwrap()
         .replace("n0 = 1.5", "n0 = 1.7");
     let mut wrong = load(Some(text));
-    wrong.layer_fiber(0.005).unwrap();
+    wrong.layer_fiber(0.005, f64::INFINITY).unwrap();
     let bad = grinlight::receiver::compare(&a, &measure(&wrong, 2));
     println!("GRIN vs GRIN {baseline:?}\nGRIN vs layered {good:?}\nGRIN vs wrong {bad:?}");
     let z = |c: &grinlight::receiver::Comparison| (c.flux_ratio - 1.0) / c.flux_ratio_stderr;
@@ -95,38 +95,18 @@ fn layered_twin_matches_the_grin_fiber_and_a_wrong_twin_does_not() {
 #[test]
 fn a_meridional_ray_reaches_the_receiver_where_the_paraxial_path_says() {
     use glam::DVec3;
-    use grinlight::transport::{Event, Stats, Tracer};
+    use grinlight::transport::Tracer;
     let scene = load_scene(Path::new("scenes/fiber_led.toml")).unwrap();
     let tracer = Tracer::new(&scene);
     let core = (0..)
         .find(|&i| scene.medium_names().nth(i) == Some("core"))
         .unwrap();
     let (a, n0, len, gap, x0) = (0.10667f64, 1.5f64, 20.0f64, 0.05f64, 0.05f64);
-    let mut stats = Stats::default();
-    let (mut origin, mut dir, mut medium) = (DVec3::new(x0, 0.0, 1e-9), DVec3::Z, Some(core));
-    // Core → exit face (refract: u = 1 is never below the Fresnel reflectance) → receiver.
-    let hit = loop {
-        let Event::Surface {
-            prim,
-            position,
-            normal,
-            direction,
-        } = tracer.next_event(origin, dir, medium, &mut stats)
-        else {
-            panic!("the ray was lost");
-        };
-        let surface = scene.surfaces[prim];
-        if matches!(
-            scene.materials[surface.material],
-            grinlight::material::Material::Detector { .. }
-        ) {
-            break position;
-        }
-        let b = tracer
-            .specular_bounce(surface, medium, position, direction, normal, 1.0)
-            .unwrap();
-        (origin, dir, medium) = (b.origin, b.direction, b.medium);
-    };
+    // Core → exit face (refracted) → receiver.
+    let (hit, events) = tracer
+        .principal_ray(DVec3::new(x0, 0.0, 1e-9), DVec3::Z, Some(core), 10)
+        .expect("reaches the receiver");
+    assert_eq!(events, 1, "one surface (the exit face) before the receiver");
     let k = a.sqrt();
     let x_l = x0 * (k * len).cos();
     let slope = -x0 * k * (k * len).sin();

@@ -15,7 +15,6 @@ use crate::lights::Light;
 use crate::material::Material;
 use crate::media::{Medium, UniformMedium};
 use crate::receiver::Receiver;
-use crate::shapes::Primitive;
 use std::path::{Path, PathBuf};
 use toml::Spanned;
 
@@ -90,8 +89,8 @@ pub struct Surface {
 
 /// A validated scene, immutable and shareable across threads.
 pub struct Scene {
-    path: PathBuf,
-    media: Vec<(String, Box<dyn Medium>)>,
+    pub(super) path: PathBuf,
+    pub(super) media: Vec<(String, Box<dyn Medium>)>,
     /// The medium filling space outside all shapes (None: vacuum, n = 1).
     pub ambient: Option<usize>,
     /// Materials by index.
@@ -381,142 +380,4 @@ fn named<'a>(
 pub fn load_scene(path: &Path) -> Result<Scene> {
     let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
     parse_scene(path, text)
-}
-
-/// One homogeneous layer of a fiber's layered twin: outer radius and index.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Layer {
-    /// Inner radius (scene units).
-    pub inner: f64,
-    /// Outer radius.
-    pub outer: f64,
-    /// Index: the profile's area-weighted mean over the annulus.
-    pub n: f64,
-}
-
-impl Scene {
-    /// Replaces the scene's GRIN fiber — the capped cylinder whose interior is a non-uniform
-    /// medium — by concentric homogeneous cylinders in optical contact (seed 004 §5): a new
-    /// layer wherever the index along a radius has changed by `dn` since the layer's start,
-    /// each with the area-weighted mean of the profile over its annulus, each layer a tube
-    /// (a dielectric between it and the next layer out) with annular end faces. The index is
-    /// read along one radius at mid-length, so the profile must be radial (parabolic, sech,
-    /// or a radial grid). Returns the layers, innermost first.
-    pub fn layer_fiber(&mut self, dn: f64) -> Result<Vec<Layer>> {
-        let usage = |m: &str| Error::Usage(format!("{}: {m}", self.path.display()));
-        if !(dn.is_finite() && dn > 0.0) {
-            return Err(usage("Δn must be a finite number > 0"));
-        }
-        let prims = self.accel.primitives().to_vec();
-        let (tube, surface) = prims
-            .iter()
-            .zip(&self.surfaces)
-            .find(|(p, s)| {
-                matches!(p, Primitive::Tube { .. })
-                    && s.interior.is_some_and(|m| !self.media[m].1.is_uniform())
-            })
-            .ok_or_else(|| usage("no cylinder filled with a gradient medium to layer"))?;
-        let Primitive::Tube {
-            base,
-            axis,
-            radius,
-            height,
-        } = *tube
-        else {
-            unreachable!()
-        };
-        let surface = *surface;
-        let medium = surface.interior.expect("found with an interior");
-        // The index along one radius at mid-length, finely sampled.
-        let perp = axis.any_orthonormal_vector();
-        let mid = base + axis * (0.5 * height);
-        let samples = 4000;
-        let n_at = |r: f64| self.media[medium].1.sample(mid + perp * r).map(|s| s.n);
-        let mut profile = Vec::with_capacity(samples + 1);
-        for i in 0..=samples {
-            let r = radius * i as f64 / samples as f64;
-            profile.push((
-                r,
-                n_at(r).ok_or_else(|| usage("the fiber's index is singular inside it"))?,
-            ));
-        }
-        let mut layers = Vec::new();
-        let (mut start, mut n_start) = (0, profile[0].1);
-        for i in 1..=samples {
-            if (profile[i].1 - n_start).abs() >= dn || i == samples {
-                // Area-weighted mean of n over [r_start, r_i] (trapezoid rule on n·r).
-                let (mut num, mut den) = (0.0, 0.0);
-                for w in profile[start..=i].windows(2) {
-                    let dr = w[1].0 - w[0].0;
-                    num += 0.5 * (w[0].1 * w[0].0 + w[1].1 * w[1].0) * dr;
-                    den += 0.5 * (w[0].0 + w[1].0) * dr;
-                }
-                layers.push(Layer {
-                    inner: profile[start].0,
-                    outer: profile[i].0,
-                    n: num / den,
-                });
-                (start, n_start) = (i, profile[i].1);
-            }
-        }
-        // Keep everything but the fiber (its tube and its two end disks).
-        let top = base + axis * height;
-        let is_fiber = |p: &Primitive, s: &Surface| {
-            *s == surface
-                && match *p {
-                    Primitive::Tube { .. } => true,
-                    Primitive::Disk {
-                        center, radius: r, ..
-                    } => r == radius && (center == base || center == top),
-                    _ => false,
-                }
-        };
-        let mut primitives = Vec::new();
-        let mut surfaces = Vec::new();
-        for (p, s) in prims.iter().zip(&self.surfaces) {
-            if !is_fiber(p, s) {
-                primitives.push(*p);
-                surfaces.push(*s);
-            }
-        }
-        let first = self.media.len();
-        for (i, l) in layers.iter().enumerate() {
-            self.media.push((
-                format!("layer {i} (n {:.6})", l.n),
-                Box::new(UniformMedium { n: l.n }),
-            ));
-            let interior = Some(first + i);
-            let outside = if i + 1 < layers.len() {
-                Some(first + i + 1)
-            } else {
-                surface.exterior
-            };
-            primitives.push(Primitive::Tube {
-                base,
-                axis,
-                radius: l.outer,
-                height,
-            });
-            surfaces.push(Surface {
-                interior,
-                exterior: outside,
-                ..surface
-            });
-            for (center, normal) in [(base, -axis), (top, axis)] {
-                primitives.push(Primitive::Disk {
-                    center,
-                    normal,
-                    radius: l.outer,
-                    inner: l.inner,
-                });
-                surfaces.push(Surface {
-                    interior,
-                    ..surface
-                });
-            }
-        }
-        self.surfaces = surfaces;
-        self.accel = Accel::new(primitives);
-        Ok(layers)
-    }
 }

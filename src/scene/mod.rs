@@ -1,9 +1,12 @@
 //! Scenes: a TOML file read with every key's position kept ([`table`]), media tables
-//! ([`media`]), and loading into the validated, render-ready [`Scene`] ([`load`]).
+//! ([`media`]), loading into the validated, render-ready [`Scene`] ([`load`]), and the GRIN
+//! fiber with its layered twin ([`fiber`]).
 
+pub mod fiber;
 pub mod load;
 pub mod media;
 pub mod objects;
 pub mod table;
 
-pub use load::{load_scene, Layer, Scene, Surface};
+pub use fiber::{GrinFiber, Layer};
+pub use load::{load_scene, Scene, Surface};

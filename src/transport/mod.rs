@@ -212,6 +212,43 @@ impl<'a> Tracer<'a> {
         }
     }
 
+    /// Follows the principal ray from `origin` along unit `dir` in `medium`: at each dielectric
+    /// the likelier branch (reflected where the Fresnel reflectance exceeds 1/2, as under total
+    /// internal reflection, refracted otherwise), reflected by mirrors, until it crosses a
+    /// receiver's detector. Returns the crossing point and the number of
+    /// surfaces met before it; None when the ray escapes, is lost, reaches a diffuse or
+    /// emissive surface, or has met `max_events` surfaces.
+    pub fn principal_ray(
+        &self,
+        mut origin: DVec3,
+        mut dir: DVec3,
+        mut medium: Option<usize>,
+        max_events: usize,
+    ) -> Option<(DVec3, usize)> {
+        let mut stats = Stats::default();
+        for events in 0..max_events {
+            let Event::Surface {
+                prim,
+                position,
+                normal,
+                direction,
+            } = self.next_event(origin, dir, medium, &mut stats)
+            else {
+                return None;
+            };
+            let surface = self.scene.surfaces[prim];
+            if matches!(
+                self.scene.materials[surface.material],
+                Material::Detector { .. }
+            ) {
+                return Some((position, events));
+            }
+            let b = self.specular_bounce(surface, medium, position, direction, normal, 0.5)?;
+            (origin, dir, medium) = (b.origin, b.direction, b.medium);
+        }
+        None
+    }
+
     fn curved(
         &self,
         medium: &dyn crate::media::Medium,

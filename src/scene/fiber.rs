@@ -1,0 +1,203 @@
+//! The scene's GRIN fiber — a capped cylinder filled with a gradient medium — and its layered
+//! twin of homogeneous cylinders in optical contact (seed 004 §5).
+
+use super::load::{Scene, Surface};
+use crate::accel::Accel;
+use crate::error::{Error, Result};
+use crate::media::UniformMedium;
+use crate::shapes::Primitive;
+use glam::DVec3;
+
+/// The cylinder filled with a gradient medium.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GrinFiber {
+    /// Centre of the base face.
+    pub base: DVec3,
+    /// Unit axis.
+    pub axis: DVec3,
+    /// Radius.
+    pub radius: f64,
+    /// Length.
+    pub height: f64,
+    /// Its side's surface (material, interior medium, exterior).
+    pub surface: Surface,
+    /// Index of the interior medium.
+    pub medium: usize,
+}
+
+impl GrinFiber {
+    /// The index along one radius at mid-length, at `samples` + 1 evenly spaced radii from
+    /// the axis to the wall: (r, n). None where the medium is singular.
+    pub fn profile(&self, scene: &Scene, samples: usize) -> Option<Vec<(f64, f64)>> {
+        let perp = self.axis.any_orthonormal_vector();
+        let mid = self.base + self.axis * (0.5 * self.height);
+        (0..=samples)
+            .map(|i| {
+                let r = self.radius * i as f64 / samples as f64;
+                let n = scene.medium_at(self.medium).sample(mid + perp * r)?.n;
+                Some((r, n))
+            })
+            .collect()
+    }
+}
+
+/// One homogeneous layer of a fiber's layered twin: outer radius and index.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Layer {
+    /// Inner radius (scene units).
+    pub inner: f64,
+    /// Outer radius.
+    pub outer: f64,
+    /// Index: the profile's area-weighted mean over the annulus.
+    pub n: f64,
+}
+
+impl Scene {
+    /// The first cylinder side whose interior is a non-uniform medium.
+    pub fn grin_fiber(&self) -> Option<GrinFiber> {
+        self.accel
+            .primitives()
+            .iter()
+            .zip(&self.surfaces)
+            .find_map(|(p, s)| match *p {
+                Primitive::Tube {
+                    base,
+                    axis,
+                    radius,
+                    height,
+                } => s
+                    .interior
+                    .filter(|&m| !self.medium_at(m).is_uniform())
+                    .map(|medium| GrinFiber {
+                        base,
+                        axis,
+                        radius,
+                        height,
+                        surface: *s,
+                        medium,
+                    }),
+                _ => None,
+            })
+    }
+
+    /// Replaces the scene's GRIN fiber — the capped cylinder whose interior is a non-uniform
+    /// medium — by concentric homogeneous cylinders in optical contact (seed 004 §5): a new
+    /// layer wherever the index along a radius has changed by `dn` since the layer's start
+    /// or the layer is `max_width` wide (∞: no limit; see below), each with the area-weighted mean of the profile over its annulus, each layer a tube
+    /// (a dielectric between it and the next layer out) with annular end faces. The index is
+    /// read along one radius at mid-length, so the profile must be radial (parabolic, sech,
+    /// or a radial grid). Returns the layers, innermost first.
+    ///
+    /// Layers of equal Δn are wide where the profile is flat — near the axis of a parabolic
+    /// fiber the first is R·√(Δn/Δn_total) wide — and a ray inside a homogeneous layer feels
+    /// no gradient: a paraxial ray at angle θ crosses only ≈ n₀θ²/(2Δn) layers, and one
+    /// parallel to the axis none. `max_width` bounds that error where the index barely changes.
+    pub fn layer_fiber(&mut self, dn: f64, max_width: f64) -> Result<Vec<Layer>> {
+        let usage = |m: &str| Error::Usage(format!("{}: {m}", self.path.display()));
+        if !(dn.is_finite() && dn > 0.0) {
+            return Err(usage("Δn must be a finite number > 0"));
+        }
+        if !(max_width > 0.0) {
+            return Err(usage("the largest layer width must be > 0"));
+        }
+        let fiber = self
+            .grin_fiber()
+            .ok_or_else(|| usage("no cylinder filled with a gradient medium to layer"))?;
+        // The index along one radius, finely sampled.
+        let samples = 4000;
+        let profile = fiber
+            .profile(self, samples)
+            .ok_or_else(|| usage("the fiber's index is singular inside it"))?;
+        let GrinFiber {
+            base,
+            axis,
+            radius,
+            height,
+            surface,
+            ..
+        } = fiber;
+        let prims = self.accel.primitives().to_vec();
+        let mut layers = Vec::new();
+        let (mut start, mut n_start) = (0, profile[0].1);
+        for i in 1..=samples {
+            let width = profile[i].0 - profile[start].0;
+            if (profile[i].1 - n_start).abs() >= dn
+                || width >= max_width * (1.0 - 1e-9)
+                || i == samples
+            {
+                // Area-weighted mean of n over [r_start, r_i] (trapezoid rule on n·r).
+                let (mut num, mut den) = (0.0, 0.0);
+                for w in profile[start..=i].windows(2) {
+                    let dr = w[1].0 - w[0].0;
+                    num += 0.5 * (w[0].1 * w[0].0 + w[1].1 * w[1].0) * dr;
+                    den += 0.5 * (w[0].0 + w[1].0) * dr;
+                }
+                layers.push(Layer {
+                    inner: profile[start].0,
+                    outer: profile[i].0,
+                    n: num / den,
+                });
+                (start, n_start) = (i, profile[i].1);
+            }
+        }
+        // Keep everything but the fiber (its tube and its two end disks).
+        let top = base + axis * height;
+        let is_fiber = |p: &Primitive, s: &Surface| {
+            *s == surface
+                && match *p {
+                    Primitive::Tube { .. } => true,
+                    Primitive::Disk {
+                        center, radius: r, ..
+                    } => r == radius && (center == base || center == top),
+                    _ => false,
+                }
+        };
+        let mut primitives = Vec::new();
+        let mut surfaces = Vec::new();
+        for (p, s) in prims.iter().zip(&self.surfaces) {
+            if !is_fiber(p, s) {
+                primitives.push(*p);
+                surfaces.push(*s);
+            }
+        }
+        let first = self.media.len();
+        for (i, l) in layers.iter().enumerate() {
+            self.media.push((
+                format!("layer {i} (n {:.6})", l.n),
+                Box::new(UniformMedium { n: l.n }),
+            ));
+            let interior = Some(first + i);
+            let outside = if i + 1 < layers.len() {
+                Some(first + i + 1)
+            } else {
+                surface.exterior
+            };
+            primitives.push(Primitive::Tube {
+                base,
+                axis,
+                radius: l.outer,
+                height,
+            });
+            surfaces.push(Surface {
+                interior,
+                exterior: outside,
+                ..surface
+            });
+            for (center, normal) in [(base, -axis), (top, axis)] {
+                primitives.push(Primitive::Disk {
+                    center,
+                    normal,
+                    radius: l.outer,
+                    inner: l.inner,
+                });
+                surfaces.push(Surface {
+                    interior,
+                    ..surface
+                });
+            }
+        }
+        self.surfaces = surfaces;
+        self.accel = Accel::new(primitives);
+        Ok(layers)
+    }
+}
