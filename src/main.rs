@@ -438,7 +438,7 @@ fn validate(
     let grin = load()?;
     let rec = &grin.receivers[0];
     let t = std::time::Instant::now();
-    let (reference, _, _) = grinlight::render::measure(&grin, threads, 0)?;
+    let (reference, _, grin_report) = grinlight::render::measure(&grin, threads, 0)?;
     if reference[0].flux.0 <= 0.0 {
         return Err(Error::Usage(format!(
             "{}: receiver '{}' received no light from the GRIN fiber: nothing to compare",
@@ -450,28 +450,30 @@ fn validate(
     let mut stdout = std::io::stdout().lock();
     writeln!(
         stdout,
-        "GRIN fiber: receiver '{}' flux {:.6e} ± {:.1e} W ({} photons, {:.1} s)",
+        "GRIN fiber: receiver '{}' flux {:.6e} ± {:.1e} W ({} photons, {:.2} % cut at max_depth, {:.1} s)",
         rec.name,
         reference[0].flux.0,
         reference[0].flux.1,
         grin.render.receiver_photons,
+        100.0 * grin_report.stats.depth_limited as f64
+            / grin_report.stats.photons_emitted.max(1) as f64,
         t.elapsed().as_secs_f64()
     )?;
     writeln!(
         stdout,
-        "| Δn | layers | widest layer | flux ratio (layered/GRIN) | χ²/dof | dof | max |z| | time (s) |"
+        "| Δn | layers | widest layer | flux ratio (layered/GRIN) | χ²/dof | dof | max |z| | cut at max_depth | time (s) |"
     )?;
-    writeln!(stdout, "|---|---|---|---|---|---|---|---|")?;
+    writeln!(stdout, "|---|---|---|---|---|---|---|---|---|")?;
     let mut profiles = vec![receiver::radial_profile(rec, &reference[0])];
     for (k, &dn) in dns.iter().enumerate() {
         let mut twin = load()?;
         let layers = twin.layer_fiber(dn, max_width)?;
         let t = std::time::Instant::now();
-        let (layered, _, _) = grinlight::render::measure(&twin, threads, 1 + k as u64)?;
+        let (layered, _, report) = grinlight::render::measure(&twin, threads, 1 + k as u64)?;
         let c = receiver::compare(&reference[0], &layered[0]);
         writeln!(
             stdout,
-            "| {dn} | {} | {:.4} | {:.5} ± {:.5} | {:.3} | {} | {:.2} | {:.1} |",
+            "| {dn} | {} | {:.4} | {:.5} ± {:.5} | {:.3} | {} | {:.2} | {:.2} % | {:.1} |",
             layers.len(),
             layers.iter().map(|l| l.outer - l.inner).fold(0.0, f64::max),
             c.flux_ratio,
@@ -479,6 +481,7 @@ fn validate(
             c.chi2_per_dof,
             c.dof,
             c.max_z,
+            100.0 * report.stats.depth_limited as f64 / report.stats.photons_emitted.max(1) as f64,
             t.elapsed().as_secs_f64()
         )?;
         profiles.push(receiver::radial_profile(rec, &layered[0]));

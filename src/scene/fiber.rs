@@ -92,6 +92,11 @@ impl Scene {
     /// fiber the first is R·√(Δn/Δn_total) wide — and a ray inside a homogeneous layer feels
     /// no gradient: a paraxial ray at angle θ crosses only ≈ n₀θ²/(2Δn) layers, and one
     /// parallel to the axis none. `max_width` bounds that error where the index barely changes.
+    ///
+    /// Every layer boundary is a surface event for the twin where the GRIN fiber has none: a
+    /// path that meets k surfaces in the GRIN fiber meets up to ≈ 2·layers·k in the twin (each
+    /// sweep from wall to wall crosses every boundary twice), so `max_depth` is multiplied by
+    /// 2·layers + 1.
     pub fn layer_fiber(&mut self, dn: f64, max_width: f64) -> Result<Vec<Layer>> {
         let usage = |m: &str| Error::Usage(format!("{}: {m}", self.path.display()));
         if !(dn.is_finite() && dn > 0.0) {
@@ -198,6 +203,8 @@ impl Scene {
         }
         self.surfaces = surfaces;
         self.accel = Accel::new(primitives);
+        let factor = 2 * u32::try_from(layers.len()).unwrap_or(u32::MAX / 2) + 1;
+        self.render.max_depth = self.render.max_depth.saturating_mul(factor);
         Ok(layers)
     }
 }

@@ -198,7 +198,7 @@ pub fn read_render(t: &mut TableReader) -> Result<RenderSettings> {
     Ok(RenderSettings {
         spp: t.count_or("spp", 16)?.min(u32::MAX as u64) as u32,
         seed: t.natural_or("seed", 0)?,
-        max_depth: t.count_or("max_depth", 64)?.min(10_000) as u32,
+        max_depth: t.count_or("max_depth", 64)?.min(u32::MAX as u64) as u32,
         threads: t.natural_or("threads", 0)? as usize,
         stepper,
         control,
