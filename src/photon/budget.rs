@@ -10,13 +10,15 @@ pub enum Fate {
     /// It escaped the scene after last leaving a dielectric into the ambient medium through
     /// this primitive.
     OutThrough(usize),
-    /// It escaped without ever entering a dielectric, after a specular reflection.
+    /// It escaped without ever leaving a dielectric (so without entering one), after a
+    /// specular reflection.
     Reflected,
     /// It escaped without a specular interaction.
     Missed,
     /// It ended on a diffuse or emissive surface, or a lossy mirror's Russian roulette.
     Absorbed,
-    /// It was captured by a singular medium, ran out of steps, or was cut at `max_depth`.
+    /// It was captured by a singular medium, ran out of steps, was cut at `max_depth`, or left
+    /// the world from inside a dielectric (the world sphere cuts the object).
     Lost,
 }
 

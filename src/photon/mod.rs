@@ -8,6 +8,10 @@
 //! - **global**: every diffuse hit of every photon, followed by Lambertian bounces with
 //!   Russian roulette on the albedo.
 //!
+//! A third batch feeds the receivers: nothing is stored, every receiver crossing is recorded.
+//! Every batch books each photon's power in an energy [`Budget`] when its path ends, and
+//! [`photon_paths`] replays photons of the receiver batch keeping their paths, for figures.
+//!
 //! Photon `i` of pass `p` draws from the stream (seed, batch, p, i), and photons are traced in
 //! fixed chunks whose results are concatenated in order, so a map does not depend on the
 //! thread count.
@@ -239,9 +243,9 @@ fn trace_photon(
     let (mut origin, mut dir, mut medium) = (e.origin, e.direction, scene.ambient);
     // Whether the path so far holds a specular bounce or a gradient-medium traversal.
     let mut bent = false;
-    // Whether it has met a specular reflection, whether it has entered a dielectric from the
-    // ambient medium, and where it last left one.
-    let (mut reflected, mut entered, mut left_through) = (false, false, None);
+    // Whether it has met a specular reflection, and where it last left a dielectric into the
+    // ambient medium.
+    let (mut reflected, mut left_through) = (false, None);
     path(origin);
     let fate = 'path: {
         for _ in 0..scene.render.max_depth {
@@ -260,8 +264,8 @@ fn trace_photon(
                         }
                         // Escaping from inside a dielectric (the world sphere cuts it) is lost.
                         break 'path match left_through {
+                            _ if medium != scene.ambient => Fate::Lost,
                             Some(p) => Fate::OutThrough(p),
-                            None if entered => Fate::Lost,
                             None if reflected => Fate::Reflected,
                             None => Fate::Missed,
                         };
@@ -331,8 +335,6 @@ fn trace_photon(
                         reflected = true;
                     } else if b.medium == scene.ambient {
                         left_through = Some(prim);
-                    } else if medium == scene.ambient {
-                        entered = true;
                     }
                     (origin, dir, medium) = (b.origin, b.direction, b.medium);
                     bent = true;
