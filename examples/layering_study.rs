@@ -75,7 +75,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         csv,
         "rule,parameter,layers,widest,surfaces_per_ray,rms,median,seconds"
     )?;
-    let mut series = vec![Vec::new(), Vec::new()];
+    let mut series = [Vec::new(), Vec::new()];
     let configs = [0.01, 0.005, 0.0025, 0.001, 0.0005, 0.00025, 0.0001]
         .map(|dn| ("equal Δn", dn, (dn, f64::INFINITY)))
         .into_iter()

@@ -102,7 +102,7 @@ impl Scene {
         if !(dn.is_finite() && dn > 0.0) {
             return Err(usage("Δn must be a finite number > 0"));
         }
-        if !(max_width > 0.0) {
+        if max_width.is_nan() || max_width <= 0.0 {
             return Err(usage("the largest layer width must be > 0"));
         }
         let fiber = self
