@@ -180,6 +180,15 @@ fn curved_hits_match_brute_force() {
     assert!(hits > 50 && unresolved * 50 < hits, "{hits} {unresolved}");
 }
 
+/// The nearest of `prims` by `f` (a hit's distance): (index, distance).
+fn nearest_of(prims: &[Primitive], f: &dyn Fn(&Primitive) -> Option<f64>) -> Option<(usize, f64)> {
+    prims
+        .iter()
+        .enumerate()
+        .filter_map(|(i, p)| f(p).map(|t| (i, t)))
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+}
+
 /// The BVH returns the same nearest hit as a loop over all primitives, for straight rays and
 /// curved segments, on 600 random primitives.
 #[test]
@@ -189,13 +198,7 @@ fn bvh_equals_a_loop_over_all_primitives() {
         .flat_map(|_| primitives(&mut rng).into_iter().take(5))
         .collect();
     let accel = Accel::new(prims.clone());
-    let nearest = |f: &dyn Fn(&Primitive) -> Option<f64>| {
-        prims
-            .iter()
-            .enumerate()
-            .filter_map(|(i, p)| f(p).map(|t| (i, t)))
-            .min_by(|a, b| a.1.total_cmp(&b.1))
-    };
+    let nearest = |f: &dyn Fn(&Primitive) -> Option<f64>| nearest_of(&prims, f);
     for _ in 0..300 {
         let o = rv(&mut rng) * 2.0;
         let d = rv(&mut rng).normalize();
@@ -247,13 +250,7 @@ fn coaxial_stack_equals_a_loop_over_all_primitives() {
         }
     }
     let accel = Accel::new(prims.clone());
-    let nearest = |f: &dyn Fn(&Primitive) -> Option<f64>| {
-        prims
-            .iter()
-            .enumerate()
-            .filter_map(|(i, p)| f(p).map(|t| (i, t)))
-            .min_by(|a, b| a.1.total_cmp(&b.1))
-    };
+    let nearest = |f: &dyn Fn(&Primitive) -> Option<f64>| nearest_of(&prims, f);
     let frame = |h: f64, r: f64, phi: f64| {
         let u = axis.any_orthonormal_vector();
         let v = axis.cross(u);
