@@ -47,6 +47,22 @@ fn media() -> Vec<(&'static str, Box<dyn Medium>)> {
             }),
         ),
         (
+            "radial_table",
+            Box::new(
+                RadialTable::new(
+                    (0..=12).map(|i| 0.1 * i as f64).collect(),
+                    (0..=12)
+                        .map(|i| {
+                            let r = 0.1 * i as f64;
+                            1.5 - 0.1 * r * r + 0.03 * r * r * r
+                        })
+                        .collect(),
+                    axis,
+                )
+                .unwrap(),
+            ),
+        ),
+        (
             "luneburg",
             Box::new(Luneburg {
                 center: DVec3::new(0.0, 0.1, 0.0),
@@ -86,8 +102,9 @@ fn media() -> Vec<(&'static str, Box<dyn Medium>)> {
 
 /// Central differences with h = 1e-6 err by ~h²·n‴ ≈ 1e-12 plus rounding ε·n/h ≈ 2e-10; the
 /// tolerance 1e-7·(1 + |∇n|) leaves a wide margin. Grid points sit inside cells (the
-/// interpolant's gradient is discontinuous across cell faces) and the Luneburg points off its
-/// surface.
+/// interpolant's gradient is discontinuous across cell faces), the Luneburg points off its
+/// surface and the radial table's off its node radii (n″ jumps there by O(1): a difference
+/// across one errs by h·Δn″/4).
 #[test]
 fn gradients_match_central_differences() {
     let mut rng = rand_pcg::Pcg64Mcg::seed_from_u64(11);
@@ -117,6 +134,13 @@ fn gradients_match_central_differences() {
                     (u - u.round()).abs().min_element() < 1e-4
                 }
                 "luneburg" => ((p - DVec3::new(0.0, 0.1, 0.0)).length() - 1.3).abs() < 1e-4,
+                // n″ jumps at the nodes (the Hermite pieces are only C¹).
+                "radial_table" => {
+                    let d = p - DVec3::new(0.1, -0.2, 0.0);
+                    let r =
+                        (d - DVec3::new(0.0, 0.6, 0.8) * d.dot(DVec3::new(0.0, 0.6, 0.8))).length();
+                    ((r * 10.0) - (r * 10.0).round()).abs() < 1e-3
+                }
                 _ => false,
             };
             if !ok || near_kink {
@@ -132,6 +156,57 @@ fn gradients_match_central_differences() {
             checked += 1;
         }
     }
+}
+
+/// A radial table through nodes of the parabolic profile reproduces it: the Fritsch–Carlson
+/// slope at an inner node of equal spacing is the mean of the two secants, exact for a
+/// quadratic, n'(0) = 0 is exact too, so every piece but the last is the quadratic itself
+/// (to rounding, 1e-14); the last piece takes the last secant as its end slope (off by
+/// n0·a·h/2) and stays within 1e-5. The table returns its nodes exactly, and beyond the last
+/// node n stays constant. A ray traced through the table fiber lands where the parabolic
+/// fiber's does while it keeps inside the exact pieces.
+#[test]
+fn a_radial_table_reproduces_the_parabolic_profile() {
+    use grinlight::curve::{march_with, Bounds, MarchLimits, RayState, StepControl, StepperKind};
+    let axis = Axis {
+        center: DVec3::ZERO,
+        axis: DVec3::Z,
+    };
+    let (n0, a) = (1.5, 0.10667);
+    let exact = |r: f64| n0 * (1.0 - 0.5 * a * r * r);
+    let r: Vec<f64> = (0..=40).map(|i| 0.0125 * i as f64).collect();
+    let table = RadialTable::new(r.clone(), r.iter().map(|&x| exact(x)).collect(), axis).unwrap();
+    let fiber = ParabolicFiber { n0, a, axis };
+    // Below the last node (where ∇n drops to 0, as documented).
+    for k in 0..4000 {
+        let x = 0.5 * k as f64 / 4000.0;
+        let (n, dn) = table.at(x);
+        let tol = if x < r[39] { 1e-14 } else { 1e-5 };
+        assert!((n - exact(x)).abs() <= tol, "n at {x}: {n} vs {}", exact(x));
+        assert!((dn + n0 * a * x).abs() <= 1e3 * tol, "n' at {x}: {dn}");
+    }
+    for &x in &r {
+        assert_eq!(table.at(x).0, exact(x));
+    }
+    let beyond = table.sample(DVec3::new(0.7, 0.0, 3.0)).unwrap();
+    assert_eq!((beyond.n, beyond.grad), (exact(0.5), DVec3::ZERO));
+    // A ray from r = 0.2 along the axis oscillates within 0.2 < r[39]: same path.
+    let limits = MarchLimits {
+        length: 20.0,
+        max_steps: 1_000_000,
+        bounds: Bounds::Unbounded,
+    };
+    let control = StepControl::Adaptive { tolerance: 1e-10 };
+    let end = |m: &dyn Medium| {
+        let start = RayState::new(m, DVec3::new(0.2, 0.0, 0.0), DVec3::Z).unwrap();
+        march_with(StepperKind::Rk4, m, control, start, &limits, |_, _| {
+            std::ops::ControlFlow::Continue(())
+        })
+        .state
+        .position
+    };
+    let (p, q) = (end(&table), end(&fiber));
+    assert!((p - q).length() < 1e-8, "{p} vs {q}");
 }
 
 #[test]

@@ -11,7 +11,7 @@ mod spherical;
 
 pub use grid::{GridError, GridMedium};
 pub use planar::{ExponentialMedium, LinearMedium, UniformMedium};
-pub use radial::{Axis, ParabolicFiber, SechFiber};
+pub use radial::{Axis, ParabolicFiber, RadialTable, SechFiber};
 pub use spherical::{black_hole_deflection, BlackHole, FishEye, Luneburg};
 
 use glam::DVec3;

@@ -5,7 +5,7 @@ use super::table::TableReader;
 use crate::error::Result;
 use crate::media::{
     Axis, BlackHole, ExponentialMedium, FishEye, GridError, GridMedium, LinearMedium, Luneburg,
-    Medium, ParabolicFiber, SechFiber, UniformMedium,
+    Medium, ParabolicFiber, RadialTable, SechFiber, UniformMedium,
 };
 use glam::DVec3;
 
@@ -16,6 +16,7 @@ pub const PROFILES: &[&str] = &[
     "exponential",
     "parabolic",
     "sech",
+    "radial_table",
     "luneburg",
     "fisheye",
     "black_hole",
@@ -55,6 +56,12 @@ pub fn read_medium(t: &mut TableReader, dir: &std::path::Path) -> Result<Box<dyn
             g: t.positive("g")?,
             axis: fiber_axis(t)?,
         }),
+        "radial_table" => {
+            let r = t.f64_list("r")?;
+            let n = t.f64_list("n")?;
+            let axis = fiber_axis(t)?;
+            Box::new(RadialTable::new(r, n, axis).map_err(|(key, e)| t.error(key, e))?)
+        }
         "luneburg" => Box::new(Luneburg {
             center: t.vec3_or("center", DVec3::ZERO)?,
             radius: t.positive("radius")?,

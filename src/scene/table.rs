@@ -188,6 +188,12 @@ impl<'a> TableReader<'a> {
         }
     }
 
+    /// A required list of numbers.
+    pub fn f64_list(&mut self, key: &str) -> Result<Vec<f64>> {
+        let v = self.required(key)?;
+        self.numbers(key, &v)
+    }
+
     /// An optional list of numbers.
     pub fn f64_list_opt(&mut self, key: &str) -> Result<Option<Vec<f64>>> {
         match self.take(key) {
