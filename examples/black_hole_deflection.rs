@@ -36,7 +36,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let sin_psi = (o - center).normalize().cross(d).length();
         let n0 = medium.sample(o).ok_or("camera inside the horizon")?.n;
         let b = n0 * r0 * sin_psi / rs;
-        let Event::Escaped(out) = tracer.next_event(o, d, scene.ambient, &mut stats) else {
+        let Event::Escaped { direction: out, .. } =
+            tracer.next_event(o, d, scene.ambient, &mut stats)
+        else {
             continue; // captured
         };
         let phi = d.cross(out).length().atan2(d.dot(out));

@@ -1,5 +1,6 @@
 //! The GRIN fiber of `scenes/fiber_led.toml` as a measuring instrument.
 
+use grinlight::scene::load::parse_scene;
 use grinlight::scene::load_scene;
 use grinlight::shapes::Primitive;
 use std::path::Path;
@@ -215,10 +216,7 @@ fn energy_budget_of_the_fiber() {
         .replace("height = 20.0", "height = 2.0")
         .replace("center = [0.0, 0.0, 20.05]", "center = [0.0, 0.0, 2.05]");
     assert_ne!(short, text);
-    let path = std::env::temp_dir().join(format!("grinlight_budget_{}.toml", std::process::id()));
-    std::fs::write(&path, short).unwrap();
-    let mut scene = load_scene(&path).unwrap();
-    std::fs::remove_file(&path).unwrap();
+    let mut scene = parse_scene(Path::new("scenes/fiber_led.toml"), short).unwrap();
     let photons = 200_000;
     scene.render.receiver_photons = photons;
     let (m, budget, _) = grinlight::render::measure(&scene, 0, 0).unwrap();
@@ -435,5 +433,132 @@ fn the_layered_twin_loses_no_photon() {
             .keys()
             .all(|&p| matches!(prims[p], Primitive::Disk { .. })),
         "light left through the wall"
+    );
+}
+
+/// An absorbing glass rod (n = 1.5, σa = 0.5 per unit, 2 units long: σa L = 1) on the z axis,
+/// lit along its axis by a collimated beam of 1 W/unit², a receiver in its shadow behind it.
+const ROD: &str = r#"
+[[medium]]
+name = "glass"
+profile = "uniform"
+n = 1.5
+absorption = 0.5
+
+[[material]]
+name = "rod"
+type = "dielectric"
+interior = "glass"
+
+[[shape]]
+type = "cylinder"
+base = [0.0, 0.0, 0.0]
+axis = [0.0, 0.0, 1.0]
+radius = 0.5
+height = 2.0
+material = "rod"
+
+[[light]]
+type = "directional"
+direction = [0.0, 0.0, 1.0]
+irradiance = 1.0
+
+[[receiver]]
+name = "behind"
+center = [0.0, 0.0, 2.5]
+normal = [0.0, 0.0, 1.0]
+size = [0.7, 0.7]
+bins = [1, 1]
+
+[render]
+receiver_photons = 200000
+"#;
+
+/// The slab's transmission and its back-reflection from inside (light that entered and came
+/// back out of the entry face) at normal incidence from air, with incoherent multiple
+/// reflections, for index n and optical depth τ = σa L: R = ((n−1)/(n+1))², t = e^{−τ},
+/// T = (1−R)² t / (1 − R² t²), B = (1−R)² R t² / (1 − R² t²).
+fn slab(n: f64, tau: f64) -> (f64, f64) {
+    let (r, t) = (((n - 1.0) / (n + 1.0)).powi(2), (-tau).exp());
+    let d = 1.0 - r * r * t * t;
+    ((1.0 - r).powi(2) * t / d, (1.0 - r).powi(2) * r * t * t / d)
+}
+
+/// Absorption in the energy budget, against the closed form for a slab with incoherent
+/// multiple reflections: a collimated beam along the axis of an absorbing glass rod (n = 1.5,
+/// σa L = 1) never meets its side, so of the light reaching the entry face a fraction
+/// R = ((n−1)/(n+1))² is reflected, (1−R)² e^{−σL}/(1 − R² e^{−2σL}) leaves through the exit
+/// face, (1−R)² R e^{−2σL}/(1 − R² e^{−2σL}) back through the entry face, and the rest is
+/// absorbed; each within 4 binomial standard errors of 2·10⁵ photons. A receiver behind the
+/// rod, inside its shadow, records the beam's irradiance (1 W/unit²) times that transmission
+/// (within 4 standard errors).
+#[test]
+fn absorption_in_a_rod_follows_the_slab_formula() {
+    let scene = parse_scene(Path::new("slab.toml"), ROD.to_string()).unwrap();
+    let (m, budget, _) = grinlight::render::measure(&scene, 0, 0).unwrap();
+    assert!((budget.booked() - budget.emitted).abs() <= 1e-12 * budget.emitted);
+    assert_eq!(budget.lost, 0.0);
+    let face = budget.emitted - budget.missed;
+    let prims = scene.accel.primitives();
+    let through = |z: f64| -> f64 {
+        budget
+            .out_through
+            .iter()
+            .filter(|(&p, _)| matches!(prims[p], Primitive::Disk { center, .. } if center.z == z))
+            .map(|(_, w)| w)
+            .sum()
+    };
+    let (want_exit, want_back) = slab(1.5, 1.0);
+    let r = 0.04;
+    let want_absorbed = 1.0 - r - want_exit - want_back;
+    // Photons reaching the face (each carries emitted/N).
+    let photons = face / budget.emitted * 200_000.0;
+    for (name, got, want) in [
+        ("reflected", budget.reflected / face, r),
+        ("out of the exit face", through(2.0) / face, want_exit),
+        ("back out of the entry face", through(0.0) / face, want_back),
+        ("absorbed", budget.absorbed / face, want_absorbed),
+    ] {
+        let se = (want * (1.0 - want) / photons).sqrt();
+        println!("{name}: {got:.5} vs {want:.5} ± {se:.5}");
+        assert!(
+            (got - want).abs() < 4.0 * se,
+            "{name}: {got} vs {want} ± {se}"
+        );
+    }
+    let (e, se) = (m[0].irradiance[0], m[0].stderr[0]);
+    println!("receiver irradiance {e:.5} ± {se:.5} vs {want_exit:.5}");
+    assert!((e - want_exit).abs() < 4.0 * se);
+}
+
+/// The camera side of absorption: looking along the rod's axis at an emitter of radiance 1
+/// behind it, every pixel sees the emitter through the slab, so the `emitted` layer's mean is
+/// the slab transmission T (camera paths choose Fresnel reflection or refraction at random;
+/// reflected ones see black). 8 × 8 pixels, 64 samples each: within 4 standard errors of the
+/// pixel mean.
+#[test]
+fn camera_rays_through_an_absorbing_rod_see_the_slab_transmission() {
+    let text = format!(
+        "{ROD}\n[[light]]\ntype = \"quad\"\nvertices = [[-1, -1, 3], [-1, 1, 3], [1, 1, 3], [1, -1, 3]]\n\
+         radiance = [1, 1, 1]\n\n[camera]\nposition = [0, 0, -1]\nlook_at = [0, 0, 1]\n\
+         width = 8\nheight = 8\nfov_y_deg = 8\n"
+    )
+    .replace("receiver_photons = 200000", "spp = 64\ngather = 0\nphotons = 1000\ncaustic_photons = 1000");
+    let scene = parse_scene(Path::new("slab_camera.toml"), text).unwrap();
+    let (film, _) = grinlight::render::render(&scene, 0, &|_| {}, &mut |_, _| Ok(())).unwrap();
+    let px: Vec<f64> = film
+        .layer("emitted")
+        .unwrap()
+        .iter()
+        .map(|p| p[0] as f64)
+        .collect();
+    let mean = px.iter().sum::<f64>() / px.len() as f64;
+    let var = px.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (px.len() - 1) as f64;
+    let se = (var / px.len() as f64).sqrt();
+    let (want, _) = slab(1.5, 1.0);
+    println!("emitted through the rod {mean:.5} ± {se:.5} vs {want:.5}");
+    assert!(
+        (mean - want).abs() < 4.0 * se.max(1e-6),
+        "{mean} vs {want} ± {se}"
     );
 }

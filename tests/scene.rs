@@ -37,6 +37,8 @@ const BAD: &[(&str, usize, usize, &str)] = &[
     ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = -1.0\n", 4, 1, "key `n`: must be > 0"),
     // Zero radius.
     ("[[medium]]\nname = \"l\"\nprofile = \"luneburg\"\nradius = 0.0\n", 4, 1, "key `radius`"),
+    // Negative absorption.
+    ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = 1.5\nabsorption = -0.1\n", 5, 1, "key `absorption`: must be a finite number ≥ 0"),
     // Radial tables: r not from 0, lengths differing, n ≤ 0.
     ("[[medium]]\nname = \"t\"\nprofile = \"radial_table\"\nr = [0.1, 0.2]\nn = [1.5, 1.4]\n", 4, 1, "key `r`: must start at 0"),
     ("[[medium]]\nname = \"t\"\nprofile = \"radial_table\"\nr = [0.0, 0.2, 0.3]\nn = [1.5, 1.4]\n", 5, 1, "key `n`: `r` and `n` need the same number"),

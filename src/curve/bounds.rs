@@ -39,6 +39,36 @@ impl Bounds {
         }
     }
 
+    /// Distance along the straight ray o + t d (d unit) from a point `o` inside to where it
+    /// leaves the region (0 from outside; ∞ unbounded).
+    pub fn exit_distance(&self, o: DVec3, d: DVec3) -> f64 {
+        match *self {
+            Bounds::Unbounded => f64::INFINITY,
+            Bounds::Box { min, max } => {
+                let t = |lo: f64, hi: f64, o: f64, d: f64| {
+                    if d > 0.0 {
+                        (hi - o) / d
+                    } else if d < 0.0 {
+                        (lo - o) / d
+                    } else {
+                        f64::INFINITY
+                    }
+                };
+                (0..3)
+                    .map(|a| t(min[a], max[a], o[a], d[a]))
+                    .fold(f64::INFINITY, f64::min)
+                    .max(0.0)
+            }
+            Bounds::Ball { center, radius } => {
+                // t² + 2bt + c = 0 with c ≤ 0 inside: the positive root.
+                let oc = o - center;
+                let b = oc.dot(d);
+                let c = oc.length_squared() - radius * radius;
+                (-b + (b * b - c).max(0.0).sqrt()).max(0.0)
+            }
+        }
+    }
+
     /// A length scale of the region (for exit-location tolerances).
     pub fn scale(&self) -> f64 {
         match *self {

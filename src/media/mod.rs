@@ -4,11 +4,13 @@
 //! its gradient has units of 1/length. A medium answers `n` and `∇n` together, because every
 //! stepper needs both at the same point.
 
+mod absorbing;
 mod grid;
 mod planar;
 mod radial;
 mod spherical;
 
+pub use absorbing::Absorbing;
 pub use grid::{GridError, GridMedium};
 pub use planar::{ExponentialMedium, LinearMedium, UniformMedium};
 pub use radial::{Axis, ParabolicFiber, RadialTable, SechFiber};

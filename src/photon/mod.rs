@@ -250,28 +250,39 @@ fn trace_photon(
     let fate = 'path: {
         for _ in 0..scene.render.max_depth {
             bent |= medium.is_some_and(|m| !scene.medium_at(m).is_uniform());
-            let (prim, position, normal, direction) =
-                match tracer.next_event_along(origin, dir, medium, stats, path) {
-                    Event::Surface {
-                        prim,
-                        position,
-                        normal,
-                        direction,
-                    } => (prim, position, normal, direction),
-                    Event::Escaped(d) => {
-                        if medium.is_none_or(|m| scene.medium_at(m).is_uniform()) {
-                            path(origin + d * tracer.ball.1);
-                        }
-                        // Escaping from inside a dielectric (the world sphere cuts it) is lost.
-                        break 'path match left_through {
-                            _ if medium != scene.ambient => Fate::Lost,
-                            Some(p) => Fate::OutThrough(p),
-                            None if reflected => Fate::Reflected,
-                            None => Fate::Missed,
-                        };
+            let event = tracer.next_event_along(origin, dir, medium, stats, path);
+            // Absorption on the way, by Russian roulette (photon powers stay equal in size).
+            if let Event::Surface { distance, .. } | Event::Escaped { distance, .. } = event {
+                let kept = tracer.transmittance(medium, origin, distance);
+                if kept < 1.0 && rng.gen::<f64>() >= kept {
+                    break 'path Fate::Absorbed;
+                }
+            }
+            let (prim, position, normal, direction) = match event {
+                Event::Surface {
+                    prim,
+                    position,
+                    normal,
+                    direction,
+                    ..
+                } => (prim, position, normal, direction),
+                Event::Escaped {
+                    direction: d,
+                    distance,
+                } => {
+                    if medium.is_none_or(|m| scene.medium_at(m).is_uniform()) {
+                        path(origin + d * distance.min(tracer.ball.1));
                     }
-                    Event::Lost => break 'path Fate::Lost,
-                };
+                    // Escaping from inside a dielectric (the world sphere cuts it) is lost.
+                    break 'path match left_through {
+                        _ if medium != scene.ambient => Fate::Lost,
+                        Some(p) => Fate::OutThrough(p),
+                        None if reflected => Fate::Reflected,
+                        None => Fate::Missed,
+                    };
+                }
+                Event::Lost => break 'path Fate::Lost,
+            };
             path(position);
             let surface = scene.surfaces[prim];
             let facing = facing(normal, direction);

@@ -49,17 +49,21 @@ pub fn camera_path(
     let mut throughput = Rgb::ONE;
     let mut out = Components::default();
     for _ in 0..scene.render.max_depth {
-        let (prim, position, normal, incoming) = match tracer.next_event(origin, dir, medium, stats)
-        {
+        let event = tracer.next_event(origin, dir, medium, stats);
+        if let Event::Surface { distance, .. } | Event::Escaped { distance, .. } = event {
+            throughput *= tracer.transmittance(medium, origin, distance);
+        }
+        let (prim, position, normal, incoming) = match event {
             Event::Surface {
                 prim,
                 position,
                 normal,
                 direction,
+                ..
             } => (prim, position, normal, direction),
-            Event::Escaped(d) => {
+            Event::Escaped { direction, .. } => {
                 if let (true, Some(env)) = (medium == scene.ambient, &scene.environment) {
-                    out.emitted += throughput * env.radiance(d);
+                    out.emitted += throughput * env.radiance(direction);
                 }
                 return out;
             }
@@ -139,7 +143,10 @@ pub fn direct(tracer: &Tracer, vp: &VisiblePoint, rng: &mut impl Rng) -> Rgb {
             .is_none()
         {
             let weight = power(inc.pdf, cos * FRAC_1_PI);
-            radiance += vp.albedo * FRAC_1_PI * inc.irradiance * (cos * weight);
+            // Absorption along the connection, up to the world sphere for lights beyond it.
+            let length = inc.distance.min(tracer.world.exit_distance(origin, inc.wi));
+            let kept = tracer.transmittance(vp.medium, origin, length);
+            radiance += vp.albedo * FRAC_1_PI * inc.irradiance * (cos * weight * kept);
         }
     }
     // The BSDF sample: f cos θ / pdf = albedo for cosine sampling.
@@ -147,7 +154,9 @@ pub fn direct(tracer: &Tracer, vp: &VisiblePoint, rng: &mut impl Rng) -> Rgb {
     match scene.accel.intersect_ray(origin, d, 0.0, f64::INFINITY) {
         None => {
             if let (true, Some(env)) = (vp.medium == scene.ambient, &scene.environment) {
-                radiance += vp.albedo * env.radiance(d);
+                let kept =
+                    tracer.transmittance(vp.medium, origin, tracer.world.exit_distance(origin, d));
+                radiance += vp.albedo * env.radiance(d) * kept;
             }
         }
         Some((prim, hit)) => {
@@ -161,7 +170,8 @@ pub fn direct(tracer: &Tracer, vp: &VisiblePoint, rng: &mut impl Rng) -> Rgb {
                 {
                     let pdf_light = hit.t * hit.t / (cos_l * emitter.area());
                     let pdf_bsdf = d.dot(vp.normal) * FRAC_1_PI;
-                    radiance += vp.albedo * *le * power(pdf_bsdf, pdf_light);
+                    let kept = tracer.transmittance(vp.medium, origin, hit.t);
+                    radiance += vp.albedo * *le * (power(pdf_bsdf, pdf_light) * kept);
                 }
             }
         }
@@ -197,10 +207,12 @@ pub fn secondary(
                 position,
                 normal,
                 direction,
+                distance,
             } = tracer.next_event(origin, dir, medium, stats)
             else {
                 break;
             };
+            weight *= tracer.transmittance(medium, origin, distance);
             let surface = scene.surfaces[prim];
             match &scene.materials[surface.material] {
                 Material::Diffuse { albedo } => {

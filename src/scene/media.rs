@@ -4,8 +4,8 @@
 use super::table::TableReader;
 use crate::error::Result;
 use crate::media::{
-    Axis, BlackHole, ExponentialMedium, FishEye, GridError, GridMedium, LinearMedium, Luneburg,
-    Medium, ParabolicFiber, RadialTable, SechFiber, UniformMedium,
+    Absorbing, Axis, BlackHole, ExponentialMedium, FishEye, GridError, GridMedium, LinearMedium,
+    Luneburg, Medium, ParabolicFiber, RadialTable, SechFiber, UniformMedium,
 };
 use glam::DVec3;
 
@@ -23,8 +23,28 @@ pub const PROFILES: &[&str] = &[
     "grid",
 ];
 
-/// Reads one `[[medium]]` table (its `name` already taken) and builds the medium.
+/// Reads one `[[medium]]` table (its `name` already taken) and builds the medium, with its
+/// `absorption` coefficient if it has one.
 pub fn read_medium(t: &mut TableReader, dir: &std::path::Path) -> Result<Box<dyn Medium>> {
+    let absorption = t.f64_or("absorption", 0.0)?;
+    t.check(
+        "absorption",
+        absorption.is_finite() && absorption >= 0.0,
+        format!("must be a finite number ≥ 0 (1/length), got {absorption}"),
+    )?;
+    let index = read_profile(t, dir)?;
+    Ok(if absorption > 0.0 {
+        Box::new(Absorbing {
+            inner: index,
+            sigma_a: absorption,
+        })
+    } else {
+        index
+    })
+}
+
+/// The index profile of a `[[medium]]` table.
+fn read_profile(t: &mut TableReader, dir: &std::path::Path) -> Result<Box<dyn Medium>> {
     let profile = t.string("profile")?;
     let fiber_axis = |t: &mut TableReader| -> Result<Axis> {
         Ok(Axis {

@@ -31,12 +31,48 @@ pub enum Event {
         normal: DVec3,
         /// Unit direction of arrival.
         direction: DVec3,
+        /// Path length from the origin to the hit (scene units).
+        distance: f64,
     },
-    /// The ray left the world in this direction.
-    Escaped(DVec3),
+    /// The ray left the world sphere.
+    Escaped {
+        /// Unit direction when leaving.
+        direction: DVec3,
+        /// Path length from the origin to the world sphere (scene units).
+        distance: f64,
+    },
     /// The ray ended without reaching a surface or escaping: captured, out of steps, or lost
     /// inside an object it should have left (reported in the statistics).
     Lost,
+}
+
+impl Event {
+    /// The same event reached `extra` farther along the path (a march restarted part way).
+    fn farther(self, extra: f64) -> Self {
+        match self {
+            Event::Surface {
+                prim,
+                position,
+                normal,
+                direction,
+                distance,
+            } => Event::Surface {
+                prim,
+                position,
+                normal,
+                direction,
+                distance: distance + extra,
+            },
+            Event::Escaped {
+                direction,
+                distance,
+            } => Event::Escaped {
+                direction,
+                distance: distance + extra,
+            },
+            Event::Lost => Event::Lost,
+        }
+    }
 }
 
 /// A ray leaving a specular surface (mirror or dielectric).
@@ -205,10 +241,23 @@ impl<'a> Tracer<'a> {
                         position: origin + h.t * dir,
                         normal: h.normal,
                         direction: dir,
+                        distance: h.t,
                     },
-                    None => Event::Escaped(dir),
+                    None => Event::Escaped {
+                        direction: dir,
+                        distance: self.world.exit_distance(origin, dir),
+                    },
                 }
             }
+        }
+    }
+
+    /// The fraction exp(−σa·distance) of light kept over a path of `distance` in `medium`
+    /// starting at `at` (σa is constant per medium: see [`crate::media::Absorbing`]).
+    pub fn transmittance(&self, medium: Option<usize>, at: DVec3, distance: f64) -> f64 {
+        match medium.map(|m| self.scene.medium_at(m).absorption(at)) {
+            Some(sigma_a) if sigma_a > 0.0 => (-sigma_a * distance).exp(),
+            _ => 1.0,
         }
     }
 
@@ -232,6 +281,7 @@ impl<'a> Tracer<'a> {
                 position,
                 normal,
                 direction,
+                ..
             } = self.next_event(origin, dir, medium, &mut stats)
             else {
                 return None;
@@ -272,7 +322,7 @@ impl<'a> Tracer<'a> {
         stats.curved_steps += out.steps;
         stats.record_end(out.reason);
         match (event, out.reason) {
-            (Some((event, before, len)), _) => {
+            (Some((event, before, before_s, len)), _) => {
                 // The step that met a surface, taken again in 16 fixed sub-steps: the hit of
                 // a mean-force arc errs by O(len² |∇F|) in position and direction, which the
                 // step control does not bound (it controls the stepper's end point). With
@@ -287,23 +337,25 @@ impl<'a> Tracer<'a> {
                 };
                 let fine = StepControl::Fixed { step: len / 16.0 };
                 match self.march_to_surface(medium, fine, before, &sub, &mut |_| {}) {
-                    (Some((refined, _, _)), r) => {
+                    (Some((refined, _, _, _)), r) => {
                         stats.curved_steps += r.steps;
-                        refined
+                        refined.farther(before_s)
                     }
                     _ => event,
                 }
             }
-            (None, Termination::LeftBounds | Termination::LengthReached) => {
-                Event::Escaped(out.state.direction)
-            }
+            (None, Termination::LeftBounds | Termination::LengthReached) => Event::Escaped {
+                direction: out.state.direction,
+                distance: out.arclength,
+            },
             (None, _) => Event::Lost,
         }
     }
 
-    /// Marches from `start` until an accepted step's path meets a surface: the event, the
-    /// state before that step and the step's length, with the march's outcome. `path` is
-    /// shown each accepted point before the hit.
+    /// Marches from `start` until an accepted step's path meets a surface: the event (its
+    /// distance the arclength from `start`), the state before that step, its arclength and
+    /// the step's length, with the march's outcome. `path` is shown each accepted point
+    /// before the hit.
     fn march_to_surface(
         &self,
         medium: &dyn crate::media::Medium,
@@ -311,7 +363,7 @@ impl<'a> Tracer<'a> {
         start: RayState,
         limits: &MarchLimits,
         path: &mut dyn FnMut(DVec3),
-    ) -> (Option<(Event, RayState, f64)>, MarchOutcome) {
+    ) -> (Option<(Event, RayState, f64, f64)>, MarchOutcome) {
         let accel = &self.scene.accel;
         let mut prev = start;
         let mut prev_s = 0.0;
@@ -342,8 +394,9 @@ impl<'a> Tracer<'a> {
                         position: p.position,
                         normal: h.normal,
                         direction: p.direction,
+                        distance: prev_s + h.t,
                     };
-                    hit = Some((event, prev, len));
+                    hit = Some((event, prev, prev_s, len));
                     return ControlFlow::Break(());
                 }
                 let arc_end = seg.at(len).position;
@@ -358,8 +411,9 @@ impl<'a> Tracer<'a> {
                             position: arc_end + h.t * gap / gap_len,
                             normal: h.normal,
                             direction: st.direction,
+                            distance: s + h.t,
                         };
-                        hit = Some((event, prev, len));
+                        hit = Some((event, prev, prev_s, len));
                         return ControlFlow::Break(());
                     }
                 }
