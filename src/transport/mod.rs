@@ -46,35 +46,6 @@ pub enum Event {
     Lost,
 }
 
-impl Event {
-    /// The same event reached `extra` farther along the path (a march restarted part way).
-    fn farther(self, extra: f64) -> Self {
-        match self {
-            Event::Surface {
-                prim,
-                position,
-                normal,
-                direction,
-                distance,
-            } => Event::Surface {
-                prim,
-                position,
-                normal,
-                direction,
-                distance: distance + extra,
-            },
-            Event::Escaped {
-                direction,
-                distance,
-            } => Event::Escaped {
-                direction,
-                distance: distance + extra,
-            },
-            Event::Lost => Event::Lost,
-        }
-    }
-}
-
 /// A ray leaving a specular surface (mirror or dielectric).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Bounce {
@@ -264,9 +235,9 @@ impl<'a> Tracer<'a> {
     /// Follows the principal ray from `origin` along unit `dir` in `medium`: at each dielectric
     /// the likelier branch (reflected where the Fresnel reflectance exceeds 1/2, as under total
     /// internal reflection, refracted otherwise), reflected by mirrors, until it crosses a
-    /// receiver's detector. Returns the crossing point and the number of
-    /// surfaces met before it; None when the ray escapes, is lost, reaches a diffuse or
-    /// emissive surface, or has met `max_events` surfaces.
+    /// receiver's detector. Returns the crossing point and the number of surfaces met before
+    /// it; None when the ray escapes, is lost, reaches a diffuse or emissive surface, or has
+    /// met `max_events` surfaces.
     pub fn principal_ray(
         &self,
         mut origin: DVec3,
@@ -337,9 +308,13 @@ impl<'a> Tracer<'a> {
                 };
                 let fine = StepControl::Fixed { step: len / 16.0 };
                 match self.march_to_surface(medium, fine, before, &sub, &mut |_| {}) {
-                    (Some((refined, _, _, _)), r) => {
+                    (Some((mut refined, _, _, _)), r) => {
                         stats.curved_steps += r.steps;
-                        refined.farther(before_s)
+                        // Its distance counts from `before`.
+                        if let Event::Surface { distance, .. } = &mut refined {
+                            *distance += before_s;
+                        }
+                        refined
                     }
                     _ => event,
                 }
