@@ -108,6 +108,9 @@ enum Command {
     },
 }
 
+/// The most photon paths `render --paths` draws.
+const MAX_PATHS: u64 = 10_000;
+
 /// `grinlight render` options; each overrides the scene's `[render]` / `[camera]` key.
 #[derive(clap::Args)]
 struct RenderArgs {
@@ -158,8 +161,8 @@ struct RenderArgs {
     /// Photons traced for the scene's receivers.
     #[arg(long)]
     receiver_photons: Option<u64>,
-    /// Also draw the paths of the first N receiver photons through the scene's GRIN fiber,
-    /// with its index profile and the first receiver's irradiance (seed 004 fig. 5), as
+    /// Also draw the paths of the first N (≤ 10000) receiver photons through the scene's GRIN
+    /// fiber, with its index profile and the first receiver's irradiance (seed 004 fig. 5), as
     /// <output stem>.paths.png.
     #[arg(long)]
     paths: Option<u64>,
@@ -324,6 +327,12 @@ fn render(args: RenderArgs) -> Result<()> {
             PathBuf::from(scene_path.file_stem().unwrap_or_default()).with_extension("exr")
         });
     let paths = args.paths.unwrap_or(0);
+    if paths > MAX_PATHS {
+        return Err(Error::Usage(format!(
+            "--paths {paths}: a figure shows at most {MAX_PATHS} paths (each is kept in memory)"
+        ))
+        .into());
+    }
     if paths > 0 && scene.receivers.is_empty() {
         return Err(Error::Usage(format!(
             "{}: --paths shows the paths with a receiver's irradiance: the scene has no [[receiver]]",

@@ -164,8 +164,8 @@ fn bad_input_fails_with_a_message_and_no_panic() {
 }
 
 /// `render --paths N` on the fiber writes the receiver files and the three-panel figure, whose
-/// middle panel holds the drawn paths; the energy budget is printed; without a receiver,
-/// `--paths` is refused with a message.
+/// middle panel holds the drawn paths; the energy budget is printed; without a receiver, or
+/// for more paths than a figure can hold, `--paths` is refused with a message.
 #[test]
 fn render_paths_draws_the_fiber_figure() {
     let exr = temp("fiber.exr");
@@ -216,4 +216,7 @@ fn render_paths_draws_the_fiber_figure() {
     let out = grinlight(&["render", "scenes/cornell_diffuse.toml", "--paths", "3"]);
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("no [[receiver]]"));
+    let out = grinlight(&["render", "scenes/fiber_led.toml", "--paths", "100000"]);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("at most 10000 paths"));
 }
