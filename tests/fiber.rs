@@ -579,3 +579,32 @@ fn camera_rays_through_an_absorbing_rod_see_the_slab_transmission() {
         "{mean} vs {want} ± {se}"
     );
 }
+
+/// A layering finer than the default profile sampling (4000 samples) is honoured — 10⁴
+/// layers at most 0.05 µm wide; layers of Δn = 10⁻⁶ spanning no more than that plus one
+/// sample's change — and one that would need over 10⁵ layers is refused with a message
+/// instead of silently coarsened.
+#[test]
+fn fine_layerings_are_honoured_or_refused() {
+    let load = || load_scene(Path::new("scenes/fiber_led.toml")).unwrap();
+    let layers = load().layer_fiber(1.0, 5e-5).unwrap();
+    let widest = layers.iter().map(|l| l.outer - l.inner).fold(0.0, f64::max);
+    assert_eq!(layers.len(), 10_000);
+    assert!(widest <= 5e-5 * (1.0 + 1e-9), "{widest}");
+    // Each layer spans at most Δn of the profile n = 1.5 (1 − 0.10667 r²/2), plus one sample's
+    // change: ≤ Δn/4 at the steepest slope, which is estimated from 4000 samples (at the wall
+    // 1/8000 low, so allow 1e-3 on the quarter).
+    let layers = load().layer_fiber(1e-6, f64::INFINITY).unwrap();
+    let n = |r: f64| 1.5 * (1.0 - 0.5 * 0.10667 * r * r);
+    let span = layers
+        .iter()
+        .map(|l| n(l.inner) - n(l.outer))
+        .fold(0.0, f64::max);
+    println!("{} layers, widest index span {span:e}", layers.len());
+    assert!(
+        span <= 1e-6 * (1.0 + 0.25 * (1.0 + 1e-3)),
+        "widest index span {span}"
+    );
+    let err = load().layer_fiber(1.0, 1e-6).unwrap_err().to_string();
+    assert!(err.contains("would make over 100000 layers"), "{err}");
+}

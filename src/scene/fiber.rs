@@ -83,10 +83,13 @@ impl Scene {
     /// Replaces the scene's GRIN fiber — the capped cylinder whose interior is a non-uniform
     /// medium — by concentric homogeneous cylinders in optical contact (seed 004 §5): a new
     /// layer wherever the index along a radius has changed by `dn` since the layer's start
-    /// or the layer is `max_width` wide (∞: no limit; see below), each with the area-weighted mean of the profile over its annulus, each layer a tube
-    /// (a dielectric between it and the next layer out) with annular end faces. The index is
-    /// read along one radius at mid-length, so the profile must be radial (parabolic, sech,
-    /// or a radial grid). Returns the layers, innermost first.
+    /// or the layer is `max_width` wide (∞: no limit; see below), each with the area-weighted
+    /// mean of the profile over its annulus, each layer a tube (a dielectric between it and
+    /// the next layer out) with annular end faces. The index is read along one radius at
+    /// mid-length, so the profile must be radial (parabolic, sech, a radial table, or a radial
+    /// grid), at ≥ 4 samples per layer (so no layer is coarser than asked); a layering that
+    /// would need over 4·10⁵ samples (10⁵ layers) is refused. Returns the layers, innermost
+    /// first.
     ///
     /// Layers of equal Δn are wide where the profile is flat — near the axis of a parabolic
     /// fiber the first is R·√(Δn/Δn_total) wide — and a ray inside a homogeneous layer feels
@@ -108,11 +111,29 @@ impl Scene {
         let fiber = self
             .grin_fiber()
             .ok_or_else(|| usage("no cylinder filled with a gradient medium to layer"))?;
-        // The index along one radius, finely sampled.
-        let samples = 4000;
-        let profile = fiber
-            .profile(self, samples)
-            .ok_or_else(|| usage("the fiber's index is singular inside it"))?;
+        // The index along one radius, finely sampled: ≥ 4 samples per layer of either limit.
+        let singular = || usage("the fiber's index is singular inside it");
+        let coarse = fiber.profile(self, 4000).ok_or_else(singular)?;
+        // The steepest change of n from the axis to the wall, as if it held everywhere.
+        let steepest = 4000.0
+            * coarse
+                .windows(2)
+                .map(|w| (w[1].1 - w[0].1).abs())
+                .fold(0.0, f64::max);
+        let wanted = (4.0 * steepest / dn).max(4.0 * fiber.radius / max_width);
+        const MAX_SAMPLES: f64 = 4e5;
+        if wanted > MAX_SAMPLES {
+            return Err(usage(&format!(
+                "Δn {dn} and largest width {max_width} would make over {} layers",
+                MAX_SAMPLES / 4.0
+            )));
+        }
+        let samples = (wanted.ceil() as usize).max(4000);
+        let profile = if samples == 4000 {
+            coarse
+        } else {
+            fiber.profile(self, samples).ok_or_else(singular)?
+        };
         let GrinFiber {
             base,
             axis,
