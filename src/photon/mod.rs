@@ -30,6 +30,7 @@ use crate::sampling::{cosine_hemisphere, stream, Frame, Purpose};
 use crate::transport::{facing, offset, Event, Stats, Tracer};
 use glam::DVec3;
 use rand::Rng;
+use rand_pcg::Pcg64Mcg;
 use rayon::prelude::*;
 
 /// Photons per chunk of parallel work.
@@ -152,10 +153,9 @@ pub fn shoot(
             let mut stored = Sink::default();
             let mut stats = Stats::default();
             for i in c * CHUNK..((c + 1) * CHUNK).min(count) {
-                let mut rng = stream(tracer.scene.render.seed, purpose, pass, i);
-                let u = [rng.gen(), rng.gen(), rng.gen(), rng.gen(), rng.gen()];
+                let (mut rng, emission) = launch(tracer, sources, purpose, pass, i);
                 stats.photons_emitted += 1;
-                if let Some(e) = sources.emit(tracer, u) {
+                if let Some(e) = emission {
                     let photon = Tagged {
                         index: i,
                         count,
@@ -186,6 +186,21 @@ pub fn shoot(
     (sink, stats)
 }
 
+/// Photon `i` of pass `pass` of a batch: its random stream, advanced past its emission, and
+/// the emission (None where the chosen source emits nothing for these numbers).
+fn launch(
+    tracer: &Tracer,
+    sources: &Sources,
+    purpose: Purpose,
+    pass: u64,
+    i: u64,
+) -> (Pcg64Mcg, Option<Emission>) {
+    let mut rng = stream(tracer.scene.render.seed, purpose, pass, i);
+    let u = [rng.gen(), rng.gen(), rng.gen(), rng.gen(), rng.gen()];
+    let emission = sources.emit(tracer, u);
+    (rng, emission)
+}
+
 /// A photon's place in its batch.
 #[derive(Clone, Copy)]
 struct Tagged {
@@ -206,9 +221,8 @@ pub fn photon_paths(tracer: &Tracer, sources: &Sources, pass: u64, count: u64) -
         return paths;
     }
     for i in 0..count {
-        let mut rng = stream(tracer.scene.render.seed, Purpose::ReceiverPhotons, pass, i);
-        let u = [rng.gen(), rng.gen(), rng.gen(), rng.gen(), rng.gen()];
-        if let Some(e) = sources.emit(tracer, u) {
+        let (mut rng, emission) = launch(tracer, sources, Purpose::ReceiverPhotons, pass, i);
+        if let Some(e) = emission {
             let tag = Tagged {
                 index: i,
                 count,
