@@ -1,5 +1,5 @@
 //! Compares `scenes/cornell_diffuse.toml` with the independent reference in
-//! `../shared/refs/` at a chosen size and sampling, and prints the mean ratio over the image
+//! `refs/` at a chosen size and sampling, and prints the mean ratio over the image
 //! and the worst 16×16-block ratios.
 //!
 //! `cargo run --release --example cornell_check -- [WIDTH] [SPP] [PHOTONS] [GATHER] [PASSES] [KNN]`
@@ -26,7 +26,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let (film, report) = grinlight::render::render(&scene, 0, &|_| {}, &mut |_, _| Ok(()))?;
     let seconds = t.elapsed().as_secs_f64();
     let (rw, rh, reference) = read_exr_layer(
-        Path::new("../shared/refs/cornell_diffuse.reference.exr"),
+        Path::new("refs/cornell_diffuse.reference.exr"),
         None,
     )?;
     let reference = downsample(&reference, rw, rh, rw / width);

@@ -1,4 +1,4 @@
-//! The pinhole / thin-lens camera, in the conventions of `../shared/refs/README.md`:
+//! The pinhole / thin-lens camera, in the conventions of `refs/README.md`:
 //! f = normalize(look_at − position), r = normalize(f × up), u′ = r × f; for pixel (px, py),
 //! py = 0 the top row, and a sample (u, v) ∈ [0,1)²:
 //! x = (2(px+u)/W − 1)·tan(fov_y/2)·W/H, y = (1 − 2(py+v)/H)·tan(fov_y/2),

@@ -73,7 +73,7 @@ fn cornell_diffuse_matches_the_reference() {
     (camera.width, camera.height) = (128, 128);
     let film = render(&scene, 0);
     let (rw, rh, reference) = read_exr_layer(
-        Path::new("../shared/refs/cornell_diffuse.reference.exr"),
+        Path::new("refs/cornell_diffuse.reference.exr"),
         None,
     )
     .unwrap();
