@@ -29,7 +29,7 @@ fn run(
     scene.render.passes = u32::MAX;
     scene.render.time_budget = Some(seconds);
     let t = std::time::Instant::now();
-    let (film, report) = grinlight::render::render(&scene, 0, &|_| {}, &mut |_, _| Ok(()))?;
+    let (film, report) = grinlight::render::render(&scene, 0, &())?;
     Ok((film, t.elapsed().as_secs_f64(), report.passes))
 }
 

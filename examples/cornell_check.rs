@@ -23,12 +23,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let camera = scene.camera.as_mut().ok_or("no camera")?;
     (camera.width, camera.height) = (width as u32, width as u32);
     let t = std::time::Instant::now();
-    let (film, report) = grinlight::render::render(&scene, 0, &|_| {}, &mut |_, _| Ok(()))?;
+    let (film, report) = grinlight::render::render(&scene, 0, &())?;
     let seconds = t.elapsed().as_secs_f64();
-    let (rw, rh, reference) = read_exr_layer(
-        Path::new("refs/cornell_diffuse.reference.exr"),
-        None,
-    )?;
+    let (rw, rh, reference) =
+        read_exr_layer(Path::new("refs/cornell_diffuse.reference.exr"), None)?;
     let reference = downsample(&reference, rw, rh, rw / width);
     let beauty = film.layer("beauty").ok_or("no beauty")?;
     let (overall, blocks) = mean_ratios(beauty, &reference, width, 16);

@@ -27,7 +27,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         scene.render.control = control;
         scene.render.receiver_photons = photons;
         let t = Instant::now();
-        let (m, _, _) = grinlight::render::measure(&scene, threads, 0)?;
+        let (m, _, _) = grinlight::render::measure(&scene, threads, 0, &())?;
         Ok((
             m.into_iter().next().ok_or("no receiver")?,
             t.elapsed().as_secs_f64(),

@@ -29,6 +29,9 @@ pub enum Error {
     /// A command-line argument is invalid.
     #[error("{0}")]
     Usage(String),
+    /// The run was interrupted (a signal) before it could produce its result.
+    #[error("interrupted: {0}")]
+    Interrupted(String),
     /// An image could not be encoded.
     #[error("{path}: {message}")]
     Image {

@@ -76,7 +76,8 @@ impl Film {
             .map(|i| self.planes[i].as_slice())
     }
 
-    /// Writes every layer into one EXR file (32-bit float, channels R, G, B per layer).
+    /// Writes every layer into one EXR file (32-bit float, channels R, G, B per layer),
+    /// atomically (see [`crate::output::write_atomic`]).
     pub fn write_exr(&self, path: &Path) -> Result<()> {
         let size = Vec2(self.width, self.height);
         let layer = |i: usize| {
@@ -97,9 +98,11 @@ impl Film {
             ImageAttributes::new(IntegerBounds::from_dimensions(size)),
             layers,
         );
-        image.write().to_file(path).map_err(|e| Error::Image {
-            path: path.to_path_buf(),
-            message: e.to_string(),
+        crate::output::write_atomic(path, |tmp| {
+            image.write().to_file(tmp).map_err(|e| Error::Image {
+                path: path.to_path_buf(),
+                message: e.to_string(),
+            })
         })
     }
 

@@ -61,9 +61,12 @@ pub fn canvas(width: u32, height: u32) -> RgbImage {
 
 /// Writes `img` as PNG.
 pub fn save(img: &RgbImage, path: &Path) -> Result<()> {
-    img.save(path).map_err(|e| Error::Image {
-        path: path.to_path_buf(),
-        message: e.to_string(),
+    crate::output::write_atomic(path, |tmp| {
+        img.save_with_format(tmp, image::ImageFormat::Png)
+            .map_err(|e| Error::Image {
+                path: path.to_path_buf(),
+                message: e.to_string(),
+            })
     })
 }
 

@@ -4,7 +4,7 @@
 //! crossing photon's flux (for a white source, its power per channel), in W, and reports
 //! irradiance per bin in W per scene-unit² (W/mm² when the scene is in millimetres).
 
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::plot::{canvas, save, text, Color, Panel, PALETTE};
 use crate::shapes::Primitive;
 use glam::DVec3;
@@ -185,7 +185,7 @@ pub fn write_csv(rec: &Receiver, m: &Measurement, path: &Path) -> Result<()> {
         let (x, y) = rec.bin_center(k);
         out += &format!("{x:.6e},{y:.6e},{e:.6e},{se:.6e}\n");
     }
-    std::fs::write(path, out).map_err(|e| Error::io(path, e))
+    crate::output::write_text(path, &out)
 }
 
 /// Writes `r,irradiance,stderr` of [`radial_profile`].
@@ -194,7 +194,7 @@ pub fn write_radial_csv(profile: &[(f64, f64, f64)], path: &Path) -> Result<()> 
     for (r, e, se) in profile {
         out += &format!("{r:.6e},{e:.6e},{se:.6e}\n");
     }
-    std::fs::write(path, out).map_err(|e| Error::io(path, e))
+    crate::output::write_text(path, &out)
 }
 
 /// A colour for t ∈ [0, 1]: black → purple → orange → pale yellow (an "inferno"-like ramp).

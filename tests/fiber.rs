@@ -9,7 +9,7 @@ fn flux(tolerance: f64, photons: u64) -> (f64, f64) {
     let mut scene = load_scene(Path::new("scenes/fiber_led.toml")).unwrap();
     scene.render.control = grinlight::curve::StepControl::Adaptive { tolerance };
     scene.render.receiver_photons = photons;
-    let (m, _, report) = grinlight::render::measure(&scene, 0, 0).unwrap();
+    let (m, _, report) = grinlight::render::measure(&scene, 0, 0, &()).unwrap();
     assert_eq!(report.stats.photons_emitted, photons);
     m[0].flux
 }
@@ -32,7 +32,7 @@ fn receiver_flux_does_not_depend_on_the_step_tolerance() {
 }
 
 fn measure(scene: &grinlight::scene::Scene, pass: u64) -> grinlight::receiver::Measurement {
-    grinlight::render::measure(scene, 0, pass)
+    grinlight::render::measure(scene, 0, pass, &())
         .unwrap()
         .0
         .remove(0)
@@ -219,7 +219,7 @@ fn energy_budget_of_the_fiber() {
     let mut scene = parse_scene(Path::new("scenes/fiber_led.toml"), short).unwrap();
     let photons = 200_000;
     scene.render.receiver_photons = photons;
-    let (m, budget, _) = grinlight::render::measure(&scene, 0, 0).unwrap();
+    let (m, budget, _) = grinlight::render::measure(&scene, 0, 0, &()).unwrap();
     let power = 0.01;
     assert!(
         (budget.emitted - power).abs() <= 1e-12 * power,
@@ -421,7 +421,7 @@ fn the_layered_twin_loses_no_photon() {
     assert_eq!(layers.len(), 50);
     assert_eq!(twin.render.max_depth, 100_000 * 101);
     twin.render.receiver_photons = 5000;
-    let (_, budget, report) = grinlight::render::measure(&twin, 0, 0).unwrap();
+    let (_, budget, report) = grinlight::render::measure(&twin, 0, 0, &()).unwrap();
     println!("{budget:?}");
     assert_eq!(report.stats.depth_limited, 0);
     assert_eq!((budget.lost, budget.absorbed), (0.0, 0.0));
@@ -509,7 +509,7 @@ fn absorption_in_a_rod_follows_the_slab_formula() {
     assert_ne!(curved, ROD);
     for text in [ROD.to_string(), curved] {
         let scene = parse_scene(Path::new("slab.toml"), text).unwrap();
-        let (m, budget, _) = grinlight::render::measure(&scene, 0, 0).unwrap();
+        let (m, budget, _) = grinlight::render::measure(&scene, 0, 0, &()).unwrap();
         assert!((budget.booked() - budget.emitted).abs() <= 1e-12 * budget.emitted);
         assert_eq!(budget.lost, 0.0);
         let face = budget.emitted - budget.missed;
@@ -562,7 +562,7 @@ fn camera_rays_through_an_absorbing_rod_see_the_slab_transmission() {
     )
     .replace("receiver_photons = 200000", "spp = 64\ngather = 0\nphotons = 1000\ncaustic_photons = 1000");
     let scene = parse_scene(Path::new("slab_camera.toml"), text).unwrap();
-    let (film, _) = grinlight::render::render(&scene, 0, &|_| {}, &mut |_, _| Ok(())).unwrap();
+    let (film, _) = grinlight::render::render(&scene, 0, &()).unwrap();
     let px: Vec<f64> = film
         .layer("emitted")
         .unwrap()

@@ -8,9 +8,7 @@ use std::f64::consts::PI;
 use std::path::Path;
 
 fn render(scene: &grinlight::scene::Scene, threads: usize) -> grinlight::film::Film {
-    grinlight::render::render(scene, threads, &|_| {}, &mut |_, _| Ok(()))
-        .unwrap()
-        .0
+    grinlight::render::render(scene, threads, &()).unwrap().0
 }
 
 /// A black (albedo 0) disk of radius R at distance h below a source: photons are stored at
@@ -39,7 +37,7 @@ fn photon_flux_onto_a_disk_matches_the_closed_form() {
         let scene = parse_scene(Path::new("flux.toml"), format!("{receiver}{light}")).unwrap();
         let tracer = Tracer::new(&scene);
         let sources = Sources::new(&tracer);
-        let (sink, stats) = shoot(&tracer, &sources, Batch::Global, 0, 200_000);
+        let (sink, stats) = shoot(&tracer, &sources, Batch::Global, 0, 200_000, &|| false);
         let photons = sink.photons;
         assert_eq!(stats.photons_emitted, 200_000);
         let sum = photons.iter().fold([0.0f64; 3], |acc, p| {
@@ -72,11 +70,8 @@ fn cornell_diffuse_matches_the_reference() {
     let camera = scene.camera.as_mut().unwrap();
     (camera.width, camera.height) = (128, 128);
     let film = render(&scene, 0);
-    let (rw, rh, reference) = read_exr_layer(
-        Path::new("refs/cornell_diffuse.reference.exr"),
-        None,
-    )
-    .unwrap();
+    let (rw, rh, reference) =
+        read_exr_layer(Path::new("refs/cornell_diffuse.reference.exr"), None).unwrap();
     let reference = downsample(&reference, rw, rh, rw / 128);
     let (overall, blocks) = mean_ratios(film.layer("beauty").unwrap(), &reference, 128, 16);
     let worst = blocks.iter().map(|r| (r - 1.0).abs()).fold(0.0, f64::max);

@@ -29,7 +29,10 @@ fn nothing_reaches_outside_the_repository() {
         .iter()
         .filter(|p| std::fs::read_to_string(p).is_ok_and(|t| t.contains(&needle)))
         .collect();
-    assert!(offenders.is_empty(), "{offenders:?} point outside the repository");
+    assert!(
+        offenders.is_empty(),
+        "{offenders:?} point outside the repository"
+    );
     // The reference the render tests compare with is in the repository.
     assert!(Path::new("refs/cornell_diffuse.reference.exr").is_file());
 }

@@ -92,7 +92,7 @@ const BAD: &[(&str, usize, usize, &str)] = &[
     // Shape: negative radius, unknown material, missing mesh file, non-parallelogram quad.
     ("[[material]]\nname = \"m\"\ntype = \"diffuse\"\nalbedo = [0.5, 0.5, 0.5]\n[[shape]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = -1\nmaterial = \"m\"\n", 8, 1, "key `radius`: must be > 0"),
     ("[[shape]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"nope\"\n", 5, 1, "no material named 'nope'"),
-    ("[[shape]]\ntype = \"mesh\"\nfile = \"no_such_mesh.obj\"\nmaterial = \"m\"\n", 3, 1, "cannot load"),
+    ("[[shape]]\ntype = \"mesh\"\nfile = \"no_such_mesh.obj\"\nmaterial = \"m\"\n", 3, 1, "cannot read scenes/no_such_mesh.obj"),
     ("[[shape]]\ntype = \"quad\"\nvertices = [[0,0,0],[1,0,0],[1,2,0],[0,1,0]]\nmaterial = \"m\"\n", 3, 1, "not a parallelogram"),
     // Light: zero-area quad, missing environment file, LED with negative power, unknown type.
     ("[[light]]\ntype = \"quad\"\nvertices = [[0,0,0],[1,0,0],[2,0,0],[1,0,0]]\nradiance = [1, 1, 1]\n", 3, 1, "zero area"),

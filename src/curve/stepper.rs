@@ -21,9 +21,20 @@ impl RayState {
     pub fn new<M: Medium + ?Sized>(medium: &M, position: DVec3, direction: DVec3) -> Option<Self> {
         Some(Self {
             position,
-            direction: direction.normalize(),
+            direction: unit(direction),
             index: medium.sample(position)?,
         })
+    }
+}
+
+/// `v` normalised; a vector whose squared length overflows or underflows (1e300, 1e300, 0)
+/// is scaled by its largest component first.
+fn unit(v: DVec3) -> DVec3 {
+    let l2 = v.length_squared();
+    if l2.is_finite() && l2 >= f64::MIN_POSITIVE {
+        v.normalize()
+    } else {
+        (v / v.abs().max_element()).normalize()
     }
 }
 

@@ -22,6 +22,9 @@ pub enum GridError {
     /// Each axis needs at least two nodes.
     #[error("dims must be at least 2 along every axis, got {0:?}")]
     TooFewNodes([usize; 3]),
+    /// The node count nx·ny·nz does not fit in memory's address space.
+    #[error("dims {0:?} hold more nodes than can be addressed")]
+    TooManyNodes([usize; 3]),
     /// The value count does not match the node count.
     #[error("expected {expected} values (dims product), got {got}")]
     WrongCount {
@@ -57,7 +60,10 @@ impl GridMedium {
         if !(min.cmplt(max).all()) {
             return Err(GridError::EmptyBox);
         }
-        let expected = dims[0] * dims[1] * dims[2];
+        let expected = dims[0]
+            .checked_mul(dims[1])
+            .and_then(|n| n.checked_mul(dims[2]))
+            .ok_or(GridError::TooManyNodes(dims))?;
         if values.len() != expected {
             return Err(GridError::WrongCount {
                 expected,

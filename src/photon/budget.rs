@@ -63,6 +63,18 @@ impl Budget {
         self.lost += other.lost;
     }
 
+    /// Multiplies every entry by `factor` (a batch's share traced, to its full power).
+    pub fn scale(&mut self, factor: f64) {
+        self.emitted *= factor;
+        for w in self.out_through.values_mut() {
+            *w *= factor;
+        }
+        self.reflected *= factor;
+        self.missed *= factor;
+        self.absorbed *= factor;
+        self.lost *= factor;
+    }
+
     /// The sum of all fates (equal to `emitted` up to rounding).
     pub fn booked(&self) -> f64 {
         self.out_through.values().sum::<f64>()
@@ -70,5 +82,35 @@ impl Budget {
             + self.missed
             + self.absorbed
             + self.lost
+    }
+
+    /// Where the power went, one line per fate with its share; `primitives` name the faces
+    /// of [`Fate::OutThrough`].
+    pub fn table(&self, primitives: &[crate::shapes::Primitive]) -> String {
+        let share = |w: f64| 100.0 * w / self.emitted.max(f64::MIN_POSITIVE);
+        let mut lines = vec![format!(
+            "energy budget: emitted {:.6e} W, booked {:.6e} W",
+            self.emitted,
+            self.booked()
+        )];
+        for (&p, &w) in &self.out_through {
+            lines.push(format!(
+                "  {w:.6e} W ({:6.3} %) left through {}",
+                share(w),
+                primitives[p]
+            ));
+        }
+        for (name, w) in [
+            ("reflected without entering a dielectric", self.reflected),
+            ("missed every specular surface", self.missed),
+            ("absorbed", self.absorbed),
+            (
+                "lost (captured, out of steps or cut at max_depth)",
+                self.lost,
+            ),
+        ] {
+            lines.push(format!("  {w:.6e} W ({:6.3} %) {name}", share(w)));
+        }
+        lines.join("\n")
     }
 }

@@ -131,13 +131,17 @@ pub struct Sink {
 }
 
 /// Traces `count` photons of pass `pass` and returns what they left, in photon order, with
-/// the transport statistics. Runs on the current rayon pool.
+/// the transport statistics. Runs on the current rayon pool. Once `stop` answers true, chunks
+/// not yet started are skipped: the photons traced are then a subset of whole chunks,
+/// counted in the statistics' `photons_emitted` (their powers stay those of a batch of
+/// `count`).
 pub fn shoot(
     tracer: &Tracer,
     sources: &Sources,
     batch: Batch,
     pass: u64,
     count: u64,
+    stop: &(dyn Fn() -> bool + Sync),
 ) -> (Sink, Stats) {
     if sources.is_empty() || count == 0 {
         return (Sink::default(), Stats::default());
@@ -152,6 +156,9 @@ pub fn shoot(
         .map(|c| {
             let mut stored = Sink::default();
             let mut stats = Stats::default();
+            if stop() {
+                return (stored, stats);
+            }
             for i in c * CHUNK..((c + 1) * CHUNK).min(count) {
                 let (mut rng, emission) = launch(tracer, sources, purpose, pass, i);
                 stats.photons_emitted += 1;

@@ -37,14 +37,56 @@ const TILE: usize = 16;
 /// photons kept per pass.
 pub const ALPHA: f64 = 2.0 / 3.0;
 
-/// What the render reports as it goes.
-#[derive(Clone, Copy, Debug)]
+/// What a render or a measurement reports as it goes.
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Progress {
+    /// A receiver measurement starts: photons to trace, receivers.
+    Measuring {
+        /// Photons to trace.
+        photons: u64,
+        /// Receivers measured.
+        receivers: usize,
+    },
+    /// A camera render starts.
+    Rendering {
+        /// Camera tiles per pass.
+        tiles: u64,
+        /// Passes to render (None: as many as the time budget allows).
+        passes: Option<u32>,
+        /// Seconds after which no new pass starts.
+        time_budget: Option<f64>,
+    },
     /// A pass starts (0-based), with its photon pass.
     Pass(u32),
     /// One camera tile of the current pass is done.
     Tile,
+    /// The render or measurement has ended.
+    Done,
 }
+
+/// Who watches a render or a measurement: told of its progress and of every finished pass,
+/// and asked whether to stop. `()` watches nothing and never stops.
+pub trait Observer: Sync {
+    /// A step of progress.
+    fn progress(&self, _p: Progress) {}
+    /// A line of a command's report, as soon as it is known (see [`crate::commands`]).
+    fn line(&self, _text: &str) {}
+    /// A warning: the command goes on, but its user should know.
+    fn warning(&self, _text: &str) {}
+    /// The film after `passes` finished passes (e.g. to write a checkpoint); an error stops
+    /// the render with it.
+    fn pass_done(&self, _passes: u32, _film: &Film) -> Result<()> {
+        Ok(())
+    }
+    /// Whether to stop as soon as possible (an interrupt): a render abandons its current pass
+    /// — tiles not yet started keep the passes they have — and returns what it has, marked
+    /// as partial in its [`Report`].
+    fn stop_requested(&self) -> bool {
+        false
+    }
+}
+
+impl Observer for () {}
 
 /// Which photon maps a scene needs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -96,6 +138,9 @@ pub struct Report {
     /// Seconds tracing photons, building the maps (kd-trees and the global map's precomputed
     /// irradiance), and in the camera pass (which includes the photon queries).
     pub seconds: (f64, f64, f64),
+    /// Set when the render was stopped before its end (see [`Observer::stop_requested`]):
+    /// what it holds.
+    pub partial: Option<String>,
 }
 
 impl Report {
@@ -107,8 +152,12 @@ impl Report {
         } else {
             0.0
         };
+        let partial = self
+            .partial
+            .as_ref()
+            .map_or(String::new(), |p| format!("PARTIAL (interrupted): {p}\n"));
         format!(
-            "{} pass(es); photons: {} emitted ({rate:.0}/s), caustic map {} stored, global map {} stored; \
+            "{partial}{} pass(es); photons: {} emitted ({rate:.0}/s), caustic map {} stored, global map {} stored; \
              photon tracing {trace:.2} s, map build {build:.3} s, camera pass {camera:.2} s\n{}",
             self.passes,
             self.stats.photons_emitted,
@@ -132,22 +181,19 @@ struct PixelState {
     tau: Rgb,
 }
 
-/// A tile: its top-left pixel, width, and its pixels' states, row by row.
+/// A tile: its top-left pixel, width, the passes its pixels hold, and its pixels' states, row
+/// by row.
 struct Tile {
     x0: usize,
     y0: usize,
     width: usize,
+    passes: u32,
     pixels: Vec<PixelState>,
 }
 
-/// Renders the scene's camera view. `progress` is told of every pass and tile; `on_pass` gets
-/// the film after every pass (for intermediate images) and may stop the render with an error.
-pub fn render(
-    scene: &Scene,
-    threads: usize,
-    progress: &(dyn Fn(Progress) + Sync),
-    on_pass: &mut dyn FnMut(u32, &Film) -> Result<()>,
-) -> Result<(Film, Report)> {
+/// Renders the scene's camera view, telling `observer` of every pass and tile and asking it
+/// whether to stop.
+pub fn render(scene: &Scene, threads: usize, observer: &dyn Observer) -> Result<(Film, Report)> {
     let camera = scene.camera.as_ref().ok_or_else(|| {
         Error::Usage(format!(
             "{}: the scene has no [camera]",
@@ -164,6 +210,7 @@ pub fn render(
                 x0,
                 y0,
                 width: x1 - x0,
+                passes: 0,
                 pixels: vec![PixelState::default(); (x1 - x0) * (y1 - y0)],
             });
         }
@@ -177,6 +224,11 @@ pub fn render(
     let start = Instant::now();
     let mut report = Report::default();
     let mut film = Film::new(w, h);
+    observer.progress(Progress::Rendering {
+        tiles: tiles.len() as u64,
+        passes: (settings.passes != u32::MAX).then_some(settings.passes),
+        time_budget: settings.time_budget,
+    });
     for pass in 0..settings.passes {
         if pass > 0
             && settings
@@ -185,12 +237,18 @@ pub fn render(
         {
             break;
         }
-        progress(Progress::Pass(pass));
+        if observer.stop_requested() {
+            break;
+        }
+        observer.progress(Progress::Pass(pass));
         let max_r2 = max_radius * max_radius;
         let build = |batch: Batch, count: u64, report: &mut Report| {
             let t0 = Instant::now();
-            let (sink, stats) =
-                pool.install(|| shoot(&tracer, &sources, batch, pass as u64, count));
+            let (sink, stats) = pool.install(|| {
+                shoot(&tracer, &sources, batch, pass as u64, count, &|| {
+                    observer.stop_requested()
+                })
+            });
             let t1 = Instant::now();
             let mut map = PhotonMap::new(sink.photons);
             if batch == Batch::Global {
@@ -207,6 +265,15 @@ pub fn render(
         let global = plan
             .global
             .then(|| build(Batch::Global, settings.photons, &mut report));
+        // Stopped while tracing photons: the maps may be incomplete, so the pass is abandoned.
+        if observer.stop_requested() {
+            report.partial = Some(format!(
+                "{pass} of {} passes; pass {} abandoned while tracing photons",
+                settings.passes,
+                pass + 1
+            ));
+            break;
+        }
         report.stored.0 += caustic.as_ref().map_or(0, |m| m.len() as u64);
         report.stored.1 += global.as_ref().map_or(0, |m| m.len() as u64);
         let maps = Maps {
@@ -222,8 +289,11 @@ pub fn render(
                 .par_iter_mut()
                 .map(|tile| {
                     let mut stats = Stats::default();
-                    camera_tile(&tracer, &maps, pass, tile, &mut stats);
-                    progress(Progress::Tile);
+                    if !observer.stop_requested() {
+                        camera_tile(&tracer, &maps, pass, tile, &mut stats);
+                        tile.passes += 1;
+                    }
+                    observer.progress(Progress::Tile);
                     stats
                 })
                 .collect()
@@ -232,10 +302,25 @@ pub fn render(
         for s in &stats {
             report.stats.add(s);
         }
+        film = develop(&tiles, w, h);
+        let done = tiles.iter().filter(|t| t.passes == pass + 1).count();
+        if done < tiles.len() {
+            report.partial = Some(format!(
+                "{pass} of {} passes, and pass {} on {done} of {} tiles of 16 × 16 pixels",
+                settings.passes,
+                pass + 1,
+                tiles.len()
+            ));
+            report.passes = pass;
+            break;
+        }
         report.passes = pass + 1;
-        film = develop(&tiles, w, h, report.passes);
-        on_pass(report.passes, &film)?;
+        observer.pass_done(report.passes, &film)?;
     }
+    if report.partial.is_none() && observer.stop_requested() && report.passes < settings.passes {
+        report.partial = Some(format!("{} of {} passes", report.passes, settings.passes));
+    }
+    observer.progress(Progress::Done);
     Ok((film, report))
 }
 
@@ -325,11 +410,11 @@ fn camera_tile(tracer: &Tracer, maps: &Maps, pass: u32, tile: &mut Tile, stats: 
     }
 }
 
-/// The film of the accumulators after `passes` passes.
-fn develop(tiles: &[Tile], w: usize, h: usize, passes: u32) -> Film {
+/// The film of the accumulators (each tile's pixels averaged over the passes it holds).
+fn develop(tiles: &[Tile], w: usize, h: usize) -> Film {
     let mut film = Film::new(w, h);
-    let p = passes as f64;
     for tile in tiles {
+        let p = tile.passes.max(1) as f64;
         for (i, state) in tile.pixels.iter().enumerate() {
             let mut value = state.sum.map(|v| v / p);
             if state.r2 > 0.0 {
@@ -348,28 +433,87 @@ fn develop(tiles: &[Tile], w: usize, h: usize, passes: u32) -> Film {
 /// Measures the scene's receivers with `scene.render.receiver_photons` photons from its
 /// lights (stream pass `pass`), traced like global photons (diffuse bounces with Russian
 /// roulette) and recorded at every receiver crossing; with where their power went.
+///
+/// Stopped by `observer`, the measurement holds the photons traced so far (whole chunks, an
+/// unbiased subset of the batch), their fluxes and budget scaled to the emitted power, and
+/// its report says so.
 pub fn measure(
     scene: &Scene,
     threads: usize,
     pass: u64,
+    observer: &dyn Observer,
 ) -> Result<(Vec<Measurement>, Budget, Report)> {
     let tracer = Tracer::new(scene);
     let sources = Sources::new(&tracer);
     let pool = thread_pool(threads)?;
     let count = scene.render.receiver_photons;
+    observer.progress(Progress::Measuring {
+        photons: count,
+        receivers: scene.receivers.len(),
+    });
     let t0 = Instant::now();
-    let (sink, stats) = pool.install(|| shoot(&tracer, &sources, Batch::Receivers, pass, count));
-    let report = Report {
+    let (mut sink, stats) = pool.install(|| {
+        shoot(&tracer, &sources, Batch::Receivers, pass, count, &|| {
+            observer.stop_requested()
+        })
+    });
+    observer.progress(Progress::Done);
+    let traced = stats.photons_emitted;
+    let mut report = Report {
         passes: 1,
         stats,
         seconds: (t0.elapsed().as_secs_f64(), 0.0, 0.0),
         ..Report::default()
     };
+    if traced < count && !sources.is_empty() {
+        report.partial = Some(format!("{traced} of {count} receiver photons"));
+        let scale = count as f64 / traced.max(1) as f64;
+        for d in &mut sink.detections {
+            d.flux *= scale;
+        }
+        sink.budget.scale(scale);
+    }
     Ok((
-        receiver::measure(&scene.receivers, &sink.detections, count),
+        receiver::measure(&scene.receivers, &sink.detections, traced.max(1)),
         sink.budget,
         report,
     ))
+}
+
+/// Bytes a render of `scene` needs at its peak, estimated from above for typical scenes: the
+/// camera pass's accumulators and two developed films (one being written), one pass's photon
+/// maps (as traced in chunks and merged; global photons stored ≈ 4 times each, the mean path
+/// of Russian roulette at albedo 0.75; kd-tree entries), and the receivers' detections (one
+/// crossing per photon and receiver, traced and merged). Meshes are already in memory when it
+/// is asked.
+pub fn memory_needed(scene: &Scene) -> u64 {
+    use std::mem::size_of;
+    let settings = &scene.render;
+    let plan = Plan::of(scene);
+    let pixels = scene
+        .camera
+        .as_ref()
+        .map_or(0, |c| c.width as u64 * c.height as u64);
+    let film = pixels * (size_of::<PixelState>() + 2 * crate::film::LAYERS.len() * 12) as u64;
+    let per_photon = 2 * size_of::<crate::photon::Photon>() as u64 + 32;
+    let caustic = if plan.caustic {
+        settings.caustic_photons
+    } else {
+        0
+    };
+    let global = if plan.global { 4 * settings.photons } else { 0 };
+    let detections = 2
+        * settings.receiver_photons
+        * scene.receivers.len() as u64
+        * size_of::<crate::receiver::Detection>() as u64;
+    let bins: u64 = scene
+        .receivers
+        .iter()
+        .map(|r| 32 * (r.bins.0 * r.bins.1) as u64)
+        .sum();
+    film.saturating_add((caustic + global).saturating_mul(per_photon))
+        .saturating_add(detections)
+        .saturating_add(bins)
 }
 
 /// A local pool of `threads` workers (0: one per core), so a render never touches rayon's

@@ -18,12 +18,15 @@ use crate::receiver::Receiver;
 use std::path::{Path, PathBuf};
 use toml::Spanned;
 
-/// A scene file's text with its path, for turning byte offsets into line:col messages.
+/// A scene file's text with its path, for turning byte offsets into line:col messages, and
+/// the other files it names (meshes, images, grids).
 pub struct Source {
     /// The file.
     pub path: PathBuf,
     /// Its text.
     pub text: String,
+    /// The files the scene reads besides itself, as resolved (see [`Source::input`]).
+    inputs: std::cell::RefCell<Vec<PathBuf>>,
 }
 
 impl Source {
@@ -50,6 +53,14 @@ impl Source {
     /// The directory relative paths in the scene are resolved against.
     pub fn dir(&self) -> &Path {
         self.path.parent().unwrap_or(Path::new("."))
+    }
+
+    /// The path of a file the scene reads, `relative` to the scene's directory; remembered as
+    /// one of the scene's inputs (which no output may overwrite).
+    pub fn input(&self, relative: &str) -> PathBuf {
+        let path = self.dir().join(relative);
+        self.inputs.borrow_mut().push(path.clone());
+        path
     }
 }
 
@@ -111,6 +122,8 @@ pub struct Scene {
     pub render: RenderSettings,
     /// `[output]`.
     pub output: OutputSettings,
+    /// The scene file and every file it reads (meshes, images, grids).
+    pub inputs: Vec<PathBuf>,
 }
 
 impl Scene {
@@ -155,13 +168,13 @@ pub fn parse_scene(path: &Path, text: String) -> Result<Scene> {
     let source = Source {
         path: path.to_path_buf(),
         text,
+        inputs: Default::default(),
     };
     let file: SceneFile = toml::from_str(&source.text).map_err(|e| {
         let offset = e.span().map_or(0, |s| s.start);
         let message = e.message().trim().replace('\n', " ");
         source.error_at(offset, message)
     })?;
-    let dir = source.dir().to_path_buf();
     let reader = |table: Spanned<SpannedTable>, what: &str| {
         let span = table.span();
         TableReader::new(&source, span, what, table.into_inner())
@@ -171,7 +184,7 @@ pub fn parse_scene(path: &Path, text: String) -> Result<Scene> {
     for table in file.medium {
         let mut t = reader(table, "[[medium]]");
         let name = named(&mut t, media.iter().map(|(n, _)| n.as_str()), "medium")?;
-        let medium = read_medium(&mut t, &dir)?;
+        let medium = read_medium(&mut t)?;
         t.finish()?;
         media.push((name, medium));
     }
@@ -212,7 +225,7 @@ pub fn parse_scene(path: &Path, text: String) -> Result<Scene> {
     let mut surfaces = Vec::new();
     for table in file.shape {
         let mut t = reader(table, "[[shape]]");
-        let desc = read_shape(&mut t, &dir)?;
+        let desc = read_shape(&mut t)?;
         let material = material_names
             .iter()
             .position(|n| *n == desc.material)
@@ -260,7 +273,7 @@ pub fn parse_scene(path: &Path, text: String) -> Result<Scene> {
                 environment.is_none(),
                 "only one environment light is allowed",
             )?;
-            environment = Some(read_environment(&mut t, &dir)?);
+            environment = Some(read_environment(&mut t)?);
         } else {
             let (light, visible) = read_light(&mut t, &kind)?;
             if let (Some(prim), Light::Area { radiance, .. }) = (visible, &light) {
@@ -337,7 +350,7 @@ pub fn parse_scene(path: &Path, text: String) -> Result<Scene> {
     let output = match file.output {
         Some(table) => {
             let mut t = reader(table, "[output]");
-            let o = read_output(&mut t, &dir)?;
+            let o = read_output(&mut t)?;
             t.finish()?;
             o
         }
@@ -356,6 +369,9 @@ pub fn parse_scene(path: &Path, text: String) -> Result<Scene> {
         camera,
         render,
         output,
+        inputs: std::iter::once(source.path.clone())
+            .chain(source.inputs.take())
+            .collect(),
     })
 }
 

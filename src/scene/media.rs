@@ -25,14 +25,14 @@ pub const PROFILES: &[&str] = &[
 
 /// Reads one `[[medium]]` table (its `name` already taken) and builds the medium, with its
 /// `absorption` coefficient if it has one.
-pub fn read_medium(t: &mut TableReader, dir: &std::path::Path) -> Result<Box<dyn Medium>> {
+pub fn read_medium(t: &mut TableReader) -> Result<Box<dyn Medium>> {
     let absorption = t.f64_or("absorption", 0.0)?;
     t.check(
         "absorption",
         absorption.is_finite() && absorption >= 0.0,
         format!("must be a finite number ≥ 0 (1/length), got {absorption}"),
     )?;
-    let index = read_profile(t, dir)?;
+    let index = read_profile(t)?;
     Ok(if absorption > 0.0 {
         Box::new(Absorbing {
             inner: index,
@@ -44,7 +44,7 @@ pub fn read_medium(t: &mut TableReader, dir: &std::path::Path) -> Result<Box<dyn
 }
 
 /// The index profile of a `[[medium]]` table.
-fn read_profile(t: &mut TableReader, dir: &std::path::Path) -> Result<Box<dyn Medium>> {
+fn read_profile(t: &mut TableReader) -> Result<Box<dyn Medium>> {
     let profile = t.string("profile")?;
     let fiber_axis = |t: &mut TableReader| -> Result<Axis> {
         Ok(Axis {
@@ -98,7 +98,7 @@ fn read_profile(t: &mut TableReader, dir: &std::path::Path) -> Result<Box<dyn Me
             t.check("q", q >= 0.0, format!("must be ≥ 0, got {q}"))?;
             Box::new(BlackHole { center, rs, q })
         }
-        "grid" => Box::new(read_grid(t, dir)?),
+        "grid" => Box::new(read_grid(t)?),
         other => {
             return Err(t.error(
                 "profile",
@@ -111,22 +111,24 @@ fn read_profile(t: &mut TableReader, dir: &std::path::Path) -> Result<Box<dyn Me
     })
 }
 
-fn read_grid(t: &mut TableReader, dir: &std::path::Path) -> Result<GridMedium> {
+fn read_grid(t: &mut TableReader) -> Result<GridMedium> {
     let bounds = t.vec3_list("bounds")?;
     let [min, max] = bounds[..] else {
         return Err(t.error("bounds", "expected [[min x, y, z], [max x, y, z]]"));
     };
     let dims: [usize; 3] = t.counts("dims")?;
     let values = t.f64_list_opt("values")?;
-    let file = t.string_opt("file")?;
-    let (values, key) = match (values, file) {
-        (Some(v), None) => (v, "values"),
-        (None, Some(f)) => (read_grid_file(t, &dir.join(f))?, "file"),
+    let (values, key) = match (values, t.has("file")) {
+        (Some(v), false) => (v, "values"),
+        (None, true) => {
+            let path = t.input_file("file")?;
+            (read_grid_file(t, &path)?, "file")
+        }
         _ => return Err(t.error("values", "give exactly one of `values` and `file`")),
     };
     GridMedium::new(min, max, dims, values).map_err(|e| {
         let key = match e {
-            GridError::TooFewNodes(_) => "dims",
+            GridError::TooFewNodes(_) | GridError::TooManyNodes(_) => "dims",
             GridError::EmptyBox => "bounds",
             _ => key,
         };

@@ -5,6 +5,7 @@
 pub mod fiber;
 pub mod load;
 pub mod media;
+pub mod mesh;
 pub mod objects;
 pub mod table;
 

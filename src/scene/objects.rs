@@ -1,7 +1,7 @@
 //! `[camera]`, `[render]`, `[output]`, `[[material]]`, `[[shape]]` and `[[light]]` tables.
 //! Every key's unit and default is listed in `docs/scene-format.md`.
 
-use super::table::TableReader;
+use super::table::{TableReader, MAX_MAGNITUDE};
 use crate::camera::Camera;
 use crate::curve::{StepControl, StepperKind};
 use crate::environment::{Environment, Sky};
@@ -11,7 +11,7 @@ use crate::material::Material;
 use crate::receiver::Receiver;
 use crate::shapes::Primitive;
 use glam::{DMat3, DVec3};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 /// Render settings (`[render]`).
 #[derive(Clone, Debug, PartialEq)]
@@ -227,14 +227,26 @@ fn optional_positive(t: &mut TableReader, key: &str) -> Result<Option<f64>> {
 }
 
 /// `[output]`; relative paths are relative to the scene file's directory `dir`.
-pub fn read_output(t: &mut TableReader, dir: &Path) -> Result<OutputSettings> {
+pub fn read_output(t: &mut TableReader) -> Result<OutputSettings> {
     let exposure = t.f64_or("exposure", 1.0)?;
     t.check("exposure", exposure > 0.0, "must be > 0")?;
+    let path = t.output_file("path")?;
+    t.check(
+        "path",
+        path.as_ref().is_none_or(|p| is_exr(p)),
+        "must name an EXR file (…/name.exr): the PNG preview and receiver files are written beside it",
+    )?;
     Ok(OutputSettings {
-        path: t.string_opt("path")?.map(|p| dir.join(p)),
+        path,
         png: t.bool_or("png", true)?,
         exposure: exposure as f32,
     })
+}
+
+/// Whether `path` ends in `.exr` (any case).
+pub fn is_exr(path: &std::path::Path) -> bool {
+    path.extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("exr"))
 }
 
 fn unit_color(t: &mut TableReader, key: &str, default: Option<DVec3>) -> Result<DVec3> {
@@ -311,7 +323,7 @@ fn parallelogram(t: &mut TableReader, key: &str) -> Result<(DVec3, DVec3, DVec3)
 }
 
 /// `[[shape]]`; mesh files are relative to `dir`.
-pub fn read_shape(t: &mut TableReader, dir: &Path) -> Result<ShapeDesc> {
+pub fn read_shape(t: &mut TableReader) -> Result<ShapeDesc> {
     let kind = t.string("type")?;
     let primitives = match kind.as_str() {
         "sphere" => vec![Primitive::Sphere {
@@ -375,7 +387,7 @@ pub fn read_shape(t: &mut TableReader, dir: &Path) -> Result<ShapeDesc> {
                 inner,
             }]
         }
-        "mesh" => read_mesh(t, dir)?,
+        "mesh" => read_mesh(t)?,
         other => {
             return Err(t.error(
                 "type",
@@ -428,8 +440,8 @@ fn box_faces(lo: DVec3, hi: DVec3) -> Vec<Primitive> {
     ]
 }
 
-fn read_mesh(t: &mut TableReader, dir: &Path) -> Result<Vec<Primitive>> {
-    let file = t.string("file")?;
+fn read_mesh(t: &mut TableReader) -> Result<Vec<Primitive>> {
+    let path = t.input_file("file")?;
     let translate = t.vec3_or("translate", DVec3::ZERO)?;
     let scale = t.f64_or("scale", 1.0)?;
     t.check("scale", scale != 0.0, "must not be 0")?;
@@ -437,35 +449,31 @@ fn read_mesh(t: &mut TableReader, dir: &Path) -> Result<Vec<Primitive>> {
     let m = DMat3::from_rotation_z(rot.z.to_radians())
         * DMat3::from_rotation_y(rot.y.to_radians())
         * DMat3::from_rotation_x(rot.x.to_radians());
-    let path = dir.join(&file);
-    let (models, _) = tobj::load_obj(
-        &path,
-        &tobj::LoadOptions {
-            triangulate: true,
-            single_index: true,
-            ..Default::default()
-        },
-    )
-    .map_err(|e| t.error("file", format!("cannot load {}: {e}", path.display())))?;
-    let mut tris = Vec::new();
-    for model in &models {
-        let pos = &model.mesh.positions;
-        let vertex = |i: u32| {
-            let i = i as usize * 3;
-            translate
-                + m * (scale * DVec3::new(pos[i] as f64, pos[i + 1] as f64, pos[i + 2] as f64))
-        };
-        for f in model.mesh.indices.chunks_exact(3) {
-            let (a, b, c) = (vertex(f[0]), vertex(f[1]), vertex(f[2]));
-            if (b - a).cross(c - a).length_squared() > 0.0 {
-                tris.push(Primitive::triangle(a, b, c));
-            }
+    let triangles = super::mesh::load_triangles(&path).map_err(|e| t.error("file", e))?;
+    let mut tris = Vec::with_capacity(triangles.len());
+    for [a, b, c] in triangles {
+        let [a, b, c] = [a, b, c].map(|p| translate + m * (scale * p));
+        t.check(
+            "scale",
+            [a, b, c]
+                .iter()
+                .all(|p| p.abs().max_element() <= MAX_MAGNITUDE),
+            format!(
+                "{}: scaled and moved, a vertex lies beyond ±{MAX_MAGNITUDE:e}",
+                path.display()
+            ),
+        )?;
+        if (b - a).cross(c - a).length_squared() > 0.0 {
+            tris.push(Primitive::triangle(a, b, c));
         }
     }
     t.check(
-        "file",
+        "scale",
         !tris.is_empty(),
-        format!("{} has no triangles", path.display()),
+        format!(
+            "{}: every triangle has zero area at this scale",
+            path.display()
+        ),
     )?;
     Ok(tris)
 }
@@ -543,20 +551,40 @@ pub fn read_light(t: &mut TableReader, kind: &str) -> Result<(Light, Option<Prim
 }
 
 /// A `[[light]]` of type `environment`; image files are relative to `dir`.
-pub fn read_environment(t: &mut TableReader, dir: &Path) -> Result<Environment> {
-    let sky = match (t.string_opt("file")?, t.string_opt("sky")?) {
-        (Some(file), None) => {
-            let path = dir.join(file);
+pub fn read_environment(t: &mut TableReader) -> Result<Environment> {
+    let sky = match (t.has("file"), t.string_opt("sky")?) {
+        (true, None) => {
+            let path = t.input_file("file")?;
             let img = image::open(&path)
                 .map_err(|e| t.error("file", format!("cannot read {}: {e}", path.display())))?
                 .to_rgb32f();
+            let bad = img
+                .pixels()
+                .filter(|p| !p.0.iter().all(|c| c.is_finite() && *c >= 0.0));
+            if let Some(first) = img
+                .enumerate_pixels()
+                .find(|(_, _, p)| !p.0.iter().all(|c| c.is_finite() && *c >= 0.0))
+            {
+                return Err(t.error(
+                    "file",
+                    format!(
+                        "{}: {} pixel(s) are not finite non-negative radiances, the first at \
+                         (x {}, y {}): {:?} (fix or clamp them in the image)",
+                        path.display(),
+                        bad.count(),
+                        first.0,
+                        first.1,
+                        first.2 .0
+                    ),
+                ));
+            }
             Sky::Image {
                 width: img.width() as usize,
                 height: img.height() as usize,
                 pixels: img.pixels().map(|p| p.0).collect(),
             }
         }
-        (None, Some(sky)) => match sky.as_str() {
+        (false, Some(sky)) => match sky.as_str() {
             "starfield" => Sky::Starfield {
                 seed: t.natural_or("seed", 1)?,
             },

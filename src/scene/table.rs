@@ -8,6 +8,12 @@ use std::collections::BTreeMap;
 use std::ops::Range;
 use toml::{Spanned, Value};
 
+/// The largest magnitude of a number in a scene file. Lengths, radiometric values and
+/// coefficients are multiplied together (squared distances, powers over areas, photon powers
+/// in f32): bounding every input at 1e30 keeps those products finite, where 1e308 would
+/// give infinities and NaN pixels.
+pub const MAX_MAGNITUDE: f64 = 1e30;
+
 /// A TOML table as parsed, with the span of every key and value.
 pub type SpannedTable = BTreeMap<Spanned<String>, Spanned<Value>>;
 
@@ -79,10 +85,15 @@ impl<'a> TableReader<'a> {
                 return Err(self.error(key, format!("expected a number, got {}", other.type_str())))
             }
         };
-        if x.is_finite() {
-            Ok(x)
-        } else {
+        if !x.is_finite() {
             Err(self.error(key, format!("must be finite, got {x}")))
+        } else if x.abs() > MAX_MAGNITUDE {
+            Err(self.error(
+                key,
+                format!("{x} is out of range: scene numbers must be within ±{MAX_MAGNITUDE:e} (beyond, the renderer's products overflow)"),
+            ))
+        } else {
+            Ok(x)
         }
     }
 
@@ -122,6 +133,18 @@ impl<'a> TableReader<'a> {
             Value::String(s) => Ok(s),
             other => Err(self.error(key, format!("expected a string, got {}", other.type_str()))),
         }
+    }
+
+    /// A required path, relative to the scene file's directory, of a file the scene reads
+    /// (remembered as an input of the scene).
+    pub fn input_file(&mut self, key: &str) -> Result<std::path::PathBuf> {
+        let name = self.string(key)?;
+        Ok(self.source.input(&name))
+    }
+
+    /// An optional path relative to the scene file's directory (of a file the run writes).
+    pub fn output_file(&mut self, key: &str) -> Result<Option<std::path::PathBuf>> {
+        Ok(self.string_opt(key)?.map(|p| self.source.dir().join(p)))
     }
 
     /// An optional string.

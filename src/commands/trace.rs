@@ -1,0 +1,301 @@
+//! `grinlight trace`: one ray through one medium, its summary, its CSV and its picture.
+
+use super::{positive, Observer};
+use crate::curve::{
+    march_with, Bounds, MarchLimits, MarchOutcome, RayState, StepControl, StepperKind,
+};
+use crate::error::{Error, Result};
+use crate::media::Medium;
+use crate::output::{Kind, Outputs};
+use crate::plot::{self, Panel};
+use glam::DVec3;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// How a traced ray's steps are chosen (missing values take the defaults below).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum TraceControl {
+    /// Error-controlled steps at this position error per unit arclength (None: the
+    /// stepper's default tolerance).
+    Adaptive {
+        /// Tolerance.
+        tolerance: Option<f64>,
+    },
+    /// Fixed steps of this length (required).
+    Fixed {
+        /// Step length.
+        step: Option<f64>,
+    },
+    /// Seed 000 §4's control.
+    Tessendorf {
+        /// Initial step (None: the medium's step hint, at most a hundredth of the length).
+        step: Option<f64>,
+        /// T_max.
+        t_max: f64,
+        /// T_min.
+        t_min: f64,
+        /// Seed of the random ξ.
+        seed: u64,
+    },
+}
+
+/// What `grinlight trace` is asked to do.
+#[derive(Clone, Debug)]
+pub struct TraceJob {
+    /// The scene file.
+    pub scene: PathBuf,
+    /// The name of one of its media (traced unbounded, with no surfaces).
+    pub medium: String,
+    /// Start point.
+    pub from: DVec3,
+    /// Initial direction (any non-zero length).
+    pub dir: DVec3,
+    /// Arclength to trace (scene units).
+    pub length: f64,
+    /// The stepper.
+    pub stepper: StepperKind,
+    /// The step control.
+    pub control: TraceControl,
+    /// Maximum number of step attempts (N_max).
+    pub max_steps: u64,
+    /// Write every accepted step here as CSV.
+    pub csv: Option<PathBuf>,
+    /// Draw the path here as PNG.
+    pub plot: Option<PathBuf>,
+}
+
+impl TraceControl {
+    /// The step control, checked, for a ray from `from` in `medium` over `length`.
+    fn resolve(
+        self,
+        stepper: StepperKind,
+        medium: &dyn Medium,
+        from: DVec3,
+        length: f64,
+    ) -> Result<StepControl> {
+        Ok(match self {
+            TraceControl::Adaptive { tolerance } => StepControl::Adaptive {
+                tolerance: positive("tol", tolerance.unwrap_or(stepper.default_tolerance()))?,
+            },
+            TraceControl::Fixed { step } => StepControl::Fixed {
+                step: positive(
+                    "step",
+                    step.ok_or_else(|| Error::Usage("--control fixed needs --step".into()))?,
+                )?,
+            },
+            TraceControl::Tessendorf {
+                step,
+                t_max,
+                t_min,
+                seed,
+            } => {
+                if !(t_min >= 0.0 && t_max > t_min) {
+                    return Err(Error::Usage(format!(
+                        "need 0 ≤ --tmin < --tmax, got {t_min} and {t_max}"
+                    )));
+                }
+                StepControl::Tessendorf {
+                    initial_step: positive(
+                        "step",
+                        step.unwrap_or_else(|| medium.step_hint(from).min(length / 100.0)),
+                    )?,
+                    t_max,
+                    t_min,
+                    seed,
+                }
+            }
+        })
+    }
+}
+
+/// Runs `grinlight trace`: the ray's summary, and its CSV and plot if asked, written
+/// atomically after checking that neither can overwrite an input or another output.
+pub fn trace(job: &TraceJob, observer: &dyn Observer) -> Result<MarchOutcome> {
+    let scene = crate::scene::load_scene(&job.scene)?;
+    let medium = scene.medium(&job.medium)?;
+    let length = positive("length", job.length)?;
+    for (flag, v) in [("from", job.from), ("dir", job.dir)] {
+        if !v.is_finite() {
+            return Err(Error::Usage(format!("--{flag} {v} is not finite")));
+        }
+    }
+    if job.from.abs().max_element() > crate::scene::table::MAX_MAGNITUDE {
+        return Err(Error::Usage(format!(
+            "--from {}: coordinates must be within ±{:e}",
+            job.from,
+            crate::scene::table::MAX_MAGNITUDE
+        )));
+    }
+    if job.dir == DVec3::ZERO {
+        return Err(Error::Usage("--dir must be a non-zero vector".into()));
+    }
+    let mut outputs = Outputs::new(&scene.inputs);
+    if let Some(csv) = &job.csv {
+        outputs.add(csv, Kind::Csv)?;
+    }
+    if let Some(plot) = &job.plot {
+        outputs.add(plot, Kind::Png)?;
+    }
+    let start = RayState::new(medium, job.from, job.dir).ok_or_else(|| {
+        Error::Usage(format!(
+            "--from {}: the medium captures rays there (singular or non-positive index)",
+            job.from
+        ))
+    })?;
+    let control = job.control.resolve(job.stepper, medium, job.from, length)?;
+    if job.stepper == StepperKind::Snell && at_turning_point(&start) {
+        observer.warning(
+            "--dir is perpendicular to ∇n at --from (a turning point): Snell steps              cannot bend a ray there and it will run straight; use --stepper rk4 or arc",
+        );
+    }
+    let limits = MarchLimits {
+        length,
+        max_steps: job.max_steps,
+        bounds: Bounds::Unbounded,
+    };
+    let (out, points) = trace_path(medium, job.stepper, control, start, &limits);
+    if let Some(path) = &job.csv {
+        write_csv(&points, path)?;
+    }
+    let legend = match &job.plot {
+        Some(path) => Some(plot_path(medium, &points, path)?),
+        None => None,
+    };
+    observer.line(&summary(&out));
+    if let Some(path) = &job.csv {
+        observer.line(&format!("wrote {} ({} rows)", path.display(), points.len()));
+    }
+    if let (Some(path), Some(legend)) = (&job.plot, legend) {
+        observer.line(&format!("wrote {}: {legend}", path.display()));
+    }
+    Ok(out)
+}
+
+/// One accepted point of a traced path.
+#[derive(Clone, Copy, Debug)]
+pub struct PathPoint {
+    /// Arclength from the start.
+    pub s: f64,
+    /// The state there.
+    pub state: RayState,
+}
+
+/// Traces one ray and keeps every accepted point.
+pub fn trace_path(
+    medium: &dyn Medium,
+    kind: StepperKind,
+    control: StepControl,
+    start: RayState,
+    limits: &MarchLimits,
+) -> (MarchOutcome, Vec<PathPoint>) {
+    let mut points = Vec::new();
+    let out = march_with(kind, medium, control, start, limits, |s, st| {
+        points.push(PathPoint { s, state: *st });
+        std::ops::ControlFlow::Continue(())
+    });
+    (out, points)
+}
+
+/// Whether a ray starts exactly perpendicular to ∇n (to 1e-12), where Snell steps cannot
+/// bend it (see [`crate::curve::SnellSteps`]).
+pub fn at_turning_point(start: &RayState) -> bool {
+    let g = start.index.grad;
+    g != DVec3::ZERO && start.direction.dot(g).abs() <= 1e-12 * g.length()
+}
+
+/// The one-line summary the CLI prints.
+pub fn summary(out: &MarchOutcome) -> String {
+    let p = out.state.position;
+    let d = out.state.direction;
+    format!(
+        "end ({:.12}, {:.12}, {:.12}) dir ({:.12}, {:.12}, {:.12}) s {:.12} opl {:.12} steps {} attempts {} reason: {}",
+        p.x, p.y, p.z, d.x, d.y, d.z, out.arclength, out.optical_path, out.steps, out.attempts, out.reason.name()
+    )
+}
+
+/// Writes `step,s,x,y,z,dx,dy,dz,n`, one row per accepted point (the start first).
+pub fn write_csv(points: &[PathPoint], path: &Path) -> Result<()> {
+    crate::output::write_atomic(path, |tmp| {
+        let io = |e| Error::io(path, e);
+        let mut w = std::io::BufWriter::new(std::fs::File::create(tmp).map_err(io)?);
+        writeln!(w, "step,s,x,y,z,dx,dy,dz,n").map_err(io)?;
+        for (i, p) in points.iter().enumerate() {
+            let (x, d) = (p.state.position, p.state.direction);
+            writeln!(
+                w,
+                "{i},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e}",
+                p.s, x.x, x.y, x.z, d.x, d.y, d.z, p.state.index.n
+            )
+            .map_err(io)?;
+        }
+        w.flush().map_err(io)
+    })
+}
+
+/// Draws the path in two projections over the index as a grey shade (darker = lower n):
+/// left, the plane of the path's two widest coordinates; right, the widest and the third.
+/// Each panel is a slice through the path's mean position along the hidden axis, with its
+/// own scale per axis (so thin fiber paths stay visible). Returns a legend line.
+pub fn plot_path(medium: &dyn Medium, points: &[PathPoint], path: &Path) -> Result<String> {
+    let pos: Vec<DVec3> = points.iter().map(|p| p.state.position).collect();
+    let mut ranges: Vec<(f64, f64)> = (0..3)
+        .map(|a| plot::range_of(pos.iter().map(|p| p[a])))
+        .collect();
+    // A flat coordinate (a planar path) still gets a panel showing the index around it.
+    let widest = ranges.iter().map(|r| r.1 - r.0).fold(0.0, f64::max);
+    for r in &mut ranges {
+        let grow = 0.5 * (0.1 * widest - (r.1 - r.0)).max(0.0);
+        *r = (r.0 - grow, r.1 + grow);
+    }
+    let mean = pos.iter().copied().sum::<DVec3>() / pos.len().max(1) as f64;
+    let mut axes = [0usize, 1, 2];
+    axes.sort_by(|&a, &b| (ranges[b].1 - ranges[b].0).total_cmp(&(ranges[a].1 - ranges[a].0)));
+    let names = ["x", "y", "z"];
+    let (w, h, margin) = (520u32, 420u32, 70u32);
+    let mut img = plot::canvas(2 * (w + 2 * margin), h + 2 * margin);
+    let mut legend = Vec::new();
+    for (k, (u, v)) in [(axes[0], axes[1]), (axes[0], axes[2])]
+        .into_iter()
+        .enumerate()
+    {
+        let hidden = 3 - u - v;
+        let at = |x: f64, y: f64| {
+            let mut p = mean;
+            p[u] = x;
+            p[v] = y;
+            p[hidden] = mean[hidden];
+            medium.sample(p).map_or(f64::NAN, |s| s.n)
+        };
+        let mut samples = Vec::new();
+        for j in 0..32 {
+            for i in 0..32 {
+                let x = ranges[u].0 + (i as f64 + 0.5) / 32.0 * (ranges[u].1 - ranges[u].0);
+                let y = ranges[v].0 + (j as f64 + 0.5) / 32.0 * (ranges[v].1 - ranges[v].0);
+                samples.push(at(x, y));
+            }
+        }
+        let n_range = plot::range_of(samples.into_iter());
+        let left = k as u32 * (w + 2 * margin) + margin;
+        let mut panel = Panel::new(
+            &mut img,
+            (left, margin, w, h),
+            ranges[u],
+            ranges[v],
+            (false, false),
+        );
+        panel.shade(n_range, at);
+        let line: Vec<(f64, f64)> = pos.iter().map(|p| (p[u], p[v])).collect();
+        panel.polyline(&line, plot::PALETTE[0]);
+        if let (Some(a), Some(b)) = (line.first(), line.last()) {
+            panel.marker(a.0, a.1, plot::PALETTE[2]);
+            panel.marker(b.0, b.1, plot::PALETTE[1]);
+        }
+        panel.axes();
+        legend.push(format!(
+            "panel {}: horizontal {} in [{:.6}, {:.6}], vertical {} in [{:.6}, {:.6}], {} = {:.6}, n shaded over [{:.6}, {:.6}]",
+            k + 1, names[u], ranges[u].0, ranges[u].1, names[v], ranges[v].0, ranges[v].1, names[hidden], mean[hidden], n_range.0, n_range.1
+        ));
+    }
+    plot::save(&img, path)?;
+    Ok(format!("{} (green start, blue end)", legend.join("; ")))
+}

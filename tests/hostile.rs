@@ -1,0 +1,449 @@
+//! Hostile and extreme input, as a careless or unlucky user gives it: bad scene keys, broken
+//! files (OBJ, images, grids), absurd command-line values. Every case runs the real binary in
+//! a directory of its own and must end within 10 s either in a clear error (exit 1 or 2, the
+//! expected words, no panic) or in a success whose every output (EXR layers, CSV values,
+//! report) is finite.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+/// A small scene that renders in a few milliseconds: an 8 × 8 view of a lit diffuse quad.
+const BASE: &str = "[camera]\nposition = [0, 0, 3]\nlook_at = [0, 0, 0]\nfov_y_deg = 40\nwidth = 8\nheight = 8\n\
+[render]\nspp = 1\nphotons = 2000\ncaustic_photons = 2000\ngather = 1\nreceiver_photons = 2000\n\
+[[material]]\nname = \"white\"\ntype = \"diffuse\"\nalbedo = 0.5\n\
+[[shape]]\ntype = \"quad\"\nvertices = [[-1,-1,0],[1,-1,0],[1,1,0],[-1,1,0]]\nmaterial = \"white\"\n";
+
+const LIGHT: &str = "[[light]]\ntype = \"point\"\nposition = [0, 0, 1]\nintensity = 1\n";
+
+/// What a case must end in.
+enum Expect {
+    /// Failure whose standard error contains this.
+    Error(&'static str),
+    /// Success with finite outputs; standard output contains this.
+    Finite(&'static str),
+}
+
+struct Case {
+    name: &'static str,
+    /// Files to create: (name, content).
+    files: Vec<(&'static str, Vec<u8>)>,
+    /// Arguments (after the program name).
+    args: Vec<String>,
+    expect: Expect,
+}
+
+fn scene(extra: &str) -> Vec<u8> {
+    format!("{BASE}{extra}").into_bytes()
+}
+
+fn render(extra_args: &str) -> Vec<String> {
+    let mut v = vec!["render".to_string(), "s.toml".to_string()];
+    v.extend(extra_args.split_whitespace().map(str::to_string));
+    v
+}
+
+fn args(s: &str) -> Vec<String> {
+    s.split_whitespace().map(str::to_string).collect()
+}
+
+/// A scene case: `s.toml` = BASE + `extra` (+ other files), rendered.
+fn scene_case(name: &'static str, extra: &str, expect: Expect) -> Case {
+    Case {
+        name,
+        files: vec![("s.toml", scene(extra))],
+        args: render(""),
+        expect,
+    }
+}
+
+/// A scene with a mesh shape reading `m.obj` of `obj` content (and a light).
+fn mesh_case(name: &'static str, obj: &str, extra: &str, expect: Expect) -> Case {
+    let shape = format!(
+        "{LIGHT}[[shape]]\ntype = \"mesh\"\nfile = \"m.obj\"\nmaterial = \"white\"\n{extra}"
+    );
+    Case {
+        name,
+        files: vec![
+            ("s.toml", scene(&shape)),
+            ("m.obj", obj.as_bytes().to_vec()),
+        ],
+        args: render(""),
+        expect,
+    }
+}
+
+/// A 2 × 2 EXR (one RGB layer) whose pixel (1, 0) has `value`.
+fn exr_with(value: f32) -> Vec<u8> {
+    let path = std::env::temp_dir().join(format!(
+        "grinlight-hostile-{}-{}.exr",
+        std::process::id(),
+        value.to_bits()
+    ));
+    exr::prelude::write_rgb_file(&path, 2, 2, |x, y| {
+        if (x, y) == (1, 0) {
+            (value, value, value)
+        } else {
+            (0.5, 0.5, 0.5)
+        }
+    })
+    .unwrap();
+    let bytes = std::fs::read(&path).unwrap();
+    std::fs::remove_file(&path).unwrap();
+    bytes
+}
+
+fn env_case(name: &'static str, image: Vec<u8>, expect: Expect) -> Case {
+    Case {
+        name,
+        files: vec![
+            (
+                "s.toml",
+                scene("[[light]]\ntype = \"environment\"\nfile = \"sky.exr\"\n"),
+            ),
+            ("sky.exr", image),
+        ],
+        args: render(""),
+        expect,
+    }
+}
+
+fn cases() -> Vec<Case> {
+    use Expect::{Error, Finite};
+    let grid = |extra: &str| {
+        format!("{LIGHT}[[medium]]\nname = \"g\"\nprofile = \"grid\"\nbounds = [[0,0,0],[1,1,1]]\n{extra}")
+    };
+    let receiver =
+        |extra: &str| format!("{LIGHT}[[receiver]]\nname = \"r\"\ncenter = [0, 0, 0.5]\n{extra}");
+    let mut v = vec![
+        // Scene keys: numbers out of range, negative, NaN, infinite, zero.
+        scene_case("intensity 1e308", "[[light]]\ntype = \"point\"\nposition = [0, 0, 1]\nintensity = 1e308\n", Error("out of range")),
+        scene_case("camera at 1e308", "[[light]]\ntype = \"point\"\nposition = [0, 0, 1e308]\nintensity = 1\n", Error("out of range")),
+        scene_case("negative intensity", "[[light]]\ntype = \"point\"\nposition = [0, 0, 1]\nintensity = -1\n", Error("must not be negative")),
+        scene_case("NaN intensity", "[[light]]\ntype = \"point\"\nposition = [0, 0, 1]\nintensity = nan\n", Error("must be finite")),
+        scene_case("infinite radiance", "[[light]]\ntype = \"quad\"\nvertices = [[0,0,1],[1,0,1],[1,1,1],[0,1,1]]\nradiance = inf\n", Error("must be finite")),
+        scene_case("sphere radius 1e31", &format!("{LIGHT}[[shape]]\ntype = \"sphere\"\ncenter = [0,0,0]\nradius = 1e31\nmaterial = \"white\"\n"), Error("out of range")),
+        scene_case("zero-area quad", &format!("{LIGHT}[[shape]]\ntype = \"quad\"\nvertices = [[0,0,0],[0,0,0],[0,0,0],[0,0,0]]\nmaterial = \"white\"\n"), Error("zero area")),
+        scene_case("albedo 1.5", "[[material]]\nname = \"m\"\ntype = \"diffuse\"\nalbedo = 1.5\n", Error("must be ≤ 1")),
+        scene_case("ior 0", "[[material]]\nname = \"g\"\ntype = \"dielectric\"\nior = 0\n", Error("must be > 0")),
+        scene_case("spp 0 in the scene", "", Error("")).with_scene_replace("spp = 1", "spp = 0", "integer ≥ 1"),
+        scene_case("spp -1 in the scene", "", Error("")).with_scene_replace("spp = 1", "spp = -1", "integer ≥ 1"),
+        scene_case("spp 1.5 in the scene", "", Error("")).with_scene_replace("spp = 1", "spp = 1.5", "integer ≥ 1"),
+        scene_case("width 0", "", Error("")).with_scene_replace("width = 8", "width = 0", "integer ≥ 1"),
+        scene_case("width 70000", "", Error("")).with_scene_replace("width = 8", "width = 70000", "at most 65536"),
+        scene_case("fov 0", "", Error("")).with_scene_replace("fov_y_deg = 40", "fov_y_deg = 0", "(0°, 179°)"),
+        scene_case("passes 0", "", Error("")).with_scene_replace("spp = 1", "spp = 1\npasses = 0", "integer ≥ 1"),
+        scene_case("knn 0", "", Error("")).with_scene_replace("spp = 1", "spp = 1\nknn = 0", "integer ≥ 1"),
+        scene_case("max_depth 0", "", Error("")).with_scene_replace("spp = 1", "spp = 1\nmax_depth = 0", "integer ≥ 1"),
+        scene_case("radius 0", "", Error("")).with_scene_replace("spp = 1", "spp = 1\nradius = 0", "must be > 0"),
+        scene_case("tolerance 0", "", Error("")).with_scene_replace("spp = 1", "spp = 1\ntolerance = 0", "must be > 0"),
+        scene_case("unknown control", "", Error("")).with_scene_replace("spp = 1", "spp = 1\ncontrol = \"wild\"", "unknown control"),
+        scene_case("fixed step 0", "", Error("")).with_scene_replace("spp = 1", "spp = 1\ncontrol = \"fixed\"\nstep = 0", "must be > 0"),
+        scene_case("world radius -1", "", Error("")).with_scene_replace("spp = 1", "spp = 1\nworld_radius = -1", "must be > 0"),
+        scene_case("time budget 0", "", Error("")).with_scene_replace("spp = 1", "spp = 1\ntime_budget = 0", "must be > 0"),
+        scene_case("dangling material", &format!("{LIGHT}[[shape]]\ntype = \"sphere\"\ncenter = [0,0,0]\nradius = 1\nmaterial = \"nope\"\n"), Error("no material named 'nope'")),
+        scene_case("unknown table", "[lens]\nf = 3\n", Error("unknown field `lens`")),
+        scene_case("two cameras", "[camera]\nposition = [0,0,1]\n", Error("duplicate key")),
+        scene_case("LED m < 0", "[[light]]\ntype = \"led\"\ncenter = [0,0,1]\nradius = 0.1\npower = 1\nm = -1\n", Error("must be ≥ 0")),
+        scene_case("spot cone 0", "[[light]]\ntype = \"spot\"\nposition = [0,0,1]\nintensity = 1\ncone_deg = 0\n", Error("(0°, 180°]")),
+        scene_case("black hole q < 0", &format!("{LIGHT}[[medium]]\nname = \"b\"\nprofile = \"black_hole\"\nrs = 1\nq = -1\n"), Error("key `q`")),
+        scene_case("radial table not increasing", &format!("{LIGHT}[[medium]]\nname = \"t\"\nprofile = \"radial_table\"\nr = [0, 0.5, 0.2]\nn = [1.5, 1.4, 1.3]\n"), Error("key `r`")),
+        scene_case("receiver bins 0", &receiver("size = [1, 1]\nbins = [0, 4]\n"), Error("key `bins`")),
+        scene_case("receiver size < 0", &receiver("size = [-1, 1]\nbins = [4, 4]\n"), Error("key `size`")),
+        scene_case("receiver up along normal", &receiver("size = [1, 1]\nbins = [4, 4]\nup = [0, 0, 1]\n"), Error("must not be parallel")),
+        scene_case("output path the scene", "[output]\npath = \"s.toml\"\n", Error("must name an EXR")),
+        scene_case("output dir missing", &format!("{LIGHT}[output]\npath = \"nowhere/x.exr\"\n"), Error("does not exist")),
+        // Grids.
+        scene_case("grid dims overflow", &grid("dims = [4294967296, 4294967296, 4294967296]\nvalues = [1, 1]\n"), Error("more nodes than can be addressed")),
+        scene_case("grid negative value", &grid("dims = [2, 2, 2]\nvalues = [1, 1, 1, 1, 1, 1, 1, -1]\n"), Error("value #7")),
+        Case {
+            name: "grid file not numbers",
+            files: vec![("s.toml", scene(&grid("dims = [2, 2, 2]\nfile = \"g.txt\"\n"))), ("g.txt", b"1 1 1 x 1 1 1 1".to_vec())],
+            args: render(""),
+            expect: Error("value #3 'x' is not a number"),
+        },
+        Case {
+            name: "grid file too short",
+            files: vec![("s.toml", scene(&grid("dims = [2, 2, 2]\nfile = \"g.txt\"\n"))), ("g.txt", b"1 1 1".to_vec())],
+            args: render(""),
+            expect: Error("expected 8 values"),
+        },
+        // OBJ files.
+        mesh_case("missing mesh", "", "", Error("")).without_file("m.obj", "cannot read"),
+        mesh_case("empty mesh", "", "", Error("no faces")),
+        Case {
+            name: "binary garbage mesh",
+            files: vec![
+                ("s.toml", scene(&format!("{LIGHT}[[shape]]\ntype = \"mesh\"\nfile = \"m.obj\"\nmaterial = \"white\"\n"))),
+                ("m.obj", vec![0xff, 0xfe, 0x00, 0x12, 0x80, b'\n', 0xc3, 0x28]),
+            ],
+            args: render(""),
+            expect: Error("line 1 is not text"),
+        },
+        mesh_case("NaN vertex", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n", "", Error("m.obj: line 2: a vertex (v) needs 3 finite numbers")),
+        mesh_case("inf vertex", "v 0 0 0\nv 1 0 0\nv 0 inf 0\nf 1 2 3\n", "", Error("line 3")),
+        mesh_case("short vertex", "v 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "", Error("line 1")),
+        mesh_case("index out of range", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n", "", Error("line 4: corner `7`: vertex index 7 does not exist")),
+        mesh_case("index zero", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n", "", Error("index 0 does not exist")),
+        mesh_case("relative index too far", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -1 -2 -4\n", "", Error("index -4 does not exist")),
+        mesh_case("two-corner face", "v 0 0 0\nv 1 0 0\nf 1 2\n", "", Error("line 3: a face needs at least 3 corners")),
+        mesh_case("bad normal index", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//2\n", "", Error("normal index 2 does not exist")),
+        mesh_case("degenerate mesh", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n", "", Error("all 1 triangles have zero area")),
+        mesh_case("mesh scaled beyond range", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "scale = 1e29\ntranslate = [1e30, 0, 0]\n", Error("beyond")),
+        mesh_case("a sound mesh", "v -1 -1 0.5\nv 1 -1 0.5\nv 0 1 0.5\nf 1 2 3\n", "", Finite("rendered")),
+        // Environment images.
+        env_case("environment NaN pixel", exr_with(f32::NAN), Error("(x 1, y 0)")),
+        env_case("environment inf pixel", exr_with(f32::INFINITY), Error("not finite")),
+        env_case("environment negative pixel", exr_with(-1.0), Error("not finite non-negative")),
+        env_case("environment not an image", b"hello".to_vec(), Error("cannot read")),
+        env_case("a sound environment", exr_with(2.0), Finite("rendered")),
+        // Command-line values.
+        Case { name: "--spp 0", files: vec![("s.toml", scene(LIGHT))], args: render("--spp 0"), expect: Error("--spp") },
+        Case { name: "--passes 0", files: vec![("s.toml", scene(LIGHT))], args: render("--passes 0"), expect: Error("--passes") },
+        Case { name: "--knn 0", files: vec![("s.toml", scene(LIGHT))], args: render("--knn 0"), expect: Error("--knn") },
+        Case { name: "--receiver-photons 0", files: vec![("s.toml", scene(LIGHT))], args: render("--receiver-photons 0"), expect: Error("--receiver-photons") },
+        Case { name: "--checkpoint 0", files: vec![("s.toml", scene(LIGHT))], args: render("--checkpoint 0"), expect: Error("--checkpoint") },
+        Case { name: "--threads 100000", files: vec![("s.toml", scene(LIGHT))], args: render("--threads 100000"), expect: Error("per core") },
+        Case { name: "65536 × 65536", files: vec![("s.toml", scene(LIGHT))], args: render("--width 65536 --height 65536"), expect: Error("of memory") },
+        Case { name: "10^12 photons", files: vec![("s.toml", scene(LIGHT))], args: render("--photons 1000000000000"), expect: Error("of memory") },
+        Case { name: "--radius -1", files: vec![("s.toml", scene(LIGHT))], args: render("--radius=-1"), expect: Error("--radius") },
+        Case { name: "--time-budget nan", files: vec![("s.toml", scene(LIGHT))], args: render("--time-budget nan"), expect: Error("--time-budget") },
+        Case { name: "-o the scene", files: vec![("s.toml", scene(LIGHT))], args: render("-o s.toml"), expect: Error("must end in .exr") },
+        Case { name: "-o a png", files: vec![("s.toml", scene(LIGHT))], args: render("-o out.png"), expect: Error("must end in .exr") },
+        Case { name: "-o into /proc", files: vec![("s.toml", scene(LIGHT))], args: render("-o /proc/x.exr"), expect: Error("cannot write") },
+        Case { name: "-o over a text file", files: vec![("s.toml", scene(LIGHT)), ("notes.exr", b"my notes".to_vec())], args: render("-o notes.exr"), expect: Error("is not an EXR image") },
+        Case { name: "-o a directory", files: vec![("s.toml", scene(LIGHT)), ("d.exr/keep", b"x".to_vec())], args: render("-o d.exr"), expect: Error("not a regular file") },
+        Case {
+            name: "receivers whose files collide",
+            files: vec![("s.toml", scene(&format!(
+                "{LIGHT}[[receiver]]\nname = \"a\"\ncenter = [0,0,0.5]\nsize = [1,1]\nbins = [4,4]\n\
+                 [[receiver]]\nname = \"a.radial\"\ncenter = [0,0,0.6]\nsize = [1,1]\nbins = [4,4]\n"
+            )))],
+            args: render(""),
+            expect: Error("two outputs to one file"),
+        },
+        Case {
+            name: "trace --dir 1e300,1e300,0",
+            files: vec![("s.toml", scene("[[medium]]\nname = \"l\"\nprofile = \"luneburg\"\nradius = 1\n"))],
+            args: args("trace s.toml --medium l --from -2,0,0 --dir 1e300,1e300,0 --length 0.1"),
+            expect: Finite("dir (0.707106781187, 0.707106781187, 0.000000000000)"),
+        },
+        Case {
+            name: "trace --from 1e31",
+            files: vec![("s.toml", scene("[[medium]]\nname = \"l\"\nprofile = \"luneburg\"\nradius = 1\n"))],
+            args: args("trace s.toml --medium l --from 1e31,0,0 --dir 1,0,0 --length 1"),
+            expect: Error("--from"),
+        },
+        Case {
+            name: "trace --length 1e308",
+            files: vec![("s.toml", scene("[[medium]]\nname = \"l\"\nprofile = \"luneburg\"\nradius = 1\n"))],
+            args: args("trace s.toml --medium l --from 0,0,0 --dir 1,0,0 --length 1e308"),
+            expect: Error("--length"),
+        },
+        Case {
+            name: "trace --tol nan",
+            files: vec![("s.toml", scene("[[medium]]\nname = \"l\"\nprofile = \"luneburg\"\nradius = 1\n"))],
+            args: args("trace s.toml --medium l --from 0,0,0 --dir 1,0,0 --length 1 --tol nan"),
+            expect: Error("--tol"),
+        },
+        Case {
+            name: "trace --csv the scene",
+            files: vec![("s.toml", scene("[[medium]]\nname = \"l\"\nprofile = \"luneburg\"\nradius = 1\n"))],
+            args: args("trace s.toml --medium l --from 0,0,0 --dir 1,0,0 --length 1 --csv s.toml"),
+            expect: Error("is an input of this run"),
+        },
+        Case {
+            name: "trace --plot into a missing directory",
+            files: vec![("s.toml", scene("[[medium]]\nname = \"l\"\nprofile = \"luneburg\"\nradius = 1\n"))],
+            args: args("trace s.toml --medium l --from 0,0,0 --dir 1,0,0 --length 1 --plot no/p.png"),
+            expect: Error("does not exist"),
+        },
+        Case {
+            name: "validate --dn 0",
+            files: vec![("s.toml", fiber_scene())],
+            args: args("validate s.toml --dn 0"),
+            expect: Error("--dn"),
+        },
+        Case {
+            name: "validate --max-width -1",
+            files: vec![("s.toml", fiber_scene())],
+            args: args("validate s.toml --max-width=-1"),
+            expect: Error("--max-width"),
+        },
+        Case {
+            name: "validate --plot into a missing directory",
+            files: vec![("s.toml", fiber_scene())],
+            args: args("validate s.toml --plot no/p.png"),
+            expect: Error("does not exist"),
+        },
+        Case {
+            name: "validate --photons 0",
+            files: vec![("s.toml", fiber_scene())],
+            args: args("validate s.toml --photons 0"),
+            expect: Error("--photons"),
+        },
+        // Extreme but valid: finite results.
+        scene_case("intensity 1e30", "[[light]]\ntype = \"point\"\nposition = [0, 0, 1]\nintensity = 1e30\n", Finite("rendered")),
+        scene_case("no light at all", "", Finite("rendered")),
+        scene_case("a dark light", "[[light]]\ntype = \"point\"\nposition = [0, 0, 1]\nintensity = 0\n", Finite("rendered")),
+        scene_case("light on the surface", "[[light]]\ntype = \"point\"\nposition = [0, 0, 0]\nintensity = 1\n", Finite("rendered")),
+        Case { name: "a sound render with receivers", files: vec![("s.toml", scene(&receiver("size = [1, 1]\nbins = [4, 4]\n")))], args: render(""), expect: Finite("receiver 'r': flux") },
+    ];
+    v.push(Case {
+        name: "trace --dir 0,0,0",
+        files: vec![(
+            "s.toml",
+            scene("[[medium]]\nname = \"l\"\nprofile = \"luneburg\"\nradius = 1\n"),
+        )],
+        args: args("trace s.toml --medium l --from 0,0,0 --dir 0,0,0 --length 1"),
+        expect: Error("--dir must be a non-zero vector"),
+    });
+    v
+}
+
+/// The GRIN fiber of `scenes/fiber_led.toml` with few photons.
+fn fiber_scene() -> Vec<u8> {
+    std::fs::read_to_string("scenes/fiber_led.toml")
+        .unwrap()
+        .replace("receiver_photons = 1000000", "receiver_photons = 2000")
+        .into_bytes()
+}
+
+impl Case {
+    /// The case with `from` replaced by `to` in its scene, expecting an error containing
+    /// `needle`.
+    fn with_scene_replace(mut self, from: &str, to: &str, needle: &'static str) -> Case {
+        let text = String::from_utf8(self.files[0].1.clone()).unwrap();
+        assert!(text.contains(from), "{}: no '{from}'", self.name);
+        self.files[0].1 = text.replacen(from, to, 1).into_bytes();
+        self.expect = Expect::Error(needle);
+        self
+    }
+
+    /// The case without the file `name`, expecting an error containing `needle`.
+    fn without_file(mut self, name: &str, needle: &'static str) -> Case {
+        self.files.retain(|(n, _)| *n != name);
+        self.expect = Expect::Error(needle);
+        self
+    }
+}
+
+/// Runs the binary in `dir` with `args`, killing it after `limit`.
+fn run(dir: &Path, args: &[String], limit: Duration) -> (Option<i32>, String, String, Duration) {
+    let start = Instant::now();
+    let mut child = Command::new(env!("CARGO_BIN_EXE_grinlight"))
+        .args(args)
+        .current_dir(dir)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("run grinlight");
+    loop {
+        if child.try_wait().unwrap().is_some() || start.elapsed() > limit {
+            break;
+        }
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    let _ = child.kill();
+    let out = child.wait_with_output().unwrap();
+    (
+        out.status.code(),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+        start.elapsed(),
+    )
+}
+
+/// Every number in every EXR layer and CSV cell written in `dir` (besides the `inputs`) is
+/// finite.
+fn outputs_finite(dir: &Path, inputs: &[(&str, Vec<u8>)]) -> Result<usize, String> {
+    let mut checked = 0;
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path: PathBuf = entry.unwrap().path();
+        if inputs.iter().any(|(n, _)| path.ends_with(n)) {
+            continue;
+        }
+        match path.extension().and_then(|e| e.to_str()) {
+            Some("exr") => {
+                for layer in grinlight::film::LAYERS {
+                    let (_, _, px) = grinlight::film::read_exr_layer(&path, Some(layer))
+                        .map_err(|e| e.to_string())?;
+                    if let Some(p) = px.iter().find(|p| !p.iter().all(|c| c.is_finite())) {
+                        return Err(format!("{}: layer {layer} holds {p:?}", path.display()));
+                    }
+                }
+                checked += 1;
+            }
+            Some("csv") => {
+                let text = std::fs::read_to_string(&path).unwrap();
+                for cell in text.lines().skip(1).flat_map(|l| l.split(',')) {
+                    if !cell.parse::<f64>().is_ok_and(f64::is_finite) {
+                        return Err(format!("{}: cell '{cell}'", path.display()));
+                    }
+                }
+                checked += 1;
+            }
+            _ => {}
+        }
+    }
+    Ok(checked)
+}
+
+#[test]
+fn hostile_input_ends_in_a_clear_error_or_a_finite_result() {
+    let cases = cases();
+    assert!(cases.len() >= 60, "{} cases", cases.len());
+    println!("{} hostile cases", cases.len());
+    let root = std::env::temp_dir().join(format!("grinlight-hostile-{}", std::process::id()));
+    let mut failures = Vec::new();
+    for (k, case) in cases.iter().enumerate() {
+        let dir = root.join(format!("case{k}"));
+        std::fs::create_dir_all(&dir).unwrap();
+        for (name, content) in &case.files {
+            let path = dir.join(name);
+            std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+            std::fs::write(path, content).unwrap();
+        }
+        let (code, stdout, stderr, took) = run(&dir, &case.args, Duration::from_secs(10));
+        let name = case.name;
+        let problem = if took >= Duration::from_secs(10) {
+            Some(format!("still running after {took:?}"))
+        } else if stderr.contains("panicked") {
+            Some(format!("panicked: {stderr}"))
+        } else {
+            match &case.expect {
+                Expect::Error(needle) => match code {
+                    Some(1) | Some(2) if stderr.contains(needle) && stderr.contains("error") => {
+                        None
+                    }
+                    _ => Some(format!("exit {code:?}, stderr '{stderr}' lacks '{needle}'")),
+                },
+                Expect::Finite(needle) => {
+                    if code != Some(0) {
+                        Some(format!("exit {code:?}: {stderr}"))
+                    } else if !stdout.contains(needle) {
+                        Some(format!("stdout lacks '{needle}': {stdout}"))
+                    } else if stdout.contains("NaN") || stdout.contains("inf ") {
+                        Some(format!("non-finite report: {stdout}"))
+                    } else {
+                        outputs_finite(&dir, &case.files).err()
+                    }
+                }
+            }
+        };
+        if let Some(p) = problem {
+            failures.push(format!("{name}: {p}"));
+        }
+        // No case may leave a temporary file behind.
+        let leftovers: Vec<_> = std::fs::read_dir(&dir)
+            .unwrap()
+            .filter_map(|e| e.ok())
+            .filter(|e| e.file_name().to_string_lossy().ends_with(".tmp"))
+            .collect();
+        if !leftovers.is_empty() {
+            failures.push(format!("{name}: left {leftovers:?}"));
+        }
+    }
+    let _ = std::fs::remove_dir_all(&root);
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
