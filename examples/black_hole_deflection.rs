@@ -14,12 +14,12 @@ use std::io::Write;
 use std::path::Path;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let scene = grinlight::scene::load_scene(Path::new("scenes/black_hole.toml"))?;
+    let (scene, settings) = grinlight::scene::load_scene(Path::new("scenes/black_hole.toml"))?;
     let camera = scene.camera.as_ref().ok_or("no camera")?;
     let hole = scene.ambient.ok_or("no ambient medium")?;
     let medium = scene.medium_at(hole);
     let (rs, q, center) = (0.01, 0.1, glam::DVec3::ZERO); // as in the scene file
-    let tracer = Tracer::new(&scene);
+    let tracer = Tracer::new(&scene, &settings.trace);
     let mut stats = Stats::default();
     std::fs::create_dir_all("out")?;
     let mut csv = std::fs::File::create("out/black_hole_deflection.csv")?;
@@ -27,7 +27,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let (mut rendered, mut exact, mut weak) = (Vec::new(), Vec::new(), Vec::new());
     let mut worst: f64 = 0.0;
     let mut worst_with_tail: f64 = 0.0;
-    let world = scene.render.world_radius.ok_or("no world_radius")? / rs;
+    let world = settings.trace.world_radius.ok_or("no world_radius")? / rs;
     let row = camera.height / 2;
     let t = std::time::Instant::now();
     for px in camera.width / 2..camera.width {

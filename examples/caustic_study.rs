@@ -21,15 +21,16 @@ fn run(
     seed: u64,
     (caustic, spp, gather): Settings,
 ) -> Result<(Film, f64, u32), Box<dyn std::error::Error>> {
-    let mut scene = grinlight::scene::load_scene(Path::new("scenes/cornell_caustic.toml"))?;
-    scene.render.seed = seed;
-    scene.render.spp = spp;
-    scene.render.gather = gather;
-    scene.render.caustic_photons = caustic;
-    scene.render.passes = u32::MAX;
-    scene.render.time_budget = Some(seconds);
+    let (scene, mut settings) =
+        grinlight::scene::load_scene(Path::new("scenes/cornell_caustic.toml"))?;
+    settings.seed = seed;
+    settings.spp = spp;
+    settings.photons.gather = gather;
+    settings.photons.caustic = caustic;
+    settings.passes = u32::MAX;
+    settings.time_budget = Some(seconds);
     let t = std::time::Instant::now();
-    let (film, report) = grinlight::render::render(&scene, 0, &())?;
+    let (film, report) = grinlight::render::render(&scene, &settings, &())?;
     Ok((film, t.elapsed().as_secs_f64(), report.passes))
 }
 

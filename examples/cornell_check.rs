@@ -14,16 +14,17 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .collect::<Result<_, _>>()?;
     let arg = |i: usize, d: u64| args.get(i).copied().unwrap_or(d);
     let width = arg(0, 128) as usize;
-    let mut scene = grinlight::scene::load_scene(Path::new("scenes/cornell_diffuse.toml"))?;
-    scene.render.spp = arg(1, 4) as u32;
-    scene.render.photons = arg(2, 100_000);
-    scene.render.gather = arg(3, 16) as u32;
-    scene.render.passes = arg(4, 1) as u32;
-    scene.render.knn = arg(5, 64) as u32;
+    let (mut scene, mut settings) =
+        grinlight::scene::load_scene(Path::new("scenes/cornell_diffuse.toml"))?;
+    settings.spp = arg(1, 4) as u32;
+    settings.photons.global = arg(2, 100_000);
+    settings.photons.gather = arg(3, 16) as u32;
+    settings.passes = arg(4, 1) as u32;
+    settings.photons.knn = arg(5, 64) as u32;
     let camera = scene.camera.as_mut().ok_or("no camera")?;
     (camera.width, camera.height) = (width as u32, width as u32);
     let t = std::time::Instant::now();
-    let (film, report) = grinlight::render::render(&scene, 0, &())?;
+    let (film, report) = grinlight::render::render(&scene, &settings, &())?;
     let seconds = t.elapsed().as_secs_f64();
     let (rw, rh, reference) =
         read_exr_layer(Path::new("refs/cornell_diffuse.reference.exr"), None)?;

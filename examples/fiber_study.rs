@@ -22,12 +22,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                   stepper: StepperKind,
                   control: StepControl|
      -> Result<_, Box<dyn std::error::Error>> {
-        let mut scene = grinlight::scene::load_scene(Path::new("scenes/fiber_led.toml"))?;
-        scene.render.stepper = stepper;
-        scene.render.control = control;
-        scene.render.receiver_photons = photons;
+        let (scene, mut settings) =
+            grinlight::scene::load_scene(Path::new("scenes/fiber_led.toml"))?;
+        settings.trace.stepper = stepper;
+        settings.trace.control = control;
+        settings.receiver_photons = photons;
+        settings.threads = threads;
         let t = Instant::now();
-        let (m, _, _) = grinlight::render::measure(&scene, threads, 0, &())?;
+        let (m, _, _) = grinlight::render::measure(&scene, &settings, 0, &())?;
         Ok((
             m.into_iter().next().ok_or("no receiver")?,
             t.elapsed().as_secs_f64(),

@@ -14,6 +14,7 @@
 use glam::DVec3;
 use grinlight::plot::{canvas, save, Panel, PALETTE};
 use grinlight::scene::{load_scene, Scene};
+use grinlight::settings::TraceSettings;
 use grinlight::transport::Tracer;
 use std::io::Write;
 use std::path::Path;
@@ -40,8 +41,12 @@ fn rays() -> Vec<(DVec3, DVec3, f64)> {
 
 /// Landing points on the receiver, with the mean number of surfaces met, for the rays started
 /// in the medium `medium_at(r)`.
-fn land(scene: &Scene, medium_at: impl Fn(f64) -> usize) -> (Vec<Option<DVec3>>, f64) {
-    let tracer = Tracer::new(scene);
+fn land(
+    scene: &Scene,
+    trace: &TraceSettings,
+    medium_at: impl Fn(f64) -> usize,
+) -> (Vec<Option<DVec3>>, f64) {
+    let tracer = Tracer::new(scene, trace);
     let mut events = 0;
     let hits: Vec<Option<DVec3>> = rays()
         .into_iter()
@@ -60,10 +65,10 @@ fn land(scene: &Scene, medium_at: impl Fn(f64) -> usize) -> (Vec<Option<DVec3>>,
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let path = Path::new("scenes/fiber_led.toml");
-    let mut grin = load_scene(path)?;
-    grin.render.control = grinlight::curve::StepControl::Adaptive { tolerance: 1e-9 };
+    let (grin, mut grin_settings) = load_scene(path)?;
+    grin_settings.trace.control = grinlight::curve::StepControl::Adaptive { tolerance: 1e-9 };
     let core = grin.grin_fiber().ok_or("no GRIN fiber")?.medium;
-    let (reference, _) = land(&grin, |_| core);
+    let (reference, _) = land(&grin, &grin_settings.trace, |_| core);
     if reference.iter().any(Option::is_none) {
         return Err("a GRIN ray missed the receiver".into());
     }
@@ -84,11 +89,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 .map(|w| ("equal width", w, (1.0, w))),
         );
     for (rule, parameter, (dn, width)) in configs {
-        let mut twin = load_scene(path)?;
+        let (mut twin, mut settings) = load_scene(path)?;
         let t = Instant::now();
-        let layers = twin.layer_fiber(dn, width)?;
+        let layers = twin.layer_fiber(&mut settings.trace, dn, width)?;
         let first = twin.medium_names().count() - layers.len();
-        let (hits, per_ray) = land(&twin, |r| {
+        let (hits, per_ray) = land(&twin, &settings.trace, |r| {
             first + layers.iter().position(|l| r < l.outer).unwrap_or(0)
         });
         let seconds = t.elapsed().as_secs_f64();

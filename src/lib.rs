@@ -39,5 +39,6 @@ pub mod render;
 pub mod resources;
 pub mod sampling;
 pub mod scene;
+pub mod settings;
 pub mod shapes;
 pub mod transport;

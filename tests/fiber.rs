@@ -1,15 +1,16 @@
 //! The GRIN fiber of `scenes/fiber_led.toml` as a measuring instrument.
 
 use grinlight::scene::load::parse_scene;
-use grinlight::scene::load_scene;
+use grinlight::scene::{load_scene, Scene};
+use grinlight::settings::Settings;
 use grinlight::shapes::Primitive;
 use std::path::Path;
 
 fn flux(tolerance: f64, photons: u64) -> (f64, f64) {
-    let mut scene = load_scene(Path::new("scenes/fiber_led.toml")).unwrap();
-    scene.render.control = grinlight::curve::StepControl::Adaptive { tolerance };
-    scene.render.receiver_photons = photons;
-    let (m, _, report) = grinlight::render::measure(&scene, 0, 0, &()).unwrap();
+    let (scene, mut settings) = load_scene(Path::new("scenes/fiber_led.toml")).unwrap();
+    settings.trace.control = grinlight::curve::StepControl::Adaptive { tolerance };
+    settings.receiver_photons = photons;
+    let (m, _, report) = grinlight::render::measure(&scene, &settings, 0, &()).unwrap();
     assert_eq!(report.stats.photons_emitted, photons);
     m[0].flux
 }
@@ -31,8 +32,8 @@ fn receiver_flux_does_not_depend_on_the_step_tolerance() {
     assert!((0.008..0.0095).contains(&fine), "flux {fine}");
 }
 
-fn measure(scene: &grinlight::scene::Scene, pass: u64) -> grinlight::receiver::Measurement {
-    grinlight::render::measure(scene, 0, pass, &())
+fn measure((scene, settings): &(Scene, Settings), pass: u64) -> grinlight::receiver::Measurement {
+    grinlight::render::measure(scene, settings, pass, &())
         .unwrap()
         .0
         .remove(0)
@@ -51,21 +52,27 @@ fn layered_twin_matches_the_grin_fiber_and_a_wrong_twin_does_not() {
             Some(t) => grinlight::scene::load::parse_scene(path, t).unwrap(),
             None => load_scene(path).unwrap(),
         };
-        s.render.receiver_photons = photons;
+        s.1.receiver_photons = photons;
         s
     };
     let grin = load(None);
     let a = measure(&grin, 0);
     let baseline = grinlight::receiver::compare(&a, &measure(&grin, 7));
     let mut twin = load(None);
-    let layers = twin.layer_fiber(0.005, f64::INFINITY).unwrap();
+    let layers = twin
+        .0
+        .layer_fiber(&mut twin.1.trace, 0.005, f64::INFINITY)
+        .unwrap();
     assert_eq!(layers.len(), 4);
     let good = grinlight::receiver::compare(&a, &measure(&twin, 1));
     let text = std::fs::read_to_string(path)
         .unwrap()
         .replace("n0 = 1.5", "n0 = 1.7");
     let mut wrong = load(Some(text));
-    wrong.layer_fiber(0.005, f64::INFINITY).unwrap();
+    wrong
+        .0
+        .layer_fiber(&mut wrong.1.trace, 0.005, f64::INFINITY)
+        .unwrap();
     let bad = grinlight::receiver::compare(&a, &measure(&wrong, 2));
     println!("GRIN vs GRIN {baseline:?}\nGRIN vs layered {good:?}\nGRIN vs wrong {bad:?}");
     let z = |c: &grinlight::receiver::Comparison| (c.flux_ratio - 1.0) / c.flux_ratio_stderr;
@@ -97,8 +104,8 @@ fn layered_twin_matches_the_grin_fiber_and_a_wrong_twin_does_not() {
 fn a_meridional_ray_reaches_the_receiver_where_the_paraxial_path_says() {
     use glam::DVec3;
     use grinlight::transport::Tracer;
-    let scene = load_scene(Path::new("scenes/fiber_led.toml")).unwrap();
-    let tracer = Tracer::new(&scene);
+    let (scene, settings) = load_scene(Path::new("scenes/fiber_led.toml")).unwrap();
+    let tracer = Tracer::new(&scene, &settings.trace);
     let core = (0..)
         .find(|&i| scene.medium_names().nth(i) == Some("core"))
         .unwrap();
@@ -216,10 +223,10 @@ fn energy_budget_of_the_fiber() {
         .replace("height = 20.0", "height = 2.0")
         .replace("center = [0.0, 0.0, 20.05]", "center = [0.0, 0.0, 2.05]");
     assert_ne!(short, text);
-    let mut scene = parse_scene(Path::new("scenes/fiber_led.toml"), short).unwrap();
+    let (scene, mut settings) = parse_scene(Path::new("scenes/fiber_led.toml"), short).unwrap();
     let photons = 200_000;
-    scene.render.receiver_photons = photons;
-    let (m, budget, _) = grinlight::render::measure(&scene, 0, 0, &()).unwrap();
+    settings.receiver_photons = photons;
+    let (m, budget, _) = grinlight::render::measure(&scene, &settings, 0, &()).unwrap();
     let power = 0.01;
     assert!(
         (budget.emitted - power).abs() <= 1e-12 * power,
@@ -349,11 +356,11 @@ fn the_layered_twin_is_a_staircase_and_converges_slowly() {
     use grinlight::transport::Tracer;
     let path = Path::new("scenes/fiber_led.toml");
     let grin = load_scene(path).unwrap();
-    let core = grin.grin_fiber().unwrap().medium;
+    let core = grin.0.grin_fiber().unwrap().medium;
     let thetas: Vec<f64> = (1..=64).map(|i| 0.16 * i as f64 / 64.0).collect();
-    let land = |scene: &grinlight::scene::Scene, medium: usize, theta: f64| {
+    let land = |(scene, settings): &(Scene, Settings), medium: usize, theta: f64| {
         let dir = DVec3::new(theta.sin(), 0.0, theta.cos());
-        let (p, _) = Tracer::new(scene)
+        let (p, _) = Tracer::new(scene, &settings.trace)
             .principal_ray(DVec3::new(0.0, 0.0, 1e-9), dir, Some(medium), 100_000)
             .expect("reaches the receiver");
         assert!(p.y.abs() < 1e-9, "meridional");
@@ -386,8 +393,8 @@ fn the_layered_twin_is_a_staircase_and_converges_slowly() {
     println!("GRIN rays against the ODE: worst {worst:.2e} mm");
     for (dn, width, bar) in [(0.005, f64::INFINITY, 0.1), (1.0, 0.0025, 0.025)] {
         let mut twin = load_scene(path).unwrap();
-        let layers = twin.layer_fiber(dn, width).unwrap();
-        let first = twin.medium_names().count() - layers.len();
+        let layers = twin.0.layer_fiber(&mut twin.1.trace, dn, width).unwrap();
+        let first = twin.0.medium_names().count() - layers.len();
         let model: Vec<(f64, f64)> = layers.iter().map(|l| (l.outer, l.n)).collect();
         let mut agree = 0;
         let mut off: Vec<f64> = Vec::new();
@@ -415,13 +422,13 @@ fn the_layered_twin_is_a_staircase_and_converges_slowly() {
 /// and the receiver flux came out 1 % low (measured); now none is.
 #[test]
 fn the_layered_twin_loses_no_photon() {
-    let mut twin = load_scene(Path::new("scenes/fiber_led.toml")).unwrap();
-    assert_eq!(twin.render.max_depth, 100_000);
-    let layers = twin.layer_fiber(1.0, 0.01).unwrap();
+    let (mut twin, mut settings) = load_scene(Path::new("scenes/fiber_led.toml")).unwrap();
+    assert_eq!(settings.trace.max_depth, 100_000);
+    let layers = twin.layer_fiber(&mut settings.trace, 1.0, 0.01).unwrap();
     assert_eq!(layers.len(), 50);
-    assert_eq!(twin.render.max_depth, 100_000 * 101);
-    twin.render.receiver_photons = 5000;
-    let (_, budget, report) = grinlight::render::measure(&twin, 0, 0, &()).unwrap();
+    assert_eq!(settings.trace.max_depth, 100_000 * 101);
+    settings.receiver_photons = 5000;
+    let (_, budget, report) = grinlight::render::measure(&twin, &settings, 0, &()).unwrap();
     println!("{budget:?}");
     assert_eq!(report.stats.depth_limited, 0);
     assert_eq!((budget.lost, budget.absorbed), (0.0, 0.0));
@@ -508,8 +515,8 @@ fn absorption_in_a_rod_follows_the_slab_formula() {
         );
     assert_ne!(curved, ROD);
     for text in [ROD.to_string(), curved] {
-        let scene = parse_scene(Path::new("slab.toml"), text).unwrap();
-        let (m, budget, _) = grinlight::render::measure(&scene, 0, 0, &()).unwrap();
+        let (scene, settings) = parse_scene(Path::new("slab.toml"), text).unwrap();
+        let (m, budget, _) = grinlight::render::measure(&scene, &settings, 0, &()).unwrap();
         assert!((budget.booked() - budget.emitted).abs() <= 1e-12 * budget.emitted);
         assert_eq!(budget.lost, 0.0);
         let face = budget.emitted - budget.missed;
@@ -561,8 +568,8 @@ fn camera_rays_through_an_absorbing_rod_see_the_slab_transmission() {
          width = 8\nheight = 8\nfov_y_deg = 8\n"
     )
     .replace("receiver_photons = 200000", "spp = 64\ngather = 0\nphotons = 1000\ncaustic_photons = 1000");
-    let scene = parse_scene(Path::new("slab_camera.toml"), text).unwrap();
-    let (film, _) = grinlight::render::render(&scene, 0, &()).unwrap();
+    let (scene, settings) = parse_scene(Path::new("slab_camera.toml"), text).unwrap();
+    let (film, _) = grinlight::render::render(&scene, &settings, &()).unwrap();
     let px: Vec<f64> = film
         .layer("emitted")
         .unwrap()
@@ -586,15 +593,18 @@ fn camera_rays_through_an_absorbing_rod_see_the_slab_transmission() {
 /// instead of silently coarsened.
 #[test]
 fn fine_layerings_are_honoured_or_refused() {
-    let load = || load_scene(Path::new("scenes/fiber_led.toml")).unwrap();
-    let layers = load().layer_fiber(1.0, 5e-5).unwrap();
+    let layer = |dn: f64, width: f64| {
+        let (mut scene, mut settings) = load_scene(Path::new("scenes/fiber_led.toml")).unwrap();
+        scene.layer_fiber(&mut settings.trace, dn, width)
+    };
+    let layers = layer(1.0, 5e-5).unwrap();
     let widest = layers.iter().map(|l| l.outer - l.inner).fold(0.0, f64::max);
     assert_eq!(layers.len(), 10_000);
     assert!(widest <= 5e-5 * (1.0 + 1e-9), "{widest}");
     // Each layer spans at most Δn of the profile n = 1.5 (1 − 0.10667 r²/2), plus one sample's
     // change: ≤ Δn/4 at the steepest slope, which is estimated from 4000 samples (at the wall
     // 1/8000 low, so allow 1e-3 on the quarter).
-    let layers = load().layer_fiber(1e-6, f64::INFINITY).unwrap();
+    let layers = layer(1e-6, f64::INFINITY).unwrap();
     let n = |r: f64| 1.5 * (1.0 - 0.5 * 0.10667 * r * r);
     let span = layers
         .iter()
@@ -605,6 +615,6 @@ fn fine_layerings_are_honoured_or_refused() {
         span <= 1e-6 * (1.0 + 0.25 * (1.0 + 1e-3)),
         "widest index span {span}"
     );
-    let err = load().layer_fiber(1.0, 1e-6).unwrap_err().to_string();
+    let err = layer(1.0, 1e-6).unwrap_err().to_string();
     assert!(err.contains("would make over 100000 layers"), "{err}");
 }

@@ -7,8 +7,15 @@ use grinlight::transport::Tracer;
 use std::f64::consts::PI;
 use std::path::Path;
 
-fn render(scene: &grinlight::scene::Scene, threads: usize) -> grinlight::film::Film {
-    grinlight::render::render(scene, threads, &()).unwrap().0
+fn render(
+    (scene, settings): &(grinlight::scene::Scene, grinlight::settings::Settings),
+    threads: usize,
+) -> grinlight::film::Film {
+    let settings = grinlight::settings::Settings {
+        threads,
+        ..settings.clone()
+    };
+    grinlight::render::render(scene, &settings, &()).unwrap().0
 }
 
 /// A black (albedo 0) disk of radius R at distance h below a source: photons are stored at
@@ -34,10 +41,11 @@ fn photon_flux_onto_a_disk_matches_the_closed_form() {
         ),
     ];
     for (light, want) in cases {
-        let scene = parse_scene(Path::new("flux.toml"), format!("{receiver}{light}")).unwrap();
-        let tracer = Tracer::new(&scene);
+        let (scene, settings) =
+            parse_scene(Path::new("flux.toml"), format!("{receiver}{light}")).unwrap();
+        let tracer = Tracer::new(&scene, &settings.trace);
         let sources = Sources::new(&tracer);
-        let (sink, stats) = shoot(&tracer, &sources, Batch::Global, 0, 200_000, &|| false);
+        let (sink, stats) = shoot(&tracer, &sources, Batch::Global, 0, 0, 200_000, &|| false);
         let photons = sink.photons;
         assert_eq!(stats.photons_emitted, 200_000);
         let sum = photons.iter().fold([0.0f64; 3], |acc, p| {
@@ -64,10 +72,10 @@ fn photon_flux_onto_a_disk_matches_the_closed_form() {
 #[test]
 fn cornell_diffuse_matches_the_reference() {
     let mut scene = grinlight::scene::load_scene(Path::new("scenes/cornell_diffuse.toml")).unwrap();
-    scene.render.spp = 64;
-    scene.render.gather = 2;
-    scene.render.photons = 400_000;
-    let camera = scene.camera.as_mut().unwrap();
+    scene.1.spp = 64;
+    scene.1.photons.gather = 2;
+    scene.1.photons.global = 400_000;
+    let camera = scene.0.camera.as_mut().unwrap();
     (camera.width, camera.height) = (128, 128);
     let film = render(&scene, 0);
     let (rw, rh, reference) =
@@ -96,12 +104,12 @@ fn cornell_diffuse_matches_the_reference() {
 #[test]
 fn one_and_two_threads_write_the_same_exr() {
     let mut scene = grinlight::scene::load_scene(Path::new("scenes/cornell_caustic.toml")).unwrap();
-    scene.render.spp = 2;
-    scene.render.passes = 2;
-    scene.render.photons = 20_000;
-    scene.render.caustic_photons = 20_000;
-    scene.render.gather = 2;
-    let camera = scene.camera.as_mut().unwrap();
+    scene.1.spp = 2;
+    scene.1.passes = 2;
+    scene.1.photons.global = 20_000;
+    scene.1.photons.caustic = 20_000;
+    scene.1.photons.gather = 2;
+    let camera = scene.0.camera.as_mut().unwrap();
     (camera.width, camera.height) = (40, 30);
     let dir = std::env::temp_dir().join(format!("grinlight-det-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
@@ -115,10 +123,10 @@ fn one_and_two_threads_write_the_same_exr() {
     assert!(bytes[0] == bytes[1], "the EXR depends on the thread count");
     let luneburg = grinlight::scene::load_scene(Path::new("scenes/luneburg.toml")).unwrap();
     let mut small = luneburg;
-    small.render.spp = 1;
-    small.render.photons = 5_000;
-    small.render.caustic_photons = 5_000;
-    let camera = small.camera.as_mut().unwrap();
+    small.1.spp = 1;
+    small.1.photons.global = 5_000;
+    small.1.photons.caustic = 5_000;
+    let camera = small.0.camera.as_mut().unwrap();
     (camera.width, camera.height) = (24, 18);
     let (a, b) = (render(&small, 1), render(&small, 2));
     assert!(

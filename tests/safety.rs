@@ -96,7 +96,7 @@ fn outputs_never_overwrite_inputs_or_foreign_files() {
         ),
     ];
     // The medium's name in the scene (an anonymous uniform medium of the glass's ior).
-    let scene = grinlight::scene::load_scene(&dir.join("s.toml")).unwrap();
+    let (scene, _) = grinlight::scene::load_scene(&dir.join("s.toml")).unwrap();
     let glass = scene.medium_names().next().unwrap().to_string();
     for (args, needle) in cases {
         let args: Vec<&str> = args

@@ -10,7 +10,7 @@ fn every_shipped_scene_loads() {
     for entry in std::fs::read_dir("scenes").unwrap() {
         let path = entry.unwrap().path();
         if path.extension().is_some_and(|e| e == "toml") {
-            let scene = grinlight::scene::load_scene(&path).unwrap_or_else(|e| panic!("{e}"));
+            let (scene, _) = grinlight::scene::load_scene(&path).unwrap_or_else(|e| panic!("{e}"));
             // A scene holds something to look at or to trace: a camera or a medium.
             assert!(
                 scene.camera.is_some() || scene.medium_names().count() > 0,
@@ -150,7 +150,7 @@ fn a_grid_file_is_read_relative_to_the_scene() {
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("n.txt"), "1 1.2\n1 1.2\n1 1.2\n1 1.2\n").unwrap();
     let text = "[[medium]]\nname = \"g\"\nprofile = \"grid\"\nbounds = [[0,0,0],[1,1,1]]\ndims = [2,2,2]\nfile = \"n.txt\"\n";
-    let scene = parse_scene(&dir.join("scene.toml"), text.to_string()).unwrap();
+    let (scene, _) = parse_scene(&dir.join("scene.toml"), text.to_string()).unwrap();
     let s = scene
         .medium("g")
         .unwrap()

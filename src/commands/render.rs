@@ -9,6 +9,7 @@ use crate::photon::Budget;
 use crate::receiver::{self, Measurement};
 use crate::render::Report;
 use crate::scene::{self, Scene};
+use crate::settings::Settings;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -26,8 +27,6 @@ pub struct RenderJob {
     pub output: Option<PathBuf>,
     /// The command line's values of `[render]` and `[camera]` keys.
     pub overrides: Overrides,
-    /// Worker threads (None: the scene's `threads`; 0: one per core).
-    pub threads: Option<usize>,
     /// Write the EXR and PNG every this many passes (0: only at the end).
     pub checkpoint: u32,
     /// Draw the paths of this many receiver photons through the scene's GRIN fiber (0: none).
@@ -42,6 +41,8 @@ pub struct Overrides {
     pub spp: Option<u32>,
     /// Seed of every random stream.
     pub seed: Option<u64>,
+    /// Worker threads (0: one per core; at most 16 per core).
+    pub threads: Option<usize>,
     /// Image width in pixels (the vertical field of view is kept).
     pub width: Option<u32>,
     /// Image height in pixels.
@@ -65,22 +66,23 @@ pub struct Overrides {
 }
 
 impl Overrides {
-    /// Applies the values to a loaded scene: the one place command-line values meet the
-    /// scene's settings.
-    pub fn apply(&self, scene: &mut Scene) -> Result<()> {
-        let s = &mut scene.render;
+    /// Applies the values to a loaded scene's settings and camera: the one place
+    /// command-line values meet the scene file's.
+    pub fn apply(&self, scene: &mut Scene, s: &mut Settings) -> Result<()> {
         if let Some(n) = self.spp {
             s.spp = at_least_one("spp", n)?;
         }
         s.seed = self.seed.unwrap_or(s.seed);
-        s.photons = self.photons.unwrap_or(s.photons);
-        s.caustic_photons = self.caustic_photons.unwrap_or(s.caustic_photons);
-        s.gather = self.gather.unwrap_or(s.gather);
+        s.threads = crate::resources::check_threads(self.threads.unwrap_or(s.threads))?;
+        let p = &mut s.photons;
+        p.global = self.photons.unwrap_or(p.global);
+        p.caustic = self.caustic_photons.unwrap_or(p.caustic);
+        p.gather = self.gather.unwrap_or(p.gather);
         if let Some(k) = self.knn {
-            s.knn = at_least_one("knn", k)?;
+            p.knn = at_least_one("knn", k)?;
         }
         if let Some(r) = self.radius {
-            s.radius = Some(positive("radius", r)?);
+            p.radius = Some(positive("radius", r)?);
         }
         if let Some(b) = self.time_budget {
             s.time_budget = Some(positive("time-budget", b)?);
@@ -131,8 +133,9 @@ struct Files {
 }
 
 impl Files {
-    /// Names every file the render of `scene` writes and checks each (see [`Outputs`]).
-    fn plan(scene: &Scene, exr: PathBuf, paths: u64) -> Result<Self> {
+    /// Names every file the render of `scene` writes (`png`: with the preview) and checks
+    /// each (see [`Outputs`]).
+    fn plan(scene: &Scene, exr: PathBuf, png: bool, paths: u64) -> Result<Self> {
         if !scene::objects::is_exr(&exr) {
             return Err(Error::Usage(format!(
                 "{}: the output is a multi-layer EXR and must end in .exr (the PNG preview and \
@@ -143,7 +146,7 @@ impl Files {
         let stem = exr.with_extension("");
         let beside = |suffix: &str| PathBuf::from(format!("{}.{suffix}", stem.display()));
         let files = Files {
-            png: (scene.camera.is_some() && scene.output.png).then(|| exr.with_extension("png")),
+            png: (scene.camera.is_some() && png).then(|| exr.with_extension("png")),
             receivers: scene
                 .receivers
                 .iter()
@@ -189,9 +192,8 @@ impl Files {
 /// the report line by line; when it asks to stop, the files hold what was done and the
 /// outcome is marked partial.
 pub fn render(job: &RenderJob, observer: &dyn Observer) -> Result<RenderOutcome> {
-    let mut scene = scene::load_scene(&job.scene)?;
-    job.overrides.apply(&mut scene)?;
-    let threads = crate::resources::check_threads(job.threads.unwrap_or(scene.render.threads))?;
+    let (mut scene, mut settings) = scene::load_scene(&job.scene)?;
+    job.overrides.apply(&mut scene, &mut settings)?;
     if job.paths > MAX_PATHS {
         return Err(Error::Usage(format!(
             "--paths {}: a figure shows at most {MAX_PATHS} paths (each is kept in memory)",
@@ -222,28 +224,27 @@ pub fn render(job: &RenderJob, observer: &dyn Observer) -> Result<RenderOutcome>
     let exr = job
         .output
         .clone()
-        .or_else(|| scene.output.path.clone())
+        .or_else(|| settings.output.path.clone())
         .unwrap_or_else(|| {
             PathBuf::from(job.scene.file_stem().unwrap_or_default()).with_extension("exr")
         });
-    let files = Files::plan(&scene, exr, job.paths)?;
+    let files = Files::plan(&scene, exr, settings.output.png, job.paths)?;
     crate::resources::check_memory(
-        crate::render::memory_needed(&scene),
+        crate::render::memory_needed(&scene, &settings),
         &format!("rendering {}", job.scene.display()),
     )?;
     let mut outcome = RenderOutcome::default();
     if !scene.receivers.is_empty() {
-        let (measurements, budget, report) = measure_receivers(&scene, threads, &files, observer)?;
+        let (measurements, budget, report) =
+            measure_receivers(&scene, &settings, &files, observer)?;
         outcome.partial |= report.partial.is_some();
         if let (Some(fiber), false) = (fiber, outcome.partial) {
-            draw_paths(
-                &scene,
-                &fiber,
-                job.paths,
-                &measurements[0],
-                &files,
-                observer,
-            )?;
+            let paths = Paths {
+                fiber,
+                count: job.paths,
+                seed: settings.seed,
+            };
+            draw_paths(&scene, &settings, paths, &measurements[0], &files, observer)?;
         }
         outcome.measurements = measurements;
         outcome.budget = Some(budget);
@@ -256,18 +257,18 @@ pub fn render(job: &RenderJob, observer: &dyn Observer) -> Result<RenderOutcome>
         outer: observer,
         every: job.checkpoint,
         files: &files,
-        exposure: scene.output.exposure,
+        exposure: settings.output.exposure,
         start,
     };
-    let (film, report) = crate::render::render(&scene, threads, &checkpoints)?;
-    files.write_film(&film, scene.output.exposure)?;
+    let (film, report) = crate::render::render(&scene, &settings, &checkpoints)?;
+    files.write_film(&film, settings.output.exposure)?;
     let camera = scene.camera.as_ref().expect("checked above");
     observer.line(&format!(
         "rendered {} ({}×{}, {} spp × {} passes) in {:.2} s",
         job.scene.display(),
         camera.width,
         camera.height,
-        scene.render.spp,
+        settings.spp,
         report.passes,
         start.elapsed().as_secs_f64()
     ));
@@ -289,12 +290,12 @@ pub fn render(job: &RenderJob, observer: &dyn Observer) -> Result<RenderOutcome>
 /// budget.
 fn measure_receivers(
     scene: &Scene,
-    threads: usize,
+    settings: &Settings,
     files: &Files,
     observer: &dyn Observer,
 ) -> Result<(Vec<Measurement>, Budget, Report)> {
     let start = Instant::now();
-    let (measurements, budget, report) = crate::render::measure(scene, threads, 0, observer)?;
+    let (measurements, budget, report) = crate::render::measure(scene, settings, 0, observer)?;
     let mut lines = Vec::new();
     for ((r, m), [csv, png, radial_csv, radial_png]) in scene
         .receivers
@@ -333,21 +334,33 @@ fn measure_receivers(
     Ok((measurements, budget, report))
 }
 
-/// Draws seed 004 fig. 5 for the scene's GRIN fiber with `count` photon paths.
+/// Which photon paths seed 004 fig. 5 draws: the first `count` of the receiver batch.
+struct Paths {
+    fiber: scene::GrinFiber,
+    count: u64,
+    seed: u64,
+}
+
+/// Draws seed 004 fig. 5 for the scene's GRIN fiber.
 fn draw_paths(
     scene: &Scene,
-    fiber: &scene::GrinFiber,
-    count: u64,
+    settings: &Settings,
+    paths: Paths,
     first: &Measurement,
     files: &Files,
     observer: &dyn Observer,
 ) -> Result<()> {
     let out = files.paths.as_ref().expect("planned with the paths");
-    let tracer = crate::transport::Tracer::new(scene);
+    let tracer = crate::transport::Tracer::new(scene, &settings.trace);
     let sources = crate::photon::Sources::new(&tracer);
-    let drawn = crate::photon::photon_paths(&tracer, &sources, 0, count);
-    let legend =
-        crate::fiber_figure::write(scene, fiber, &drawn, (&scene.receivers[0], first), out)?;
+    let drawn = crate::photon::photon_paths(&tracer, &sources, paths.seed, 0, paths.count);
+    let legend = crate::fiber_figure::write(
+        scene,
+        &paths.fiber,
+        &drawn,
+        (&scene.receivers[0], first),
+        out,
+    )?;
     observer.line(&format!("wrote {}: {legend}", out.display()));
     Ok(())
 }

@@ -111,7 +111,7 @@ impl TraceControl {
 /// Runs `grinlight trace`: the ray's summary, and its CSV and plot if asked, written
 /// atomically after checking that neither can overwrite an input or another output.
 pub fn trace(job: &TraceJob, observer: &dyn Observer) -> Result<MarchOutcome> {
-    let scene = crate::scene::load_scene(&job.scene)?;
+    let (scene, _) = crate::scene::load_scene(&job.scene)?;
     let medium = scene.medium(&job.medium)?;
     let length = positive("length", job.length)?;
     for (flag, v) in [("from", job.from), ("dir", job.dir)] {

@@ -7,6 +7,7 @@ use crate::error::{Error, Result};
 use crate::output::{Kind, Outputs};
 use crate::receiver;
 use crate::scene::{self, Scene};
+use crate::settings::Settings;
 use std::path::PathBuf;
 
 /// What `grinlight validate` is asked to do.
@@ -39,32 +40,33 @@ pub fn validate(job: &ValidateJob, observer: &dyn Observer) -> Result<()> {
     if let Some(w) = job.max_width {
         super::positive("max-width", w)?;
     }
-    let load = || -> Result<Scene> {
-        let mut s = scene::load_scene(&job.scene)?;
+    let load = || -> Result<(Scene, Settings)> {
+        let (s, mut settings) = scene::load_scene(&job.scene)?;
         if let Some(n) = job.photons {
-            s.render.receiver_photons = at_least_one("photons", n)?;
+            settings.receiver_photons = at_least_one("photons", n)?;
         }
+        settings.threads = threads;
         if s.receivers.is_empty() {
             return Err(Error::Usage(format!(
                 "{}: no [[receiver]] to compare on",
                 job.scene.display()
             )));
         }
-        Ok(s)
+        Ok((s, settings))
     };
-    let grin = load()?;
+    let (grin, grin_settings) = load()?;
     let plot = job.plot.clone().unwrap_or_else(|| {
         PathBuf::from(job.scene.file_stem().unwrap_or_default()).with_extension("validate.png")
     });
     Outputs::new(&grin.inputs).add(&plot, Kind::Png)?;
     crate::resources::check_memory(
-        crate::render::memory_needed(&grin),
+        crate::render::memory_needed(&grin, &grin_settings),
         &format!("measuring {}", job.scene.display()),
     )?;
     let max_width = job.max_width.unwrap_or(f64::INFINITY);
     let rec = &grin.receivers[0];
     let t = std::time::Instant::now();
-    let (reference, _, grin_report) = crate::render::measure(&grin, threads, 0, observer)?;
+    let (reference, _, grin_report) = crate::render::measure(&grin, &grin_settings, 0, observer)?;
     stop_if_partial(&grin_report)?;
     if reference[0].flux.0 <= 0.0 {
         return Err(Error::Usage(format!(
@@ -81,7 +83,7 @@ pub fn validate(job: &ValidateJob, observer: &dyn Observer) -> Result<()> {
         rec.name,
         reference[0].flux.0,
         reference[0].flux.1,
-        grin.render.receiver_photons,
+        grin_settings.receiver_photons,
         cut(&grin_report),
         t.elapsed().as_secs_f64()
     ));
@@ -91,10 +93,11 @@ pub fn validate(job: &ValidateJob, observer: &dyn Observer) -> Result<()> {
     );
     let mut profiles = vec![receiver::radial_profile(rec, &reference[0])];
     for (k, &dn) in job.dn.iter().enumerate() {
-        let mut twin = load()?;
-        let layers = twin.layer_fiber(dn, max_width)?;
+        let (mut twin, mut settings) = load()?;
+        let layers = twin.layer_fiber(&mut settings.trace, dn, max_width)?;
         let t = std::time::Instant::now();
-        let (layered, _, report) = crate::render::measure(&twin, threads, 1 + k as u64, observer)?;
+        let (layered, _, report) =
+            crate::render::measure(&twin, &settings, 1 + k as u64, observer)?;
         stop_if_partial(&report)?;
         let c = receiver::compare(&reference[0], &layered[0]);
         observer.line(&format!(

@@ -130,7 +130,7 @@ pub struct Sink {
     pub budget: Budget,
 }
 
-/// Traces `count` photons of pass `pass` and returns what they left, in photon order, with
+/// Traces `count` photons of pass `pass` (random streams keyed by `seed`) and returns what they left, in photon order, with
 /// the transport statistics. Runs on the current rayon pool. Once `stop` answers true, chunks
 /// not yet started are skipped: the photons traced are then a subset of whole chunks,
 /// counted in the statistics' `photons_emitted` (their powers stay those of a batch of
@@ -139,6 +139,7 @@ pub fn shoot(
     tracer: &Tracer,
     sources: &Sources,
     batch: Batch,
+    seed: u64,
     pass: u64,
     count: u64,
     stop: &(dyn Fn() -> bool + Sync),
@@ -160,7 +161,7 @@ pub fn shoot(
                 return (stored, stats);
             }
             for i in c * CHUNK..((c + 1) * CHUNK).min(count) {
-                let (mut rng, emission) = launch(tracer, sources, purpose, pass, i);
+                let (mut rng, emission) = launch(tracer, sources, purpose, seed, pass, i);
                 stats.photons_emitted += 1;
                 if let Some(e) = emission {
                     let photon = Tagged {
@@ -199,10 +200,11 @@ fn launch(
     tracer: &Tracer,
     sources: &Sources,
     purpose: Purpose,
+    seed: u64,
     pass: u64,
     i: u64,
 ) -> (Pcg64Mcg, Option<Emission>) {
-    let mut rng = stream(tracer.scene.render.seed, purpose, pass, i);
+    let mut rng = stream(seed, purpose, pass, i);
     let u = [rng.gen(), rng.gen(), rng.gen(), rng.gen(), rng.gen()];
     let emission = sources.emit(tracer, u);
     (rng, emission)
@@ -219,16 +221,22 @@ struct Tagged {
     batch: Batch,
 }
 
-/// The paths of photons `0..count` of the receiver batch's pass `pass` (the same photons a
-/// receiver measurement with that pass traces): each path's emission point, every accepted
+/// The paths of photons `0..count` of the receiver batch's pass `pass` under `seed` (the same
+/// photons a receiver measurement with that pass traces): each path's emission point, every accepted
 /// point of its curved stretches and every surface it met, in order. Single-threaded.
-pub fn photon_paths(tracer: &Tracer, sources: &Sources, pass: u64, count: u64) -> Vec<Vec<DVec3>> {
+pub fn photon_paths(
+    tracer: &Tracer,
+    sources: &Sources,
+    seed: u64,
+    pass: u64,
+    count: u64,
+) -> Vec<Vec<DVec3>> {
     let mut paths = Vec::new();
     if sources.is_empty() {
         return paths;
     }
     for i in 0..count {
-        let (mut rng, emission) = launch(tracer, sources, Purpose::ReceiverPhotons, pass, i);
+        let (mut rng, emission) = launch(tracer, sources, Purpose::ReceiverPhotons, seed, pass, i);
         if let Some(e) = emission {
             let tag = Tagged {
                 index: i,
@@ -269,7 +277,7 @@ fn trace_photon(
     let (mut reflected, mut left_through) = (false, None);
     path(origin);
     let fate = 'path: {
-        for _ in 0..scene.render.max_depth {
+        for _ in 0..tracer.settings.max_depth {
             bent |= medium.is_some_and(|m| !scene.medium_at(m).is_uniform());
             let event = tracer.next_event_along(origin, dir, medium, stats, path);
             // Absorption on the way, by Russian roulette (photon powers stay equal in size).

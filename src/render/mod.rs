@@ -23,6 +23,7 @@ use crate::photon::{shoot, Batch, Budget, PhotonMap, Sources};
 use crate::receiver::{self, Measurement};
 use crate::sampling::{stream, Purpose};
 use crate::scene::Scene;
+use crate::settings::{PhotonSettings, Settings};
 use crate::transport::{Stats, Tracer};
 use rand::Rng;
 use rayon::prelude::*;
@@ -99,8 +100,9 @@ pub struct Plan {
 }
 
 impl Plan {
-    /// What `scene` needs: nothing without diffuse surfaces or without emitters.
-    pub fn of(scene: &Scene) -> Self {
+    /// What `scene` needs with `photons`: nothing without diffuse surfaces or without
+    /// emitters.
+    pub fn of(scene: &Scene, photons: &PhotonSettings) -> Self {
         use crate::material::Material;
         let has = |f: fn(&Material) -> bool| {
             scene
@@ -120,8 +122,8 @@ impl Plan {
                 .iter()
                 .any(|s| s.interior.is_some_and(|m| !scene.medium_at(m).is_uniform()));
         Self {
-            caustic: diffuse && emits && (specular || gradient) && scene.render.caustic_photons > 0,
-            global: diffuse && emits && scene.render.gather > 0 && scene.render.photons > 0,
+            caustic: diffuse && emits && (specular || gradient) && photons.caustic > 0,
+            global: diffuse && emits && photons.gather > 0 && photons.global > 0,
         }
     }
 }
@@ -191,9 +193,13 @@ struct Tile {
     pixels: Vec<PixelState>,
 }
 
-/// Renders the scene's camera view, telling `observer` of every pass and tile and asking it
-/// whether to stop.
-pub fn render(scene: &Scene, threads: usize, observer: &dyn Observer) -> Result<(Film, Report)> {
+/// Renders the scene's camera view as `settings` say, telling `observer` of every pass and
+/// tile and asking it whether to stop.
+pub fn render(
+    scene: &Scene,
+    settings: &Settings,
+    observer: &dyn Observer,
+) -> Result<(Film, Report)> {
     let camera = scene.camera.as_ref().ok_or_else(|| {
         Error::Usage(format!(
             "{}: the scene has no [camera]",
@@ -215,12 +221,11 @@ pub fn render(scene: &Scene, threads: usize, observer: &dyn Observer) -> Result<
             });
         }
     }
-    let tracer = Tracer::new(scene);
+    let tracer = Tracer::new(scene, &settings.trace);
     let sources = Sources::new(&tracer);
-    let plan = Plan::of(scene);
-    let pool = thread_pool(threads)?;
-    let settings = &scene.render;
-    let max_radius = settings.radius.unwrap_or(0.05 * tracer.ball.1);
+    let plan = Plan::of(scene, &settings.photons);
+    let pool = thread_pool(settings.threads)?;
+    let max_radius = settings.photons.radius.unwrap_or(0.05 * tracer.ball.1);
     let start = Instant::now();
     let mut report = Report::default();
     let mut film = Film::new(w, h);
@@ -245,14 +250,20 @@ pub fn render(scene: &Scene, threads: usize, observer: &dyn Observer) -> Result<
         let build = |batch: Batch, count: u64, report: &mut Report| {
             let t0 = Instant::now();
             let (sink, stats) = pool.install(|| {
-                shoot(&tracer, &sources, batch, pass as u64, count, &|| {
-                    observer.stop_requested()
-                })
+                shoot(
+                    &tracer,
+                    &sources,
+                    batch,
+                    settings.seed,
+                    pass as u64,
+                    count,
+                    &|| observer.stop_requested(),
+                )
             });
             let t1 = Instant::now();
             let mut map = PhotonMap::new(sink.photons);
             if batch == Batch::Global {
-                pool.install(|| map.precompute_irradiance(settings.knn as usize, max_r2));
+                pool.install(|| map.precompute_irradiance(settings.photons.knn as usize, max_r2));
             }
             report.seconds.0 += (t1 - t0).as_secs_f64();
             report.seconds.1 += t1.elapsed().as_secs_f64();
@@ -261,10 +272,10 @@ pub fn render(scene: &Scene, threads: usize, observer: &dyn Observer) -> Result<
         };
         let caustic = plan
             .caustic
-            .then(|| build(Batch::Caustic, settings.caustic_photons, &mut report));
+            .then(|| build(Batch::Caustic, settings.photons.caustic, &mut report));
         let global = plan
             .global
-            .then(|| build(Batch::Global, settings.photons, &mut report));
+            .then(|| build(Batch::Global, settings.photons.global, &mut report));
         // Stopped while tracing photons: the maps may be incomplete, so the pass is abandoned.
         if observer.stop_requested() {
             report.partial = Some(format!(
@@ -279,9 +290,10 @@ pub fn render(scene: &Scene, threads: usize, observer: &dyn Observer) -> Result<
         let maps = Maps {
             caustic: caustic.as_ref(),
             global: global.as_ref(),
-            knn: settings.knn as usize,
+            knn: settings.photons.knn as usize,
+            gather: settings.photons.gather,
             max_r2,
-            initial_r2: settings.radius.map(|r| r * r),
+            initial_r2: settings.photons.radius.map(|r| r * r),
         };
         let t0 = Instant::now();
         let stats: Vec<Stats> = pool.install(|| {
@@ -290,7 +302,12 @@ pub fn render(scene: &Scene, threads: usize, observer: &dyn Observer) -> Result<
                 .map(|tile| {
                     let mut stats = Stats::default();
                     if !observer.stop_requested() {
-                        camera_tile(&tracer, &maps, pass, tile, &mut stats);
+                        let sampling = Sampling {
+                            seed: settings.seed,
+                            spp: settings.spp,
+                            pass,
+                        };
+                        camera_tile(&tracer, &maps, sampling, tile, &mut stats);
                         tile.passes += 1;
                     }
                     observer.progress(Progress::Tile);
@@ -329,18 +346,35 @@ struct Maps<'a> {
     caustic: Option<&'a PhotonMap>,
     global: Option<&'a PhotonMap>,
     knn: usize,
+    /// Final-gather rays per camera sample.
+    gather: u32,
     /// Largest squared radius of a k-nearest query.
     max_r2: f64,
     /// A fixed initial squared radius of the caustic estimate (None: k-nearest).
     initial_r2: Option<f64>,
 }
 
+/// Which camera samples a pass takes.
+#[derive(Clone, Copy)]
+struct Sampling {
+    seed: u64,
+    spp: u32,
+    pass: u32,
+}
+
 /// One pass of camera samples over a tile, updating its pixels' accumulators.
-fn camera_tile(tracer: &Tracer, maps: &Maps, pass: u32, tile: &mut Tile, stats: &mut Stats) {
+fn camera_tile(
+    tracer: &Tracer,
+    maps: &Maps,
+    sampling: Sampling,
+    tile: &mut Tile,
+    stats: &mut Stats,
+) {
     let scene = tracer.scene;
     let camera = scene.camera.as_ref().expect("render() checked the camera");
     let (w, h) = (camera.width as u64, camera.height as u64);
-    let spp = scene.render.spp.max(1);
+    let Sampling { seed, spp, pass } = sampling;
+    let spp = spp.max(1);
     let strata = spp.isqrt();
     for (i, state) in tile.pixels.iter_mut().enumerate() {
         let (x, y) = (tile.x0 + i % tile.width, tile.y0 + i / tile.width);
@@ -348,12 +382,7 @@ fn camera_tile(tracer: &Tracer, maps: &Maps, pass: u32, tile: &mut Tile, stats: 
         let mut mean = PixelSample::default();
         let (mut phi, mut m) = (Rgb::ZERO, 0.0);
         for s in 0..spp {
-            let mut rng = stream(
-                scene.render.seed,
-                Purpose::Camera,
-                pass as u64 * w * h + pixel,
-                s as u64,
-            );
+            let mut rng = stream(seed, Purpose::Camera, pass as u64 * w * h + pixel, s as u64);
             // Stratified over the pixel: sample s of the first n² lies in cell (s mod n,
             // s div n) of an n × n grid, n = ⌊√spp⌋ (sharp edges such as an emitter's
             // converge much faster); any further samples are uniform.
@@ -371,8 +400,15 @@ fn camera_tile(tracer: &Tracer, maps: &Maps, pass: u32, tile: &mut Tile, stats: 
             mean[Plane::Normal as usize] += vp.normal;
             mean[Plane::Direct as usize] += visible::direct(tracer, &vp, &mut rng);
             if let Some(global) = maps.global {
-                mean[Plane::Secondary as usize] +=
-                    visible::secondary(tracer, global, maps.max_r2, &vp, &mut rng, stats);
+                mean[Plane::Secondary as usize] += visible::secondary(
+                    tracer,
+                    global,
+                    maps.gather,
+                    maps.max_r2,
+                    &vp,
+                    &mut rng,
+                    stats,
+                );
             }
             if let Some(caustic) = maps.caustic {
                 if state.r2 == 0.0 {
@@ -430,8 +466,8 @@ fn develop(tiles: &[Tile], w: usize, h: usize) -> Film {
     film
 }
 
-/// Measures the scene's receivers with `scene.render.receiver_photons` photons from its
-/// lights (stream pass `pass`), traced like global photons (diffuse bounces with Russian
+/// Measures the scene's receivers with `settings.receiver_photons` photons from its lights
+/// (stream pass `pass`), traced like global photons (diffuse bounces with Russian
 /// roulette) and recorded at every receiver crossing; with where their power went.
 ///
 /// Stopped by `observer`, the measurement holds the photons traced so far (whole chunks, an
@@ -439,23 +475,29 @@ fn develop(tiles: &[Tile], w: usize, h: usize) -> Film {
 /// its report says so.
 pub fn measure(
     scene: &Scene,
-    threads: usize,
+    settings: &Settings,
     pass: u64,
     observer: &dyn Observer,
 ) -> Result<(Vec<Measurement>, Budget, Report)> {
-    let tracer = Tracer::new(scene);
+    let tracer = Tracer::new(scene, &settings.trace);
     let sources = Sources::new(&tracer);
-    let pool = thread_pool(threads)?;
-    let count = scene.render.receiver_photons;
+    let pool = thread_pool(settings.threads)?;
+    let count = settings.receiver_photons;
     observer.progress(Progress::Measuring {
         photons: count,
         receivers: scene.receivers.len(),
     });
     let t0 = Instant::now();
     let (mut sink, stats) = pool.install(|| {
-        shoot(&tracer, &sources, Batch::Receivers, pass, count, &|| {
-            observer.stop_requested()
-        })
+        shoot(
+            &tracer,
+            &sources,
+            Batch::Receivers,
+            settings.seed,
+            pass,
+            count,
+            &|| observer.stop_requested(),
+        )
     });
     observer.progress(Progress::Done);
     let traced = stats.photons_emitted;
@@ -486,10 +528,9 @@ pub fn measure(
 /// of Russian roulette at albedo 0.75; kd-tree entries), and the receivers' detections (one
 /// crossing per photon and receiver, traced and merged). Meshes are already in memory when it
 /// is asked.
-pub fn memory_needed(scene: &Scene) -> u64 {
+pub fn memory_needed(scene: &Scene, settings: &Settings) -> u64 {
     use std::mem::size_of;
-    let settings = &scene.render;
-    let plan = Plan::of(scene);
+    let plan = Plan::of(scene, &settings.photons);
     let pixels = scene
         .camera
         .as_ref()
@@ -497,11 +538,15 @@ pub fn memory_needed(scene: &Scene) -> u64 {
     let film = pixels * (size_of::<PixelState>() + 2 * crate::film::LAYERS.len() * 12) as u64;
     let per_photon = 2 * size_of::<crate::photon::Photon>() as u64 + 32;
     let caustic = if plan.caustic {
-        settings.caustic_photons
+        settings.photons.caustic
     } else {
         0
     };
-    let global = if plan.global { 4 * settings.photons } else { 0 };
+    let global = if plan.global {
+        4 * settings.photons.global
+    } else {
+        0
+    };
     let detections = 2
         * settings.receiver_photons
         * scene.receivers.len() as u64

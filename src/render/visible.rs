@@ -48,7 +48,7 @@ pub fn camera_path(
     let mut medium = scene.ambient;
     let mut throughput = Rgb::ONE;
     let mut out = Components::default();
-    for _ in 0..scene.render.max_depth {
+    for _ in 0..tracer.settings.max_depth {
         let event = tracer.next_event(origin, dir, medium, stats);
         if let Event::Surface { distance, .. } | Event::Escaped { distance, .. } = event {
             throughput *= tracer.transmittance(medium, origin, distance);
@@ -179,20 +179,20 @@ pub fn direct(tracer: &Tracer, vp: &VisiblePoint, rng: &mut impl Rng) -> Rgb {
     vp.throughput * radiance
 }
 
-/// Secondary light at a visible point: `gather` cosine rays (from the scene settings), each
+/// Secondary light at a visible point: `gather` cosine rays, each
 /// followed through specular surfaces to a diffuse one, where the global map's precomputed
 /// k-nearest irradiance of the nearest photon gives the radiance leaving it. Emission and environment met by gather rays are
 /// not counted: that light is the direct or caustic part.
 pub fn secondary(
     tracer: &Tracer,
     global: &PhotonMap,
+    gather: u32,
     max_r2: f64,
     vp: &VisiblePoint,
     rng: &mut impl Rng,
     stats: &mut Stats,
 ) -> Rgb {
     let scene = tracer.scene;
-    let gather = scene.render.gather;
     let frame = Frame::new(vp.normal);
     let mut sum = Rgb::ZERO;
     for _ in 0..gather {
@@ -201,7 +201,7 @@ pub fn secondary(
         let mut origin = offset(vp.position, vp.normal);
         let mut medium = vp.medium;
         let mut weight = Rgb::ONE;
-        for _ in 0..scene.render.max_depth {
+        for _ in 0..tracer.settings.max_depth {
             let Event::Surface {
                 prim,
                 position,

@@ -5,6 +5,7 @@ use super::load::{Scene, Surface};
 use crate::accel::Accel;
 use crate::error::{Error, Result};
 use crate::media::UniformMedium;
+use crate::settings::TraceSettings;
 use crate::shapes::Primitive;
 use glam::DVec3;
 
@@ -98,9 +99,14 @@ impl Scene {
     ///
     /// Every layer boundary is a surface event for the twin where the GRIN fiber has none: a
     /// path that meets k surfaces in the GRIN fiber meets up to ≈ 2·layers·k in the twin (each
-    /// sweep from wall to wall crosses every boundary twice), so `max_depth` is multiplied by
-    /// 2·layers + 1.
-    pub fn layer_fiber(&mut self, dn: f64, max_width: f64) -> Result<Vec<Layer>> {
+    /// sweep from wall to wall crosses every boundary twice), so `trace.max_depth` is
+    /// multiplied by 2·layers + 1.
+    pub fn layer_fiber(
+        &mut self,
+        trace: &mut TraceSettings,
+        dn: f64,
+        max_width: f64,
+    ) -> Result<Vec<Layer>> {
         let usage = |m: &str| Error::Usage(format!("{}: {m}", self.path.display()));
         if !(dn.is_finite() && dn > 0.0) {
             return Err(usage("Δn must be a finite number > 0"));
@@ -225,7 +231,7 @@ impl Scene {
         self.surfaces = surfaces;
         self.accel = Accel::new(primitives);
         let factor = 2 * u32::try_from(layers.len()).unwrap_or(u32::MAX / 2) + 1;
-        self.render.max_depth = self.render.max_depth.saturating_mul(factor);
+        trace.max_depth = trace.max_depth.saturating_mul(factor);
         Ok(layers)
     }
 }

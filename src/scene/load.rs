@@ -4,7 +4,7 @@
 use super::media::read_medium;
 use super::objects::{
     read_camera, read_environment, read_light, read_material, read_output, read_receiver,
-    read_render, read_shape, Interior, OutputSettings, RenderSettings,
+    read_render, read_shape, Interior,
 };
 use super::table::{SpannedTable, TableReader};
 use crate::accel::Accel;
@@ -15,6 +15,7 @@ use crate::lights::Light;
 use crate::material::Material;
 use crate::media::{Medium, UniformMedium};
 use crate::receiver::Receiver;
+use crate::settings::Settings;
 use std::path::{Path, PathBuf};
 use toml::Spanned;
 
@@ -118,10 +119,6 @@ pub struct Scene {
     pub receivers: Vec<Receiver>,
     /// The camera, if the scene has one.
     pub camera: Option<Camera>,
-    /// `[render]`.
-    pub render: RenderSettings,
-    /// `[output]`.
-    pub output: OutputSettings,
     /// The scene file and every file it reads (meshes, images, grids).
     pub inputs: Vec<PathBuf>,
 }
@@ -163,8 +160,9 @@ impl Scene {
     }
 }
 
-/// Parses and builds scene text (already read from `path`).
-pub fn parse_scene(path: &Path, text: String) -> Result<Scene> {
+/// Parses and builds scene text (already read from `path`): the scene and the settings of its
+/// `[render]` and `[output]` tables.
+pub fn parse_scene(path: &Path, text: String) -> Result<(Scene, Settings)> {
     let source = Source {
         path: path.to_path_buf(),
         text,
@@ -338,25 +336,21 @@ pub fn parse_scene(path: &Path, text: String) -> Result<Scene> {
             Ok::<_, Error>(c)
         })
         .transpose()?;
-    let render = match file.render {
+    let mut settings = match file.render {
         Some(table) => {
             let mut t = reader(table, "[render]");
             let r = read_render(&mut t)?;
             t.finish()?;
             r
         }
-        None => RenderSettings::default(),
+        None => Settings::default(),
     };
-    let output = match file.output {
-        Some(table) => {
-            let mut t = reader(table, "[output]");
-            let o = read_output(&mut t)?;
-            t.finish()?;
-            o
-        }
-        None => OutputSettings::default(),
-    };
-    Ok(Scene {
+    if let Some(table) = file.output {
+        let mut t = reader(table, "[output]");
+        settings.output = read_output(&mut t)?;
+        t.finish()?;
+    }
+    let scene = Scene {
         path: source.path.clone(),
         media,
         ambient,
@@ -367,12 +361,11 @@ pub fn parse_scene(path: &Path, text: String) -> Result<Scene> {
         environment,
         receivers,
         camera,
-        render,
-        output,
         inputs: std::iter::once(source.path.clone())
             .chain(source.inputs.take())
             .collect(),
-    })
+    };
+    Ok((scene, settings))
 }
 
 /// Reads a table's `name`: non-empty and not among `taken`. Later messages name the table.
@@ -392,8 +385,8 @@ fn named<'a>(
     Ok(name)
 }
 
-/// Reads, parses and builds the scene file at `path`.
-pub fn load_scene(path: &Path) -> Result<Scene> {
+/// Reads, parses and builds the scene file at `path`: the scene and its settings.
+pub fn load_scene(path: &Path) -> Result<(Scene, Settings)> {
     let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
     parse_scene(path, text)
 }

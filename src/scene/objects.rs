@@ -9,92 +9,9 @@ use crate::error::Result;
 use crate::lights::{Emitter, Light};
 use crate::material::Material;
 use crate::receiver::Receiver;
+use crate::settings::{OutputSettings, PhotonSettings, Settings, TraceSettings};
 use crate::shapes::Primitive;
 use glam::{DMat3, DVec3};
-use std::path::PathBuf;
-
-/// Render settings (`[render]`).
-#[derive(Clone, Debug, PartialEq)]
-pub struct RenderSettings {
-    /// Camera samples per pixel.
-    pub spp: u32,
-    /// Seed of every random stream.
-    pub seed: u64,
-    /// Maximum number of surface interactions along a camera path.
-    pub max_depth: u32,
-    /// Worker threads (0: all cores).
-    pub threads: usize,
-    /// Stepper in gradient media.
-    pub stepper: StepperKind,
-    /// Step control in gradient media.
-    pub control: StepControl,
-    /// Step limit (N_max) per curved march.
-    pub max_steps: u64,
-    /// Radius around the scene centre beyond which a ray in a gradient ambient medium counts
-    /// as escaped (None: 10× the scene's extent including the camera).
-    pub world_radius: Option<f64>,
-    /// Photons per pass for the global map.
-    pub photons: u64,
-    /// Photons per pass for the caustic map.
-    pub caustic_photons: u64,
-    /// Final-gather rays per camera sample at its first diffuse hit (0: no secondary light).
-    pub gather: u32,
-    /// Photon gather radius (scene units): the caustic estimate's initial radius and the
-    /// global estimate's largest (None: the k-nearest radius, at most 5 % of the scene's size).
-    pub radius: Option<f64>,
-    /// k of the k-nearest-photon radius.
-    pub knn: u32,
-    /// Progressive passes: photon pass + camera pass each, the caustic radius shrinking.
-    pub passes: u32,
-    /// Stop starting new passes after this many seconds (None: run all `passes`).
-    pub time_budget: Option<f64>,
-    /// Photons traced for the receivers.
-    pub receiver_photons: u64,
-}
-
-impl Default for RenderSettings {
-    fn default() -> Self {
-        Self {
-            spp: 16,
-            seed: 0,
-            max_depth: 64,
-            threads: 0,
-            stepper: StepperKind::Rk4,
-            control: StepControl::default_for(StepperKind::Rk4),
-            max_steps: 1_000_000,
-            world_radius: None,
-            photons: 100_000,
-            caustic_photons: 100_000,
-            gather: 16,
-            radius: None,
-            knn: 16,
-            passes: 1,
-            time_budget: None,
-            receiver_photons: 1_000_000,
-        }
-    }
-}
-
-/// Output settings (`[output]`).
-#[derive(Clone, Debug, PartialEq)]
-pub struct OutputSettings {
-    /// The EXR path (None: `<scene stem>.exr` in the working directory).
-    pub path: Option<PathBuf>,
-    /// Whether to write the PNG preview next to it.
-    pub png: bool,
-    /// Exposure multiplier of the preview.
-    pub exposure: f32,
-}
-
-impl Default for OutputSettings {
-    fn default() -> Self {
-        Self {
-            path: None,
-            png: true,
-            exposure: 1.0,
-        }
-    }
-}
 
 /// What fills a dielectric: a named medium or a constant index.
 #[derive(Clone, Debug, PartialEq)]
@@ -156,8 +73,8 @@ pub fn read_camera(t: &mut TableReader) -> Result<Camera> {
     Ok(camera)
 }
 
-/// `[render]`.
-pub fn read_render(t: &mut TableReader) -> Result<RenderSettings> {
+/// `[render]`: every setting but the output's.
+pub fn read_render(t: &mut TableReader) -> Result<Settings> {
     let stepper: StepperKind = t.string_opt("stepper")?.map_or(Ok(StepperKind::Rk4), |s| {
         s.parse().map_err(|e: String| t.error("stepper", e))
     })?;
@@ -194,26 +111,33 @@ pub fn read_render(t: &mut TableReader) -> Result<RenderSettings> {
     let world_radius = optional_positive(t, "world_radius")?;
     let radius = optional_positive(t, "radius")?;
     let time_budget = optional_positive(t, "time_budget")?;
-    let defaults = RenderSettings::default();
-    Ok(RenderSettings {
-        spp: t.count_or("spp", 16)?.min(u32::MAX as u64) as u32,
-        seed: t.natural_or("seed", 0)?,
-        max_depth: t.count_or("max_depth", 64)?.min(u32::MAX as u64) as u32,
+    let d = Settings::default();
+    Ok(Settings {
+        spp: t.count_or("spp", d.spp as u64)?.min(u32::MAX as u64) as u32,
+        seed: t.natural_or("seed", d.seed)?,
         threads: t.natural_or("threads", 0)? as usize,
-        stepper,
-        control,
-        max_steps: t.count_or("max_steps", 1_000_000)?,
-        world_radius,
-        photons: t.natural_or("photons", defaults.photons)?,
-        caustic_photons: t.natural_or("caustic_photons", defaults.caustic_photons)?,
-        gather: t.natural_or("gather", defaults.gather as u64)?.min(1 << 16) as u32,
-        radius,
-        knn: t.count_or("knn", defaults.knn as u64)?.min(1 << 16) as u32,
-        passes: t
-            .count_or("passes", defaults.passes as u64)?
-            .min(u32::MAX as u64) as u32,
+        trace: TraceSettings {
+            max_depth: t
+                .count_or("max_depth", d.trace.max_depth as u64)?
+                .min(u32::MAX as u64) as u32,
+            stepper,
+            control,
+            max_steps: t.count_or("max_steps", d.trace.max_steps)?,
+            world_radius,
+        },
+        photons: PhotonSettings {
+            global: t.natural_or("photons", d.photons.global)?,
+            caustic: t.natural_or("caustic_photons", d.photons.caustic)?,
+            gather: t
+                .natural_or("gather", d.photons.gather as u64)?
+                .min(1 << 16) as u32,
+            radius,
+            knn: t.count_or("knn", d.photons.knn as u64)?.min(1 << 16) as u32,
+        },
+        passes: t.count_or("passes", d.passes as u64)?.min(u32::MAX as u64) as u32,
         time_budget,
-        receiver_photons: t.count_or("receiver_photons", defaults.receiver_photons)?,
+        receiver_photons: t.count_or("receiver_photons", d.receiver_photons)?,
+        output: d.output,
     })
 }
 

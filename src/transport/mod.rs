@@ -13,6 +13,7 @@ use crate::curve::{
 use crate::lights::SceneBall;
 use crate::material::{fresnel, reflect, refract, Material};
 use crate::scene::{Scene, Surface};
+use crate::settings::TraceSettings;
 use glam::DVec3;
 pub use stats::Stats;
 use std::ops::ControlFlow;
@@ -80,6 +81,8 @@ pub fn offset(p: DVec3, side: DVec3) -> DVec3 {
 pub struct Tracer<'a> {
     /// The scene.
     pub scene: &'a Scene,
+    /// How rays travel.
+    pub settings: TraceSettings,
     /// The smallest axis-aligned-box sphere around the primitives and the camera.
     pub ball: SceneBall,
     /// The world sphere.
@@ -89,7 +92,7 @@ pub struct Tracer<'a> {
 impl<'a> Tracer<'a> {
     /// The tracer of a scene; the world sphere is the scene's `world_radius` around the centre
     /// of everything in it (primitives and camera), or 10× its extent (at least 10 units).
-    pub fn new(scene: &'a Scene) -> Self {
+    pub fn new(scene: &'a Scene, settings: &TraceSettings) -> Self {
         let mut lo = DVec3::INFINITY;
         let mut hi = DVec3::NEG_INFINITY;
         for p in scene.accel.primitives() {
@@ -106,9 +109,10 @@ impl<'a> Tracer<'a> {
         }
         let center = 0.5 * (lo + hi);
         let extent = 0.5 * (hi - lo).length();
-        let radius = scene.render.world_radius.unwrap_or(10.0 * extent.max(1.0));
+        let radius = settings.world_radius.unwrap_or(10.0 * extent.max(1.0));
         Self {
             scene,
+            settings: *settings,
             ball: (center, extent.max(1e-9)),
             world: Bounds::Ball { center, radius },
         }
@@ -278,7 +282,7 @@ impl<'a> Tracer<'a> {
         stats: &mut Stats,
         path: &mut dyn FnMut(DVec3),
     ) -> Event {
-        let settings = &self.scene.render;
+        let settings = &self.settings;
         let Some(start) = RayState::new(medium, origin, dir) else {
             stats.record_end(Termination::Captured);
             return Event::Lost;
@@ -344,7 +348,7 @@ impl<'a> Tracer<'a> {
         let mut prev_s = 0.0;
         let mut hit = None;
         let out = march_with(
-            self.scene.render.stepper,
+            self.settings.stepper,
             medium,
             control,
             start,

@@ -210,8 +210,8 @@ impl From<RenderArgs> for RenderJob {
                 passes: a.passes,
                 time_budget: a.time_budget,
                 receiver_photons: a.receiver_photons,
+                threads: a.threads,
             },
-            threads: a.threads,
             checkpoint: a.checkpoint.unwrap_or(0),
             paths: a.paths.unwrap_or(0),
         }
