@@ -15,6 +15,7 @@ use glam::DVec3;
 use grinlight::plot::{canvas, save, Panel, PALETTE};
 use grinlight::scene::{load_scene, Scene};
 use grinlight::settings::TraceSettings;
+use grinlight::transport::chain::principal_ray;
 use grinlight::transport::Tracer;
 use std::io::Write;
 use std::path::Path;
@@ -51,12 +52,10 @@ fn land(
     let hits: Vec<Option<DVec3>> = rays()
         .into_iter()
         .map(|(o, d, r)| {
-            tracer
-                .principal_ray(o, d, Some(medium_at(r)), 1_000_000)
-                .map(|(p, n)| {
-                    events += n;
-                    p
-                })
+            principal_ray(&tracer, o, d, Some(medium_at(r)), 1_000_000).map(|(p, n)| {
+                events += n;
+                p
+            })
         })
         .collect();
     let n = hits.len() as f64;

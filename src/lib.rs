@@ -20,6 +20,7 @@
 #![warn(missing_docs)]
 
 pub mod accel;
+pub mod bsdf;
 pub mod camera;
 pub mod color;
 pub mod commands;

@@ -68,6 +68,14 @@ impl Emitter {
         }
     }
 
+    /// The centre of the surface.
+    pub fn center(&self) -> DVec3 {
+        match *self {
+            Emitter::Quad { origin, e1, e2 } => origin + 0.5 * (e1 + e2),
+            Emitter::Disk { center, .. } => center,
+        }
+    }
+
     /// Unit normal of the emitting side.
     pub fn normal(&self) -> DVec3 {
         match *self {
@@ -236,6 +244,26 @@ impl Light {
 }
 
 impl Light {
+    /// Where the light sits, to find the medium it emits into: its position, or a point just
+    /// in front of its emitting surface; None for parallel light (it comes from beyond the
+    /// scene).
+    pub fn origin(&self) -> Option<DVec3> {
+        match self {
+            Light::Point { position, .. } | Light::Spot { position, .. } => Some(*position),
+            Light::Area { emitter, .. } | Light::Led { emitter, .. } => {
+                Some(crate::transport::offset(emitter.center(), emitter.normal()))
+            }
+            Light::Directional { .. } => None,
+        }
+    }
+
+    /// Whether a path can find this light by sampling directions (an area light's surface is
+    /// in the scene); point, spot, LED and parallel light are reached only by connecting to
+    /// them.
+    pub fn is_hittable(&self) -> bool {
+        matches!(self, Light::Area { .. })
+    }
+
     /// A photon from this light for four uniform numbers `u` (see [`Emission`]); `None` when
     /// this sample emits nothing (a spot's falloff edge). `ball` bounds the scene, for
     /// directional light.

@@ -21,14 +21,16 @@ pub enum Purpose {
     ReceiverPhotons = 4,
 }
 
+/// A 64-bit hash of `z` (splitmix64: an increment, then its finaliser), for keying streams.
+pub fn mix(mut z: u64) -> u64 {
+    z = z.wrapping_add(0x9e37_79b9_7f4a_7c15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^ (z >> 31)
+}
+
 /// The random stream for (seed, purpose, a, b): splitmix-hashed into a PCG state.
 pub fn stream(seed: u64, purpose: Purpose, a: u64, b: u64) -> Pcg64Mcg {
-    let mix = |mut z: u64| {
-        z = z.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
-    };
     let h = mix(seed ^ mix(purpose as u64 ^ mix(a ^ mix(b))));
     let l = mix(h ^ 0x5851_f42d_4c95_7f2d);
     Pcg64Mcg::new(((h as u128) << 64) | l as u128)

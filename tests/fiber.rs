@@ -4,6 +4,7 @@ use grinlight::scene::load::parse_scene;
 use grinlight::scene::{load_scene, Scene};
 use grinlight::settings::Settings;
 use grinlight::shapes::Primitive;
+use grinlight::transport::chain::principal_ray;
 use std::path::Path;
 
 fn flux(tolerance: f64, photons: u64) -> (f64, f64) {
@@ -111,8 +112,7 @@ fn a_meridional_ray_reaches_the_receiver_where_the_paraxial_path_says() {
         .unwrap();
     let (a, n0, len, gap, x0) = (0.10667f64, 1.5f64, 20.0f64, 0.05f64, 0.05f64);
     // Core → exit face (refracted) → receiver.
-    let (hit, events) = tracer
-        .principal_ray(DVec3::new(x0, 0.0, 1e-9), DVec3::Z, Some(core), 10)
+    let (hit, events) = principal_ray(&tracer, DVec3::new(x0, 0.0, 1e-9), DVec3::Z, Some(core), 10)
         .expect("reaches the receiver");
     assert_eq!(events, 1, "one surface (the exit face) before the receiver");
     let k = a.sqrt();
@@ -360,9 +360,15 @@ fn the_layered_twin_is_a_staircase_and_converges_slowly() {
     let thetas: Vec<f64> = (1..=64).map(|i| 0.16 * i as f64 / 64.0).collect();
     let land = |(scene, settings): &(Scene, Settings), medium: usize, theta: f64| {
         let dir = DVec3::new(theta.sin(), 0.0, theta.cos());
-        let (p, _) = Tracer::new(scene, &settings.trace)
-            .principal_ray(DVec3::new(0.0, 0.0, 1e-9), dir, Some(medium), 100_000)
-            .expect("reaches the receiver");
+        let tracer = Tracer::new(scene, &settings.trace);
+        let (p, _) = principal_ray(
+            &tracer,
+            DVec3::new(0.0, 0.0, 1e-9),
+            dir,
+            Some(medium),
+            100_000,
+        )
+        .expect("reaches the receiver");
         assert!(p.y.abs() < 1e-9, "meridional");
         p.x
     };

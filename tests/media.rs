@@ -63,6 +63,23 @@ fn media() -> Vec<(&'static str, Box<dyn Medium>)> {
             ),
         ),
         (
+            "height_table",
+            Box::new(
+                HeightTable::new(
+                    (0..=8).map(|i| -1.2 + 0.3 * i as f64).collect(),
+                    (0..=8)
+                        .map(|i| {
+                            let h = -1.2 + 0.3 * i as f64;
+                            1.0003 - 2e-4 * (-(h + 1.2) / 0.4).exp()
+                        })
+                        .collect(),
+                    DVec3::ZERO,
+                    DVec3::new(0.0, 0.8, 0.6),
+                )
+                .unwrap(),
+            ),
+        ),
+        (
             "luneburg",
             Box::new(Luneburg {
                 center: DVec3::new(0.0, 0.1, 0.0),
@@ -141,6 +158,10 @@ fn gradients_match_central_differences() {
                         (d - DVec3::new(0.0, 0.6, 0.8) * d.dot(DVec3::new(0.0, 0.6, 0.8))).length();
                     ((r * 10.0) - (r * 10.0).round()).abs() < 1e-3
                 }
+                "height_table" => {
+                    let h = (p.dot(DVec3::new(0.0, 0.8, 0.6)) + 1.2) / 0.3;
+                    (h - h.round()).abs() < 1e-3
+                }
                 _ => false,
             };
             if !ok || near_kink {
@@ -155,6 +176,57 @@ fn gradients_match_central_differences() {
             assert!(s.n > 0.0 && s.n.is_finite());
             checked += 1;
         }
+    }
+}
+
+/// A height table through nodes of a linear profile is that profile (Fritsch–Carlson slopes
+/// of equal secants are the secant: every Hermite piece is the line itself, to rounding:
+/// 1e-15 for n ≈ 1, and ε·n/(piece length ≥ 0.1) ≈ 2e-15 for n′, so 1e-14), with n and ∇n
+/// constant beyond its ends and ∇n along `up`; the step hint is four node spacings inside the
+/// table and the distance to it plus four end spacings outside, so no step crosses it.
+#[test]
+fn a_height_table_reproduces_a_linear_profile() {
+    let up = DVec3::new(0.0, 0.6, 0.8);
+    let h: Vec<f64> = vec![0.0, 0.1, 0.25, 0.5, 1.0, 2.0];
+    let line = |x: f64| 1.0 + 3e-4 - 1e-4 * x;
+    let table = HeightTable::new(
+        h.clone(),
+        h.iter().map(|&x| line(x)).collect(),
+        DVec3::Y,
+        up,
+    )
+    .unwrap();
+    for k in 0..=400 {
+        let x = -0.5 + 3.0 * k as f64 / 400.0;
+        let p = DVec3::Y + up * x + DVec3::new(0.3, -0.8, 0.6) * 0.7; // the offset is ⊥ up
+        let s = table.sample(p).unwrap();
+        let (want, slope) = match x {
+            x if x < 0.0 => (line(0.0), 0.0),
+            x if x >= 2.0 => (line(2.0), 0.0),
+            x => (line(x), -1e-4),
+        };
+        assert!((s.n - want).abs() < 1e-15, "n at h {x}: {} vs {want}", s.n);
+        assert!(
+            (s.grad - up * slope).length() < 1e-14,
+            "∇n at h {x}: {}",
+            s.grad
+        );
+        let hint = table.step_hint(p, up);
+        let want = match x {
+            x if x < 0.0 => -x + 0.4,
+            x if x >= 2.0 => x - 2.0 + 4.0,
+            x => {
+                4.0 * h
+                    .windows(2)
+                    .find(|w| w[0] <= x && x < w[1])
+                    .map_or(0.0, |w| w[1] - w[0])
+            }
+        };
+        let at_node = h.iter().any(|&node| (x - node).abs() < 1e-9);
+        assert!(
+            at_node || (hint - want).abs() < 1e-12,
+            "hint at h {x}: {hint} vs {want}"
+        );
     }
 }
 
@@ -281,7 +353,7 @@ impl Medium for Absorbing {
     fn absorption(&self, p: DVec3) -> f64 {
         0.2 + 0.1 * p.x
     }
-    fn step_hint(&self, _p: DVec3) -> f64 {
+    fn step_hint(&self, _p: DVec3, _dir: DVec3) -> f64 {
         0.3
     }
 }

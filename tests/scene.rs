@@ -43,6 +43,9 @@ const BAD: &[(&str, usize, usize, &str)] = &[
     ("[[medium]]\nname = \"t\"\nprofile = \"radial_table\"\nr = [0.1, 0.2]\nn = [1.5, 1.4]\n", 4, 1, "key `r`: must start at 0"),
     ("[[medium]]\nname = \"t\"\nprofile = \"radial_table\"\nr = [0.0, 0.2, 0.3]\nn = [1.5, 1.4]\n", 5, 1, "key `n`: `r` and `n` need the same number"),
     ("[[medium]]\nname = \"t\"\nprofile = \"radial_table\"\nr = [0.0, 0.2]\nn = [1.5, 0.0]\n", 5, 1, "key `n`: every value must be"),
+    // Height tables: h not increasing, n ≤ 0.
+    ("[[medium]]\nname = \"t\"\nprofile = \"height_table\"\nh = [0.0, 0.2, 0.1]\nn = [1.5, 1.4, 1.3]\n", 4, 1, "key `h`: must increase strictly"),
+    ("[[medium]]\nname = \"t\"\nprofile = \"height_table\"\nh = [0.0, 0.2]\nn = [1.5, -1.0]\n", 5, 1, "key `n`: every value must be"),
     // Negative rs.
     ("[[medium]]\nname = \"bh\"\nprofile = \"black_hole\"\nrs = -0.01\n", 4, 1, "key `rs`"),
     // Negative charge, indented key.

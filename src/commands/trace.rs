@@ -70,7 +70,7 @@ impl TraceControl {
         self,
         stepper: StepperKind,
         medium: &dyn Medium,
-        from: DVec3,
+        (from, dir): (DVec3, DVec3),
         length: f64,
     ) -> Result<StepControl> {
         Ok(match self {
@@ -97,7 +97,7 @@ impl TraceControl {
                 StepControl::Tessendorf {
                     initial_step: positive(
                         "step",
-                        step.unwrap_or_else(|| medium.step_hint(from).min(length / 100.0)),
+                        step.unwrap_or_else(|| medium.step_hint(from, dir).min(length / 100.0)),
                     )?,
                     t_max,
                     t_min,
@@ -142,7 +142,9 @@ pub fn trace(job: &TraceJob, observer: &dyn Observer) -> Result<MarchOutcome> {
             job.from
         ))
     })?;
-    let control = job.control.resolve(job.stepper, medium, job.from, length)?;
+    let control = job
+        .control
+        .resolve(job.stepper, medium, (job.from, start.direction), length)?;
     if job.stepper == StepperKind::Snell && at_turning_point(&start) {
         observer.warning(
             "--dir is perpendicular to ∇n at --from (a turning point): Snell steps              cannot bend a ray there and it will run straight; use --stepper rk4 or arc",

@@ -152,7 +152,9 @@ where
     let mut h = match control {
         StepControl::Fixed { step } => step,
         StepControl::Tessendorf { initial_step, .. } => initial_step,
-        StepControl::Adaptive { .. } => medium.step_hint(start.position).min(limits.length),
+        StepControl::Adaptive { .. } => medium
+            .step_hint(start.position, start.direction)
+            .min(limits.length),
     };
     let done_within = 1e-12 * limits.length;
     loop {
@@ -211,7 +213,7 @@ where
                 }
             }
             StepControl::Adaptive { tolerance } => {
-                let h_try = h_try.min(medium.step_hint(state.position));
+                let h_try = h_try.min(medium.step_hint(state.position, state.direction));
                 let floor = round_off_floor(&state);
                 if h_try <= floor || h_try.is_nan() {
                     out.reason = Termination::StepUnderflow;
@@ -300,13 +302,26 @@ fn accept<M: Medium + ?Sized, O: FnMut(f64, &RayState) -> ControlFlow<()>>(
     observe: &mut O,
 ) -> ControlFlow<()> {
     out.optical_path += optical_path_length(&out.state.index, &state.index, len);
-    out.optical_depth +=
-        0.5 * (medium.absorption(out.state.position) + medium.absorption(state.position)) * len;
+    out.optical_depth += step_optical_depth(medium, out.state.position, state.position, len);
     out.arclength += len;
     out.steps += 1;
     out.min_step = out.min_step.min(len);
     out.state = state;
     observe(out.arclength, &state)
+}
+
+/// Optical depth ∫ σa ds of one step between points `a` and `b`, `len` apart along the path
+/// (trapezoid rule; 0 in a medium that does not absorb).
+pub fn step_optical_depth<M: Medium + ?Sized>(
+    medium: &M,
+    a: glam::DVec3,
+    b: glam::DVec3,
+    len: f64,
+) -> f64 {
+    if !medium.absorbs() {
+        return 0.0;
+    }
+    0.5 * (medium.absorption(a) + medium.absorption(b)) * len
 }
 
 fn leaves(limits: &MarchLimits, p: glam::DVec3) -> bool {

@@ -7,7 +7,9 @@ mod segment;
 mod stepper;
 
 pub use bounds::Bounds;
-pub use march::{march, march_with, MarchLimits, MarchOutcome, StepControl, Termination};
+pub use march::{
+    march, march_with, step_optical_depth, MarchLimits, MarchOutcome, StepControl, Termination,
+};
 pub use segment::{accurate_cross, ArcPoint, CurvedSegment};
 pub use stepper::{
     EstimatedStep, ExactArc, RayState, Rk4Sharma, SnellSteps, Step, Stepper, StepperKind,

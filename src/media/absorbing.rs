@@ -19,8 +19,15 @@ impl Medium for Absorbing {
     fn absorption(&self, _p: DVec3) -> f64 {
         self.sigma_a
     }
-    fn step_hint(&self, p: DVec3) -> f64 {
-        self.inner.step_hint(p)
+    fn absorbs(&self) -> bool {
+        self.sigma_a > 0.0
+    }
+    /// σa·length, exactly.
+    fn optical_depth(&self, _from: DVec3, _dir: DVec3, length: f64) -> f64 {
+        self.sigma_a * length
+    }
+    fn step_hint(&self, p: DVec3, dir: DVec3) -> f64 {
+        self.inner.step_hint(p, dir)
     }
     fn is_uniform(&self) -> bool {
         self.inner.is_uniform()

@@ -98,6 +98,10 @@ impl GridMedium {
 }
 
 impl Medium for GridMedium {
+    /// Transparent.
+    fn absorbs(&self) -> bool {
+        false
+    }
     fn sample(&self, p: DVec3) -> Option<IndexSample> {
         let scale = DVec3::new(
             (self.dims[0] - 1) as f64,
@@ -141,7 +145,7 @@ impl Medium for GridMedium {
         Some(IndexSample { n, grad })
     }
     /// One cell: the interpolant's gradient jumps at cell faces.
-    fn step_hint(&self, _p: DVec3) -> f64 {
+    fn step_hint(&self, _p: DVec3, _dir: DVec3) -> f64 {
         self.min_cell
     }
 }

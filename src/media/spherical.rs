@@ -14,6 +14,10 @@ pub struct Luneburg {
 }
 
 impl Medium for Luneburg {
+    /// Transparent.
+    fn absorbs(&self) -> bool {
+        false
+    }
     fn sample(&self, p: DVec3) -> Option<IndexSample> {
         let d = p - self.center;
         let u2 = d.length_squared() / (self.radius * self.radius);
@@ -26,7 +30,7 @@ impl Medium for Luneburg {
             grad: -d / (n * self.radius * self.radius),
         })
     }
-    fn step_hint(&self, _p: DVec3) -> f64 {
+    fn step_hint(&self, _p: DVec3, _dir: DVec3) -> f64 {
         0.25 * self.radius
     }
 }
@@ -43,6 +47,10 @@ pub struct FishEye {
 }
 
 impl Medium for FishEye {
+    /// Transparent.
+    fn absorbs(&self) -> bool {
+        false
+    }
     fn sample(&self, p: DVec3) -> Option<IndexSample> {
         let d = p - self.center;
         let r2 = self.radius * self.radius;
@@ -54,7 +62,7 @@ impl Medium for FishEye {
         })
     }
     /// ∇ln n = −2d/(R² + r²) varies on the scale max(R, r).
-    fn step_hint(&self, p: DVec3) -> f64 {
+    fn step_hint(&self, p: DVec3, _dir: DVec3) -> f64 {
         0.25 * self.radius.max((p - self.center).length())
     }
 }
@@ -89,6 +97,10 @@ impl BlackHole {
 }
 
 impl Medium for BlackHole {
+    /// Transparent.
+    fn absorbs(&self) -> bool {
+        false
+    }
     fn sample(&self, p: DVec3) -> Option<IndexSample> {
         let d = p - self.center;
         let rho = d.length() / self.rs;
@@ -109,7 +121,7 @@ impl Medium for BlackHole {
     /// A quarter of the distance to the horizon (far away, a quarter of the distance to the
     /// centre: the scale on which ∇ln n ∝ 1/r² varies). Steps toward the horizon shrink
     /// geometrically, so a plunging ray reaches the capture margin in ~70 steps.
-    fn step_hint(&self, p: DVec3) -> f64 {
+    fn step_hint(&self, p: DVec3, _dir: DVec3) -> f64 {
         let r = (p - self.center).length();
         0.25 * (r - self.horizon() * self.rs).max(0.0)
     }

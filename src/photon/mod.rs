@@ -22,16 +22,19 @@ mod map;
 pub use budget::{Budget, Fate};
 pub use map::{Photon, PhotonMap};
 
+use crate::bsdf::Bsdf;
+use crate::color::Rgb;
 use crate::environment::Environment;
 use crate::lights::{Emission, Light};
-use crate::material::Material;
 use crate::receiver::Detection;
-use crate::sampling::{cosine_hemisphere, stream, Frame, Purpose};
-use crate::transport::{facing, offset, Event, Stats, Tracer};
+use crate::sampling::{stream, Purpose};
+use crate::transport::chain::{self, End, Policy, Ray};
+use crate::transport::{offset, Stats, Tracer};
 use glam::DVec3;
 use rand::Rng;
 use rand_pcg::Pcg64Mcg;
 use rayon::prelude::*;
+use std::ops::ControlFlow;
 
 /// Photons per chunk of parallel work.
 const CHUNK: u64 = 4096;
@@ -43,26 +46,58 @@ enum Source<'a> {
     Environment(&'a Environment),
 }
 
+/// A photon source with what its photons start in.
+#[derive(Clone, Copy)]
+struct Placed<'a> {
+    source: Source<'a>,
+    /// The medium its photons start in.
+    medium: Option<usize>,
+}
+
+/// A photon leaving a source: where, which way, with what power, in which medium.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Launch {
+    /// Where, which way and with what power (already divided by the selection probability).
+    pub emission: Emission,
+    /// The medium it starts in.
+    pub medium: Option<usize>,
+    /// Whether a path from a surface point can find its source by sampling a direction (an
+    /// area light or the environment) rather than only by a connection to a point or a
+    /// direction (point, spot, LED and directional lights).
+    pub hittable: bool,
+}
+
 /// The scene's photon sources with a discrete distribution proportional to their power.
 pub struct Sources<'a> {
-    sources: Vec<Source<'a>>,
+    sources: Vec<Placed<'a>>,
     /// Cumulative selection probabilities, the last one 1.
     cdf: Vec<f64>,
 }
 
 impl<'a> Sources<'a> {
-    /// The lights and the environment of the tracer's scene; sources of zero power are left
-    /// out.
+    /// The lights and the environment of the tracer's scene, each with the medium it emits
+    /// into (a light inside a dielectric shape emits into its interior; parallel and
+    /// environment light into the ambient medium); sources of zero power are left out.
     pub fn new(tracer: &Tracer<'a>) -> Self {
         let scene = tracer.scene;
         let mut sources = Vec::new();
         let mut weights = Vec::new();
         for light in &scene.lights {
-            sources.push(Source::Light(light));
+            let medium = match light.origin() {
+                Some(p) => tracer.medium_containing(p),
+                None => scene.ambient,
+            };
+            sources.push(Placed {
+                source: Source::Light(light),
+                medium,
+            });
             weights.push(light.selection_power(tracer.ball));
         }
         if let Some(env) = &scene.environment {
-            sources.push(Source::Environment(env));
+            sources.push(Placed {
+                source: Source::Environment(env),
+                medium: scene.ambient,
+            });
             weights.push(env.selection_power(tracer.ball));
         }
         let total: f64 = weights.iter().filter(|w| w.is_finite() && **w > 0.0).sum();
@@ -87,22 +122,39 @@ impl<'a> Sources<'a> {
         self.sources.is_empty()
     }
 
-    /// Emission for uniform numbers `u` (u[0] picks the source), with the power divided by
-    /// the selection probability.
-    fn emit(&self, tracer: &Tracer, u: [f64; 5]) -> Option<Emission> {
+    /// A photon for uniform numbers `u` (u[0] picks the source), with the power divided by
+    /// the selection probability. Environment radiance is given as in vacuum (see
+    /// [`crate::transport::chain::Chain::environment_scale`]): in an ambient medium of index
+    /// n at the photon's start, its power is n² times the vacuum estimate.
+    fn emit(&self, tracer: &Tracer, u: [f64; 5]) -> Option<Launch> {
         let i = self
             .cdf
             .partition_point(|c| *c <= u[0])
             .min(self.cdf.len() - 1);
         let p = self.cdf[i] - if i == 0 { 0.0 } else { self.cdf[i - 1] };
         let rest = [u[1], u[2], u[3], u[4]];
-        let e = match self.sources[i] {
-            Source::Light(l) => l.emit(rest, tracer.ball)?,
-            Source::Environment(env) => env.emit(rest, tracer.ball),
+        let Placed { source, medium } = self.sources[i];
+        let (e, hittable) = match source {
+            Source::Light(l) => (l.emit(rest, tracer.ball)?, l.is_hittable()),
+            Source::Environment(env) => {
+                let e = env.emit(rest, tracer.ball);
+                let n = tracer.index(medium, e.origin).unwrap_or(1.0);
+                (
+                    Emission {
+                        power: e.power * (n * n),
+                        ..e
+                    },
+                    true,
+                )
+            }
         };
-        Some(Emission {
-            power: e.power / p,
-            ..e
+        Some(Launch {
+            emission: Emission {
+                power: e.power / p,
+                ..e
+            },
+            medium,
+            hittable,
         })
     }
 }
@@ -195,7 +247,7 @@ pub fn shoot(
 }
 
 /// Photon `i` of pass `pass` of a batch: its random stream, advanced past its emission, and
-/// the emission (None where the chosen source emits nothing for these numbers).
+/// its launch (None where the chosen source emits nothing for these numbers).
 fn launch(
     tracer: &Tracer,
     sources: &Sources,
@@ -203,7 +255,7 @@ fn launch(
     seed: u64,
     pass: u64,
     i: u64,
-) -> (Pcg64Mcg, Option<Emission>) {
+) -> (Pcg64Mcg, Option<Launch>) {
     let mut rng = stream(seed, purpose, pass, i);
     let u = [rng.gen(), rng.gen(), rng.gen(), rng.gen(), rng.gen()];
     let emission = sources.emit(tracer, u);
@@ -254,11 +306,65 @@ pub fn photon_paths(
     paths
 }
 
-/// Follows one photon from its emission, storing it into `stored` as `batch` says and
+/// What a photon's chains tell it on the way: detector crossings, whether it was reflected
+/// and where it last left a dielectric, and the points it passes.
+struct PhotonWalk<'a, 'p> {
+    tag: Tagged,
+    ambient: Option<usize>,
+    /// The photon's power at the start of the current chain.
+    power: Rgb,
+    detections: &'a mut Vec<Detection>,
+    receivers: &'a [crate::receiver::Receiver],
+    reflected: bool,
+    left_through: Option<usize>,
+    path: &'p mut dyn FnMut(DVec3),
+    /// The last point shown, and how far a point may lie from it (escapes are drawn only
+    /// that far, so a figure's lines stay short).
+    last: DVec3,
+    reach: f64,
+}
+
+impl chain::Observer for PhotonWalk<'_, '_> {
+    fn point(&mut self, p: DVec3) {
+        let d = p - self.last;
+        let p = if d.length() > self.reach {
+            self.last + d.normalize() * self.reach
+        } else {
+            p
+        };
+        (self.path)(p);
+        self.last = p;
+    }
+
+    fn detector(&mut self, receiver: usize, position: DVec3, weight: Rgb) -> ControlFlow<()> {
+        if self.tag.batch == Batch::Receivers {
+            if let Some(bin) = self.receivers[receiver].bin(position) {
+                self.detections.push(Detection {
+                    receiver: receiver as u32,
+                    bin: bin as u32,
+                    photon: self.tag.index,
+                    flux: (self.power * weight).element_sum() / 3.0,
+                });
+            }
+        }
+        ControlFlow::Continue(())
+    }
+
+    fn specular(&mut self, prim: usize, from: Option<usize>, to: Option<usize>) -> ControlFlow<()> {
+        if to == from {
+            self.reflected = true;
+        } else if to == self.ambient {
+            self.left_through = Some(prim);
+        }
+        ControlFlow::Continue(())
+    }
+}
+
+/// Follows one photon from its launch, storing it into `stored` as its batch says and
 /// booking its power in `stored.budget` when it ends; `path` is shown every point it passes.
 fn trace_photon(
     tracer: &Tracer,
-    e: Emission,
+    launch: Launch,
     tag: Tagged,
     rng: &mut impl Rng,
     stored: &mut Sink,
@@ -266,123 +372,88 @@ fn trace_photon(
     path: &mut dyn FnMut(DVec3),
 ) {
     let scene = tracer.scene;
-    let batch = tag.batch;
-    let mut power = e.power / tag.count as f64;
-    stored.budget.emitted += power.element_sum() / 3.0;
-    let (mut origin, mut dir, mut medium) = (e.origin, e.direction, scene.ambient);
-    // Whether the path so far holds a specular bounce or a gradient-medium traversal.
-    let mut bent = false;
-    // Whether it has met a specular reflection, and where it last left a dielectric into the
-    // ambient medium.
-    let (mut reflected, mut left_through) = (false, None);
-    path(origin);
-    let fate = 'path: {
-        for _ in 0..tracer.settings.max_depth {
-            bent |= medium.is_some_and(|m| !scene.medium_at(m).is_uniform());
-            let event = tracer.next_event_along(origin, dir, medium, stats, path);
-            // Absorption on the way, by Russian roulette (photon powers stay equal in size).
-            if let Event::Surface { distance, .. } | Event::Escaped { distance, .. } = event {
-                let kept = tracer.transmittance(medium, origin, distance);
-                if kept < 1.0 && rng.gen::<f64>() >= kept {
-                    break 'path Fate::Absorbed;
-                }
-            }
-            let (prim, position, normal, direction) = match event {
-                Event::Surface {
-                    prim,
-                    position,
-                    normal,
-                    direction,
-                    ..
-                } => (prim, position, normal, direction),
-                Event::Escaped {
-                    direction: d,
-                    distance,
-                } => {
-                    if medium.is_none_or(|m| scene.medium_at(m).is_uniform()) {
-                        path(origin + d * distance.min(tracer.ball.1));
-                    }
-                    // Escaping from inside a dielectric (the world sphere cuts it) is lost.
-                    break 'path match left_through {
-                        _ if medium != scene.ambient => Fate::Lost,
-                        Some(p) => Fate::OutThrough(p),
-                        None if reflected => Fate::Reflected,
-                        None => Fate::Missed,
-                    };
-                }
-                Event::Lost => break 'path Fate::Lost,
-            };
-            path(position);
-            let surface = scene.surfaces[prim];
-            let facing = facing(normal, direction);
-            match &scene.materials[surface.material] {
-                Material::Emissive { .. } => break 'path Fate::Absorbed,
-                Material::Diffuse { albedo } => {
-                    let photon = Photon {
-                        position,
-                        normal: facing,
-                        power: power.as_vec3().to_array(),
-                    };
-                    match batch {
-                        Batch::Caustic => {
-                            if bent {
-                                stored.photons.push(photon);
-                            }
-                            break 'path Fate::Absorbed;
-                        }
-                        Batch::Global => stored.photons.push(photon),
-                        Batch::Receivers => {}
-                    }
-                    let survive = albedo.max_element();
-                    if rng.gen::<f64>() >= survive {
-                        break 'path Fate::Absorbed;
-                    }
-                    power *= *albedo / survive;
-                    dir = Frame::new(facing).to_world(cosine_hemisphere((rng.gen(), rng.gen())));
-                    origin = offset(position, facing);
-                }
-                Material::Detector { receiver } => {
-                    if batch == Batch::Receivers {
-                        if let Some(bin) = scene.receivers[*receiver].bin(position) {
-                            stored.detections.push(Detection {
-                                receiver: *receiver as u32,
-                                bin: bin as u32,
-                                photon: tag.index,
-                                flux: power.element_sum() / 3.0,
-                            });
-                        }
-                    }
-                    (origin, dir) = (offset(position, direction), direction);
-                }
-                Material::Mirror { .. } | Material::Dielectric => {
-                    let Some(b) = tracer.specular_bounce(
-                        surface,
-                        medium,
-                        position,
-                        direction,
-                        normal,
-                        rng.gen(),
-                    ) else {
-                        break 'path Fate::Lost;
-                    };
-                    // Russian roulette on a lossy mirror keeps photon powers equal in size.
-                    let survive = b.weight.max_element();
-                    if survive < 1.0 && rng.gen::<f64>() >= survive {
-                        break 'path Fate::Absorbed;
-                    }
-                    power *= b.weight / survive.clamp(f64::MIN_POSITIVE, 1.0);
-                    if b.medium == medium {
-                        reflected = true;
-                    } else if b.medium == scene.ambient {
-                        left_through = Some(prim);
-                    }
-                    (origin, dir, medium) = (b.origin, b.direction, b.medium);
-                    bent = true;
-                }
-            }
-        }
-        stats.depth_limited += 1;
-        Fate::Lost
+    let e = launch.emission;
+    stored.budget.emitted += (e.power / tag.count as f64).element_sum() / 3.0;
+    path(e.origin);
+    let mut walk = PhotonWalk {
+        tag,
+        ambient: scene.ambient,
+        power: e.power / tag.count as f64,
+        detections: &mut stored.detections,
+        receivers: &scene.receivers,
+        reflected: false,
+        left_through: None,
+        path,
+        last: e.origin,
+        reach: tracer.ball.1,
     };
-    stored.budget.book(fate, power.element_sum() / 3.0);
+    let mut ray = Ray {
+        origin: e.origin,
+        direction: e.direction,
+        medium: launch.medium,
+    };
+    let mut depth = tracer.settings.max_depth;
+    let fate = loop {
+        let chain = chain::follow(
+            tracer,
+            ray,
+            Policy::Roulette,
+            &mut depth,
+            rng,
+            stats,
+            &mut walk,
+        );
+        walk.power *= chain.weight;
+        let (position, normal, albedo, arrival) = match chain.end {
+            End::Diffuse {
+                position,
+                normal,
+                albedo,
+                direction,
+                ..
+            } => (position, normal, albedo, direction),
+            // Escaping from inside a dielectric (the world sphere cuts it) is lost.
+            End::Escaped { .. } => {
+                break match walk.left_through {
+                    _ if chain.medium != scene.ambient => Fate::Lost,
+                    Some(p) => Fate::OutThrough(p),
+                    None if walk.reflected => Fate::Reflected,
+                    None => Fate::Missed,
+                }
+            }
+            End::Emitter { .. } | End::Absorbed => break Fate::Absorbed,
+            End::Lost | End::DepthLimit | End::Stopped => break Fate::Lost,
+        };
+        let photon = Photon {
+            position,
+            normal,
+            power: walk.power.as_vec3().to_array(),
+        };
+        match tag.batch {
+            // L (S|G)+ D, less the L G+ D paths from a source a path can find by sampling
+            // directions: the direct estimate follows those along the curved path itself.
+            Batch::Caustic => {
+                if chain.specular > 0 || (chain.curved && !launch.hittable) {
+                    stored.photons.push(photon);
+                }
+                break Fate::Absorbed;
+            }
+            Batch::Global => stored.photons.push(photon),
+            Batch::Receivers => {}
+        }
+        let survive = albedo.max_element();
+        if rng.gen::<f64>() >= survive {
+            break Fate::Absorbed;
+        }
+        walk.power *= albedo / survive;
+        let bounce = Bsdf::Lambert { albedo }
+            .sample(-arrival, normal, (rng.gen(), rng.gen(), 0.0))
+            .expect("a Lambertian surface always scatters");
+        ray = Ray {
+            origin: offset(position, normal),
+            direction: bounce.wi,
+            medium: chain.medium,
+        };
+    };
+    stored.budget.book(fate, walk.power.element_sum() / 3.0);
 }

@@ -92,8 +92,8 @@ impl Observer for () {}
 /// Which photon maps a scene needs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Plan {
-    /// A caustic map: some light path can meet a specular surface or a gradient medium
-    /// before a diffuse one.
+    /// A caustic map: some light path can meet a specular surface before a diffuse one, or
+    /// cross a gradient medium from a light no direction sample finds.
     pub caustic: bool,
     /// A global map: secondary light is on (`gather` > 0) and something is diffuse.
     pub global: bool,
@@ -121,8 +121,15 @@ impl Plan {
                 .surfaces
                 .iter()
                 .any(|s| s.interior.is_some_and(|m| !scene.medium_at(m).is_uniform()));
+        // Through a gradient medium alone (no specular surface), only light from sources a
+        // path cannot find by sampling directions needs the caustic map: the direct
+        // estimate's curved BSDF rays find area lights and the environment.
+        let unhittable = scene.lights.iter().any(|l| !l.is_hittable());
         Self {
-            caustic: diffuse && emits && (specular || gradient) && photons.caustic > 0,
+            caustic: diffuse
+                && emits
+                && (specular || (gradient && unhittable))
+                && photons.caustic > 0,
             global: diffuse && emits && photons.gather > 0 && photons.global > 0,
         }
     }
@@ -398,7 +405,7 @@ fn camera_tile(
             let Some(vp) = c.visible else { continue };
             mean[Plane::Albedo as usize] += vp.albedo;
             mean[Plane::Normal as usize] += vp.normal;
-            mean[Plane::Direct as usize] += visible::direct(tracer, &vp, &mut rng);
+            mean[Plane::Direct as usize] += visible::direct(tracer, &vp, &mut rng, stats);
             if let Some(global) = maps.global {
                 mean[Plane::Secondary as usize] += visible::secondary(
                     tracer,

@@ -144,6 +144,13 @@ impl Scene {
             })
     }
 
+    /// Adds a medium (e.g. a profile of one's own) and returns its index, for
+    /// [`Surface::interior`] or [`Scene::ambient`].
+    pub fn add_medium(&mut self, name: impl Into<String>, medium: Box<dyn Medium>) -> usize {
+        self.media.push((name.into(), medium));
+        self.media.len() - 1
+    }
+
     /// The medium at index `i` (see [`Surface::interior`] and [`Scene::ambient`]).
     pub fn medium_at(&self, i: usize) -> &dyn Medium {
         self.media[i].1.as_ref()

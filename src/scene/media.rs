@@ -4,8 +4,8 @@
 use super::table::TableReader;
 use crate::error::Result;
 use crate::media::{
-    Absorbing, Axis, BlackHole, ExponentialMedium, FishEye, GridError, GridMedium, LinearMedium,
-    Luneburg, Medium, ParabolicFiber, RadialTable, SechFiber, UniformMedium,
+    Absorbing, Axis, BlackHole, ExponentialMedium, FishEye, GridError, GridMedium, HeightTable,
+    LinearMedium, Luneburg, Medium, ParabolicFiber, RadialTable, SechFiber, UniformMedium,
 };
 use glam::DVec3;
 
@@ -17,6 +17,7 @@ pub const PROFILES: &[&str] = &[
     "parabolic",
     "sech",
     "radial_table",
+    "height_table",
     "luneburg",
     "fisheye",
     "black_hole",
@@ -81,6 +82,13 @@ fn read_profile(t: &mut TableReader) -> Result<Box<dyn Medium>> {
             let n = t.f64_list("n")?;
             let axis = fiber_axis(t)?;
             Box::new(RadialTable::new(r, n, axis).map_err(|(key, e)| t.error(key, e))?)
+        }
+        "height_table" => {
+            let h = t.f64_list("h")?;
+            let n = t.f64_list("n")?;
+            let origin = t.vec3_or("origin", DVec3::ZERO)?;
+            let up = t.direction_or("up", DVec3::Y)?;
+            Box::new(HeightTable::new(h, n, origin, up).map_err(|(key, e)| t.error(key, e))?)
         }
         "luneburg" => Box::new(Luneburg {
             center: t.vec3_or("center", DVec3::ZERO)?,

@@ -1,17 +1,23 @@
 //! Moving a ray through the scene to its next event: straight through uniform media (BVH ray
 //! traversal), curved through gradient media (the march, each accepted step tested against
-//! the BVH as an exact arc). Shared by the camera pass and the photon pass, together with the
-//! specular interactions (mirror reflection, Fresnel reflection and refraction) both follow.
+//! the BVH as an exact arc). On top of it, shared by every pass: the specular chain
+//! ([`chain`]: mirrors, dielectrics and detectors followed to the next diffuse surface,
+//! emitter or escape, with the radiance change across indices) and the visibility query
+//! ([`visibility`]: the only shadow ray).
 
+pub mod chain;
 mod stats;
+pub mod visibility;
 
+use crate::bsdf::Bsdf;
 use crate::color::Rgb;
 use crate::curve::{
-    march_with, Bounds, CurvedSegment, MarchLimits, MarchOutcome, RayState, StepControl,
-    Termination,
+    march_with, step_optical_depth, Bounds, CurvedSegment, MarchLimits, MarchOutcome, RayState,
+    StepControl, Termination,
 };
 use crate::lights::SceneBall;
-use crate::material::{fresnel, reflect, refract, Material};
+use crate::material::Material;
+use crate::media::Medium;
 use crate::scene::{Scene, Surface};
 use crate::settings::TraceSettings;
 use glam::DVec3;
@@ -34,17 +40,36 @@ pub enum Event {
         direction: DVec3,
         /// Path length from the origin to the hit (scene units).
         distance: f64,
+        /// Optical depth ∫ σa ds of absorption from the origin to the hit.
+        optical_depth: f64,
     },
     /// The ray left the world sphere.
     Escaped {
+        /// Where it left.
+        position: DVec3,
         /// Unit direction when leaving.
         direction: DVec3,
         /// Path length from the origin to the world sphere (scene units).
         distance: f64,
+        /// Optical depth ∫ σa ds of absorption from the origin to the world sphere.
+        optical_depth: f64,
     },
-    /// The ray ended without reaching a surface or escaping: captured, out of steps, or lost
-    /// inside an object it should have left (reported in the statistics).
+    /// The ray ended without reaching a surface or escaping: captured, out of steps, trapped
+    /// (a curved path 100 world radii long that never left the world), or lost inside an
+    /// object it should have left; the reason is counted in the statistics.
     Lost,
+}
+
+impl Event {
+    /// The fraction exp(−∫σa ds) of light kept on the way to the event (0 when lost).
+    pub fn transmittance(&self) -> f64 {
+        match *self {
+            Event::Surface { optical_depth, .. } | Event::Escaped { optical_depth, .. } => {
+                (-optical_depth).exp()
+            }
+            Event::Lost => 0.0,
+        }
+    }
 }
 
 /// A ray leaving a specular surface (mirror or dielectric).
@@ -76,8 +101,8 @@ pub fn offset(p: DVec3, side: DVec3) -> DVec3 {
     p + side * (1e-9 * (1.0 + p.abs().max_element()))
 }
 
-/// Where rays travel: the scene, the sphere holding everything in it, and the sphere beyond
-/// which rays count as escaped.
+/// Where rays travel: the scene, how rays travel in it, the sphere holding everything in it,
+/// and the sphere beyond which rays count as escaped.
 pub struct Tracer<'a> {
     /// The scene.
     pub scene: &'a Scene,
@@ -87,7 +112,29 @@ pub struct Tracer<'a> {
     pub ball: SceneBall,
     /// The world sphere.
     pub world: Bounds,
+    /// The medium the camera sits in (see [`Tracer::medium_containing`]).
+    pub camera_medium: Option<usize>,
 }
+
+/// Directions along which [`Tracer::medium_containing`] looks for the enclosing surface: far
+/// from any axis, so they rarely graze the axis-aligned walls of a scene.
+const PROBES: [DVec3; 3] = [
+    DVec3::new(
+        0.267_261_241_912_424_4,
+        0.534_522_483_824_848_8,
+        0.801_783_725_737_273_2,
+    ),
+    DVec3::new(
+        -0.615_457_454_897_398_3,
+        0.492_365_963_917_918_6,
+        0.615_457_454_897_398_3,
+    ),
+    DVec3::new(
+        0.455_842_305_838_552_3,
+        -0.683_763_458_757_828_4,
+        -0.569_802_882_298_190_4,
+    ),
+];
 
 impl<'a> Tracer<'a> {
     /// The tracer of a scene; the world sphere is the scene's `world_radius` around the centre
@@ -110,20 +157,66 @@ impl<'a> Tracer<'a> {
         let center = 0.5 * (lo + hi);
         let extent = 0.5 * (hi - lo).length();
         let radius = settings.world_radius.unwrap_or(10.0 * extent.max(1.0));
-        Self {
+        let mut tracer = Self {
             scene,
             settings: *settings,
             ball: (center, extent.max(1e-9)),
             world: Bounds::Ball { center, radius },
+            camera_medium: scene.ambient,
+        };
+        if let Some(c) = &scene.camera {
+            tracer.camera_medium = tracer.medium_containing(c.position);
+        }
+        tracer
+    }
+
+    /// The refractive index at `p` in `medium` (None: vacuum, n = 1); None where the medium
+    /// captures rays (a horizon).
+    pub fn index(&self, medium: Option<usize>, p: DVec3) -> Option<f64> {
+        match medium {
+            None => Some(1.0),
+            Some(m) => self.scene.medium_at(m).sample(p).map(|s| s.n),
+        }
+    }
+
+    /// The medium filling point `p`: the interior of the innermost dielectric shape holding
+    /// it, else the ambient medium. Found by the first dielectric surface along fixed probe
+    /// rays (met from its back: `p` is inside it; from its front: outside, in its exterior);
+    /// the majority of three probes decides, so a probe grazing an edge does not.
+    pub fn medium_containing(&self, p: DVec3) -> Option<usize> {
+        let [a, b, c] = PROBES.map(|d| self.enclosing_along(p, d));
+        if a == b || a == c {
+            a
+        } else {
+            b
+        }
+    }
+
+    fn enclosing_along(&self, p: DVec3, d: DVec3) -> Option<usize> {
+        let scene = self.scene;
+        let mut o = p;
+        loop {
+            let Some((prim, h)) = scene.accel.intersect_ray(o, d, 0.0, f64::INFINITY) else {
+                return scene.ambient;
+            };
+            let s = scene.surfaces[prim];
+            if matches!(scene.materials[s.material], Material::Dielectric) {
+                return if d.dot(h.normal) > 0.0 {
+                    s.interior
+                } else {
+                    s.exterior.or(scene.ambient)
+                };
+            }
+            o = offset(o + h.t * d, d);
         }
     }
 
     /// What the specular surface `surface` does to a ray arriving along unit `incoming` in
     /// `medium` at `position`, where the surface's geometric normal is `normal`: a receiver's
-    /// detector lets it pass unchanged; a mirror reflects; a dielectric reflects with the Fresnel probability (decided by `u` ∈ [0,1))
-    /// and refracts otherwise, with n evaluated at the hit point on each side. `None` for a
-    /// diffuse or emissive surface, or where a side's index cannot be evaluated (a singular
-    /// medium).
+    /// detector lets it pass unchanged; a mirror reflects; a dielectric reflects with the
+    /// Fresnel probability (decided by `u` ∈ [0,1)) and refracts otherwise, with n evaluated
+    /// at the hit point on each side. `None` for a diffuse or emissive surface, or where a
+    /// side's index cannot be evaluated (a singular medium).
     pub fn specular_bounce(
         &self,
         surface: Surface,
@@ -134,49 +227,41 @@ impl<'a> Tracer<'a> {
         u: f64,
     ) -> Option<Bounce> {
         let scene = self.scene;
-        let facing = facing(normal, incoming);
-        let front = facing == normal;
-        let reflected = |weight| Bounce {
-            origin: offset(position, facing),
-            direction: reflect(incoming, facing),
-            medium,
-            weight,
-        };
-        match &scene.materials[surface.material] {
-            Material::Mirror { reflectance } => Some(reflected(*reflectance)),
+        let side = facing(normal, incoming);
+        let (bsdf, beyond) = match &scene.materials[surface.material] {
+            Material::Detector { .. } => {
+                return Some(Bounce {
+                    origin: offset(position, incoming),
+                    direction: incoming,
+                    medium,
+                    weight: Rgb::ONE,
+                })
+            }
+            Material::Mirror { reflectance } => (
+                Bsdf::Mirror {
+                    reflectance: *reflectance,
+                },
+                medium,
+            ),
             Material::Dielectric => {
                 let inside = surface.interior?;
-                let to = if front {
+                let to = if side == normal {
                     Some(inside)
                 } else {
                     surface.exterior.or(scene.ambient)
                 };
-                let index = |m: Option<usize>| {
-                    m.map_or(Some(1.0), |i| {
-                        scene.medium_at(i).sample(position).map(|s| s.n)
-                    })
-                };
-                let (n1, n2) = (index(medium)?, index(to)?);
-                let (r, cos_t) = fresnel(-incoming.dot(facing), n1, n2);
-                if u < r {
-                    Some(reflected(Rgb::ONE))
-                } else {
-                    Some(Bounce {
-                        origin: offset(position, -facing),
-                        direction: refract(incoming, facing, n1, n2, cos_t),
-                        medium: to,
-                        weight: Rgb::ONE,
-                    })
-                }
+                let (n1, n2) = (self.index(medium, position)?, self.index(to, position)?);
+                (Bsdf::Dielectric { n1, n2 }, to)
             }
-            Material::Diffuse { .. } | Material::Emissive { .. } => None,
-            Material::Detector { .. } => Some(Bounce {
-                origin: offset(position, incoming),
-                direction: incoming,
-                medium,
-                weight: Rgb::ONE,
-            }),
-        }
+            Material::Diffuse { .. } | Material::Emissive { .. } => return None,
+        };
+        let s = bsdf.sample(-incoming, side, (0.0, 0.0, u))?;
+        Some(Bounce {
+            origin: offset(position, if s.transmitted { -side } else { side }),
+            direction: s.wi,
+            medium: if s.transmitted { beyond } else { medium },
+            weight: s.weight,
+        })
     }
 
     /// The next event of a ray from `origin` along unit `dir` inside medium `medium` (None:
@@ -206,6 +291,7 @@ impl<'a> Tracer<'a> {
             Some(m) if !m.is_uniform() => self.curved(m, origin, dir, stats, path),
             _ => {
                 stats.straight_rays += 1;
+                let depth = |length: f64| m.map_or(0.0, |m| m.optical_depth(origin, dir, length));
                 match self
                     .scene
                     .accel
@@ -217,66 +303,25 @@ impl<'a> Tracer<'a> {
                         normal: h.normal,
                         direction: dir,
                         distance: h.t,
+                        optical_depth: depth(h.t),
                     },
-                    None => Event::Escaped {
-                        direction: dir,
-                        distance: self.world.exit_distance(origin, dir),
-                    },
+                    None => {
+                        let distance = self.world.exit_distance(origin, dir);
+                        Event::Escaped {
+                            position: origin + distance * dir,
+                            direction: dir,
+                            distance,
+                            optical_depth: depth(distance),
+                        }
+                    }
                 }
             }
         }
     }
 
-    /// The fraction exp(−σa·distance) of light kept over a path of `distance` in `medium`
-    /// starting at `at` (σa is constant per medium: see [`crate::media::Absorbing`]).
-    pub fn transmittance(&self, medium: Option<usize>, at: DVec3, distance: f64) -> f64 {
-        match medium.map(|m| self.scene.medium_at(m).absorption(at)) {
-            Some(sigma_a) if sigma_a > 0.0 => (-sigma_a * distance).exp(),
-            _ => 1.0,
-        }
-    }
-
-    /// Follows the principal ray from `origin` along unit `dir` in `medium`: at each dielectric
-    /// the likelier branch (reflected where the Fresnel reflectance exceeds 1/2, as under total
-    /// internal reflection, refracted otherwise), reflected by mirrors, until it crosses a
-    /// receiver's detector. Returns the crossing point and the number of surfaces met before
-    /// it; None when the ray escapes, is lost, reaches a diffuse or emissive surface, or has
-    /// met `max_events` surfaces.
-    pub fn principal_ray(
-        &self,
-        mut origin: DVec3,
-        mut dir: DVec3,
-        mut medium: Option<usize>,
-        max_events: usize,
-    ) -> Option<(DVec3, usize)> {
-        let mut stats = Stats::default();
-        for events in 0..max_events {
-            let Event::Surface {
-                prim,
-                position,
-                normal,
-                direction,
-                ..
-            } = self.next_event(origin, dir, medium, &mut stats)
-            else {
-                return None;
-            };
-            let surface = self.scene.surfaces[prim];
-            if matches!(
-                self.scene.materials[surface.material],
-                Material::Detector { .. }
-            ) {
-                return Some((position, events));
-            }
-            let b = self.specular_bounce(surface, medium, position, direction, normal, 0.5)?;
-            (origin, dir, medium) = (b.origin, b.direction, b.medium);
-        }
-        None
-    }
-
     fn curved(
         &self,
-        medium: &dyn crate::media::Medium,
+        medium: &dyn Medium,
         origin: DVec3,
         dir: DVec3,
         stats: &mut Stats,
@@ -292,12 +337,13 @@ impl<'a> Tracer<'a> {
             max_steps: settings.max_steps,
             bounds: self.world,
         };
-        let (event, out) = self.march_to_surface(medium, settings.control, start, &limits, path);
+        let control = keyed_by_ray(settings.control, origin, dir);
+        let (hit, out) = self.march_to_surface(medium, control, start, &limits, path);
         stats.curved_marches += 1;
         stats.curved_steps += out.steps;
         stats.record_end(out.reason);
-        match (event, out.reason) {
-            (Some((event, before, before_s, len)), _) => {
+        match (hit, out.reason) {
+            (Some(hit), _) => {
                 // The step that met a surface, taken again in 16 fixed sub-steps: the hit of
                 // a mean-force arc errs by O(len² |∇F|) in position and direction, which the
                 // step control does not bound (it controls the stepper's end point). With
@@ -306,46 +352,65 @@ impl<'a> Tracer<'a> {
                 // drifted by 2.6 % between tolerances 1e-9 and 1e-5 (measured). Re-taken, the
                 // arc error falls 256×.
                 let sub = MarchLimits {
-                    length: len * (1.0 + 1e-9),
+                    length: hit.len * (1.0 + 1e-9),
                     max_steps: 64,
                     bounds: Bounds::Unbounded,
                 };
-                let fine = StepControl::Fixed { step: len / 16.0 };
-                match self.march_to_surface(medium, fine, before, &sub, &mut |_| {}) {
-                    (Some((mut refined, _, _, _)), r) => {
+                let fine = StepControl::Fixed {
+                    step: hit.len / 16.0,
+                };
+                match self.march_to_surface(medium, fine, hit.before, &sub, &mut |_| {}) {
+                    (Some(refined), r) => {
                         stats.curved_steps += r.steps;
-                        // Its distance counts from `before`.
-                        if let Event::Surface { distance, .. } = &mut refined {
-                            *distance += before_s;
+                        // Its distance and depth count from `before`.
+                        match refined.event {
+                            Event::Surface {
+                                prim,
+                                position,
+                                normal,
+                                direction,
+                                distance,
+                                optical_depth,
+                            } => Event::Surface {
+                                prim,
+                                position,
+                                normal,
+                                direction,
+                                distance: distance + hit.before_s,
+                                optical_depth: optical_depth + hit.before_depth,
+                            },
+                            other => other,
                         }
-                        refined
                     }
-                    _ => event,
+                    _ => hit.event,
                 }
             }
-            (None, Termination::LeftBounds | Termination::LengthReached) => Event::Escaped {
+            (None, Termination::LeftBounds) => Event::Escaped {
+                position: out.state.position,
                 direction: out.state.direction,
                 distance: out.arclength,
+                optical_depth: out.optical_depth,
             },
+            // Trapped (the path's length ran out inside the world), captured, out of steps.
             (None, _) => Event::Lost,
         }
     }
 
-    /// Marches from `start` until an accepted step's path meets a surface: the event (its
-    /// distance the arclength from `start`), the state before that step, its arclength and
-    /// the step's length, with the march's outcome. `path` is shown each accepted point
+    /// Marches from `start` until an accepted step's path meets a surface: the hit (its
+    /// distance and depth from `start`), the state before that step, its arclength and depth
+    /// and the step's length, with the march's outcome. `path` is shown each accepted point
     /// before the hit.
     fn march_to_surface(
         &self,
-        medium: &dyn crate::media::Medium,
+        medium: &dyn Medium,
         control: StepControl,
         start: RayState,
         limits: &MarchLimits,
         path: &mut dyn FnMut(DVec3),
-    ) -> (Option<(Event, RayState, f64, f64)>, MarchOutcome) {
+    ) -> (Option<CurvedHit>, MarchOutcome) {
         let accel = &self.scene.accel;
         let mut prev = start;
-        let mut prev_s = 0.0;
+        let (mut prev_s, mut prev_depth) = (0.0, 0.0);
         let mut hit = None;
         let out = march_with(
             self.settings.stepper,
@@ -366,42 +431,85 @@ impl<'a> Tracer<'a> {
                     prev.direction,
                     0.5 * (prev.index.log_gradient() + st.index.log_gradient()),
                 );
-                if let Some((prim, h)) = accel.intersect_segment(&seg, 0.0, len) {
-                    let p = seg.at(h.t);
-                    let event = Event::Surface {
-                        prim,
-                        position: p.position,
-                        normal: h.normal,
-                        direction: p.direction,
-                        distance: prev_s + h.t,
-                    };
-                    hit = Some((event, prev, prev_s, len));
+                let found = accel
+                    .intersect_segment(&seg, 0.0, len)
+                    .map(|(prim, h)| {
+                        let p = seg.at(h.t);
+                        (prim, h, p.position, p.direction, h.t)
+                    })
+                    .or_else(|| {
+                        let arc_end = seg.at(len).position;
+                        let gap = st.position - arc_end;
+                        let gap_len = gap.length();
+                        (gap_len > 0.0)
+                            .then(|| accel.intersect_ray(arc_end, gap / gap_len, 0.0, gap_len))
+                            .flatten()
+                            .map(|(prim, h)| {
+                                let at = arc_end + h.t * gap / gap_len;
+                                (prim, h, at, st.direction, len + h.t)
+                            })
+                    });
+                if let Some((prim, h, position, direction, along)) = found {
+                    hit = Some(CurvedHit {
+                        event: Event::Surface {
+                            prim,
+                            position,
+                            normal: h.normal,
+                            direction,
+                            distance: prev_s + along,
+                            optical_depth: prev_depth
+                                + step_optical_depth(medium, prev.position, position, along),
+                        },
+                        before: prev,
+                        before_s: prev_s,
+                        before_depth: prev_depth,
+                        len,
+                    });
                     return ControlFlow::Break(());
                 }
-                let arc_end = seg.at(len).position;
-                let gap = st.position - arc_end;
-                let gap_len = gap.length();
-                if gap_len > 0.0 {
-                    if let Some((prim, h)) =
-                        accel.intersect_ray(arc_end, gap / gap_len, 0.0, gap_len)
-                    {
-                        let event = Event::Surface {
-                            prim,
-                            position: arc_end + h.t * gap / gap_len,
-                            normal: h.normal,
-                            direction: st.direction,
-                            distance: s + h.t,
-                        };
-                        hit = Some((event, prev, prev_s, len));
-                        return ControlFlow::Break(());
-                    }
-                }
                 path(st.position);
+                prev_depth += step_optical_depth(medium, prev.position, st.position, len);
                 prev = *st;
                 prev_s = s;
                 ControlFlow::Continue(())
             },
         );
         (hit, out)
+    }
+}
+
+/// A curved path's first surface: the event, and the step that met it.
+struct CurvedHit {
+    event: Event,
+    /// The state at the start of that step, its arclength and optical depth from the start.
+    before: RayState,
+    before_s: f64,
+    before_depth: f64,
+    /// The step's length.
+    len: f64,
+}
+
+/// `control`, with a Tessendorf control's ξ stream keyed by the ray itself (its seed mixed
+/// with the bits of its origin and direction), so rays do not share one sequence of step
+/// sizes; the same ray draws the same ξ in every run.
+fn keyed_by_ray(control: StepControl, origin: DVec3, dir: DVec3) -> StepControl {
+    use crate::sampling::mix;
+    match control {
+        StepControl::Tessendorf {
+            initial_step,
+            t_max,
+            t_min,
+            seed,
+        } => {
+            let words = [origin.x, origin.y, origin.z, dir.x, dir.y, dir.z];
+            let key = words.iter().fold(mix(seed), |h, w| mix(h ^ w.to_bits()));
+            StepControl::Tessendorf {
+                initial_step,
+                t_max,
+                t_min,
+                seed: key,
+            }
+        }
+        other => other,
     }
 }

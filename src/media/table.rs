@@ -1,0 +1,131 @@
+//! Tabulated profiles: a function of one coordinate through nodes, joined by monotone cubic
+//! Hermite pieces (Fritsch–Carlson slopes), so the value and its derivative are continuous
+//! and nothing overshoots between nodes; constant beyond the last node. The radial table of
+//! a fiber and the height table of a layered atmosphere are both this, along r or along h.
+
+/// Nodes (x, y) with their Hermite slopes.
+#[derive(Clone, Debug)]
+pub struct MonotoneCubic {
+    /// Node positions, strictly increasing.
+    x: Vec<f64>,
+    /// Node values.
+    y: Vec<f64>,
+    /// dy/dx at the nodes.
+    slope: Vec<f64>,
+}
+
+impl MonotoneCubic {
+    /// The curve through the nodes, or why not, as (the offending key `x_key` or `y_key`,
+    /// message): at least two nodes, x strictly increasing and finite, every y finite and > 0
+    /// (an index). With `flat_start`, y'(x₀) = 0 (a radial profile, smooth across the axis).
+    pub fn new(
+        x: Vec<f64>,
+        y: Vec<f64>,
+        flat_start: bool,
+        (x_key, y_key): (&'static str, &'static str),
+    ) -> Result<Self, (&'static str, String)> {
+        if x.len() != y.len() || x.len() < 2 {
+            return Err((
+                y_key,
+                format!(
+                    "`{x_key}` and `{y_key}` need the same number (≥ 2) of values, got {} and {}",
+                    x.len(),
+                    y.len()
+                ),
+            ));
+        }
+        if !x.windows(2).all(|w| w[1] > w[0]) || !x.iter().all(|v| v.is_finite()) {
+            return Err((x_key, "must increase strictly".into()));
+        }
+        if !y.iter().all(|v| v.is_finite() && *v > 0.0) {
+            return Err((y_key, "every value must be a finite number > 0".into()));
+        }
+        // Fritsch–Carlson: secant slopes, averaged inside, zeroed at extrema, limited to 3×.
+        let secant: Vec<f64> = (0..x.len() - 1)
+            .map(|i| (y[i + 1] - y[i]) / (x[i + 1] - x[i]))
+            .collect();
+        let last = x.len() - 1;
+        let mut slope = vec![0.0; x.len()];
+        for i in 1..last {
+            if secant[i - 1] * secant[i] > 0.0 {
+                slope[i] = 0.5 * (secant[i - 1] + secant[i]);
+            }
+        }
+        slope[0] = if flat_start { 0.0 } else { secant[0] };
+        slope[last] = secant[last - 1];
+        for (i, &d) in secant.iter().enumerate() {
+            if d == 0.0 {
+                slope[i] = 0.0;
+                slope[i + 1] = 0.0;
+            } else {
+                let (a, b) = (slope[i] / d, slope[i + 1] / d);
+                let s = a * a + b * b;
+                if s > 9.0 {
+                    let t = 3.0 / s.sqrt();
+                    slope[i] = t * a * d;
+                    slope[i + 1] = t * b * d;
+                }
+            }
+        }
+        if flat_start {
+            slope[0] = 0.0;
+        }
+        Ok(Self { x, y, slope })
+    }
+
+    /// y and dy/dx at `t`: the first node's value before it, the last one's after it
+    /// (derivative 0 there).
+    pub fn at(&self, t: f64) -> (f64, f64) {
+        let last = self.x.len() - 1;
+        if t >= self.x[last] {
+            return (self.y[last], 0.0);
+        }
+        if t < self.x[0] {
+            return (self.y[0], 0.0);
+        }
+        let i = self.x.partition_point(|&xi| xi <= t) - 1;
+        let h = self.x[i + 1] - self.x[i];
+        let u = (t - self.x[i]) / h;
+        let (u2, u3) = (u * u, u * u * u);
+        let (y0, y1, m0, m1) = (
+            self.y[i],
+            self.y[i + 1],
+            self.slope[i] * h,
+            self.slope[i + 1] * h,
+        );
+        let y = (2.0 * u3 - 3.0 * u2 + 1.0) * y0
+            + (u3 - 2.0 * u2 + u) * m0
+            + (-2.0 * u3 + 3.0 * u2) * y1
+            + (u3 - u2) * m1;
+        let dy = ((6.0 * u2 - 6.0 * u) * y0
+            + (3.0 * u2 - 4.0 * u + 1.0) * m0
+            + (-6.0 * u2 + 6.0 * u) * y1
+            + (3.0 * u2 - 2.0 * u) * m1)
+            / h;
+        (y, dy)
+    }
+
+    /// How far a step from `t` may reach without skipping a piece: 4 pieces' lengths inside
+    /// the nodes (RK4 and its error estimate sample a step at ≥ 4 points), and outside them
+    /// the distance to the nearest node plus 4 end pieces (a step can then reach the table,
+    /// never cross it).
+    pub fn reach(&self, t: f64) -> f64 {
+        let last = self.x.len() - 1;
+        if t < self.x[0] {
+            return self.x[0] - t + 4.0 * (self.x[1] - self.x[0]);
+        }
+        if t >= self.x[last] {
+            return t - self.x[last] + 4.0 * (self.x[last] - self.x[last - 1]);
+        }
+        let i = self.x.partition_point(|&xi| xi <= t) - 1;
+        4.0 * (self.x[i + 1] - self.x[i])
+    }
+
+    /// The smallest node spacing.
+    pub fn min_spacing(&self) -> f64 {
+        self.x
+            .windows(2)
+            .map(|w| w[1] - w[0])
+            .fold(f64::INFINITY, f64::min)
+    }
+}

@@ -1,0 +1,328 @@
+//! The specular chain: a path followed through mirrors, dielectrics and receivers' detectors
+//! (straight or curved between them) to its next diffuse surface, emitter or escape. It is
+//! the one such loop: camera paths, final-gather rays, the direct estimate's BSDF rays,
+//! photons and principal rays all walk it.
+//!
+//! **Radiance across indices.** Basic radiance L/n² is conserved along a path — across a
+//! dielectric interface (with the Fresnel factor, which the chain samples) and along a curved
+//! path in a gradient medium alike. So radiance L formed at the chain's end, in a medium of
+//! index n_end there, arrives at its start as (n_start/n_end)² L: [`Chain::radiance_scale`].
+//! The factors of the single refractions telescope into this one ratio, which is why no
+//! BSDF carries them. Power (a photon's flux) never scales.
+
+use super::{facing, Event, Stats, Tracer};
+use crate::color::Rgb;
+use crate::material::Material;
+use glam::DVec3;
+use rand::Rng;
+use std::ops::ControlFlow;
+
+/// A ray: where it starts, which way, and in which medium.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Ray {
+    /// Start.
+    pub origin: DVec3,
+    /// Unit direction.
+    pub direction: DVec3,
+    /// The medium it starts in (None: vacuum).
+    pub medium: Option<usize>,
+}
+
+/// How a chain carries its losses (absorption along the way, a mirror's reflectance).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Policy {
+    /// Multiply the weight by each (paths from the camera).
+    Weighted,
+    /// Russian roulette: go on with the loss's probability and divide the weight by it, so
+    /// a photon's power keeps its size; end as [`End::Absorbed`] otherwise.
+    Roulette,
+    /// The principal ray: at a dielectric the likelier branch (reflected where the Fresnel
+    /// reflectance exceeds 1/2, as under total internal reflection), losses ignored.
+    Principal,
+    /// Weighted, and stopped ([`End::Stopped`]) at the first mirror or dielectric: light
+    /// that reaches the start with no specular interaction (the direct estimate's BSDF rays).
+    Unscattered,
+}
+
+/// Where a chain ended.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum End {
+    /// A diffuse surface.
+    Diffuse {
+        /// Primitive index.
+        prim: usize,
+        /// Hit point.
+        position: DVec3,
+        /// Unit normal of the side the path arrived on.
+        normal: DVec3,
+        /// Unit direction of arrival.
+        direction: DVec3,
+        /// Its albedo.
+        albedo: Rgb,
+    },
+    /// An emitter: its radiance toward the path (zero from its back).
+    Emitter {
+        /// Primitive index.
+        prim: usize,
+        /// Radiance, W/(m²·sr), in the medium at its surface.
+        radiance: Rgb,
+        /// Hit point.
+        position: DVec3,
+        /// Unit direction of arrival.
+        direction: DVec3,
+    },
+    /// The path left the world.
+    Escaped {
+        /// Unit direction when leaving.
+        direction: DVec3,
+    },
+    /// Russian roulette ended it (absorbed on the way or by a lossy mirror).
+    Absorbed,
+    /// Captured, out of steps, trapped, or at an index that cannot be evaluated.
+    Lost,
+    /// It met `max_depth` surfaces.
+    DepthLimit,
+    /// The observer ended it.
+    Stopped,
+}
+
+/// A followed chain: how it ended and what it gathered on the way.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Chain {
+    /// How it ended.
+    pub end: End,
+    /// Throughput (Weighted) or the photon's power factor (Roulette).
+    pub weight: Rgb,
+    /// The medium at the end.
+    pub medium: Option<usize>,
+    /// n at the start, in the start medium.
+    pub n_start: f64,
+    /// n at the end, in the end medium (at the escape point for an escape).
+    pub n_end: f64,
+    /// Specular bounces (mirror or dielectric, not detectors) on the way.
+    pub specular: u32,
+    /// Whether a stretch of it crossed a non-uniform medium (a curved path).
+    pub curved: bool,
+}
+
+impl Chain {
+    /// (n_start/n_end)²: radiance formed at the end in its medium, as seen at the start.
+    pub fn radiance_scale(&self) -> f64 {
+        let r = self.n_start / self.n_end;
+        r * r
+    }
+
+    /// n_start²: environment radiance, as seen at the start of a chain that escaped.
+    /// Environment radiance is given as in vacuum (n = 1) — the basic radiance L/n² of the
+    /// light arriving from beyond the world — so in a medium of index n it is n² L, and
+    /// (n_start/n_end)² of that is seen at the start, whatever the index where it escaped.
+    pub fn environment_scale(&self) -> f64 {
+        self.n_start * self.n_start
+    }
+}
+
+/// Told of what a chain passes (all optional).
+pub trait Observer {
+    /// A point the path passes: each accepted point of a curved stretch, each surface met,
+    /// and where it leaves the world.
+    fn point(&mut self, _p: DVec3) {}
+    /// It crosses receiver `receiver`'s detector at `position` carrying `weight`; `Break`
+    /// ends the chain ([`End::Stopped`]).
+    fn detector(&mut self, _receiver: usize, _position: DVec3, _weight: Rgb) -> ControlFlow<()> {
+        ControlFlow::Continue(())
+    }
+    /// It was reflected or refracted at primitive `prim`, from medium `from` into `to`;
+    /// `Break` ends the chain ([`End::Stopped`]).
+    fn specular(
+        &mut self,
+        _prim: usize,
+        _from: Option<usize>,
+        _to: Option<usize>,
+    ) -> ControlFlow<()> {
+        ControlFlow::Continue(())
+    }
+}
+
+impl Observer for () {}
+
+/// Follows `ray` to the end of its specular chain. `depth` is the number of surfaces it may
+/// still meet (decremented per surface, detectors included; shared by a photon's successive
+/// chains); `rng` draws the Fresnel choices and Russian roulette. Counts a depth-limited
+/// chain in `stats`.
+pub fn follow<R: Rng>(
+    tracer: &Tracer,
+    ray: Ray,
+    policy: Policy,
+    depth: &mut u32,
+    rng: &mut R,
+    stats: &mut Stats,
+    observer: &mut dyn Observer,
+) -> Chain {
+    let scene = tracer.scene;
+    let Ray {
+        mut origin,
+        direction: mut dir,
+        mut medium,
+    } = ray;
+    let mut chain = Chain {
+        end: End::Lost,
+        weight: Rgb::ONE,
+        medium,
+        n_start: 1.0,
+        n_end: 1.0,
+        specular: 0,
+        curved: false,
+    };
+    let Some(n_start) = tracer.index(medium, origin) else {
+        return chain;
+    };
+    chain.n_start = n_start;
+    let end = loop {
+        if *depth == 0 {
+            stats.depth_limited += 1;
+            break End::DepthLimit;
+        }
+        *depth -= 1;
+        chain.curved |= medium.is_some_and(|m| !scene.medium_at(m).is_uniform());
+        let event = tracer.next_event_along(origin, dir, medium, stats, &mut |p| observer.point(p));
+        if event == Event::Lost {
+            break End::Lost;
+        }
+        let kept = event.transmittance();
+        match policy {
+            Policy::Weighted | Policy::Unscattered => chain.weight *= kept,
+            Policy::Roulette if kept < 1.0 && rng.gen::<f64>() >= kept => break End::Absorbed,
+            _ => {}
+        }
+        let (prim, position, normal, incoming) = match event {
+            Event::Surface {
+                prim,
+                position,
+                normal,
+                direction,
+                ..
+            } => (prim, position, normal, direction),
+            Event::Escaped {
+                position,
+                direction,
+                ..
+            } => {
+                observer.point(position);
+                chain.n_end = tracer.index(medium, position).unwrap_or(1.0);
+                break End::Escaped { direction };
+            }
+            Event::Lost => break End::Lost,
+        };
+        observer.point(position);
+        let surface = scene.surfaces[prim];
+        let side = facing(normal, incoming);
+        match &scene.materials[surface.material] {
+            Material::Emissive { radiance } => {
+                break End::Emitter {
+                    prim,
+                    radiance: if side == normal { *radiance } else { Rgb::ZERO },
+                    position,
+                    direction: incoming,
+                };
+            }
+            Material::Diffuse { albedo } => {
+                break End::Diffuse {
+                    prim,
+                    position,
+                    normal: side,
+                    direction: incoming,
+                    albedo: *albedo,
+                };
+            }
+            Material::Detector { receiver } => {
+                if observer
+                    .detector(*receiver, position, chain.weight)
+                    .is_break()
+                {
+                    break End::Stopped;
+                }
+                origin = super::offset(position, incoming);
+            }
+            Material::Mirror { .. } | Material::Dielectric if policy == Policy::Unscattered => {
+                break End::Stopped;
+            }
+            Material::Mirror { .. } | Material::Dielectric => {
+                let u = match (policy, &scene.materials[surface.material]) {
+                    (_, Material::Mirror { .. }) => 0.0,
+                    (Policy::Principal, _) => 0.5,
+                    _ => rng.gen(),
+                };
+                let Some(b) =
+                    tracer.specular_bounce(surface, medium, position, incoming, normal, u)
+                else {
+                    break End::Lost;
+                };
+                match policy {
+                    Policy::Weighted => chain.weight *= b.weight,
+                    Policy::Roulette => {
+                        let survive = b.weight.max_element();
+                        if survive < 1.0 && rng.gen::<f64>() >= survive {
+                            break End::Absorbed;
+                        }
+                        chain.weight *= b.weight / survive.clamp(f64::MIN_POSITIVE, 1.0);
+                    }
+                    Policy::Principal | Policy::Unscattered => {}
+                }
+                chain.specular += 1;
+                if observer.specular(prim, medium, b.medium).is_break() {
+                    break End::Stopped;
+                }
+                (origin, dir, medium) = (b.origin, b.direction, b.medium);
+            }
+        }
+    };
+    chain.medium = medium;
+    if !matches!(end, End::Escaped { .. }) {
+        let at = match end {
+            End::Diffuse { position, .. } | End::Emitter { position, .. } => position,
+            _ => origin,
+        };
+        chain.n_end = tracer.index(medium, at).unwrap_or(1.0);
+    }
+    chain.end = end;
+    chain
+}
+
+/// The principal ray from `origin` along unit `dir` in `medium` (see [`Policy::Principal`]),
+/// followed to the first receiver detector it crosses: the crossing point and the number of
+/// surfaces met before it; None when it escapes, is lost, reaches a diffuse or emissive
+/// surface, or has met `max_events` surfaces.
+pub fn principal_ray(
+    tracer: &Tracer,
+    origin: DVec3,
+    dir: DVec3,
+    medium: Option<usize>,
+    max_events: u32,
+) -> Option<(DVec3, u32)> {
+    struct FirstDetector(Option<DVec3>);
+    impl Observer for FirstDetector {
+        fn detector(&mut self, _: usize, position: DVec3, _: Rgb) -> ControlFlow<()> {
+            self.0 = Some(position);
+            ControlFlow::Break(())
+        }
+    }
+    let mut found = FirstDetector(None);
+    let mut depth = max_events;
+    let mut unused = rand_pcg::Pcg64Mcg::new(1);
+    let ray = Ray {
+        origin,
+        direction: dir,
+        medium,
+    };
+    let chain = follow(
+        tracer,
+        ray,
+        Policy::Principal,
+        &mut depth,
+        &mut unused,
+        &mut Stats::default(),
+        &mut found,
+    );
+    (chain.end == End::Stopped).then_some(())?;
+    found.0.map(|p| (p, chain.specular))
+}
