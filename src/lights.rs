@@ -175,35 +175,6 @@ impl Light {
             (d > 0.0).then(|| (v / d, d))
         };
         match self {
-            Light::Point {
-                position,
-                intensity,
-            } => {
-                let (wi, d) = toward(*position)?;
-                Some(Incident {
-                    wi,
-                    distance: d,
-                    irradiance: *intensity / (d * d),
-                    pdf: f64::INFINITY,
-                })
-            }
-            Light::Spot {
-                position,
-                direction,
-                intensity,
-                cos_inner,
-                cos_outer,
-            } => {
-                let (wi, d) = toward(*position)?;
-                let c = -wi.dot(*direction);
-                let f = smoothstep(*cos_outer, *cos_inner, c);
-                (f > 0.0).then(|| Incident {
-                    wi,
-                    distance: d,
-                    irradiance: *intensity * f / (d * d),
-                    pdf: f64::INFINITY,
-                })
-            }
             Light::Area { emitter, radiance } => {
                 let x = emitter.sample(uv);
                 let (wi, d) = toward(x)?;
@@ -215,32 +186,88 @@ impl Light {
                     pdf: d * d / (cos_l * emitter.area()),
                 })
             }
+            _ => match self.anchor(uv)? {
+                Anchor::Point(x) => {
+                    let (wi, d) = toward(x)?;
+                    let intensity = self.intensity(-wi);
+                    (intensity != Rgb::ZERO).then(|| Incident {
+                        wi,
+                        distance: d,
+                        irradiance: intensity / (d * d),
+                        pdf: f64::INFINITY,
+                    })
+                }
+                Anchor::Direction { toward, irradiance } => Some(Incident {
+                    wi: toward,
+                    distance: f64::INFINITY,
+                    irradiance,
+                    pdf: f64::INFINITY,
+                }),
+            },
+        }
+    }
+
+    /// Where a path connects to a light no direction sample finds: a point (sampled on an
+    /// LED's disk by `uv`) or, for parallel light, the direction toward it with its
+    /// irradiance. None for an area light.
+    pub fn anchor(&self, uv: (f64, f64)) -> Option<Anchor> {
+        match self {
+            Light::Point { position, .. } | Light::Spot { position, .. } => {
+                Some(Anchor::Point(*position))
+            }
+            Light::Led { emitter, .. } => Some(Anchor::Point(emitter.sample(uv))),
+            Light::Directional {
+                direction,
+                irradiance,
+            } => Some(Anchor::Direction {
+                toward: -*direction,
+                irradiance: *irradiance,
+            }),
+            Light::Area { .. } => None,
+        }
+    }
+
+    /// Intensity (W/sr) a point-like light (point, spot, LED) sends along unit `dir` leaving
+    /// it; zero for other lights.
+    pub fn intensity(&self, dir: DVec3) -> Rgb {
+        match self {
+            Light::Point { intensity, .. } => *intensity,
+            Light::Spot {
+                direction,
+                intensity,
+                cos_inner,
+                cos_outer,
+                ..
+            } => *intensity * smoothstep(*cos_outer, *cos_inner, dir.dot(*direction)),
             Light::Led {
                 emitter,
                 peak_intensity,
                 m,
             } => {
-                let x = emitter.sample(uv);
-                let (wi, d) = toward(x)?;
-                let cos_l = -wi.dot(emitter.normal());
-                (cos_l > 0.0).then(|| Incident {
-                    wi,
-                    distance: d,
-                    irradiance: *peak_intensity * (cos_l.powf(*m) / (d * d)),
-                    pdf: f64::INFINITY,
-                })
+                let cos = dir.dot(emitter.normal());
+                if cos > 0.0 {
+                    *peak_intensity * cos.powf(*m)
+                } else {
+                    Rgb::ZERO
+                }
             }
-            Light::Directional {
-                direction,
-                irradiance,
-            } => Some(Incident {
-                wi: -*direction,
-                distance: f64::INFINITY,
-                irradiance: *irradiance,
-                pdf: f64::INFINITY,
-            }),
+            Light::Area { .. } | Light::Directional { .. } => Rgb::ZERO,
         }
     }
+}
+
+/// Where a path connects to a light it cannot hit (see [`Light::anchor`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Anchor {
+    /// A point that sends [`Light::intensity`] along each direction.
+    Point(DVec3),
+    /// Parallel light.
+    Direction {
+        /// Unit direction toward the light.
+        toward: DVec3,
+        /// Irradiance on a surface facing it, W/m².
+        irradiance: Rgb,
+    },
 }
 
 impl Light {

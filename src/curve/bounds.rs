@@ -21,6 +21,17 @@ pub enum Bounds {
         /// Radius.
         radius: f64,
     },
+    /// The half-space behind a plane: points p with (p − point)·normal ≤ 0, within a ball
+    /// around `point` of radius `reach` (a ray that misses the plane leaves through the
+    /// ball instead of running on).
+    HalfSpace {
+        /// A point of the plane.
+        point: DVec3,
+        /// Unit normal, pointing out of the region.
+        normal: DVec3,
+        /// Radius of the ball around `point` the region is cut to.
+        reach: f64,
+    },
 }
 
 impl Bounds {
@@ -36,6 +47,11 @@ impl Bounds {
                 q.max(DVec3::ZERO).length() + q.max_element().min(0.0)
             }
             Bounds::Ball { center, radius } => (p - center).length() - radius,
+            Bounds::HalfSpace {
+                point,
+                normal,
+                reach,
+            } => ((p - point).dot(normal)).max((p - point).length() - reach),
         }
     }
 
@@ -59,12 +75,19 @@ impl Bounds {
                     .fold(f64::INFINITY, f64::min)
                     .max(0.0)
             }
-            Bounds::Ball { center, radius } => {
-                // t² + 2bt + c = 0 with c ≤ 0 inside: the positive root.
-                let oc = o - center;
-                let b = oc.dot(d);
-                let c = oc.length_squared() - radius * radius;
-                (-b + (b * b - c).max(0.0).sqrt()).max(0.0)
+            Bounds::Ball { center, radius } => ball_exit(o - center, d, radius),
+            Bounds::HalfSpace {
+                point,
+                normal,
+                reach,
+            } => {
+                let toward = d.dot(normal);
+                let plane = if toward > 0.0 {
+                    -(o - point).dot(normal) / toward
+                } else {
+                    f64::INFINITY
+                };
+                plane.min(ball_exit(o - point, d, reach)).max(0.0)
             }
         }
     }
@@ -75,6 +98,15 @@ impl Bounds {
             Bounds::Unbounded => 1.0,
             Bounds::Box { min, max } => (max - min).max_element(),
             Bounds::Ball { radius, .. } => radius,
+            Bounds::HalfSpace { reach, .. } => reach,
         }
     }
+}
+
+/// Distance along unit `d` from `oc` (relative to a ball's centre, inside it) to where the
+/// ray leaves the ball of `radius`: the positive root of t² + 2bt + c = 0 (c ≤ 0 inside).
+fn ball_exit(oc: DVec3, d: DVec3, radius: f64) -> f64 {
+    let b = oc.dot(d);
+    let c = oc.length_squared() - radius * radius;
+    (-b + (b * b - c).max(0.0).sqrt()).max(0.0)
 }

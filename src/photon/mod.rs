@@ -61,10 +61,6 @@ pub struct Launch {
     pub emission: Emission,
     /// The medium it starts in.
     pub medium: Option<usize>,
-    /// Whether a path from a surface point can find its source by sampling a direction (an
-    /// area light or the environment) rather than only by a connection to a point or a
-    /// direction (point, spot, LED and directional lights).
-    pub hittable: bool,
 }
 
 /// The scene's photon sources with a discrete distribution proportional to their power.
@@ -134,18 +130,15 @@ impl<'a> Sources<'a> {
         let p = self.cdf[i] - if i == 0 { 0.0 } else { self.cdf[i - 1] };
         let rest = [u[1], u[2], u[3], u[4]];
         let Placed { source, medium } = self.sources[i];
-        let (e, hittable) = match source {
-            Source::Light(l) => (l.emit(rest, tracer.ball)?, l.is_hittable()),
+        let e = match source {
+            Source::Light(l) => l.emit(rest, tracer.ball)?,
             Source::Environment(env) => {
                 let e = env.emit(rest, tracer.ball);
                 let n = tracer.index(medium, e.origin).unwrap_or(1.0);
-                (
-                    Emission {
-                        power: e.power * (n * n),
-                        ..e
-                    },
-                    true,
-                )
+                Emission {
+                    power: e.power * (n * n),
+                    ..e
+                }
             }
         };
         Some(Launch {
@@ -154,7 +147,6 @@ impl<'a> Sources<'a> {
                 ..e
             },
             medium,
-            hittable,
         })
     }
 }
@@ -430,10 +422,10 @@ fn trace_photon(
             power: walk.power.as_vec3().to_array(),
         };
         match tag.batch {
-            // L (S|G)+ D, less the L G+ D paths from a source a path can find by sampling
-            // directions: the direct estimate follows those along the curved path itself.
+            // L (S|G)* S (S|G)* D: at least one specular bounce. Light through gradient media
+            // alone (L G+ D) is the direct estimate's, which follows it along the curved path.
             Batch::Caustic => {
-                if chain.specular > 0 || (chain.curved && !launch.hittable) {
+                if chain.specular > 0 {
                     stored.photons.push(photon);
                 }
                 break Fate::Absorbed;

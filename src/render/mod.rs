@@ -92,8 +92,8 @@ impl Observer for () {}
 /// Which photon maps a scene needs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Plan {
-    /// A caustic map: some light path can meet a specular surface before a diffuse one, or
-    /// cross a gradient medium from a light no direction sample finds.
+    /// A caustic map: some light path can meet a specular surface before a diffuse one
+    /// (light through gradient media alone is the direct estimate's).
     pub caustic: bool,
     /// A global map: secondary light is on (`gather` > 0) and something is diffuse.
     pub global: bool,
@@ -114,22 +114,8 @@ impl Plan {
         let emits = !scene.lights.is_empty() || scene.environment.is_some();
         let specular = has(|m| matches!(m, Material::Mirror { .. } | Material::Dielectric));
         // (A receiver's detector is transparent: it neither bends nor stores light.)
-        let gradient = scene
-            .ambient
-            .is_some_and(|m| !scene.medium_at(m).is_uniform())
-            || scene
-                .surfaces
-                .iter()
-                .any(|s| s.interior.is_some_and(|m| !scene.medium_at(m).is_uniform()));
-        // Through a gradient medium alone (no specular surface), only light from sources a
-        // path cannot find by sampling directions needs the caustic map: the direct
-        // estimate's curved BSDF rays find area lights and the environment.
-        let unhittable = scene.lights.iter().any(|l| !l.is_hittable());
         Self {
-            caustic: diffuse
-                && emits
-                && (specular || (gradient && unhittable))
-                && photons.caustic > 0,
+            caustic: diffuse && emits && specular && photons.caustic > 0,
             global: diffuse && emits && photons.gather > 0 && photons.global > 0,
         }
     }

@@ -8,6 +8,7 @@ use crate::color::Rgb;
 use crate::lights::Light;
 use crate::photon::PhotonMap;
 use crate::transport::chain::{follow, Chain, End, Policy, Ray};
+use crate::transport::connect::connect;
 use crate::transport::{offset, visibility, Stats, Tracer};
 use glam::DVec3;
 use rand::Rng;
@@ -99,6 +100,56 @@ pub fn camera_path(
     out
 }
 
+/// One light sample of `light` at a visible point in a uniform medium, through a straight
+/// shadow ray (multiple importance weighted against the BSDF sample for area lights).
+fn straight_light(
+    tracer: &Tracer,
+    vp: &VisiblePoint,
+    origin: DVec3,
+    light: &Light,
+    uv: (f64, f64),
+) -> Rgb {
+    let Some(inc) = light.sample_incident(origin, uv) else {
+        return Rgb::ZERO;
+    };
+    let cos = inc.wi.dot(vp.normal);
+    if cos <= 0.0 {
+        return Rgb::ZERO;
+    }
+    let reach = if inc.distance.is_finite() {
+        inc.distance * (1.0 - 1e-7)
+    } else {
+        f64::INFINITY
+    };
+    let kept = visibility::transmittance(tracer, origin, vp.medium, inc.wi, reach);
+    let weight = power_heuristic(inc.pdf, cos * FRAC_1_PI);
+    vp.albedo * FRAC_1_PI * inc.irradiance * (cos * weight * kept)
+}
+
+/// A point, spot, LED or parallel light at a visible point in gradient medium `m`, through
+/// the curved connection to it (`uv` samples an LED's disk).
+fn curved_light(
+    tracer: &Tracer,
+    (vp, m): (&VisiblePoint, usize),
+    origin: DVec3,
+    light: &Light,
+    uv: (f64, f64),
+    stats: &mut Stats,
+) -> Rgb {
+    let Some(anchor) = light.anchor(uv) else {
+        return Rgb::ZERO;
+    };
+    let Some(link) = connect(tracer, origin, m, &anchor, stats) else {
+        return Rgb::ZERO;
+    };
+    let cos = link.direction.dot(vp.normal);
+    if cos <= 0.0 {
+        return Rgb::ZERO;
+    }
+    let e = link.irradiance(&anchor, light.intensity(-link.arrival));
+    vp.albedo * FRAC_1_PI * e * cos
+}
+
 /// The power heuristic's weight of a strategy of pdf `a` against one of pdf `b` (1 when `a`
 /// is a delta).
 fn power_heuristic(a: f64, b: f64) -> f64 {
@@ -115,39 +166,34 @@ fn power_heuristic(a: f64, b: f64) -> f64 {
 ///   (the visibility query: detectors are transparent, absorption applied), and one
 ///   cosine-sampled (BSDF) ray, combined by multiple importance sampling with the power
 ///   heuristic for area lights (the only lights both strategies can find).
-/// - In a gradient medium a straight connection is not a light path, so there are no light
-///   samples; the BSDF ray, followed along its curved path, finds area lights and the
-///   environment on its own (weight 1). Point, spot, LED and parallel light there come from
-///   the caustic map.
+/// - In a gradient medium a straight connection is not a light path: point, spot, LED and
+///   parallel light are connected to along the curved path ([`connect`]), and the BSDF ray,
+///   followed along its curved path, finds area lights and the environment (weight 1: there
+///   are no area-light samples to weigh it against).
 ///
 /// A BSDF ray that meets a mirror or dielectric first carries nothing: that light is the
 /// caustic map's.
 pub fn direct(tracer: &Tracer, vp: &VisiblePoint, rng: &mut impl Rng, stats: &mut Stats) -> Rgb {
     let scene = tracer.scene;
-    let uniform = vp.medium.is_none_or(|m| scene.medium_at(m).is_uniform());
+    let graded = vp.medium.filter(|&m| !scene.medium_at(m).is_uniform());
     let origin = offset(vp.position, vp.normal);
     let mut radiance = Rgb::ZERO;
-    if uniform {
-        for light in &scene.lights {
-            let Some(inc) = light.sample_incident(origin, (rng.gen(), rng.gen())) else {
-                continue;
-            };
-            let cos = inc.wi.dot(vp.normal);
-            if cos <= 0.0 {
-                continue;
-            }
-            let reach = if inc.distance.is_finite() {
-                inc.distance * (1.0 - 1e-7)
-            } else {
-                f64::INFINITY
-            };
-            let kept = visibility::transmittance(tracer, origin, vp.medium, inc.wi, reach);
-            if kept > 0.0 {
-                let weight = power_heuristic(inc.pdf, cos * FRAC_1_PI);
-                radiance += vp.albedo * FRAC_1_PI * inc.irradiance * (cos * weight * kept);
-            }
-        }
+    for light in &scene.lights {
+        let lit = match graded {
+            None => straight_light(tracer, vp, origin, light, (rng.gen(), rng.gen())),
+            Some(m) if !light.is_hittable() => curved_light(
+                tracer,
+                (vp, m),
+                origin,
+                light,
+                (rng.gen(), rng.gen()),
+                stats,
+            ),
+            Some(_) => Rgb::ZERO,
+        };
+        radiance += lit;
     }
+    let uniform = graded.is_none();
     // The BSDF sample: f cos θ / pdf = albedo for cosine sampling.
     let lambert = Bsdf::Lambert { albedo: vp.albedo };
     let s = lambert

@@ -2,10 +2,12 @@
 //! traversal), curved through gradient media (the march, each accepted step tested against
 //! the BVH as an exact arc). On top of it, shared by every pass: the specular chain
 //! ([`chain`]: mirrors, dielectrics and detectors followed to the next diffuse surface,
-//! emitter or escape, with the radiance change across indices) and the visibility query
-//! ([`visibility`]: the only shadow ray).
+//! emitter or escape, with the radiance change across indices), the visibility query
+//! ([`visibility`]: the only straight shadow ray) and curved connections to lights from
+//! gradient media ([`connect`]).
 
 pub mod chain;
+pub mod connect;
 mod stats;
 pub mod visibility;
 

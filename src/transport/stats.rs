@@ -25,6 +25,9 @@ pub struct Stats {
     pub photon_queries: u64,
     /// CPU time spent in those queries, ns (summed over threads).
     pub query_nanos: u64,
+    /// Curved connections to lights solved (see [`super::connect`]), and those that failed
+    /// (no converged direction: the light is not reached from there, or the solver gave up).
+    pub connections: (u64, u64),
 }
 
 const ENDS: [Termination; 6] = [
@@ -64,6 +67,8 @@ impl Stats {
         self.gather_rays += o.gather_rays;
         self.photon_queries += o.photon_queries;
         self.query_nanos += o.query_nanos;
+        self.connections.0 += o.connections.0;
+        self.connections.1 += o.connections.1;
         for (a, b) in self.ends.iter_mut().zip(o.ends) {
             *a += b;
         }
@@ -86,8 +91,12 @@ impl Stats {
                 )
             })
             .collect();
+        let connections = match self.connections {
+            (0, 0) => String::new(),
+            (ok, failed) => format!(", curved light connections {ok} ({failed} unsolved)"),
+        };
         format!(
-            "camera rays {}, photons {}, gather rays {}, photon queries {} ({:.2} µs each), straight traversals {}, curved marches {} ({} steps; ends: {}), paths cut at max_depth {}",
+            "camera rays {}, photons {}, gather rays {}, photon queries {} ({:.2} µs each), straight traversals {}, curved marches {} ({} steps; ends: {}), paths cut at max_depth {}{connections}",
             self.camera_rays,
             self.photons_emitted,
             self.gather_rays,
