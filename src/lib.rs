@@ -31,6 +31,7 @@ pub mod fiber_figure;
 pub mod film;
 pub mod lights;
 pub mod material;
+pub mod math;
 pub mod media;
 pub mod output;
 pub mod photon;

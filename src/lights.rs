@@ -278,7 +278,7 @@ impl Light {
         match self {
             Light::Point { position, .. } | Light::Spot { position, .. } => Some(*position),
             Light::Area { emitter, .. } | Light::Led { emitter, .. } => {
-                Some(crate::transport::offset(emitter.center(), emitter.normal()))
+                Some(crate::math::offset(emitter.center(), emitter.normal()))
             }
             Light::Directional { .. } => None,
         }

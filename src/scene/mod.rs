@@ -7,6 +7,7 @@ pub mod load;
 pub mod media;
 pub mod mesh;
 pub mod objects;
+pub mod source;
 pub mod table;
 
 pub use fiber::{GrinFiber, Layer};

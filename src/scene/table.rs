@@ -1,7 +1,7 @@
 //! Typed reading of one TOML table with every key's position kept, so that a wrong type, a
 //! bad value, a missing or an unknown key is reported at file:line:col naming the key.
 
-use super::load::Source;
+use super::source::Source;
 use crate::error::{Error, Result};
 use glam::DVec3;
 use std::collections::BTreeMap;

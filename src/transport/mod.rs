@@ -88,20 +88,7 @@ pub struct Bounce {
     pub weight: Rgb,
 }
 
-/// The unit normal of the side of a surface a ray arrives on: `normal` (the geometric one)
-/// flipped to face against `direction`.
-pub fn facing(normal: DVec3, direction: DVec3) -> DVec3 {
-    if direction.dot(normal) < 0.0 {
-        normal
-    } else {
-        -normal
-    }
-}
-
-/// Offset of a point off a surface toward the side of unit `side` (scene-scale relative).
-pub fn offset(p: DVec3, side: DVec3) -> DVec3 {
-    p + side * (1e-9 * (1.0 + p.abs().max_element()))
-}
+pub use crate::math::{facing, offset};
 
 /// Where rays travel: the scene, how rays travel in it, the sphere holding everything in it,
 /// and the sphere beyond which rays count as escaped.
