@@ -30,7 +30,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         read_exr_layer(Path::new("refs/cornell_diffuse.reference.exr"), None)?;
     let reference = downsample(&reference, rw, rh, rw / width);
     let beauty = film.layer("beauty").ok_or("no beauty")?;
-    let (overall, blocks) = mean_ratios(beauty, &reference, width, 16);
+    let (overall, blocks) = mean_ratios(&beauty, &reference, width, 16);
     let worst = blocks.iter().map(|r| (r - 1.0).abs()).fold(0.0, f64::max);
     println!("{width}×{width}, {seconds:.1} s: mean ratio {overall:.4}, worst block |ratio − 1| {worst:.4} over {} blocks", blocks.len());
     for row in blocks.chunks(width / 16) {

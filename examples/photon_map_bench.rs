@@ -55,7 +55,7 @@ fn main() {
             let per = |t: Instant| t.elapsed().as_secs_f64() * 1e6 / queries.len() as f64;
             let t = Instant::now();
             for (p, n) in &queries {
-                sink += map.nearest_irradiance(*p, *n, 1.0).x;
+                sink += map.nearest_irradiance(*p, *n).x;
             }
             near.push(per(t));
             let t = Instant::now();

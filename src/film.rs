@@ -1,99 +1,171 @@
-//! The film: one RGB plane per luminance component, written as a multi-layer EXR (one layer
-//! per component, readable by standard OpenEXR tools) and a tone-mapped sRGB PNG preview.
+//! The film: per pixel, the sums of camera samples' values for every layer an integrator
+//! writes and the number of samples summed — raw sums, never means, so films of the same view
+//! rendered apart (other passes, other machines) merge by adding ([`Film::merge`]). Developed,
+//! each layer is its sum over its count, and `beauty` the sum of the radiance layers; written
+//! as a multi-layer EXR (one RGB layer each, readable by standard OpenEXR tools) and a
+//! tone-mapped sRGB PNG preview of `beauty`.
 
 use crate::color::{preview_byte, Rgb};
 use crate::error::{Error, Result};
 use exr::prelude::*;
 use std::path::Path;
 
-/// The layers, in order. `beauty` = direct + caustic + secondary + emitted (radiance,
-/// W/(m²·sr)); `albedo` and `normal` describe the first diffuse surface seen.
-pub const LAYERS: [&str; 7] = [
-    "beauty",
-    "direct",
-    "caustic",
-    "secondary",
-    "emitted",
-    "albedo",
-    "normal",
-];
-
-/// A layer (film plane) by its index in [`LAYERS`].
+/// What a layer holds.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Plane {
-    /// The sum of the radiance components.
-    Beauty,
-    /// Light sampling with a straight shadow connection.
-    Direct,
-    /// The caustic map's estimate.
-    Caustic,
-    /// The final gather over the global map.
-    Secondary,
-    /// Emission and environment seen directly or along the camera's specular chain.
-    Emitted,
-    /// Albedo of the first diffuse surface.
-    Albedo,
-    /// Normal of the first diffuse surface (facing the camera path).
-    Normal,
+pub enum LayerKind {
+    /// A part of the radiance reaching the camera (W/(m²·sr)); `beauty` is their sum.
+    Radiance,
+    /// A description of what the camera sees (albedo, normal), not summed into `beauty`.
+    Aux,
 }
 
-/// Per-pixel averages of every layer.
-#[derive(Clone, Debug)]
+/// One layer an integrator writes besides `beauty`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Layer {
+    /// Its name in the EXR.
+    pub name: &'static str,
+    /// What it holds.
+    pub kind: LayerKind,
+}
+
+/// Sums of samples per layer and pixel, and the samples per pixel.
+#[derive(Clone, Debug, PartialEq)]
 pub struct Film {
     /// Width in pixels.
     pub width: usize,
     /// Height in pixels.
     pub height: usize,
-    /// One plane per entry of [`LAYERS`], row-major from the top, linear RGB.
-    pub planes: Vec<Vec<[f32; 3]>>,
+    /// The layers summed (`beauty` is developed from them).
+    pub layers: Vec<Layer>,
+    /// Per layer, per pixel (row-major from the top): the sum of the samples' values.
+    sums: Vec<Vec<Rgb>>,
+    /// Per pixel: the number of samples summed.
+    counts: Vec<u64>,
 }
 
-/// One camera sample's value for every layer.
-pub type PixelSample = [Rgb; LAYERS.len()];
-
 impl Film {
-    /// A black film.
-    pub fn new(width: usize, height: usize) -> Self {
+    /// An empty film.
+    pub fn new(width: usize, height: usize, layers: &[Layer]) -> Self {
         Self {
             width,
             height,
-            planes: vec![vec![[0.0; 3]; width * height]; LAYERS.len()],
+            layers: layers.to_vec(),
+            sums: vec![vec![Rgb::ZERO; width * height]; layers.len()],
+            counts: vec![0; width * height],
         }
     }
 
-    /// Stores every layer's value at pixel (x, y).
-    pub fn set(&mut self, x: usize, y: usize, value: &PixelSample) {
-        for (plane, v) in self.planes.iter_mut().zip(value) {
-            plane[y * self.width + x] = v.as_vec3().to_array();
+    /// Adds `samples` samples at pixel (x, y) whose values sum to `values` (one per layer).
+    pub fn add(&mut self, x: usize, y: usize, values: &[Rgb], samples: u64) {
+        let i = y * self.width + x;
+        for (plane, v) in self.sums.iter_mut().zip(values) {
+            plane[i] += *v;
+        }
+        self.counts[i] += samples;
+    }
+
+    /// Adds another film of the same view (size and layers): its samples join these.
+    pub fn merge(&mut self, other: &Film) -> Result<()> {
+        if (other.width, other.height) != (self.width, self.height) || other.layers != self.layers {
+            return Err(Error::Usage(format!(
+                "cannot merge a {}×{} film of layers {:?} into a {}×{} film of layers {:?}",
+                other.width,
+                other.height,
+                other.names(),
+                self.width,
+                self.height,
+                self.names()
+            )));
+        }
+        for (a, b) in self.sums.iter_mut().zip(&other.sums) {
+            for (x, y) in a.iter_mut().zip(b) {
+                *x += *y;
+            }
+        }
+        for (a, b) in self.counts.iter_mut().zip(&other.counts) {
+            *a += b;
+        }
+        Ok(())
+    }
+
+    /// Adds `tile`, a film of a rectangle of this one, with its top-left corner at (x0, y0).
+    pub fn paste(&mut self, tile: &Film, x0: usize, y0: usize) {
+        for y in 0..tile.height {
+            for x in 0..tile.width {
+                let (i, j) = (y * tile.width + x, (y0 + y) * self.width + x0 + x);
+                for (a, b) in self.sums.iter_mut().zip(&tile.sums) {
+                    a[j] += b[i];
+                }
+                self.counts[j] += tile.counts[i];
+            }
         }
     }
 
-    /// The plane of a layer by name.
-    pub fn layer(&self, name: &str) -> Option<&[[f32; 3]]> {
-        LAYERS
+    /// The layers' names, `beauty` first.
+    pub fn names(&self) -> Vec<&'static str> {
+        std::iter::once("beauty")
+            .chain(self.layers.iter().map(|l| l.name))
+            .collect()
+    }
+
+    /// Samples summed at each pixel.
+    pub fn counts(&self) -> &[u64] {
+        &self.counts
+    }
+
+    /// The developed layer `name` (`beauty`: the sum of the radiance layers), row-major, linear
+    /// RGB in f32; None for a layer the film does not hold.
+    pub fn layer(&self, name: &str) -> Option<Vec<[f32; 3]>> {
+        let mean = |plane: &[Rgb], i: usize| plane[i] / self.counts[i].max(1) as f64;
+        let pixels = self.width * self.height;
+        let plane: Vec<Rgb> = if name == "beauty" {
+            (0..pixels)
+                .map(|i| {
+                    self.layers
+                        .iter()
+                        .zip(&self.sums)
+                        .filter(|(l, _)| l.kind == LayerKind::Radiance)
+                        .map(|(_, p)| mean(p, i))
+                        .fold(Rgb::ZERO, |a, b| a + b)
+                })
+                .collect()
+        } else {
+            let k = self.layers.iter().position(|l| l.name == name)?;
+            (0..pixels).map(|i| mean(&self.sums[k], i)).collect()
+        };
+        Some(plane.iter().map(|v| v.as_vec3().to_array()).collect())
+    }
+
+    /// Every developed layer, in [`Film::names`] order.
+    pub fn planes(&self) -> Vec<Vec<[f32; 3]>> {
+        self.names()
             .iter()
-            .position(|l| *l == name)
-            .map(|i| self.planes[i].as_slice())
+            .map(|n| self.layer(n).expect("a layer of the film"))
+            .collect()
     }
 
-    /// Writes every layer into one EXR file (32-bit float, channels R, G, B per layer),
-    /// atomically (see [`crate::output::write_atomic`]).
+    /// Writes every developed layer into one EXR file (32-bit float, channels R, G, B per
+    /// layer), atomically (see [`crate::output::write_atomic`]).
     pub fn write_exr(&self, path: &Path) -> Result<()> {
         let size = Vec2(self.width, self.height);
-        let layer = |i: usize| {
-            let plane = &self.planes[i];
-            let width = self.width;
-            Layer::new(
-                size,
-                LayerAttributes::named(LAYERS[i]),
-                Encoding::SMALL_LOSSLESS,
-                SpecificChannels::rgb(move |pos: Vec2<usize>| {
-                    let p = plane[pos.y() * width + pos.x()];
-                    (p[0], p[1], p[2])
-                }),
-            )
-        };
-        let layers: Vec<_> = (0..LAYERS.len()).map(layer).collect();
+        let names = self.names();
+        let planes = self.planes();
+        let layers: Vec<_> = names
+            .iter()
+            .zip(&planes)
+            .map(|(name, plane)| {
+                let width = self.width;
+                exr::prelude::Layer::new(
+                    size,
+                    LayerAttributes::named(*name),
+                    Encoding::SMALL_LOSSLESS,
+                    SpecificChannels::rgb(move |pos: Vec2<usize>| {
+                        let p = plane[pos.y() * width + pos.x()];
+                        (p[0], p[1], p[2])
+                    }),
+                )
+            })
+            .collect();
         let image = Image::from_layers(
             ImageAttributes::new(IntegerBounds::from_dimensions(size)),
             layers,
@@ -109,7 +181,7 @@ impl Film {
     /// Writes the `beauty` layer as an 8-bit sRGB PNG (linear values clamped to [0, 1] after
     /// multiplying by `exposure`).
     pub fn write_png(&self, path: &Path, exposure: f32) -> Result<()> {
-        let beauty = &self.planes[0];
+        let beauty = self.layer("beauty").expect("every film has beauty");
         let img = image::RgbImage::from_fn(self.width as u32, self.height as u32, |x, y| {
             let p = beauty[y as usize * self.width + x as usize];
             image::Rgb(p.map(|c| preview_byte(c * exposure)))

@@ -29,6 +29,7 @@ pub mod environment;
 pub mod error;
 pub mod fiber_figure;
 pub mod film;
+pub mod integrator;
 pub mod lights;
 pub mod material;
 pub mod math;

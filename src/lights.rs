@@ -328,8 +328,11 @@ impl Light {
                     *intensity * (f * solid_angle),
                 )
             }
+            // Off the emitting surface, which is a primitive of the scene: a photon started
+            // on a tilted quad (its sampled point rounded to either side of the plane) hit
+            // the light itself at t ≈ 1e-16 about half the time, and its power was lost.
             Light::Area { emitter, radiance } => emission(
-                emitter.sample((u[0], u[1])),
+                crate::math::offset(emitter.sample((u[0], u[1])), emitter.normal()),
                 Frame::new(emitter.normal()).to_world(cosine_hemisphere((u[2], u[3]))),
                 *radiance * (PI * emitter.area()),
             ),

@@ -4,6 +4,7 @@
 //! listed in `docs/scene-format.md`.
 
 use crate::curve::{StepControl, StepperKind};
+use crate::integrator::Kind;
 use std::path::PathBuf;
 
 /// Everything a render, a measurement or a trace is asked to do with a scene.
@@ -20,6 +21,8 @@ pub struct Settings {
     pub passes: u32,
     /// Stop starting new passes after this many seconds (None: run all `passes`).
     pub time_budget: Option<f64>,
+    /// How the camera's view is estimated.
+    pub integrator: Kind,
     /// How rays travel.
     pub trace: TraceSettings,
     /// The photon maps and how they are read.
@@ -81,6 +84,7 @@ impl Default for Settings {
             spp: 16,
             passes: 1,
             time_budget: None,
+            integrator: Kind::PhotonMap,
             trace: TraceSettings::default(),
             photons: PhotonSettings::default(),
             receiver_photons: 1_000_000,

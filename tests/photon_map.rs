@@ -126,7 +126,7 @@ fn density_estimates_are_unbiased_on_a_uniform_plane() {
         let p = DVec3::new(rng.gen_range(0.1..0.9), rng.gen_range(0.1..0.9), 0.0);
         fixed += map.irradiance(p, DVec3::Z, 1e-4).0.x;
         knn += map.knn_irradiance(p, DVec3::Z, 16, 1.0).x;
-        lookup += map.nearest_irradiance(p, DVec3::Z, 1.0).x;
+        lookup += map.nearest_irradiance(p, DVec3::Z).x;
     }
     let q = queries as f64;
     println!(

@@ -266,10 +266,10 @@ fn a_receiver_casts_no_shadow() {
     let (m, _) = mean(&with, "direct");
     assert!(m > 0.0);
     for (a, b) in without
-        .planes
+        .planes()
         .iter()
         .flatten()
-        .zip(with.planes.iter().flatten())
+        .zip(with.planes().iter().flatten())
     {
         for c in 0..3 {
             assert!(

@@ -81,20 +81,21 @@ fn cornell_diffuse_matches_the_reference() {
     let (rw, rh, reference) =
         read_exr_layer(Path::new("refs/cornell_diffuse.reference.exr"), None).unwrap();
     let reference = downsample(&reference, rw, rh, rw / 128);
-    let (overall, blocks) = mean_ratios(film.layer("beauty").unwrap(), &reference, 128, 16);
+    let (overall, blocks) = mean_ratios(&film.layer("beauty").unwrap(), &reference, 128, 16);
     let worst = blocks.iter().map(|r| (r - 1.0).abs()).fold(0.0, f64::max);
     println!("mean ratio {overall:.4}, worst block {worst:.4}");
     assert!((overall - 1.0).abs() < 0.01, "mean ratio {overall}");
     assert_eq!(blocks.len(), 64);
     assert!(worst < 0.03, "a block is off by {worst}: {blocks:?}");
     // The components add up, and each is finite and non-negative.
-    let layer = |n: &str| film.layer(n).unwrap();
+    let [beauty, direct, caustic, secondary, emitted] =
+        ["beauty", "direct", "caustic", "secondary", "emitted"].map(|n| film.layer(n).unwrap());
     for i in 0..128 * 128 {
         for c in 0..3 {
-            let parts = ["direct", "caustic", "secondary", "emitted"].map(|n| layer(n)[i][c]);
+            let parts = [&direct, &caustic, &secondary, &emitted].map(|l| l[i][c]);
             assert!(parts.iter().all(|v| v.is_finite() && *v >= 0.0));
             let sum: f32 = parts.iter().sum();
-            assert!((layer("beauty")[i][c] - sum).abs() <= 1e-5 * sum.max(1.0));
+            assert!((beauty[i][c] - sum).abs() <= 1e-5 * sum.max(1.0));
         }
     }
 }
@@ -130,7 +131,7 @@ fn one_and_two_threads_write_the_same_exr() {
     (camera.width, camera.height) = (24, 18);
     let (a, b) = (render(&small, 1), render(&small, 2));
     assert!(
-        a.planes == b.planes,
+        a.planes() == b.planes(),
         "the Luneburg render depends on the thread count"
     );
 }

@@ -203,7 +203,17 @@ fn wait_for(path: &Path) {
 
 /// Every layer of the EXR at `path` reads back whole.
 fn readable(path: &Path) -> bool {
-    grinlight::film::LAYERS.iter().all(|l| {
+    [
+        "beauty",
+        "direct",
+        "caustic",
+        "secondary",
+        "emitted",
+        "albedo",
+        "normal",
+    ]
+    .iter()
+    .all(|l| {
         grinlight::film::read_exr_layer(path, Some(l)).is_ok_and(|(w, h, _)| w == 64 && h == 64)
     })
 }

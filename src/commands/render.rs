@@ -276,7 +276,7 @@ pub fn render(job: &RenderJob, observer: &dyn Observer) -> Result<RenderOutcome>
     observer.line(&format!(
         "wrote {} (layers: {})",
         files.exr.display(),
-        crate::film::LAYERS.join(", ")
+        film.names().join(", ")
     ));
     if let Some(png) = &files.png {
         observer.line(&format!("wrote {}", png.display()));

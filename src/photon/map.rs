@@ -133,10 +133,13 @@ impl PhotonMap {
         });
     }
 
-    /// The precomputed irradiance of the nearest site to `p` within squared distance
-    /// `max_r2` on the surface side `normal` (zero when there is none, or when
-    /// [`PhotonMap::precompute_irradiance`] has not run).
-    pub fn nearest_irradiance(&self, p: DVec3, normal: DVec3, max_r2: f64) -> DVec3 {
+    /// The precomputed irradiance of the nearest site to `p` on the surface side `normal`
+    /// (zero when none of the 16 nearest sites lies on that side, or when
+    /// [`PhotonMap::precompute_irradiance`] has not run). No distance limit: where photons are
+    /// sparse the nearest site may lie farther than the estimates' radius, and its irradiance
+    /// is still the estimate there (a cut-off at that radius read zero instead, and darkened
+    /// the secondary light of open scenes by up to 25 %, measured against the path tracer).
+    pub fn nearest_irradiance(&self, p: DVec3, normal: DVec3) -> DVec3 {
         let Some(sites) = &self.sites else {
             return DVec3::ZERO;
         };
@@ -150,9 +153,6 @@ impl PhotonMap {
         let value = |item: u32| DVec3::from_array(sites.irradiance[item as usize].map(f64::from));
         // Almost always the nearest site lies on the same surface: one cheap query.
         let nearest = sites.tree.nearest_one::<SquaredEuclidean>(&query);
-        if nearest.distance > max_r2 {
-            return DVec3::ZERO;
-        }
         if matches(nearest.item) {
             return value(nearest.item);
         }
@@ -160,7 +160,6 @@ impl PhotonMap {
             .tree
             .nearest_n::<SquaredEuclidean>(&query, NonZero::new(16).expect("16 > 0"))
             .iter()
-            .take_while(|nn| nn.distance <= max_r2)
             .find(|nn| matches(nn.item))
             .map_or(DVec3::ZERO, |nn| value(nn.item))
     }

@@ -1,42 +1,28 @@
-//! The render: passes of (photon pass, camera pass). A camera path follows specular chains and
-//! curved paths to its first diffuse surface — the visible point — where the luminance
-//! components of seed 004 §4 are estimated:
-//! - **direct**: light sampling, only where a straight shadow connection is valid (the point
-//!   lies in a uniform medium and the shadow ray meets no surface); environment light by a
-//!   cosine-sampled ray that escapes straight;
-//! - **caustic**: the caustic map (L (S|G)+ D paths: exactly the light the direct estimate
-//!   cannot connect to), progressive over passes (SPPM: per-pixel radius shrinking with α);
-//! - **secondary**: a final gather (cosine rays, the global map's estimate where they land on a
-//!   diffuse surface; the only place the global map is looked at directly).
+//! The render: an integrator ([`crate::integrator`]) driven over passes and tiles. Each pass
+//! asks the integrator to prepare (e.g. trace its photon maps), then runs every tile's camera
+//! samples in parallel into the tiles' films; after each pass the tiles are pasted into the
+//! whole film, which the observer may write. Every random stream is keyed by (seed, pass,
+//! pixel, sample) or (seed, pass, photon), so the image does not depend on the thread count,
+//! and passes are independent: a film of passes rendered apart merges into the same image.
 //!
-//! Emission seen along the camera's specular chain and the environment behind it go to
-//! `emitted`; `beauty` = direct + caustic + secondary + emitted. Every random stream is keyed
-//! by (seed, pass, pixel, sample) or (seed, pass, photon), so the image does not depend on the
-//! thread count.
+//! Also here: the receivers' measurement ([`measure`]) and what a render will need of the
+//! machine ([`memory_needed`]).
 
-mod visible;
-
-use crate::color::Rgb;
 use crate::error::{Error, Result};
-use crate::film::{Film, PixelSample, Plane};
-use crate::photon::{shoot, Batch, Budget, PhotonMap, Sources};
+use crate::film::Film;
+use crate::integrator::{CameraRay, Integrator, Kind, PathTracer, PhotonMapper, Plan, Sample};
+use crate::photon::{shoot, Batch, Budget, Sources};
 use crate::receiver::{self, Measurement};
 use crate::sampling::{stream, Purpose};
 use crate::scene::Scene;
-use crate::settings::{PhotonSettings, Settings};
+use crate::settings::Settings;
 use crate::transport::{Stats, Tracer};
 use rand::Rng;
 use rayon::prelude::*;
-use std::f64::consts::PI;
 use std::time::Instant;
-use visible::{camera_path, Components};
 
 /// Tile edge in pixels.
 const TILE: usize = 16;
-
-/// The SPPM radius-reduction parameter α (Hachisuka and Jensen 2009): the fraction of new
-/// photons kept per pass.
-pub const ALPHA: f64 = 2.0 / 3.0;
 
 /// What a render or a measurement reports as it goes.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -89,38 +75,6 @@ pub trait Observer: Sync {
 
 impl Observer for () {}
 
-/// Which photon maps a scene needs.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Plan {
-    /// A caustic map: some light path can meet a specular surface before a diffuse one
-    /// (light through gradient media alone is the direct estimate's).
-    pub caustic: bool,
-    /// A global map: secondary light is on (`gather` > 0) and something is diffuse.
-    pub global: bool,
-}
-
-impl Plan {
-    /// What `scene` needs with `photons`: nothing without diffuse surfaces or without
-    /// emitters.
-    pub fn of(scene: &Scene, photons: &PhotonSettings) -> Self {
-        use crate::material::Material;
-        let has = |f: fn(&Material) -> bool| {
-            scene
-                .surfaces
-                .iter()
-                .any(|s| f(&scene.materials[s.material]))
-        };
-        let diffuse = has(|m| matches!(m, Material::Diffuse { .. }));
-        let emits = !scene.lights.is_empty() || scene.environment.is_some();
-        let specular = has(|m| matches!(m, Material::Mirror { .. } | Material::Dielectric));
-        // (A receiver's detector is transparent: it neither bends nor stores light.)
-        Self {
-            caustic: diffuse && emits && specular && photons.caustic > 0,
-            global: diffuse && emits && photons.gather > 0 && photons.global > 0,
-        }
-    }
-}
-
 /// Timings and photon counts of a render.
 #[derive(Clone, Debug, Default)]
 pub struct Report {
@@ -163,43 +117,65 @@ impl Report {
     }
 }
 
-/// One pixel's accumulators over passes.
-#[derive(Clone, Debug, Default)]
-struct PixelState {
-    /// Sums over passes of each pass's mean, per layer (the caustic slot is unused).
-    sum: PixelSample,
-    /// SPPM squared radius (0: not set yet).
-    r2: f64,
-    /// SPPM accumulated photon count N.
-    n: f64,
-    /// SPPM accumulated flux τ (already weighted by throughput, BRDF and kernel).
-    tau: Rgb,
-}
-
-/// A tile: its top-left pixel, width, the passes its pixels hold, and its pixels' states, row
-/// by row.
+/// A tile: its top-left pixel and its film.
 struct Tile {
     x0: usize,
     y0: usize,
-    width: usize,
-    passes: u32,
-    pixels: Vec<PixelState>,
+    film: Film,
 }
 
-/// Renders the scene's camera view as `settings` say, telling `observer` of every pass and
-/// tile and asking it whether to stop.
+/// Renders the scene's camera view as `settings` say, with the integrator they name, telling
+/// `observer` of every pass and tile and asking it whether to stop.
 pub fn render(
     scene: &Scene,
     settings: &Settings,
     observer: &dyn Observer,
 ) -> Result<(Film, Report)> {
-    let camera = scene.camera.as_ref().ok_or_else(|| {
+    let tracer = Tracer::new(scene, &settings.trace);
+    let passes = Passes {
+        first: 0,
+        count: settings.passes,
+    };
+    match settings.integrator {
+        Kind::PhotonMap => {
+            let integrator = PhotonMapper::new(&tracer, settings);
+            render_with(&integrator, &tracer, settings, passes, observer)
+        }
+        Kind::Path => render_with(
+            &PathTracer::new(&tracer),
+            &tracer,
+            settings,
+            passes,
+            observer,
+        ),
+    }
+}
+
+/// A range of global pass indices.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Passes {
+    /// The first pass's index.
+    pub first: u32,
+    /// How many (`u32::MAX` with a time budget: as many as fit).
+    pub count: u32,
+}
+
+/// Renders `passes` of the tracer's scene with `integrator` into one film.
+pub fn render_with<I: Integrator>(
+    integrator: &I,
+    tracer: &Tracer,
+    settings: &Settings,
+    passes: Passes,
+    observer: &dyn Observer,
+) -> Result<(Film, Report)> {
+    let camera = tracer.scene.camera.as_ref().ok_or_else(|| {
         Error::Usage(format!(
             "{}: the scene has no [camera]",
-            scene.path().display()
+            tracer.scene.path().display()
         ))
     })?;
     let (w, h) = (camera.width as usize, camera.height as usize);
+    let layers = integrator.layers();
     let mut tiles: Vec<Tile> = Vec::new();
     for ty in 0..h.div_ceil(TILE) {
         for tx in 0..w.div_ceil(TILE) {
@@ -208,143 +184,89 @@ pub fn render(
             tiles.push(Tile {
                 x0,
                 y0,
-                width: x1 - x0,
-                passes: 0,
-                pixels: vec![PixelState::default(); (x1 - x0) * (y1 - y0)],
+                film: Film::new(x1 - x0, y1 - y0, layers),
             });
         }
     }
-    let tracer = Tracer::new(scene, &settings.trace);
-    let sources = Sources::new(&tracer);
-    let plan = Plan::of(scene, &settings.photons);
     let pool = thread_pool(settings.threads)?;
-    let max_radius = settings.photons.radius.unwrap_or(0.05 * tracer.ball.1);
     let start = Instant::now();
     let mut report = Report::default();
-    let mut film = Film::new(w, h);
     observer.progress(Progress::Rendering {
         tiles: tiles.len() as u64,
-        passes: (settings.passes != u32::MAX).then_some(settings.passes),
+        passes: (passes.count != u32::MAX).then_some(passes.count),
         time_budget: settings.time_budget,
     });
-    for pass in 0..settings.passes {
-        if pass > 0
-            && settings
-                .time_budget
-                .is_some_and(|b| start.elapsed().as_secs_f64() >= b)
-        {
+    let stop = || observer.stop_requested();
+    for k in 0..passes.count {
+        let pass = passes.first.saturating_add(k);
+        let over_budget = settings
+            .time_budget
+            .is_some_and(|b| start.elapsed().as_secs_f64() >= b);
+        if (k > 0 && over_budget) || stop() {
             break;
         }
-        if observer.stop_requested() {
-            break;
-        }
-        observer.progress(Progress::Pass(pass));
-        let max_r2 = max_radius * max_radius;
-        let build = |batch: Batch, count: u64, report: &mut Report| {
-            let t0 = Instant::now();
-            let (sink, stats) = pool.install(|| {
-                shoot(
-                    &tracer,
-                    &sources,
-                    batch,
-                    settings.seed,
-                    pass as u64,
-                    count,
-                    &|| observer.stop_requested(),
-                )
-            });
-            let t1 = Instant::now();
-            let mut map = PhotonMap::new(sink.photons);
-            if batch == Batch::Global {
-                pool.install(|| map.precompute_irradiance(settings.photons.knn as usize, max_r2));
-            }
-            report.seconds.0 += (t1 - t0).as_secs_f64();
-            report.seconds.1 += t1.elapsed().as_secs_f64();
-            report.stats.add(&stats);
-            map
-        };
-        let caustic = plan
-            .caustic
-            .then(|| build(Batch::Caustic, settings.photons.caustic, &mut report));
-        let global = plan
-            .global
-            .then(|| build(Batch::Global, settings.photons.global, &mut report));
-        // Stopped while tracing photons: the maps may be incomplete, so the pass is abandoned.
-        if observer.stop_requested() {
+        observer.progress(Progress::Pass(k));
+        let Some(prepared) = pool.install(|| integrator.begin_pass(pass, &mut report, &stop))
+        else {
+            // Stopped while preparing (e.g. tracing photons): the pass is abandoned.
             report.partial = Some(format!(
-                "{pass} of {} passes; pass {} abandoned while tracing photons",
-                settings.passes,
-                pass + 1
+                "{k} of {} passes; pass {} abandoned while tracing photons",
+                passes.count,
+                k + 1
             ));
             break;
-        }
-        report.stored.0 += caustic.as_ref().map_or(0, |m| m.len() as u64);
-        report.stored.1 += global.as_ref().map_or(0, |m| m.len() as u64);
-        let maps = Maps {
-            caustic: caustic.as_ref(),
-            global: global.as_ref(),
-            knn: settings.photons.knn as usize,
-            gather: settings.photons.gather,
-            max_r2,
-            initial_r2: settings.photons.radius.map(|r| r * r),
         };
         let t0 = Instant::now();
-        let stats: Vec<Stats> = pool.install(|| {
+        let done: Vec<(Stats, bool)> = pool.install(|| {
             tiles
                 .par_iter_mut()
                 .map(|tile| {
                     let mut stats = Stats::default();
-                    if !observer.stop_requested() {
+                    let run = !stop();
+                    if run {
                         let sampling = Sampling {
                             seed: settings.seed,
                             spp: settings.spp,
                             pass,
                         };
-                        camera_tile(&tracer, &maps, sampling, tile, &mut stats);
-                        tile.passes += 1;
+                        camera_tile(integrator, &prepared, (tracer, sampling), tile, &mut stats);
                     }
                     observer.progress(Progress::Tile);
-                    stats
+                    (stats, run)
                 })
                 .collect()
         });
         report.seconds.2 += t0.elapsed().as_secs_f64();
-        for s in &stats {
+        for (s, _) in &done {
             report.stats.add(s);
         }
-        film = develop(&tiles, w, h);
-        let done = tiles.iter().filter(|t| t.passes == pass + 1).count();
-        if done < tiles.len() {
+        let finished = done.iter().filter(|(_, run)| *run).count();
+        if finished < tiles.len() {
             report.partial = Some(format!(
-                "{pass} of {} passes, and pass {} on {done} of {} tiles of 16 × 16 pixels",
-                settings.passes,
-                pass + 1,
+                "{k} of {} passes, and pass {} on {finished} of {} tiles of 16 × 16 pixels",
+                passes.count,
+                k + 1,
                 tiles.len()
             ));
-            report.passes = pass;
             break;
         }
-        report.passes = pass + 1;
-        observer.pass_done(report.passes, &film)?;
+        report.passes = k + 1;
+        observer.pass_done(report.passes, &assemble(&tiles, w, h, layers))?;
     }
-    if report.partial.is_none() && observer.stop_requested() && report.passes < settings.passes {
-        report.partial = Some(format!("{} of {} passes", report.passes, settings.passes));
+    if report.partial.is_none() && stop() && report.passes < passes.count {
+        report.partial = Some(format!("{} of {} passes", report.passes, passes.count));
     }
     observer.progress(Progress::Done);
-    Ok((film, report))
+    Ok((assemble(&tiles, w, h, layers), report))
 }
 
-/// The photon maps of a pass and how to query them.
-struct Maps<'a> {
-    caustic: Option<&'a PhotonMap>,
-    global: Option<&'a PhotonMap>,
-    knn: usize,
-    /// Final-gather rays per camera sample.
-    gather: u32,
-    /// Largest squared radius of a k-nearest query.
-    max_r2: f64,
-    /// A fixed initial squared radius of the caustic estimate (None: k-nearest).
-    initial_r2: Option<f64>,
+/// The whole film of the tiles' films.
+fn assemble(tiles: &[Tile], w: usize, h: usize, layers: &[crate::film::Layer]) -> Film {
+    let mut film = Film::new(w, h, layers);
+    for tile in tiles {
+        film.paste(&tile.film, tile.x0, tile.y0);
+    }
+    film
 }
 
 /// Which camera samples a pass takes.
@@ -355,108 +277,64 @@ struct Sampling {
     pass: u32,
 }
 
-/// One pass of camera samples over a tile, updating its pixels' accumulators.
-fn camera_tile(
-    tracer: &Tracer,
-    maps: &Maps,
-    sampling: Sampling,
+/// One pass of camera samples over a tile, added to its film.
+fn camera_tile<I: Integrator>(
+    integrator: &I,
+    prepared: &I::Pass,
+    (tracer, sampling): (&Tracer, Sampling),
     tile: &mut Tile,
     stats: &mut Stats,
 ) {
-    let scene = tracer.scene;
-    let camera = scene.camera.as_ref().expect("render() checked the camera");
+    let camera = tracer
+        .scene
+        .camera
+        .as_ref()
+        .expect("render_with() checked the camera");
     let (w, h) = (camera.width as u64, camera.height as u64);
     let Sampling { seed, spp, pass } = sampling;
     let spp = spp.max(1);
     let strata = spp.isqrt();
-    for (i, state) in tile.pixels.iter_mut().enumerate() {
-        let (x, y) = (tile.x0 + i % tile.width, tile.y0 + i / tile.width);
-        let pixel = y as u64 * w + x as u64;
-        let mut mean = PixelSample::default();
-        let (mut phi, mut m) = (Rgb::ZERO, 0.0);
-        for s in 0..spp {
-            let mut rng = stream(seed, Purpose::Camera, pass as u64 * w * h + pixel, s as u64);
-            // Stratified over the pixel: sample s of the first n² lies in cell (s mod n,
-            // s div n) of an n × n grid, n = ⌊√spp⌋ (sharp edges such as an emitter's
-            // converge much faster); any further samples are uniform.
-            let (mut u, mut v) = (rng.gen::<f64>(), rng.gen::<f64>());
-            if s < strata * strata {
-                u = ((s % strata) as f64 + u) / strata as f64;
-                v = ((s / strata) as f64 + v) / strata as f64;
-            }
-            let (o, d) = camera.ray(x as u32, y as u32, u, v, (rng.gen(), rng.gen()));
-            stats.camera_rays += 1;
-            let c: Components = camera_path(tracer, o, d, &mut rng, stats);
-            mean[Plane::Emitted as usize] += c.emitted;
-            let Some(vp) = c.visible else { continue };
-            mean[Plane::Albedo as usize] += vp.albedo;
-            mean[Plane::Normal as usize] += vp.normal;
-            mean[Plane::Direct as usize] += visible::direct(tracer, &vp, &mut rng, stats);
-            if let Some(global) = maps.global {
-                mean[Plane::Secondary as usize] += visible::secondary(
-                    tracer,
-                    global,
-                    maps.gather,
-                    maps.max_r2,
-                    &vp,
-                    &mut rng,
-                    stats,
-                );
-            }
-            if let Some(caustic) = maps.caustic {
-                if state.r2 == 0.0 {
-                    state.r2 = maps.initial_r2.unwrap_or_else(|| {
-                        stats.time_query(|| {
-                            caustic.knn_radius2(vp.position, vp.normal, maps.knn, maps.max_r2)
-                        })
-                    });
+    let layers = integrator.layers().len();
+    let mut sum = vec![crate::color::Rgb::ZERO; layers];
+    let mut values = vec![crate::color::Rgb::ZERO; layers];
+    for ty in 0..tile.film.height {
+        for tx in 0..tile.film.width {
+            let (x, y) = (tile.x0 + tx, tile.y0 + ty);
+            let pixel = y as u64 * w + x as u64;
+            let mut state = I::Pixel::default();
+            sum.fill(crate::color::Rgb::ZERO);
+            for s in 0..spp {
+                let mut rng = stream(seed, Purpose::Camera, pass as u64 * w * h + pixel, s as u64);
+                // Stratified over the pixel: sample s of the first n² lies in cell (s mod n,
+                // s div n) of an n × n grid, n = ⌊√spp⌋ (sharp edges such as an emitter's
+                // converge much faster); any further samples are uniform.
+                let (mut u, mut v) = (rng.gen::<f64>(), rng.gen::<f64>());
+                if s < strata * strata {
+                    u = ((s % strata) as f64 + u) / strata as f64;
+                    v = ((s / strata) as f64 + v) / strata as f64;
                 }
-                let r2 = state.r2;
-                let (irradiance, count) =
-                    stats.time_query(|| caustic.irradiance(vp.position, vp.normal, r2));
-                // τ is kept so that L = τ / (π r² · passes): Φ-weighted sum of the BRDF times
-                // the kernel, (albedo/π)·E·π r² with E the kernel irradiance estimate.
-                phi += vp.throughput * vp.albedo * irradiance * state.r2;
-                m += count as f64;
+                let (origin, direction) =
+                    camera.ray(x as u32, y as u32, u, v, (rng.gen(), rng.gen()));
+                stats.camera_rays += 1;
+                values.fill(crate::color::Rgb::ZERO);
+                let mut sample = Sample {
+                    rng: &mut rng,
+                    stats,
+                    values: &mut values,
+                };
+                integrator.sample(
+                    prepared,
+                    &mut state,
+                    CameraRay { origin, direction },
+                    &mut sample,
+                );
+                for (a, b) in sum.iter_mut().zip(&values) {
+                    *a += *b;
+                }
             }
-        }
-        for layer in [
-            Plane::Direct,
-            Plane::Secondary,
-            Plane::Emitted,
-            Plane::Albedo,
-            Plane::Normal,
-        ] {
-            state.sum[layer as usize] += mean[layer as usize] / spp as f64;
-        }
-        let (phi, m) = (phi / spp as f64, m / spp as f64);
-        if m > 0.0 {
-            let ratio = (state.n + ALPHA * m) / (state.n + m);
-            state.r2 *= ratio;
-            state.tau = (state.tau + phi) * ratio;
-            state.n += ALPHA * m;
+            tile.film.add(tx, ty, &sum, spp as u64);
         }
     }
-}
-
-/// The film of the accumulators (each tile's pixels averaged over the passes it holds).
-fn develop(tiles: &[Tile], w: usize, h: usize) -> Film {
-    let mut film = Film::new(w, h);
-    for tile in tiles {
-        let p = tile.passes.max(1) as f64;
-        for (i, state) in tile.pixels.iter().enumerate() {
-            let mut value = state.sum.map(|v| v / p);
-            if state.r2 > 0.0 {
-                value[Plane::Caustic as usize] = state.tau / (PI * state.r2 * p);
-            }
-            value[Plane::Beauty as usize] = value[Plane::Direct as usize]
-                + value[Plane::Caustic as usize]
-                + value[Plane::Secondary as usize]
-                + value[Plane::Emitted as usize];
-            film.set(tile.x0 + i % tile.width, tile.y0 + i / tile.width, &value);
-        }
-    }
-    film
 }
 
 /// Measures the scene's receivers with `settings.receiver_photons` photons from its lights
@@ -528,7 +406,10 @@ pub fn memory_needed(scene: &Scene, settings: &Settings) -> u64 {
         .camera
         .as_ref()
         .map_or(0, |c| c.width as u64 * c.height as u64);
-    let film = pixels * (size_of::<PixelState>() + 2 * crate::film::LAYERS.len() * 12) as u64;
+    // Each tile's film and the whole one (f64 RGB sums per layer, a count), a developed copy
+    // (f32 RGB per layer) being written.
+    let layers = 7;
+    let film = pixels * (2 * (layers * size_of::<crate::color::Rgb>() + 8) + layers * 12) as u64;
     let per_photon = 2 * size_of::<crate::photon::Photon>() as u64 + 32;
     let caustic = if plan.caustic {
         settings.photons.caustic

@@ -112,7 +112,11 @@ pub fn read_render(t: &mut TableReader) -> Result<Settings> {
     let radius = optional_positive(t, "radius")?;
     let time_budget = optional_positive(t, "time_budget")?;
     let d = Settings::default();
+    let integrator = t.string_opt("integrator")?.map_or(Ok(d.integrator), |s| {
+        s.parse().map_err(|e: String| t.error("integrator", e))
+    })?;
     Ok(Settings {
+        integrator,
         spp: t.count_or("spp", d.spp as u64)?.min(u32::MAX as u64) as u32,
         seed: t.natural_or("seed", d.seed)?,
         threads: t.natural_or("threads", 0)? as usize,

@@ -1,12 +1,11 @@
-//! A camera path to its visible point (the first diffuse surface after the specular and
-//! curved chain), and the direct and secondary estimates there. Radiance per RGB channel,
-//! W/(m²·sr), scaled across indices as [`crate::transport::chain`] says; Lambertian BRDF =
-//! albedo/π.
+//! What every integrator estimates the same way: a camera path to its visible point (the first
+//! diffuse surface after the specular and curved chain), the emission seen along a chain, and
+//! direct light at a diffuse point. Radiance per RGB channel, W/(m²·sr), scaled across indices
+//! as [`crate::transport::chain`] says; Lambertian BRDF = albedo/π.
 
 use crate::bsdf::Bsdf;
 use crate::color::Rgb;
 use crate::lights::Light;
-use crate::photon::PhotonMap;
 use crate::transport::chain::{follow, Chain, End, Policy, Ray};
 use crate::transport::connect::connect;
 use crate::transport::{offset, visibility, Stats, Tracer};
@@ -14,7 +13,7 @@ use glam::DVec3;
 use rand::Rng;
 use std::f64::consts::FRAC_1_PI;
 
-/// The first diffuse surface a camera path meets.
+/// A diffuse point a path has reached (the camera's first: its visible point).
 #[derive(Clone, Copy, Debug)]
 pub struct VisiblePoint {
     /// Where.
@@ -23,8 +22,8 @@ pub struct VisiblePoint {
     pub normal: DVec3,
     /// Albedo of the surface.
     pub albedo: Rgb,
-    /// What radiance leaving the point becomes at the camera: the camera path's throughput
-    /// (mirror reflectances, absorption) times (n_camera/n_here)².
+    /// What radiance leaving the point becomes at the camera: the path's throughput (mirror
+    /// reflectances, albedos, absorption) times (n_camera/n_here)².
     pub throughput: Rgb,
     /// The medium the path arrived in (None: vacuum).
     pub medium: Option<usize>,
@@ -42,7 +41,7 @@ pub struct Components {
 /// Radiance the end of `chain` sends back along it, as seen at its start: an emitter's (in
 /// its medium), or the environment's where it escaped into the ambient medium; zero for
 /// every other end.
-fn emission_seen(tracer: &Tracer, chain: &Chain) -> Rgb {
+pub fn emission_seen(tracer: &Tracer, chain: &Chain) -> Rgb {
     let scene = tracer.scene;
     match chain.end {
         End::Emitter { radiance, .. } => chain.weight * radiance * chain.radiance_scale(),
@@ -234,53 +233,4 @@ pub fn direct(tracer: &Tracer, vp: &VisiblePoint, rng: &mut impl Rng, stats: &mu
     };
     radiance += s.weight * emission_seen(tracer, &chain) * mis;
     vp.throughput * radiance
-}
-
-/// Secondary light at a visible point: `gather` cosine rays, each followed through specular
-/// surfaces to a diffuse one, where the global map's precomputed k-nearest irradiance of the
-/// nearest photon gives the radiance leaving it. Emission and environment met by gather rays
-/// are not counted: that light is the direct or caustic part.
-pub fn secondary(
-    tracer: &Tracer,
-    global: &PhotonMap,
-    gather: u32,
-    max_r2: f64,
-    vp: &VisiblePoint,
-    rng: &mut impl Rng,
-    stats: &mut Stats,
-) -> Rgb {
-    let lambert = Bsdf::Lambert { albedo: vp.albedo };
-    let mut sum = Rgb::ZERO;
-    for _ in 0..gather {
-        stats.gather_rays += 1;
-        let s = lambert
-            .sample(vp.normal, vp.normal, (rng.gen(), rng.gen(), 0.0))
-            .expect("a Lambertian surface always scatters");
-        let ray = Ray {
-            origin: offset(vp.position, vp.normal),
-            direction: s.wi,
-            medium: vp.medium,
-        };
-        let mut depth = tracer.settings.max_depth;
-        let chain = follow(
-            tracer,
-            ray,
-            Policy::Weighted,
-            &mut depth,
-            rng,
-            stats,
-            &mut (),
-        );
-        if let End::Diffuse {
-            position,
-            normal,
-            albedo,
-            ..
-        } = chain.end
-        {
-            let e = stats.time_query(|| global.nearest_irradiance(position, normal, max_r2));
-            sum += s.weight * chain.weight * albedo * FRAC_1_PI * e * chain.radiance_scale();
-        }
-    }
-    vp.throughput * sum / gather.max(1) as f64
 }

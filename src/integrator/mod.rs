@@ -1,0 +1,94 @@
+//! Integrators: ways of estimating the radiance a camera sample sees, pass by pass. The render
+//! ([`crate::render`]) drives one over tiles and passes; each declares the film layers it
+//! writes and estimates one camera ray at a time from what its pass prepared.
+//!
+//! - [`PhotonMapper`]: seed 004's luminance components — direct light, the caustic map, and
+//!   secondary light by final gathering over the global map.
+//! - [`PathTracer`]: unidirectional path tracing through the same curved transport, an
+//!   independent reference for the photon mapper.
+//!
+//! Passes are independent: pass `i` draws from streams keyed by `i` and its caustic radius
+//! follows a schedule of `i` alone, so any set of passes can be rendered apart and their
+//! films merged. To add an integrator: implement [`Integrator`], name it in [`Kind`] and in
+//! [`crate::render::render`].
+
+pub mod direct;
+mod path;
+mod photon_map;
+
+pub use path::PathTracer;
+pub use photon_map::{PhotonMapper, Plan};
+
+use crate::color::Rgb;
+use crate::film::Layer;
+use crate::render::Report;
+use crate::transport::Stats;
+use glam::DVec3;
+use rand_pcg::Pcg64Mcg;
+
+/// One camera sample being estimated: its random stream, the statistics it adds to, and its
+/// value for each of the integrator's layers (zero on entry; in [`Integrator::layers`] order).
+pub struct Sample<'a> {
+    /// The sample's random stream.
+    pub rng: &'a mut Pcg64Mcg,
+    /// Transport statistics.
+    pub stats: &'a mut Stats,
+    /// Values per layer.
+    pub values: &'a mut [Rgb],
+}
+
+/// A camera ray: origin and unit direction.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CameraRay {
+    /// Origin (on the camera's lens).
+    pub origin: DVec3,
+    /// Unit direction.
+    pub direction: DVec3,
+}
+
+/// A way of estimating what the camera sees.
+pub trait Integrator: Sync {
+    /// What a pass shares among its camera samples (e.g. its photon maps).
+    type Pass: Send + Sync;
+    /// What a pass keeps per pixel across that pixel's samples.
+    type Pixel: Default;
+    /// The layers it writes; `beauty` is developed as the sum of the radiance layers.
+    fn layers(&self) -> &'static [Layer];
+    /// Prepares pass `index` (global: passes are independent), adding its work to `report`;
+    /// None if `stop` answered true before the pass was ready.
+    fn begin_pass(
+        &self,
+        index: u32,
+        report: &mut Report,
+        stop: &(dyn Fn() -> bool + Sync),
+    ) -> Option<Self::Pass>;
+    /// Estimates one camera ray of `pass` at a pixel, writing its values into `sample`.
+    fn sample(
+        &self,
+        pass: &Self::Pass,
+        pixel: &mut Self::Pixel,
+        ray: CameraRay,
+        sample: &mut Sample,
+    );
+}
+
+/// The integrators a scene may ask for (`[render] integrator`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Kind {
+    /// The photon mapper (default).
+    #[default]
+    PhotonMap,
+    /// The path tracer.
+    Path,
+}
+
+impl std::str::FromStr for Kind {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s {
+            "photon_map" => Ok(Kind::PhotonMap),
+            "path" => Ok(Kind::Path),
+            other => Err(format!("unknown integrator '{other}' (photon_map, path)")),
+        }
+    }
+}

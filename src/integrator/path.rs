@@ -1,0 +1,142 @@
+//! Unidirectional path tracing through the curved transport: the camera's specular chain to
+//! its first diffuse point, then cosine-sampled bounces from diffuse point to diffuse point,
+//! each followed through mirrors, dielectrics and gradient media. At every diffuse point the
+//! light arriving with no specular interaction is the direct estimate ([`super::direct`]:
+//! light samples where a straight shadow ray is valid, curved connections and curved BSDF
+//! rays where it is not); a bounce whose chain reaches an emitter or the sky after a specular
+//! interaction adds that light (caustics). Russian roulette after three bounces.
+//!
+//! Light from point, spot, LED and parallel sources that reaches a diffuse point only through
+//! a specular chain (their caustics) cannot be found by any direction sample: the path tracer
+//! misses it, the photon mapper does not.
+
+use super::direct::{camera_path, direct, emission_seen, VisiblePoint};
+use super::{CameraRay, Integrator, Sample};
+use crate::bsdf::Bsdf;
+use crate::color::Rgb;
+use crate::film::{Layer, LayerKind};
+use crate::render::Report;
+use crate::transport::chain::{follow, End, Policy, Ray};
+use crate::transport::{offset, Tracer};
+use rand::Rng;
+
+/// The layers, in order; `beauty` is their radiance sum.
+const LAYERS: &[Layer] = &[
+    Layer {
+        name: "direct",
+        kind: LayerKind::Radiance,
+    },
+    Layer {
+        name: "indirect",
+        kind: LayerKind::Radiance,
+    },
+    Layer {
+        name: "emitted",
+        kind: LayerKind::Radiance,
+    },
+    Layer {
+        name: "albedo",
+        kind: LayerKind::Aux,
+    },
+    Layer {
+        name: "normal",
+        kind: LayerKind::Aux,
+    },
+];
+
+/// Bounces before Russian roulette starts.
+const SURE_BOUNCES: u32 = 3;
+
+/// The path tracer of a scene.
+pub struct PathTracer<'a> {
+    tracer: &'a Tracer<'a>,
+}
+
+impl<'a> PathTracer<'a> {
+    /// The path tracer of the tracer's scene.
+    pub fn new(tracer: &'a Tracer<'a>) -> Self {
+        Self { tracer }
+    }
+
+    /// The light reaching the camera from diffuse bounces after the visible point `vp`:
+    /// direct light at every later diffuse point, and emission found through specular chains
+    /// from every diffuse point.
+    fn indirect(&self, mut vp: VisiblePoint, s: &mut Sample) -> Rgb {
+        let tracer = self.tracer;
+        let mut depth = tracer.settings.max_depth;
+        let mut sum = Rgb::ZERO;
+        for bounce in 0.. {
+            if bounce >= SURE_BOUNCES {
+                let survive = vp.throughput.max_element().min(0.95);
+                if survive <= 0.0 || s.rng.gen::<f64>() >= survive {
+                    break;
+                }
+                vp.throughput /= survive;
+            }
+            let b = Bsdf::Lambert { albedo: vp.albedo }
+                .sample(vp.normal, vp.normal, (s.rng.gen(), s.rng.gen(), 0.0))
+                .expect("a Lambertian surface always scatters");
+            let ray = Ray {
+                origin: offset(vp.position, vp.normal),
+                direction: b.wi,
+                medium: vp.medium,
+            };
+            let chain = follow(
+                tracer,
+                ray,
+                Policy::Weighted,
+                &mut depth,
+                s.rng,
+                s.stats,
+                &mut (),
+            );
+            let throughput = vp.throughput * b.weight * chain.weight;
+            // With no specular bounce, emission here is the direct estimate's (already counted).
+            if chain.specular > 0 {
+                sum += vp.throughput * b.weight * emission_seen(tracer, &chain);
+            }
+            let End::Diffuse {
+                position,
+                normal,
+                albedo,
+                ..
+            } = chain.end
+            else {
+                break;
+            };
+            vp = VisiblePoint {
+                position,
+                normal,
+                albedo,
+                throughput: throughput * chain.radiance_scale(),
+                medium: chain.medium,
+            };
+            sum += direct(tracer, &vp, s.rng, s.stats);
+        }
+        sum
+    }
+}
+
+impl Integrator for PathTracer<'_> {
+    type Pass = ();
+    type Pixel = ();
+
+    fn layers(&self) -> &'static [Layer] {
+        LAYERS
+    }
+
+    fn begin_pass(&self, _: u32, _: &mut Report, _: &(dyn Fn() -> bool + Sync)) -> Option<()> {
+        Some(())
+    }
+
+    fn sample(&self, _: &(), _: &mut (), ray: CameraRay, s: &mut Sample) {
+        let c = camera_path(self.tracer, ray.origin, ray.direction, s.rng, s.stats);
+        s.values[2] += c.emitted;
+        let Some(vp) = c.visible else { return };
+        s.values[3] += vp.albedo;
+        s.values[4] += vp.normal;
+        s.values[0] += direct(self.tracer, &vp, s.rng, s.stats);
+        let indirect = self.indirect(vp, s);
+        s.values[1] += indirect;
+    }
+}
