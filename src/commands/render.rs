@@ -43,6 +43,8 @@ pub struct Overrides {
     pub seed: Option<u64>,
     /// Worker threads (0: one per core; at most 16 per core).
     pub threads: Option<usize>,
+    /// The integrator.
+    pub integrator: Option<crate::integrator::Kind>,
     /// Image width in pixels (the vertical field of view is kept).
     pub width: Option<u32>,
     /// Image height in pixels.
@@ -73,6 +75,7 @@ impl Overrides {
             s.spp = at_least_one("spp", n)?;
         }
         s.seed = self.seed.unwrap_or(s.seed);
+        s.integrator = self.integrator.unwrap_or(s.integrator);
         s.threads = crate::resources::check_threads(self.threads.unwrap_or(s.threads))?;
         let p = &mut s.photons;
         p.global = self.photons.unwrap_or(p.global);

@@ -129,6 +129,10 @@ pub struct RenderArgs {
     /// Camera samples per pixel per pass (≥ 1).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
     spp: Option<u32>,
+    /// How the view is estimated: photon_map (direct, caustic map, final gather over the
+    /// global map) or path (unidirectional path tracing, a reference).
+    #[arg(long)]
+    integrator: Option<grinlight::integrator::Kind>,
     /// Seed.
     #[arg(long)]
     seed: Option<u64>,
@@ -211,6 +215,7 @@ impl From<RenderArgs> for RenderJob {
                 time_budget: a.time_budget,
                 receiver_photons: a.receiver_photons,
                 threads: a.threads,
+                integrator: a.integrator,
             },
             checkpoint: a.checkpoint.unwrap_or(0),
             paths: a.paths.unwrap_or(0),
