@@ -13,7 +13,7 @@
 
 use glam::DVec3;
 use grinlight::plot::{canvas, save, Panel, PALETTE};
-use grinlight::scene::{load_scene, Scene};
+use grinlight::scene::{load_description, Scene};
 use grinlight::settings::TraceSettings;
 use grinlight::transport::chain::principal_ray;
 use grinlight::transport::Tracer;
@@ -64,9 +64,10 @@ fn land(
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let path = Path::new("scenes/fiber_led.toml");
-    let (grin, mut grin_settings) = load_scene(path)?;
+    let (grin, mut grin_settings) = load_description(path)?;
     grin_settings.trace.control = grinlight::curve::StepControl::Adaptive { tolerance: 1e-9 };
     let core = grin.grin_fiber().ok_or("no GRIN fiber")?.medium;
+    let grin = grin.build();
     let (reference, _) = land(&grin, &grin_settings.trace, |_| core);
     if reference.iter().any(Option::is_none) {
         return Err("a GRIN ray missed the receiver".into());
@@ -88,9 +89,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 .map(|w| ("equal width", w, (1.0, w))),
         );
     for (rule, parameter, (dn, width)) in configs {
-        let (mut twin, mut settings) = load_scene(path)?;
+        let (mut twin, mut settings) = load_description(path)?;
         let t = Instant::now();
         let layers = twin.layer_fiber(&mut settings.trace, dn, width)?;
+        let twin = twin.build();
         let first = twin.medium_names().count() - layers.len();
         let (hits, per_ray) = land(&twin, &settings.trace, |r| {
             first + layers.iter().position(|l| r < l.outer).unwrap_or(0)

@@ -27,7 +27,7 @@ pub mod commands;
 pub mod curve;
 pub mod environment;
 pub mod error;
-pub mod fiber_figure;
+pub mod fiber;
 pub mod film;
 pub mod integrator;
 pub mod lights;

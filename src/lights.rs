@@ -68,6 +68,24 @@ impl Emitter {
         }
     }
 
+    /// The surface as a scene primitive.
+    pub fn primitive(&self) -> crate::shapes::Primitive {
+        use crate::shapes::Primitive;
+        match *self {
+            Emitter::Quad { origin, e1, e2 } => Primitive::Quad { origin, e1, e2 },
+            Emitter::Disk {
+                center,
+                normal,
+                radius,
+            } => Primitive::Disk {
+                center,
+                normal,
+                radius,
+                inner: 0.0,
+            },
+        }
+    }
+
     /// The centre of the surface.
     pub fn center(&self) -> DVec3 {
         match *self {

@@ -1,11 +1,29 @@
 //! The GRIN fiber of `scenes/fiber_led.toml` as a measuring instrument.
 
+use grinlight::fiber::Layer;
 use grinlight::scene::load::parse_scene;
-use grinlight::scene::{load_scene, Scene};
+use grinlight::scene::{load_description, load_scene, Scene};
 use grinlight::settings::Settings;
 use grinlight::shapes::Primitive;
 use grinlight::transport::chain::principal_ray;
 use std::path::Path;
+
+/// The layered twin (`dn`, largest width) of the fiber in `path` (or in `text`, read as that
+/// file), built, with its layers.
+fn twinned(
+    path: &Path,
+    text: Option<String>,
+    (dn, width): (f64, f64),
+) -> ((Scene, Settings), Vec<Layer>) {
+    let (mut description, mut settings) = match text {
+        Some(t) => grinlight::scene::load::parse_description(path, t).unwrap(),
+        None => load_description(path).unwrap(),
+    };
+    let layers = description
+        .layer_fiber(&mut settings.trace, dn, width)
+        .unwrap();
+    ((description.build(), settings), layers)
+}
 
 fn flux(tolerance: f64, photons: u64) -> (f64, f64) {
     let (scene, mut settings) = load_scene(Path::new("scenes/fiber_led.toml")).unwrap();
@@ -59,21 +77,27 @@ fn layered_twin_matches_the_grin_fiber_and_a_wrong_twin_does_not() {
     let grin = load(None);
     let a = measure(&grin, 0);
     let baseline = grinlight::receiver::compare(&a, &measure(&grin, 7));
-    let mut twin = load(None);
-    let layers = twin
-        .0
-        .layer_fiber(&mut twin.1.trace, 0.005, f64::INFINITY)
-        .unwrap();
+    let (twin, layers) = twinned(path, None, (0.005, f64::INFINITY));
     assert_eq!(layers.len(), 4);
+    let twin = (
+        twin.0,
+        Settings {
+            receiver_photons: photons,
+            ..twin.1
+        },
+    );
     let good = grinlight::receiver::compare(&a, &measure(&twin, 1));
     let text = std::fs::read_to_string(path)
         .unwrap()
         .replace("n0 = 1.5", "n0 = 1.7");
-    let mut wrong = load(Some(text));
-    wrong
-        .0
-        .layer_fiber(&mut wrong.1.trace, 0.005, f64::INFINITY)
-        .unwrap();
+    let (wrong, _) = twinned(path, Some(text), (0.005, f64::INFINITY));
+    let wrong = (
+        wrong.0,
+        Settings {
+            receiver_photons: photons,
+            ..wrong.1
+        },
+    );
     let bad = grinlight::receiver::compare(&a, &measure(&wrong, 2));
     println!("GRIN vs GRIN {baseline:?}\nGRIN vs layered {good:?}\nGRIN vs wrong {bad:?}");
     let z = |c: &grinlight::receiver::Comparison| (c.flux_ratio - 1.0) / c.flux_ratio_stderr;
@@ -355,8 +379,13 @@ fn the_layered_twin_is_a_staircase_and_converges_slowly() {
     use glam::DVec3;
     use grinlight::transport::Tracer;
     let path = Path::new("scenes/fiber_led.toml");
+    let core = load_description(path)
+        .unwrap()
+        .0
+        .grin_fiber()
+        .unwrap()
+        .medium;
     let grin = load_scene(path).unwrap();
-    let core = grin.0.grin_fiber().unwrap().medium;
     let thetas: Vec<f64> = (1..=64).map(|i| 0.16 * i as f64 / 64.0).collect();
     let land = |(scene, settings): &(Scene, Settings), medium: usize, theta: f64| {
         let dir = DVec3::new(theta.sin(), 0.0, theta.cos());
@@ -398,8 +427,7 @@ fn the_layered_twin_is_a_staircase_and_converges_slowly() {
     }
     println!("GRIN rays against the ODE: worst {worst:.2e} mm");
     for (dn, width, bar) in [(0.005, f64::INFINITY, 0.1), (1.0, 0.0025, 0.025)] {
-        let mut twin = load_scene(path).unwrap();
-        let layers = twin.0.layer_fiber(&mut twin.1.trace, dn, width).unwrap();
+        let (twin, layers) = twinned(path, None, (dn, width));
         let first = twin.0.medium_names().count() - layers.len();
         let model: Vec<(f64, f64)> = layers.iter().map(|l| (l.outer, l.n)).collect();
         let mut agree = 0;
@@ -428,9 +456,10 @@ fn the_layered_twin_is_a_staircase_and_converges_slowly() {
 /// and the receiver flux came out 1 % low (measured); now none is.
 #[test]
 fn the_layered_twin_loses_no_photon() {
-    let (mut twin, mut settings) = load_scene(Path::new("scenes/fiber_led.toml")).unwrap();
+    let (mut twin, mut settings) = load_description(Path::new("scenes/fiber_led.toml")).unwrap();
     assert_eq!(settings.trace.max_depth, 100_000);
     let layers = twin.layer_fiber(&mut settings.trace, 1.0, 0.01).unwrap();
+    let twin = twin.build();
     assert_eq!(layers.len(), 50);
     assert_eq!(settings.trace.max_depth, 100_000 * 101);
     settings.receiver_photons = 5000;
@@ -600,8 +629,9 @@ fn camera_rays_through_an_absorbing_rod_see_the_slab_transmission() {
 #[test]
 fn fine_layerings_are_honoured_or_refused() {
     let layer = |dn: f64, width: f64| {
-        let (mut scene, mut settings) = load_scene(Path::new("scenes/fiber_led.toml")).unwrap();
-        scene.layer_fiber(&mut settings.trace, dn, width)
+        let (mut description, mut settings) =
+            load_description(Path::new("scenes/fiber_led.toml")).unwrap();
+        description.layer_fiber(&mut settings.trace, dn, width)
     };
     let layers = layer(1.0, 5e-5).unwrap();
     let widest = layers.iter().map(|l| l.outer - l.inner).fold(0.0, f64::max);

@@ -8,7 +8,7 @@ use crate::output::{Kind, Outputs};
 use crate::photon::Budget;
 use crate::receiver::{self, Measurement};
 use crate::render::Report;
-use crate::scene::{self, Scene};
+use crate::scene::{self, Description, Scene};
 use crate::settings::Settings;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -70,7 +70,7 @@ pub struct Overrides {
 impl Overrides {
     /// Applies the values to a loaded scene's settings and camera: the one place
     /// command-line values meet the scene file's.
-    pub fn apply(&self, scene: &mut Scene, s: &mut Settings) -> Result<()> {
+    pub fn apply(&self, scene: &mut Description, s: &mut Settings) -> Result<()> {
         if let Some(n) = self.spp {
             s.spp = at_least_one("spp", n)?;
         }
@@ -195,8 +195,10 @@ impl Files {
 /// the report line by line; when it asks to stop, the files hold what was done and the
 /// outcome is marked partial.
 pub fn render(job: &RenderJob, observer: &dyn Observer) -> Result<RenderOutcome> {
-    let (mut scene, mut settings) = scene::load_scene(&job.scene)?;
-    job.overrides.apply(&mut scene, &mut settings)?;
+    let (mut description, mut settings) = scene::load_description(&job.scene)?;
+    job.overrides.apply(&mut description, &mut settings)?;
+    let fiber = description.grin_fiber();
+    let scene = description.build();
     if job.paths > MAX_PATHS {
         return Err(Error::Usage(format!(
             "--paths {}: a figure shows at most {MAX_PATHS} paths (each is kept in memory)",
@@ -211,7 +213,7 @@ pub fn render(job: &RenderJob, observer: &dyn Observer) -> Result<RenderOutcome>
                 job.scene.display()
             )))
         }
-        _ => Some(scene.grin_fiber().ok_or_else(|| {
+        _ => Some(fiber.ok_or_else(|| {
             Error::Usage(
                 "--paths draws a GRIN fiber: the scene has no cylinder filled with a gradient medium"
                     .into(),
@@ -339,7 +341,7 @@ fn measure_receivers(
 
 /// Which photon paths seed 004 fig. 5 draws: the first `count` of the receiver batch.
 struct Paths {
-    fiber: scene::GrinFiber,
+    fiber: crate::fiber::GrinFiber,
     count: u64,
     seed: u64,
 }
@@ -357,7 +359,7 @@ fn draw_paths(
     let tracer = crate::transport::Tracer::new(scene, &settings.trace);
     let sources = crate::photon::Sources::new(&tracer);
     let drawn = crate::photon::photon_paths(&tracer, &sources, paths.seed, 0, paths.count);
-    let legend = crate::fiber_figure::write(
+    let legend = crate::fiber::figure::write(
         scene,
         &paths.fiber,
         &drawn,

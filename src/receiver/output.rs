@@ -17,7 +17,7 @@ pub fn write_csv(rec: &Receiver, m: &Measurement, path: &Path) -> Result<()> {
     crate::output::write_text(path, &out)
 }
 
-/// Writes `r,irradiance,stderr` of [`radial_profile`].
+/// Writes `r,irradiance,stderr` of [`super::radial_profile`].
 pub fn write_radial_csv(profile: &[(f64, f64, f64)], path: &Path) -> Result<()> {
     let mut out = String::from("r,irradiance,stderr\n");
     for (r, e, se) in profile {

@@ -1,14 +1,14 @@
-//! Scenes: a TOML file read with every key's position kept ([`table`]), media tables
-//! ([`media`]), loading into the validated, render-ready [`Scene`] ([`load`]), and the GRIN
-//! fiber with its layered twin ([`fiber`]).
+//! Scenes: a TOML file read with every key's position kept ([`table`], [`source`]), its
+//! tables ([`media`], [`objects`], [`mesh`]) read into a [`Description`] ([`load`]), and the
+//! description built into the render-ready [`Scene`] ([`model`]).
 
-pub mod fiber;
 pub mod load;
 pub mod media;
 pub mod mesh;
+pub mod model;
 pub mod objects;
 pub mod source;
 pub mod table;
 
-pub use fiber::{GrinFiber, Layer};
-pub use load::{load_scene, Scene, Surface};
+pub use load::{load_description, load_scene};
+pub use model::{Description, Media, Scene, Shape, Surface};

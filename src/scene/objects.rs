@@ -406,28 +406,14 @@ fn read_mesh(t: &mut TableReader) -> Result<Vec<Primitive>> {
     Ok(tris)
 }
 
-/// A light of type `kind` (not `environment`) and, for area lights, the emissive primitive
-/// the camera sees.
-pub fn read_light(t: &mut TableReader, kind: &str) -> Result<(Light, Option<Primitive>)> {
-    let area = |t: &mut TableReader, emitter: Emitter| -> Result<(Light, Option<Primitive>)> {
+/// A light of type `kind` (not `environment`).
+pub fn read_light(t: &mut TableReader, kind: &str) -> Result<Light> {
+    let area = |t: &mut TableReader, emitter: Emitter| -> Result<Light> {
         let radiance = t.rgb_or("radiance", None)?;
-        let prim = match emitter {
-            Emitter::Quad { origin, e1, e2 } => Primitive::Quad { origin, e1, e2 },
-            Emitter::Disk {
-                center,
-                normal,
-                radius,
-            } => Primitive::Disk {
-                center,
-                normal,
-                radius,
-                inner: 0.0,
-            },
-        };
-        Ok((Light::Area { emitter, radiance }, Some(prim)))
+        Ok(Light::Area { emitter, radiance })
     };
     Ok(match kind {
-        "point" => (Light::Point { position: t.vec3("position")?, intensity: t.rgb_or("intensity", None)? }, None),
+        "point" => Light::Point { position: t.vec3("position")?, intensity: t.rgb_or("intensity", None)? },
         "spot" => {
             let position = t.vec3("position")?;
             let direction = t.direction_or("direction", -DVec3::Y)?;
@@ -436,14 +422,13 @@ pub fn read_light(t: &mut TableReader, kind: &str) -> Result<(Light, Option<Prim
             t.check("cone_deg", cone > 0.0 && cone <= 180.0, "must be in (0°, 180°]")?;
             let falloff = t.f64_or("falloff_deg", cone)?;
             t.check("falloff_deg", (0.0..=cone).contains(&falloff), "must be in [0°, cone_deg]")?;
-            let light = Light::Spot {
+            Light::Spot {
                 position,
                 direction,
                 intensity,
                 cos_inner: falloff.to_radians().cos(),
                 cos_outer: cone.to_radians().cos(),
-            };
-            (light, None)
+            }
         }
         "quad" => {
             let (origin, e1, e2) = parallelogram(t, "vertices")?;
@@ -468,12 +453,9 @@ pub fn read_light(t: &mut TableReader, kind: &str) -> Result<(Light, Option<Prim
             t.check("m", m >= 0.0, "must be ≥ 0")?;
             let color = t.rgb_or("color", Some(DVec3::ONE))?;
             let peak_intensity = color * (power * (m + 1.0) / std::f64::consts::TAU);
-            (Light::Led { emitter, peak_intensity, m }, None)
+            Light::Led { emitter, peak_intensity, m }
         }
-        "directional" => (
-            Light::Directional { direction: t.direction_or("direction", -DVec3::Y)?, irradiance: t.rgb_or("irradiance", None)? },
-            None,
-        ),
+        "directional" => Light::Directional { direction: t.direction_or("direction", -DVec3::Y)?, irradiance: t.rgb_or("irradiance", None)? },
         other => return Err(t.error("type", format!("unknown light type '{other}' (point, spot, quad, disk, led, directional, environment)"))),
     })
 }

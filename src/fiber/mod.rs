@@ -1,10 +1,16 @@
-//! The scene's GRIN fiber — a capped cylinder filled with a gradient medium — and its layered
-//! twin of homogeneous cylinders in optical contact (seed 004 §5).
+//! The GRIN fiber as an instrument (seed 004 §5): a scene's fiber — a cylinder filled with a
+//! gradient medium — its layered twin of homogeneous cylinders in optical contact, made by
+//! editing the scene's description and building again ([`Description::layer_fiber`]), the
+//! comparison of the two on a receiver ([`validate`]) and seed 004's figure ([`figure`]).
 
-use super::load::{Scene, Surface};
-use crate::accel::Accel;
+pub mod figure;
+mod validate;
+
+pub use validate::{validate, ValidateJob};
+
 use crate::error::{Error, Result};
-use crate::media::UniformMedium;
+use crate::media::{Medium, UniformMedium};
+use crate::scene::{Description, Shape, Surface};
 use crate::settings::TraceSettings;
 use crate::shapes::Primitive;
 use glam::DVec3;
@@ -24,18 +30,20 @@ pub struct GrinFiber {
     pub surface: Surface,
     /// Index of the interior medium.
     pub medium: usize,
+    /// Index of its shape in the description.
+    pub shape: usize,
 }
 
 impl GrinFiber {
-    /// The index along one radius at mid-length, at `samples` + 1 evenly spaced radii from
-    /// the axis to the wall: (r, n). None where the medium is singular.
-    pub fn profile(&self, scene: &Scene, samples: usize) -> Option<Vec<(f64, f64)>> {
+    /// The index of `medium` (the fiber's) along one radius at mid-length, at `samples` + 1
+    /// evenly spaced radii from the axis to the wall: (r, n). None where it is singular.
+    pub fn profile(&self, medium: &dyn Medium, samples: usize) -> Option<Vec<(f64, f64)>> {
         let perp = self.axis.any_orthonormal_vector();
         let mid = self.base + self.axis * (0.5 * self.height);
         (0..=samples)
             .map(|i| {
                 let r = self.radius * i as f64 / samples as f64;
-                let n = scene.medium_at(self.medium).sample(mid + perp * r)?.n;
+                let n = medium.sample(mid + perp * r)?.n;
                 Some((r, n))
             })
             .collect()
@@ -53,35 +61,35 @@ pub struct Layer {
     pub n: f64,
 }
 
-impl Scene {
-    /// The first cylinder side whose interior is a non-uniform medium.
+impl Description {
+    /// The first shape with a cylinder side whose interior is a non-uniform medium.
     pub fn grin_fiber(&self) -> Option<GrinFiber> {
-        self.accel
-            .primitives()
-            .iter()
-            .zip(&self.surfaces)
-            .find_map(|(p, s)| match *p {
+        self.shapes.iter().enumerate().find_map(|(k, shape)| {
+            let medium = shape
+                .surface
+                .interior
+                .filter(|&m| !self.media.at(m).is_uniform())?;
+            shape.primitives.iter().find_map(|p| match *p {
                 Primitive::Tube {
                     base,
                     axis,
                     radius,
                     height,
-                } => s
-                    .interior
-                    .filter(|&m| !self.medium_at(m).is_uniform())
-                    .map(|medium| GrinFiber {
-                        base,
-                        axis,
-                        radius,
-                        height,
-                        surface: *s,
-                        medium,
-                    }),
+                } => Some(GrinFiber {
+                    base,
+                    axis,
+                    radius,
+                    height,
+                    surface: shape.surface,
+                    medium,
+                    shape: k,
+                }),
                 _ => None,
             })
+        })
     }
 
-    /// Replaces the scene's GRIN fiber — the capped cylinder whose interior is a non-uniform
+    /// Replaces the description's GRIN fiber — the cylinder whose interior is a non-uniform
     /// medium — by concentric homogeneous cylinders in optical contact (seed 004 §5): a new
     /// layer wherever the index along a radius has changed by `dn` since the layer's start
     /// or the layer is `max_width` wide (∞: no limit; see below), each with the area-weighted
@@ -119,7 +127,8 @@ impl Scene {
             .ok_or_else(|| usage("no cylinder filled with a gradient medium to layer"))?;
         // The index along one radius, finely sampled: ≥ 4 samples per layer of either limit.
         let singular = || usage("the fiber's index is singular inside it");
-        let coarse = fiber.profile(self, 4000).ok_or_else(singular)?;
+        let medium = self.media.at(fiber.medium);
+        let coarse = fiber.profile(medium, 4000).ok_or_else(singular)?;
         // The steepest change of n from the axis to the wall, as if it held everywhere.
         let steepest = 4000.0
             * coarse
@@ -138,17 +147,8 @@ impl Scene {
         let profile = if samples == 4000 {
             coarse
         } else {
-            fiber.profile(self, samples).ok_or_else(singular)?
+            fiber.profile(medium, samples).ok_or_else(singular)?
         };
-        let GrinFiber {
-            base,
-            axis,
-            radius,
-            height,
-            surface,
-            ..
-        } = fiber;
-        let prims = self.accel.primitives().to_vec();
         let mut layers = Vec::new();
         let (mut start, mut n_start) = (0, profile[0].1);
         for i in 1..=samples {
@@ -172,64 +172,59 @@ impl Scene {
                 (start, n_start) = (i, profile[i].1);
             }
         }
-        // Keep everything but the fiber (its tube and its two end disks).
+        let GrinFiber {
+            base,
+            axis,
+            radius: _,
+            height,
+            surface,
+            shape,
+            ..
+        } = fiber;
         let top = base + axis * height;
-        let is_fiber = |p: &Primitive, s: &Surface| {
-            *s == surface
-                && match *p {
-                    Primitive::Tube { .. } => true,
-                    Primitive::Disk {
-                        center, radius: r, ..
-                    } => r == radius && (center == base || center == top),
-                    _ => false,
-                }
-        };
-        let mut primitives = Vec::new();
-        let mut surfaces = Vec::new();
-        for (p, s) in prims.iter().zip(&self.surfaces) {
-            if !is_fiber(p, s) {
-                primitives.push(*p);
-                surfaces.push(*s);
-            }
-        }
-        let first = self.media.len();
+        // The fiber's shape (its tube and end faces) gives way to one shape per layer: a tube
+        // with the next layer (or the fiber's exterior) outside, and two annular end faces.
+        let mut twin = Vec::with_capacity(layers.len());
+        let first_medium = self.media.names().count();
         for (i, l) in layers.iter().enumerate() {
-            self.media.push((
+            let interior = Some(self.media.add(
                 format!("layer {i} (n {:.6})", l.n),
                 Box::new(UniformMedium { n: l.n }),
             ));
-            let interior = Some(first + i);
             let outside = if i + 1 < layers.len() {
-                Some(first + i + 1)
+                Some(first_medium + i + 1)
             } else {
                 surface.exterior
             };
-            primitives.push(Primitive::Tube {
-                base,
-                axis,
-                radius: l.outer,
-                height,
-            });
-            surfaces.push(Surface {
-                interior,
-                exterior: outside,
-                ..surface
-            });
-            for (center, normal) in [(base, -axis), (top, axis)] {
-                primitives.push(Primitive::Disk {
-                    center,
-                    normal,
+            twin.push(Shape {
+                primitives: vec![Primitive::Tube {
+                    base,
+                    axis,
                     radius: l.outer,
-                    inner: l.inner,
-                });
-                surfaces.push(Surface {
+                    height,
+                }],
+                surface: Surface {
+                    interior,
+                    exterior: outside,
+                    ..surface
+                },
+            });
+            twin.push(Shape {
+                primitives: [(base, -axis), (top, axis)]
+                    .map(|(center, normal)| Primitive::Disk {
+                        center,
+                        normal,
+                        radius: l.outer,
+                        inner: l.inner,
+                    })
+                    .to_vec(),
+                surface: Surface {
                     interior,
                     ..surface
-                });
-            }
+                },
+            });
         }
-        self.surfaces = surfaces;
-        self.accel = Accel::new(primitives);
+        self.shapes.splice(shape..=shape, twin);
         let factor = 2 * u32::try_from(layers.len()).unwrap_or(u32::MAX / 2) + 1;
         trace.max_depth = trace.max_depth.saturating_mul(factor);
         Ok(layers)

@@ -2,10 +2,11 @@
 //! from the axis to the wall, photon paths through the fiber over its index, and the irradiance
 //! on a receiver.
 
+use super::GrinFiber;
 use crate::error::{Error, Result};
 use crate::plot::{self, Panel, PALETTE};
 use crate::receiver::{draw_heat_map, Measurement, Receiver};
-use crate::scene::{GrinFiber, Scene};
+use crate::scene::Scene;
 use glam::DVec3;
 use std::path::Path;
 
@@ -28,7 +29,8 @@ pub fn write(
     receiver: (&Receiver, &Measurement),
     out: &Path,
 ) -> Result<String> {
-    let profile = fiber.profile(scene, 200).ok_or_else(|| {
+    let medium = scene.medium_at(fiber.medium);
+    let profile = fiber.profile(medium, 200).ok_or_else(|| {
         Error::Usage("the fiber's index is singular inside it: no profile to draw".into())
     })?;
     let width = PROFILE_W + PATHS_W + RECEIVER + 130 + 4 * MARGIN;
@@ -57,7 +59,6 @@ pub fn write(
         across,
         (false, false),
     );
-    let medium = scene.medium_at(fiber.medium);
     panel.shade(n_range, |h, y| {
         if (0.0..=len).contains(&h) && y.abs() <= r {
             let p = fiber.base + fiber.axis * h + perp * y;

@@ -2,11 +2,11 @@
 //! cylinders, seed 004 §5), measured with independent photon streams and compared bin by bin
 //! on the first receiver.
 
-use super::{at_least_one, Observer};
+use crate::commands::{at_least_one, positive, Observer};
 use crate::error::{Error, Result};
 use crate::output::{Kind, Outputs};
 use crate::receiver;
-use crate::scene::{self, Scene};
+use crate::scene::{self, Description};
 use crate::settings::Settings;
 use std::path::PathBuf;
 
@@ -38,10 +38,10 @@ pub fn validate(job: &ValidateJob, observer: &dyn Observer) -> Result<()> {
         )));
     }
     if let Some(w) = job.max_width {
-        super::positive("max-width", w)?;
+        positive("max-width", w)?;
     }
-    let load = || -> Result<(Scene, Settings)> {
-        let (s, mut settings) = scene::load_scene(&job.scene)?;
+    let load = || -> Result<(Description, Settings)> {
+        let (s, mut settings) = scene::load_description(&job.scene)?;
         if let Some(n) = job.photons {
             settings.receiver_photons = at_least_one("photons", n)?;
         }
@@ -55,6 +55,7 @@ pub fn validate(job: &ValidateJob, observer: &dyn Observer) -> Result<()> {
         Ok((s, settings))
     };
     let (grin, grin_settings) = load()?;
+    let grin = grin.build();
     let plot = job.plot.clone().unwrap_or_else(|| {
         PathBuf::from(job.scene.file_stem().unwrap_or_default()).with_extension("validate.png")
     });
@@ -95,6 +96,7 @@ pub fn validate(job: &ValidateJob, observer: &dyn Observer) -> Result<()> {
     for (k, &dn) in job.dn.iter().enumerate() {
         let (mut twin, mut settings) = load()?;
         let layers = twin.layer_fiber(&mut settings.trace, dn, max_width)?;
+        let twin = twin.build();
         let t = std::time::Instant::now();
         let (layered, _, report) =
             crate::render::measure(&twin, &settings, 1 + k as u64, observer)?;

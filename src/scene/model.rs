@@ -1,0 +1,208 @@
+//! The scene as data, in two forms. A [`Description`] is what the file says with its names
+//! resolved — media, materials, shapes, lights, receivers, camera — and may be edited (the
+//! layered twin of a GRIN fiber is such an edit, [`crate::fiber`]). [`Description::build`]
+//! turns it into the render-ready [`Scene`]: every surface a primitive with its surface
+//! description, area lights and receivers among them, all in one acceleration structure.
+
+use crate::accel::Accel;
+use crate::camera::Camera;
+use crate::environment::Environment;
+use crate::error::{Error, Result};
+use crate::lights::Light;
+use crate::material::Material;
+use crate::media::Medium;
+use crate::receiver::Receiver;
+use crate::shapes::Primitive;
+use std::path::{Path, PathBuf};
+
+/// The scene's media by name; [`Surface::interior`], [`Surface::exterior`] and the ambient
+/// medium refer to them by index.
+#[derive(Default)]
+pub struct Media(Vec<(String, Box<dyn Medium>)>);
+
+impl Media {
+    /// Adds a medium and returns its index.
+    pub fn add(&mut self, name: impl Into<String>, medium: Box<dyn Medium>) -> usize {
+        self.0.push((name.into(), medium));
+        self.0.len() - 1
+    }
+
+    /// The medium at index `i`.
+    pub fn at(&self, i: usize) -> &dyn Medium {
+        self.0[i].1.as_ref()
+    }
+
+    /// The index of the medium called `name`.
+    pub fn index(&self, name: &str) -> Option<usize> {
+        self.0.iter().position(|(n, _)| n == name)
+    }
+
+    /// Names of all media, in order.
+    pub fn names(&self) -> impl Iterator<Item = &str> {
+        self.0.iter().map(|(n, _)| n.as_str())
+    }
+}
+
+/// A surface of the scene: what it is made of and what fills it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Surface {
+    /// Index into the scene's materials.
+    pub material: usize,
+    /// Index into the scene's media of what is inside (dielectrics), if anything.
+    pub interior: Option<usize>,
+    /// Index into the scene's lights when this primitive is an area light's emitting surface.
+    pub light: Option<usize>,
+    /// Index into the scene's media of what is outside (dielectrics; None: the ambient
+    /// medium). Lets a dielectric separate two media, e.g. concentric layers of a fiber.
+    pub exterior: Option<usize>,
+}
+
+/// A `[[shape]]`: its primitives, all with one surface.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Shape {
+    /// The primitives.
+    pub primitives: Vec<Primitive>,
+    /// What they are made of and what they hold.
+    pub surface: Surface,
+}
+
+/// What a scene file says, names resolved: editable, then built.
+pub struct Description {
+    /// The scene file.
+    pub path: PathBuf,
+    /// Media.
+    pub media: Media,
+    /// The medium filling space outside all shapes (None: vacuum, n = 1).
+    pub ambient: Option<usize>,
+    /// The file's materials.
+    pub materials: Vec<Material>,
+    /// The file's shapes.
+    pub shapes: Vec<Shape>,
+    /// Lights (the environment apart); area lights are also surfaces of the built scene.
+    pub lights: Vec<Light>,
+    /// What escaping rays see (None: black).
+    pub environment: Option<Environment>,
+    /// Detector planes (also transparent surfaces of the built scene).
+    pub receivers: Vec<Receiver>,
+    /// The camera, if any.
+    pub camera: Option<Camera>,
+    /// The scene file and every file it reads (meshes, images, grids).
+    pub inputs: Vec<PathBuf>,
+}
+
+impl Description {
+    /// The render-ready scene: the shapes' primitives, then each area light's emitting surface
+    /// (an emissive material of its radiance), then each receiver's detector, in one
+    /// acceleration structure.
+    pub fn build(self) -> Scene {
+        let mut materials = self.materials;
+        let mut primitives = Vec::new();
+        let mut surfaces = Vec::new();
+        for shape in self.shapes {
+            surfaces.extend(std::iter::repeat_n(shape.surface, shape.primitives.len()));
+            primitives.extend(shape.primitives);
+        }
+        let mut add = |material: Material, light: Option<usize>, primitive: Primitive| {
+            materials.push(material);
+            surfaces.push(Surface {
+                material: materials.len() - 1,
+                interior: None,
+                light,
+                exterior: None,
+            });
+            primitives.push(primitive);
+        };
+        for (i, light) in self.lights.iter().enumerate() {
+            if let Light::Area { emitter, radiance } = light {
+                let radiance = *radiance;
+                add(
+                    Material::Emissive { radiance },
+                    Some(i),
+                    emitter.primitive(),
+                );
+            }
+        }
+        for (receiver, r) in self.receivers.iter().enumerate() {
+            add(Material::Detector { receiver }, None, r.primitive());
+        }
+        Scene {
+            path: self.path,
+            media: self.media,
+            ambient: self.ambient,
+            materials,
+            surfaces,
+            accel: Accel::new(primitives),
+            lights: self.lights,
+            environment: self.environment,
+            receivers: self.receivers,
+            camera: self.camera,
+            inputs: self.inputs,
+        }
+    }
+}
+
+/// A built scene, immutable and shareable across threads.
+pub struct Scene {
+    path: PathBuf,
+    media: Media,
+    /// The medium filling space outside all shapes (None: vacuum, n = 1).
+    pub ambient: Option<usize>,
+    /// Materials by index.
+    pub materials: Vec<Material>,
+    /// Per primitive of [`Scene::accel`], its surface.
+    pub surfaces: Vec<Surface>,
+    /// The primitives and their BVH.
+    pub accel: Accel,
+    /// Lights (the environment apart).
+    pub lights: Vec<Light>,
+    /// What escaping rays see (None: black).
+    pub environment: Option<Environment>,
+    /// Detector planes.
+    pub receivers: Vec<Receiver>,
+    /// The camera, if the scene has one.
+    pub camera: Option<Camera>,
+    /// The scene file and every file it reads (meshes, images, grids).
+    pub inputs: Vec<PathBuf>,
+}
+
+impl Scene {
+    /// The medium called `name`; the error lists the names that exist.
+    pub fn medium(&self, name: &str) -> Result<&dyn Medium> {
+        match self.media.index(name) {
+            Some(i) => Ok(self.media.at(i)),
+            None => {
+                let known: Vec<&str> = self.media.names().collect();
+                Err(Error::Usage(format!(
+                    "{}: no medium named '{name}' (the scene has: {})",
+                    self.path.display(),
+                    if known.is_empty() {
+                        "none".to_string()
+                    } else {
+                        known.join(", ")
+                    }
+                )))
+            }
+        }
+    }
+
+    /// Adds a medium (e.g. a profile of one's own) and returns its index, for
+    /// [`Surface::interior`] or [`Scene::ambient`].
+    pub fn add_medium(&mut self, name: impl Into<String>, medium: Box<dyn Medium>) -> usize {
+        self.media.add(name, medium)
+    }
+
+    /// The medium at index `i` (see [`Surface::interior`] and [`Scene::ambient`]).
+    pub fn medium_at(&self, i: usize) -> &dyn Medium {
+        self.media.at(i)
+    }
+
+    /// Names of all media, in file order.
+    pub fn medium_names(&self) -> impl Iterator<Item = &str> {
+        self.media.names()
+    }
+
+    /// The scene file.
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+}
