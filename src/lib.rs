@@ -39,6 +39,7 @@ pub mod photon;
 pub mod plot;
 pub mod receiver;
 pub mod render;
+pub mod report;
 pub mod resources;
 pub mod sampling;
 pub mod scene;

@@ -4,7 +4,6 @@
 //! listed in `docs/scene-format.md`.
 
 use crate::curve::{StepControl, StepperKind};
-use crate::integrator::Kind;
 use std::path::PathBuf;
 
 /// Everything a render, a measurement or a trace is asked to do with a scene.
@@ -22,7 +21,7 @@ pub struct Settings {
     /// Stop starting new passes after this many seconds (None: run all `passes`).
     pub time_budget: Option<f64>,
     /// How the camera's view is estimated.
-    pub integrator: Kind,
+    pub integrator: IntegratorKind,
     /// How rays travel.
     pub trace: TraceSettings,
     /// The photon maps and how they are read.
@@ -84,7 +83,7 @@ impl Default for Settings {
             spp: 16,
             passes: 1,
             time_budget: None,
-            integrator: Kind::PhotonMap,
+            integrator: IntegratorKind::PhotonMap,
             trace: TraceSettings::default(),
             photons: PhotonSettings::default(),
             receiver_photons: 1_000_000,
@@ -123,6 +122,27 @@ impl Default for OutputSettings {
             path: None,
             png: true,
             exposure: 1.0,
+        }
+    }
+}
+
+/// The integrators a scene may ask for (`[render] integrator`; see [`crate::integrator`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum IntegratorKind {
+    /// The photon mapper (default).
+    #[default]
+    PhotonMap,
+    /// The path tracer.
+    Path,
+}
+
+impl std::str::FromStr for IntegratorKind {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s {
+            "photon_map" => Ok(IntegratorKind::PhotonMap),
+            "path" => Ok(IntegratorKind::Path),
+            other => Err(format!("unknown integrator '{other}' (photon_map, path)")),
         }
     }
 }

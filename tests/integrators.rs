@@ -3,9 +3,10 @@
 //! merged against the same passes rendered at once.
 
 use grinlight::film::{downsample, mean_ratios, read_exr_layer, Film};
-use grinlight::integrator::{Kind, PhotonMapper};
+use grinlight::integrator::PhotonMapper;
 use grinlight::render::{render_with, Passes};
 use grinlight::scene::{load_scene, Scene};
+use grinlight::settings::IntegratorKind as Kind;
 use grinlight::settings::Settings;
 use grinlight::transport::Tracer;
 use std::path::Path;

@@ -7,7 +7,7 @@ use crate::film::Film;
 use crate::output::{Kind, Outputs};
 use crate::photon::Budget;
 use crate::receiver::{self, Measurement};
-use crate::render::Report;
+use crate::report::Report;
 use crate::scene::{self, Description, Scene};
 use crate::settings::Settings;
 use std::path::PathBuf;
@@ -44,7 +44,7 @@ pub struct Overrides {
     /// Worker threads (0: one per core; at most 16 per core).
     pub threads: Option<usize>,
     /// The integrator.
-    pub integrator: Option<crate::integrator::Kind>,
+    pub integrator: Option<crate::settings::IntegratorKind>,
     /// Image width in pixels (the vertical field of view is kept).
     pub width: Option<u32>,
     /// Image height in pixels.

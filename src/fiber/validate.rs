@@ -2,10 +2,11 @@
 //! cylinders, seed 004 §5), measured with independent photon streams and compared bin by bin
 //! on the first receiver.
 
-use crate::commands::{at_least_one, positive, Observer};
+use crate::error::{at_least_one, positive};
 use crate::error::{Error, Result};
 use crate::output::{Kind, Outputs};
 use crate::receiver;
+use crate::render::Observer;
 use crate::scene::{self, Description};
 use crate::settings::Settings;
 use std::path::PathBuf;
@@ -76,7 +77,7 @@ pub fn validate(job: &ValidateJob, observer: &dyn Observer) -> Result<()> {
             rec.name
         )));
     }
-    let cut = |r: &crate::render::Report| {
+    let cut = |r: &crate::report::Report| {
         100.0 * r.stats.depth_limited as f64 / r.stats.photons_emitted.max(1) as f64
     };
     observer.line(&format!(
@@ -127,7 +128,7 @@ pub fn validate(job: &ValidateJob, observer: &dyn Observer) -> Result<()> {
 
 /// An interrupted measurement ends the comparison (a partial one would compare unequal
 /// photon counts without saying so).
-fn stop_if_partial(report: &crate::render::Report) -> Result<()> {
+fn stop_if_partial(report: &crate::report::Report) -> Result<()> {
     match &report.partial {
         Some(p) => Err(Error::Interrupted(format!(
             "validate stopped after {p}; nothing written"

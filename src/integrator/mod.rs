@@ -9,8 +9,8 @@
 //!
 //! Passes are independent: pass `i` draws from streams keyed by `i` and its caustic radius
 //! follows a schedule of `i` alone, so any set of passes can be rendered apart and their
-//! films merged. To add an integrator: implement [`Integrator`], name it in [`Kind`] and in
-//! [`crate::render::render`].
+//! films merged. To add an integrator: implement [`Integrator`], name it in
+//! [`crate::settings::IntegratorKind`] and in [`crate::render::render`].
 
 pub mod direct;
 mod path;
@@ -21,7 +21,7 @@ pub use photon_map::{PhotonMapper, Plan};
 
 use crate::color::Rgb;
 use crate::film::Layer;
-use crate::render::Report;
+use crate::report::Report;
 use crate::transport::Stats;
 use glam::DVec3;
 use rand_pcg::Pcg64Mcg;
@@ -70,25 +70,4 @@ pub trait Integrator: Sync {
         ray: CameraRay,
         sample: &mut Sample,
     );
-}
-
-/// The integrators a scene may ask for (`[render] integrator`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum Kind {
-    /// The photon mapper (default).
-    #[default]
-    PhotonMap,
-    /// The path tracer.
-    Path,
-}
-
-impl std::str::FromStr for Kind {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        match s {
-            "photon_map" => Ok(Kind::PhotonMap),
-            "path" => Ok(Kind::Path),
-            other => Err(format!("unknown integrator '{other}' (photon_map, path)")),
-        }
-    }
 }

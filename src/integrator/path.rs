@@ -15,7 +15,7 @@ use super::{CameraRay, Integrator, Sample};
 use crate::bsdf::Bsdf;
 use crate::color::Rgb;
 use crate::film::{Layer, LayerKind};
-use crate::render::Report;
+use crate::report::Report;
 use crate::transport::chain::{follow, End, Policy, Ray};
 use crate::transport::{offset, Tracer};
 use rand::Rng;

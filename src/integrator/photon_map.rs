@@ -16,7 +16,7 @@ use crate::bsdf::Bsdf;
 use crate::color::Rgb;
 use crate::film::{Layer, LayerKind};
 use crate::photon::{shoot, Batch, PhotonMap, Sources};
-use crate::render::Report;
+use crate::report::Report;
 use crate::scene::Scene;
 use crate::settings::{PhotonSettings, Settings};
 use crate::transport::chain::{follow, End, Policy, Ray};

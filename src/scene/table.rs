@@ -8,11 +8,7 @@ use std::collections::BTreeMap;
 use std::ops::Range;
 use toml::{Spanned, Value};
 
-/// The largest magnitude of a number in a scene file. Lengths, radiometric values and
-/// coefficients are multiplied together (squared distances, powers over areas, photon powers
-/// in f32): bounding every input at 1e30 keeps those products finite, where 1e308 would
-/// give infinities and NaN pixels.
-pub const MAX_MAGNITUDE: f64 = 1e30;
+pub use crate::error::MAX_MAGNITUDE;
 
 /// A TOML table as parsed, with the span of every key and value.
 pub type SpannedTable = BTreeMap<Spanned<String>, Spanned<Value>>;

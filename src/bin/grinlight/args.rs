@@ -132,7 +132,7 @@ pub struct RenderArgs {
     /// How the view is estimated: photon_map (direct, caustic map, final gather over the
     /// global map) or path (unidirectional path tracing, a reference).
     #[arg(long)]
-    integrator: Option<grinlight::integrator::Kind>,
+    integrator: Option<grinlight::settings::IntegratorKind>,
     /// Seed.
     #[arg(long)]
     seed: Option<u64>,

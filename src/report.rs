@@ -1,0 +1,46 @@
+//! What a render or a measurement did: passes, counts and timings, and whether it was cut
+//! short.
+
+use crate::transport::Stats;
+
+/// Timings and photon counts of a render.
+#[derive(Clone, Debug, Default)]
+pub struct Report {
+    /// Passes run.
+    pub passes: u32,
+    /// Transport counts, summed over both passes of every pass.
+    pub stats: Stats,
+    /// Photons stored in the caustic and global maps, summed over passes.
+    pub stored: (u64, u64),
+    /// Seconds tracing photons, building the maps (kd-trees and the global map's precomputed
+    /// irradiance), and in the camera pass (which includes the photon queries).
+    pub seconds: (f64, f64, f64),
+    /// Set when the render was stopped before its end (see [`crate::render::Observer::stop_requested`]):
+    /// what it holds.
+    pub partial: Option<String>,
+}
+
+impl Report {
+    /// A multi-line summary.
+    pub fn summary(&self) -> String {
+        let (trace, build, camera) = self.seconds;
+        let rate = if trace > 0.0 {
+            self.stats.photons_emitted as f64 / trace
+        } else {
+            0.0
+        };
+        let partial = self
+            .partial
+            .as_ref()
+            .map_or(String::new(), |p| format!("PARTIAL (interrupted): {p}\n"));
+        format!(
+            "{partial}{} pass(es); photons: {} emitted ({rate:.0}/s), caustic map {} stored, global map {} stored; \
+             photon tracing {trace:.2} s, map build {build:.3} s, camera pass {camera:.2} s\n{}",
+            self.passes,
+            self.stats.photons_emitted,
+            self.stored.0,
+            self.stored.1,
+            self.stats.summary()
+        )
+    }
+}
