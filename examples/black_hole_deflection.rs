@@ -8,7 +8,7 @@
 //! `out/black_hole_deflection.png` (red: rendered rays, blue: exact, green: 2 rs/b).
 
 use grinlight::media::black_hole_deflection;
-use grinlight::plot::{canvas, save, Panel, PALETTE};
+use grinlight::plot::{canvas, save, Labels, Panel, PALETTE};
 use grinlight::transport::{Event, Stats, Tracer};
 use std::io::Write;
 use std::path::Path;
@@ -67,7 +67,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         );
     }
     println!("worst |rendered − exact| / exact: {worst:.2e}; with the tail beyond world_radius added back: {worst_with_tail:.2e}");
-    let mut img = canvas(640, 480);
+    let mut img = canvas(680, 540);
     let bx = (
         rendered.first().ok_or("no ray")?.0,
         rendered.last().ok_or("no ray")?.0,
@@ -77,8 +77,17 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         ys.clone().fold(f64::INFINITY, f64::min),
         ys.fold(0.0, f64::max),
     );
-    let mut panel = Panel::new(&mut img, (60, 20, 560, 420), bx, y, (true, true));
-    panel.axes();
+    let mut panel = Panel::new(&mut img, (90, 60, 560, 420), bx, y, (true, true));
+    panel.axes(&Labels {
+        title: "black hole: deflection of the rendered rays",
+        x: "impact parameter b (rs)",
+        y: "deflection (rad)",
+    });
+    panel.legend(&[
+        (PALETTE[0], "rendered rays"),
+        (PALETTE[1], "exact, index model"),
+        (PALETTE[2], "weak field 2 rs/b"),
+    ]);
     panel.polyline(&weak, PALETTE[2]);
     panel.polyline(&exact, PALETTE[1]);
     for (x, v) in rendered.iter().step_by(8) {

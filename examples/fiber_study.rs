@@ -11,7 +11,7 @@
 //! `cargo run --release --example fiber_study -- [PHOTONS]` (default 20000)
 
 use grinlight::curve::{StepControl, StepperKind};
-use grinlight::plot::{canvas, save, Panel, PALETTE};
+use grinlight::plot::{canvas, save, Labels, Panel, PALETTE};
 use std::io::Write;
 use std::path::Path;
 use std::time::Instant;
@@ -100,15 +100,24 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         all().map(|p| p.1).fold(f64::INFINITY, f64::min),
         all().map(|p| p.1).fold(0.0, f64::max),
     );
-    let mut img = canvas(640, 480);
+    let mut img = canvas(680, 540);
     let mut panel = Panel::new(
         &mut img,
-        (80, 20, 540, 420),
+        (90, 60, 560, 420),
         (x.0 * 0.8, x.1 * 1.25),
         (y.0 * 0.8, y.1 * 1.25),
         (true, true),
     );
-    panel.axes();
+    panel.axes(&Labels {
+        title: "fiber receiver: error against run time",
+        x: "time (s, 2 threads)",
+        y: "RMS bin error / mean lit bin",
+    });
+    panel.legend(&[
+        (PALETTE[0], "rk4"),
+        (PALETTE[1], "arc"),
+        (PALETTE[2], "snell"),
+    ]);
     for (points, color) in series.iter().zip(PALETTE) {
         for (t, e) in points {
             panel.marker(*t, *e, color);

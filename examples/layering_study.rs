@@ -12,7 +12,7 @@
 //! `cargo run --release --example layering_study`
 
 use glam::DVec3;
-use grinlight::plot::{canvas, save, Panel, PALETTE};
+use grinlight::plot::{canvas, save, Labels, Panel, PALETTE};
 use grinlight::scene::{load_description, Scene};
 use grinlight::settings::TraceSettings;
 use grinlight::transport::chain::principal_ray;
@@ -139,15 +139,20 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             all().map(f).fold(0.0, f64::max) * 1.25,
         )
     };
-    let mut img = canvas(640, 480);
+    let mut img = canvas(680, 540);
     let mut panel = Panel::new(
         &mut img,
-        (80, 20, 540, 420),
+        (90, 60, 560, 420),
         range(|p| p.0),
         range(|p| p.1),
         (true, true),
     );
-    panel.axes();
+    panel.axes(&Labels {
+        title: "layered twin: landing error of principal rays",
+        x: "widest layer (mm)",
+        y: "RMS landing error (mm)",
+    });
+    panel.legend(&[(PALETTE[0], "equal Δn"), (PALETTE[1], "equal width")]);
     for (s, color) in series.iter().zip(PALETTE) {
         panel.polyline(s, color);
         for p in s {

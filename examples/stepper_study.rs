@@ -320,7 +320,22 @@ fn main() -> std::io::Result<()> {
                 panel.marker(p.0, p.1, c);
             }
         }
-        panel.axes();
+        panel.axes(&plot::Labels {
+            title: case.name,
+            x: "time per ray (s)",
+            y: "final-position error (scene units)",
+        });
+        let names = ["arc", "rk4", "snell"];
+        let controls = ["adaptive", "fixed", "tessendorf"];
+        let labels: Vec<String> = (0..9)
+            .map(|f| format!("{} {}", names[f / 3], controls[f % 3]))
+            .collect();
+        let legend: Vec<(plot::Color, &str)> = labels
+            .iter()
+            .enumerate()
+            .map(|(f, l)| (plot::PALETTE[f % plot::PALETTE.len()], l.as_str()))
+            .collect();
+        panel.legend(&legend);
     }
     plot::save(&img, std::path::Path::new("out/stepper_study.png"))
         .map_err(std::io::Error::other)?;

@@ -312,7 +312,7 @@ fn measure_receivers(
         receiver::write_csv(r, m, csv)?;
         receiver::write_png(r, m, png)?;
         receiver::write_radial_csv(&profile, radial_csv)?;
-        receiver::write_radial_png(&[&profile], radial_png)?;
+        receiver::write_radial_png(&r.name, &[("measured", &profile)], radial_png)?;
         lines.push(format!(
             "receiver '{}': flux {:.6e} ± {:.1e} W; wrote {} (.png, .radial.csv, .radial.png)",
             r.name,

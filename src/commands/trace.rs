@@ -7,7 +7,7 @@ use crate::curve::{
 use crate::error::{Error, Result};
 use crate::media::Medium;
 use crate::output::{Kind, Outputs};
-use crate::plot::{self, Panel};
+use crate::plot::{self, Labels, Panel};
 use glam::DVec3;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -253,7 +253,7 @@ pub fn plot_path(medium: &dyn Medium, points: &[PathPoint], path: &Path) -> Resu
     let mut axes = [0usize, 1, 2];
     axes.sort_by(|&a, &b| (ranges[b].1 - ranges[b].0).total_cmp(&(ranges[a].1 - ranges[a].0)));
     let names = ["x", "y", "z"];
-    let (w, h, margin) = (520u32, 420u32, 70u32);
+    let (w, h, margin) = (520u32, 420u32, 80u32);
     let mut img = plot::canvas(2 * (w + 2 * margin), h + 2 * margin);
     let mut legend = Vec::new();
     for (k, (u, v)) in [(axes[0], axes[1]), (axes[0], axes[2])]
@@ -292,7 +292,20 @@ pub fn plot_path(medium: &dyn Medium, points: &[PathPoint], path: &Path) -> Resu
             panel.marker(a.0, a.1, plot::PALETTE[2]);
             panel.marker(b.0, b.1, plot::PALETTE[1]);
         }
-        panel.axes();
+        let title = format!(
+            "slice {} = {:.4}; index shaded {:.5} (dark) – {:.5} (light)",
+            names[hidden], mean[hidden], n_range.0, n_range.1
+        );
+        panel.axes(&Labels {
+            title: &title,
+            x: &format!("{} (scene units)", names[u]),
+            y: &format!("{} (scene units)", names[v]),
+        });
+        panel.legend(&[
+            (plot::PALETTE[0], "ray path"),
+            (plot::PALETTE[2], "start"),
+            (plot::PALETTE[1], "end"),
+        ]);
         legend.push(format!(
             "panel {}: horizontal {} in [{:.6}, {:.6}], vertical {} in [{:.6}, {:.6}], {} = {:.6}, n shaded over [{:.6}, {:.6}]",
             k + 1, names[u], ranges[u].0, ranges[u].1, names[v], ranges[v].0, ranges[v].1, names[hidden], mean[hidden], n_range.0, n_range.1

@@ -4,7 +4,7 @@
 
 use super::GrinFiber;
 use crate::error::{Error, Result};
-use crate::plot::{self, Panel, PALETTE};
+use crate::plot::{self, Labels, Panel, PALETTE};
 use crate::receiver::{draw_heat_map, Measurement, Receiver};
 use crate::scene::Scene;
 use glam::DVec3;
@@ -45,7 +45,11 @@ pub fn write(
         (false, false),
     );
     panel.polyline(&profile, PALETTE[0]);
-    panel.axes();
+    panel.axes(&Labels {
+        title: "index across the fiber",
+        x: "r from the axis (scene units)",
+        y: "n",
+    });
     // Middle: the paths over the index in the plane (axis, perp).
     let perp = fiber.axis.any_orthonormal_vector();
     let (r, len) = (fiber.radius, fiber.height);
@@ -77,7 +81,14 @@ pub fn write(
             .collect();
         panel.polyline(&line, PALETTE[k % PALETTE.len()]);
     }
-    panel.axes();
+    panel.axes(&Labels {
+        title: &format!(
+            "{} photon paths over the index (darker = lower n)",
+            paths.len()
+        ),
+        x: "along the axis (scene units)",
+        y: "across, in a plane through the axis",
+    });
     // Right: the receiver.
     let (rec, m) = receiver;
     draw_heat_map(

@@ -93,7 +93,10 @@ pub fn validate(job: &ValidateJob, observer: &dyn Observer) -> Result<()> {
         "| Δn | layers | widest layer | flux ratio (layered/GRIN) | χ²/dof | dof | max |z| | cut at max_depth | time (s) |\n\
          |---|---|---|---|---|---|---|---|---|",
     );
-    let mut profiles = vec![receiver::radial_profile(rec, &reference[0])];
+    let mut profiles = vec![(
+        "GRIN fiber".to_string(),
+        receiver::radial_profile(rec, &reference[0]),
+    )];
     for (k, &dn) in job.dn.iter().enumerate() {
         let (mut twin, mut settings) = load()?;
         let layers = twin.layer_fiber(&mut settings.trace, dn, max_width)?;
@@ -115,12 +118,18 @@ pub fn validate(job: &ValidateJob, observer: &dyn Observer) -> Result<()> {
             cut(&report),
             t.elapsed().as_secs_f64()
         ));
-        profiles.push(receiver::radial_profile(rec, &layered[0]));
+        profiles.push((
+            format!("twin, Δn {dn}, {} layers", layers.len()),
+            receiver::radial_profile(rec, &layered[0]),
+        ));
     }
-    let refs: Vec<&[(f64, f64, f64)]> = profiles.iter().map(Vec::as_slice).collect();
-    receiver::write_radial_png(&refs, &plot)?;
+    let refs: Vec<(&str, &receiver::Profile)> = profiles
+        .iter()
+        .map(|(name, p)| (name.as_str(), p.as_slice()))
+        .collect();
+    receiver::write_radial_png(&rec.name, &refs, &plot)?;
     observer.line(&format!(
-        "wrote {} (radial irradiance: GRIN first, then each Δn in order; ±1 standard error)",
+        "wrote {} (radial irradiance of the GRIN fiber and each twin, ±1 standard error)",
         plot.display()
     ));
     Ok(())

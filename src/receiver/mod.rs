@@ -11,7 +11,7 @@ mod output;
 mod statistics;
 
 pub use output::{draw_heat_map, write_csv, write_png, write_radial_csv, write_radial_png};
-pub use statistics::{compare, measure, radial_profile, Comparison, Measurement};
+pub use statistics::{compare, measure, radial_profile, Comparison, Measurement, Profile};
 
 use crate::shapes::Primitive;
 use glam::DVec3;

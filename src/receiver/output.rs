@@ -1,10 +1,10 @@
 //! A receiver's files: the bins as CSV, the irradiance as a heat map, the radial profile as CSV
 //! and plot.
 
-use super::statistics::Measurement;
+use super::statistics::{Measurement, Profile};
 use super::Receiver;
 use crate::error::Result;
-use crate::plot::{canvas, save, text, Color, Panel, PALETTE};
+use crate::plot::{canvas, save, text, Color, Labels, Panel, PALETTE};
 use std::path::Path;
 
 /// Writes `x,y,irradiance,stderr` (bin centres in the receiver's u, v frame), one row per bin.
@@ -50,8 +50,11 @@ fn heat(t: f64) -> Color {
 pub fn write_png(rec: &Receiver, m: &Measurement, path: &Path) -> Result<()> {
     let (nx, ny) = rec.bins;
     let cell = (480 / nx.max(ny)).max(1) as u32;
-    let mut img = canvas(nx as u32 * cell + 140, (ny as u32 * cell).max(120) + 20);
-    draw_heat_map(&mut img, rec, m, (10, 10), 480);
+    let mut img = canvas(
+        (nx as u32 * cell + 140).max(560),
+        (ny as u32 * cell).max(120) + 70,
+    );
+    draw_heat_map(&mut img, rec, m, (10, 40), 480);
     save(&img, path)
 }
 
@@ -99,14 +102,39 @@ pub fn draw_heat_map(
             put(bx + x, at.1 + y, c);
         }
     }
-    text(img, bx + 26, at.1, &format!("{max:.3e}"));
-    text(img, bx + 26, at.1 + h - 10, "0");
+    let tick = crate::plot::TICK;
+    text(img, bx + 26, at.1, &format!("{max:.3e}"), tick);
+    text(
+        img,
+        bx + 26,
+        at.1 + h / 2 - 7,
+        &format!("{:.3e}", 0.5 * max),
+        tick,
+    );
+    text(img, bx + 26, at.1 + h - 14, "0", tick);
+    text(img, bx, at.1 + h + 4, "W per unit²", tick);
+    let title = format!(
+        "receiver '{}': irradiance, {} × {} over {} × {} units",
+        rec.name, nx, ny, rec.size.0, rec.size.1
+    );
+    text(
+        img,
+        at.0,
+        at.1.saturating_sub(22),
+        &title,
+        crate::plot::NAME,
+    );
 }
 
-/// Plots radial profiles (r, irradiance) with ±1 standard-error bars, one colour each.
-pub fn write_radial_png(profiles: &[&[(f64, f64, f64)]], path: &Path) -> Result<()> {
-    let mut img = canvas(640, 480);
-    let all = || profiles.iter().flat_map(|p| p.iter());
+/// Plots radial profiles (r, irradiance) of receiver `name` with ±1 standard-error bars, one
+/// colour each, with a legend naming them.
+pub fn write_radial_png(
+    name: &str,
+    profiles: &[(&str, &Profile)],
+    path: &Path,
+) -> Result<()> {
+    let mut img = canvas(680, 540);
+    let all = || profiles.iter().flat_map(|(_, p)| p.iter());
     let x = (
         0.0,
         all()
@@ -121,9 +149,19 @@ pub fn write_radial_png(profiles: &[&[(f64, f64, f64)]], path: &Path) -> Result<
             .fold(0.0, f64::max)
             .max(f64::MIN_POSITIVE),
     );
-    let mut panel = Panel::new(&mut img, (80, 20, 540, 420), x, y, (false, false));
-    panel.axes();
-    for (profile, color) in profiles.iter().zip(PALETTE) {
+    let mut panel = Panel::new(&mut img, (90, 60, 560, 420), x, y, (false, false));
+    panel.axes(&Labels {
+        title: &format!("receiver '{name}': radial profile about its centre (±1 standard error)"),
+        x: "r (scene units)",
+        y: "irradiance (W per scene unit²)",
+    });
+    let legend: Vec<(crate::plot::Color, &str)> = profiles
+        .iter()
+        .zip(PALETTE)
+        .map(|((label, _), c)| (c, *label))
+        .collect();
+    panel.legend(&legend);
+    for ((_, profile), color) in profiles.iter().zip(PALETTE) {
         let line: Vec<(f64, f64)> = profile.iter().map(|p| (p.0, p.1)).collect();
         panel.polyline(&line, color);
         for p in profile.iter() {

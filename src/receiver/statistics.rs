@@ -68,6 +68,9 @@ pub fn measure(receivers: &[Receiver], detections: &[Detection], photons: u64) -
         .collect()
 }
 
+/// A radial profile: per ring, (centre radius, mean irradiance, its standard error).
+pub type Profile = [(f64, f64, f64)];
+
 /// The radial profile of a measurement about the receiver's centre: rings one bin wide (the
 /// larger bin side); per ring (centre radius, mean irradiance, its standard error) over the
 /// bins whose centres fall in it.
