@@ -2,6 +2,7 @@
 //! density estimates against a known irradiance.
 
 use glam::DVec3;
+use grinlight::color::Rgb;
 use grinlight::photon::{Photon, PhotonMap};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
@@ -102,11 +103,8 @@ fn radius_queries_match_a_brute_force_scan() {
 fn an_empty_map_answers_zero() {
     let map = PhotonMap::new(Vec::new());
     assert!(map.is_empty());
-    assert_eq!(map.irradiance(DVec3::ZERO, DVec3::Z, 1.0), (DVec3::ZERO, 0));
-    assert_eq!(
-        map.knn_irradiance(DVec3::ZERO, DVec3::Z, 8, 1.0),
-        DVec3::ZERO
-    );
+    assert_eq!(map.irradiance(DVec3::ZERO, DVec3::Z, 1.0), (Rgb::ZERO, 0));
+    assert_eq!(map.knn_irradiance(DVec3::ZERO, DVec3::Z, 8, 1.0), Rgb::ZERO);
     assert_eq!(map.knn_radius2(DVec3::ZERO, DVec3::Z, 8, 1.0), 1.0);
 }
 

@@ -489,13 +489,13 @@ fn curved_connections_match_independent_answers() {
     let theta = 40f64.to_radians();
     let anchor = Anchor::Direction {
         toward: DVec3::new(theta.sin(), theta.cos(), 0.0),
-        irradiance: DVec3::ONE,
+        irradiance: grinlight::color::Rgb::ONE,
     };
     for x in [-2.0, 0.0, 3.0] {
         let mut stats = Stats::default();
         let link = connect(&tracer, DVec3::new(x, 0.1, 1.0), 0, &anchor, &mut stats)
             .expect("parallel light reaches the layer");
-        let e = link.irradiance(&anchor, DVec3::ZERO).x * link.direction.y;
+        let e = link.irradiance(&anchor, grinlight::color::Rgb::ZERO).x * link.direction.y;
         println!("layer: horizontal irradiance {e:.9} vs {:.9}", theta.cos());
         assert!((e - theta.cos()).abs() < 2e-6, "{e} vs {}", theta.cos());
     }

@@ -134,7 +134,7 @@ impl Integrator for PathTracer<'_> {
         s.values[2] += c.emitted;
         let Some(vp) = c.visible else { return };
         s.values[3] += vp.albedo;
-        s.values[4] += vp.normal;
+        s.values[4] += Rgb(vp.normal);
         s.values[0] += direct(self.tracer, &vp, s.rng, s.stats);
         let indirect = self.indirect(vp, s);
         s.values[1] += indirect;

@@ -271,7 +271,7 @@ impl Integrator for PhotonMapper<'_> {
         s.values[3] += c.emitted;
         let Some(vp) = c.visible else { return };
         s.values[4] += vp.albedo;
-        s.values[5] += vp.normal;
+        s.values[5] += Rgb(vp.normal);
         s.values[0] += direct(self.tracer, &vp, s.rng, s.stats);
         if let Some(global) = &maps.global {
             let secondary = self.secondary(global, &vp, s);

@@ -2,6 +2,7 @@
 //! after a pass (the mutable tree panics on many coplanar points; the immutable one does not).
 //! Queries take squared radii, as kiddo's `SquaredEuclidean` does.
 
+use crate::color::Rgb;
 use glam::DVec3;
 use kiddo::immutable::float::kdtree::ImmutableKdTree;
 use kiddo::SquaredEuclidean;
@@ -20,8 +21,8 @@ pub struct Photon {
 
 impl Photon {
     /// The flux as f64 RGB.
-    pub fn flux(&self) -> DVec3 {
-        DVec3::new(
+    pub fn flux(&self) -> Rgb {
+        Rgb::new(
             self.power[0] as f64,
             self.power[1] as f64,
             self.power[2] as f64,
@@ -140,9 +141,9 @@ impl PhotonMap {
     /// is still the estimate there. (A cut-off at that radius read zero instead: the Luneburg
     /// scene with a quad light and `--radius 0.02` rendered its secondary light 28× too dark,
     /// 0.0005 against 0.014 at the default radius; now 0.016.)
-    pub fn nearest_irradiance(&self, p: DVec3, normal: DVec3) -> DVec3 {
+    pub fn nearest_irradiance(&self, p: DVec3, normal: DVec3) -> Rgb {
         let Some(sites) = &self.sites else {
-            return DVec3::ZERO;
+            return Rgb::ZERO;
         };
         let query = tree_point(p);
         let matches = |item: u32| {
@@ -151,7 +152,11 @@ impl PhotonMap {
                 .dot(normal)
                 >= SAME_SURFACE_COS
         };
-        let value = |item: u32| DVec3::from_array(sites.irradiance[item as usize].map(f64::from));
+        let value = |item: u32| {
+            Rgb(DVec3::from_array(
+                sites.irradiance[item as usize].map(f64::from),
+            ))
+        };
         // Almost always the nearest site lies on the same surface: one cheap query.
         let nearest = sites.tree.nearest_one::<SquaredEuclidean>(&query);
         if matches(nearest.item) {
@@ -162,7 +167,7 @@ impl PhotonMap {
             .nearest_n::<SquaredEuclidean>(&query, NonZero::new(16).expect("16 > 0"))
             .iter()
             .find(|nn| matches(nn.item))
-            .map_or(DVec3::ZERO, |nn| value(nn.item))
+            .map_or(Rgb::ZERO, |nn| value(nn.item))
     }
 
     /// Number of photons.
@@ -259,7 +264,7 @@ impl PhotonMap {
         k: usize,
         max_r2: f64,
         keep: impl Fn(u32) -> bool,
-    ) -> DVec3 {
+    ) -> Rgb {
         let found = self.nearest(p, normal, k.max(2), max_r2, keep);
         let r2 = if found.len() == k.max(2) {
             found[found.len() - 1].1
@@ -267,9 +272,9 @@ impl PhotonMap {
             max_r2
         };
         if r2 <= 0.0 {
-            return DVec3::ZERO;
+            return Rgb::ZERO;
         }
-        let sum: DVec3 = found
+        let sum: Rgb = found
             .iter()
             .map(|&(i, d2)| self.photons[i as usize].flux() * (1.0 - d2 / r2))
             .sum();
@@ -279,11 +284,11 @@ impl PhotonMap {
     /// Irradiance at `p` (W/m² per channel) from the photons within squared radius `r2` on
     /// the surface side `normal`, with the Epanechnikov kernel K(d) = 2(1 − d²/r²)/(π r²)
     /// (normalised over the disk): E = Σ Φ K. Also returns how many photons were found.
-    pub fn irradiance(&self, p: DVec3, normal: DVec3, r2: f64) -> (DVec3, usize) {
+    pub fn irradiance(&self, p: DVec3, normal: DVec3, r2: f64) -> (Rgb, usize) {
         if r2 <= 0.0 {
-            return (DVec3::ZERO, 0);
+            return (Rgb::ZERO, 0);
         }
-        let mut sum = DVec3::ZERO;
+        let mut sum = Rgb::ZERO;
         let mut count = 0;
         self.for_each_within(p, normal, r2, |ph, d2| {
             sum += ph.flux() * (1.0 - d2 / r2);
@@ -294,7 +299,7 @@ impl PhotonMap {
 
     /// Irradiance at `p` from its k nearest photons on the surface side `normal` (the
     /// Epanechnikov kernel with r the k-th distance, at most √`max_r2`).
-    pub fn knn_irradiance(&self, p: DVec3, normal: DVec3, k: usize, max_r2: f64) -> DVec3 {
+    pub fn knn_irradiance(&self, p: DVec3, normal: DVec3, k: usize, max_r2: f64) -> Rgb {
         self.knn_estimate(p, normal, k, max_r2, |_| true)
     }
 }

@@ -128,11 +128,7 @@ pub fn draw_heat_map(
 
 /// Plots radial profiles (r, irradiance) of receiver `name` with ±1 standard-error bars, one
 /// colour each, with a legend naming them.
-pub fn write_radial_png(
-    name: &str,
-    profiles: &[(&str, &Profile)],
-    path: &Path,
-) -> Result<()> {
+pub fn write_radial_png(name: &str, profiles: &[(&str, &Profile)], path: &Path) -> Result<()> {
     let mut img = canvas(680, 540);
     let all = || profiles.iter().flat_map(|(_, p)| p.iter());
     let x = (

@@ -3,6 +3,7 @@
 
 use super::table::{TableReader, MAX_MAGNITUDE};
 use crate::camera::Camera;
+use crate::color::Rgb;
 use crate::curve::{StepControl, StepperKind};
 use crate::environment::{Environment, Sky};
 use crate::error::Result;
@@ -177,7 +178,7 @@ pub fn is_exr(path: &std::path::Path) -> bool {
         .is_some_and(|e| e.eq_ignore_ascii_case("exr"))
 }
 
-fn unit_color(t: &mut TableReader, key: &str, default: Option<DVec3>) -> Result<DVec3> {
+fn unit_color(t: &mut TableReader, key: &str, default: Option<Rgb>) -> Result<Rgb> {
     let c = t.rgb_or(key, default)?;
     t.check(
         key,
@@ -199,7 +200,7 @@ pub fn read_material(t: &mut TableReader) -> Result<(Material, Option<Interior>)
         ),
         "mirror" => (
             Material::Mirror {
-                reflectance: unit_color(t, "reflectance", Some(DVec3::ONE))?,
+                reflectance: unit_color(t, "reflectance", Some(Rgb::ONE))?,
             },
             None,
         ),
@@ -451,7 +452,7 @@ pub fn read_light(t: &mut TableReader, kind: &str) -> Result<Light> {
             let power = t.positive("power")?;
             let m = t.f64_or("m", 1.0)?;
             t.check("m", m >= 0.0, "must be ≥ 0")?;
-            let color = t.rgb_or("color", Some(DVec3::ONE))?;
+            let color = t.rgb_or("color", Some(Rgb::ONE))?;
             let peak_intensity = color * (power * (m + 1.0) / std::f64::consts::TAU);
             Light::Led { emitter, peak_intensity, m }
         }

@@ -2,6 +2,7 @@
 //! bad value, a missing or an unknown key is reported at file:line:col naming the key.
 
 use super::source::Source;
+use crate::color::Rgb;
 use crate::error::{Error, Result};
 use glam::DVec3;
 use std::collections::BTreeMap;
@@ -277,7 +278,7 @@ impl<'a> TableReader<'a> {
     }
 
     /// An RGB triple of non-negative numbers; a single number means grey.
-    pub fn rgb_or(&mut self, key: &str, default: Option<DVec3>) -> Result<DVec3> {
+    pub fn rgb_or(&mut self, key: &str, default: Option<Rgb>) -> Result<Rgb> {
         let v = match (self.take(key), default) {
             (Some(v), _) => v,
             (None, Some(d)) => return Ok(d),
@@ -292,7 +293,7 @@ impl<'a> TableReader<'a> {
             c.min_element() >= 0.0,
             format!("must not be negative, got {c}"),
         )?;
-        Ok(c)
+        Ok(Rgb(c))
     }
 
     /// Fails at the first key that was never read, naming the keys this table accepts.
