@@ -2,7 +2,8 @@
 //! cores): progressive renders with time budgets of 5, 10, 20, 40 and 80 s, each compared
 //! with a long progressive render of the same scene (its own seed). The caustic region is
 //! where the reference's caustic layer holds ≥ 10 % of its beauty; the error is the RMSE of
-//! `beauty` there (linear radiance, all channels).
+//! `beauty` there (linear radiance, all channels). The same budgets are then given to the path
+//! tracer (same samples per pass, no photons).
 //!
 //! `cargo run --release --example caustic_study -- [REFERENCE_SECONDS] [CAUSTIC_PHOTONS] [SPP]
 //! [GATHER] [MAX_BUDGET]` (defaults 300 s, 100000 per pass, 4, 2 for the timed runs, 80 s); the reference (300 000
@@ -10,6 +11,7 @@
 //! reused while that file exists; writes `out/caustic_study.csv`.
 
 use grinlight::film::{read_exr_layer, Film};
+use grinlight::settings::IntegratorKind;
 use std::io::Write;
 use std::path::Path;
 
@@ -20,9 +22,11 @@ fn run(
     seconds: f64,
     seed: u64,
     (caustic, spp, gather): Settings,
+    integrator: IntegratorKind,
 ) -> Result<(Film, f64, u32), Box<dyn std::error::Error>> {
     let (scene, mut settings) =
         grinlight::scene::load_scene(Path::new("scenes/cornell_caustic.toml"))?;
+    settings.integrator = integrator;
     settings.seed = seed;
     settings.spp = spp;
     settings.photons.gather = gather;
@@ -45,7 +49,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let cached = Path::new("out/caustic_reference.exr");
     std::fs::create_dir_all("out")?;
     if !cached.exists() {
-        let (reference, t, passes) = run(reference_seconds, 1000, (300_000, 4, 2))?;
+        let (reference, t, passes) = run(
+            reference_seconds,
+            1000,
+            (300_000, 4, 2),
+            IntegratorKind::PhotonMap,
+        )?;
         println!("reference: {passes} passes in {t:.0} s");
         reference.write_exr(cached)?;
     }
@@ -61,19 +70,27 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .collect();
     println!("caustic region: {} pixels", region.len());
     let mut csv = std::fs::File::create("out/caustic_study.csv")?;
-    writeln!(csv, "budget_s,seconds,passes,rmse,mean_reference")?;
+    writeln!(
+        csv,
+        "integrator,budget_s,seconds,passes,rmse,mean_reference"
+    )?;
     let mean_ref = region
         .iter()
         .map(|&i| beauty[i].iter().sum::<f32>() as f64 / 3.0)
         .sum::<f64>()
         / region.len() as f64;
-    println!("| budget (s) | time (s) | passes | caustic-region RMSE |\n|---|---|---|---|");
+    println!("| integrator | budget (s) | time (s) | passes | caustic-region RMSE |\n|---|---|---|---|---|");
     let max_budget: f64 = args.get(4).map_or(Ok(80.0), |a| a.parse())?;
-    for budget in [5.0, 10.0, 20.0, 40.0, 80.0]
+    let budgets = [5.0, 10.0, 20.0, 40.0, 80.0]
         .into_iter()
-        .filter(|b| *b <= max_budget)
-    {
-        let (film, t, passes) = run(budget, 1, settings)?;
+        .filter(|b| *b <= max_budget);
+    // The path tracer at the same camera samples per pass (no photons).
+    let runs = budgets
+        .clone()
+        .map(|b| (IntegratorKind::PhotonMap, b))
+        .chain(budgets.map(|b| (IntegratorKind::Path, b)));
+    for (integrator, budget) in runs {
+        let (film, t, passes) = run(budget, 1, settings, integrator)?;
         let b = film.layer("beauty").ok_or("no beauty")?;
         let se: f64 = region
             .iter()
@@ -84,8 +101,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             })
             .sum();
         let rmse = (se / (3 * region.len()) as f64).sqrt();
-        println!("| {budget} | {t:.1} | {passes} | {rmse:.4} |");
-        writeln!(csv, "{budget},{t:.2},{passes},{rmse:.6},{mean_ref:.6}")?;
+        println!("| {integrator:?} | {budget} | {t:.1} | {passes} | {rmse:.4} |");
+        writeln!(
+            csv,
+            "{integrator:?},{budget},{t:.2},{passes},{rmse:.6},{mean_ref:.6}"
+        )?;
     }
     println!("mean beauty in the region (reference): {mean_ref:.4}");
     Ok(())

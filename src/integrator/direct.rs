@@ -6,7 +6,7 @@
 use crate::bsdf::Bsdf;
 use crate::color::Rgb;
 use crate::lights::Light;
-use crate::transport::chain::{follow, Chain, End, Policy, Ray};
+use crate::transport::chain::{Chain, End, Policy, Ray, Walker};
 use crate::transport::connect::connect;
 use crate::transport::{offset, visibility, Stats, Tracer};
 use glam::DVec3;
@@ -67,16 +67,7 @@ pub fn camera_path(
         direction: dir,
         medium: tracer.camera_medium,
     };
-    let mut depth = tracer.settings.max_depth;
-    let chain = follow(
-        tracer,
-        ray,
-        Policy::Weighted,
-        &mut depth,
-        rng,
-        stats,
-        &mut (),
-    );
+    let chain = Walker::new(tracer, Policy::Weighted).follow(ray, rng, stats, &mut ());
     let mut out = Components {
         emitted: emission_seen(tracer, &chain),
         visible: None,
@@ -203,16 +194,7 @@ pub fn direct(tracer: &Tracer, vp: &VisiblePoint, rng: &mut impl Rng, stats: &mu
         direction: s.wi,
         medium: vp.medium,
     };
-    let mut depth = tracer.settings.max_depth;
-    let chain = follow(
-        tracer,
-        ray,
-        Policy::Unscattered,
-        &mut depth,
-        rng,
-        stats,
-        &mut (),
-    );
+    let chain = Walker::new(tracer, Policy::Unscattered).follow(ray, rng, stats, &mut ());
     let mis = match chain.end {
         End::Emitter {
             prim,

@@ -16,7 +16,7 @@ use crate::bsdf::Bsdf;
 use crate::color::Rgb;
 use crate::film::{Layer, LayerKind};
 use crate::report::Report;
-use crate::transport::chain::{follow, End, Policy, Ray};
+use crate::transport::chain::{End, Policy, Ray, Walker};
 use crate::transport::{offset, Tracer};
 use rand::Rng;
 
@@ -63,7 +63,7 @@ impl<'a> PathTracer<'a> {
     /// from every diffuse point.
     fn indirect(&self, mut vp: VisiblePoint, s: &mut Sample) -> Rgb {
         let tracer = self.tracer;
-        let mut depth = tracer.settings.max_depth;
+        let mut walker = Walker::new(tracer, Policy::Weighted);
         let mut sum = Rgb::ZERO;
         for bounce in 0.. {
             if bounce >= SURE_BOUNCES {
@@ -81,15 +81,7 @@ impl<'a> PathTracer<'a> {
                 direction: b.wi,
                 medium: vp.medium,
             };
-            let chain = follow(
-                tracer,
-                ray,
-                Policy::Weighted,
-                &mut depth,
-                s.rng,
-                s.stats,
-                &mut (),
-            );
+            let chain = walker.follow(ray, s.rng, s.stats, &mut ());
             let throughput = vp.throughput * b.weight * chain.weight;
             // With no specular bounce, emission here is the direct estimate's (already counted).
             if chain.specular > 0 {

@@ -19,7 +19,7 @@ use crate::photon::{shoot, Batch, PhotonMap, Sources};
 use crate::report::Report;
 use crate::scene::Scene;
 use crate::settings::{PhotonSettings, Settings};
-use crate::transport::chain::{follow, End, Policy, Ray};
+use crate::transport::chain::{End, Policy, Ray, Walker};
 use crate::transport::{offset, Stats, Tracer};
 use rand::Rng;
 use std::f64::consts::FRAC_1_PI;
@@ -202,16 +202,7 @@ impl<'a> PhotonMapper<'a> {
                 direction: b.wi,
                 medium: vp.medium,
             };
-            let mut depth = tracer.settings.max_depth;
-            let chain = follow(
-                tracer,
-                ray,
-                Policy::Weighted,
-                &mut depth,
-                s.rng,
-                s.stats,
-                &mut (),
-            );
+            let chain = Walker::new(tracer, Policy::Weighted).follow(ray, s.rng, s.stats, &mut ());
             if let End::Diffuse {
                 position,
                 normal,

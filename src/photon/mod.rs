@@ -384,17 +384,9 @@ fn trace_photon(
         direction: e.direction,
         medium: launch.medium,
     };
-    let mut depth = tracer.settings.max_depth;
+    let mut walker = chain::Walker::new(tracer, Policy::Roulette);
     let fate = loop {
-        let chain = chain::follow(
-            tracer,
-            ray,
-            Policy::Roulette,
-            &mut depth,
-            rng,
-            stats,
-            &mut walk,
-        );
+        let chain = walker.follow(ray, rng, stats, &mut walk);
         walk.power *= chain.weight;
         let (position, normal, albedo, arrival) = match chain.end {
             End::Diffuse {

@@ -145,56 +145,112 @@ pub trait Observer {
 
 impl Observer for () {}
 
-/// Follows `ray` to the end of its specular chain. `depth` is the number of surfaces it may
-/// still meet (decremented per surface, detectors included; shared by a photon's successive
-/// chains); `rng` draws the Fresnel choices and Russian roulette. Counts a depth-limited
-/// chain in `stats`.
-pub fn follow<R: Rng>(
-    tracer: &Tracer,
-    ray: Ray,
-    policy: Policy,
-    depth: &mut u32,
-    rng: &mut R,
-    stats: &mut Stats,
-    observer: &mut dyn Observer,
-) -> Chain {
-    let scene = tracer.scene;
-    let Ray {
-        mut origin,
-        direction: mut dir,
-        mut medium,
-    } = ray;
-    let mut chain = Chain {
-        end: End::Lost,
-        weight: Rgb::ONE,
-        medium,
-        n_start: 1.0,
-        n_end: 1.0,
-        specular: 0,
-        curved: false,
-    };
-    let Some(n_start) = tracer.index(medium, origin) else {
-        return chain;
-    };
-    chain.n_start = n_start;
-    let end = loop {
-        if *depth == 0 {
-            stats.depth_limited += 1;
-            break End::DepthLimit;
+/// A path being walked: the tracer, how its losses are carried, and how many surfaces it
+/// may still meet (shared by a photon's successive chains). Its random numbers (the Fresnel
+/// choices and Russian roulette) and statistics are lent to each [`Walker::follow`].
+pub struct Walker<'w> {
+    /// Where it travels.
+    pub tracer: &'w Tracer<'w>,
+    /// How losses are carried.
+    pub policy: Policy,
+    /// Surfaces it may still meet, detectors included.
+    pub depth: u32,
+}
+
+/// A random stream and the statistics a walk adds to.
+struct Lent<'a, R> {
+    rng: &'a mut R,
+    stats: &'a mut Stats,
+}
+
+/// Where a chain stands between two events.
+struct Cursor {
+    origin: DVec3,
+    dir: DVec3,
+    medium: Option<usize>,
+}
+
+impl<'w> Walker<'w> {
+    /// A walker allowed the tracer's `max_depth` surfaces.
+    pub fn new(tracer: &'w Tracer<'w>, policy: Policy) -> Self {
+        Self {
+            tracer,
+            policy,
+            depth: tracer.settings.max_depth,
         }
-        *depth -= 1;
-        chain.curved |= medium.is_some_and(|m| !scene.medium_at(m).is_uniform());
-        let event = tracer.next_event_along(origin, dir, medium, stats, &mut |p| observer.point(p));
-        if event == Event::Lost {
-            break End::Lost;
+    }
+
+    /// Follows `ray` to the end of its specular chain, drawing from `rng`, adding to `stats`
+    /// and telling `observer` what it passes. Counts a depth-limited chain in the statistics.
+    pub fn follow<R: Rng>(
+        &mut self,
+        ray: Ray,
+        rng: &mut R,
+        stats: &mut Stats,
+        observer: &mut dyn Observer,
+    ) -> Chain {
+        let mut lent = Lent { rng, stats };
+        let mut chain = Chain {
+            end: End::Lost,
+            weight: Rgb::ONE,
+            medium: ray.medium,
+            n_start: 1.0,
+            n_end: 1.0,
+            specular: 0,
+            curved: false,
+        };
+        let Some(n_start) = self.tracer.index(ray.medium, ray.origin) else {
+            return chain;
+        };
+        chain.n_start = n_start;
+        let mut at = Cursor {
+            origin: ray.origin,
+            dir: ray.direction,
+            medium: ray.medium,
+        };
+        let end = loop {
+            if let ControlFlow::Break(end) = self.step(&mut chain, &mut at, &mut lent, observer) {
+                break end;
+            }
+        };
+        chain.medium = at.medium;
+        if !matches!(end, End::Escaped { .. }) {
+            let p = match end {
+                End::Diffuse { position, .. } | End::Emitter { position, .. } => position,
+                _ => at.origin,
+            };
+            chain.n_end = self.tracer.index(at.medium, p).unwrap_or(1.0);
         }
-        let kept = event.transmittance();
-        match policy {
-            Policy::Weighted | Policy::Unscattered => chain.weight *= kept,
-            Policy::Roulette if kept < 1.0 && rng.gen::<f64>() >= kept => break End::Absorbed,
-            _ => {}
+        chain.end = end;
+        chain
+    }
+
+    /// Moves the chain to its next event: `Break` with how it ends, or `Continue` past a
+    /// detector or a specular surface.
+    fn step<R: Rng>(
+        &mut self,
+        chain: &mut Chain,
+        at: &mut Cursor,
+        lent: &mut Lent<R>,
+        observer: &mut dyn Observer,
+    ) -> ControlFlow<End> {
+        let scene = self.tracer.scene;
+        if self.depth == 0 {
+            lent.stats.depth_limited += 1;
+            return ControlFlow::Break(End::DepthLimit);
         }
+        self.depth -= 1;
+        chain.curved |= at.medium.is_some_and(|m| !scene.medium_at(m).is_uniform());
+        let event =
+            self.tracer
+                .next_event_along(at.origin, at.dir, at.medium, lent.stats, &mut |p| {
+                    observer.point(p)
+                });
         let (prim, position, normal, incoming) = match event {
+            Event::Lost => return ControlFlow::Break(End::Lost),
+            _ if self.absorbed(chain, event.transmittance(), lent.rng) => {
+                return ControlFlow::Break(End::Absorbed)
+            }
             Event::Surface {
                 prim,
                 position,
@@ -208,84 +264,103 @@ pub fn follow<R: Rng>(
                 ..
             } => {
                 observer.point(position);
-                chain.n_end = tracer.index(medium, position).unwrap_or(1.0);
-                break End::Escaped { direction };
+                chain.n_end = self.tracer.index(at.medium, position).unwrap_or(1.0);
+                return ControlFlow::Break(End::Escaped { direction });
             }
-            Event::Lost => break End::Lost,
         };
         observer.point(position);
         let surface = scene.surfaces[prim];
         let side = facing(normal, incoming);
         match &scene.materials[surface.material] {
-            Material::Emissive { radiance } => {
-                break End::Emitter {
-                    prim,
-                    radiance: if side == normal { *radiance } else { Rgb::ZERO },
-                    position,
-                    direction: incoming,
-                };
-            }
-            Material::Diffuse { albedo } => {
-                break End::Diffuse {
-                    prim,
-                    position,
-                    normal: side,
-                    direction: incoming,
-                    albedo: *albedo,
-                };
-            }
+            Material::Emissive { radiance } => ControlFlow::Break(End::Emitter {
+                prim,
+                radiance: if side == normal { *radiance } else { Rgb::ZERO },
+                position,
+                direction: incoming,
+            }),
+            Material::Diffuse { albedo } => ControlFlow::Break(End::Diffuse {
+                prim,
+                position,
+                normal: side,
+                direction: incoming,
+                albedo: *albedo,
+            }),
             Material::Detector { receiver } => {
                 if observer
                     .detector(*receiver, position, chain.weight)
                     .is_break()
                 {
-                    break End::Stopped;
+                    return ControlFlow::Break(End::Stopped);
                 }
-                origin = super::offset(position, incoming);
-            }
-            Material::Mirror { .. } | Material::Dielectric if policy == Policy::Unscattered => {
-                break End::Stopped;
+                at.origin = super::offset(position, incoming);
+                ControlFlow::Continue(())
             }
             Material::Mirror { .. } | Material::Dielectric => {
-                let u = match (policy, &scene.materials[surface.material]) {
-                    (_, Material::Mirror { .. }) => 0.0,
-                    (Policy::Principal, _) => 0.5,
-                    _ => rng.gen(),
-                };
-                let Some(b) =
-                    tracer.specular_bounce(surface, medium, position, incoming, normal, u)
-                else {
-                    break End::Lost;
-                };
-                match policy {
-                    Policy::Weighted => chain.weight *= b.weight,
-                    Policy::Roulette => {
-                        let survive = b.weight.max_element();
-                        if survive < 1.0 && rng.gen::<f64>() >= survive {
-                            break End::Absorbed;
-                        }
-                        chain.weight *= b.weight / survive.clamp(f64::MIN_POSITIVE, 1.0);
-                    }
-                    Policy::Principal | Policy::Unscattered => {}
-                }
-                chain.specular += 1;
-                if observer.specular(prim, medium, b.medium).is_break() {
-                    break End::Stopped;
-                }
-                (origin, dir, medium) = (b.origin, b.direction, b.medium);
+                let hit = (prim, position, normal, incoming);
+                self.bounce(chain, (at, hit), lent.rng, observer)
             }
         }
-    };
-    chain.medium = medium;
-    if !matches!(end, End::Escaped { .. }) {
-        let at = match end {
-            End::Diffuse { position, .. } | End::Emitter { position, .. } => position,
-            _ => origin,
-        };
-        chain.n_end = tracer.index(medium, at).unwrap_or(1.0);
     }
-    chain.end = end;
-    chain
+
+    /// Carries a stretch's transmittance `kept` by the policy; true when Russian roulette
+    /// absorbs the path there.
+    fn absorbed(&self, chain: &mut Chain, kept: f64, rng: &mut impl Rng) -> bool {
+        match self.policy {
+            Policy::Weighted | Policy::Unscattered => {
+                chain.weight *= kept;
+                false
+            }
+            Policy::Roulette => kept < 1.0 && rng.gen::<f64>() >= kept,
+            Policy::Principal => false,
+        }
+    }
+
+    /// Reflects or refracts the chain at a specular surface `hit` = (primitive, position,
+    /// geometric normal, arrival direction).
+    fn bounce(
+        &self,
+        chain: &mut Chain,
+        (at, (prim, position, normal, incoming)): (&mut Cursor, (usize, DVec3, DVec3, DVec3)),
+        rng: &mut impl Rng,
+        observer: &mut dyn Observer,
+    ) -> ControlFlow<End> {
+        let scene = self.tracer.scene;
+        let surface = scene.surfaces[prim];
+        let mirror = matches!(scene.materials[surface.material], Material::Mirror { .. });
+        let u = match self.policy {
+            Policy::Unscattered => return ControlFlow::Break(End::Stopped),
+            _ if mirror => 0.0,
+            Policy::Principal => 0.5,
+            _ => rng.gen(),
+        };
+        let Some(b) = self
+            .tracer
+            .specular_bounce(surface, at.medium, position, incoming, normal, u)
+        else {
+            return ControlFlow::Break(End::Lost);
+        };
+        match self.policy {
+            Policy::Weighted => chain.weight *= b.weight,
+            Policy::Roulette => {
+                let survive = b.weight.max_element();
+                if survive < 1.0 && rng.gen::<f64>() >= survive {
+                    return ControlFlow::Break(End::Absorbed);
+                }
+                chain.weight *= b.weight / survive.clamp(f64::MIN_POSITIVE, 1.0);
+            }
+            Policy::Principal | Policy::Unscattered => {}
+        }
+        chain.specular += 1;
+        if observer.specular(prim, at.medium, b.medium).is_break() {
+            return ControlFlow::Break(End::Stopped);
+        }
+        *at = Cursor {
+            origin: b.origin,
+            dir: b.direction,
+            medium: b.medium,
+        };
+        ControlFlow::Continue(())
+    }
 }
 
 /// The principal ray from `origin` along unit `dir` in `medium` (see [`Policy::Principal`]),
@@ -307,22 +382,15 @@ pub fn principal_ray(
         }
     }
     let mut found = FirstDetector(None);
-    let mut depth = max_events;
-    let mut unused = rand_pcg::Pcg64Mcg::new(1);
+    let mut walker = Walker::new(tracer, Policy::Principal);
+    walker.depth = max_events;
     let ray = Ray {
         origin,
         direction: dir,
         medium,
     };
-    let chain = follow(
-        tracer,
-        ray,
-        Policy::Principal,
-        &mut depth,
-        &mut unused,
-        &mut Stats::default(),
-        &mut found,
-    );
+    let (mut unused, mut stats) = (rand_pcg::Pcg64Mcg::new(1), Stats::default());
+    let chain = walker.follow(ray, &mut unused, &mut stats, &mut found);
     (chain.end == End::Stopped).then_some(())?;
     found.0.map(|p| (p, chain.specular))
 }
