@@ -1,7 +1,7 @@
 //! Photon mapping and the render against exact answers and an independent reference.
 
 use grinlight::film::{downsample, mean_ratios, read_exr_layer};
-use grinlight::photon::{shoot, Batch, Sources};
+use grinlight::photon::{shoot, Batch, Photons, Sources};
 use grinlight::scene::load::parse_scene;
 use grinlight::transport::Tracer;
 use std::f64::consts::PI;
@@ -45,7 +45,13 @@ fn photon_flux_onto_a_disk_matches_the_closed_form() {
             parse_scene(Path::new("flux.toml"), format!("{receiver}{light}")).unwrap();
         let tracer = Tracer::new(&scene, &settings.trace);
         let sources = Sources::new(&tracer);
-        let (sink, stats) = shoot(&tracer, &sources, Batch::Global, 0, 0, 200_000, &|| false);
+        let photons = Photons {
+            batch: Batch::Global,
+            seed: 0,
+            pass: 0,
+            count: 200_000,
+        };
+        let (sink, stats) = shoot(&tracer, &sources, photons, &|| false);
         let photons = sink.photons;
         assert_eq!(stats.photons_emitted, 200_000);
         let sum = photons.iter().fold([0.0f64; 3], |acc, p| {

@@ -3,6 +3,7 @@
 
 use super::{at_least_one, positive, Observer};
 use crate::error::{Error, Result};
+use crate::fiber::GrinFiber;
 use crate::film::Film;
 use crate::output::{Kind, Outputs};
 use crate::photon::Budget;
@@ -197,29 +198,8 @@ impl Files {
 pub fn render(job: &RenderJob, observer: &dyn Observer) -> Result<RenderOutcome> {
     let (mut description, mut settings) = scene::load_description(&job.scene)?;
     job.overrides.apply(&mut description, &mut settings)?;
-    let fiber = description.grin_fiber();
+    let fiber = fiber_to_draw(job, &description)?;
     let scene = description.build();
-    if job.paths > MAX_PATHS {
-        return Err(Error::Usage(format!(
-            "--paths {}: a figure shows at most {MAX_PATHS} paths (each is kept in memory)",
-            job.paths
-        )));
-    }
-    let fiber = match job.paths {
-        0 => None,
-        _ if scene.receivers.is_empty() => {
-            return Err(Error::Usage(format!(
-                "{}: --paths shows the paths with a receiver's irradiance: the scene has no [[receiver]]",
-                job.scene.display()
-            )))
-        }
-        _ => Some(fiber.ok_or_else(|| {
-            Error::Usage(
-                "--paths draws a GRIN fiber: the scene has no cylinder filled with a gradient medium"
-                    .into(),
-            )
-        })?),
-    };
     if scene.camera.is_none() && scene.receivers.is_empty() {
         return Err(Error::Usage(format!(
             "{}: the scene has no [camera] and no [[receiver]]: nothing to render",
@@ -247,9 +227,9 @@ pub fn render(job: &RenderJob, observer: &dyn Observer) -> Result<RenderOutcome>
             let paths = Paths {
                 fiber,
                 count: job.paths,
-                seed: settings.seed,
+                first: &measurements[0],
             };
-            draw_paths(&scene, &settings, paths, &measurements[0], &files, observer)?;
+            draw_paths(&scene, &settings, paths, &files, observer)?;
         }
         outcome.measurements = measurements;
         outcome.budget = Some(budget);
@@ -257,17 +237,54 @@ pub fn render(job: &RenderJob, observer: &dyn Observer) -> Result<RenderOutcome>
     if scene.camera.is_none() || outcome.partial {
         return Ok(outcome);
     }
+    let (film, report) = render_camera(job, (&scene, &settings), &files, observer)?;
+    outcome.partial |= report.partial.is_some();
+    outcome.film = Some((film, report));
+    Ok(outcome)
+}
+
+/// The GRIN fiber whose photon paths `--paths` asks to draw, if it does (checked: at most
+/// [`MAX_PATHS`], a receiver to show, a fiber to draw).
+fn fiber_to_draw(job: &RenderJob, description: &Description) -> Result<Option<GrinFiber>> {
+    if job.paths > MAX_PATHS {
+        return Err(Error::Usage(format!(
+            "--paths {}: a figure shows at most {MAX_PATHS} paths (each is kept in memory)",
+            job.paths
+        )));
+    }
+    match job.paths {
+        0 => Ok(None),
+        _ if description.receivers.is_empty() => Err(Error::Usage(format!(
+            "{}: --paths shows the paths with a receiver's irradiance: the scene has no [[receiver]]",
+            job.scene.display()
+        ))),
+        _ => description.grin_fiber().map(Some).ok_or_else(|| {
+            Error::Usage(
+                "--paths draws a GRIN fiber: the scene has no cylinder filled with a gradient medium"
+                    .into(),
+            )
+        }),
+    }
+}
+
+/// Renders the camera view, writing the film (and checkpoints), and reports it.
+fn render_camera(
+    job: &RenderJob,
+    (scene, settings): (&Scene, &Settings),
+    files: &Files,
+    observer: &dyn Observer,
+) -> Result<(Film, Report)> {
     let start = Instant::now();
     let checkpoints = Checkpoints {
         outer: observer,
         every: job.checkpoint,
-        files: &files,
+        files,
         exposure: settings.output.exposure,
         start,
     };
-    let (film, report) = crate::render::render(&scene, &settings, &checkpoints)?;
+    let (film, report) = crate::render::render(scene, settings, &checkpoints)?;
     files.write_film(&film, settings.output.exposure)?;
-    let camera = scene.camera.as_ref().expect("checked above");
+    let camera = scene.camera.as_ref().expect("render() checked the camera");
     observer.line(&format!(
         "rendered {} ({}×{}, {} spp × {} passes) in {:.2} s",
         job.scene.display(),
@@ -286,9 +303,7 @@ pub fn render(job: &RenderJob, observer: &dyn Observer) -> Result<RenderOutcome>
     if let Some(png) = &files.png {
         observer.line(&format!("wrote {}", png.display()));
     }
-    outcome.partial |= report.partial.is_some();
-    outcome.film = Some((film, report));
-    Ok(outcome)
+    Ok((film, report))
 }
 
 /// Measures the receivers and writes their files; reports the flux of each and the energy
@@ -340,10 +355,11 @@ fn measure_receivers(
 }
 
 /// Which photon paths seed 004 fig. 5 draws: the first `count` of the receiver batch.
-struct Paths {
-    fiber: crate::fiber::GrinFiber,
+struct Paths<'a> {
+    fiber: GrinFiber,
     count: u64,
-    seed: u64,
+    /// The first receiver's measurement, drawn beside them.
+    first: &'a Measurement,
 }
 
 /// Draws seed 004 fig. 5 for the scene's GRIN fiber.
@@ -351,19 +367,18 @@ fn draw_paths(
     scene: &Scene,
     settings: &Settings,
     paths: Paths,
-    first: &Measurement,
     files: &Files,
     observer: &dyn Observer,
 ) -> Result<()> {
     let out = files.paths.as_ref().expect("planned with the paths");
     let tracer = crate::transport::Tracer::new(scene, &settings.trace);
     let sources = crate::photon::Sources::new(&tracer);
-    let drawn = crate::photon::photon_paths(&tracer, &sources, paths.seed, 0, paths.count);
+    let drawn = crate::photon::photon_paths(&tracer, &sources, settings.seed, 0, paths.count);
     let legend = crate::fiber::figure::write(
         scene,
         &paths.fiber,
         &drawn,
-        (&scene.receivers[0], first),
+        (&scene.receivers[0], paths.first),
         out,
     )?;
     observer.line(&format!("wrote {}: {legend}", out.display()));

@@ -48,6 +48,66 @@ impl GrinFiber {
             })
             .collect()
     }
+
+    /// The layers of its twin in `medium` (the fiber's): a new layer wherever the index along
+    /// a radius has changed by `dn` since the layer's start or the layer is `max_width` wide,
+    /// each with the area-weighted mean of the profile over its annulus, innermost first. The
+    /// profile is sampled at ≥ 4 points per layer (at its steepest slope); a layering that
+    /// would need over 4·10⁵ samples (10⁵ layers) is refused, as is a singular index.
+    pub fn layers(
+        &self,
+        medium: &dyn Medium,
+        dn: f64,
+        max_width: f64,
+    ) -> std::result::Result<Vec<Layer>, String> {
+        // The index along one radius, finely sampled: ≥ 4 samples per layer of either limit.
+        let singular = || "the fiber's index is singular inside it".to_string();
+        let coarse = self.profile(medium, 4000).ok_or_else(singular)?;
+        // The steepest change of n from the axis to the wall, as if it held everywhere.
+        let steepest = 4000.0
+            * coarse
+                .windows(2)
+                .map(|w| (w[1].1 - w[0].1).abs())
+                .fold(0.0, f64::max);
+        let wanted = (4.0 * steepest / dn).max(4.0 * self.radius / max_width);
+        const MAX_SAMPLES: f64 = 4e5;
+        if wanted > MAX_SAMPLES {
+            return Err(format!(
+                "Δn {dn} and largest width {max_width} would make over {} layers",
+                MAX_SAMPLES / 4.0
+            ));
+        }
+        let samples = (wanted.ceil() as usize).max(4000);
+        let profile = if samples == 4000 {
+            coarse
+        } else {
+            self.profile(medium, samples).ok_or_else(singular)?
+        };
+        let mut layers = Vec::new();
+        let (mut start, mut n_start) = (0, profile[0].1);
+        for i in 1..=samples {
+            let width = profile[i].0 - profile[start].0;
+            if (profile[i].1 - n_start).abs() >= dn
+                || width >= max_width * (1.0 - 1e-9)
+                || i == samples
+            {
+                // Area-weighted mean of n over [r_start, r_i] (trapezoid rule on n·r).
+                let (mut num, mut den) = (0.0, 0.0);
+                for w in profile[start..=i].windows(2) {
+                    let dr = w[1].0 - w[0].0;
+                    num += 0.5 * (w[0].1 * w[0].0 + w[1].1 * w[1].0) * dr;
+                    den += 0.5 * (w[0].0 + w[1].0) * dr;
+                }
+                layers.push(Layer {
+                    inner: profile[start].0,
+                    outer: profile[i].0,
+                    n: num / den,
+                });
+                (start, n_start) = (i, profile[i].1);
+            }
+        }
+        Ok(layers)
+    }
 }
 
 /// One homogeneous layer of a fiber's layered twin: outer radius and index.
@@ -125,53 +185,8 @@ impl Description {
         let fiber = self
             .grin_fiber()
             .ok_or_else(|| usage("no cylinder filled with a gradient medium to layer"))?;
-        // The index along one radius, finely sampled: ≥ 4 samples per layer of either limit.
-        let singular = || usage("the fiber's index is singular inside it");
         let medium = self.media.at(fiber.medium);
-        let coarse = fiber.profile(medium, 4000).ok_or_else(singular)?;
-        // The steepest change of n from the axis to the wall, as if it held everywhere.
-        let steepest = 4000.0
-            * coarse
-                .windows(2)
-                .map(|w| (w[1].1 - w[0].1).abs())
-                .fold(0.0, f64::max);
-        let wanted = (4.0 * steepest / dn).max(4.0 * fiber.radius / max_width);
-        const MAX_SAMPLES: f64 = 4e5;
-        if wanted > MAX_SAMPLES {
-            return Err(usage(&format!(
-                "Δn {dn} and largest width {max_width} would make over {} layers",
-                MAX_SAMPLES / 4.0
-            )));
-        }
-        let samples = (wanted.ceil() as usize).max(4000);
-        let profile = if samples == 4000 {
-            coarse
-        } else {
-            fiber.profile(medium, samples).ok_or_else(singular)?
-        };
-        let mut layers = Vec::new();
-        let (mut start, mut n_start) = (0, profile[0].1);
-        for i in 1..=samples {
-            let width = profile[i].0 - profile[start].0;
-            if (profile[i].1 - n_start).abs() >= dn
-                || width >= max_width * (1.0 - 1e-9)
-                || i == samples
-            {
-                // Area-weighted mean of n over [r_start, r_i] (trapezoid rule on n·r).
-                let (mut num, mut den) = (0.0, 0.0);
-                for w in profile[start..=i].windows(2) {
-                    let dr = w[1].0 - w[0].0;
-                    num += 0.5 * (w[0].1 * w[0].0 + w[1].1 * w[1].0) * dr;
-                    den += 0.5 * (w[0].0 + w[1].0) * dr;
-                }
-                layers.push(Layer {
-                    inner: profile[start].0,
-                    outer: profile[i].0,
-                    n: num / den,
-                });
-                (start, n_start) = (i, profile[i].1);
-            }
-        }
+        let layers = fiber.layers(medium, dn, max_width).map_err(|m| usage(&m))?;
         let GrinFiber {
             base,
             axis,

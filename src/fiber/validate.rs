@@ -2,12 +2,15 @@
 //! cylinders, seed 004 §5), measured with independent photon streams and compared bin by bin
 //! on the first receiver.
 
+use super::Layer;
 use crate::error::{at_least_one, positive};
 use crate::error::{Error, Result};
 use crate::output::{Kind, Outputs};
 use crate::receiver;
+use crate::receiver::{Comparison, Measurement};
 use crate::render::Observer;
-use crate::scene::{self, Description};
+use crate::report::Report;
+use crate::scene::{self, Description, Scene};
 use crate::settings::Settings;
 use std::path::PathBuf;
 
@@ -65,58 +68,33 @@ pub fn validate(job: &ValidateJob, observer: &dyn Observer) -> Result<()> {
         crate::render::memory_needed(&grin, &grin_settings),
         &format!("measuring {}", job.scene.display()),
     )?;
-    let max_width = job.max_width.unwrap_or(f64::INFINITY);
+    let reference = measure_grin(job, (&grin, &grin_settings), observer)?;
     let rec = &grin.receivers[0];
-    let t = std::time::Instant::now();
-    let (reference, _, grin_report) = crate::render::measure(&grin, &grin_settings, 0, observer)?;
-    stop_if_partial(&grin_report)?;
-    if reference[0].flux.0 <= 0.0 {
-        return Err(Error::Usage(format!(
-            "{}: receiver '{}' received no light from the GRIN fiber: nothing to compare",
-            job.scene.display(),
-            rec.name
-        )));
-    }
-    let cut = |r: &crate::report::Report| {
-        100.0 * r.stats.depth_limited as f64 / r.stats.photons_emitted.max(1) as f64
-    };
-    observer.line(&format!(
-        "GRIN fiber: receiver '{}' flux {:.6e} ± {:.1e} W ({} photons, {:.2} % cut at max_depth, {:.1} s)",
-        rec.name,
-        reference[0].flux.0,
-        reference[0].flux.1,
-        grin_settings.receiver_photons,
-        cut(&grin_report),
-        t.elapsed().as_secs_f64()
-    ));
     observer.line(
         "| Δn | layers | widest layer | flux ratio (layered/GRIN) | χ²/dof | dof | max |z| | cut at max_depth | time (s) |\n\
          |---|---|---|---|---|---|---|---|---|",
     );
     let mut profiles = vec![(
         "GRIN fiber".to_string(),
-        receiver::radial_profile(rec, &reference[0]),
+        receiver::radial_profile(rec, &reference),
     )];
     for (k, &dn) in job.dn.iter().enumerate() {
         let (mut twin, mut settings) = load()?;
-        let layers = twin.layer_fiber(&mut settings.trace, dn, max_width)?;
+        let layers = twin.layer_fiber(
+            &mut settings.trace,
+            dn,
+            job.max_width.unwrap_or(f64::INFINITY),
+        )?;
         let twin = twin.build();
         let t = std::time::Instant::now();
         let (layered, _, report) =
             crate::render::measure(&twin, &settings, 1 + k as u64, observer)?;
         stop_if_partial(&report)?;
-        let c = receiver::compare(&reference[0], &layered[0]);
-        observer.line(&format!(
-            "| {dn} | {} | {:.4} | {:.5} ± {:.5} | {:.3} | {} | {:.2} | {:.2} % | {:.1} |",
-            layers.len(),
-            layers.iter().map(|l| l.outer - l.inner).fold(0.0, f64::max),
-            c.flux_ratio,
-            c.flux_ratio_stderr,
-            c.chi2_per_dof,
-            c.dof,
-            c.max_z,
-            cut(&report),
-            t.elapsed().as_secs_f64()
+        observer.line(&row(
+            (dn, &layers),
+            &receiver::compare(&reference, &layered[0]),
+            &report,
+            t.elapsed().as_secs_f64(),
         ));
         profiles.push((
             format!("twin, Δn {dn}, {} layers", layers.len()),
@@ -135,9 +113,60 @@ pub fn validate(job: &ValidateJob, observer: &dyn Observer) -> Result<()> {
     Ok(())
 }
 
+/// The share of a measurement's photons cut at `max_depth`, in per cent.
+fn cut(report: &Report) -> f64 {
+    100.0 * report.stats.depth_limited as f64 / report.stats.photons_emitted.max(1) as f64
+}
+
+/// Measures the GRIN fiber on its first receiver (photon stream pass 0) and reports it.
+fn measure_grin(
+    job: &ValidateJob,
+    (grin, settings): (&Scene, &Settings),
+    observer: &dyn Observer,
+) -> Result<Measurement> {
+    let rec = &grin.receivers[0];
+    let t = std::time::Instant::now();
+    let (mut reference, _, report) = crate::render::measure(grin, settings, 0, observer)?;
+    stop_if_partial(&report)?;
+    let reference = reference.swap_remove(0);
+    if reference.flux.0 <= 0.0 {
+        return Err(Error::Usage(format!(
+            "{}: receiver '{}' received no light from the GRIN fiber: nothing to compare",
+            job.scene.display(),
+            rec.name
+        )));
+    }
+    observer.line(&format!(
+        "GRIN fiber: receiver '{}' flux {:.6e} ± {:.1e} W ({} photons, {:.2} % cut at max_depth, {:.1} s)",
+        rec.name,
+        reference.flux.0,
+        reference.flux.1,
+        settings.receiver_photons,
+        cut(&report),
+        t.elapsed().as_secs_f64()
+    ));
+    Ok(reference)
+}
+
+/// One row of the comparison table: a twin of index step `dn` and `layers`.
+fn row((dn, layers): (f64, &[Layer]), c: &Comparison, report: &Report, seconds: f64) -> String {
+    format!(
+        "| {dn} | {} | {:.4} | {:.5} ± {:.5} | {:.3} | {} | {:.2} | {:.2} % | {:.1} |",
+        layers.len(),
+        layers.iter().map(|l| l.outer - l.inner).fold(0.0, f64::max),
+        c.flux_ratio,
+        c.flux_ratio_stderr,
+        c.chi2_per_dof,
+        c.dof,
+        c.max_z,
+        cut(report),
+        seconds
+    )
+}
+
 /// An interrupted measurement ends the comparison (a partial one would compare unequal
 /// photon counts without saying so).
-fn stop_if_partial(report: &crate::report::Report) -> Result<()> {
+fn stop_if_partial(report: &Report) -> Result<()> {
     match &report.partial {
         Some(p) => Err(Error::Interrupted(format!(
             "validate stopped after {p}; nothing written"

@@ -121,11 +121,11 @@ fn straight_light(
 fn curved_light(
     tracer: &Tracer,
     (vp, m): (&VisiblePoint, usize),
-    origin: DVec3,
     light: &Light,
     uv: (f64, f64),
     stats: &mut Stats,
 ) -> Rgb {
+    let origin = offset(vp.position, vp.normal);
     let Some(anchor) = light.anchor(uv) else {
         return Rgb::ZERO;
     };
@@ -171,14 +171,9 @@ pub fn direct(tracer: &Tracer, vp: &VisiblePoint, rng: &mut impl Rng, stats: &mu
     for light in &scene.lights {
         let lit = match graded {
             None => straight_light(tracer, vp, origin, light, (rng.gen(), rng.gen())),
-            Some(m) if !light.is_hittable() => curved_light(
-                tracer,
-                (vp, m),
-                origin,
-                light,
-                (rng.gen(), rng.gen()),
-                stats,
-            ),
+            Some(m) if !light.is_hittable() => {
+                curved_light(tracer, (vp, m), light, (rng.gen(), rng.gen()), stats)
+            }
             Some(_) => Rgb::ZERO,
         };
         radiance += lit;

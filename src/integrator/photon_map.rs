@@ -15,7 +15,7 @@ use super::{CameraRay, Integrator, Sample};
 use crate::bsdf::Bsdf;
 use crate::color::Rgb;
 use crate::film::{Layer, LayerKind};
-use crate::photon::{shoot, Batch, PhotonMap, Sources};
+use crate::photon::{shoot, Batch, PhotonMap, Photons, Sources};
 use crate::report::Report;
 use crate::scene::Scene;
 use crate::settings::{PhotonSettings, Settings};
@@ -131,15 +131,13 @@ impl<'a> PhotonMapper<'a> {
         stop: &(dyn Fn() -> bool + Sync),
     ) -> Option<PhotonMap> {
         let t0 = Instant::now();
-        let (sink, stats) = shoot(
-            self.tracer,
-            &self.sources,
+        let photons = Photons {
             batch,
-            self.seed,
-            index as u64,
+            seed: self.seed,
+            pass: index as u64,
             count,
-            stop,
-        );
+        };
+        let (sink, stats) = shoot(self.tracer, &self.sources, photons, stop);
         let t1 = Instant::now();
         report.stats.add(&stats);
         if stop() {

@@ -174,7 +174,37 @@ pub struct Sink {
     pub budget: Budget,
 }
 
-/// Traces `count` photons of pass `pass` (random streams keyed by `seed`) and returns what they left, in photon order, with
+/// Which photons a batch traces: photons `0..count` of pass `pass`, their random streams
+/// keyed by `seed` and by what the batch is for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Photons {
+    /// What the batch is for.
+    pub batch: Batch,
+    /// Seed of the random streams.
+    pub seed: u64,
+    /// The pass.
+    pub pass: u64,
+    /// How many.
+    pub count: u64,
+}
+
+impl Photons {
+    /// The random stream of photon `i`, advanced past its launch from `sources`, and the
+    /// launch (None where the chosen source emits nothing for these numbers).
+    fn launch(&self, tracer: &Tracer, sources: &Sources, i: u64) -> (Pcg64Mcg, Option<Launch>) {
+        let purpose = match self.batch {
+            Batch::Caustic => Purpose::CausticPhotons,
+            Batch::Global => Purpose::GlobalPhotons,
+            Batch::Receivers => Purpose::ReceiverPhotons,
+        };
+        let mut rng = stream(self.seed, purpose, self.pass, i);
+        let u = [rng.gen(), rng.gen(), rng.gen(), rng.gen(), rng.gen()];
+        let launch = sources.emit(tracer, u);
+        (rng, launch)
+    }
+}
+
+/// Traces `photons` and returns what they left, in photon order, with
 /// the transport statistics. Runs on the current rayon pool. Once `stop` answers true, chunks
 /// not yet started are skipped: the photons traced are then a subset of whole chunks,
 /// counted in the statistics' `photons_emitted` (their powers stay those of a batch of
@@ -182,20 +212,13 @@ pub struct Sink {
 pub fn shoot(
     tracer: &Tracer,
     sources: &Sources,
-    batch: Batch,
-    seed: u64,
-    pass: u64,
-    count: u64,
+    photons: Photons,
     stop: &(dyn Fn() -> bool + Sync),
 ) -> (Sink, Stats) {
+    let Photons { batch, count, .. } = photons;
     if sources.is_empty() || count == 0 {
         return (Sink::default(), Stats::default());
     }
-    let purpose = match batch {
-        Batch::Caustic => Purpose::CausticPhotons,
-        Batch::Global => Purpose::GlobalPhotons,
-        Batch::Receivers => Purpose::ReceiverPhotons,
-    };
     let chunks: Vec<(Sink, Stats)> = (0..count.div_ceil(CHUNK))
         .into_par_iter()
         .map(|c| {
@@ -205,7 +228,7 @@ pub fn shoot(
                 return (stored, stats);
             }
             for i in c * CHUNK..((c + 1) * CHUNK).min(count) {
-                let (mut rng, emission) = launch(tracer, sources, purpose, seed, pass, i);
+                let (mut rng, emission) = photons.launch(tracer, sources, i);
                 stats.photons_emitted += 1;
                 if let Some(e) = emission {
                     let photon = Tagged {
@@ -215,11 +238,9 @@ pub fn shoot(
                     };
                     trace_photon(
                         tracer,
-                        e,
-                        photon,
-                        &mut rng,
+                        (e, photon),
+                        (&mut rng, &mut stats),
                         &mut stored,
-                        &mut stats,
                         &mut |_| {},
                     );
                 }
@@ -236,22 +257,6 @@ pub fn shoot(
         stats.add(&s);
     }
     (sink, stats)
-}
-
-/// Photon `i` of pass `pass` of a batch: its random stream, advanced past its emission, and
-/// its launch (None where the chosen source emits nothing for these numbers).
-fn launch(
-    tracer: &Tracer,
-    sources: &Sources,
-    purpose: Purpose,
-    seed: u64,
-    pass: u64,
-    i: u64,
-) -> (Pcg64Mcg, Option<Launch>) {
-    let mut rng = stream(seed, purpose, pass, i);
-    let u = [rng.gen(), rng.gen(), rng.gen(), rng.gen(), rng.gen()];
-    let emission = sources.emit(tracer, u);
-    (rng, emission)
 }
 
 /// A photon's place in its batch.
@@ -279,8 +284,14 @@ pub fn photon_paths(
     if sources.is_empty() {
         return paths;
     }
+    let photons = Photons {
+        batch: Batch::Receivers,
+        seed,
+        pass,
+        count,
+    };
     for i in 0..count {
-        let (mut rng, emission) = launch(tracer, sources, Purpose::ReceiverPhotons, seed, pass, i);
+        let (mut rng, emission) = photons.launch(tracer, sources, i);
         if let Some(e) = emission {
             let tag = Tagged {
                 index: i,
@@ -289,9 +300,13 @@ pub fn photon_paths(
             };
             let mut path = Vec::new();
             let (mut sink, mut stats) = (Sink::default(), Stats::default());
-            trace_photon(tracer, e, tag, &mut rng, &mut sink, &mut stats, &mut |p| {
-                path.push(p)
-            });
+            trace_photon(
+                tracer,
+                (e, tag),
+                (&mut rng, &mut stats),
+                &mut sink,
+                &mut |p| path.push(p),
+            );
             paths.push(path);
         }
     }
@@ -314,6 +329,20 @@ struct PhotonWalk<'a, 'p> {
     /// that far, so a figure's lines stay short).
     last: DVec3,
     reach: f64,
+}
+
+impl PhotonWalk<'_, '_> {
+    /// How a photon that left the world in `medium` ended: out through the face it last left
+    /// a dielectric by, reflected, or missed; lost when it escaped from inside a dielectric
+    /// (the world sphere cuts the object).
+    fn escaped(&self, medium: Option<usize>) -> Fate {
+        match self.left_through {
+            _ if medium != self.ambient => Fate::Lost,
+            Some(p) => Fate::OutThrough(p),
+            None if self.reflected => Fate::Reflected,
+            None => Fate::Missed,
+        }
+    }
 }
 
 impl chain::Observer for PhotonWalk<'_, '_> {
@@ -352,20 +381,19 @@ impl chain::Observer for PhotonWalk<'_, '_> {
     }
 }
 
-/// Follows one photon from its launch, storing it into `stored` as its batch says and
-/// booking its power in `stored.budget` when it ends; `path` is shown every point it passes.
+/// Follows one photon from its launch, drawing from `rng` and adding to `stats`, storing it
+/// into `stored` as its batch says and booking its power in `stored.budget` when it ends;
+/// `path` is shown every point it passes.
 fn trace_photon(
     tracer: &Tracer,
-    launch: Launch,
-    tag: Tagged,
-    rng: &mut impl Rng,
+    (launch, tag): (Launch, Tagged),
+    (rng, stats): (&mut impl Rng, &mut Stats),
     stored: &mut Sink,
-    stats: &mut Stats,
     path: &mut dyn FnMut(DVec3),
 ) {
     let scene = tracer.scene;
     let e = launch.emission;
-    stored.budget.emitted += (e.power / tag.count as f64).element_sum() / 3.0;
+    stored.budget.emitted += (e.power / tag.count as f64).mean();
     path(e.origin);
     let mut walk = PhotonWalk {
         tag,
@@ -396,15 +424,7 @@ fn trace_photon(
                 direction,
                 ..
             } => (position, normal, albedo, direction),
-            // Escaping from inside a dielectric (the world sphere cuts it) is lost.
-            End::Escaped { .. } => {
-                break match walk.left_through {
-                    _ if chain.medium != scene.ambient => Fate::Lost,
-                    Some(p) => Fate::OutThrough(p),
-                    None if walk.reflected => Fate::Reflected,
-                    None => Fate::Missed,
-                }
-            }
+            End::Escaped { .. } => break walk.escaped(chain.medium),
             End::Emitter { .. } | End::Absorbed => break Fate::Absorbed,
             End::Lost | End::DepthLimit | End::Stopped => break Fate::Lost,
         };
@@ -439,5 +459,5 @@ fn trace_photon(
             medium: chain.medium,
         };
     };
-    stored.budget.book(fate, walk.power.element_sum() / 3.0);
+    stored.budget.book(fate, walk.power.mean());
 }

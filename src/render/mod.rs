@@ -11,7 +11,7 @@
 use crate::error::{Error, Result};
 use crate::film::Film;
 use crate::integrator::{CameraRay, Integrator, PathTracer, PhotonMapper, Plan, Sample};
-use crate::photon::{shoot, Batch, Budget, Sources};
+use crate::photon::{shoot, Batch, Budget, Photons, Sources};
 use crate::receiver::{self, Measurement};
 pub use crate::report::Report;
 use crate::sampling::{stream, Purpose};
@@ -128,26 +128,9 @@ pub fn render_with<I: Integrator>(
     passes: Passes,
     observer: &dyn Observer,
 ) -> Result<(Film, Report)> {
-    let camera = tracer.scene.camera.as_ref().ok_or_else(|| {
-        Error::Usage(format!(
-            "{}: the scene has no [camera]",
-            tracer.scene.path().display()
-        ))
-    })?;
-    let (w, h) = (camera.width as usize, camera.height as usize);
+    let (w, h) = film_size(tracer)?;
     let layers = integrator.layers();
-    let mut tiles: Vec<Tile> = Vec::new();
-    for ty in 0..h.div_ceil(TILE) {
-        for tx in 0..w.div_ceil(TILE) {
-            let (x0, y0) = (tx * TILE, ty * TILE);
-            let (x1, y1) = ((x0 + TILE).min(w), (y0 + TILE).min(h));
-            tiles.push(Tile {
-                x0,
-                y0,
-                film: Film::new(x1 - x0, y1 - y0, layers),
-            });
-        }
-    }
+    let mut tiles = tiles(w, h, layers);
     let pool = thread_pool(settings.threads)?;
     let start = Instant::now();
     let mut report = Report::default();
@@ -177,24 +160,19 @@ pub fn render_with<I: Integrator>(
             break;
         };
         let t0 = Instant::now();
-        let done: Vec<(Stats, bool)> = pool.install(|| {
-            tiles
-                .par_iter_mut()
-                .map(|tile| {
-                    let mut stats = Stats::default();
-                    let run = !stop();
-                    if run {
-                        let sampling = Sampling {
-                            seed: settings.seed,
-                            spp: settings.spp,
-                            pass,
-                        };
-                        camera_tile(integrator, &prepared, (tracer, sampling), tile, &mut stats);
-                    }
-                    observer.progress(Progress::Tile);
-                    (stats, run)
-                })
-                .collect()
+        let sampling = Sampling {
+            seed: settings.seed,
+            spp: settings.spp,
+            pass,
+        };
+        let done = pool.install(|| {
+            camera_pass(
+                integrator,
+                &prepared,
+                (tracer, sampling),
+                &mut tiles,
+                observer,
+            )
         });
         report.seconds.2 += t0.elapsed().as_secs_f64();
         for (s, _) in &done {
@@ -218,6 +196,57 @@ pub fn render_with<I: Integrator>(
     }
     observer.progress(Progress::Done);
     Ok((assemble(&tiles, w, h, layers), report))
+}
+
+/// The camera's film size in pixels, or an error naming the scene that has no camera.
+fn film_size(tracer: &Tracer) -> Result<(usize, usize)> {
+    let camera = tracer.scene.camera.as_ref().ok_or_else(|| {
+        Error::Usage(format!(
+            "{}: the scene has no [camera]",
+            tracer.scene.path().display()
+        ))
+    })?;
+    Ok((camera.width as usize, camera.height as usize))
+}
+
+/// The tiles of a `w` × `h` film of `layers`, row by row.
+fn tiles(w: usize, h: usize, layers: &[crate::film::Layer]) -> Vec<Tile> {
+    let mut tiles = Vec::new();
+    for ty in 0..h.div_ceil(TILE) {
+        for tx in 0..w.div_ceil(TILE) {
+            let (x0, y0) = (tx * TILE, ty * TILE);
+            let (x1, y1) = ((x0 + TILE).min(w), (y0 + TILE).min(h));
+            tiles.push(Tile {
+                x0,
+                y0,
+                film: Film::new(x1 - x0, y1 - y0, layers),
+            });
+        }
+    }
+    tiles
+}
+
+/// One pass of camera samples over every tile, in parallel; per tile its statistics and
+/// whether it ran (tiles not started when the observer asks to stop are left as they were).
+fn camera_pass<I: Integrator>(
+    integrator: &I,
+    prepared: &I::Pass,
+    (tracer, sampling): (&Tracer, Sampling),
+    tiles: &mut [Tile],
+    observer: &dyn Observer,
+) -> Vec<(Stats, bool)> {
+    tiles
+        .par_iter_mut()
+        .map(|tile| {
+            let mut stats = Stats::default();
+            let run = !observer.stop_requested();
+            if run {
+                camera_tile(integrator, prepared, (tracer, sampling), tile, &mut stats);
+            }
+            observer.progress(Progress::Tile);
+            (stats, run)
+        })
+        .collect()
 }
 
 /// The whole film of the tiles' films.
@@ -320,15 +349,13 @@ pub fn measure(
     });
     let t0 = Instant::now();
     let (mut sink, stats) = pool.install(|| {
-        shoot(
-            &tracer,
-            &sources,
-            Batch::Receivers,
-            settings.seed,
+        let photons = Photons {
+            batch: Batch::Receivers,
+            seed: settings.seed,
             pass,
             count,
-            &|| observer.stop_requested(),
-        )
+        };
+        shoot(&tracer, &sources, photons, &|| observer.stop_requested())
     });
     observer.progress(Progress::Done);
     let traced = stats.photons_emitted;
