@@ -45,4 +45,5 @@ pub mod sampling;
 pub mod scene;
 pub mod settings;
 pub mod shapes;
+pub mod spectrum;
 pub mod transport;

@@ -149,6 +149,17 @@ fn bad_input_fails_with_a_message_and_no_panic() {
             trace_args(media, "luneburg", "0,0,0", "0,0,1", "1", "--stepper euler"),
             "unknown stepper",
         ),
+        (
+            trace_args(
+                media,
+                "grin_rod_chromatic",
+                "0,0,0",
+                "0,0,1",
+                "1",
+                "--wavelength 1000",
+            ),
+            "--wavelength 1000: must be from 360 to 830 nm",
+        ),
     ];
     for (args, needle) in &cases {
         let args: Vec<&str> = args.iter().map(String::as_str).collect();

@@ -30,7 +30,13 @@ const BAD: &[(&str, usize, usize, &str)] = &[
     // Missing key: at the table.
     ("[[medium]]\nname = \"a\"\nprofile = \"sech\"\nn0 = 1.5\n", 1, 1, "key `g`: is missing"),
     // Wrong type.
-    ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = \"high\"\n", 4, 1, "key `n`: expected a number, got string"),
+    ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = \"high\"\n", 4, 1, "key `n`: unknown material 'high' (known: BK7, F2, fused_silica, water)"),
+    // Wavelength: an unknown spectrum, a malformed one, a band outside 360–830 nm, a
+    // parabolic rod with both `a` and `g`.
+    ("[[light]]\ntype = \"point\"\nposition = [0, 0, 0]\nintensity = 1\nspectrum = \"D65\"\n", 5, 1, "unknown spectrum 'D65'"),
+    ("[[light]]\ntype = \"point\"\nposition = [0, 0, 0]\nintensity = 1\nspectrum = { gaussian = [450.0] }\n", 5, 1, "bad `gaussian` spectrum"),
+    ("[[receiver]]\nname = \"r\"\ncenter = [0, 0, 0]\nsize = [1, 1]\nbins = [2, 2]\nbands = [[300.0, 400.0]]\n", 6, 1, "each band is [lo_nm, hi_nm]"),
+    ("[[medium]]\nname = \"a\"\nprofile = \"parabolic\"\nn0 = 1.5\na = 0.1\ng = 0.3\n", 5, 1, "give exactly one of `a`"),
     // Unknown profile.
     ("[[medium]]\nname = \"a\"\nprofile = \"wobbly\"\n", 3, 1, "unknown profile 'wobbly'"),
     // n ≤ 0.

@@ -335,6 +335,12 @@ fn measure_receivers(
             m.flux.1,
             csv.display()
         ));
+        for ((lo, hi), b) in r.bands.iter().zip(&m.bands) {
+            lines.push(format!(
+                "  band {lo}–{hi} nm: flux {:.6e} ± {:.1e} W",
+                b.flux.0, b.flux.1
+            ));
+        }
     }
     if let Some(p) = &report.partial {
         observer.line(&format!("PARTIAL (interrupted): {p}"));

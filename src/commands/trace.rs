@@ -8,6 +8,7 @@ use crate::error::{Error, Result};
 use crate::media::Medium;
 use crate::output::{Kind, Outputs};
 use crate::plot::{self, Labels, Panel};
+use crate::spectrum::{LAMBDA_MAX, LAMBDA_MIN};
 use glam::DVec3;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -52,6 +53,9 @@ pub struct TraceJob {
     pub dir: DVec3,
     /// Arclength to trace (scene units).
     pub length: f64,
+    /// Vacuum wavelength, nm (None: [`crate::spectrum::LAMBDA_D`]); a dispersive medium is traced as it is
+    /// at this wavelength.
+    pub wavelength: Option<f64>,
     /// The stepper.
     pub stepper: StepperKind,
     /// The step control.
@@ -112,7 +116,20 @@ impl TraceControl {
 /// atomically after checking that neither can overwrite an input or another output.
 pub fn trace(job: &TraceJob, observer: &dyn Observer) -> Result<MarchOutcome> {
     let (scene, _) = crate::scene::load_scene(&job.scene)?;
-    let medium = scene.medium(&job.medium)?;
+    let reference = scene.medium(&job.medium)?;
+    let dispersed = match job.wavelength {
+        None => None,
+        Some(nm) if (LAMBDA_MIN..=LAMBDA_MAX).contains(&nm) => scene
+            .media()
+            .index(&job.medium)
+            .and_then(|i| scene.media().at_wavelength(i, nm)),
+        Some(nm) => {
+            return Err(Error::Usage(format!(
+                "--wavelength {nm}: must be from {LAMBDA_MIN} to {LAMBDA_MAX} nm"
+            )))
+        }
+    };
+    let medium = dispersed.as_deref().unwrap_or(reference);
     let length = positive("length", job.length)?;
     for (flag, v) in [("from", job.from), ("dir", job.dir)] {
         if !v.is_finite() {

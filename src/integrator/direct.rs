@@ -165,7 +165,7 @@ fn power_heuristic(a: f64, b: f64) -> f64 {
 /// caustic map's.
 pub fn direct(tracer: &Tracer, vp: &VisiblePoint, rng: &mut impl Rng, stats: &mut Stats) -> Rgb {
     let scene = tracer.scene;
-    let graded = vp.medium.filter(|&m| !scene.medium_at(m).is_uniform());
+    let graded = vp.medium.filter(|&m| !tracer.medium(m).is_uniform());
     let origin = offset(vp.position, vp.normal);
     let mut radiance = Rgb::ZERO;
     for light in &scene.lights {

@@ -28,6 +28,7 @@ use crate::environment::Environment;
 use crate::lights::{Emission, Light};
 use crate::receiver::Detection;
 use crate::sampling::{stream, Purpose};
+use crate::spectrum::Spectrum;
 use crate::transport::chain::{self, End, Policy, Ray};
 use crate::transport::{offset, Stats, Tracer};
 use glam::DVec3;
@@ -52,15 +53,22 @@ struct Placed<'a> {
     source: Source<'a>,
     /// The medium its photons start in.
     medium: Option<usize>,
+    /// The shape of its spectrum.
+    spectrum: &'a Spectrum,
 }
 
-/// A photon leaving a source: where, which way, with what power, in which medium.
+/// A photon leaving a source: where, which way, with what power, in which medium, at which
+/// wavelength.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Launch {
     /// Where, which way and with what power (already divided by the selection probability).
     pub emission: Emission,
     /// The medium it starts in.
     pub medium: Option<usize>,
+    /// Its vacuum wavelength (nm), drawn from its source's spectrum when the scene is
+    /// spectral ([`crate::scene::Scene::is_spectral`]) and the photon feeds receivers; None:
+    /// it travels at [`crate::spectrum::LAMBDA_D`] (as camera paths do).
+    pub wavelength: Option<f64>,
 }
 
 /// The scene's photon sources with a discrete distribution proportional to their power.
@@ -78,7 +86,7 @@ impl<'a> Sources<'a> {
         let scene = tracer.scene;
         let mut sources = Vec::new();
         let mut weights = Vec::new();
-        for light in &scene.lights {
+        for (i, light) in scene.lights.iter().enumerate() {
             let medium = match light.origin() {
                 Some(p) => tracer.medium_containing(p),
                 None => scene.ambient,
@@ -86,6 +94,7 @@ impl<'a> Sources<'a> {
             sources.push(Placed {
                 source: Source::Light(light),
                 medium,
+                spectrum: scene.light_spectrum(i),
             });
             weights.push(light.selection_power(tracer.ball));
         }
@@ -93,6 +102,7 @@ impl<'a> Sources<'a> {
             sources.push(Placed {
                 source: Source::Environment(env),
                 medium: scene.ambient,
+                spectrum: scene.light_spectrum(usize::MAX),
             });
             weights.push(env.selection_power(tracer.ball));
         }
@@ -119,17 +129,21 @@ impl<'a> Sources<'a> {
     }
 
     /// A photon for uniform numbers `u` (u[0] picks the source), with the power divided by
-    /// the selection probability. Environment radiance is given as in vacuum (see
+    /// the selection probability, and the source's spectrum. Environment radiance is given as in vacuum (see
     /// [`crate::transport::chain::Chain::environment_scale`]): in an ambient medium of index
     /// n at the photon's start, its power is n² times the vacuum estimate.
-    fn emit(&self, tracer: &Tracer, u: [f64; 5]) -> Option<Launch> {
+    fn emit(&self, tracer: &Tracer, u: [f64; 5]) -> Option<(Launch, &Spectrum)> {
         let i = self
             .cdf
             .partition_point(|c| *c <= u[0])
             .min(self.cdf.len() - 1);
         let p = self.cdf[i] - if i == 0 { 0.0 } else { self.cdf[i - 1] };
         let rest = [u[1], u[2], u[3], u[4]];
-        let Placed { source, medium } = self.sources[i];
+        let Placed {
+            source,
+            medium,
+            spectrum,
+        } = self.sources[i];
         let e = match source {
             Source::Light(l) => l.emit(rest, tracer.ball)?,
             Source::Environment(env) => {
@@ -141,13 +155,15 @@ impl<'a> Sources<'a> {
                 }
             }
         };
-        Some(Launch {
+        let launch = Launch {
             emission: Emission {
                 power: e.power / p,
                 ..e
             },
             medium,
-        })
+            wavelength: None,
+        };
+        Some((launch, spectrum))
     }
 }
 
@@ -199,7 +215,13 @@ impl Photons {
         };
         let mut rng = stream(self.seed, purpose, self.pass, i);
         let u = [rng.gen(), rng.gen(), rng.gen(), rng.gen(), rng.gen()];
-        let launch = sources.emit(tracer, u);
+        let launch = sources.emit(tracer, u).map(|(launch, spectrum)| {
+            let spectral = self.batch == Batch::Receivers && tracer.scene.is_spectral();
+            Launch {
+                wavelength: spectral.then(|| spectrum.sample(rng.gen())),
+                ..launch
+            }
+        });
         (rng, launch)
     }
 }
@@ -317,6 +339,8 @@ pub fn photon_paths(
 /// and where it last left a dielectric, and the points it passes.
 struct PhotonWalk<'a, 'p> {
     tag: Tagged,
+    /// Vacuum wavelength, nm.
+    wavelength: f64,
     ambient: Option<usize>,
     /// The photon's power at the start of the current chain.
     power: Rgb,
@@ -365,6 +389,7 @@ impl chain::Observer for PhotonWalk<'_, '_> {
                     bin: bin as u32,
                     photon: self.tag.index,
                     flux: (self.power * weight).element_sum() / 3.0,
+                    wavelength: self.wavelength,
                 });
             }
         }
@@ -391,12 +416,16 @@ fn trace_photon(
     stored: &mut Sink,
     path: &mut dyn FnMut(DVec3),
 ) {
+    // A photon with a wavelength of its own sees the dispersive media at it.
+    let dispersed = launch.wavelength.map(|nm| tracer.at_wavelength(nm));
+    let tracer = dispersed.as_ref().unwrap_or(tracer);
     let scene = tracer.scene;
     let e = launch.emission;
     stored.budget.emitted += (e.power / tag.count as f64).mean();
     path(e.origin);
     let mut walk = PhotonWalk {
         tag,
+        wavelength: tracer.wavelength(),
         ambient: scene.ambient,
         power: e.power / tag.count as f64,
         detections: &mut stored.detections,

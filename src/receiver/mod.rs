@@ -32,6 +32,8 @@ pub struct Receiver {
     pub size: (f64, f64),
     /// Bins along u and v.
     pub bins: (usize, usize),
+    /// Wavelength bands [lo, hi) in nm measured apart (besides the total), if any.
+    pub bands: Vec<(f64, f64)>,
 }
 
 /// One photon crossing a receiver.
@@ -45,6 +47,8 @@ pub struct Detection {
     pub photon: u64,
     /// Flux, W (mean over channels).
     pub flux: f64,
+    /// The photon's vacuum wavelength, nm.
+    pub wavelength: f64,
 }
 
 impl Receiver {

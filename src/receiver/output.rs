@@ -7,12 +7,21 @@ use crate::error::Result;
 use crate::plot::{canvas, save, text, Color, Labels, Panel, PALETTE};
 use std::path::Path;
 
-/// Writes `x,y,irradiance,stderr` (bin centres in the receiver's u, v frame), one row per bin.
+/// Writes `x,y,irradiance,stderr` (bin centres in the receiver's u, v frame), then
+/// `irradiance_LO_HI,stderr_LO_HI` for each wavelength band [LO, HI) nm, one row per bin.
 pub fn write_csv(rec: &Receiver, m: &Measurement, path: &Path) -> Result<()> {
-    let mut out = String::from("x,y,irradiance,stderr\n");
+    let mut out = String::from("x,y,irradiance,stderr");
+    for (lo, hi) in &rec.bands {
+        out += &format!(",irradiance_{lo}_{hi},stderr_{lo}_{hi}");
+    }
+    out.push('\n');
     for (k, (e, se)) in m.irradiance.iter().zip(&m.stderr).enumerate() {
         let (x, y) = rec.bin_center(k);
-        out += &format!("{x:.6e},{y:.6e},{e:.6e},{se:.6e}\n");
+        out += &format!("{x:.6e},{y:.6e},{e:.6e},{se:.6e}");
+        for band in &m.bands {
+            out += &format!(",{:.6e},{:.6e}", band.irradiance[k], band.stderr[k]);
+        }
+        out.push('\n');
     }
     crate::output::write_text(path, &out)
 }

@@ -12,60 +12,84 @@ pub struct Measurement {
     pub stderr: Vec<f64>,
     /// Total flux on the receiver, W, and its standard error.
     pub flux: (f64, f64),
+    /// The same from the photons in each of the receiver's wavelength bands, in order (their
+    /// own `bands` empty).
+    pub bands: Vec<Measurement>,
 }
 
 /// The receivers' measurements from the detections of `photons` photons (each detection's
-/// flux already divided by `photons`, in photon order). A bin's value is the sum Σ x_i over
-/// photons of their flux into it; as the photons are independent, its variance is
-/// N·Var(x) = Σ x² − (Σ x)²/N (crossings of one bin by one photon are added first).
+/// flux already divided by `photons`, in photon order), with each receiver's bands.
 pub fn measure(receivers: &[Receiver], detections: &[Detection], photons: u64) -> Vec<Measurement> {
-    let n = photons.max(1) as f64;
     receivers
         .iter()
         .enumerate()
         .map(|(r, rec)| {
-            let bins = rec.bins.0 * rec.bins.1;
-            let (mut sum, mut sq) = (vec![0.0; bins], vec![0.0; bins]);
-            let (mut total, mut total_sq) = (0.0, 0.0);
-            let mut photon_total = (u64::MAX, 0.0);
-            let mut last: Option<(u64, u32, f64)> = None;
-            let close = |(_, bin, x): (u64, u32, f64), sq: &mut Vec<f64>| sq[bin as usize] += x * x;
-            for d in detections.iter().filter(|d| d.receiver == r as u32) {
-                sum[d.bin as usize] += d.flux;
-                total += d.flux;
-                match &mut last {
-                    Some((p, b, x)) if *p == d.photon && *b == d.bin => *x += d.flux,
-                    _ => {
-                        if let Some(l) = last {
-                            close(l, &mut sq);
-                        }
-                        last = Some((d.photon, d.bin, d.flux));
-                    }
-                }
-                if photon_total.0 == d.photon {
-                    photon_total.1 += d.flux;
-                } else {
-                    total_sq += photon_total.1 * photon_total.1;
-                    photon_total = (d.photon, d.flux);
-                }
-            }
-            if let Some(l) = last {
-                close(l, &mut sq);
-            }
-            total_sq += photon_total.1 * photon_total.1;
-            let area = rec.bin_area();
-            let se = |s: f64, q: f64| (q - s * s / n).max(0.0).sqrt();
-            Measurement {
-                irradiance: sum.iter().map(|s| s / area).collect(),
-                stderr: sum
-                    .iter()
-                    .zip(&sq)
-                    .map(|(s, q)| se(*s, *q) / area)
-                    .collect(),
-                flux: (total, se(total, total_sq)),
-            }
+            let mine = |d: &&Detection| d.receiver == r as u32;
+            let mut m = tally(rec, detections.iter().filter(mine), photons);
+            m.bands = rec
+                .bands
+                .iter()
+                .map(|&(lo, hi)| {
+                    let inside = |d: &&Detection| mine(d) && (lo..hi).contains(&d.wavelength);
+                    tally(rec, detections.iter().filter(inside), photons)
+                })
+                .collect();
+            m
         })
         .collect()
+}
+
+/// One receiver's measurement from its detections among `photons` photons. A bin's value is
+/// the sum Σ x_i over photons of their flux into it; as the photons are independent, its
+/// variance is N·Var(x) = Σ x² − (Σ x)²/N (crossings of one bin by one photon are added
+/// first).
+fn tally<'a>(
+    rec: &Receiver,
+    detections: impl Iterator<Item = &'a Detection>,
+    photons: u64,
+) -> Measurement {
+    let n = photons.max(1) as f64;
+    let bins = rec.bins.0 * rec.bins.1;
+    let (mut sum, mut sq) = (vec![0.0; bins], vec![0.0; bins]);
+    let (mut total, mut total_sq) = (0.0, 0.0);
+    let mut photon_total = (u64::MAX, 0.0);
+    let mut last: Option<(u64, u32, f64)> = None;
+    let close = |(_, bin, x): (u64, u32, f64), sq: &mut Vec<f64>| sq[bin as usize] += x * x;
+    for d in detections {
+        sum[d.bin as usize] += d.flux;
+        total += d.flux;
+        match &mut last {
+            Some((p, b, x)) if *p == d.photon && *b == d.bin => *x += d.flux,
+            _ => {
+                if let Some(l) = last {
+                    close(l, &mut sq);
+                }
+                last = Some((d.photon, d.bin, d.flux));
+            }
+        }
+        if photon_total.0 == d.photon {
+            photon_total.1 += d.flux;
+        } else {
+            total_sq += photon_total.1 * photon_total.1;
+            photon_total = (d.photon, d.flux);
+        }
+    }
+    if let Some(l) = last {
+        close(l, &mut sq);
+    }
+    total_sq += photon_total.1 * photon_total.1;
+    let area = rec.bin_area();
+    let se = |s: f64, q: f64| (q - s * s / n).max(0.0).sqrt();
+    Measurement {
+        irradiance: sum.iter().map(|s| s / area).collect(),
+        stderr: sum
+            .iter()
+            .zip(&sq)
+            .map(|(s, q)| se(*s, *q) / area)
+            .collect(),
+        flux: (total, se(total, total_sq)),
+        bands: Vec::new(),
+    }
 }
 
 /// A radial profile: per ring, (centre radius, mean irradiance, its standard error).

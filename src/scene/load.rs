@@ -2,11 +2,11 @@
 //! resolved, and the [`Settings`] of its `[render]` and `[output]` tables; every error located
 //! at file:line:col and naming the key.
 
-use super::media::read_medium;
+use super::media::{read_medium, Profile};
 use super::model::{Description, Media, Scene, Shape, Surface};
 use super::objects::{
     read_camera, read_environment, read_light, read_material, read_output, read_receiver,
-    read_render, read_shape, Interior,
+    read_render, read_shape, read_spectrum, Interior,
 };
 use super::source::Source;
 use super::table::{SpannedTable, TableReader};
@@ -17,6 +17,7 @@ use crate::material::Material;
 use crate::media::UniformMedium;
 use crate::receiver::Receiver;
 use crate::settings::Settings;
+use crate::spectrum::{Dispersion, Spectrum};
 use std::path::Path;
 use toml::Spanned;
 
@@ -68,7 +69,10 @@ fn read_media(source: &Source, tables: Vec<Spanned<SpannedTable>>) -> Result<Med
         let name = named(&mut t, media.names(), "medium")?;
         let medium = read_medium(&mut t)?;
         t.finish()?;
-        media.add(name, medium);
+        match medium {
+            Profile::Fixed(m) => media.add(name, m),
+            Profile::Dispersive(at) => media.add_dispersive(name, at),
+        };
     }
     Ok(media)
 }
@@ -90,9 +94,13 @@ fn read_materials(
         let interior = match interior {
             None => None,
             Some(Interior::Medium(name)) => Some(medium_index(&t, "interior", &name, media)?),
-            Some(Interior::Ior(n)) => {
+            Some(Interior::Ior(Dispersion::Constant(n))) => {
                 Some(media.add(format!("{name} (ior {n})"), Box::new(UniformMedium { n })))
             }
+            Some(Interior::Ior(d)) => Some(media.add_dispersive(
+                format!("{name} (dispersive ior)"),
+                Box::new(move |nm| Box::new(UniformMedium { n: d.at(nm) })),
+            )),
         };
         t.finish()?;
         m.list.push(material);
@@ -153,11 +161,12 @@ fn read_shapes(
     Ok(shapes)
 }
 
-fn read_lights(
-    source: &Source,
-    tables: Vec<Spanned<SpannedTable>>,
-) -> Result<(Vec<Light>, Option<Environment>)> {
+/// The file's lights, the shape of each one's spectrum, and the environment.
+type Lights = (Vec<Light>, Vec<Spectrum>, Option<Environment>);
+
+fn read_lights(source: &Source, tables: Vec<Spanned<SpannedTable>>) -> Result<Lights> {
     let mut lights = Vec::new();
+    let mut spectra = Vec::new();
     let mut environment = None;
     for table in tables {
         let mut t = reader(source, table, "[[light]]");
@@ -171,10 +180,11 @@ fn read_lights(
             environment = Some(read_environment(&mut t)?);
         } else {
             lights.push(read_light(&mut t, &kind)?);
+            spectra.push(read_spectrum(&mut t)?);
         }
         t.finish()?;
     }
-    Ok((lights, environment))
+    Ok((lights, spectra, environment))
 }
 
 fn read_receivers(source: &Source, tables: Vec<Spanned<SpannedTable>>) -> Result<Vec<Receiver>> {
@@ -231,7 +241,7 @@ pub fn parse_description(path: &Path, text: String) -> Result<(Description, Sett
     let mut media = read_media(&source, file.medium)?;
     let materials = read_materials(&source, file.material, &mut media)?;
     let shapes = read_shapes(&source, file.shape, &materials, &media)?;
-    let (lights, environment) = read_lights(&source, file.light)?;
+    let (lights, light_spectra, environment) = read_lights(&source, file.light)?;
     let receivers = read_receivers(&source, file.receiver)?;
     let ambient = match &file.ambient {
         None => None,
@@ -259,6 +269,7 @@ pub fn parse_description(path: &Path, text: String) -> Result<(Description, Sett
         materials: materials.list,
         shapes,
         lights,
+        light_spectra,
         environment,
         receivers,
         camera,

@@ -1,12 +1,14 @@
 //! `[[medium]]` tables ⇒ media. Each profile's keys, units and defaults are listed in
 //! `docs/scene-format.md`; lengths are scene units, vectors [x, y, z].
 
+use super::model::AtWavelength;
 use super::table::TableReader;
 use crate::error::Result;
 use crate::media::{
     Absorbing, Axis, BlackHole, ExponentialMedium, FishEye, GridError, GridMedium, HeightTable,
     LinearMedium, Luneburg, Medium, ParabolicFiber, RadialTable, SechFiber, UniformMedium,
 };
+use crate::spectrum::{Dispersion, LAMBDA_D};
 use glam::DVec3;
 
 /// The profile names a `[[medium]]` table may give.
@@ -24,59 +26,162 @@ pub const PROFILES: &[&str] = &[
     "grid",
 ];
 
+/// A medium as read: one medium, or, when an index-valued key depends on wavelength, how
+/// to build it at each.
+pub enum Profile {
+    /// The same at every wavelength.
+    Fixed(Box<dyn Medium>),
+    /// Dispersive.
+    Dispersive(AtWavelength),
+}
+
 /// Reads one `[[medium]]` table (its `name` already taken) and builds the medium, with its
 /// `absorption` coefficient if it has one.
-pub fn read_medium(t: &mut TableReader) -> Result<Box<dyn Medium>> {
+pub fn read_medium(t: &mut TableReader) -> Result<Profile> {
     let absorption = t.f64_or("absorption", 0.0)?;
     t.check(
         "absorption",
         absorption.is_finite() && absorption >= 0.0,
         format!("must be a finite number ≥ 0 (1/length), got {absorption}"),
     )?;
-    let index = read_profile(t)?;
-    Ok(if absorption > 0.0 {
-        Box::new(Absorbing {
-            inner: index,
-            sigma_a: absorption,
-        })
-    } else {
-        index
+    let absorbing = move |inner: Box<dyn Medium>| -> Box<dyn Medium> {
+        if absorption > 0.0 {
+            Box::new(Absorbing {
+                inner,
+                sigma_a: absorption,
+            })
+        } else {
+            inner
+        }
+    };
+    Ok(match read_profile(t)? {
+        Profile::Fixed(m) => Profile::Fixed(absorbing(m)),
+        Profile::Dispersive(at) => Profile::Dispersive(Box::new(move |nm| absorbing(at(nm)))),
     })
 }
 
-/// The index profile of a `[[medium]]` table.
-fn read_profile(t: &mut TableReader) -> Result<Box<dyn Medium>> {
+/// The index profile of a `[[medium]]` table. Every index-valued key (`n`, `n0`) and the
+/// fiber profiles' shape constants (`a` or `g` of `parabolic`, `g` of `sech`) may depend on
+/// wavelength; the medium is dispersive when one of them does.
+fn read_profile(t: &mut TableReader) -> Result<Profile> {
     let profile = t.string("profile")?;
-    let fiber_axis = |t: &mut TableReader| -> Result<Axis> {
-        Ok(Axis {
-            center: t.vec3_or("center", DVec3::ZERO)?,
-            axis: t.direction_or("axis", DVec3::Z)?,
-        })
-    };
     Ok(match profile.as_str() {
-        "uniform" => Box::new(UniformMedium {
-            n: t.positive("n")?,
+        "radial_table" | "height_table" | "luneburg" | "black_hole" | "grid" => {
+            Profile::Fixed(read_fixed(t, &profile)?)
+        }
+        "uniform" => by_wavelength(vec![t.dispersion("n")?], |v| {
+            Box::new(UniformMedium { n: v[0] })
         }),
-        "linear" => Box::new(LinearMedium {
-            n0: t.positive("n0")?,
-            gradient: t.vec3("gradient")?,
-            origin: t.vec3_or("origin", DVec3::ZERO)?,
-        }),
-        "exponential" => Box::new(ExponentialMedium {
-            n0: t.positive("n0")?,
-            gradient: t.vec3("gradient")?,
-            origin: t.vec3_or("origin", DVec3::ZERO)?,
-        }),
-        "parabolic" => Box::new(ParabolicFiber {
-            n0: t.positive("n0")?,
-            a: t.f64("a")?,
-            axis: fiber_axis(t)?,
-        }),
-        "sech" => Box::new(SechFiber {
-            n0: t.positive("n0")?,
-            g: t.positive("g")?,
-            axis: fiber_axis(t)?,
-        }),
+        "linear" => {
+            let n0 = t.dispersion("n0")?;
+            let (gradient, origin) = (t.vec3("gradient")?, t.vec3_or("origin", DVec3::ZERO)?);
+            by_wavelength(vec![n0], move |v| {
+                Box::new(LinearMedium {
+                    n0: v[0],
+                    gradient,
+                    origin,
+                })
+            })
+        }
+        "exponential" => {
+            let n0 = t.dispersion("n0")?;
+            let (gradient, origin) = (t.vec3("gradient")?, t.vec3_or("origin", DVec3::ZERO)?);
+            by_wavelength(vec![n0], move |v| {
+                Box::new(ExponentialMedium {
+                    n0: v[0],
+                    gradient,
+                    origin,
+                })
+            })
+        }
+        "parabolic" => {
+            let n0 = t.dispersion("n0")?;
+            let (shape, is_g) = read_parabolic_shape(t)?;
+            let axis = fiber_axis(t)?;
+            by_wavelength(vec![n0, shape], move |v| {
+                Box::new(ParabolicFiber {
+                    n0: v[0],
+                    a: if is_g { v[1] * v[1] } else { v[1] },
+                    axis,
+                })
+            })
+        }
+        "sech" => {
+            let n0 = t.dispersion("n0")?;
+            let g = t.dispersion("g")?;
+            let axis = fiber_axis(t)?;
+            by_wavelength(vec![n0, g], move |v| {
+                Box::new(SechFiber {
+                    n0: v[0],
+                    g: v[1],
+                    axis,
+                })
+            })
+        }
+        "fisheye" => {
+            let n0 = t.dispersion("n0")?;
+            let center = t.vec3_or("center", DVec3::ZERO)?;
+            let radius = t.positive("radius")?;
+            by_wavelength(vec![n0], move |v| {
+                Box::new(FishEye {
+                    n0: v[0],
+                    center,
+                    radius,
+                })
+            })
+        }
+        other => {
+            return Err(t.error(
+                "profile",
+                format!(
+                    "unknown profile '{other}' (expected one of: {})",
+                    PROFILES.join(", ")
+                ),
+            ))
+        }
+    })
+}
+
+/// The medium `make` builds from `values` evaluated at each wavelength: fixed (built once at
+/// [`LAMBDA_D`]) when none of them depends on wavelength.
+fn by_wavelength(
+    values: Vec<Dispersion>,
+    make: impl Fn(&[f64]) -> Box<dyn Medium> + Send + Sync + 'static,
+) -> Profile {
+    let dispersive = values.iter().any(Dispersion::is_dispersive);
+    let at = move |nm: f64| make(&values.iter().map(|d| d.at(nm)).collect::<Vec<_>>());
+    if dispersive {
+        Profile::Dispersive(Box::new(at))
+    } else {
+        Profile::Fixed(at(LAMBDA_D))
+    }
+}
+
+/// The parabolic profile's gradient constant: `a` (1/length²), or `g` (1/length) with
+/// a = g², the form GRIN catalogues give per wavelength; exactly one of them. True for `g`.
+fn read_parabolic_shape(t: &mut TableReader) -> Result<(Dispersion, bool)> {
+    match (t.has("a"), t.has("g")) {
+        (true, false) => Ok((t.over_wavelength("a")?, false)),
+        (false, true) => Ok((t.dispersion("g")?, true)),
+        _ => Err(t.error(
+            "a",
+            "give exactly one of `a` (1/length²) and `g` (1/length, a = g²)",
+        )),
+    }
+}
+
+/// A fiber's axis: `center` and `axis` (default the z axis through the origin).
+fn fiber_axis(t: &mut TableReader) -> Result<Axis> {
+    Ok(Axis {
+        center: t.vec3_or("center", DVec3::ZERO)?,
+        axis: t.direction_or("axis", DVec3::Z)?,
+    })
+}
+
+/// The profiles whose index is not one number: tables, the Luneburg lens, the black hole,
+/// grids (the same at every wavelength).
+fn read_fixed(t: &mut TableReader, profile: &str) -> Result<Box<dyn Medium>> {
+    Ok(match profile {
         "radial_table" => {
             let r = t.f64_list("r")?;
             let n = t.f64_list("n")?;
@@ -94,11 +199,6 @@ fn read_profile(t: &mut TableReader) -> Result<Box<dyn Medium>> {
             center: t.vec3_or("center", DVec3::ZERO)?,
             radius: t.positive("radius")?,
         }),
-        "fisheye" => Box::new(FishEye {
-            n0: t.positive("n0")?,
-            center: t.vec3_or("center", DVec3::ZERO)?,
-            radius: t.positive("radius")?,
-        }),
         "black_hole" => {
             let center = t.vec3_or("center", DVec3::ZERO)?;
             let rs = t.positive("rs")?;
@@ -106,16 +206,7 @@ fn read_profile(t: &mut TableReader) -> Result<Box<dyn Medium>> {
             t.check("q", q >= 0.0, format!("must be ≥ 0, got {q}"))?;
             Box::new(BlackHole { center, rs, q })
         }
-        "grid" => Box::new(read_grid(t)?),
-        other => {
-            return Err(t.error(
-                "profile",
-                format!(
-                    "unknown profile '{other}' (expected one of: {})",
-                    PROFILES.join(", ")
-                ),
-            ))
-        }
+        _ => Box::new(read_grid(t)?),
     })
 }
 

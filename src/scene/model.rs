@@ -13,33 +13,82 @@ use crate::material::Material;
 use crate::media::Medium;
 use crate::receiver::Receiver;
 use crate::shapes::Primitive;
+use crate::spectrum::{Spectrum, LAMBDA_D};
 use std::path::{Path, PathBuf};
 
+/// How a dispersive medium is built at a vacuum wavelength (nm).
+pub type AtWavelength = Box<dyn Fn(f64) -> Box<dyn Medium> + Send + Sync>;
+
+/// One medium of the scene: its name, the medium at [`LAMBDA_D`] (what RGB camera paths see)
+/// and, if its index depends on wavelength, how to build it at another.
+struct Entry {
+    name: String,
+    medium: Box<dyn Medium>,
+    dispersion: Option<AtWavelength>,
+}
+
 /// The scene's media by name; [`Surface::interior`], [`Surface::exterior`] and the ambient
-/// medium refer to them by index.
+/// medium refer to them by index. Seed 004 asks each medium which wavelengths can share a
+/// path through it: all of them unless it is dispersive ([`Media::is_dispersive`]), and then
+/// each wavelength has a path of its own ([`Media::at_wavelength`]).
 #[derive(Default)]
-pub struct Media(Vec<(String, Box<dyn Medium>)>);
+pub struct Media(Vec<Entry>);
 
 impl Media {
-    /// Adds a medium and returns its index.
+    /// Adds a medium whose index does not depend on wavelength and returns its index.
     pub fn add(&mut self, name: impl Into<String>, medium: Box<dyn Medium>) -> usize {
-        self.0.push((name.into(), medium));
+        self.0.push(Entry {
+            name: name.into(),
+            medium,
+            dispersion: None,
+        });
         self.0.len() - 1
     }
 
-    /// The medium at index `i`.
+    /// Adds a dispersive medium, built by `at` for each wavelength, and returns its index.
+    pub fn add_dispersive(&mut self, name: impl Into<String>, at: AtWavelength) -> usize {
+        self.0.push(Entry {
+            name: name.into(),
+            medium: at(LAMBDA_D),
+            dispersion: Some(at),
+        });
+        self.0.len() - 1
+    }
+
+    /// The medium at index `i`, at [`LAMBDA_D`].
     pub fn at(&self, i: usize) -> &dyn Medium {
-        self.0[i].1.as_ref()
+        self.0[i].medium.as_ref()
+    }
+
+    /// Whether medium `i`'s index depends on wavelength.
+    pub fn is_dispersive(&self, i: usize) -> bool {
+        self.0[i].dispersion.is_some()
+    }
+
+    /// Medium `i` at vacuum wavelength `nm`, when it is dispersive (None: it is
+    /// [`Media::at`] at every wavelength).
+    pub fn at_wavelength(&self, i: usize, nm: f64) -> Option<Box<dyn Medium>> {
+        self.0[i].dispersion.as_ref().map(|at| at(nm))
+    }
+
+    /// The number of media.
+    pub fn len(&self) -> usize {
+        self.0.len()
+    }
+
+    /// Whether there are none.
+    pub fn is_empty(&self) -> bool {
+        self.0.is_empty()
     }
 
     /// The index of the medium called `name`.
     pub fn index(&self, name: &str) -> Option<usize> {
-        self.0.iter().position(|(n, _)| n == name)
+        self.0.iter().position(|e| e.name == name)
     }
 
     /// Names of all media, in order.
     pub fn names(&self) -> impl Iterator<Item = &str> {
-        self.0.iter().map(|(n, _)| n.as_str())
+        self.0.iter().map(|e| e.name.as_str())
     }
 }
 
@@ -80,6 +129,9 @@ pub struct Description {
     pub shapes: Vec<Shape>,
     /// Lights (the environment apart); area lights are also surfaces of the built scene.
     pub lights: Vec<Light>,
+    /// The shape of each light's emission spectrum, by light index (see
+    /// [`Scene::light_spectrum`]).
+    pub light_spectra: Vec<Spectrum>,
     /// What escaping rays see (None: black).
     pub environment: Option<Environment>,
     /// Detector planes (also transparent surfaces of the built scene).
@@ -133,6 +185,7 @@ impl Description {
             surfaces,
             accel: Accel::new(primitives),
             lights: self.lights,
+            light_spectra: self.light_spectra,
             environment: self.environment,
             receivers: self.receivers,
             camera: self.camera,
@@ -155,6 +208,9 @@ pub struct Scene {
     pub accel: Accel,
     /// Lights (the environment apart).
     pub lights: Vec<Light>,
+    /// The shape of each light's emission spectrum, by light index (see
+    /// [`Scene::light_spectrum`]).
+    pub light_spectra: Vec<Spectrum>,
     /// What escaping rays see (None: black).
     pub environment: Option<Environment>,
     /// Detector planes.
@@ -194,6 +250,25 @@ impl Scene {
     /// The medium at index `i` (see [`Surface::interior`] and [`Scene::ambient`]).
     pub fn medium_at(&self, i: usize) -> &dyn Medium {
         self.media.at(i)
+    }
+
+    /// The scene's media.
+    pub fn media(&self) -> &Media {
+        &self.media
+    }
+
+    /// The shape of light `i`'s emission spectrum: equal energy unless the scene gave one
+    /// (the environment's is always equal energy).
+    pub fn light_spectrum(&self, i: usize) -> &Spectrum {
+        static EQUAL: std::sync::LazyLock<Spectrum> = std::sync::LazyLock::new(Spectrum::default);
+        self.light_spectra.get(i).unwrap_or(&EQUAL)
+    }
+
+    /// Whether photons must carry a wavelength: a medium is dispersive or a receiver measures
+    /// wavelength bands.
+    pub fn is_spectral(&self) -> bool {
+        (0..self.media.len()).any(|i| self.media.is_dispersive(i))
+            || self.receivers.iter().any(|r| !r.bands.is_empty())
     }
 
     /// Names of all media, in file order.

@@ -12,15 +12,17 @@ use crate::material::Material;
 use crate::receiver::Receiver;
 use crate::settings::{OutputSettings, PhotonSettings, Settings, TraceSettings};
 use crate::shapes::Primitive;
+use crate::spectrum::emission::Shape;
+use crate::spectrum::{Dispersion, Spectrum, LAMBDA_MAX, LAMBDA_MIN};
 use glam::{DMat3, DVec3};
 
-/// What fills a dielectric: a named medium or a constant index.
-#[derive(Clone, Debug, PartialEq)]
+/// What fills a dielectric: a named medium or a uniform index.
+#[derive(Clone, Debug)]
 pub enum Interior {
     /// A `[[medium]]` by name.
     Medium(String),
-    /// A uniform index.
-    Ior(f64),
+    /// A uniform index, perhaps dispersive.
+    Ior(Dispersion),
 }
 
 /// A shape before names are resolved.
@@ -212,7 +214,7 @@ pub fn read_material(t: &mut TableReader) -> Result<(Material, Option<Interior>)
         ),
         "dielectric" => {
             let interior = match (t.has("ior"), t.has("interior")) {
-                (true, false) => Interior::Ior(t.positive("ior")?),
+                (true, false) => Interior::Ior(t.dispersion("ior")?),
                 (false, true) => Interior::Medium(t.string("interior")?),
                 _ => {
                     return Err(t.error(
@@ -407,6 +409,50 @@ fn read_mesh(t: &mut TableReader) -> Result<Vec<Primitive>> {
     Ok(tris)
 }
 
+/// A light's optional `spectrum`: the shape of its emission over wavelength (its power keys
+/// keep their meaning): `"E"` (equal energy, the default), `{ blackbody = kelvin }` or
+/// `{ gaussian = [peak_nm, fwhm_nm] }` (an LED).
+pub fn read_spectrum(t: &mut TableReader) -> Result<Spectrum> {
+    let Some(value) = t.value_opt("spectrum") else {
+        return Ok(Spectrum::default());
+    };
+    let bad = |why: &str| {
+        t.error(
+            "spectrum",
+            format!("{why} (expected \"E\", {{ blackbody = kelvin }} or {{ gaussian = [peak_nm, fwhm_nm] }})"),
+        )
+    };
+    let shape = match &value {
+        toml::Value::String(s) if s == "E" => Shape::Equal,
+        toml::Value::Table(table) if table.len() == 1 => {
+            let (model, v) = table.iter().next().expect("one entry");
+            let numbers: Vec<f64> = match v {
+                toml::Value::Array(a) => a
+                    .iter()
+                    .filter_map(|x| x.as_float().or(x.as_integer().map(|i| i as f64)))
+                    .collect(),
+                x => x
+                    .as_float()
+                    .or(x.as_integer().map(|i| i as f64))
+                    .into_iter()
+                    .collect(),
+            };
+            match (model.as_str(), &numbers[..]) {
+                ("blackbody", &[k]) if k > 0.0 && k.is_finite() => Shape::Blackbody { kelvin: k },
+                ("gaussian", &[peak, fwhm])
+                    if fwhm > 0.0 && peak.is_finite() && fwhm.is_finite() =>
+                {
+                    Shape::Gaussian { peak, fwhm }
+                }
+                _ => return Err(bad(&format!("bad `{model}` spectrum"))),
+            }
+        }
+        toml::Value::String(s) => return Err(bad(&format!("unknown spectrum '{s}'"))),
+        _ => return Err(bad("not a spectrum")),
+    };
+    Spectrum::new(shape).map_err(|e| t.error("spectrum", e))
+}
+
 /// A light of type `kind` (not `environment`).
 pub fn read_light(t: &mut TableReader, kind: &str) -> Result<Light> {
     let area = |t: &mut TableReader, emitter: Emitter| -> Result<Light> {
@@ -544,7 +590,16 @@ pub fn read_receiver(t: &mut TableReader, name: String) -> Result<Receiver> {
         (1..=4096).contains(&nx) && (1..=4096).contains(&ny),
         "each must be in 1..=4096",
     )?;
+    let bands = t.vec2_list_opt("bands")?.unwrap_or_default();
+    t.check(
+        "bands",
+        bands
+            .iter()
+            .all(|&(lo, hi)| LAMBDA_MIN <= lo && lo < hi && hi <= LAMBDA_MAX),
+        format!("each band is [lo_nm, hi_nm] with {LAMBDA_MIN} ≤ lo < hi ≤ {LAMBDA_MAX}"),
+    )?;
     Ok(Receiver {
+        bands,
         name,
         center,
         u,

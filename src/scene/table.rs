@@ -4,6 +4,8 @@
 use super::source::Source;
 use crate::color::Rgb;
 use crate::error::{Error, Result};
+use crate::media::MonotoneCubic;
+use crate::spectrum::Dispersion;
 use glam::DVec3;
 use std::collections::BTreeMap;
 use std::ops::Range;
@@ -208,6 +210,28 @@ impl<'a> TableReader<'a> {
         }
     }
 
+    /// An optional list of number pairs `[[a, b], ...]`.
+    pub fn vec2_list_opt(&mut self, key: &str) -> Result<Option<Vec<(f64, f64)>>> {
+        let Some(v) = self.take(key) else {
+            return Ok(None);
+        };
+        let Value::Array(rows) = &v else {
+            return Err(self.error(key, format!("expected [[a, b], ...], got {}", v.type_str())));
+        };
+        rows.iter()
+            .map(|r| match self.numbers(key, r)?[..] {
+                [a, b] => Ok((a, b)),
+                _ => Err(self.error(key, "expected pairs [a, b]")),
+            })
+            .collect::<Result<Vec<_>>>()
+            .map(Some)
+    }
+
+    /// A key's raw value, for a reader of its own (None when absent).
+    pub fn value_opt(&mut self, key: &str) -> Option<Value> {
+        self.take(key)
+    }
+
     /// A required list of numbers.
     pub fn f64_list(&mut self, key: &str) -> Result<Vec<f64>> {
         let v = self.required(key)?;
@@ -294,6 +318,99 @@ impl<'a> TableReader<'a> {
             format!("must not be negative, got {c}"),
         )?;
         Ok(Rgb(c))
+    }
+
+    /// An optional quantity over wavelength (DESIGN §12): a number (the same at every
+    /// wavelength), a named material (`"BK7"`, see [`Dispersion::names`]), or a table of one
+    /// model: `{ sellmeier = [B1, B2, B3, C1, C2, C3] }` (λ in µm), `{ cauchy = [A, B, ...] }`
+    /// (λ in µm), `{ abbe = [n_d, V_d] }` or `{ table = [[nm, value], ...] }`.
+    pub fn over_wavelength_opt(&mut self, key: &str) -> Result<Option<Dispersion>> {
+        let Some(v) = self.take(key) else {
+            return Ok(None);
+        };
+        Ok(Some(match &v {
+            Value::Float(_) | Value::Integer(_) => Dispersion::Constant(self.number(key, &v)?),
+            Value::String(name) => Dispersion::named(name).ok_or_else(|| {
+                let known: Vec<_> = Dispersion::names().collect();
+                self.error(key, format!("unknown material '{name}' (known: {})", known.join(", ")))
+            })?,
+            Value::Table(t) if t.len() == 1 => {
+                let (model, value) = t.iter().next().expect("one entry");
+                self.dispersion_model(key, model, value)?
+            }
+            other => {
+                return Err(self.error(
+                    key,
+                    format!("expected a number, a material name or a table {{ sellmeier | cauchy | abbe | table = [...] }}, got {}", other.type_str()),
+                ))
+            }
+        }))
+    }
+
+    /// A required quantity over wavelength (see [`TableReader::over_wavelength_opt`]).
+    pub fn over_wavelength(&mut self, key: &str) -> Result<Dispersion> {
+        self.over_wavelength_opt(key)?
+            .ok_or_else(|| self.error(key, "is missing"))
+    }
+
+    /// A required quantity over wavelength that is positive over the whole visible range (an
+    /// index, a gradient constant g).
+    pub fn dispersion(&mut self, key: &str) -> Result<Dispersion> {
+        let d = self.over_wavelength(key)?;
+        let least = d.min_visible();
+        self.check(
+            key,
+            least > 0.0,
+            format!("must be > 0 from 360 to 830 nm, got {least} there"),
+        )?;
+        Ok(d)
+    }
+
+    fn dispersion_model(&self, key: &str, model: &str, value: &Value) -> Result<Dispersion> {
+        let coefficients = || self.numbers(key, value);
+        Ok(match model {
+            "sellmeier" => {
+                let c = coefficients()?;
+                self.check(
+                    key,
+                    !c.is_empty() && c.len() % 2 == 0,
+                    "sellmeier takes [B1, ..., Bk, C1, ..., Ck] (C in µm²)",
+                )?;
+                let (b, c) = c.split_at(c.len() / 2);
+                Dispersion::Sellmeier(b.iter().copied().zip(c.iter().copied()).collect())
+            }
+            "cauchy" => {
+                let c = coefficients()?;
+                self.check(key, !c.is_empty(), "cauchy takes [A, B, ...] (λ in µm)")?;
+                Dispersion::Cauchy(c)
+            }
+            "abbe" => match coefficients()?[..] {
+                [n_d, v_d] if n_d > 1.0 && v_d > 0.0 => Dispersion::abbe(n_d, v_d),
+                _ => return Err(self.error(key, "abbe takes [n_d > 1, V_d > 0]")),
+            },
+            "table" => {
+                let rows = match value {
+                    Value::Array(a) => a
+                        .iter()
+                        .map(|r| match self.numbers(key, r)?[..] {
+                            [nm, n] => Ok((nm, n)),
+                            _ => Err(self.error(key, "table rows are [nm, n]")),
+                        })
+                        .collect::<Result<Vec<_>>>()?,
+                    _ => return Err(self.error(key, "table takes [[nm, n], ...]")),
+                };
+                let (nm, n) = rows.into_iter().unzip();
+                let curve = MonotoneCubic::new(nm, n, false, ("nm", "n"))
+                    .map_err(|(_, e)| self.error(key, format!("table: {e}")))?;
+                Dispersion::Table(curve)
+            }
+            other => {
+                return Err(self.error(
+                    key,
+                    format!("unknown dispersion model '{other}' (expected sellmeier, cauchy, abbe or table)"),
+                ))
+            }
+        })
     }
 
     /// Fails at the first key that was never read, naming the keys this table accepts.

@@ -240,7 +240,9 @@ impl<'w> Walker<'w> {
             return ControlFlow::Break(End::DepthLimit);
         }
         self.depth -= 1;
-        chain.curved |= at.medium.is_some_and(|m| !scene.medium_at(m).is_uniform());
+        chain.curved |= at
+            .medium
+            .is_some_and(|m| !self.tracer.medium(m).is_uniform());
         let event =
             self.tracer
                 .next_event_along(at.origin, at.dir, at.medium, lent.stats, &mut |p| {

@@ -257,7 +257,7 @@ pub fn connect(
     let u = chord.any_orthonormal_vector();
     let problem = Problem {
         tracer,
-        medium: tracer.scene.medium_at(medium),
+        medium: tracer.medium(medium),
         from,
         chord,
         u,

@@ -22,6 +22,7 @@ use crate::material::Material;
 use crate::media::Medium;
 use crate::scene::{Scene, Surface};
 use crate::settings::TraceSettings;
+use crate::spectrum::LAMBDA_D;
 use glam::DVec3;
 pub use stats::Stats;
 use std::ops::ControlFlow;
@@ -103,6 +104,16 @@ pub struct Tracer<'a> {
     pub world: Bounds,
     /// The medium the camera sits in (see [`Tracer::medium_containing`]).
     pub camera_medium: Option<usize>,
+    /// The wavelength rays travel at, when it is not [`LAMBDA_D`] (see
+    /// [`Tracer::at_wavelength`]).
+    wavelength: Option<Wavelength>,
+}
+
+/// A vacuum wavelength (nm) and the scene's dispersive media rebuilt at it (None where a
+/// medium is the same at every wavelength).
+struct Wavelength {
+    nm: f64,
+    media: Vec<Option<Box<dyn Medium>>>,
 }
 
 /// Directions along which [`Tracer::medium_containing`] looks for the enclosing surface: far
@@ -152,6 +163,7 @@ impl<'a> Tracer<'a> {
             ball: (center, extent.max(1e-9)),
             world: Bounds::Ball { center, radius },
             camera_medium: scene.ambient,
+            wavelength: None,
         };
         if let Some(c) = &scene.camera {
             tracer.camera_medium = tracer.medium_containing(c.position);
@@ -159,12 +171,45 @@ impl<'a> Tracer<'a> {
         tracer
     }
 
+    /// The same tracer with rays at vacuum wavelength `nm`: each dispersive medium is the
+    /// one at that wavelength. Rays of a tracer from [`Tracer::new`] see every medium at
+    /// [`LAMBDA_D`].
+    pub fn at_wavelength(&self, nm: f64) -> Self {
+        let media = self.scene.media();
+        Self {
+            scene: self.scene,
+            settings: self.settings,
+            ball: self.ball,
+            world: self.world,
+            camera_medium: self.camera_medium,
+            wavelength: Some(Wavelength {
+                nm,
+                media: (0..media.len())
+                    .map(|i| media.at_wavelength(i, nm))
+                    .collect(),
+            }),
+        }
+    }
+
+    /// The vacuum wavelength rays travel at, nm.
+    pub fn wavelength(&self) -> f64 {
+        self.wavelength.as_ref().map_or(LAMBDA_D, |w| w.nm)
+    }
+
+    /// Medium `i` at the tracer's wavelength.
+    pub fn medium(&self, i: usize) -> &dyn Medium {
+        match self.wavelength.as_ref().and_then(|w| w.media[i].as_deref()) {
+            Some(m) => m,
+            None => self.scene.medium_at(i),
+        }
+    }
+
     /// The refractive index at `p` in `medium` (None: vacuum, n = 1); None where the medium
     /// captures rays (a horizon).
     pub fn index(&self, medium: Option<usize>, p: DVec3) -> Option<f64> {
         match medium {
             None => Some(1.0),
-            Some(m) => self.scene.medium_at(m).sample(p).map(|s| s.n),
+            Some(m) => self.medium(m).sample(p).map(|s| s.n),
         }
     }
 
@@ -275,7 +320,7 @@ impl<'a> Tracer<'a> {
         stats: &mut Stats,
         path: &mut dyn FnMut(DVec3),
     ) -> Event {
-        let m = medium.map(|i| self.scene.medium_at(i));
+        let m = medium.map(|i| self.medium(i));
         match m {
             Some(m) if !m.is_uniform() => self.curved(m, origin, dir, stats, path),
             _ => {

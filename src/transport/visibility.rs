@@ -29,7 +29,7 @@ pub fn transmittance(
         left -= (next - o).dot(dir);
         o = next;
     }
-    match medium.map(|m| scene.medium_at(m)) {
+    match medium.map(|m| tracer.medium(m)) {
         Some(m) if m.absorbs() => {
             let length = reach.min(tracer.world.exit_distance(from, dir));
             (-m.optical_depth(from, dir, length)).exp()

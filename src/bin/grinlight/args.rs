@@ -83,6 +83,10 @@ pub struct TraceArgs {
     /// Arclength to trace (scene units).
     #[arg(long)]
     length: f64,
+    /// Vacuum wavelength, nm (360–830), at which a dispersive medium is traced [default:
+    /// the d line, 587.5618 nm].
+    #[arg(long)]
+    wavelength: Option<f64>,
     /// Stepper: rk4 (Sharma's RK4, the fastest at every accuracy measured), arc (exact
     /// constant-gradient arc, F at the step's midpoint), snell (iterative Snell steps).
     #[arg(long, default_value = "rk4")]
@@ -241,6 +245,7 @@ impl From<TraceArgs> for TraceJob {
             from: a.from,
             dir: a.dir,
             length: a.length,
+            wavelength: a.wavelength,
             stepper: a.stepper,
             control,
             max_steps: a.max_steps,

@@ -1,0 +1,219 @@
+//! Wavelength as a physical quantity: dispersive media in scenes, photons that carry a
+//! wavelength, receivers that measure bands — checked against Descartes' rainbow and a GRIN
+//! rod's paraxial pitch per wavelength.
+
+use glam::DVec3;
+use grinlight::curve::{march_with, Bounds, MarchLimits, RayState, StepControl, StepperKind};
+use grinlight::scene::load::parse_scene;
+use grinlight::scene::load_scene;
+use grinlight::spectrum::Dispersion;
+use std::path::Path;
+
+/// The minimum-deviation ray of a unit sphere of index `n` lit along −z (DESIGN §12:
+/// cos² i = (n² − 1)/3), traced exactly (straight chords, Snell, one internal reflection): its
+/// exit point and exit direction.
+fn descartes_ray(n: f64) -> (DVec3, DVec3) {
+    let far_hit = |o: DVec3, d: DVec3| {
+        let (b, c) = (o.dot(d), o.length_squared() - 1.0);
+        let s = (b * b - c).sqrt();
+        o + d * if -b - s > 1e-9 { -b - s } else { -b + s }
+    };
+    let refract = |d: DVec3, normal: DVec3, eta: f64| {
+        let c = -normal.dot(d);
+        eta * d + (eta * c - (1.0 - eta * eta * (1.0 - c * c)).sqrt()) * normal
+    };
+    let i = ((n * n - 1.0) / 3.0).sqrt().acos();
+    let mut d = -DVec3::Z;
+    let mut p = far_hit(DVec3::new(i.sin(), 0.0, 2.0), d);
+    d = refract(d, p, 1.0 / n);
+    p = far_hit(p, d);
+    d -= 2.0 * d.dot(p) * p;
+    p = far_hit(p, d);
+    (p, refract(d, -p, n))
+}
+
+/// Descartes' closed form: the exit direction of the traced minimum-deviation ray makes the
+/// angle π − D with the antisolar direction +z, D = π + 2i − 4 asin(sin i / n), to rounding
+/// (1e-11 rad: chord intersections round to ~1e-13, amplified by acos and asin); and water's bow is 42.08° at n = 1.333 (DESIGN §12).
+#[test]
+fn the_descartes_ray_leaves_at_the_rainbow_angle() {
+    for n in [1.333f64, 1.34, 1.517] {
+        let i = ((n * n - 1.0) / 3.0).sqrt().acos();
+        let d_min = std::f64::consts::PI + 2.0 * i - 4.0 * (i.sin() / n).asin();
+        let (_, dir) = descartes_ray(n);
+        let angle = dir.z.acos();
+        assert!(
+            (angle - (std::f64::consts::PI - d_min)).abs() < 1e-11,
+            "{n}"
+        );
+        if n == 1.333 {
+            assert!(
+                (angle.to_degrees() - 42.08).abs() < 0.005,
+                "{}",
+                angle.to_degrees()
+            );
+        }
+    }
+}
+
+/// `scenes/rainbow.toml`: each band's bow on the receiver is where the minimum-deviation ray
+/// of the band's centre wavelength lands, within one ring (0.1 units: the bins' width; the
+/// bow's edge is a caustic, so its brightest ring is the one it falls in or the one just
+/// inside) plus half the spread of the band's own bow across its 40 nm; red outside blue.
+#[test]
+fn the_rainbow_bands_land_where_descartes_says() {
+    let (scene, mut settings) = load_scene(Path::new("scenes/rainbow.toml")).unwrap();
+    settings.receiver_photons = 2_000_000;
+    let (m, _, _) = grinlight::render::measure(&scene, &settings, 0, &()).unwrap();
+    let rec = &scene.receivers[0];
+    let water = Dispersion::named("water").unwrap();
+    let z = rec.center.z;
+    let land = |nm: f64| {
+        let (p, d) = descartes_ray(water.at(nm));
+        let q = p + d * (z - p.z) / d.z;
+        q.truncate().length()
+    };
+    let width = 0.1;
+    let mut peaks = Vec::new();
+    for (&(lo, hi), band) in rec.bands.iter().zip(&m[0].bands) {
+        // Rings by bin-centre radius; the incoming beam (r < 1.2) and the corners are left out.
+        let mut rings = vec![(0.0, 0usize); 120];
+        for (k, e) in band.irradiance.iter().enumerate() {
+            let (x, y) = rec.bin_center(k);
+            let ring = ((x * x + y * y).sqrt() / width) as usize;
+            if (12..120).contains(&ring) {
+                rings[ring].0 += e;
+                rings[ring].1 += 1;
+            }
+        }
+        let peak = (12..120)
+            .max_by(|&a, &b| {
+                let mean = |r: usize| rings[r].0 / rings[r].1.max(1) as f64;
+                mean(a).total_cmp(&mean(b))
+            })
+            .unwrap();
+        let measured = (peak as f64 + 0.5) * width;
+        let expected = land(0.5 * (lo + hi));
+        let spread = 0.5 * (land(hi) - land(lo));
+        assert!(
+            (measured - expected).abs() <= width + spread,
+            "band {lo}–{hi} nm: bow at r = {measured}, Descartes {expected} ± {spread}"
+        );
+        peaks.push(measured);
+    }
+    assert!(
+        peaks.windows(2).all(|w| w[1] > w[0]),
+        "red outside blue: {peaks:?}"
+    );
+    // Each band holds its share of an equal-energy spectrum: 40 of 470 nm of the total flux,
+    // within 5 standard errors.
+    for band in &m[0].bands {
+        let share = m[0].flux.0 * 40.0 / 470.0;
+        assert!((band.flux.0 - share).abs() < 5.0 * band.flux.1, "{band:?}");
+    }
+}
+
+/// A GRIN rod n = n0(1 − g²r²/2) with a catalogue-style g(λ): a paraxial ray entering
+/// parallel to the axis at r0 crosses it at a quarter pitch, z = π/(2 g(λ)), for each
+/// wavelength. The paraxial error is O(g² r0²) = 1e-7 relative at r0 = 1e-3 (measured:
+/// 3.1–3.4e-8 at the four wavelengths), which is the tolerance.
+#[test]
+fn a_grin_rod_focuses_each_wavelength_at_its_own_quarter_pitch() {
+    let text = r#"
+[[medium]]
+name = "rod"
+profile = "parabolic"
+n0 = "F2"
+g = { table = [[400.0, 0.33], [550.0, 0.32], [700.0, 0.31]] }
+"#;
+    let (scene, _) = parse_scene(Path::new("rod.toml"), text.to_string()).unwrap();
+    let media = scene.media();
+    let rod = media.index("rod").unwrap();
+    assert!(media.is_dispersive(rod));
+    let table = Dispersion::Table(
+        grinlight::media::MonotoneCubic::new(
+            vec![400.0, 550.0, 700.0],
+            vec![0.33, 0.32, 0.31],
+            false,
+            ("nm", "g"),
+        )
+        .unwrap(),
+    );
+    let mut foci = Vec::new();
+    for nm in [420.0, 486.1327, 587.5618, 656.2725] {
+        let medium = media.at_wavelength(rod, nm).unwrap();
+        let g = table.at(nm);
+        let start = RayState::new(medium.as_ref(), DVec3::new(1e-3, 0.0, 0.0), DVec3::Z).unwrap();
+        let limits = MarchLimits {
+            length: 2.0 * std::f64::consts::PI / g,
+            max_steps: 1_000_000,
+            bounds: Bounds::Unbounded,
+        };
+        let mut crossing = None;
+        let mut last = start.position;
+        march_with(
+            StepperKind::Rk4,
+            medium.as_ref(),
+            StepControl::Fixed { step: 0.005 },
+            start,
+            &limits,
+            |_, state| {
+                let p = state.position;
+                if crossing.is_none() && last.x > 0.0 && p.x <= 0.0 {
+                    crossing = Some(last.z + (p.z - last.z) * last.x / (last.x - p.x));
+                }
+                last = p;
+                std::ops::ControlFlow::Continue(())
+            },
+        );
+        // The crossing is interpolated linearly between RK4 points 0.005 apart: near the
+        // crossing x is odd about it (x'' = −g²x = 0 there), so the chord's error is
+        // O(g²h³) ≈ 1e-8, and RK4's own O((gh)⁴) per step is smaller still.
+        let z = crossing.expect("the ray crosses the axis");
+        let want = std::f64::consts::FRAC_PI_2 / g;
+        assert!((z / want - 1.0).abs() < 1e-7, "{nm} nm: {z} vs {want}");
+        foci.push(z);
+    }
+    // Blue focuses first: g falls with wavelength.
+    assert!(foci.windows(2).all(|w| w[1] > w[0]), "{foci:?}");
+}
+
+/// Every form of a dispersive index reads; a wrong one is an error at its file:line:col.
+#[test]
+fn dispersive_indices_read_and_wrong_ones_are_located() {
+    let ok = [
+        "ior = 1.5",
+        "ior = \"BK7\"",
+        "ior = { sellmeier = [1.03961212, 0.231792344, 1.01046945, 0.00600069867, 0.0200179144, 103.560653] }",
+        "ior = { cauchy = [1.5046, 0.0042] }",
+        "ior = { abbe = [1.5168, 64.17] }",
+        "ior = { table = [[400.0, 1.53], [700.0, 1.51]] }",
+    ];
+    for line in ok {
+        let text = format!("[[material]]\nname = \"g\"\ntype = \"dielectric\"\n{line}\n");
+        let (scene, _) = parse_scene(Path::new("s.toml"), text).unwrap();
+        let media = scene.media();
+        assert_eq!(media.is_dispersive(0), line != "ior = 1.5", "{line}");
+        let n = media.at(0).sample(DVec3::ZERO).unwrap().n;
+        assert!((n - 1.517).abs() < 0.02, "{line}: n_d = {n}");
+    }
+    let bad = [
+        ("ior = \"unobtainium\"", "unknown material"),
+        ("ior = { abbe = [0.9, 10.0] }", "abbe takes"),
+        ("ior = { sellmeier = [1.0, 2.0, 3.0] }", "sellmeier takes"),
+        ("ior = { fresnel = [1.0] }", "unknown dispersion model"),
+        ("ior = { cauchy = [-1.0] }", "must be > 0"),
+        ("ior = [1.5]", "expected a number"),
+    ];
+    for (line, says) in bad {
+        let text = format!("[[material]]\nname = \"g\"\ntype = \"dielectric\"\n{line}\n");
+        let err = parse_scene(Path::new("s.toml"), text)
+            .err()
+            .unwrap()
+            .to_string();
+        assert!(
+            err.contains("s.toml:4:") && err.contains(says),
+            "{line}: {err}"
+        );
+    }
+}
