@@ -103,6 +103,30 @@ fn media() -> Vec<(&'static str, Box<dyn Medium>)> {
             }),
         ),
         (
+            "schwarzschild",
+            Box::new(ExactBlackHole {
+                center: DVec3::new(0.1, 0.0, -0.1),
+                rs: 0.1,
+                q: 0.0,
+            }),
+        ),
+        (
+            "reissner_nordstrom",
+            Box::new(ExactBlackHole {
+                center: DVec3::ZERO,
+                rs: 0.1,
+                q: 0.3,
+            }),
+        ),
+        (
+            "naked_singularity",
+            Box::new(ExactBlackHole {
+                center: DVec3::ZERO,
+                rs: 0.1,
+                q: 0.8,
+            }),
+        ),
+        (
             "grid",
             Box::new(
                 GridMedium::new(

@@ -37,6 +37,10 @@ const BAD: &[(&str, usize, usize, &str)] = &[
     ("[[light]]\ntype = \"point\"\nposition = [0, 0, 0]\nintensity = 1\nspectrum = { gaussian = [450.0] }\n", 5, 1, "bad `gaussian` spectrum"),
     ("[[receiver]]\nname = \"r\"\ncenter = [0, 0, 0]\nsize = [1, 1]\nbins = [2, 2]\nbands = [[300.0, 400.0]]\n", 6, 1, "each band is [lo_nm, hi_nm]"),
     ("[[medium]]\nname = \"a\"\nprofile = \"parabolic\"\nn0 = 1.5\na = 0.1\ng = 0.3\n", 5, 1, "give exactly one of `a`"),
+    // The exact black holes: a charge is required of reissner_nordstrom, and not negative.
+    ("[[medium]]\nname = \"a\"\nprofile = \"reissner_nordstrom\"\nrs = 1.0\n", 1, 1, "key `q`: is missing"),
+    ("[[medium]]\nname = \"a\"\nprofile = \"reissner_nordstrom\"\nrs = 1.0\nq = -0.1\n", 5, 1, "key `q`: must be ≥ 0"),
+    ("[[medium]]\nname = \"a\"\nprofile = \"schwarzschild\"\nrs = 1.0\nq = 0.1\n", 5, 1, "unknown key `q`"),
     // Unknown profile.
     ("[[medium]]\nname = \"a\"\nprofile = \"wobbly\"\n", 3, 1, "unknown profile 'wobbly'"),
     // n ≤ 0.

@@ -1,4 +1,5 @@
-//! Profiles that depend on the distance from a centre: Luneburg lens, Maxwell fish-eye, black hole.
+//! Profiles that depend on the distance from a centre: Luneburg lens, Maxwell fish-eye, black
+//! holes (seed 000's weak-field index and the exact Schwarzschild / Reissner–Nordström one).
 
 use super::{IndexSample, Medium};
 use glam::DVec3;
@@ -124,6 +125,91 @@ impl Medium for BlackHole {
     fn step_hint(&self, p: DVec3, _dir: DVec3) -> f64 {
         let r = (p - self.center).length();
         0.25 * (r - self.horizon() * self.rs).max(0.0)
+    }
+}
+
+/// A Reissner–Nordström black hole — Schwarzschild when `q` = 0 — as the exact index medium
+/// of DESIGN §11: in isotropic coordinates ρ (the scene's lengths: ρ = |x − center|) the
+/// spatial metric is conformally flat, so light follows the rays of
+/// n(ρ) = A² / (1 − K/ρ²), A = 1 + M/ρ + K/ρ², K = (M² − Q²)/4,
+/// with M = rs/2 and Q = q·rs (seed 000's q). nρ is GR's turning-point impact parameter, so
+/// deflections are GR's exactly; far away n ≈ 1 + rs/ρ, the weak-field index. The areal
+/// radius is r = ρA ([`ExactBlackHole::areal_radius`]). Rays are captured at the horizon
+/// ρ_h = √K (q ≤ ½); with no horizon (q > ½) the singularity r = 0 lies at ρ₀ = (Q − M)/2,
+/// where n → 0: only rays aimed almost at it come near, and they end there, captured.
+#[derive(Clone, Debug)]
+pub struct ExactBlackHole {
+    /// Centre.
+    pub center: DVec3,
+    /// Schwarzschild radius rs = 2M (length).
+    pub rs: f64,
+    /// Dimensionless charge q = Q/rs (0: Schwarzschild).
+    pub q: f64,
+}
+
+impl ExactBlackHole {
+    /// Relative distance above the horizon (or the singularity) at which a ray counts as
+    /// captured: there n is ~1e9 (or ~1e-18) and no step resolves the path further in f64.
+    const CAPTURE_MARGIN: f64 = 1e-9;
+
+    /// (M, K) in scene lengths: M = rs/2, K = (M² − Q²)/4.
+    fn constants(&self) -> (f64, f64) {
+        let m = 0.5 * self.rs;
+        let charge = self.q * self.rs;
+        (m, 0.25 * (m * m - charge * charge))
+    }
+
+    /// Where rays end, in isotropic ρ: the horizon √K, or with no horizon the singularity
+    /// (Q − M)/2 (0 when Q = M).
+    pub fn capture_radius(&self) -> f64 {
+        let (m, k) = self.constants();
+        if k >= 0.0 {
+            k.sqrt()
+        } else {
+            0.5 * (self.q * self.rs - m)
+        }
+    }
+
+    /// The areal radius r = ρ·A(ρ) of isotropic radius ρ (what Schwarzschild coordinates call
+    /// r: a sphere of radius ρ has area 4πr²).
+    pub fn areal_radius(&self, rho: f64) -> f64 {
+        let (m, k) = self.constants();
+        rho + m + k / rho
+    }
+}
+
+impl Medium for ExactBlackHole {
+    /// Transparent.
+    fn absorbs(&self) -> bool {
+        false
+    }
+    fn sample(&self, p: DVec3) -> Option<IndexSample> {
+        let d = p - self.center;
+        let rho = d.length();
+        // (At q = ½ the horizon is at ρ = 0, where n ∝ 1/ρ²: captured a hair off it.)
+        let floor = self.capture_radius().max(Self::CAPTURE_MARGIN * self.rs);
+        if rho <= floor * (1.0 + Self::CAPTURE_MARGIN) {
+            return None;
+        }
+        let (m, k) = self.constants();
+        let inv = 1.0 / rho;
+        let a = 1.0 + m * inv + k * inv * inv;
+        let den = 1.0 - k * inv * inv;
+        if a <= 0.0 || den <= 0.0 {
+            return None;
+        }
+        let n = a * a / den;
+        // n'/n = 2A'/A − D'/D with A' = −M/ρ² − 2K/ρ³ and D' = 2K/ρ³; ∇ρ = d/ρ.
+        let a1 = -(m + 2.0 * k * inv) * inv * inv;
+        let d1 = 2.0 * k * inv * inv * inv;
+        let grad = d * (n * (2.0 * a1 / a - d1 / den) * inv);
+        (n.is_finite() && n > 0.0 && grad.is_finite()).then_some(IndexSample { n, grad })
+    }
+    /// A quarter of the distance to where rays end (far away, a quarter of the distance to the
+    /// centre: ∇ln n ∝ 1/ρ² varies on that scale); steps toward the horizon shrink
+    /// geometrically.
+    fn step_hint(&self, p: DVec3, _dir: DVec3) -> f64 {
+        0.25 * ((p - self.center).length() - self.capture_radius()).max(0.0)
     }
 }
 

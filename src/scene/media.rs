@@ -5,8 +5,9 @@ use super::model::AtWavelength;
 use super::table::TableReader;
 use crate::error::Result;
 use crate::media::{
-    Absorbing, Axis, BlackHole, ExponentialMedium, FishEye, GridError, GridMedium, HeightTable,
-    LinearMedium, Luneburg, Medium, ParabolicFiber, RadialTable, SechFiber, UniformMedium,
+    Absorbing, Axis, BlackHole, ExactBlackHole, ExponentialMedium, FishEye, GridError, GridMedium,
+    HeightTable, LinearMedium, Luneburg, Medium, ParabolicFiber, RadialTable, SechFiber,
+    UniformMedium,
 };
 use crate::spectrum::{Dispersion, LAMBDA_D};
 use glam::DVec3;
@@ -23,6 +24,8 @@ pub const PROFILES: &[&str] = &[
     "luneburg",
     "fisheye",
     "black_hole",
+    "schwarzschild",
+    "reissner_nordstrom",
     "grid",
 ];
 
@@ -66,9 +69,8 @@ pub fn read_medium(t: &mut TableReader) -> Result<Profile> {
 fn read_profile(t: &mut TableReader) -> Result<Profile> {
     let profile = t.string("profile")?;
     Ok(match profile.as_str() {
-        "radial_table" | "height_table" | "luneburg" | "black_hole" | "grid" => {
-            Profile::Fixed(read_fixed(t, &profile)?)
-        }
+        "radial_table" | "height_table" | "luneburg" | "black_hole" | "schwarzschild"
+        | "reissner_nordstrom" | "grid" => Profile::Fixed(read_fixed(t, &profile)?),
         "uniform" => by_wavelength(vec![t.dispersion("n")?], |v| {
             Box::new(UniformMedium { n: v[0] })
         }),
@@ -205,6 +207,17 @@ fn read_fixed(t: &mut TableReader, profile: &str) -> Result<Box<dyn Medium>> {
             let q = t.f64_or("q", 0.0)?;
             t.check("q", q >= 0.0, format!("must be ≥ 0, got {q}"))?;
             Box::new(BlackHole { center, rs, q })
+        }
+        "schwarzschild" | "reissner_nordstrom" => {
+            let center = t.vec3_or("center", DVec3::ZERO)?;
+            let rs = t.positive("rs")?;
+            let q = if profile == "schwarzschild" {
+                0.0
+            } else {
+                t.f64("q")?
+            };
+            t.check("q", q >= 0.0, format!("must be ≥ 0, got {q}"))?;
+            Box::new(ExactBlackHole { center, rs, q })
         }
         _ => Box::new(read_grid(t)?),
     })
