@@ -18,6 +18,9 @@ pub struct Report {
     /// Set when the render was stopped before its end (see [`crate::render::Observer::stop_requested`]):
     /// what it holds.
     pub partial: Option<String>,
+    /// Lines an integrator adds about how it worked (e.g. a deflection table's size, build
+    /// time and checked error).
+    pub notes: Vec<String>,
 }
 
 impl Report {
@@ -33,8 +36,9 @@ impl Report {
             .partial
             .as_ref()
             .map_or(String::new(), |p| format!("PARTIAL (interrupted): {p}\n"));
+        let notes: String = self.notes.iter().map(|n| format!("{n}\n")).collect();
         format!(
-            "{partial}{} pass(es); photons: {} emitted ({rate:.0}/s), caustic map {} stored, global map {} stored; \
+            "{partial}{notes}{} pass(es); photons: {} emitted ({rate:.0}/s), caustic map {} stored, global map {} stored; \
              photon tracing {trace:.2} s, map build {build:.3} s, camera pass {camera:.2} s\n{}",
             self.passes,
             self.stats.photons_emitted,

@@ -22,6 +22,9 @@ pub struct Settings {
     pub time_budget: Option<f64>,
     /// How the camera's view is estimated.
     pub integrator: IntegratorKind,
+    /// Let the photon mapper's place be taken by a deflection table where one applies
+    /// ([`crate::integrator::DeflectionTable`]); false traces every camera ray.
+    pub deflection_table: bool,
     /// How rays travel.
     pub trace: TraceSettings,
     /// The photon maps and how they are read.
@@ -84,6 +87,7 @@ impl Default for Settings {
             passes: 1,
             time_budget: None,
             integrator: IntegratorKind::PhotonMap,
+            deflection_table: true,
             trace: TraceSettings::default(),
             photons: PhotonSettings::default(),
             receiver_photons: 1_000_000,

@@ -46,6 +46,8 @@ pub struct Overrides {
     pub threads: Option<usize>,
     /// The integrator.
     pub integrator: Option<crate::settings::IntegratorKind>,
+    /// Trace every camera ray where a deflection table would apply.
+    pub no_table: bool,
     /// Image width in pixels (the vertical field of view is kept).
     pub width: Option<u32>,
     /// Image height in pixels.
@@ -77,6 +79,7 @@ impl Overrides {
         }
         s.seed = self.seed.unwrap_or(s.seed);
         s.integrator = self.integrator.unwrap_or(s.integrator);
+        s.deflection_table &= !self.no_table;
         s.threads = crate::resources::check_threads(self.threads.unwrap_or(s.threads))?;
         let p = &mut s.photons;
         p.global = self.photons.unwrap_or(p.global);

@@ -6,16 +6,21 @@
 //!   secondary light by final gathering over the global map.
 //! - [`PathTracer`]: unidirectional path tracing through the same curved transport, an
 //!   independent reference for the photon mapper.
+//! - [`DeflectionTable`]: for a camera before one spherically symmetric ambient medium and
+//!   nothing else (a black hole), seed 002's table of where each ray leaves; chosen by
+//!   [`crate::render::render`] in place of the photon mapper whenever it applies.
 //!
 //! Passes are independent: pass `i` draws from streams keyed by `i` and its caustic radius
 //! follows a schedule of `i` alone, so any set of passes can be rendered apart and their
 //! films merged. To add an integrator: implement [`Integrator`], name it in
 //! [`crate::settings::IntegratorKind`] and in [`crate::render::render`].
 
+mod deflection;
 pub mod direct;
 mod path;
 mod photon_map;
 
+pub use deflection::{DeflectionTable, TableCheck};
 pub use path::PathTracer;
 pub use photon_map::{PhotonMapper, Plan};
 

@@ -86,6 +86,13 @@ pub trait Medium: Send + Sync {
     fn is_uniform(&self) -> bool {
         false
     }
+
+    /// The centre when n depends only on the distance from it (every ray then stays in the
+    /// plane of its direction and the centre: seed 002's deflection table applies). Default:
+    /// None, not spherically symmetric.
+    fn symmetry_center(&self) -> Option<DVec3> {
+        None
+    }
 }
 
 /// Optical path length ∫ n ds of a step between two samples `ds` apart (trapezoid rule,

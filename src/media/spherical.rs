@@ -19,6 +19,9 @@ impl Medium for Luneburg {
     fn absorbs(&self) -> bool {
         false
     }
+    fn symmetry_center(&self) -> Option<DVec3> {
+        Some(self.center)
+    }
     fn sample(&self, p: DVec3) -> Option<IndexSample> {
         let d = p - self.center;
         let u2 = d.length_squared() / (self.radius * self.radius);
@@ -51,6 +54,9 @@ impl Medium for FishEye {
     /// Transparent.
     fn absorbs(&self) -> bool {
         false
+    }
+    fn symmetry_center(&self) -> Option<DVec3> {
+        Some(self.center)
     }
     fn sample(&self, p: DVec3) -> Option<IndexSample> {
         let d = p - self.center;
@@ -101,6 +107,9 @@ impl Medium for BlackHole {
     /// Transparent.
     fn absorbs(&self) -> bool {
         false
+    }
+    fn symmetry_center(&self) -> Option<DVec3> {
+        Some(self.center)
     }
     fn sample(&self, p: DVec3) -> Option<IndexSample> {
         let d = p - self.center;
@@ -182,6 +191,9 @@ impl Medium for ExactBlackHole {
     /// Transparent.
     fn absorbs(&self) -> bool {
         false
+    }
+    fn symmetry_center(&self) -> Option<DVec3> {
+        Some(self.center)
     }
     fn sample(&self, p: DVec3) -> Option<IndexSample> {
         let d = p - self.center;

@@ -10,7 +10,9 @@
 
 use crate::error::{Error, Result};
 use crate::film::Film;
-use crate::integrator::{CameraRay, Integrator, PathTracer, PhotonMapper, Plan, Sample};
+use crate::integrator::{
+    CameraRay, DeflectionTable, Integrator, PathTracer, PhotonMapper, Plan, Sample,
+};
 use crate::photon::{shoot, Batch, Budget, Photons, Sources};
 use crate::receiver::{self, Measurement};
 pub use crate::report::Report;
@@ -98,6 +100,14 @@ pub fn render(
     };
     match settings.integrator {
         Kind::PhotonMap => {
+            let stop = || observer.stop_requested();
+            let table = settings
+                .deflection_table
+                .then(|| DeflectionTable::new(&tracer, &stop))
+                .flatten();
+            if let Some(table) = table {
+                return render_with(&table, &tracer, settings, passes, observer);
+            }
             let integrator = PhotonMapper::new(&tracer, settings);
             render_with(&integrator, &tracer, settings, passes, observer)
         }

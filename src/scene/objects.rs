@@ -120,6 +120,7 @@ pub fn read_render(t: &mut TableReader) -> Result<Settings> {
     })?;
     Ok(Settings {
         integrator,
+        deflection_table: t.bool_or("deflection_table", d.deflection_table)?,
         spp: t.count_or("spp", d.spp as u64)?.min(u32::MAX as u64) as u32,
         seed: t.natural_or("seed", d.seed)?,
         threads: t.natural_or("threads", 0)? as usize,

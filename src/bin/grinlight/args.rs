@@ -140,6 +140,10 @@ pub struct RenderArgs {
     /// Seed.
     #[arg(long)]
     seed: Option<u64>,
+    /// Trace every camera ray even where a deflection table applies (a camera before one
+    /// spherically symmetric ambient medium and nothing else, e.g. a black hole).
+    #[arg(long)]
+    no_table: bool,
     /// Worker threads (0 = all cores; at most 16 per core).
     #[arg(long)]
     threads: Option<usize>,
@@ -220,6 +224,7 @@ impl From<RenderArgs> for RenderJob {
                 receiver_photons: a.receiver_photons,
                 threads: a.threads,
                 integrator: a.integrator,
+                no_table: a.no_table,
             },
             checkpoint: a.checkpoint.unwrap_or(0),
             paths: a.paths.unwrap_or(0),
