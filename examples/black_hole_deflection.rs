@@ -6,8 +6,13 @@
 //! curve, also after adding back the deflection the scene gives up by ending rays at its
 //! `world_radius` R (a straight-line tail estimate, (rs/b)(1 − √(1 − (b/R)²)) ≈ rs b/2R²); writes `out/black_hole_deflection.csv` and a log-log plot
 //! `out/black_hole_deflection.png` (red: rendered rays, blue: exact, green: 2 rs/b).
+//!
+//! Then the same row of `scenes/schwarzschild.toml` (the exact index, DESIGN §11), each ray's
+//! deflection against general relativity's between the camera and the point where the ray
+//! left the world ([`ExactBlackHole::gr_deflection`], no tail needed); both curves are drawn
+//! side by side (purple: exact hole's rendered rays, yellow: GR).
 
-use grinlight::media::black_hole_deflection;
+use grinlight::media::{black_hole_deflection, ExactBlackHole, Medium};
 use grinlight::plot::{canvas, save, Labels, Panel, PALETTE};
 use grinlight::transport::{Event, Stats, Tracer};
 use std::io::Write;
@@ -67,12 +72,18 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         );
     }
     println!("worst |rendered − exact| / exact: {worst:.2e}; with the tail beyond world_radius added back: {worst_with_tail:.2e}");
+    let (schwarzschild, gr) = exact_row()?;
     let mut img = canvas(680, 540);
+    let bs = rendered.iter().chain(&schwarzschild).map(|p| p.0);
     let bx = (
-        rendered.first().ok_or("no ray")?.0,
-        rendered.last().ok_or("no ray")?.0,
+        bs.clone().fold(f64::INFINITY, f64::min),
+        bs.fold(0.0, f64::max),
     );
-    let ys = rendered.iter().chain(&weak).map(|p| p.1);
+    let ys = rendered
+        .iter()
+        .chain(&weak)
+        .chain(&schwarzschild)
+        .map(|p| p.1);
     let y = (
         ys.clone().fold(f64::INFINITY, f64::min),
         ys.fold(0.0, f64::max),
@@ -87,13 +98,63 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         (PALETTE[0], "rendered rays"),
         (PALETTE[1], "exact, index model"),
         (PALETTE[2], "weak field 2 rs/b"),
+        (PALETTE[3], "Schwarzschild: rendered"),
+        (PALETTE[4], "Schwarzschild: GR"),
     ]);
     panel.polyline(&weak, PALETTE[2]);
     panel.polyline(&exact, PALETTE[1]);
+    panel.polyline(&gr, PALETTE[4]);
     for (x, v) in rendered.iter().step_by(8) {
         panel.marker(*x, *v, PALETTE[0]);
+    }
+    for (x, v) in schwarzschild.iter().step_by(8) {
+        panel.marker(*x, *v, PALETTE[3]);
     }
     save(&img, Path::new("out/black_hole_deflection.png"))?;
     println!("wrote out/black_hole_deflection.csv and out/black_hole_deflection.png");
     Ok(())
+}
+
+/// The middle row of `scenes/schwarzschild.toml` traced ray by ray: (b in rs, deflection) of
+/// the rendered rays and of GR between the camera and each ray's exit from the world.
+type Curve = Vec<(f64, f64)>;
+fn exact_row() -> Result<(Curve, Curve), Box<dyn std::error::Error>> {
+    let (scene, settings) = grinlight::scene::load_scene(Path::new("scenes/schwarzschild.toml"))?;
+    let camera = scene.camera.as_ref().ok_or("no camera")?;
+    let rs = 0.01; // as in the scene file
+    let hole = ExactBlackHole {
+        center: glam::DVec3::ZERO,
+        rs,
+        q: 0.0,
+    };
+    let tracer = Tracer::new(&scene, &settings.trace);
+    let (mut rendered, mut gr) = (Vec::new(), Vec::new());
+    let mut worst: f64 = 0.0;
+    let row = camera.height / 2;
+    for px in camera.width / 2..camera.width {
+        let (o, d) = camera.ray(px, row, 0.5, 0.5, (0.5, 0.5));
+        let n0 = hole.sample(o).ok_or("camera inside the horizon")?.n;
+        let b = n0 * o.length() * o.normalize().cross(d).length();
+        let Event::Escaped {
+            direction: out,
+            position,
+            ..
+        } = tracer.next_event(o, d, scene.ambient, &mut Stats::default())
+        else {
+            continue; // captured
+        };
+        let phi = d.cross(out).length().atan2(d.dot(out));
+        let u = |rho: f64| 1.0 / hole.areal_radius(rho);
+        let Some(want) = hole.gr_deflection(b, u(o.length()), u(position.length())) else {
+            continue;
+        };
+        worst = worst.max((phi - want).abs() / want);
+        rendered.push((b / rs, phi));
+        gr.push((b / rs, want));
+    }
+    println!(
+        "schwarzschild.toml: {} escaping rays of the middle row, worst |rendered − GR| / GR {worst:.2e}",
+        rendered.len()
+    );
+    Ok((rendered, gr))
 }

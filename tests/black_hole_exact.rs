@@ -1,6 +1,8 @@
 //! The exact black holes of DESIGN §11 (Schwarzschild and Reissner–Nordström as index media in
 //! isotropic coordinates) against general relativity's own formulas in areal coordinates:
-//! the index, the horizon, the photon sphere, the deflection of traced rays, capture.
+//! the index, the horizon, the photon sphere, the deflection of traced rays
+//! ([`ExactBlackHole::gr_deflection`], GR's orbit quadrature from the metric, not from the
+//! index), capture.
 
 use glam::DVec3;
 use grinlight::curve::{
@@ -13,72 +15,6 @@ use std::f64::consts::PI;
 fn lapse2(hole: &ExactBlackHole, u: f64) -> f64 {
     let (m, charge) = (0.5 * hole.rs, hole.q * hole.rs);
     1.0 - 2.0 * m * u + charge * charge * u * u
-}
-
-/// ∫ f from a to b by 8-point Gauss–Legendre on `panels` equal panels.
-fn integrate(f: impl Fn(f64) -> f64, a: f64, b: f64, panels: usize) -> f64 {
-    const X: [f64; 4] = [
-        0.183_434_642_495_649_8,
-        0.525_532_409_916_329,
-        0.796_666_477_413_626_7,
-        0.960_289_856_497_536_3,
-    ];
-    const W: [f64; 4] = [
-        0.362_683_783_378_362,
-        0.313_706_645_877_887_3,
-        0.222_381_034_453_374_5,
-        0.101_228_536_290_376_3,
-    ];
-    let h = (b - a) / panels as f64;
-    let mut sum = 0.0;
-    for p in 0..panels {
-        let mid = a + (p as f64 + 0.5) * h;
-        for (x, w) in X.iter().zip(W) {
-            sum += w * (f(mid + 0.5 * h * x) + f(mid - 0.5 * h * x));
-        }
-    }
-    0.5 * h * sum
-}
-
-/// GR's deflection of a light ray of impact parameter `b` (r of closest approach from
-/// 1/b² = u₀² f(u₀), u = 1/r areal) between two static observers at areal radii 1/`u1` and
-/// 1/`u2` on either side of the turning point: the angle between its local directions there,
-/// Φ(u1) + Φ(u2) − π + ψ1 + ψ2, with Φ(u) = ∫_u^{u₀} du'/√(1/b² − u'² f(u')) the polar angle
-/// swept and sin ψ = b u √f(u) the angle a static observer measures from the radial direction.
-/// None when the ray has no turning point (it is captured).
-fn gr_deflection(hole: &ExactBlackHole, b: f64, u1: f64, u2: f64) -> Option<f64> {
-    let g = |u: f64| 1.0 / (b * b) - u * u * lapse2(hole, u);
-    // The turning point: the first root of g walking out from u = 0.
-    let (mut lo, mut step) = (0.0, 1e-3 / b);
-    let mut hi = step;
-    while g(hi) > 0.0 {
-        lo = hi;
-        step *= 1.05;
-        hi = lo + step;
-        if hi * hole.rs > 2.0 {
-            return None;
-        }
-    }
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        (lo, hi) = if g(mid) > 0.0 { (mid, hi) } else { (lo, mid) };
-    }
-    let u0 = 0.5 * (lo + hi);
-    // Φ(u) with u' = u0(1 − w²), which takes the inverse square root off the turning point.
-    let phi = |u: f64| {
-        let top = (1.0 - u / u0).sqrt();
-        integrate(
-            |w| {
-                let v = u0 * (1.0 - w * w);
-                2.0 * u0 * w / g(v).max(0.0).sqrt()
-            },
-            0.0,
-            top,
-            4000,
-        )
-    };
-    let psi = |u: f64| (b * u * lapse2(hole, u).sqrt()).asin();
-    Some(phi(u1) + phi(u2) - PI + psi(u1) + psi(u2))
 }
 
 /// The ray of impact parameter `b` traced with adaptive RK4 at `tolerance` from isotropic
@@ -117,7 +53,9 @@ fn traced(
     let turn = dir.cross(end_dir).z.atan2(dir.dot(end_dir));
     let deflection = turn.rem_euclid(2.0 * PI);
     let u = |rho: f64| 1.0 / hole.areal_radius(rho);
-    let exact = gr_deflection(hole, b, u(start), u(out.state.position.length())).unwrap();
+    let exact = hole
+        .gr_deflection(b, u(start), u(out.state.position.length()))
+        .unwrap();
     (Some((deflection, exact)), out.steps)
 }
 
