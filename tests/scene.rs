@@ -35,6 +35,7 @@ const BAD: &[(&str, usize, usize, &str)] = &[
     // parabolic rod with both `a` and `g`.
     ("[[light]]\ntype = \"point\"\nposition = [0, 0, 0]\nintensity = 1\nspectrum = \"D65\"\n", 5, 1, "unknown spectrum 'D65'"),
     ("[[light]]\ntype = \"point\"\nposition = [0, 0, 0]\nintensity = 1\nspectrum = { gaussian = [450.0] }\n", 5, 1, "bad `gaussian` spectrum"),
+    ("[[light]]\ntype = \"point\"\nposition = [0, 0, 0]\nintensity = 1\nspectrum = { gaussian = [450.0, 20.0, \"x\"] }\n", 5, 1, "key `spectrum`: expected a number, got string"),
     ("[[receiver]]\nname = \"r\"\ncenter = [0, 0, 0]\nsize = [1, 1]\nbins = [2, 2]\nbands = [[300.0, 400.0]]\n", 6, 1, "each band is [lo_nm, hi_nm]"),
     ("[[medium]]\nname = \"a\"\nprofile = \"parabolic\"\nn0 = 1.5\na = 0.1\ng = 0.3\n", 5, 1, "give exactly one of `a`"),
     // The exact black holes: a charge is required of reissner_nordstrom, and not negative.

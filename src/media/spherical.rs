@@ -201,22 +201,8 @@ impl ExactBlackHole {
     /// radial direction. None when the ray has no turning point (it is captured).
     pub fn gr_deflection(&self, b: f64, u1: f64, u2: f64) -> Option<f64> {
         let g = |u: f64| 1.0 / (b * b) - u * u * self.lapse2(u);
-        // The turning point: the first root of g walking out from u = 0, then bisection.
-        let (mut lo, mut step) = (0.0, 1e-3 / b);
-        let mut hi = step;
-        while g(hi) > 0.0 {
-            lo = hi;
-            step *= 1.05;
-            hi = lo + step;
-            if hi * self.rs > 2.0 {
-                return None;
-            }
-        }
-        for _ in 0..200 {
-            let mid = 0.5 * (lo + hi);
-            (lo, hi) = if g(mid) > 0.0 { (mid, hi) } else { (lo, mid) };
-        }
-        let u0 = 0.5 * (lo + hi);
+        // Beyond u = 2/rs (r = rs/2) lies the horizon of every q ≤ ½: no turning point.
+        let u0 = turning_point(&g, b, |u| u * self.rs > 2.0)?;
         // Φ(u) with u' = u0(1 − w²), which takes the inverse square root off the turning point.
         let phi = |u: f64| {
             let top = (1.0 - u / u0).max(0.0).sqrt();
@@ -270,6 +256,27 @@ impl Medium for ExactBlackHole {
     }
 }
 
+/// The turning point u₀ of a ray of impact parameter `b` in u = 1/r: the first root of `g`
+/// (positive at u = 0), found by walking out in steps growing from 10⁻³/b, then bisecting to
+/// rounding. None when the walk reaches a `u` that is `past` (a horizon: no turning point).
+fn turning_point(g: &dyn Fn(f64) -> f64, b: f64, past: impl Fn(f64) -> bool) -> Option<f64> {
+    let (mut lo, mut step) = (0.0, 1e-3 / b);
+    let mut hi = step;
+    while g(hi) > 0.0 {
+        lo = hi;
+        step *= 1.05;
+        hi = lo + step;
+        if past(hi) {
+            return None;
+        }
+    }
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        (lo, hi) = if g(mid) > 0.0 { (mid, hi) } else { (lo, mid) };
+    }
+    Some(0.5 * (lo + hi))
+}
+
 /// 4-point Gauss–Legendre on [0, 1] with `panels` equal panels.
 fn gauss_legendre(f: impl Fn(f64) -> f64, panels: usize) -> f64 {
     const X: [f64; 4] = [
@@ -307,28 +314,7 @@ fn gauss_legendre(f: impl Fn(f64) -> f64, panels: usize) -> f64 {
 pub fn black_hole_deflection(b: f64, q: f64, u_start: f64) -> Option<f64> {
     let n = |u: f64| 1.0 / (1.0 - u + q * q * u * u);
     let g = |u: f64| n(u) - b * u;
-    // Walk out from u = 0 (g > 0) to the first sign change, then bisect.
-    let mut lo = 0.0;
-    let mut step = 1e-3 / b;
-    let mut hi = lo + step;
-    while g(hi) > 0.0 {
-        lo = hi;
-        step *= 1.1;
-        hi = lo + step;
-        let den = 1.0 - hi + q * q * hi * hi;
-        if den <= 0.0 || hi > 1e3 {
-            return None;
-        }
-    }
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if g(mid) > 0.0 {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    let u0 = 0.5 * (lo + hi);
+    let u0 = turning_point(&g, b, |u| 1.0 - u + q * q * u * u <= 0.0 || u > 1e3)?;
     if u_start >= u0 {
         return None;
     }

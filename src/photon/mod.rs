@@ -74,6 +74,8 @@ pub struct Launch {
 /// The scene's photon sources with a discrete distribution proportional to their power.
 pub struct Sources<'a> {
     sources: Vec<Placed<'a>>,
+    /// Whether receiver photons carry a wavelength ([`crate::scene::Scene::is_spectral`]).
+    spectral: bool,
     /// Cumulative selection probabilities, the last one 1.
     cdf: Vec<f64>,
 }
@@ -102,7 +104,7 @@ impl<'a> Sources<'a> {
             sources.push(Placed {
                 source: Source::Environment(env),
                 medium: scene.ambient,
-                spectrum: scene.light_spectrum(usize::MAX),
+                spectrum: Spectrum::equal(),
             });
             weights.push(env.selection_power(tracer.ball));
         }
@@ -120,7 +122,11 @@ impl<'a> Sources<'a> {
         if let Some(last) = cdf.last_mut() {
             *last = 1.0;
         }
-        Self { sources: kept, cdf }
+        Self {
+            sources: kept,
+            cdf,
+            spectral: scene.is_spectral(),
+        }
     }
 
     /// True when nothing emits.
@@ -216,7 +222,7 @@ impl Photons {
         let mut rng = stream(self.seed, purpose, self.pass, i);
         let u = [rng.gen(), rng.gen(), rng.gen(), rng.gen(), rng.gen()];
         let launch = sources.emit(tracer, u).map(|(launch, spectrum)| {
-            let spectral = self.batch == Batch::Receivers && tracer.scene.is_spectral();
+            let spectral = self.batch == Batch::Receivers && sources.spectral;
             Launch {
                 wavelength: spectral.then(|| spectrum.sample(rng.gen())),
                 ..launch

@@ -2,7 +2,7 @@
 //! resolved, and the [`Settings`] of its `[render]` and `[output]` tables; every error located
 //! at file:line:col and naming the key.
 
-use super::media::{read_medium, Profile};
+use super::media::{read_medium, uniform};
 use super::model::{Description, Media, Scene, Shape, Surface};
 use super::objects::{
     read_camera, read_environment, read_light, read_material, read_output, read_receiver,
@@ -14,7 +14,6 @@ use crate::environment::Environment;
 use crate::error::{Error, Result};
 use crate::lights::Light;
 use crate::material::Material;
-use crate::media::UniformMedium;
 use crate::receiver::Receiver;
 use crate::settings::Settings;
 use crate::spectrum::{Dispersion, Spectrum};
@@ -69,10 +68,7 @@ fn read_media(source: &Source, tables: Vec<Spanned<SpannedTable>>) -> Result<Med
         let name = named(&mut t, media.names(), "medium")?;
         let medium = read_medium(&mut t)?;
         t.finish()?;
-        match medium {
-            Profile::Fixed(m) => media.add(name, m),
-            Profile::Dispersive(at) => media.add_dispersive(name, at),
-        };
+        media.add_profile(name, medium);
     }
     Ok(media)
 }
@@ -94,13 +90,13 @@ fn read_materials(
         let interior = match interior {
             None => None,
             Some(Interior::Medium(name)) => Some(medium_index(&t, "interior", &name, media)?),
-            Some(Interior::Ior(Dispersion::Constant(n))) => {
-                Some(media.add(format!("{name} (ior {n})"), Box::new(UniformMedium { n })))
+            Some(Interior::Ior(d)) => {
+                let label = match d {
+                    Dispersion::Constant(n) => format!("{name} (ior {n})"),
+                    _ => format!("{name} (dispersive ior)"),
+                };
+                Some(media.add_profile(label, uniform(d)))
             }
-            Some(Interior::Ior(d)) => Some(media.add_dispersive(
-                format!("{name} (dispersive ior)"),
-                Box::new(move |nm| Box::new(UniformMedium { n: d.at(nm) })),
-            )),
         };
         t.finish()?;
         m.list.push(material);

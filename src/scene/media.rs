@@ -1,7 +1,7 @@
 //! `[[medium]]` tables ⇒ media. Each profile's keys, units and defaults are listed in
 //! `docs/scene-format.md`; lengths are scene units, vectors [x, y, z].
 
-use super::model::AtWavelength;
+use super::model::Profile;
 use super::table::TableReader;
 use crate::error::Result;
 use crate::media::{
@@ -28,15 +28,6 @@ pub const PROFILES: &[&str] = &[
     "reissner_nordstrom",
     "grid",
 ];
-
-/// A medium as read: one medium, or, when an index-valued key depends on wavelength, how
-/// to build it at each.
-pub enum Profile {
-    /// The same at every wavelength.
-    Fixed(Box<dyn Medium>),
-    /// Dispersive.
-    Dispersive(AtWavelength),
-}
 
 /// Reads one `[[medium]]` table (its `name` already taken) and builds the medium, with its
 /// `absorption` coefficient if it has one.
@@ -71,9 +62,7 @@ fn read_profile(t: &mut TableReader) -> Result<Profile> {
     Ok(match profile.as_str() {
         "radial_table" | "height_table" | "luneburg" | "black_hole" | "schwarzschild"
         | "reissner_nordstrom" | "grid" => Profile::Fixed(read_fixed(t, &profile)?),
-        "uniform" => by_wavelength(vec![t.dispersion("n")?], |v| {
-            Box::new(UniformMedium { n: v[0] })
-        }),
+        "uniform" => uniform(t.dispersion("n")?),
         "linear" => {
             let n0 = t.dispersion("n0")?;
             let (gradient, origin) = (t.vec3("gradient")?, t.vec3_or("origin", DVec3::ZERO)?);
@@ -157,6 +146,11 @@ fn by_wavelength(
     } else {
         Profile::Fixed(at(LAMBDA_D))
     }
+}
+
+/// A uniform medium of index `n` (a dielectric's `ior`, or `profile = "uniform"`).
+pub fn uniform(n: Dispersion) -> Profile {
+    by_wavelength(vec![n], |v| Box::new(UniformMedium { n: v[0] }))
 }
 
 /// The parabolic profile's gradient constant: `a` (1/length²), or `g` (1/length) with

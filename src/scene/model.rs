@@ -19,6 +19,15 @@ use std::path::{Path, PathBuf};
 /// How a dispersive medium is built at a vacuum wavelength (nm).
 pub type AtWavelength = Box<dyn Fn(f64) -> Box<dyn Medium> + Send + Sync>;
 
+/// A medium as read: one medium, or, when its index depends on wavelength, how to build it at
+/// each.
+pub enum Profile {
+    /// The same at every wavelength.
+    Fixed(Box<dyn Medium>),
+    /// Dispersive.
+    Dispersive(AtWavelength),
+}
+
 /// One medium of the scene: its name, the medium at [`LAMBDA_D`] (what RGB camera paths see)
 /// and, if its index depends on wavelength, how to build it at another.
 struct Entry {
@@ -53,6 +62,14 @@ impl Media {
             dispersion: Some(at),
         });
         self.0.len() - 1
+    }
+
+    /// Adds a medium as read and returns its index.
+    pub fn add_profile(&mut self, name: impl Into<String>, profile: Profile) -> usize {
+        match profile {
+            Profile::Fixed(m) => self.add(name, m),
+            Profile::Dispersive(at) => self.add_dispersive(name, at),
+        }
     }
 
     /// The medium at index `i`, at [`LAMBDA_D`].
@@ -258,10 +275,9 @@ impl Scene {
     }
 
     /// The shape of light `i`'s emission spectrum: equal energy unless the scene gave one
-    /// (the environment's is always equal energy).
+    /// (the environment's is equal energy, [`Spectrum::equal`]).
     pub fn light_spectrum(&self, i: usize) -> &Spectrum {
-        static EQUAL: std::sync::LazyLock<Spectrum> = std::sync::LazyLock::new(Spectrum::default);
-        self.light_spectra.get(i).unwrap_or(&EQUAL)
+        self.light_spectra.get(i).unwrap_or(Spectrum::equal())
     }
 
     /// Whether photons must carry a wavelength: a medium is dispersive or a receiver measures

@@ -427,17 +427,7 @@ pub fn read_spectrum(t: &mut TableReader) -> Result<Spectrum> {
         toml::Value::String(s) if s == "E" => Shape::Equal,
         toml::Value::Table(table) if table.len() == 1 => {
             let (model, v) = table.iter().next().expect("one entry");
-            let numbers: Vec<f64> = match v {
-                toml::Value::Array(a) => a
-                    .iter()
-                    .filter_map(|x| x.as_float().or(x.as_integer().map(|i| i as f64)))
-                    .collect(),
-                x => x
-                    .as_float()
-                    .or(x.as_integer().map(|i| i as f64))
-                    .into_iter()
-                    .collect(),
-            };
+            let numbers = t.numbers_in("spectrum", v)?;
             match (model.as_str(), &numbers[..]) {
                 ("blackbody", &[k]) if k > 0.0 && k.is_finite() => Shape::Blackbody { kelvin: k },
                 ("gaussian", &[peak, fwhm])

@@ -212,10 +212,15 @@ impl<'a> TableReader<'a> {
 
     /// An optional list of number pairs `[[a, b], ...]`.
     pub fn vec2_list_opt(&mut self, key: &str) -> Result<Option<Vec<(f64, f64)>>> {
-        let Some(v) = self.take(key) else {
-            return Ok(None);
-        };
-        let Value::Array(rows) = &v else {
+        match self.take(key) {
+            Some(v) => self.pairs(key, &v).map(Some),
+            None => Ok(None),
+        }
+    }
+
+    /// The value `[[a, b], ...]` of `key` as pairs of finite numbers.
+    fn pairs(&self, key: &str, v: &Value) -> Result<Vec<(f64, f64)>> {
+        let Value::Array(rows) = v else {
             return Err(self.error(key, format!("expected [[a, b], ...], got {}", v.type_str())));
         };
         rows.iter()
@@ -223,8 +228,16 @@ impl<'a> TableReader<'a> {
                 [a, b] => Ok((a, b)),
                 _ => Err(self.error(key, "expected pairs [a, b]")),
             })
-            .collect::<Result<Vec<_>>>()
-            .map(Some)
+            .collect()
+    }
+
+    /// The numbers of a value taken with [`TableReader::value_opt`]: one number, or an array
+    /// of numbers, each finite and within range.
+    pub fn numbers_in(&self, key: &str, v: &Value) -> Result<Vec<f64>> {
+        match v {
+            Value::Array(_) => self.numbers(key, v),
+            _ => Ok(vec![self.number(key, v)?]),
+        }
     }
 
     /// A key's raw value, for a reader of its own (None when absent).
@@ -389,16 +402,7 @@ impl<'a> TableReader<'a> {
                 _ => return Err(self.error(key, "abbe takes [n_d > 1, V_d > 0]")),
             },
             "table" => {
-                let rows = match value {
-                    Value::Array(a) => a
-                        .iter()
-                        .map(|r| match self.numbers(key, r)?[..] {
-                            [nm, n] => Ok((nm, n)),
-                            _ => Err(self.error(key, "table rows are [nm, n]")),
-                        })
-                        .collect::<Result<Vec<_>>>()?,
-                    _ => return Err(self.error(key, "table takes [[nm, n], ...]")),
-                };
+                let rows = self.pairs(key, value)?;
                 let (nm, n) = rows.into_iter().unzip();
                 let curve = MonotoneCubic::new(nm, n, false, ("nm", "n"))
                     .map_err(|(_, e)| self.error(key, format!("table: {e}")))?;

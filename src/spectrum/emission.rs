@@ -108,9 +108,20 @@ impl Spectrum {
     }
 }
 
+impl Spectrum {
+    /// Equal energy per nm (CIE illuminant E), shared: what every light emits unless it says
+    /// otherwise, and the environment.
+    pub fn equal() -> &'static Spectrum {
+        static EQUAL: std::sync::LazyLock<Spectrum> = std::sync::LazyLock::new(|| {
+            Spectrum::new(Shape::Equal).expect("equal energy has power")
+        });
+        &EQUAL
+    }
+}
+
 impl Default for Spectrum {
     fn default() -> Self {
-        Self::new(Shape::Equal).expect("equal energy has power")
+        Self::equal().clone()
     }
 }
 
