@@ -178,7 +178,8 @@ g = { table = [[400.0, 0.33], [550.0, 0.32], [700.0, 0.31]] }
     assert!(foci.windows(2).all(|w| w[1] > w[0]), "{foci:?}");
 }
 
-/// Every form of a dispersive index reads; a wrong one is an error at its file:line:col.
+/// Every form of a dispersive index reads; a wrong one (among them a Sellmeier pole at
+/// 500.5 nm too weak to show at whole nanometres) is an error at its file:line:col.
 #[test]
 fn dispersive_indices_read_and_wrong_ones_are_located() {
     let ok = [
@@ -201,6 +202,7 @@ fn dispersive_indices_read_and_wrong_ones_are_located() {
         ("ior = \"unobtainium\"", "unknown material"),
         ("ior = { abbe = [0.9, 10.0] }", "abbe takes"),
         ("ior = { sellmeier = [1.0, 2.0, 3.0] }", "sellmeier takes"),
+        ("ior = { sellmeier = [1e-6, 0.2505] }", "puts a pole of n"),
         ("ior = { fresnel = [1.0] }", "unknown dispersion model"),
         ("ior = { cauchy = [-1.0] }", "must be > 0"),
         ("ior = [1.5]", "expected a number"),

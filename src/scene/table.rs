@@ -5,7 +5,7 @@ use super::source::Source;
 use crate::color::Rgb;
 use crate::error::{Error, Result};
 use crate::media::MonotoneCubic;
-use crate::spectrum::Dispersion;
+use crate::spectrum::{Dispersion, LAMBDA_MAX, LAMBDA_MIN};
 use glam::DVec3;
 use std::collections::BTreeMap;
 use std::ops::Range;
@@ -390,6 +390,14 @@ impl<'a> TableReader<'a> {
                     "sellmeier takes [B1, ..., Bk, C1, ..., Ck] (C in µm²)",
                 )?;
                 let (b, c) = c.split_at(c.len() / 2);
+                // A resonance Cᵢ = λ² inside 360–830 nm is a pole of n there, which sampling
+                // the range every nm may step over.
+                let visible = (LAMBDA_MIN * 1e-3).powi(2)..=(LAMBDA_MAX * 1e-3).powi(2);
+                self.check(
+                    key,
+                    !c.iter().any(|ci| visible.contains(ci)),
+                    "a sellmeier C (µm²) puts a pole of n between 360 and 830 nm",
+                )?;
                 Dispersion::Sellmeier(b.iter().copied().zip(c.iter().copied()).collect())
             }
             "cauchy" => {
