@@ -169,6 +169,19 @@ pub enum Light {
     },
 }
 
+impl Light {
+    /// Its colour quantity (intensity, radiance, peak intensity or irradiance, as its type
+    /// says), to be scaled.
+    pub fn colour_mut(&mut self) -> &mut Rgb {
+        match self {
+            Light::Point { intensity, .. } | Light::Spot { intensity, .. } => intensity,
+            Light::Area { radiance, .. } => radiance,
+            Light::Led { peak_intensity, .. } => peak_intensity,
+            Light::Directional { irradiance, .. } => irradiance,
+        }
+    }
+}
+
 /// Light arriving at a point from one sample of a light.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Incident {

@@ -33,7 +33,9 @@ const BAD: &[(&str, usize, usize, &str)] = &[
     ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = \"high\"\n", 4, 1, "key `n`: unknown material 'high' (known: BK7, F2, fused_silica, water)"),
     // Wavelength: an unknown spectrum, a malformed one, a band outside 360–830 nm, a
     // parabolic rod with both `a` and `g`.
-    ("[[light]]\ntype = \"point\"\nposition = [0, 0, 0]\nintensity = 1\nspectrum = \"D65\"\n", 5, 1, "unknown spectrum 'D65'"),
+    ("[[light]]\ntype = \"point\"\nposition = [0, 0, 0]\nintensity = 1\nspectrum = \"D50\"\n", 5, 1, "unknown spectrum 'D50'"),
+    // A spectrum gives the colour: the power key must be one number (or equal RGB).
+    ("[[light]]\ntype = \"point\"\nposition = [0, 0, 0]\nintensity = [1, 0.5, 0.5]\nspectrum = \"E\"\n", 5, 1, "gives its power as one number"),
     ("[[light]]\ntype = \"point\"\nposition = [0, 0, 0]\nintensity = 1\nspectrum = { gaussian = [450.0] }\n", 5, 1, "bad `gaussian` spectrum"),
     ("[[light]]\ntype = \"point\"\nposition = [0, 0, 0]\nintensity = 1\nspectrum = { gaussian = [450.0, 20.0, \"x\"] }\n", 5, 1, "key `spectrum`: expected a number, got string"),
     ("[[receiver]]\nname = \"r\"\ncenter = [0, 0, 0]\nsize = [1, 1]\nbins = [2, 2]\nbands = [[300.0, 400.0]]\n", 6, 1, "each band is [lo_nm, hi_nm]"),

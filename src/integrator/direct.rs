@@ -1,14 +1,18 @@
 //! What every integrator estimates the same way: a camera path to its visible point (the first
 //! diffuse surface after the specular and curved chain), the emission seen along a chain, and
 //! direct light at a diffuse point. Radiance per RGB channel, W/(m²·sr), scaled across indices
-//! as [`crate::transport::chain`] says; Lambertian BRDF = albedo/π.
+//! as [`crate::transport::chain`] says; Lambertian BRDF = albedo/π. In a dispersive scene each
+//! camera sample draws a hero wavelength ([`hero`]) that its paths take on where they meet
+//! dispersion ([`Carried`]); colours are then read at it ([`Tracer::reflectance`],
+//! [`Tracer::radiance`]).
 
 use crate::bsdf::Bsdf;
 use crate::color::Rgb;
 use crate::lights::Light;
-use crate::transport::chain::{Chain, End, Policy, Ray, Walker};
+use crate::spectrum::Hero;
+use crate::transport::chain::{Carried, Chain, End, Policy, Ray, Walker};
 use crate::transport::connect::connect;
-use crate::transport::{offset, visibility, Stats, Tracer};
+use crate::transport::{offset, visibility, HeroTracer, Stats, Tracer};
 use glam::DVec3;
 use rand::Rng;
 use std::f64::consts::FRAC_1_PI;
@@ -30,24 +34,35 @@ pub struct VisiblePoint {
 }
 
 /// What one camera path found.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct Components {
+#[derive(Clone, Copy)]
+pub struct Components<'w> {
     /// Emission and environment radiance met along the specular chain.
     pub emitted: Rgb,
     /// The visible point, if the path reached a diffuse surface.
     pub visible: Option<VisiblePoint>,
+    /// The wavelengths the path carries there.
+    pub carried: Carried<'w>,
+}
+
+/// A camera sample's hero wavelength, drawn from `rng` in a dispersive scene (None — and no
+/// random number drawn — in any other).
+pub fn hero<'a>(tracer: &Tracer<'a>, rng: &mut impl Rng) -> Option<HeroTracer<'a>> {
+    tracer
+        .scene
+        .is_dispersive()
+        .then(|| HeroTracer::new(tracer, Hero::visible(rng.gen())))
 }
 
 /// Radiance the end of `chain` sends back along it, as seen at its start: an emitter's (in
 /// its medium), or the environment's where it escaped into the ambient medium; zero for
-/// every other end.
+/// every other end. `tracer` is the one the chain ended on (it reads the environment).
 pub fn emission_seen(tracer: &Tracer, chain: &Chain) -> Rgb {
     let scene = tracer.scene;
     match chain.end {
         End::Emitter { radiance, .. } => chain.weight * radiance * chain.radiance_scale(),
         End::Escaped { direction } if chain.medium == scene.ambient => {
             scene.environment.as_ref().map_or(Rgb::ZERO, |env| {
-                chain.weight * env.radiance(direction) * chain.environment_scale()
+                chain.weight * tracer.radiance(env.radiance(direction)) * chain.environment_scale()
             })
         }
         _ => Rgb::ZERO,
@@ -55,22 +70,24 @@ pub fn emission_seen(tracer: &Tracer, chain: &Chain) -> Rgb {
 }
 
 /// Follows a camera ray through mirrors, dielectrics and curved media to its visible point.
-pub fn camera_path(
-    tracer: &Tracer,
+pub fn camera_path<'w>(
+    carried: Carried<'w>,
     origin: DVec3,
     dir: DVec3,
     rng: &mut impl Rng,
     stats: &mut Stats,
-) -> Components {
+) -> Components<'w> {
     let ray = Ray {
         origin,
         direction: dir,
-        medium: tracer.camera_medium,
+        medium: carried.tracer.camera_medium,
     };
-    let chain = Walker::new(tracer, Policy::Weighted).follow(ray, rng, stats, &mut ());
+    let mut walker = Walker::carrying(carried, Policy::Weighted);
+    let chain = walker.follow(ray, rng, stats, &mut ());
     let mut out = Components {
-        emitted: emission_seen(tracer, &chain),
+        emitted: emission_seen(walker.tracer, &chain),
         visible: None,
+        carried: walker.carried(),
     };
     if let End::Diffuse {
         position,
@@ -113,7 +130,7 @@ fn straight_light(
     };
     let kept = visibility::transmittance(tracer, origin, vp.medium, inc.wi, reach);
     let weight = power_heuristic(inc.pdf, cos * FRAC_1_PI);
-    vp.albedo * FRAC_1_PI * inc.irradiance * (cos * weight * kept)
+    vp.albedo * FRAC_1_PI * tracer.radiance(inc.irradiance) * (cos * weight * kept)
 }
 
 /// A point, spot, LED or parallel light at a visible point in gradient medium `m`, through
@@ -136,7 +153,7 @@ fn curved_light(
     if cos <= 0.0 {
         return Rgb::ZERO;
     }
-    let e = link.irradiance(&anchor, light.intensity(-link.arrival));
+    let e = link.irradiance(&anchor, tracer.radiance(light.intensity(-link.arrival)));
     vp.albedo * FRAC_1_PI * e * cos
 }
 
@@ -162,8 +179,10 @@ fn power_heuristic(a: f64, b: f64) -> f64 {
 ///   are no area-light samples to weigh it against).
 ///
 /// A BSDF ray that meets a mirror or dielectric first carries nothing: that light is the
-/// caustic map's.
-pub fn direct(tracer: &Tracer, vp: &VisiblePoint, rng: &mut impl Rng, stats: &mut Stats) -> Rgb {
+/// caustic map's. A BSDF ray into a dispersive medium takes on the hero wavelength there;
+/// connections are traced at the wavelength(s) the path carries.
+pub fn direct(carried: Carried, vp: &VisiblePoint, rng: &mut impl Rng, stats: &mut Stats) -> Rgb {
+    let tracer = carried.tracer;
     let scene = tracer.scene;
     let graded = vp.medium.filter(|&m| !tracer.medium(m).is_uniform());
     let origin = offset(vp.position, vp.normal);
@@ -189,7 +208,8 @@ pub fn direct(tracer: &Tracer, vp: &VisiblePoint, rng: &mut impl Rng, stats: &mu
         direction: s.wi,
         medium: vp.medium,
     };
-    let chain = Walker::new(tracer, Policy::Unscattered).follow(ray, rng, stats, &mut ());
+    let mut walker = Walker::carrying(carried, Policy::Unscattered);
+    let chain = walker.follow(ray, rng, stats, &mut ());
     let mis = match chain.end {
         End::Emitter {
             prim,
@@ -208,6 +228,6 @@ pub fn direct(tracer: &Tracer, vp: &VisiblePoint, rng: &mut impl Rng, stats: &mu
             }),
         _ => 1.0,
     };
-    radiance += s.weight * emission_seen(tracer, &chain) * mis;
+    radiance += s.weight * emission_seen(walker.tracer, &chain) * mis;
     vp.throughput * radiance
 }

@@ -10,13 +10,13 @@
 //! a specular chain (their caustics) cannot be found by any direction sample: the path tracer
 //! misses it, the photon mapper does not.
 
-use super::direct::{camera_path, direct, emission_seen, VisiblePoint};
+use super::direct::{camera_path, direct, emission_seen, hero, VisiblePoint};
 use super::{CameraRay, Integrator, Sample};
 use crate::bsdf::Bsdf;
 use crate::color::Rgb;
 use crate::film::{Layer, LayerKind};
 use crate::report::Report;
-use crate::transport::chain::{End, Policy, Ray, Walker};
+use crate::transport::chain::{Carried, End, Policy, Ray, Walker};
 use crate::transport::{offset, Tracer};
 use rand::Rng;
 
@@ -61,9 +61,8 @@ impl<'a> PathTracer<'a> {
     /// The light reaching the camera from diffuse bounces after the visible point `vp`:
     /// direct light at every later diffuse point, and emission found through specular chains
     /// from every diffuse point.
-    fn indirect(&self, mut vp: VisiblePoint, s: &mut Sample) -> Rgb {
-        let tracer = self.tracer;
-        let mut walker = Walker::new(tracer, Policy::Weighted);
+    fn indirect(&self, (mut vp, carried): (VisiblePoint, Carried), s: &mut Sample) -> Rgb {
+        let mut walker = Walker::carrying(carried, Policy::Weighted);
         let mut sum = Rgb::ZERO;
         for bounce in 0.. {
             if bounce >= SURE_BOUNCES {
@@ -85,7 +84,7 @@ impl<'a> PathTracer<'a> {
             let throughput = vp.throughput * b.weight * chain.weight;
             // With no specular bounce, emission here is the direct estimate's (already counted).
             if chain.specular > 0 {
-                sum += vp.throughput * b.weight * emission_seen(tracer, &chain);
+                sum += vp.throughput * b.weight * emission_seen(walker.tracer, &chain);
             }
             let End::Diffuse {
                 position,
@@ -103,7 +102,7 @@ impl<'a> PathTracer<'a> {
                 throughput: throughput * chain.radiance_scale(),
                 medium: chain.medium,
             };
-            sum += direct(tracer, &vp, s.rng, s.stats);
+            sum += direct(walker.carried(), &vp, s.rng, s.stats);
         }
         sum
     }
@@ -122,13 +121,18 @@ impl Integrator for PathTracer<'_> {
     }
 
     fn sample(&self, _: &(), _: &mut (), ray: CameraRay, s: &mut Sample) {
-        let c = camera_path(self.tracer, ray.origin, ray.direction, s.rng, s.stats);
+        let hero = hero(self.tracer, s.rng);
+        let carried = Carried {
+            tracer: self.tracer,
+            hero: hero.as_ref(),
+        };
+        let c = camera_path(carried, ray.origin, ray.direction, s.rng, s.stats);
         s.values[2] += c.emitted;
         let Some(vp) = c.visible else { return };
         s.values[3] += vp.albedo;
         s.values[4] += Rgb(vp.normal);
-        s.values[0] += direct(self.tracer, &vp, s.rng, s.stats);
-        let indirect = self.indirect(vp, s);
+        s.values[0] += direct(c.carried, &vp, s.rng, s.stats);
+        let indirect = self.indirect((vp, c.carried), s);
         s.values[1] += indirect;
     }
 }

@@ -10,7 +10,7 @@
 //!   diffuse one, where the global map's precomputed irradiance is read;
 //! - **emitted**: emitters and the environment seen along the camera's specular chain.
 
-use super::direct::{camera_path, direct};
+use super::direct::{camera_path, direct, hero};
 use super::{CameraRay, Integrator, Sample};
 use crate::bsdf::Bsdf;
 use crate::color::Rgb;
@@ -19,7 +19,7 @@ use crate::photon::{shoot, Batch, PhotonMap, Photons, Sources};
 use crate::report::Report;
 use crate::scene::Scene;
 use crate::settings::{PhotonSettings, Settings};
-use crate::transport::chain::{End, Policy, Ray, Walker};
+use crate::transport::chain::{Carried, End, Policy, Ray, Walker};
 use crate::transport::{offset, Stats, Tracer};
 use rand::Rng;
 use std::f64::consts::FRAC_1_PI;
@@ -183,10 +183,9 @@ impl<'a> PhotonMapper<'a> {
     fn secondary(
         &self,
         global: &PhotonMap,
-        vp: &super::direct::VisiblePoint,
+        (vp, carried): (&super::direct::VisiblePoint, Carried),
         s: &mut Sample,
     ) -> Rgb {
-        let tracer = self.tracer;
         let gather = self.photons.gather;
         let lambert = Bsdf::Lambert { albedo: vp.albedo };
         let mut sum = Rgb::ZERO;
@@ -200,7 +199,8 @@ impl<'a> PhotonMapper<'a> {
                 direction: b.wi,
                 medium: vp.medium,
             };
-            let chain = Walker::new(tracer, Policy::Weighted).follow(ray, s.rng, s.stats, &mut ());
+            let mut walker = Walker::carrying(carried, Policy::Weighted);
+            let chain = walker.follow(ray, s.rng, s.stats, &mut ());
             if let End::Diffuse {
                 position,
                 normal,
@@ -211,6 +211,7 @@ impl<'a> PhotonMapper<'a> {
                 let e = s
                     .stats
                     .time_query(|| global.nearest_irradiance(position, normal));
+                let e = walker.tracer.radiance(e);
                 sum += b.weight * chain.weight * albedo * FRAC_1_PI * e * chain.radiance_scale();
             }
         }
@@ -256,14 +257,19 @@ impl Integrator for PhotonMapper<'_> {
     }
 
     fn sample(&self, maps: &Maps, r2: &mut Option<f64>, ray: CameraRay, s: &mut Sample) {
-        let c = camera_path(self.tracer, ray.origin, ray.direction, s.rng, s.stats);
+        let hero = hero(self.tracer, s.rng);
+        let carried = Carried {
+            tracer: self.tracer,
+            hero: hero.as_ref(),
+        };
+        let c = camera_path(carried, ray.origin, ray.direction, s.rng, s.stats);
         s.values[3] += c.emitted;
         let Some(vp) = c.visible else { return };
         s.values[4] += vp.albedo;
         s.values[5] += Rgb(vp.normal);
-        s.values[0] += direct(self.tracer, &vp, s.rng, s.stats);
+        s.values[0] += direct(c.carried, &vp, s.rng, s.stats);
         if let Some(global) = &maps.global {
-            let secondary = self.secondary(global, &vp, s);
+            let secondary = self.secondary(global, (&vp, c.carried), s);
             s.values[2] += secondary;
         }
         if let Some(caustic) = &maps.caustic {
@@ -271,6 +277,7 @@ impl Integrator for PhotonMapper<'_> {
             let (irradiance, _) = s
                 .stats
                 .time_query(|| caustic.irradiance(vp.position, vp.normal, r2));
+            let irradiance = c.carried.tracer.radiance(irradiance);
             s.values[1] += vp.throughput * vp.albedo * irradiance * FRAC_1_PI;
         }
     }

@@ -28,7 +28,7 @@ use crate::environment::Environment;
 use crate::lights::{Emission, Light};
 use crate::receiver::Detection;
 use crate::sampling::{stream, Purpose};
-use crate::spectrum::Spectrum;
+use crate::spectrum::{colour, Spectrum};
 use crate::transport::chain::{self, End, Policy, Ray};
 use crate::transport::{offset, Stats, Tracer};
 use glam::DVec3;
@@ -53,8 +53,8 @@ struct Placed<'a> {
     source: Source<'a>,
     /// The medium its photons start in.
     medium: Option<usize>,
-    /// The shape of its spectrum.
-    spectrum: &'a Spectrum,
+    /// The spectrum it was given (None: its colour is its RGB, and its spectrum D65).
+    spectrum: Option<&'a Spectrum>,
 }
 
 /// A photon leaving a source: where, which way, with what power, in which medium, at which
@@ -66,9 +66,55 @@ pub struct Launch {
     /// The medium it starts in.
     pub medium: Option<usize>,
     /// Its vacuum wavelength (nm), drawn from its source's spectrum when the scene is
-    /// spectral ([`crate::scene::Scene::is_spectral`]) and the photon feeds receivers; None:
-    /// it travels at [`crate::spectrum::LAMBDA_D`] (as camera paths do).
+    /// dispersive ([`crate::scene::Scene::is_dispersive`]), or spectral and the photon feeds
+    /// receivers; its power is then that one wavelength's ([`Launch::at_wavelength`]). None:
+    /// it carries every wavelength (RGB) and sees each medium at
+    /// [`crate::spectrum::LAMBDA_D`].
     pub wavelength: Option<f64>,
+}
+
+impl Launch {
+    /// The same photon at one vacuum wavelength drawn (uniform `u`) from its source's
+    /// spectrum — `given`, or D65 for a source whose colour is its RGB — with the power it
+    /// carries there, the same in every channel (W, as an estimate over wavelengths): for a
+    /// given spectrum, the light's power key ([`Launch::radiometric`]); for an RGB source of
+    /// colour P, whose spectral power is the reflectance spectrum of P times D65
+    /// ([`colour::illuminant`]) and whose wavelengths are drawn from D65, the reflectance
+    /// spectrum of P at the wavelength. Where such a photon is stored it is read in sRGB
+    /// through [`colour::sensor`].
+    fn at_wavelength(self, given: Option<&Spectrum>, u: f64) -> Launch {
+        let (nm, power) = match given {
+            Some(spectrum) => (spectrum.sample(u), self.radiometric(given).emission.power),
+            None => {
+                let nm = Spectrum::white().sample(u);
+                (nm, Rgb::splat(colour::reflectance(self.emission.power, nm)))
+            }
+        };
+        Launch {
+            emission: Emission {
+                power,
+                ..self.emission
+            },
+            wavelength: Some(nm),
+            ..self
+        }
+    }
+
+    /// The same photon with its power in W, as receivers count it: a light with a `given`
+    /// spectrum was tinted by the spectrum's colour for the images (its channels' mean is
+    /// taken off again, leaving the power key's value in every channel); any other is as it is
+    /// (receivers count the mean of its channels).
+    fn radiometric(self, given: Option<&Spectrum>) -> Launch {
+        let Some(spectrum) = given else { return self };
+        let tint = spectrum.colour().0.max(DVec3::ZERO).element_sum() / 3.0;
+        Launch {
+            emission: Emission {
+                power: Rgb::splat(self.emission.power.mean() / tint),
+                ..self.emission
+            },
+            ..self
+        }
+    }
 }
 
 /// The scene's photon sources with a discrete distribution proportional to their power.
@@ -76,6 +122,8 @@ pub struct Sources<'a> {
     sources: Vec<Placed<'a>>,
     /// Whether receiver photons carry a wavelength ([`crate::scene::Scene::is_spectral`]).
     spectral: bool,
+    /// Whether every photon carries one ([`crate::scene::Scene::is_dispersive`]).
+    dispersive: bool,
     /// Cumulative selection probabilities, the last one 1.
     cdf: Vec<f64>,
 }
@@ -104,7 +152,7 @@ impl<'a> Sources<'a> {
             sources.push(Placed {
                 source: Source::Environment(env),
                 medium: scene.ambient,
-                spectrum: Spectrum::equal(),
+                spectrum: None,
             });
             weights.push(env.selection_power(tracer.ball));
         }
@@ -126,6 +174,7 @@ impl<'a> Sources<'a> {
             sources: kept,
             cdf,
             spectral: scene.is_spectral(),
+            dispersive: scene.is_dispersive(),
         }
     }
 
@@ -138,7 +187,7 @@ impl<'a> Sources<'a> {
     /// the selection probability, and the source's spectrum. Environment radiance is given as in vacuum (see
     /// [`crate::transport::chain::Chain::environment_scale`]): in an ambient medium of index
     /// n at the photon's start, its power is n² times the vacuum estimate.
-    fn emit(&self, tracer: &Tracer, u: [f64; 5]) -> Option<(Launch, &Spectrum)> {
+    fn emit(&self, tracer: &Tracer, u: [f64; 5]) -> Option<(Launch, Option<&Spectrum>)> {
         let i = self
             .cdf
             .partition_point(|c| *c <= u[0])
@@ -222,10 +271,14 @@ impl Photons {
         let mut rng = stream(self.seed, purpose, self.pass, i);
         let u = [rng.gen(), rng.gen(), rng.gen(), rng.gen(), rng.gen()];
         let launch = sources.emit(tracer, u).map(|(launch, spectrum)| {
-            let spectral = self.batch == Batch::Receivers && sources.spectral;
-            Launch {
-                wavelength: spectral.then(|| spectrum.sample(rng.gen())),
-                ..launch
+            let spectral = match self.batch {
+                Batch::Receivers => sources.spectral,
+                Batch::Caustic | Batch::Global => sources.dispersive,
+            };
+            match (spectral, self.batch) {
+                (true, _) => launch.at_wavelength(spectrum, rng.gen()),
+                (false, Batch::Receivers) => launch.radiometric(spectrum),
+                (false, _) => launch,
             }
         });
         (rng, launch)
@@ -427,6 +480,11 @@ fn trace_photon(
     let tracer = dispersed.as_ref().unwrap_or(tracer);
     let scene = tracer.scene;
     let e = launch.emission;
+    // A photon of one wavelength is stored in the sRGB its power stands for.
+    let seen_as = match (tag.batch, launch.wavelength) {
+        (Batch::Caustic | Batch::Global, Some(nm)) => colour::sensor(nm),
+        _ => Rgb::ONE,
+    };
     stored.budget.emitted += (e.power / tag.count as f64).mean();
     path(e.origin);
     let mut walk = PhotonWalk {
@@ -466,7 +524,7 @@ fn trace_photon(
         let photon = Photon {
             position,
             normal,
-            power: walk.power.as_vec3().to_array(),
+            power: (walk.power * seen_as).as_vec3().to_array(),
         };
         match tag.batch {
             // L (S|G)* S (S|G)* D: at least one specular bounce. Light through gradient media

@@ -5,8 +5,8 @@
 use super::media::{read_medium, uniform};
 use super::model::{Description, Media, Scene, Shape, Surface};
 use super::objects::{
-    read_camera, read_environment, read_light, read_material, read_output, read_receiver,
-    read_render, read_shape, read_spectrum, Interior,
+    read_camera, read_environment, read_light_and_spectrum, read_material, read_output,
+    read_receiver, read_render, read_shape, Interior,
 };
 use super::source::Source;
 use super::table::{SpannedTable, TableReader};
@@ -158,7 +158,7 @@ fn read_shapes(
 }
 
 /// The file's lights, the shape of each one's spectrum, and the environment.
-type Lights = (Vec<Light>, Vec<Spectrum>, Option<Environment>);
+type Lights = (Vec<Light>, Vec<Option<Spectrum>>, Option<Environment>);
 
 fn read_lights(source: &Source, tables: Vec<Spanned<SpannedTable>>) -> Result<Lights> {
     let mut lights = Vec::new();
@@ -175,8 +175,9 @@ fn read_lights(source: &Source, tables: Vec<Spanned<SpannedTable>>) -> Result<Li
             )?;
             environment = Some(read_environment(&mut t)?);
         } else {
-            lights.push(read_light(&mut t, &kind)?);
-            spectra.push(read_spectrum(&mut t)?);
+            let (light, spectrum) = read_light_and_spectrum(&mut t, &kind)?;
+            lights.push(light);
+            spectra.push(spectrum);
         }
         t.finish()?;
     }

@@ -146,9 +146,9 @@ pub struct Description {
     pub shapes: Vec<Shape>,
     /// Lights (the environment apart); area lights are also surfaces of the built scene.
     pub lights: Vec<Light>,
-    /// The shape of each light's emission spectrum, by light index (see
+    /// The emission spectrum each light was given, by light index (None: none given; see
     /// [`Scene::light_spectrum`]).
-    pub light_spectra: Vec<Spectrum>,
+    pub light_spectra: Vec<Option<Spectrum>>,
     /// What escaping rays see (None: black).
     pub environment: Option<Environment>,
     /// Detector planes (also transparent surfaces of the built scene).
@@ -225,9 +225,9 @@ pub struct Scene {
     pub accel: Accel,
     /// Lights (the environment apart).
     pub lights: Vec<Light>,
-    /// The shape of each light's emission spectrum, by light index (see
+    /// The emission spectrum each light was given, by light index (None: none given; see
     /// [`Scene::light_spectrum`]).
-    pub light_spectra: Vec<Spectrum>,
+    pub light_spectra: Vec<Option<Spectrum>>,
     /// What escaping rays see (None: black).
     pub environment: Option<Environment>,
     /// Detector planes.
@@ -274,17 +274,23 @@ impl Scene {
         &self.media
     }
 
-    /// The shape of light `i`'s emission spectrum: equal energy unless the scene gave one
-    /// (the environment's is equal energy, [`Spectrum::equal`]).
-    pub fn light_spectrum(&self, i: usize) -> &Spectrum {
-        self.light_spectra.get(i).unwrap_or(Spectrum::equal())
+    /// The emission spectrum light `i` was given (its colour in images is the spectrum's,
+    /// scaled by its power key), or None: its colour is its RGB and it emits D65
+    /// ([`Spectrum::white`], as the environment does).
+    pub fn light_spectrum(&self, i: usize) -> Option<&Spectrum> {
+        self.light_spectra.get(i).and_then(Option::as_ref)
+    }
+
+    /// Whether a path's course depends on its wavelength: some medium is dispersive (camera
+    /// paths then take a hero wavelength where they meet it, and photons carry one).
+    pub fn is_dispersive(&self) -> bool {
+        (0..self.media.len()).any(|i| self.media.is_dispersive(i))
     }
 
     /// Whether photons must carry a wavelength: a medium is dispersive or a receiver measures
     /// wavelength bands.
     pub fn is_spectral(&self) -> bool {
-        (0..self.media.len()).any(|i| self.media.is_dispersive(i))
-            || self.receivers.iter().any(|r| !r.bands.is_empty())
+        self.is_dispersive() || self.receivers.iter().any(|r| !r.bands.is_empty())
     }
 
     /// Names of all media, in file order.

@@ -410,20 +410,21 @@ fn read_mesh(t: &mut TableReader) -> Result<Vec<Primitive>> {
     Ok(tris)
 }
 
-/// A light's optional `spectrum`: the shape of its emission over wavelength (its power keys
-/// keep their meaning): `"E"` (equal energy, the default), `{ blackbody = kelvin }` or
-/// `{ gaussian = [peak_nm, fwhm_nm] }` (an LED).
-pub fn read_spectrum(t: &mut TableReader) -> Result<Spectrum> {
+/// A light's optional `spectrum` (None: not given — the light is D65 in bands and its RGB in
+/// images): the shape of its emission over wavelength, `"D65"`, `"E"` (equal energy),
+/// `{ blackbody = kelvin }` or `{ gaussian = [peak_nm, fwhm_nm] }` (an LED).
+pub fn read_spectrum(t: &mut TableReader) -> Result<Option<Spectrum>> {
     let Some(value) = t.value_opt("spectrum") else {
-        return Ok(Spectrum::default());
+        return Ok(None);
     };
     let bad = |why: &str| {
         t.error(
             "spectrum",
-            format!("{why} (expected \"E\", {{ blackbody = kelvin }} or {{ gaussian = [peak_nm, fwhm_nm] }})"),
+            format!("{why} (expected \"D65\", \"E\", {{ blackbody = kelvin }} or {{ gaussian = [peak_nm, fwhm_nm] }})"),
         )
     };
     let shape = match &value {
+        toml::Value::String(s) if s == "D65" => Shape::D65,
         toml::Value::String(s) if s == "E" => Shape::Equal,
         toml::Value::Table(table) if table.len() == 1 => {
             let (model, v) = table.iter().next().expect("one entry");
@@ -441,7 +442,38 @@ pub fn read_spectrum(t: &mut TableReader) -> Result<Spectrum> {
         toml::Value::String(s) => return Err(bad(&format!("unknown spectrum '{s}'"))),
         _ => return Err(bad("not a spectrum")),
     };
-    Spectrum::new(shape).map_err(|e| t.error("spectrum", e))
+    Spectrum::new(shape)
+        .map(Some)
+        .map_err(|e| t.error("spectrum", e))
+}
+
+/// A light and the spectrum it emits. With a `spectrum`, its power key (one number, or equal
+/// RGB: the power in W, intensity, radiance or irradiance as the light's type says) scales the
+/// spectrum, and the light appears in images in the spectrum's colour, ∫ Φ r̄ dλ
+/// ([`Spectrum::colour`]; channels outside sRGB's gamut clipped to zero). Without one, its RGB
+/// is its colour and it emits D65 in receiver bands.
+pub fn read_light_and_spectrum(
+    t: &mut TableReader,
+    kind: &str,
+) -> Result<(Light, Option<Spectrum>)> {
+    let mut light = read_light(t, kind)?;
+    let Some(spectrum) = read_spectrum(t)? else {
+        return Ok((light, None));
+    };
+    let value = light.colour_mut();
+    t.check(
+        "spectrum",
+        value.x == value.y && value.y == value.z,
+        "a light with a spectrum gives its power as one number (or equal RGB); the spectrum gives its colour",
+    )?;
+    let colour = spectrum.colour().0.max(DVec3::ZERO);
+    t.check(
+        "spectrum",
+        colour.max_element() > 0.0,
+        "the spectrum is invisible: no sRGB colour between 380 and 780 nm",
+    )?;
+    *value = Rgb(value.0 * colour);
+    Ok((light, Some(spectrum)))
 }
 
 /// A light of type `kind` (not `environment`).

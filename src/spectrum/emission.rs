@@ -5,11 +5,15 @@
 //! falls in it (in expectation, the band's share of the power).
 
 use super::{LAMBDA_MAX, LAMBDA_MIN};
+use crate::color::Rgb;
 
 /// A spectral shape over [`LAMBDA_MIN`, `LAMBDA_MAX`], any scale.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Shape {
-    /// Equal energy per nm (CIE illuminant E): the default of every light.
+    /// CIE illuminant D65, sRGB's white: the default of every light (white light in the
+    /// images is D65).
+    D65,
+    /// Equal energy per nm (CIE illuminant E).
     Equal,
     /// A Gaussian line of an LED: peak and full width at half maximum, nm.
     Gaussian {
@@ -29,6 +33,7 @@ impl Shape {
     /// Relative spectral power at `nm` (shape only; any positive scale).
     pub fn power(&self, nm: f64) -> f64 {
         match *self {
+            Shape::D65 => super::colour::d65(nm),
             Shape::Equal => 1.0,
             Shape::Gaussian { peak, fwhm } => {
                 let sigma = fwhm / (8.0 * std::f64::consts::LN_2).sqrt();
@@ -54,6 +59,8 @@ pub struct Spectrum {
     pub shape: Shape,
     /// Cumulative power at the bins' upper edges, normalised to end at 1.
     cdf: Vec<f64>,
+    /// The linear sRGB in which a unit of its power appears (see [`Spectrum::colour`]).
+    colour: Rgb,
 }
 
 impl Spectrum {
@@ -71,7 +78,18 @@ impl Spectrum {
             ));
         }
         cdf.iter_mut().for_each(|c| *c /= sum);
-        Ok(Self { shape, cdf })
+        // Its power by the same 1 nm node sums as the colour's, so unit-power D65 is white.
+        let nodes: f64 = (LAMBDA_MIN as usize..=LAMBDA_MAX as usize)
+            .map(|nm| shape.power(nm as f64))
+            .sum();
+        let colour = super::colour::colour_of(|nm| shape.power(nm) / nodes);
+        Ok(Self { shape, cdf, colour })
+    }
+
+    /// The linear sRGB in which one unit of its power appears in an image (unit-power D65 is
+    /// (1, 1, 1)); a narrow line outside sRGB's gamut has negative channels.
+    pub fn colour(&self) -> Rgb {
+        self.colour
     }
 
     /// The wavelength (nm) for uniform `u` in [0, 1): inverse of the cumulative distribution.
@@ -109,19 +127,17 @@ impl Spectrum {
 }
 
 impl Spectrum {
-    /// Equal energy per nm (CIE illuminant E), shared: what every light emits unless it says
-    /// otherwise, and the environment.
-    pub fn equal() -> &'static Spectrum {
-        static EQUAL: std::sync::LazyLock<Spectrum> = std::sync::LazyLock::new(|| {
-            Spectrum::new(Shape::Equal).expect("equal energy has power")
-        });
-        &EQUAL
+    /// D65, shared: what every light emits unless it says otherwise, and the environment.
+    pub fn white() -> &'static Spectrum {
+        static WHITE: std::sync::LazyLock<Spectrum> =
+            std::sync::LazyLock::new(|| Spectrum::new(Shape::D65).expect("D65 has power"));
+        &WHITE
     }
 }
 
 impl Default for Spectrum {
     fn default() -> Self {
-        Self::equal().clone()
+        Self::white().clone()
     }
 }
 
@@ -136,6 +152,7 @@ mod tests {
     #[test]
     fn sampled_wavelengths_follow_the_pdf() {
         let shapes = [
+            Shape::D65,
             Shape::Equal,
             Shape::Gaussian {
                 peak: 450.0,
@@ -183,7 +200,10 @@ mod tests {
         let total: f64 = (0..BINS).map(|i| e.pdf(LAMBDA_MIN + i as f64 + 0.5)).sum();
         assert!((total - 1.0).abs() < 1e-12);
         assert!((e.fraction(585.0, 615.0) - 0.760_968_7).abs() < 1e-3);
-        assert!((Spectrum::default().fraction(400.0, 447.0) - 0.1).abs() < 1e-12);
+        let equal = Spectrum::new(Shape::Equal).unwrap();
+        assert!((equal.fraction(400.0, 447.0) - 0.1).abs() < 1e-12);
+        assert_eq!(Spectrum::default().shape, Shape::D65);
+        assert!((Spectrum::white().colour().0 - glam::DVec3::ONE).length() < 1e-12);
         // Wien: a 5800 K blackbody peaks at 2.897 771 955e6 nm·K / 5800 K = 499.6 nm.
         let sun = Shape::Blackbody { kelvin: 5800.0 };
         let peak = (400..700).max_by(|a, b| sun.power(*a as f64).total_cmp(&sun.power(*b as f64)));

@@ -10,7 +10,7 @@
 //! The factors of the single refractions telescope into this one ratio, which is why no
 //! BSDF carries them. Power (a photon's flux) never scales.
 
-use super::{facing, Event, Stats, Tracer};
+use super::{facing, Event, HeroTracer, Stats, Tracer};
 use crate::color::Rgb;
 use crate::material::Material;
 use glam::DVec3;
@@ -145,12 +145,35 @@ pub trait Observer {
 
 impl Observer for () {}
 
-/// A path being walked: the tracer, how its losses are carried, and how many surfaces it
-/// may still meet (shared by a photon's successive chains). Its random numbers (the Fresnel
-/// choices and Russian roulette) and statistics are lent to each [`Walker::follow`].
-pub struct Walker<'w> {
-    /// Where it travels.
+/// The wavelengths a path carries (seed 004's "subset of wavelengths that share a path"):
+/// every one, seeing each medium at [`crate::spectrum::LAMBDA_D`] and every colour as RGB,
+/// until it meets dispersion, where it takes on `hero`'s one wavelength; or one, when `tracer`
+/// is at a wavelength (then `hero` is None). In a scene without dispersion `hero` is None and
+/// every path carries every wavelength to its end.
+#[derive(Clone, Copy)]
+pub struct Carried<'w> {
+    /// Where it travels now.
     pub tracer: &'w Tracer<'w>,
+    /// The wavelength it takes on where it meets dispersion.
+    pub hero: Option<&'w HeroTracer<'w>>,
+}
+
+impl<'w> Carried<'w> {
+    /// Paths on `tracer` that never change their wavelengths.
+    pub fn on(tracer: &'w Tracer<'w>) -> Self {
+        Self { tracer, hero: None }
+    }
+}
+
+/// A path being walked: the wavelengths it carries and where it travels, how its losses are
+/// carried, and how many surfaces it may still meet (shared by a photon's successive chains).
+/// Its random numbers (the Fresnel choices and Russian roulette) and statistics are lent to
+/// each [`Walker::follow`].
+pub struct Walker<'w> {
+    /// Where it travels (at its hero wavelength once it has met dispersion).
+    pub tracer: &'w Tracer<'w>,
+    /// The wavelength it takes on where it meets dispersion ([`Carried`]).
+    hero: Option<&'w HeroTracer<'w>>,
     /// How losses are carried.
     pub policy: Policy,
     /// Surfaces it may still meet, detectors included.
@@ -173,10 +196,36 @@ struct Cursor {
 impl<'w> Walker<'w> {
     /// A walker allowed the tracer's `max_depth` surfaces.
     pub fn new(tracer: &'w Tracer<'w>, policy: Policy) -> Self {
+        Self::carrying(Carried::on(tracer), policy)
+    }
+
+    /// A walker for a path carrying `carried`, allowed the tracer's `max_depth` surfaces.
+    pub fn carrying(carried: Carried<'w>, policy: Policy) -> Self {
         Self {
-            tracer,
+            tracer: carried.tracer,
+            hero: carried.hero,
             policy,
-            depth: tracer.settings.max_depth,
+            depth: carried.tracer.settings.max_depth,
+        }
+    }
+
+    /// What the path carries now (after the chains it followed).
+    pub fn carried(&self) -> Carried<'w> {
+        Carried {
+            tracer: self.tracer,
+            hero: self.hero,
+        }
+    }
+
+    /// Where the path meets dispersion (`disperses`) while it carries every wavelength, it
+    /// takes on its hero's: the tracer at that wavelength from here on, and the hero's sRGB
+    /// weight r̄(λ)/p(λ) in its throughput — in expectation over hero wavelengths the colour
+    /// the RGB path would have had where the rest of its way does not depend on λ.
+    fn meet_dispersion(&mut self, disperses: bool, chain: &mut Chain) {
+        if let (true, Some(hero)) = (disperses, self.hero) {
+            self.tracer = &hero.tracer;
+            self.hero = None;
+            chain.weight *= hero.weight;
         }
     }
 
@@ -199,6 +248,7 @@ impl<'w> Walker<'w> {
             specular: 0,
             curved: false,
         };
+        self.meet_dispersion(self.tracer.disperses_in(ray.medium), &mut chain);
         let Some(n_start) = self.tracer.index(ray.medium, ray.origin) else {
             return chain;
         };
@@ -240,6 +290,7 @@ impl<'w> Walker<'w> {
             return ControlFlow::Break(End::DepthLimit);
         }
         self.depth -= 1;
+        self.meet_dispersion(self.tracer.disperses_in(at.medium), chain);
         chain.curved |= at
             .medium
             .is_some_and(|m| !self.tracer.medium(m).is_uniform());
@@ -276,7 +327,10 @@ impl<'w> Walker<'w> {
         match &scene.materials[surface.material] {
             Material::Emissive { radiance } => ControlFlow::Break(End::Emitter {
                 prim,
-                radiance: if side == normal { *radiance } else { Rgb::ZERO },
+                radiance: match side == normal {
+                    true => self.tracer.radiance(*radiance),
+                    false => Rgb::ZERO,
+                },
                 position,
                 direction: incoming,
             }),
@@ -285,7 +339,7 @@ impl<'w> Walker<'w> {
                 position,
                 normal: side,
                 direction: incoming,
-                albedo: *albedo,
+                albedo: self.tracer.reflectance(*albedo),
             }),
             Material::Detector { receiver } => {
                 if observer
@@ -320,7 +374,7 @@ impl<'w> Walker<'w> {
     /// Reflects or refracts the chain at a specular surface `hit` = (primitive, position,
     /// geometric normal, arrival direction).
     fn bounce(
-        &self,
+        &mut self,
         chain: &mut Chain,
         (at, (prim, position, normal, incoming)): (&mut Cursor, (usize, DVec3, DVec3, DVec3)),
         rng: &mut impl Rng,
@@ -329,6 +383,9 @@ impl<'w> Walker<'w> {
         let scene = self.tracer.scene;
         let surface = scene.surfaces[prim];
         let mirror = matches!(scene.materials[surface.material], Material::Mirror { .. });
+        if !mirror {
+            self.meet_dispersion(self.tracer.disperses_at(surface), chain);
+        }
         let u = match self.policy {
             Policy::Unscattered => return ControlFlow::Break(End::Stopped),
             _ if mirror => 0.0,

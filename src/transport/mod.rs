@@ -22,7 +22,7 @@ use crate::material::Material;
 use crate::media::Medium;
 use crate::scene::{Scene, Surface};
 use crate::settings::TraceSettings;
-use crate::spectrum::LAMBDA_D;
+use crate::spectrum::{colour, Hero, LAMBDA_D};
 use glam::DVec3;
 pub use stats::Stats;
 use std::ops::ControlFlow;
@@ -116,6 +116,26 @@ struct Wavelength {
     media: Vec<Option<Box<dyn Medium>>>,
 }
 
+/// A hero wavelength ready for the paths of one camera sample to take on where they meet
+/// dispersion ([`Hero`]; [`chain::Walker`] does it): the tracer at that wavelength, and the
+/// sRGB weight r̄(λ)/p(λ) a path's throughput takes on there.
+pub struct HeroTracer<'a> {
+    /// The tracer with rays at the hero wavelength.
+    pub tracer: Tracer<'a>,
+    /// [`Hero::sensor_weight`].
+    pub weight: Rgb,
+}
+
+impl<'a> HeroTracer<'a> {
+    /// `tracer` at `hero`'s wavelength.
+    pub fn new(tracer: &Tracer<'a>, hero: Hero) -> Self {
+        Self {
+            tracer: tracer.at_wavelength(hero.nm),
+            weight: hero.sensor_weight(),
+        }
+    }
+}
+
 /// Directions along which [`Tracer::medium_containing`] looks for the enclosing surface: far
 /// from any axis, so they rarely graze the axis-aligned walls of a scene.
 const PROBES: [DVec3; 3] = [
@@ -196,6 +216,37 @@ impl<'a> Tracer<'a> {
         self.wavelength.as_ref().map_or(LAMBDA_D, |w| w.nm)
     }
 
+    /// Whether a ray in `medium` travels a path that depends on its wavelength.
+    pub fn disperses_in(&self, medium: Option<usize>) -> bool {
+        medium.is_some_and(|i| self.scene.media().is_dispersive(i))
+    }
+
+    /// Whether a dielectric `surface` bends rays by their wavelength (a dispersive medium on
+    /// either side).
+    pub fn disperses_at(&self, surface: Surface) -> bool {
+        self.disperses_in(surface.interior)
+            || self.disperses_in(surface.exterior.or(self.scene.ambient))
+    }
+
+    /// A reflectance (an albedo, a mirror's reflectance) as this tracer's rays see it: the
+    /// RGB itself, or — rays at one wavelength — its reflectance spectrum there
+    /// ([`colour::reflectance`]), the same in every channel.
+    pub fn reflectance(&self, rgb: Rgb) -> Rgb {
+        match &self.wavelength {
+            None => rgb,
+            Some(w) => Rgb::splat(colour::reflectance(rgb, w.nm)),
+        }
+    }
+
+    /// A radiance, irradiance or intensity of emitted light likewise: the RGB itself, or its
+    /// spectral value (per nm) at the tracer's wavelength ([`colour::illuminant`]).
+    pub fn radiance(&self, rgb: Rgb) -> Rgb {
+        match &self.wavelength {
+            None => rgb,
+            Some(w) => Rgb::splat(colour::illuminant(rgb, w.nm)),
+        }
+    }
+
     /// Medium `i` at the tracer's wavelength.
     pub fn medium(&self, i: usize) -> &dyn Medium {
         match self.wavelength.as_ref().and_then(|w| w.media[i].as_deref()) {
@@ -273,7 +324,7 @@ impl<'a> Tracer<'a> {
             }
             Material::Mirror { reflectance } => (
                 Bsdf::Mirror {
-                    reflectance: *reflectance,
+                    reflectance: self.reflectance(*reflectance),
                 },
                 medium,
             ),
