@@ -304,3 +304,114 @@ fn vertex_of_fitted_parabola(z: &[f64], v: &[f64]) -> f64 {
     };
     -with(1) / (2.0 * with(2))
 }
+
+/// The mean of each channel of layer `name`, and its standard error from the pixels' spread.
+fn channel_means(film: &grinlight::film::Film, name: &str) -> [(f64, f64); 3] {
+    let pixels = film.layer(name).unwrap();
+    let n = pixels.len() as f64;
+    [0, 1, 2].map(|c| {
+        let mean = pixels.iter().map(|p| p[c] as f64).sum::<f64>() / n;
+        let var = pixels
+            .iter()
+            .map(|p| (p[c] as f64 - mean).powi(2))
+            .sum::<f64>()
+            / (n - 1.0);
+        (mean, (var / n).sqrt())
+    })
+}
+
+/// The white furnace in spectral mode: the closed grey sphere of `tests/render.rs` (albedo a,
+/// a point light of intensity I at its centre, camera at the centre: L = (a/π)(I/R²)/(1 − a)
+/// everywhere), but filled with dispersive water, so every camera path takes its hero
+/// wavelength where it starts and every photon carries one. Each channel of the image is the
+/// white total within 4 standard errors of the pixels' spread (the wavelength noise is in
+/// it) plus the photon mapper's 1 % (its k-nearest estimate of a uniform irradiance, measured
+/// in RGB mode by the test there).
+#[test]
+fn the_white_furnace_stays_white_in_spectral_mode() {
+    let (a, i, r) = (0.5f64, 3.0f64, 2.0f64);
+    let text = format!(
+        "ambient = \"water\"\n\
+         [camera]\nposition = [0, 0, 0]\nlook_at = [0, 0, -1]\nfov_y_deg = 60\nwidth = 16\nheight = 16\n\
+         [render]\nspp = 256\ngather = 4\nphotons = 200000\n\
+         [[medium]]\nname = \"water\"\nprofile = \"uniform\"\nn = \"water\"\n\
+         [[material]]\nname = \"grey\"\ntype = \"diffuse\"\nalbedo = [{a}, {a}, {a}]\n\
+         [[shape]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = {r}\nmaterial = \"grey\"\n\
+         [[light]]\ntype = \"point\"\nposition = [0, 0, 0.0]\nintensity = {i}\n"
+    );
+    let (scene, settings) = parse_scene(Path::new("furnace.toml"), text).unwrap();
+    assert!(scene.is_dispersive());
+    let film = grinlight::render::render(&scene, &settings, &()).unwrap().0;
+    let want = a * i / (r * r) / std::f64::consts::PI / (1.0 - a);
+    for (c, (mean, se)) in channel_means(&film, "beauty").into_iter().enumerate() {
+        println!("channel {c}: {mean:.5} ± {se:.5} (white {want:.5})");
+        assert!(
+            (mean - want).abs() < 4.0 * se + 0.01 * want,
+            "channel {c}: {mean} ± {se} vs {want}"
+        );
+    }
+}
+
+/// A grey Cornell box with a glass ball (`scenes/cornell_caustic.toml` with grey walls, 48 ×
+/// 48) in spectral mode — the ball's glass given by an Abbe number so large (V = 10⁹) that
+/// every wavelength takes the same path to 1e-10, so that the scene is dispersive but its
+/// picture is not — matches its RGB render: camera paths through the ball take a hero
+/// wavelength and photons carry one, and the expectation over wavelengths is the RGB one.
+/// Both are rendered with 8 seeds; the seeds' spread of the difference of the image means
+/// gives its standard error (the photon maps' noise is correlated across pixels, so the
+/// pixels' spread would understate it). Each channel of the beauty and of the caustic layer
+/// (the light through the ball): the mean difference within 4 standard errors; the beauty's
+/// also within 1 % of its mean.
+#[test]
+fn a_grey_cornell_box_renders_alike_in_spectral_and_rgb_mode() {
+    let base = std::fs::read_to_string("scenes/cornell_caustic.toml")
+        .unwrap()
+        .replace("[0.75, 0.15, 0.15]", "[0.75, 0.75, 0.75]")
+        .replace("[0.15, 0.75, 0.15]", "[0.75, 0.75, 0.75]")
+        .replace("width = 256", "width = 48")
+        .replace("height = 256", "height = 48")
+        .replace("spp = 16", "spp = 8");
+    let means = |text: &str, seed: u32| {
+        let text = text.replace("passes = 4", &format!("passes = 1\nseed = {seed}"));
+        let (scene, settings) = parse_scene(Path::new("cornell_caustic.toml"), text).unwrap();
+        let film = grinlight::render::render(&scene, &settings, &()).unwrap().0;
+        let mean = |layer: &str| {
+            let pixels = film.layer(layer).unwrap();
+            let n = pixels.len() as f64;
+            [0, 1, 2].map(|c| pixels.iter().map(|p| p[c] as f64).sum::<f64>() / n)
+        };
+        (scene.is_dispersive(), [mean("beauty"), mean("caustic")])
+    };
+    let spectral_text = base.replace("ior = 1.5", "ior = { abbe = [1.5, 1e9] }");
+    let seeds = 8;
+    let mut diffs = vec![[[0.0; 3]; 2]; seeds];
+    let mut level = [[0.0; 3]; 2];
+    for (k, d) in diffs.iter_mut().enumerate() {
+        let (rgb_mode, a) = means(&base, k as u32 + 1);
+        let (spectral_mode, b) = means(&spectral_text, k as u32 + 1);
+        assert!(!rgb_mode && spectral_mode);
+        for l in 0..2 {
+            for c in 0..3 {
+                d[l][c] = b[l][c] - a[l][c];
+                level[l][c] += a[l][c] / seeds as f64;
+            }
+        }
+    }
+    for (l, layer) in ["beauty", "caustic"].iter().enumerate() {
+        for c in 0..3 {
+            let x: Vec<f64> = diffs.iter().map(|d| d[l][c]).collect();
+            let n = x.len() as f64;
+            let mean = x.iter().sum::<f64>() / n;
+            let se = (x.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0) / n).sqrt();
+            let level = level[l][c];
+            println!("{layer} channel {c}: spectral − RGB = {mean:.6} ± {se:.6} (RGB {level:.5})");
+            assert!(mean.abs() < 4.0 * se, "{layer} channel {c}: {mean} ± {se}");
+            if l == 0 {
+                assert!(
+                    mean.abs() < 0.01 * level,
+                    "{layer} channel {c}: {mean} vs {level}"
+                );
+            }
+        }
+    }
+}

@@ -211,7 +211,7 @@ impl<'a> PhotonMapper<'a> {
                 let e = s
                     .stats
                     .time_query(|| global.nearest_irradiance(position, normal));
-                let e = walker.tracer.radiance(e);
+                let e = walker.tracer.photon_irradiance(e);
                 sum += b.weight * chain.weight * albedo * FRAC_1_PI * e * chain.radiance_scale();
             }
         }
@@ -277,7 +277,7 @@ impl Integrator for PhotonMapper<'_> {
             let (irradiance, _) = s
                 .stats
                 .time_query(|| caustic.irradiance(vp.position, vp.normal, r2));
-            let irradiance = c.carried.tracer.radiance(irradiance);
+            let irradiance = c.carried.tracer.photon_irradiance(irradiance);
             s.values[1] += vp.throughput * vp.albedo * irradiance * FRAC_1_PI;
         }
     }

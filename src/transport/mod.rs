@@ -247,6 +247,20 @@ impl<'a> Tracer<'a> {
         }
     }
 
+    /// An irradiance estimated from stored photons (an RGB sum of a few photons' colours,
+    /// whose channels may be negative: [`colour::sensor`]) as this tracer's rays see it: the
+    /// RGB itself, or — rays at one wavelength — each channel times D65 there, joined to the
+    /// path's sRGB weight channel by channel (as pbrt-v4's SPPM joins camera and photon). The
+    /// reading is linear, so the estimate's noise averages out (an upsampled spectrum of a
+    /// noisy colour would be biased: its negative channels clip), and its expectation over
+    /// wavelengths is the RGB itself wherever the rest of the path is grey.
+    pub fn photon_irradiance(&self, rgb: Rgb) -> Rgb {
+        match &self.wavelength {
+            None => rgb,
+            Some(w) => rgb * colour::d65(w.nm),
+        }
+    }
+
     /// Medium `i` at the tracer's wavelength.
     pub fn medium(&self, i: usize) -> &dyn Medium {
         match self.wavelength.as_ref().and_then(|w| w.media[i].as_deref()) {
