@@ -231,3 +231,39 @@ fn render_paths_draws_the_fiber_figure() {
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("at most 10000 paths"));
 }
+
+/// `validate` on a fiber whose receiver measures wavelength bands compares each band apart:
+/// a table row per band after the twin's row.
+#[test]
+fn validate_compares_each_band() {
+    let scene = temp("fiber_bands.toml");
+    let text = std::fs::read_to_string("scenes/fiber_led.toml")
+        .unwrap()
+        .replace(
+            "bins = [64, 64]",
+            "bins = [16, 16]\nbands = [[600.0, 625.0], [625.0, 650.0]]",
+        );
+    std::fs::write(&scene, text).unwrap();
+    let plot = temp("fiber_bands.validate.png");
+    let out = grinlight(&[
+        "validate",
+        scene.to_str().unwrap(),
+        "--dn",
+        "0.01",
+        "--photons",
+        "20000",
+        "--plot",
+        plot.to_str().unwrap(),
+    ]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    for band in ["| 0.01, band 600–625 nm |", "| 0.01, band 625–650 nm |"] {
+        assert!(stdout.contains(band), "{band} missing:\n{stdout}");
+    }
+    let _ = std::fs::remove_file(scene);
+    let _ = std::fs::remove_file(plot);
+}

@@ -59,13 +59,30 @@ fn the_descartes_ray_leaves_at_the_rainbow_angle() {
 /// `scenes/rainbow.toml`: each band's bow on the receiver is where the minimum-deviation ray
 /// of the band's centre wavelength lands, within one ring (0.1 units: the bins' width; the
 /// bow's edge is a caustic, so its brightest ring is the one it falls in or the one just
-/// inside) plus half the spread of the band's own bow across its 40 nm; red outside blue.
+/// inside) plus half the spread of the band's own bow across its 40 nm; red outside blue;
+/// and the energy budget booked band by band.
 #[test]
 fn the_rainbow_bands_land_where_descartes_says() {
     let (scene, mut settings) = load_scene(Path::new("scenes/rainbow.toml")).unwrap();
     settings.receiver_photons = 2_000_000;
-    let (m, _, _) = grinlight::render::measure(&scene, &settings, 0, &()).unwrap();
+    let (m, budget, _) = grinlight::render::measure(&scene, &settings, 0, &()).unwrap();
     let rec = &scene.receivers[0];
+    // The energy budget per band: each band's fates add up to its emission, which is the
+    // band's share of the equal-energy spectrum (40 of 470 nm: each photon's power is the same,
+    // so the count in a band is binomial; within 5 of its standard deviations).
+    assert_eq!(budget.bands.len(), rec.bands.len());
+    for ((lo, hi), b) in &budget.bands {
+        assert!(
+            (b.booked() / b.emitted - 1.0).abs() < 1e-9,
+            "{lo}–{hi}: {b:?}"
+        );
+        let p = 40.0 / 470.0;
+        let sd = (p * (1.0 - p) / settings.receiver_photons as f64).sqrt();
+        assert!(
+            (b.emitted / budget.emitted - p).abs() < 5.0 * sd,
+            "{lo}–{hi}: {b:?}"
+        );
+    }
     let water = Dispersion::named("water").unwrap();
     let z = rec.center.z;
     let land = |nm: f64| {

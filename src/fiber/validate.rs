@@ -90,12 +90,22 @@ pub fn validate(job: &ValidateJob, observer: &dyn Observer) -> Result<()> {
         let (layered, _, report) =
             crate::render::measure(&twin, &settings, 1 + k as u64, observer)?;
         stop_if_partial(&report)?;
+        let seconds = t.elapsed().as_secs_f64();
         observer.line(&row(
-            (dn, &layers),
+            (&dn.to_string(), &layers),
             &receiver::compare(&reference, &layered[0]),
             &report,
-            t.elapsed().as_secs_f64(),
+            seconds,
         ));
+        // Each wavelength band of the receiver compared apart, from the same photons.
+        let bands = reference.bands.iter().zip(&layered[0].bands);
+        for (&(lo, hi), (a, b)) in rec.bands.iter().zip(bands) {
+            if a.flux.0 > 0.0 {
+                let label = format!("{dn}, band {lo}–{hi} nm");
+                let c = receiver::compare(a, b);
+                observer.line(&row((&label, &layers), &c, &report, seconds));
+            }
+        }
         profiles.push((
             format!("twin, Δn {dn}, {} layers", layers.len()),
             receiver::radial_profile(rec, &layered[0]),
@@ -148,8 +158,9 @@ fn measure_grin(
     Ok(reference)
 }
 
-/// One row of the comparison table: a twin of index step `dn` and `layers`.
-fn row((dn, layers): (f64, &[Layer]), c: &Comparison, report: &Report, seconds: f64) -> String {
+/// One row of the comparison table: a twin of index step `dn` (and the band compared, if
+/// one) and `layers`.
+fn row((dn, layers): (&str, &[Layer]), c: &Comparison, report: &Report, seconds: f64) -> String {
     format!(
         "| {dn} | {} | {:.4} | {:.5} ± {:.5} | {:.3} | {} | {:.2} | {:.2} % | {:.1} |",
         layers.len(),

@@ -1,6 +1,7 @@
 //! The energy budget of a photon batch: where each photon's power went when its path ended.
 //! Every emitted photon is booked exactly once, so the entries add up to the power emitted;
 //! what they measure is how it divides (out through which face, reflected, absorbed, lost).
+//! Photons that carry a wavelength are also booked in every receiver band holding it.
 
 use std::collections::BTreeMap;
 
@@ -37,11 +38,41 @@ pub struct Budget {
     pub absorbed: f64,
     /// See [`Fate::Lost`].
     pub lost: f64,
+    /// The same for the photons in each wavelength band [lo, hi) nm (in
+    /// [`Budget::with_bands`] order; empty: no bands).
+    pub bands: Vec<((f64, f64), Budget)>,
 }
 
 impl Budget {
-    /// Books a photon of `power` that ended as `fate`.
-    pub fn book(&mut self, fate: Fate, power: f64) {
+    /// An empty budget that also books photons by wavelength `bands` [lo, hi) nm.
+    pub fn with_bands(bands: &[(f64, f64)]) -> Budget {
+        Budget {
+            bands: bands.iter().map(|&b| (b, Budget::default())).collect(),
+            ..Budget::default()
+        }
+    }
+
+    /// The budgets of the bands holding wavelength `nm` (none without one).
+    fn bands_at(&mut self, nm: Option<f64>) -> impl Iterator<Item = &mut Budget> {
+        self.bands
+            .iter_mut()
+            .filter(move |((lo, hi), _)| nm.is_some_and(|nm| (*lo..*hi).contains(&nm)))
+            .map(|(_, b)| b)
+    }
+
+    /// Books the emission of a photon of `power` at wavelength `nm` (None: it carries all).
+    pub fn emit(&mut self, power: f64, nm: Option<f64>) {
+        self.emitted += power;
+        self.bands_at(nm).for_each(|b| b.emitted += power);
+    }
+
+    /// Books a photon of `power` at wavelength `nm` that ended as `fate`.
+    pub fn book(&mut self, fate: Fate, power: f64, nm: Option<f64>) {
+        self.book_here(fate, power);
+        self.bands_at(nm).for_each(|b| b.book_here(fate, power));
+    }
+
+    fn book_here(&mut self, fate: Fate, power: f64) {
         match fate {
             Fate::OutThrough(p) => *self.out_through.entry(p).or_default() += power,
             Fate::Reflected => self.reflected += power,
@@ -51,8 +82,19 @@ impl Budget {
         }
     }
 
-    /// Adds another budget's entries to this one.
+    /// Adds another budget's entries to this one (band by band: both have the same bands, or
+    /// this one none yet).
     pub fn add(&mut self, other: &Budget) {
+        if self.bands.is_empty() {
+            self.bands = other
+                .bands
+                .iter()
+                .map(|(b, _)| (*b, Budget::default()))
+                .collect();
+        }
+        for ((_, mine), (_, theirs)) in self.bands.iter_mut().zip(&other.bands) {
+            mine.add(theirs);
+        }
         self.emitted += other.emitted;
         for (&p, &w) in &other.out_through {
             *self.out_through.entry(p).or_default() += w;
@@ -73,6 +115,9 @@ impl Budget {
         self.missed *= factor;
         self.absorbed *= factor;
         self.lost *= factor;
+        for (_, b) in &mut self.bands {
+            b.scale(factor);
+        }
     }
 
     /// The sum of all fates (equal to `emitted` up to rounding).
@@ -110,6 +155,27 @@ impl Budget {
             ),
         ] {
             lines.push(format!("  {w:.6e} W ({:6.3} %) {name}", share(w)));
+        }
+        for ((lo, hi), b) in &self.bands {
+            let share = |w: f64| 100.0 * w / b.emitted.max(f64::MIN_POSITIVE);
+            let mut fates: Vec<String> = b
+                .out_through
+                .iter()
+                .map(|(&p, &w)| format!("{:.3} % out through {}", share(w), primitives[p]))
+                .collect();
+            for (name, w) in [
+                ("reflected", b.reflected),
+                ("missed", b.missed),
+                ("absorbed", b.absorbed),
+                ("lost", b.lost),
+            ] {
+                fates.push(format!("{:.3} % {name}", share(w)));
+            }
+            lines.push(format!(
+                "  band {lo}–{hi} nm: emitted {:.6e} W: {}",
+                b.emitted,
+                fates.join(", ")
+            ));
         }
         lines.join("\n")
     }

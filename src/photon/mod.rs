@@ -300,10 +300,20 @@ pub fn shoot(
     if sources.is_empty() || count == 0 {
         return (Sink::default(), Stats::default());
     }
+    // The receivers' wavelength bands, each once, booked apart in the energy budget.
+    let mut bands: Vec<(f64, f64)> = Vec::new();
+    for band in tracer.scene.receivers.iter().flat_map(|r| &r.bands) {
+        if !bands.contains(band) {
+            bands.push(*band);
+        }
+    }
     let chunks: Vec<(Sink, Stats)> = (0..count.div_ceil(CHUNK))
         .into_par_iter()
         .map(|c| {
-            let mut stored = Sink::default();
+            let mut stored = Sink {
+                budget: Budget::with_bands(&bands),
+                ..Sink::default()
+            };
             let mut stats = Stats::default();
             if stop() {
                 return (stored, stats);
@@ -485,7 +495,8 @@ fn trace_photon(
         (Batch::Caustic | Batch::Global, Some(nm)) => colour::sensor(nm),
         _ => Rgb::ONE,
     };
-    stored.budget.emitted += (e.power / tag.count as f64).mean();
+    let nm = launch.wavelength;
+    stored.budget.emit((e.power / tag.count as f64).mean(), nm);
     path(e.origin);
     let mut walk = PhotonWalk {
         tag,
@@ -552,5 +563,5 @@ fn trace_photon(
             medium: chain.medium,
         };
     };
-    stored.budget.book(fate, walk.power.mean());
+    stored.budget.book(fate, walk.power.mean(), nm);
 }
