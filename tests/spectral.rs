@@ -273,16 +273,7 @@ fn a_grin_rod_lens_focuses_each_band_at_its_paraxial_image() {
             .receivers
             .iter()
             .zip(&m)
-            .map(|(rec, meas)| {
-                let e = &meas.bands[k].irradiance;
-                let (mut w, mut s) = (0.0, 0.0);
-                for (bin, e) in e.iter().enumerate() {
-                    let (x, y) = rec.bin_center(bin);
-                    w += e;
-                    s += e * (x * x + y * y);
-                }
-                s / w
-            })
+            .map(|(rec, meas)| meas.bands[k].mean_square_radius(rec))
             .collect();
         let focus = vertex_of_fitted_parabola(&behind, &r2);
         let want = paraxial(0.5 * (lo + hi));

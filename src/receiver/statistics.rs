@@ -17,6 +17,20 @@ pub struct Measurement {
     pub bands: Vec<Measurement>,
 }
 
+impl Measurement {
+    /// The irradiance-weighted mean of r² over the receiver's bins, r from its centre (scene
+    /// units²): the square of a spot's RMS radius (NaN where nothing arrived).
+    pub fn mean_square_radius(&self, rec: &Receiver) -> f64 {
+        let (mut weight, mut sum) = (0.0, 0.0);
+        for (bin, e) in self.irradiance.iter().enumerate() {
+            let (x, y) = rec.bin_center(bin);
+            weight += e;
+            sum += e * (x * x + y * y);
+        }
+        sum / weight
+    }
+}
+
 /// The receivers' measurements from the detections of `photons` photons (each detection's
 /// flux already divided by `photons`, in photon order), with each receiver's bands.
 pub fn measure(receivers: &[Receiver], detections: &[Detection], photons: u64) -> Vec<Measurement> {
