@@ -10,9 +10,14 @@
 //! Then the same row of `scenes/schwarzschild.toml` (the exact index, DESIGN §11), each ray's
 //! deflection against general relativity's between the camera and the point where the ray
 //! left the world ([`ExactBlackHole::gr_deflection`], no tail needed); both curves are drawn
-//! side by side (purple: exact hole's rendered rays, yellow: GR).
+//! side by side (purple: exact hole's rendered rays, yellow: GR), with the perturbation series
+//! of GR's deflection from infinity to infinity to 20 orders (seed 000's eq. 27 is such a
+//! series; [`schwarzschild_deflection_series`]), down to the photon sphere where it stops
+//! converging.
 
-use grinlight::media::{black_hole_deflection, ExactBlackHole, Medium};
+use grinlight::media::{
+    black_hole_deflection, schwarzschild_deflection_series, ExactBlackHole, Medium,
+};
 use grinlight::plot::{canvas, save, Labels, Panel, PALETTE};
 use grinlight::transport::{Event, Stats, Tracer};
 use std::io::Write;
@@ -100,7 +105,18 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         (PALETTE[2], "weak field 2 rs/b"),
         (PALETTE[3], "Schwarzschild: rendered"),
         (PALETTE[4], "Schwarzschild: GR"),
+        (PALETTE[5], "GR series, 20 orders"),
     ]);
+    // The series in μ = M/r₀ (M = rs/2), b = r₀/√(1 − 2μ): b/rs = 1/(2μ√(1 − 2μ)).
+    let series: Curve = (1..=300)
+        .map(|k| 1e-3 * k as f64)
+        .map(|mu| {
+            let b = 1.0 / (2.0 * mu * (1.0 - 2.0 * mu).sqrt());
+            (b, schwarzschild_deflection_series(mu, 20))
+        })
+        .filter(|&(b, _)| (bx.0..=bx.1).contains(&b))
+        .collect();
+    panel.polyline(&series, PALETTE[5]);
     panel.polyline(&weak, PALETTE[2]);
     panel.polyline(&exact, PALETTE[1]);
     panel.polyline(&gr, PALETTE[4]);

@@ -140,6 +140,19 @@ fn one_and_two_threads_write_the_same_exr() {
         a.planes() == b.planes(),
         "the Luneburg render depends on the thread count"
     );
+    // A dispersive scene: hero wavelengths drawn from the samples' streams, photons of one
+    // wavelength each.
+    let mut rainbow = grinlight::scene::load_scene(Path::new("scenes/rainbow.toml")).unwrap();
+    rainbow.1.spp = 1;
+    rainbow.1.passes = 1;
+    rainbow.1.photons.caustic = 20_000;
+    let camera = rainbow.0.camera.as_mut().unwrap();
+    (camera.width, camera.height) = (24, 12);
+    let (a, b) = (render(&rainbow, 1), render(&rainbow, 2));
+    assert!(
+        a.planes() == b.planes(),
+        "the rainbow render depends on the thread count"
+    );
 }
 
 /// A closed diffuse sphere (albedo a) whose inside emits radiance Le uniformly — here a

@@ -15,7 +15,10 @@ pub use absorbing::Absorbing;
 pub use grid::{GridError, GridMedium};
 pub use planar::{ExponentialMedium, HeightTable, LinearMedium, UniformMedium};
 pub use radial::{Axis, ParabolicFiber, RadialTable, SechFiber};
-pub use spherical::{black_hole_deflection, BlackHole, ExactBlackHole, FishEye, Luneburg};
+pub use spherical::{
+    black_hole_deflection, schwarzschild_deflection_series, BlackHole, ExactBlackHole, FishEye,
+    Luneburg,
+};
 pub use table::MonotoneCubic;
 
 use glam::DVec3;
