@@ -331,7 +331,7 @@ fn channel_means(film: &grinlight::film::Film, name: &str) -> [(f64, f64); 3] {
 /// The white furnace in spectral mode: the closed grey sphere of `tests/render.rs` (albedo a,
 /// a point light of intensity I at its centre, camera at the centre: L = (a/π)(I/R²)/(1 − a)
 /// everywhere), but filled with dispersive water, so every camera path takes its hero
-/// wavelength where it starts and every photon carries one. Each channel of the image is the
+/// wavelength where it starts and every photon takes one on where it is launched. Each channel of the image is the
 /// white total within 4 standard errors of the pixels' spread (the wavelength noise is in
 /// it) plus the photon mapper's 1 % (its k-nearest estimate of a uniform irradiance, measured
 /// in RGB mode by the test there).
@@ -364,7 +364,8 @@ fn the_white_furnace_stays_white_in_spectral_mode() {
 /// 48) in spectral mode — the ball's glass given by an Abbe number so large (V = 10⁹) that
 /// every wavelength takes the same path to 1e-10, so that the scene is dispersive but its
 /// picture is not — matches its RGB render: camera paths through the ball take a hero
-/// wavelength and photons carry one, and the expectation over wavelengths is the RGB one.
+/// wavelength and photons through it take on one, and the expectation over wavelengths is
+/// the RGB one.
 /// Both are rendered with 8 seeds; the seeds' spread of the difference of the image means
 /// gives its standard error (the photon maps' noise is correlated across pixels, so the
 /// pixels' spread would understate it). Each channel of the beauty and of the caustic layer

@@ -30,7 +30,7 @@ use crate::receiver::Detection;
 use crate::sampling::{stream, Purpose};
 use crate::spectrum::{colour, Spectrum};
 use crate::transport::chain::{self, End, Policy, Ray};
-use crate::transport::{offset, Stats, Tracer};
+use crate::transport::{offset, HeroTracer, Stats, Tracer};
 use glam::DVec3;
 use rand::Rng;
 use rand_pcg::Pcg64Mcg;
@@ -65,12 +65,26 @@ pub struct Launch {
     pub emission: Emission,
     /// The medium it starts in.
     pub medium: Option<usize>,
-    /// Its vacuum wavelength (nm), drawn from its source's spectrum when the scene is
-    /// dispersive ([`crate::scene::Scene::is_dispersive`]), or spectral and the photon feeds
-    /// receivers; its power is then that one wavelength's ([`Launch::at_wavelength`]). None:
-    /// it carries every wavelength (RGB) and sees each medium at
-    /// [`crate::spectrum::LAMBDA_D`].
+    /// Its vacuum wavelength (nm), drawn from its source's spectrum when the photon feeds
+    /// receivers in a spectral scene ([`crate::scene::Scene::is_spectral`]); its power is then
+    /// that one wavelength's ([`Launch::at_wavelength`]). None: it carries every wavelength
+    /// (RGB) and sees each medium at [`crate::spectrum::LAMBDA_D`] — until it meets
+    /// dispersion, if it has a `hero`.
     pub wavelength: Option<f64>,
+    /// For a photon of a photon map in a dispersive scene: the wavelength it takes on where
+    /// it meets dispersion, and its power there.
+    pub hero: Option<PhotonHero>,
+}
+
+/// The wavelength a photon carrying every wavelength takes on where it meets dispersion —
+/// drawn at its launch from its source's spectrum — and its power there per unit of the
+/// throughput it has gathered on the way (W, the same in every channel from there on).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PhotonHero {
+    /// Vacuum wavelength, nm.
+    pub nm: f64,
+    /// Power at launch at this wavelength ([`Launch::at_wavelength`]).
+    pub power: f64,
 }
 
 impl Launch {
@@ -122,7 +136,7 @@ pub struct Sources<'a> {
     sources: Vec<Placed<'a>>,
     /// Whether receiver photons carry a wavelength ([`crate::scene::Scene::is_spectral`]).
     spectral: bool,
-    /// Whether every photon carries one ([`crate::scene::Scene::is_dispersive`]).
+    /// Whether map photons take a hero wavelength ([`crate::scene::Scene::is_dispersive`]).
     dispersive: bool,
     /// Cumulative selection probabilities, the last one 1.
     cdf: Vec<f64>,
@@ -217,6 +231,7 @@ impl<'a> Sources<'a> {
             },
             medium,
             wavelength: None,
+            hero: None,
         };
         Some((launch, spectrum))
     }
@@ -270,17 +285,23 @@ impl Photons {
         };
         let mut rng = stream(self.seed, purpose, self.pass, i);
         let u = [rng.gen(), rng.gen(), rng.gen(), rng.gen(), rng.gen()];
-        let launch = sources.emit(tracer, u).map(|(launch, spectrum)| {
-            let spectral = match self.batch {
-                Batch::Receivers => sources.spectral,
-                Batch::Caustic | Batch::Global => sources.dispersive,
-            };
-            match (spectral, self.batch) {
-                (true, _) => launch.at_wavelength(spectrum, rng.gen()),
-                (false, Batch::Receivers) => launch.radiometric(spectrum),
-                (false, _) => launch,
-            }
-        });
+        let launch = sources
+            .emit(tracer, u)
+            .map(|(launch, spectrum)| match self.batch {
+                Batch::Receivers if sources.spectral => launch.at_wavelength(spectrum, rng.gen()),
+                Batch::Receivers => launch.radiometric(spectrum),
+                _ if sources.dispersive => {
+                    let at = launch.at_wavelength(spectrum, rng.gen());
+                    Launch {
+                        hero: at.wavelength.map(|nm| PhotonHero {
+                            nm,
+                            power: at.emission.power.x,
+                        }),
+                        ..launch
+                    }
+                }
+                _ => launch,
+            });
         (rng, launch)
     }
 }
@@ -485,16 +506,18 @@ fn trace_photon(
     stored: &mut Sink,
     path: &mut dyn FnMut(DVec3),
 ) {
-    // A photon with a wavelength of its own sees the dispersive media at it.
+    // A photon with a wavelength of its own sees the dispersive media at it; one with a hero
+    // takes it on where it meets dispersion.
     let dispersed = launch.wavelength.map(|nm| tracer.at_wavelength(nm));
     let tracer = dispersed.as_ref().unwrap_or(tracer);
+    let hero = launch.hero.map(|h| HeroTracer::for_photon(tracer, h.nm));
     let scene = tracer.scene;
     let e = launch.emission;
-    // A photon of one wavelength is stored in the sRGB its power stands for.
-    let seen_as = match (tag.batch, launch.wavelength) {
-        (Batch::Caustic | Batch::Global, Some(nm)) => colour::sensor(nm),
-        _ => Rgb::ONE,
-    };
+    // The sRGB its power stands for: a photon of one wavelength is stored in that
+    // wavelength's (once it has met dispersion).
+    let mut seen_as = Rgb::ONE;
+    // What it has kept of its launch power while it carries every wavelength.
+    let mut throughput = Rgb::ONE;
     let nm = launch.wavelength;
     stored.budget.emit((e.power / tag.count as f64).mean(), nm);
     path(e.origin);
@@ -516,10 +539,26 @@ fn trace_photon(
         direction: e.direction,
         medium: launch.medium,
     };
-    let mut walker = chain::Walker::new(tracer, Policy::Roulette);
+    let carried = chain::Carried {
+        tracer,
+        hero: hero.as_ref(),
+    };
+    let mut walker = chain::Walker::carrying(carried, Policy::Roulette);
     let fate = loop {
         let chain = walker.follow(ray, rng, stats, &mut walk);
-        walk.power *= chain.weight;
+        match (chain.dispersed, launch.hero) {
+            (Some(before), Some(h)) => {
+                // Its spectrum at the hero wavelength, times the reflectance spectrum of what
+                // it kept on the way there.
+                let kept = colour::reflectance(throughput * before, h.nm);
+                walk.power = Rgb::splat(h.power * kept / tag.count as f64) * chain.weight;
+                seen_as = colour::sensor(h.nm);
+            }
+            _ => {
+                walk.power *= chain.weight;
+                throughput *= chain.weight;
+            }
+        }
         let (position, normal, albedo, arrival) = match chain.end {
             End::Diffuse {
                 position,
@@ -554,6 +593,7 @@ fn trace_photon(
             break Fate::Absorbed;
         }
         walk.power *= albedo / survive;
+        throughput *= albedo / survive;
         let bounce = Bsdf::Lambert { albedo }
             .sample(-arrival, normal, (rng.gen(), rng.gen(), 0.0))
             .expect("a Lambertian surface always scatters");

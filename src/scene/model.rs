@@ -282,7 +282,7 @@ impl Scene {
     }
 
     /// Whether a path's course depends on its wavelength: some medium is dispersive (camera
-    /// paths then take a hero wavelength where they meet it, and photons carry one).
+    /// paths and photons then take a hero wavelength where they meet it).
     pub fn is_dispersive(&self) -> bool {
         (0..self.media.len()).any(|i| self.media.is_dispersive(i))
     }

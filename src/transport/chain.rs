@@ -103,6 +103,10 @@ pub struct Chain {
     pub specular: u32,
     /// Whether a stretch of it crossed a non-uniform medium (a curved path).
     pub curved: bool,
+    /// A photon's chain ([`Policy::Roulette`]) that met dispersion: its weight up to there
+    /// (then `weight` counts from there, at the hero wavelength). The photon's power changes
+    /// there in a way only it knows (its source's spectrum at the wavelength).
+    pub dispersed: Option<Rgb>,
 }
 
 impl Chain {
@@ -218,14 +222,21 @@ impl<'w> Walker<'w> {
     }
 
     /// Where the path meets dispersion (`disperses`) while it carries every wavelength, it
-    /// takes on its hero's: the tracer at that wavelength from here on, and the hero's sRGB
-    /// weight r̄(λ)/p(λ) in its throughput — in expectation over hero wavelengths the colour
-    /// the RGB path would have had where the rest of its way does not depend on λ.
+    /// takes on its hero's: the tracer at that wavelength from here on, and for a path from
+    /// the camera the hero's sRGB weight r̄(λ)/p(λ) in its throughput — in expectation over
+    /// hero wavelengths the colour the RGB path would have had where the rest of its way does
+    /// not depend on λ. A photon's chain records its weight there ([`Chain::dispersed`]).
     fn meet_dispersion(&mut self, disperses: bool, chain: &mut Chain) {
         if let (true, Some(hero)) = (disperses, self.hero) {
             self.tracer = &hero.tracer;
             self.hero = None;
-            chain.weight *= hero.weight;
+            match self.policy {
+                Policy::Roulette => {
+                    chain.dispersed = Some(chain.weight);
+                    chain.weight = Rgb::ONE;
+                }
+                _ => chain.weight *= hero.weight,
+            }
         }
     }
 
@@ -247,6 +258,7 @@ impl<'w> Walker<'w> {
             n_end: 1.0,
             specular: 0,
             curved: false,
+            dispersed: None,
         };
         self.meet_dispersion(self.tracer.disperses_in(ray.medium), &mut chain);
         let Some(n_start) = self.tracer.index(ray.medium, ray.origin) else {

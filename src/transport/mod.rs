@@ -127,11 +127,20 @@ pub struct HeroTracer<'a> {
 }
 
 impl<'a> HeroTracer<'a> {
-    /// `tracer` at `hero`'s wavelength.
+    /// `tracer` at `hero`'s wavelength, for camera paths.
     pub fn new(tracer: &Tracer<'a>, hero: Hero) -> Self {
         Self {
             tracer: tracer.at_wavelength(hero.nm),
             weight: hero.sensor_weight(),
+        }
+    }
+
+    /// `tracer` at vacuum wavelength `nm`, for a photon (whose power changes at dispersion as
+    /// its source's spectrum says: `weight` is unused).
+    pub fn for_photon(tracer: &Tracer<'a>, nm: f64) -> Self {
+        Self {
+            tracer: tracer.at_wavelength(nm),
+            weight: Rgb::ONE,
         }
     }
 }
