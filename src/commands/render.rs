@@ -414,7 +414,7 @@ impl Observer for Checkpoints<'_> {
         self.outer.stop_requested()
     }
     fn pass_done(&self, passes: u32, film: &Film) -> Result<()> {
-        if self.every > 0 && passes % self.every == 0 {
+        if self.every > 0 && passes.is_multiple_of(self.every) {
             self.files.write_film(film, self.exposure)?;
             self.outer.line(&format!(
                 "pass {passes}: wrote {} at {:.1} s",
