@@ -49,7 +49,11 @@ impl IndexSample {
 
 /// A refractive-index field: the question every curved-ray stepper asks.
 ///
-/// Media do not disperse: all wavelengths share one path (grinlight's transport is not spectral).
+/// A `Medium` is the field at one wavelength. A dispersive medium is a family of them, one per
+/// vacuum wavelength (`scene::Media::at_wavelength`); seed 004's question "which wavelengths
+/// can share a path" is answered per medium by `scene::Media::is_dispersive` — all of them
+/// through a medium that is not, one through a medium that is — and asked by the transport
+/// where a path enters one (`transport::Tracer::disperses_in`, `disperses_at`).
 pub trait Medium: Send + Sync {
     /// n and ∇n at `p`, or `None` where a ray is captured: the index is singular there or
     /// would not be positive (a black hole's horizon). Never returns a non-finite sample.

@@ -67,7 +67,7 @@ pub struct Launch {
     pub medium: Option<usize>,
     /// Its vacuum wavelength (nm), drawn from its source's spectrum when the photon feeds
     /// receivers in a spectral scene ([`crate::scene::Scene::is_spectral`]); its power is then
-    /// that one wavelength's ([`Launch::at_wavelength`]). None: it carries every wavelength
+    /// that one wavelength's (`Launch::at_wavelength`). None: it carries every wavelength
     /// (RGB) and sees each medium at [`crate::spectrum::LAMBDA_D`] — until it meets
     /// dispersion, if it has a `hero`.
     pub wavelength: Option<f64>,
@@ -83,7 +83,7 @@ pub struct Launch {
 pub struct PhotonHero {
     /// Vacuum wavelength, nm.
     pub nm: f64,
-    /// Power at launch at this wavelength ([`Launch::at_wavelength`]).
+    /// Power at launch at this wavelength (`Launch::at_wavelength`).
     pub power: f64,
 }
 
