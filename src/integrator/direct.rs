@@ -46,7 +46,7 @@ pub struct Components<'w> {
 
 /// A camera sample's hero wavelength, drawn from `rng` in a dispersive scene (None — and no
 /// random number drawn — in any other).
-pub fn hero<'a>(tracer: &Tracer<'a>, rng: &mut impl Rng) -> Option<HeroTracer<'a>> {
+pub fn hero<'a>(tracer: &'a Tracer<'a>, rng: &mut impl Rng) -> Option<HeroTracer<'a>> {
     tracer
         .scene
         .is_dispersive()

@@ -67,7 +67,7 @@ pub struct Launch {
     pub medium: Option<usize>,
     /// Its vacuum wavelength (nm), drawn from its source's spectrum when the photon feeds
     /// receivers in a spectral scene ([`crate::scene::Scene::is_spectral`]); its power is then
-    /// that one wavelength's (`Launch::at_wavelength`). None: it carries every wavelength
+    /// that one wavelength's (`Launch::draw_wavelength`). None: it carries every wavelength
     /// (RGB) and sees each medium at [`crate::spectrum::LAMBDA_D`] — until it meets
     /// dispersion, if it has a `hero`.
     pub wavelength: Option<f64>,
@@ -83,33 +83,43 @@ pub struct Launch {
 pub struct PhotonHero {
     /// Vacuum wavelength, nm.
     pub nm: f64,
-    /// Power at launch at this wavelength (`Launch::at_wavelength`).
+    /// Power at launch at this wavelength (`Launch::draw_wavelength`).
     pub power: f64,
 }
 
 impl Launch {
-    /// The same photon at one vacuum wavelength drawn (uniform `u`) from its source's
-    /// spectrum — `given`, or D65 for a source whose colour is its RGB — with the power it
-    /// carries there, the same in every channel (W, as an estimate over wavelengths): for a
-    /// given spectrum, the light's power key ([`Launch::radiometric`]); for an RGB source of
-    /// colour P, whose spectral power is the reflectance spectrum of P times D65
-    /// ([`colour::illuminant`]) and whose wavelengths are drawn from D65, the reflectance
-    /// spectrum of P at the wavelength. Where such a photon is stored it is read in sRGB
-    /// through [`colour::sensor`].
-    fn at_wavelength(self, given: Option<&Spectrum>, u: f64) -> Launch {
-        let (nm, power) = match given {
-            Some(spectrum) => (spectrum.sample(u), self.radiometric(given).emission.power),
+    /// A vacuum wavelength drawn (uniform `u`) from the photon's source's spectrum — `given`,
+    /// or D65 for a source whose colour is its RGB — and the power the photon carries there,
+    /// the same in every channel (W, as an estimate over wavelengths): for a given spectrum,
+    /// the light's power key ([`Launch::radiometric`]); for an RGB source of colour P, whose
+    /// spectral power is the reflectance spectrum of P times D65 ([`colour::illuminant`]) and
+    /// whose wavelengths are drawn from D65, the reflectance spectrum of P at the wavelength.
+    /// Where such a photon is stored it is read in sRGB through [`colour::sensor`].
+    fn draw_wavelength(&self, given: Option<&Spectrum>, u: f64) -> PhotonHero {
+        match given {
+            Some(spectrum) => PhotonHero {
+                nm: spectrum.sample(u),
+                power: self.radiometric(given).emission.power.x,
+            },
             None => {
                 let nm = Spectrum::white().sample(u);
-                (nm, Rgb::splat(colour::reflectance(self.emission.power, nm)))
+                PhotonHero {
+                    nm,
+                    power: colour::reflectance(self.emission.power, nm),
+                }
             }
-        };
+        }
+    }
+
+    /// The same photon at one wavelength from the launch on ([`Launch::draw_wavelength`]).
+    fn at_wavelength(self, given: Option<&Spectrum>, u: f64) -> Launch {
+        let drawn = self.draw_wavelength(given, u);
         Launch {
             emission: Emission {
-                power,
+                power: Rgb::splat(drawn.power),
                 ..self.emission
             },
-            wavelength: Some(nm),
+            wavelength: Some(drawn.nm),
             ..self
         }
     }
@@ -290,16 +300,10 @@ impl Photons {
             .map(|(launch, spectrum)| match self.batch {
                 Batch::Receivers if sources.spectral => launch.at_wavelength(spectrum, rng.gen()),
                 Batch::Receivers => launch.radiometric(spectrum),
-                _ if sources.dispersive => {
-                    let at = launch.at_wavelength(spectrum, rng.gen());
-                    Launch {
-                        hero: at.wavelength.map(|nm| PhotonHero {
-                            nm,
-                            power: at.emission.power.x,
-                        }),
-                        ..launch
-                    }
-                }
+                _ if sources.dispersive => Launch {
+                    hero: Some(launch.draw_wavelength(spectrum, rng.gen())),
+                    ..launch
+                },
                 _ => launch,
             });
         (rng, launch)

@@ -228,7 +228,7 @@ impl<'w> Walker<'w> {
     /// not depend on λ. A photon's chain records its weight there ([`Chain::dispersed`]).
     fn meet_dispersion(&mut self, disperses: bool, chain: &mut Chain) {
         if let (true, Some(hero)) = (disperses, self.hero) {
-            self.tracer = &hero.tracer;
+            self.tracer = hero.tracer();
             self.hero = None;
             match self.policy {
                 Policy::Roulette => {

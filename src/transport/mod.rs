@@ -116,32 +116,46 @@ struct Wavelength {
     media: Vec<Option<Box<dyn Medium>>>,
 }
 
-/// A hero wavelength ready for the paths of one camera sample to take on where they meet
-/// dispersion ([`Hero`]; [`chain::Walker`] does it): the tracer at that wavelength, and the
-/// sRGB weight r̄(λ)/p(λ) a path's throughput takes on there.
+/// A hero wavelength ready for the paths of one camera sample or one photon to take on where
+/// they meet dispersion ([`Hero`]; [`chain::Walker`] does it): the tracer at that wavelength,
+/// built the first time a path needs it (most paths of a scene never meet its dispersive
+/// part), and the sRGB weight r̄(λ)/p(λ) a camera path's throughput takes on there.
 pub struct HeroTracer<'a> {
-    /// The tracer with rays at the hero wavelength.
-    pub tracer: Tracer<'a>,
-    /// [`Hero::sensor_weight`].
+    /// The tracer the paths start on.
+    base: &'a Tracer<'a>,
+    /// The hero wavelength, nm.
+    nm: f64,
+    /// The tracer at `nm`, once built.
+    at: std::cell::OnceCell<Tracer<'a>>,
+    /// [`Hero::sensor_weight`] (one for a photon, whose power changes at dispersion as its
+    /// source's spectrum says).
     pub weight: Rgb,
 }
 
 impl<'a> HeroTracer<'a> {
-    /// `tracer` at `hero`'s wavelength, for camera paths.
-    pub fn new(tracer: &Tracer<'a>, hero: Hero) -> Self {
+    /// `tracer`'s hero `hero`, for camera paths.
+    pub fn new(tracer: &'a Tracer<'a>, hero: Hero) -> Self {
         Self {
-            tracer: tracer.at_wavelength(hero.nm),
+            base: tracer,
+            nm: hero.nm,
+            at: std::cell::OnceCell::new(),
             weight: hero.sensor_weight(),
         }
     }
 
-    /// `tracer` at vacuum wavelength `nm`, for a photon (whose power changes at dispersion as
-    /// its source's spectrum says: `weight` is unused).
-    pub fn for_photon(tracer: &Tracer<'a>, nm: f64) -> Self {
+    /// `tracer`'s hero at vacuum wavelength `nm`, for a photon.
+    pub fn for_photon(tracer: &'a Tracer<'a>, nm: f64) -> Self {
         Self {
-            tracer: tracer.at_wavelength(nm),
+            base: tracer,
+            nm,
+            at: std::cell::OnceCell::new(),
             weight: Rgb::ONE,
         }
+    }
+
+    /// The tracer with rays at the hero wavelength.
+    pub fn tracer(&self) -> &Tracer<'a> {
+        self.at.get_or_init(|| self.base.at_wavelength(self.nm))
     }
 }
 
