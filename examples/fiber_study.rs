@@ -61,11 +61,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 )
             })
             .collect();
-        // Tolerances each stepper reaches in seconds here (the arc at 1e-8 and Snell steps
-        // below 1e-5 take minutes per 10⁴ photons).
+        // Tolerances each stepper reaches in seconds here (Snell steps below 1e-5 take
+        // minutes per 10⁴ photons).
         let tolerances: &[f64] = match stepper {
             StepperKind::Rk4 => &[1e-4, 1e-6, 1e-8],
-            StepperKind::Arc => &[1e-4, 1e-6],
+            StepperKind::Rkn => &[1e-4, 1e-5, 1e-6],
+            StepperKind::Arc => &[1e-4, 1e-5],
             StepperKind::Snell => &[1e-3, 1e-4],
         };
         for &tol in tolerances {

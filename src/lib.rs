@@ -5,7 +5,7 @@
 //! ([`scene`]).
 //!
 //! ```
-//! use grinlight::curve::{march, Bounds, ExactArc, MarchLimits, RayState, StepControl, StepperKind, Termination};
+//! use grinlight::curve::{march, Bounds, ArcChain, MarchLimits, RayState, StepControl, StepperKind, Termination};
 //! use grinlight::media::SechFiber;
 //! use glam::DVec3;
 //!
@@ -13,7 +13,7 @@
 //! let fiber = SechFiber { n0: 1.5, g: 1.0, axis: grinlight::media::Axis { center: DVec3::ZERO, axis: DVec3::Z } };
 //! let start = RayState::new(&fiber, DVec3::new(0.1, 0.0, 0.0), DVec3::Z).unwrap();
 //! let limits = MarchLimits { length: 20.0, max_steps: 100_000, bounds: Bounds::Unbounded };
-//! let out = march(&ExactArc, &fiber, StepControl::default_for(StepperKind::Arc), start, &limits, |_, _| std::ops::ControlFlow::Continue(()));
+//! let out = march(&ArcChain, &fiber, StepControl::default_for(StepperKind::Arc), start, &limits, |_, _| std::ops::ControlFlow::Continue(()));
 //! assert_eq!(out.reason, Termination::LengthReached);
 //! ```
 #![forbid(unsafe_code)]

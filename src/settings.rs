@@ -100,8 +100,8 @@ impl Default for TraceSettings {
     fn default() -> Self {
         Self {
             max_depth: 64,
-            stepper: StepperKind::Rk4,
-            control: StepControl::default_for(StepperKind::Rk4),
+            stepper: StepperKind::DEFAULT,
+            control: StepControl::default_for(StepperKind::DEFAULT),
             max_steps: 1_000_000,
             world_radius: None,
         }

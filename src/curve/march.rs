@@ -1,8 +1,10 @@
 //! The march: repeated steps under a step control until an explicit termination.
 
 use super::bounds::Bounds;
-use super::stepper::{ExactArc, RayState, Rk4Sharma, SnellSteps, Stepper, StepperKind};
-use crate::media::{optical_path_length, Medium};
+use super::stepper::{
+    ArcChain, EmbeddedRkn, RayState, Rk4Sharma, SnellSteps, Step, Stepper, StepperKind, RKN64,
+};
+use crate::media::Medium;
 use rand::Rng;
 use rand_pcg::Pcg64Mcg;
 use std::ops::ControlFlow;
@@ -98,7 +100,8 @@ pub struct MarchOutcome {
     pub state: RayState,
     /// Arclength travelled.
     pub arclength: f64,
-    /// Optical path length ∫ n ds travelled (trapezoid rule per step).
+    /// Optical path length ∫ n ds travelled ([`step_optical_path`] per step: as accurate as
+    /// the positions of a fourth-order stepper).
     pub optical_path: f64,
     /// Optical depth ∫ σa ds of absorption travelled (trapezoid rule per step); the ray's
     /// transmittance is exp(−optical_depth).
@@ -232,7 +235,7 @@ where
                     }
                     continue;
                 };
-                let p = f64::from(stepper.order());
+                let p = f64::from(stepper.estimate_order());
                 // What a step may err by: the tolerance per unit length, and never less than
                 // the rounding of the position itself (else tight tolerances stall).
                 let allowed =
@@ -258,8 +261,8 @@ where
             }
         }
         if leaves(limits, step.state.position) {
-            let (exit, len) = locate_exit(stepper, medium, &state, step.length, limits);
-            let flow = accept(&mut out, medium, exit, len, &mut observe);
+            let exit = locate_exit(stepper, medium, &state, step, limits);
+            let flow = accept(&mut out, medium, exit, &mut observe);
             out.reason = if flow.is_break() {
                 Termination::Stopped
             } else {
@@ -267,7 +270,7 @@ where
             };
             return out;
         }
-        if accept(&mut out, medium, step.state, step.length, &mut observe).is_break() {
+        if accept(&mut out, medium, step, &mut observe).is_break() {
             out.reason = Termination::Stopped;
             return out;
         }
@@ -283,31 +286,31 @@ fn round_off_floor(state: &RayState) -> f64 {
 /// Whether a step advanced about the arclength requested, as every stepper does on a smooth
 /// index: RK4 in optical time can be flung far where n∇n is near-singular, and such a step is
 /// not a solution of anything.
-fn plausible(state: &RayState, step: &super::stepper::Step, requested: f64) -> bool {
+fn plausible(state: &RayState, step: &Step, requested: f64) -> bool {
     (step.length - requested).abs() <= 0.5 * requested
         && (step.state.position - state.position).length() <= 1.5 * requested
 }
 
 /// The step length to request so that a step that advanced `step.length` for a request of
 /// `requested` advances `target` instead (the two are proportional to first order).
-fn step_request(requested: f64, step: &super::stepper::Step, target: f64) -> f64 {
+fn step_request(requested: f64, step: &Step, target: f64) -> f64 {
     requested * target / step.length
 }
 
 fn accept<M: Medium + ?Sized, O: FnMut(f64, &RayState) -> ControlFlow<()>>(
     out: &mut MarchOutcome,
     medium: &M,
-    state: RayState,
-    len: f64,
+    step: Step,
     observe: &mut O,
 ) -> ControlFlow<()> {
-    out.optical_path += optical_path_length(&out.state.index, &state.index, len);
-    out.optical_depth += step_optical_depth(medium, out.state.position, state.position, len);
+    let len = step.length;
+    out.optical_path += step.optical_path;
+    out.optical_depth += step_optical_depth(medium, out.state.position, step.state.position, len);
     out.arclength += len;
     out.steps += 1;
     out.min_step = out.min_step.min(len);
-    out.state = state;
-    observe(out.arclength, &state)
+    out.state = step.state;
+    observe(out.arclength, &step.state)
 }
 
 /// Optical depth ∫ σa ds of one step between points `a` and `b`, `len` apart along the path
@@ -340,32 +343,35 @@ fn relative_force_change(a: &RayState, b: &RayState) -> f64 {
     }
 }
 
-/// The state where a step of length `h` from `state` crosses the boundary, by the Illinois
-/// variant of regula falsi on the step length (the boundary's signed distance changes sign
-/// on [0, h]); to ~1e-12 of the region's scale.
+/// The part of `step` (taken from `state`) up to where it crosses the boundary, by the
+/// Illinois variant of regula falsi on the step length (the boundary's signed distance
+/// changes sign on [0, step.length]); to ~1e-12 of the region's scale.
 fn locate_exit<S, M>(
     stepper: &S,
     medium: &M,
     state: &RayState,
-    h: f64,
+    step: Step,
     limits: &MarchLimits,
-) -> (RayState, f64)
+) -> Step
 where
     S: Stepper,
     M: Medium + ?Sized,
 {
-    let sd = |hh: f64| -> Option<(f64, RayState, f64)> {
+    let h = step.length;
+    let sd = |hh: f64| -> Option<(f64, Step)> {
         let s = stepper.step(medium, state, hh)?;
-        Some((
-            limits.bounds.signed_distance(s.state.position),
-            s.state,
-            s.length,
-        ))
+        Some((limits.bounds.signed_distance(s.state.position), s))
     };
     let tol = 1e-12 * limits.bounds.scale();
     let (mut a, mut fa) = (0.0, limits.bounds.signed_distance(state.position).min(0.0));
-    let Some((mut fb, mut best, mut best_len)) = sd(h) else {
-        return (*state, 0.0);
+    let at_start = Step {
+        state: *state,
+        length: 0.0,
+        optical_path: 0.0,
+        arcs: None,
+    };
+    let Some((mut fb, mut best)) = sd(h) else {
+        return at_start;
     };
     let mut b = h;
     let mut side = 0i8;
@@ -374,9 +380,9 @@ where
             break;
         }
         let c = (a * fb - b * fa) / (fb - fa);
-        let Some((fc, st, len)) = sd(c) else { break };
+        let Some((fc, st)) = sd(c) else { break };
         if fc > 0.0 {
-            (b, fb, best, best_len) = (c, fc, st, len);
+            (b, fb, best) = (c, fc, st);
             if side == 1 {
                 fa *= 0.5;
             }
@@ -384,7 +390,7 @@ where
         } else {
             (a, fa) = (c, fc);
             if fc.abs() <= tol {
-                return (st, len);
+                return st;
             }
             if side == -1 {
                 fb *= 0.5;
@@ -392,7 +398,7 @@ where
             side = -1;
         }
     }
-    (best, best_len)
+    best
 }
 
 /// [`march`] with the stepper chosen at run time.
@@ -409,8 +415,9 @@ where
     O: FnMut(f64, &RayState) -> ControlFlow<()>,
 {
     match kind {
-        StepperKind::Arc => march(&ExactArc, medium, control, start, limits, observe),
+        StepperKind::Arc => march(&ArcChain, medium, control, start, limits, observe),
         StepperKind::Rk4 => march(&Rk4Sharma, medium, control, start, limits, observe),
+        StepperKind::Rkn => march(&EmbeddedRkn(RKN64), medium, control, start, limits, observe),
         StepperKind::Snell => march(&SnellSteps, medium, control, start, limits, observe),
     }
 }

@@ -12,5 +12,6 @@ pub use march::{
 };
 pub use segment::{accurate_cross, ArcPoint, CurvedSegment};
 pub use stepper::{
-    EstimatedStep, ExactArc, RayState, Rk4Sharma, SnellSteps, Step, Stepper, StepperKind,
+    ArcChain, EmbeddedRkn, EstimatedStep, RayState, Rk4Sharma, SnellSteps, Step, Stepper,
+    StepperKind, RKN64,
 };

@@ -46,6 +46,9 @@ pub struct CurvedSegment {
     t0: DVec3,
     /// |F| (1/length); 0 marks a straight segment.
     f: f64,
+    /// |F| even where the segment is straight because t̂0 ∥ F (then c = ±1): the index still
+    /// changes along it.
+    f_index: f64,
     /// F̂ and p̂: the in-plane frame (p̂ ⊥ F̂, along the part of t̂0 across F).
     f_hat: DVec3,
     p_hat: DVec3,
@@ -76,6 +79,7 @@ impl CurvedSegment {
             origin,
             t0: unit_t,
             f: 0.0,
+            f_index: 0.0,
             f_hat: DVec3::ZERO,
             p_hat: DVec3::ZERO,
             c: 1.0,
@@ -89,11 +93,19 @@ impl CurvedSegment {
         let k = accurate_cross(t0, force);
         let norm = t_len * f;
         let sigma = (robust_length(k) / norm).min(1.0);
-        if sigma == 0.0 {
-            // Along F, or exactly against it (an exact but unstable equilibrium): straight.
-            return straight;
-        }
         let c = (t0.dot(force) / norm).clamp(-1.0, 1.0);
+        if sigma == 0.0 {
+            // Along F, or exactly against it (an exact but unstable equilibrium): straight,
+            // with ln n changing at the rate ±|F|.
+            let c = c.signum();
+            return Self {
+                f_index: f,
+                c,
+                a: 1.0 + c,
+                b: 1.0 - c,
+                ..straight
+            };
+        }
         let (a, b) = if c >= 0.0 {
             let a = 1.0 + c;
             (a, sigma * sigma / a)
@@ -105,6 +117,7 @@ impl CurvedSegment {
             origin,
             t0: unit_t,
             f,
+            f_index: f,
             f_hat: force / f,
             p_hat: {
                 let fk = accurate_cross(force, k);
@@ -120,6 +133,45 @@ impl CurvedSegment {
     /// |F| (1/length): the curvature bound of the segment; 0 when straight.
     pub fn force(&self) -> f64 {
         self.f
+    }
+
+    /// ln(n(s)/n(0)) along the segment: ln n changes by F·(x(s) − x0) = L(s) =
+    /// ln(cosh |F|s + cos β sinh |F|s) (DESIGN §5), evaluated without overflow for any s ≥ 0.
+    pub fn log_index_gain(&self, s: f64) -> f64 {
+        let x = self.f_index * s;
+        if x <= 1.0 {
+            // cosh x + c sinh x − 1 = c sinh x + 2 sinh²(x/2): no cancellation for small x.
+            let half = (0.5 * x).sinh();
+            (self.c * x.sinh() + 2.0 * half * half).ln_1p()
+        } else {
+            // ln((a eˣ + b e⁻ˣ)/2) with a = 1 + cos β, b = 1 − cos β, by its larger term.
+            let e2 = (-2.0 * x).exp();
+            if self.a == 0.0 {
+                -x + (0.5 * self.b).ln()
+            } else if self.a >= self.b * e2 {
+                x + (0.5 * (self.a + self.b * e2)).ln()
+            } else {
+                -x + (0.5 * (self.a / e2 + self.b)).ln()
+            }
+        }
+    }
+
+    /// The optical path ∫₀ˢ n ds along the segment in units of n(0): with n = n(0) e^L,
+    /// ∫ e^L ds = (sinh |F|s + cos β (cosh |F|s − 1))/|F| in closed form (s where F = 0).
+    pub fn relative_optical_path(&self, s: f64) -> f64 {
+        let (f, c) = (self.f_index, self.c);
+        let x = f * s;
+        if x < SERIES_LIMIT {
+            // Truncation x⁴/120 ≤ 1e-18.
+            return s * (1.0 + x * (0.5 * c + x * (1.0 / 6.0 + x * c / 24.0)));
+        }
+        if x <= 1.0 {
+            let half = (0.5 * x).sinh();
+            (x.sinh() + 2.0 * c * half * half) / f
+        } else {
+            // (a eˣ − b e⁻ˣ)/2 − c: no cancellation where 1 + cos β is tiny (against F).
+            (0.5 * (self.a * x.exp() - self.b * (-x).exp()) - c) / f
+        }
     }
 
     /// Largest distance of the arc over [0, s] from its chord: the curvature |F| sin θ ≤ |F|,

@@ -102,12 +102,6 @@ pub trait Medium: Send + Sync {
     }
 }
 
-/// Optical path length ∫ n ds of a step between two samples `ds` apart (trapezoid rule,
-/// second order in `ds`; exact for the constant and linear-along-the-path cases).
-pub fn optical_path_length(a: &IndexSample, b: &IndexSample, ds: f64) -> f64 {
-    0.5 * (a.n + b.n) * ds
-}
-
 /// ∫₀ᴸ f(s) ds by 8-point Gauss–Legendre quadrature.
 fn gauss_legendre_8(f: impl Fn(f64) -> f64, length: f64) -> f64 {
     // Nodes on [−1, 1] (positive half) and weights, Abramowitz & Stegun table 25.4.

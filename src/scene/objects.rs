@@ -78,9 +78,11 @@ pub fn read_camera(t: &mut TableReader) -> Result<Camera> {
 
 /// `[render]`: every setting but the output's.
 pub fn read_render(t: &mut TableReader) -> Result<Settings> {
-    let stepper: StepperKind = t.string_opt("stepper")?.map_or(Ok(StepperKind::Rk4), |s| {
-        s.parse().map_err(|e: String| t.error("stepper", e))
-    })?;
+    let stepper: StepperKind = t
+        .string_opt("stepper")?
+        .map_or(Ok(StepperKind::DEFAULT), |s| {
+            s.parse().map_err(|e: String| t.error("stepper", e))
+        })?;
     let control = match t.string_opt("control")?.as_deref().unwrap_or("adaptive") {
         "adaptive" => {
             let tolerance = t.f64_or("tolerance", stepper.default_tolerance())?;
