@@ -174,8 +174,8 @@ g = { table = [[400.0, 0.33], [550.0, 0.32], [700.0, 0.31]] }
             StepControl::Fixed { step: 0.005 },
             start,
             &limits,
-            |_, state| {
-                let p = state.position;
+            |_, step| {
+                let p = step.state.position;
                 if crossing.is_none() && last.x > 0.0 && p.x <= 0.0 {
                     crossing = Some(last.z + (p.z - last.z) * last.x / (last.x - p.x));
                 }

@@ -9,7 +9,7 @@
 //! binary search, and the candidates (with one neighbour either side, so a point a rounding error
 //! from a boundary is safe) are tested exactly: O(log N) per ray.
 
-use crate::curve::CurvedSegment;
+use crate::curve::{ArcHull, CurvedSegment};
 use crate::shapes::{Hit, Primitive};
 use glam::DVec3;
 
@@ -178,11 +178,12 @@ impl CoaxialStack {
         &self,
         primitives: &[Primitive],
         seg: &CurvedSegment,
+        hull: &ArcHull,
         s_min: f64,
         length: f64,
     ) -> Option<(usize, Hit)> {
         let mut best: Option<(usize, Hit)> = None;
-        for id in self.members() {
+        for id in self.members().filter(|&id| primitives[id].may_cross(hull)) {
             let limit = best.map_or(length, |(_, h)| h.t);
             if let Some(h) = primitives[id].intersect_segment(seg, s_min, limit) {
                 best = Some((id, h));

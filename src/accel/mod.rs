@@ -6,7 +6,7 @@ mod coaxial;
 
 use coaxial::CoaxialStack;
 
-use crate::curve::CurvedSegment;
+use crate::curve::{ArcHull, CurvedSegment};
 use crate::shapes::{Hit, Primitive};
 use glam::{DVec3, Vec3A};
 use obvhs::aabb::Aabb;
@@ -118,6 +118,36 @@ impl Accel {
         best
     }
 
+    /// Whether the scene has no surface at all.
+    pub fn is_empty(&self) -> bool {
+        self.primitives.is_empty()
+    }
+
+    /// Whether any primitive may meet a path held by `hull` ([`Primitive::may_cross`] on the
+    /// primitives whose boxes meet the hull's): false lets a march skip a step's surface
+    /// tests (the inside of a fiber, far from its wall).
+    pub fn may_hit(&self, hull: &ArcHull) -> bool {
+        let (lo, hi) = hull.bounds();
+        let overlaps = |(s_lo, s_hi): (DVec3, DVec3)| lo.cmple(s_hi).all() && s_lo.cmple(hi).all();
+        if self.stacks.iter().any(|st| {
+            overlaps(st.bounds()) && st.members().any(|id| self.primitives[id].may_cross(hull))
+        }) {
+            return true;
+        }
+        let mut found = false;
+        if !self.in_bvh.is_empty() {
+            self.bvh.aabb_traverse(padded(lo, hi), |bvh, node_index| {
+                let node = &bvh.nodes[node_index as usize];
+                found = (node.first_index..node.first_index + node.prim_count).any(|i| {
+                    let id = self.in_bvh[bvh.primitive_indices[i as usize] as usize];
+                    self.primitives[id].may_cross(hull)
+                });
+                !found
+            });
+        }
+        found
+    }
+
     /// Nearest crossing of a curved segment with any primitive at arclength s ∈ (s_min, length].
     /// Candidates are the primitives whose boxes meet the segment's box: its chord's box grown
     /// by its largest deviation from the chord.
@@ -127,16 +157,16 @@ impl Accel {
         s_min: f64,
         length: f64,
     ) -> Option<(usize, Hit)> {
-        let a = seg.at(0.0).position;
-        let b = seg.at(length).position;
-        let grow = DVec3::splat(seg.max_deviation(length));
-        let (lo, hi) = (a.min(b) - grow, a.max(b) + grow);
+        let hull = seg.hull(length);
+        let (lo, hi) = hull.bounds();
         let mut best: Option<(usize, Hit)> = None;
         for stack in &self.stacks {
             let (s_lo, s_hi) = stack.bounds();
             if lo.cmple(s_hi).all() && s_lo.cmple(hi).all() {
                 let limit = best.map_or(length, |(_, h)| h.t);
-                if let Some(hit) = stack.intersect_segment(&self.primitives, seg, s_min, limit) {
+                if let Some(hit) =
+                    stack.intersect_segment(&self.primitives, seg, &hull, s_min, limit)
+                {
                     best = Some(hit);
                 }
             }
@@ -148,8 +178,12 @@ impl Accel {
             let node = &bvh.nodes[node_index as usize];
             for i in node.first_index..node.first_index + node.prim_count {
                 let id = self.in_bvh[bvh.primitive_indices[i as usize] as usize];
+                let prim = &self.primitives[id];
+                if !prim.may_cross(&hull) {
+                    continue;
+                }
                 let limit = best.map_or(length, |(_, h)| h.t);
-                if let Some(h) = self.primitives[id].intersect_segment(seg, s_min, limit) {
+                if let Some(h) = prim.intersect_segment(seg, s_min, limit) {
                     best = Some((id, h));
                 }
             }

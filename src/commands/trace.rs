@@ -209,7 +209,7 @@ pub fn trace_path(
 ) -> (MarchOutcome, Vec<PathPoint>) {
     let mut points = Vec::new();
     let out = march_with(kind, medium, control, start, limits, |s, st| {
-        points.push(PathPoint { s, state: *st });
+        points.push(PathPoint { s, state: st.state });
         std::ops::ControlFlow::Continue(())
     });
     (out, points)

@@ -2,7 +2,7 @@
 
 use super::bounds::Bounds;
 use super::stepper::{
-    ArcChain, EmbeddedRkn, RayState, Rk4Sharma, SnellSteps, Step, Stepper, StepperKind, RKN64,
+    ArcChain, RayState, Rk4Sharma, Rkn64, SnellSteps, Step, Stepper, StepperKind,
 };
 use crate::media::Medium;
 use rand::Rng;
@@ -117,8 +117,9 @@ pub struct MarchOutcome {
 }
 
 /// Marches a ray from `start` with `stepper` under `control` until one of `limits` ends it.
-/// `observe` sees every accepted state (the start first) with its arclength; returning
-/// `ControlFlow::Break` ends the march with [`Termination::Stopped`] at that state.
+/// `observe` sees every accepted step (first the start, as a step of length 0) with the
+/// arclength at its end; returning `ControlFlow::Break` ends the march with
+/// [`Termination::Stopped`] at that step's end.
 pub fn march<S, M, O>(
     stepper: &S,
     medium: &M,
@@ -130,7 +131,7 @@ pub fn march<S, M, O>(
 where
     S: Stepper,
     M: Medium + ?Sized,
-    O: FnMut(f64, &RayState) -> ControlFlow<()>,
+    O: FnMut(f64, &Step) -> ControlFlow<()>,
 {
     let mut out = MarchOutcome {
         state: start,
@@ -142,7 +143,13 @@ where
         min_step: f64::INFINITY,
         reason: Termination::LengthReached,
     };
-    if observe(0.0, &start).is_break() {
+    let at_start = Step {
+        state: start,
+        length: 0.0,
+        optical_path: 0.0,
+        arcs: None,
+    };
+    if observe(0.0, &at_start).is_break() {
         out.reason = Termination::Stopped;
         return out;
     }
@@ -235,12 +242,11 @@ where
                     }
                     continue;
                 };
-                let p = f64::from(stepper.estimate_order());
                 // What a step may err by: the tolerance per unit length, and never less than
                 // the rounding of the position itself (else tight tolerances stall).
                 let allowed =
                     tolerance * h_try + 16.0 * f64::EPSILON * state.position.abs().max_element();
-                let factor = 0.9 * (allowed / est.error).powf(1.0 / p);
+                let factor = 0.9 * root(allowed / est.error, stepper.estimate_order());
                 if est.error > allowed {
                     h = h_try * factor.clamp(0.1, 0.9);
                     continue;
@@ -278,6 +284,18 @@ where
     }
 }
 
+/// x^(1/p), by square and cube roots for the orders the steppers have (a general power
+/// costs ~6 % of a march).
+fn root(x: f64, p: u32) -> f64 {
+    match p {
+        1 => x,
+        2 => x.sqrt(),
+        3 => x.cbrt(),
+        4 => x.sqrt().sqrt(),
+        _ => x.powf(1.0 / f64::from(p)),
+    }
+}
+
 /// A step length below which a step cannot move the ray (a few ulps of its position).
 fn round_off_floor(state: &RayState) -> f64 {
     4.0 * f64::EPSILON * state.position.abs().max_element()
@@ -297,7 +315,7 @@ fn step_request(requested: f64, step: &Step, target: f64) -> f64 {
     requested * target / step.length
 }
 
-fn accept<M: Medium + ?Sized, O: FnMut(f64, &RayState) -> ControlFlow<()>>(
+fn accept<M: Medium + ?Sized, O: FnMut(f64, &Step) -> ControlFlow<()>>(
     out: &mut MarchOutcome,
     medium: &M,
     step: Step,
@@ -310,7 +328,7 @@ fn accept<M: Medium + ?Sized, O: FnMut(f64, &RayState) -> ControlFlow<()>>(
     out.steps += 1;
     out.min_step = out.min_step.min(len);
     out.state = step.state;
-    observe(out.arclength, &step.state)
+    observe(out.arclength, &step)
 }
 
 /// Optical depth ∫ σa ds of one step between points `a` and `b`, `len` apart along the path
@@ -412,12 +430,12 @@ pub fn march_with<M, O>(
 ) -> MarchOutcome
 where
     M: Medium + ?Sized,
-    O: FnMut(f64, &RayState) -> ControlFlow<()>,
+    O: FnMut(f64, &Step) -> ControlFlow<()>,
 {
     match kind {
         StepperKind::Arc => march(&ArcChain, medium, control, start, limits, observe),
         StepperKind::Rk4 => march(&Rk4Sharma, medium, control, start, limits, observe),
-        StepperKind::Rkn => march(&EmbeddedRkn(RKN64), medium, control, start, limits, observe),
+        StepperKind::Rkn => march(&Rkn64, medium, control, start, limits, observe),
         StepperKind::Snell => march(&SnellSteps, medium, control, start, limits, observe),
     }
 }

@@ -10,8 +10,8 @@ pub use bounds::Bounds;
 pub use march::{
     march, march_with, step_optical_depth, MarchLimits, MarchOutcome, StepControl, Termination,
 };
-pub use segment::{accurate_cross, ArcPoint, CurvedSegment};
+pub use segment::{accurate_cross, ArcHull, ArcPoint, CurvedSegment};
 pub use stepper::{
-    ArcChain, EmbeddedRkn, EstimatedStep, RayState, Rk4Sharma, SnellSteps, Step, Stepper,
+    ArcChain, EstimatedStep, RayState, Rk4Sharma, Rkn64, RknTableau, SnellSteps, Step, Stepper,
     StepperKind, RKN64,
 };

@@ -59,6 +59,39 @@ pub struct CurvedSegment {
     b: f64,
 }
 
+/// A capsule that holds a curved segment: every point of the segment lies within `deviation`
+/// of the straight chord from `a` to `b`. Surfaces test it before looking for crossings on
+/// the arc itself.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ArcHull {
+    /// The segment's start.
+    pub a: DVec3,
+    /// Its end.
+    pub b: DVec3,
+    /// Bound on the distance of any of its points from the chord ab.
+    pub deviation: f64,
+}
+
+impl ArcHull {
+    /// The axis-aligned box (lower, upper corner) that holds the capsule.
+    pub fn bounds(&self) -> (DVec3, DVec3) {
+        let grow = DVec3::splat(self.deviation);
+        (self.a.min(self.b) - grow, self.a.max(self.b) + grow)
+    }
+
+    /// Distance from `p` to the chord ab.
+    pub fn chord_distance(&self, p: DVec3) -> f64 {
+        let ab = self.b - self.a;
+        let len2 = ab.length_squared();
+        let u = if len2 > 0.0 {
+            ((p - self.a).dot(ab) / len2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        (p - (self.a + u * ab)).length()
+    }
+}
+
 /// Position and unit direction at one arclength of a segment.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ArcPoint {
@@ -174,10 +207,25 @@ impl CurvedSegment {
         }
     }
 
-    /// Largest distance of the arc over [0, s] from its chord: the curvature |F| sin θ ≤ |F|,
-    /// so the sagitta is at most |F| s²/8. Bounds the box that holds the arc.
+    /// Largest distance of the arc over [0, s] from its chord (the segment between its ends):
+    /// the curvature |F| sin θ ≤ |F|, so while the arc turns by at most |F|s ≤ 2 rad it stays
+    /// within the sagitta of a circle of that curvature, ≤ |F| s²/8; beyond, every point is
+    /// within s/2 of one of the ends.
     pub fn max_deviation(&self, s: f64) -> f64 {
-        0.125 * self.f * s * s
+        if self.f * s <= 2.0 {
+            0.125 * self.f * s * s
+        } else {
+            0.5 * s
+        }
+    }
+
+    /// The region that holds the arc over [0, s]: within [`Self::max_deviation`] of its chord.
+    pub fn hull(&self, s: f64) -> ArcHull {
+        ArcHull {
+            a: self.origin,
+            b: self.at(s).position,
+            deviation: self.max_deviation(s),
+        }
     }
 
     /// The in-plane components (along F̂, along p̂) of x(s) − x0 and of t̂(s).

@@ -78,6 +78,15 @@ impl EndPoint for RayState {
     }
 }
 
+impl From<RayState> for ArcPoint {
+    fn from(s: RayState) -> Self {
+        ArcPoint {
+            position: s.position,
+            direction: s.direction,
+        }
+    }
+}
+
 impl EndPoint for ArcPoint {
     fn position(&self) -> DVec3 {
         self.position
@@ -118,23 +127,25 @@ pub trait Stepper: Sync {
         state: &RayState,
         h: f64,
     ) -> Option<EstimatedStep> {
-        step_doubling(self.order(), state, h, h, |s, size| {
-            self.step(medium, s, size)
-        })
+        let step = |s: &RayState, size| self.step(medium, s, size);
+        let full = |s: &RayState, size| step(s, size).map(|f| f.state.into());
+        step_doubling(self.order(), state, h, h, full, step)
     }
 }
 
-/// Step doubling (Richardson): one step of `size` against two of `size`/2, whose result is
-/// returned, with error = [`step_discrepancy`]/(2ᵖ − 1) for a method of order p. `size` is in
-/// the stepper's own parameter (arclength, or optical time for RK4); `h` is the arclength.
+/// Step doubling (Richardson): one step of `size` (`full`: only its end is needed) against
+/// two of `size`/2 (`step`), whose result is returned, with error =
+/// [`step_discrepancy`]/(2ᵖ − 1) for a method of order p. `size` is in the stepper's own
+/// parameter (arclength, or optical time for RK4); `h` is the arclength.
 pub fn step_doubling(
     order: u32,
     state: &RayState,
     size: f64,
     h: f64,
+    full: impl Fn(&RayState, f64) -> Option<ArcPoint>,
     step: impl Fn(&RayState, f64) -> Option<Step>,
 ) -> Option<EstimatedStep> {
-    let full = step(state, size)?;
+    let full = full(state, size)?;
     let half = step(state, 0.5 * size)?;
     let second = step(&half.state, 0.5 * size)?;
     Some(EstimatedStep {
@@ -144,7 +155,7 @@ pub fn step_doubling(
             optical_path: half.optical_path + second.optical_path,
             arcs: None,
         },
-        error: step_discrepancy(&second.state, &full.state, h) / f64::from((1u32 << order) - 1),
+        error: step_discrepancy(&second.state, &full, h) / f64::from((1u32 << order) - 1),
     })
 }
 
@@ -253,6 +264,26 @@ pub struct Rk4Sharma;
 impl Rk4Sharma {
     /// One step of optical time `dt` (= ∫ds/n).
     fn optical_step<M: Medium + ?Sized>(medium: &M, state: &RayState, dt: f64) -> Option<Step> {
+        let (end, length, optical_path) = Self::stages(medium, state, dt)?;
+        Some(Step {
+            state: RayState {
+                position: end.position,
+                direction: end.direction,
+                index: medium.sample(end.position)?,
+            },
+            length,
+            optical_path,
+            arcs: None,
+        })
+    }
+
+    /// The stages of one step of optical time `dt`: its end (position, direction; not yet
+    /// sampled), arclength and optical path.
+    fn stages<M: Medium + ?Sized>(
+        medium: &M,
+        state: &RayState,
+        dt: f64,
+    ) -> Option<(ArcPoint, f64, f64)> {
         let x = state.position;
         let n0 = state.index.n;
         let t_vec = n0 * state.direction;
@@ -261,9 +292,10 @@ impl Rk4Sharma {
         let b = dt * sb.n * sb.grad;
         let sc = medium.sample(x + dt * (t_vec + 0.5 * b))?;
         let c = dt * sc.n * sc.grad;
-        let position = x + dt * (t_vec + (a + 2.0 * b) / 6.0);
-        let t_new = t_vec + (a + 4.0 * b + c) / 6.0;
-        let index = medium.sample(position)?;
+        let end = ArcPoint {
+            position: x + dt * (t_vec + (a + 2.0 * b) / 6.0),
+            direction: (t_vec + (a + 4.0 * b + c) / 6.0).normalize(),
+        };
         // Arclength ∫ n dt and optical path ∫ n² dt with the velocity update's weights at the
         // stage points: a quadrature of a function of position along the path is another
         // velocity component of an augmented x″ = f(x) that does not feed back, so the method
@@ -271,16 +303,7 @@ impl Rk4Sharma {
         let (na, nb, nc) = (n0, sb.n, sc.n);
         let length = dt * (na + 4.0 * nb + nc) / 6.0;
         let optical_path = dt * (na * na + 4.0 * nb * nb + nc * nc) / 6.0;
-        Some(Step {
-            state: RayState {
-                position,
-                direction: t_new.normalize(),
-                index,
-            },
-            length,
-            optical_path,
-            arcs: None,
-        })
+        Some((end, length, optical_path))
     }
 }
 
@@ -303,9 +326,9 @@ impl Stepper for Rk4Sharma {
         h: f64,
     ) -> Option<EstimatedStep> {
         let dt = h / state.index.n;
-        step_doubling(4, state, dt, h, |s, size| {
-            Self::optical_step(medium, s, size)
-        })
+        let full = |s: &RayState, size| Self::stages(medium, s, size).map(|(end, ..)| end);
+        let step = |s: &RayState, size| Self::optical_step(medium, s, size);
+        step_doubling(4, state, dt, h, full, step)
     }
 }
 
@@ -408,19 +431,19 @@ pub const RKN64: RknTableau<6> = RknTableau {
     low_order: 4,
 };
 
-/// An embedded Runge–Kutta–Nyström pair for the ray equation in Sharma's form x″ = D(x) = n∇n
+/// The embedded Runge–Kutta–Nyström pair [`RKN64`] for the ray equation in Sharma's form x″ = D(x) = n∇n
 /// in optical time (dt = ds/n, T = dx/dt, |T| = n): a pair made for a second-order equation
 /// whose right side does not depend on the velocity. The last stage is the step's end (first
-/// same as last), so an attempt costs S − 1 medium samples (RK4 with step doubling: nine).
+/// same as last), so an attempt costs five medium samples (RK4 with step doubling: nine).
 ///
 /// Arclength ∫ n dt and optical path ∫ n² dt use the velocity weights at the stages: a
 /// quadrature along the path is one more velocity component of an augmented x″ = f(x) that
 /// does not feed back, so it is integrated to the method's order; the low-order weights give
 /// its error, which is controlled with the position's.
-#[derive(Clone, Copy, Debug)]
-pub struct EmbeddedRkn<const S: usize>(pub RknTableau<S>);
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Rkn64;
 
-impl<const S: usize> EmbeddedRkn<S> {
+impl Rkn64 {
     /// One step of optical time `dt` from `state`: the high-order step and the error estimate
     /// (|Δx| + h|Δt̂| + |Δ optical path|/n between the two solutions, a length).
     fn optical_step<M: Medium + ?Sized>(
@@ -429,7 +452,9 @@ impl<const S: usize> EmbeddedRkn<S> {
         state: &RayState,
         dt: f64,
     ) -> Option<EstimatedStep> {
-        let tab = &self.0;
+        // The tableau as a constant, so its zeros and weights fold into the code.
+        const S: usize = 6;
+        let tab = &RKN64;
         let x = state.position;
         let t_vec = state.index.n * state.direction;
         let mut samples = [state.index; S];
@@ -440,19 +465,28 @@ impl<const S: usize> EmbeddedRkn<S> {
             samples[i] = medium.sample(x + dt * (tab.c[i] * t_vec + dt * pull))?;
             g[i] = samples[i].n * samples[i].grad;
         }
-        let weigh = |w: &[f64; S]| (0..S).fold(DVec3::ZERO, |acc, i| acc + w[i] * g[i]);
-        let quadrature = |w: &[f64; S], f: &dyn Fn(f64) -> f64| {
-            dt * (0..S).map(|i| w[i] * f(samples[i].n)).sum::<f64>()
-        };
-        let position = x + dt * (t_vec + dt * weigh(&tab.a[S - 1]));
-        let t_new = t_vec + dt * weigh(&tab.b_velocity);
+        // One pass over the stages for both solutions' positions, velocities, and the
+        // arclength and optical-path quadratures.
+        let (mut pull, mut kick, mut pull_low, mut kick_low) =
+            (DVec3::ZERO, DVec3::ZERO, DVec3::ZERO, DVec3::ZERO);
+        let (mut length, mut optical_path, mut low_path) = (0.0, 0.0, 0.0);
+        for i in 0..S {
+            let n = samples[i].n;
+            pull += tab.a[S - 1][i] * g[i];
+            kick += tab.b_velocity[i] * g[i];
+            pull_low += tab.b_low[i] * g[i];
+            kick_low += tab.b_low_velocity[i] * g[i];
+            length += tab.b_velocity[i] * n;
+            optical_path += tab.b_velocity[i] * n * n;
+            low_path += tab.b_low_velocity[i] * n * n;
+        }
+        let (length, optical_path, low_path) = (dt * length, dt * optical_path, dt * low_path);
+        let position = x + dt * (t_vec + dt * pull);
+        let t_new = t_vec + dt * kick;
         let low = ArcPoint {
-            position: x + dt * (t_vec + dt * weigh(&tab.b_low)),
-            direction: (t_vec + dt * weigh(&tab.b_low_velocity)).normalize(),
+            position: x + dt * (t_vec + dt * pull_low),
+            direction: (t_vec + dt * kick_low).normalize(),
         };
-        let length = quadrature(&tab.b_velocity, &|n| n);
-        let optical_path = quadrature(&tab.b_velocity, &|n| n * n);
-        let low_path = quadrature(&tab.b_low_velocity, &|n| n * n);
         let step = Step {
             state: RayState {
                 position,
@@ -471,7 +505,7 @@ impl<const S: usize> EmbeddedRkn<S> {
     }
 }
 
-impl<const S: usize> Stepper for EmbeddedRkn<S> {
+impl Stepper for Rkn64 {
     /// A step of optical time h/n(x0): arclength ≈ h.
     fn step<M: Medium + ?Sized>(&self, medium: &M, state: &RayState, h: f64) -> Option<Step> {
         self.optical_step(medium, state, h / state.index.n)
@@ -479,12 +513,12 @@ impl<const S: usize> Stepper for EmbeddedRkn<S> {
     }
 
     fn order(&self) -> u32 {
-        self.0.order
+        RKN64.order
     }
 
     /// The low-order solution's local error is O(h^(q+1)): per unit length O(h^q).
     fn estimate_order(&self) -> u32 {
-        self.0.low_order
+        RKN64.low_order
     }
 
     fn estimated_step<M: Medium + ?Sized>(
@@ -561,7 +595,7 @@ pub enum StepperKind {
     Arc,
     /// [`Rk4Sharma`].
     Rk4,
-    /// [`EmbeddedRkn`] with [`RKN64`].
+    /// [`Rkn64`].
     Rkn,
     /// [`SnellSteps`].
     Snell,

@@ -1,6 +1,6 @@
 //! The primitives: sphere, open cylinder (tube), parallelogram (quad), disk and triangle.
 
-use crate::curve::CurvedSegment;
+use crate::curve::{ArcHull, CurvedSegment};
 use glam::DVec3;
 
 /// Where a ray meets a primitive.
@@ -246,6 +246,41 @@ impl Primitive {
                 (d - axis * d.dot(axis)).normalize()
             }
             _ => self.plane().expect("planar").1,
+        }
+    }
+
+    /// Whether a curved segment held by `hull` may cross the primitive's surface: false when
+    /// the capsule lies wholly on one side of it (inside or outside a sphere or a cylinder,
+    /// beyond a cylinder's ends, on one side of a plane). Distances from the axis, the centre
+    /// or a plane are convex along the chord, so their largest values are at its ends.
+    pub fn may_cross(&self, hull: &ArcHull) -> bool {
+        let dev = hull.deviation;
+        match *self {
+            Primitive::Sphere { center, radius } => {
+                let far = (hull.a - center).length().max((hull.b - center).length());
+                far + dev >= radius && hull.chord_distance(center) - dev <= radius
+            }
+            Primitive::Tube {
+                base,
+                axis,
+                radius,
+                height,
+            } => {
+                let along = |x: DVec3| (x - base).dot(axis);
+                let off_axis = |x: DVec3| {
+                    let d = x - base;
+                    (d - axis * d.dot(axis)).length()
+                };
+                let (za, zb) = (along(hull.a), along(hull.b));
+                let beyond_ends = za.max(zb) < -dev || za.min(zb) > height + dev;
+                let inside = off_axis(hull.a).max(off_axis(hull.b)) + dev < radius;
+                !(beyond_ends || inside)
+            }
+            _ => {
+                let (p0, n) = self.plane().expect("planar");
+                let (oa, ob) = ((hull.a - p0).dot(n), (hull.b - p0).dot(n));
+                oa.min(ob) <= dev && oa.max(ob) >= -dev
+            }
         }
     }
 

@@ -14,8 +14,8 @@ pub mod visibility;
 use crate::bsdf::Bsdf;
 use crate::color::Rgb;
 use crate::curve::{
-    march_with, step_optical_depth, Bounds, CurvedSegment, MarchLimits, MarchOutcome, RayState,
-    StepControl, Termination,
+    march_with, step_optical_depth, ArcHull, Bounds, CurvedSegment, MarchLimits, MarchOutcome,
+    RayState, StepControl, Termination,
 };
 use crate::lights::SceneBall;
 use crate::material::Material;
@@ -465,6 +465,8 @@ impl<'a> Tracer<'a> {
         stats.curved_steps += out.steps;
         stats.record_end(out.reason);
         match (hit, out.reason) {
+            // Found on the path the step took (the arc chain's arcs): exact.
+            (Some(hit), _) if hit.on_path => hit.event,
             (Some(hit), _) => {
                 // The step that met a surface, taken again in 16 fixed sub-steps: the hit of
                 // a mean-force arc errs by O(len² |∇F|) in position and direction, which the
@@ -530,7 +532,6 @@ impl<'a> Tracer<'a> {
         limits: &MarchLimits,
         path: &mut dyn FnMut(DVec3),
     ) -> (Option<CurvedHit>, MarchOutcome) {
-        let accel = &self.scene.accel;
         let mut prev = start;
         let (mut prev_s, mut prev_depth) = (0.0, 0.0);
         let mut hit = None;
@@ -540,48 +541,28 @@ impl<'a> Tracer<'a> {
             control,
             start,
             limits,
-            |s, st| {
+            |s, step| {
                 if s == 0.0 {
                     return ControlFlow::Continue(());
                 }
-                // The step as an exact arc with the mean F of its ends, then a straight connector
-                // from the arc's end to the step's end: a continuous path from one accepted state
-                // to the next, so no surface between them is stepped over.
                 let len = s - prev_s;
-                let seg = CurvedSegment::new(
-                    prev.position,
-                    prev.direction,
-                    0.5 * (prev.index.log_gradient() + st.index.log_gradient()),
-                );
-                let found = accel
-                    .intersect_segment(&seg, 0.0, len)
-                    .map(|(prim, h)| {
-                        let p = seg.at(h.t);
-                        (prim, h, p.position, p.direction, h.t)
-                    })
-                    .or_else(|| {
-                        let arc_end = seg.at(len).position;
-                        let gap = st.position - arc_end;
-                        let gap_len = gap.length();
-                        (gap_len > 0.0)
-                            .then(|| accel.intersect_ray(arc_end, gap / gap_len, 0.0, gap_len))
-                            .flatten()
-                            .map(|(prim, h)| {
-                                let at = arc_end + h.t * gap / gap_len;
-                                (prim, h, at, st.direction, len + h.t)
-                            })
-                    });
-                if let Some((prim, h, position, direction, along)) = found {
+                let st = &step.state;
+                let found = match &step.arcs {
+                    Some(arcs) => self.crossing_on_arcs(arcs, len),
+                    None => self.crossing_between(&prev, st, len),
+                };
+                if let Some(c) = found {
                     hit = Some(CurvedHit {
                         event: Event::Surface {
-                            prim,
-                            position,
-                            normal: h.normal,
-                            direction,
-                            distance: prev_s + along,
+                            prim: c.prim,
+                            position: c.position,
+                            normal: c.normal,
+                            direction: c.direction,
+                            distance: prev_s + c.along,
                             optical_depth: prev_depth
-                                + step_optical_depth(medium, prev.position, position, along),
+                                + step_optical_depth(medium, prev.position, c.position, c.along),
                         },
+                        on_path: step.arcs.is_some(),
                         before: prev,
                         before_s: prev_s,
                         before_depth: prev_depth,
@@ -598,11 +579,93 @@ impl<'a> Tracer<'a> {
         );
         (hit, out)
     }
+
+    /// The first surface on a step that is a chain of two exact arcs of `len`/2 each (the
+    /// path itself, so the hit is exact).
+    fn crossing_on_arcs(&self, arcs: &[CurvedSegment; 2], len: f64) -> Option<Crossing> {
+        let half = 0.5 * len;
+        arcs.iter().enumerate().find_map(|(k, arc)| {
+            let (prim, h) = self.scene.accel.intersect_segment(arc, 0.0, half)?;
+            let p = arc.at(h.t);
+            Some(Crossing {
+                prim,
+                normal: h.normal,
+                position: p.position,
+                direction: p.direction,
+                along: k as f64 * half + h.t,
+            })
+        })
+    }
+
+    /// The first surface between two accepted states `len` apart whose path between is not
+    /// known (RK steps): the exact arc with the mean F of the ends, then a straight connector
+    /// from the arc's end to the step's end — a continuous path from one state to the next, so
+    /// no surface between them is stepped over. Skipped when no surface can meet the capsule
+    /// that holds both (the arc's hull widened by the connector's length).
+    fn crossing_between(&self, prev: &RayState, st: &RayState, len: f64) -> Option<Crossing> {
+        let accel = &self.scene.accel;
+        if accel.is_empty() {
+            return None;
+        }
+        let seg = CurvedSegment::new(
+            prev.position,
+            prev.direction,
+            0.5 * (prev.index.log_gradient() + st.index.log_gradient()),
+        );
+        let hull = seg.hull(len);
+        let arc_end = hull.b;
+        let gap = st.position - arc_end;
+        let gap_len = gap.length();
+        let covering = ArcHull {
+            a: prev.position,
+            b: st.position,
+            deviation: hull.deviation + gap_len,
+        };
+        if !accel.may_hit(&covering) {
+            return None;
+        }
+        accel
+            .intersect_segment(&seg, 0.0, len)
+            .map(|(prim, h)| {
+                let p = seg.at(h.t);
+                Crossing {
+                    prim,
+                    normal: h.normal,
+                    position: p.position,
+                    direction: p.direction,
+                    along: h.t,
+                }
+            })
+            .or_else(|| {
+                (gap_len > 0.0)
+                    .then(|| accel.intersect_ray(arc_end, gap / gap_len, 0.0, gap_len))
+                    .flatten()
+                    .map(|(prim, h)| Crossing {
+                        prim,
+                        normal: h.normal,
+                        position: arc_end + h.t * gap / gap_len,
+                        direction: st.direction,
+                        along: len + h.t,
+                    })
+            })
+    }
+}
+
+/// Where a step's path meets a surface.
+struct Crossing {
+    prim: usize,
+    normal: DVec3,
+    position: DVec3,
+    direction: DVec3,
+    /// Arclength from the step's start.
+    along: f64,
 }
 
 /// A curved path's first surface: the event, and the step that met it.
 struct CurvedHit {
     event: Event,
+    /// Whether it was found on the path the step itself took (exact), not on a stand-in.
+    on_path: bool,
     /// The state at the start of that step, its arclength and optical depth from the start.
     before: RayState,
     before_s: f64,
