@@ -6,7 +6,7 @@
 //! the antipodal focus), (c) black-hole rays at b = 3 rs (captured) and b = 20 rs (error: final
 //! position against an RK4 run at tolerance 1e-14, which agrees with the exact arc at 1e-12).
 //!
-//! `cargo run --release --example stepper_study [-- --quick]` prints a table and writes
+//! `cargo run --release --example stepper_study` prints a table and writes
 //! `out/stepper_study.csv` and `out/stepper_study.png` (error against time per case, log-log).
 //! Times are medians of 5 repetitions on this machine; they are noisy, ratios within one run
 //! are what to compare.
@@ -167,7 +167,7 @@ fn cases() -> Vec<Case> {
 
 fn controls(case: &Case) -> Vec<(String, StepControl)> {
     let mut v = Vec::new();
-    for tol in [1e-4, 1e-6, 1e-8, 1e-10, 1e-12] {
+    for tol in [1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12] {
         v.push((
             format!("adaptive tol={tol:.0e}"),
             StepControl::Adaptive { tolerance: tol },
@@ -218,7 +218,7 @@ fn step_costs() {
         gradient: DVec3::new(0.0, 0.3, 0.1),
         origin: DVec3::ZERO,
     };
-    for kind in [StepperKind::Arc, StepperKind::Rk4, StepperKind::Snell] {
+    for kind in StepperKind::ALL {
         let start = RayState::new(&medium, DVec3::ZERO, DVec3::new(1.0, -0.5, 0.2)).unwrap();
         let steps = 1_000_000u64;
         let limits = MarchLimits {
@@ -281,20 +281,16 @@ fn main() -> std::io::Result<()> {
                     out.attempts,
                     out.reason.name()
                 )?;
-                let family = ki * 3
-                    + if label.starts_with("adaptive") {
-                        0
-                    } else if label.starts_with("fixed") {
-                        1
-                    } else {
-                        2
-                    };
+                // Plotted: adaptive and fixed runs, one colour each per stepper.
                 let e = err.max(1e-16);
-                match series.iter_mut().find(|(f, _)| *f == family) {
-                    Some((_, v)) => v.push((t, e)),
-                    None => series.push((family, vec![(t, e)])),
+                let family = ki * 2 + usize::from(label.starts_with("fixed"));
+                if !label.starts_with("tessendorf") {
+                    match series.iter_mut().find(|(f, _)| *f == family) {
+                        Some((_, v)) => v.push((t, e)),
+                        None => series.push((family, vec![(t, e)])),
+                    }
+                    points.push((t, e));
                 }
-                points.push((t, e));
                 if label.starts_with("adaptive") {
                     best.push((case.name, kind, label.clone(), err, t));
                 }
@@ -313,9 +309,7 @@ fn main() -> std::io::Result<()> {
         for (family, mut pts) in series {
             pts.sort_by(|a, b| a.0.total_cmp(&b.0));
             let c = plot::PALETTE[family % plot::PALETTE.len()];
-            if family % 3 != 2 {
-                panel.polyline(&pts, c);
-            }
+            panel.polyline(&pts, c);
             for p in pts {
                 panel.marker(p.0, p.1, c);
             }
@@ -325,10 +319,11 @@ fn main() -> std::io::Result<()> {
             x: "time per ray (s)",
             y: "final-position error (scene units)",
         });
-        let names = ["arc", "rk4", "snell"];
-        let controls = ["adaptive", "fixed", "tessendorf"];
-        let labels: Vec<String> = (0..9)
-            .map(|f| format!("{} {}", names[f / 3], controls[f % 3]))
+        let labels: Vec<String> = (0..2 * StepperKind::ALL.len())
+            .map(|f| {
+                let control = if f % 2 == 0 { "adaptive" } else { "fixed" };
+                format!("{} {control}", StepperKind::ALL[f / 2].name())
+            })
             .collect();
         let legend: Vec<(plot::Color, &str)> = labels
             .iter()
@@ -339,6 +334,41 @@ fn main() -> std::io::Result<()> {
     }
     plot::save(&img, std::path::Path::new("out/stepper_study.png"))
         .map_err(std::io::Error::other)?;
-    println!("\nwrote out/stepper_study.csv and out/stepper_study.png (x: time per ray [s], y: error; colours: arc adaptive/fixed/tessendorf = red/blue/green, rk4 = magenta/yellow/teal, snell = violet/orange/grey; tessendorf unconnected)");
+    println!("\nwrote out/stepper_study.csv and out/stepper_study.png (x: time per ray [s], y: error; one colour per stepper and control, adaptive and fixed; Tessendorf's control in the table only)");
+    equal_error_summary(&cases, &best);
     Ok(())
+}
+
+/// Per case: RK4 at its default tolerance (the previous default) sets the error to meet; for
+/// each stepper, the fastest adaptive run whose error is at most that, and its speed-up.
+fn equal_error_summary(cases: &[Case], best: &[(&str, StepperKind, String, f64, f64)]) {
+    println!("\n## At equal error: each stepper's fastest adaptive run at most as far off as rk4 at its default tolerance\n");
+    println!("| case | rk4 at 1e-9: error, time | arc | rkn | snell |");
+    println!("|---|---|---|---|---|");
+    let default_label = format!("adaptive tol={:.0e}", StepperKind::Rk4.default_tolerance());
+    for case in cases {
+        let runs: Vec<_> = best.iter().filter(|r| r.0 == case.name).collect();
+        let Some(reference) = runs
+            .iter()
+            .find(|r| r.1 == StepperKind::Rk4 && r.2 == default_label)
+        else {
+            continue;
+        };
+        let (target, t_ref) = (reference.3, reference.4);
+        let cell = |kind: StepperKind| {
+            runs.iter()
+                .filter(|r| r.1 == kind && r.3 <= target)
+                .min_by(|a, b| a.4.total_cmp(&b.4))
+                .map_or("never".to_string(), |r| {
+                    format!("{:.2}× ({}, {:.2e})", t_ref / r.4, r.2, r.3)
+                })
+        };
+        println!(
+            "| {} | {target:.2e}, {t_ref:.3e} s | {} | {} | {} |",
+            case.name,
+            cell(StepperKind::Arc),
+            cell(StepperKind::Rkn),
+            cell(StepperKind::Snell)
+        );
+    }
 }

@@ -545,3 +545,68 @@ fn curved_connections_match_independent_answers() {
     assert!(chi2 / 36.0 < 1.5 && worst < 4.5);
     assert!(chi2_straight / 36.0 > 1.5);
 }
+
+/// Surface hits on curved paths against a fine reference march: rays in a sech fiber medium
+/// (n0 1.5, g 0.8 about the z axis; they turn through ~1 rad) meet a sphere, a quad and a disk
+/// after 1–4 units. Each stepper at its default control (the arc chain finds hits on its own
+/// arcs; RK steps on a mean-force stand-in, re-taken in fine sub-steps) must put the hit point
+/// where RKN at tolerance 1e-13 does, within 10·tol·L of the default position bound
+/// (`tests/validation.rs`), and on the same primitive.
+#[test]
+fn curved_paths_meet_surfaces_where_a_fine_march_does() {
+    use grinlight::curve::StepperKind;
+    let scene_with = |stepper: &str, tolerance: f64| {
+        parse(&format!(
+            "ambient = \"g\"\n[[medium]]\nname = \"g\"\nprofile = \"sech\"\nn0 = 1.5\ng = 0.8\n\
+             [[material]]\nname = \"white\"\ntype = \"diffuse\"\nalbedo = [0.5, 0.5, 0.5]\n\
+             [[shape]]\ntype = \"sphere\"\ncenter = [0.3, 0.2, 2.5]\nradius = 0.4\nmaterial = \"white\"\n\
+             [[shape]]\ntype = \"quad\"\nvertices = [[-2, -2, 4], [2, -2, 4], [2, 2, 4], [-2, 2, 4]]\nmaterial = \"white\"\n\
+             [[shape]]\ntype = \"disk\"\ncenter = [-0.8, 0.0, 1.5]\nnormal = [1, 0, 0]\nradius = 0.6\nmaterial = \"white\"\n\
+             [render]\nworld_radius = 20\nstepper = \"{stepper}\"\ntolerance = {tolerance:e}\n"
+        ))
+    };
+    let rays: Vec<(DVec3, DVec3)> = (0..24)
+        .map(|i| {
+            let a = i as f64 * 0.37;
+            let origin = DVec3::new(0.6 * a.cos(), 0.6 * a.sin(), 0.0);
+            (
+                origin,
+                DVec3::new(0.3 * (2.0 * a).sin(), 0.2 * a.cos(), 1.0),
+            )
+        })
+        .collect();
+    let hits = |scene: &(Scene, Settings)| -> Vec<Option<(usize, DVec3, f64)>> {
+        let tracer = Tracer::new(&scene.0, &scene.1.trace);
+        rays.iter()
+            .map(
+                |&(o, d)| match tracer.next_event(o, d, scene.0.ambient, &mut Stats::default()) {
+                    Event::Surface {
+                        prim,
+                        position,
+                        distance,
+                        ..
+                    } => Some((prim, position, distance)),
+                    _ => None,
+                },
+            )
+            .collect()
+    };
+    let reference = hits(&scene_with("rkn", 1e-13));
+    assert!(reference.iter().flatten().count() >= 20, "{reference:?}");
+    for kind in [StepperKind::Arc, StepperKind::Rk4, StepperKind::Rkn] {
+        let tol = kind.default_tolerance();
+        let got = hits(&scene_with(kind.name(), tol));
+        let mut worst = 0.0f64;
+        for (g, r) in got.iter().zip(&reference) {
+            let (Some((gp, gx, _)), Some((rp, rx, dist))) = (g, r) else {
+                assert_eq!(g.is_some(), r.is_some(), "{kind:?}");
+                continue;
+            };
+            assert_eq!(gp, rp, "{kind:?}: another surface");
+            let err = (*gx - *rx).length();
+            worst = worst.max(err / dist);
+            assert!(err <= 10.0 * tol * dist, "{kind:?}: {err:e} over {dist}");
+        }
+        println!("{kind:?}: worst hit error {worst:.2e} per unit length (tolerance {tol:e})");
+    }
+}

@@ -164,7 +164,7 @@ pub fn trace(job: &TraceJob, observer: &dyn Observer) -> Result<MarchOutcome> {
         .resolve(job.stepper, medium, (job.from, start.direction), length)?;
     if job.stepper == StepperKind::Snell && at_turning_point(&start) {
         observer.warning(
-            "--dir is perpendicular to ∇n at --from (a turning point): Snell steps              cannot bend a ray there and it will run straight; use --stepper rk4 or arc",
+            "--dir is perpendicular to ∇n at --from (a turning point): Snell steps              cannot bend a ray there and it will run straight; use --stepper rk4, rkn or arc",
         );
     }
     let limits = MarchLimits {

@@ -202,8 +202,10 @@ impl CurvedSegment {
             let half = (0.5 * x).sinh();
             (x.sinh() + 2.0 * c * half * half) / f
         } else {
-            // (a eˣ − b e⁻ˣ)/2 − c: no cancellation where 1 + cos β is tiny (against F).
-            (0.5 * (self.a * x.exp() - self.b * (-x).exp()) - c) / f
+            // (a eˣ − b e⁻ˣ)/2 − c: no cancellation where 1 + cos β is tiny (against F); a = 0
+            // (exactly against F) must not meet an overflowed eˣ.
+            let grow = if self.a == 0.0 { 0.0 } else { self.a * x.exp() };
+            (0.5 * (grow - self.b * (-x).exp()) - c) / f
         }
     }
 

@@ -87,8 +87,9 @@ pub struct TraceArgs {
     /// the d line, 587.5618 nm].
     #[arg(long)]
     wavelength: Option<f64>,
-    /// Stepper: rk4 (Sharma's RK4, the fastest at every accuracy measured), arc (exact
-    /// constant-gradient arc, F at the step's midpoint), snell (iterative Snell steps).
+    /// Stepper: rk4 (Sharma's RK4, step doubling), rkn (the RKN6(4) pair: sixth order, the
+    /// most accurate per unit time), arc (a fourth-order chain of exact constant-gradient
+    /// arcs), snell (iterative Snell steps).
     #[arg(long, default_value = "rk4")]
     stepper: StepperKind,
     /// Step control.
@@ -97,8 +98,8 @@ pub struct TraceArgs {
     /// Step length for `fixed`, initial step for `tessendorf` (default: the medium's hint).
     #[arg(long)]
     step: Option<f64>,
-    /// Tolerance of `adaptive`: position error per unit arclength [default: 1e-8 arc,
-    /// 1e-9 rk4, 1e-5 snell].
+    /// Tolerance of `adaptive`: the step's error estimate per unit arclength [default: 1e-9
+    /// rk4, 1e-8 rkn, 1e-6 arc, 1e-5 snell].
     #[arg(long)]
     tol: Option<f64>,
     /// T_max of `tessendorf`.
