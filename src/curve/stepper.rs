@@ -434,7 +434,7 @@ pub const RKN64: RknTableau<6> = RknTableau {
 /// The embedded Runge–Kutta–Nyström pair [`RKN64`] for the ray equation in Sharma's form x″ = D(x) = n∇n
 /// in optical time (dt = ds/n, T = dx/dt, |T| = n): a pair made for a second-order equation
 /// whose right side does not depend on the velocity. The last stage is the step's end (first
-/// same as last), so an attempt costs five medium samples (RK4 with step doubling: nine).
+/// same as last), so an attempt costs five medium samples (RK4 with step doubling: eight).
 ///
 /// Arclength ∫ n dt and optical path ∫ n² dt use the velocity weights at the stages: a
 /// quadrature along the path is one more velocity component of an augmented x″ = f(x) that
