@@ -12,6 +12,6 @@ pub use march::{
 };
 pub use segment::{accurate_cross, ArcHull, ArcPoint, CurvedSegment};
 pub use stepper::{
-    ArcChain, EstimatedStep, RayState, Rk4Sharma, Rkn64, RknTableau, SnellSteps, Step, Stepper,
-    StepperKind, RKN64,
+    ArcChain, ArcPath, EstimatedStep, RayState, Rk4Sharma, Rkn64, RknTableau, SnellSteps, Step,
+    Stepper, StepperKind, RKN64,
 };

@@ -1,6 +1,6 @@
 //! Steppers: one step of a ray through a medium, behind one small interface.
 
-use super::segment::{ArcPoint, CurvedSegment};
+use super::segment::{ArcHull, ArcPoint, CurvedSegment};
 use crate::media::{IndexSample, Medium};
 use glam::DVec3;
 
@@ -48,9 +48,45 @@ pub struct Step {
     pub length: f64,
     /// Optical path ∫ n ds of the step, to the stepper's order.
     pub optical_path: f64,
-    /// The path between the ends as two exact arcs of length/2 each, where the stepper's path
-    /// is one ([`ArcChain`]); `None` where only the ends are known.
-    pub arcs: Option<[CurvedSegment; 2]>,
+    /// The path between the ends where the stepper's path is a chain of exact arcs
+    /// ([`ArcChain`]); `None` where only the ends are known.
+    pub arcs: Option<ArcPath>,
+}
+
+/// A step's path as two exact arcs of half its length each: from the step's start under
+/// `forces[0]`, then from `joint` under `forces[1]` (kept small: a step is copied often).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ArcPath {
+    /// Where the first arc ends and the second starts.
+    pub joint: ArcPoint,
+    /// F = ∇ln n frozen on each arc (1/length).
+    pub forces: [DVec3; 2],
+}
+
+impl ArcPath {
+    /// The two arcs, for a step that started at `start`.
+    pub fn arcs(&self, start: &RayState) -> [CurvedSegment; 2] {
+        [
+            CurvedSegment::new(start.position, start.direction, self.forces[0]),
+            CurvedSegment::new(self.joint.position, self.joint.direction, self.forces[1]),
+        ]
+    }
+
+    /// A capsule holding the whole path of a step from `start` to `end`, `length` long: the
+    /// chain is C¹ with curvature at most the larger |F|, so one arc's bound applies to it.
+    pub fn hull(&self, start: &RayState, end: &RayState, length: f64) -> ArcHull {
+        let curvature = self.forces[0].length().max(self.forces[1].length());
+        let turn = curvature * length;
+        ArcHull {
+            a: start.position,
+            b: end.position,
+            deviation: if turn <= 2.0 {
+                0.125 * turn * length
+            } else {
+                0.5 * length
+            },
+        }
+    }
 }
 
 /// How far apart two solutions of one step are, as a position error: |Δx| + h|Δt̂|, the
@@ -213,7 +249,10 @@ impl ArcChain {
             },
             length: h,
             optical_path,
-            arcs: Some([first, second]),
+            arcs: Some(ArcPath {
+                joint: pm,
+                forces: [fb, fa],
+            }),
         };
         let embedded_path = state.index.n * midpoint_arc.relative_optical_path(h);
         Some((step, midpoint_arc.at(h), embedded_path))

@@ -14,8 +14,8 @@ pub mod visibility;
 use crate::bsdf::Bsdf;
 use crate::color::Rgb;
 use crate::curve::{
-    march_with, step_optical_depth, ArcHull, Bounds, CurvedSegment, MarchLimits, MarchOutcome,
-    RayState, StepControl, Termination,
+    march_with, step_optical_depth, ArcHull, ArcPath, Bounds, CurvedSegment, MarchLimits,
+    MarchOutcome, RayState, StepControl, Termination,
 };
 use crate::lights::SceneBall;
 use crate::material::Material;
@@ -548,7 +548,7 @@ impl<'a> Tracer<'a> {
                 let len = s - prev_s;
                 let st = &step.state;
                 let found = match &step.arcs {
-                    Some(arcs) => self.crossing_on_arcs(arcs, len),
+                    Some(arcs) => self.crossing_on_arcs(arcs, &prev, st, len),
                     None => self.crossing_between(&prev, st, len),
                 };
                 if let Some(c) = found {
@@ -580,11 +580,21 @@ impl<'a> Tracer<'a> {
         (hit, out)
     }
 
-    /// The first surface on a step that is a chain of two exact arcs of `len`/2 each (the
-    /// path itself, so the hit is exact).
-    fn crossing_on_arcs(&self, arcs: &[CurvedSegment; 2], len: f64) -> Option<Crossing> {
+    /// The first surface on a step from `prev` to `st` that is a chain of two exact arcs of
+    /// `len`/2 each (the path itself, so the hit is exact); skipped when no surface can meet
+    /// the capsule that holds the chain.
+    fn crossing_on_arcs(
+        &self,
+        path: &ArcPath,
+        prev: &RayState,
+        st: &RayState,
+        len: f64,
+    ) -> Option<Crossing> {
+        if !self.scene.accel.may_hit(&path.hull(prev, st, len)) {
+            return None;
+        }
         let half = 0.5 * len;
-        arcs.iter().enumerate().find_map(|(k, arc)| {
+        path.arcs(prev).iter().enumerate().find_map(|(k, arc)| {
             let (prim, h) = self.scene.accel.intersect_segment(arc, 0.0, half)?;
             let p = arc.at(h.t);
             Some(Crossing {
