@@ -59,6 +59,17 @@ pub struct CurvedSegment {
     b: f64,
 }
 
+/// How far a C¹ path of `length` whose curvature never exceeds `curvature` can stray from its
+/// chord: the sagitta of a circle of that curvature, ≤ curvature·length²/8, while the path
+/// turns by at most 2 rad; beyond, length/2 (every point is that close to one of the ends).
+pub fn deviation_bound(curvature: f64, length: f64) -> f64 {
+    if curvature * length <= 2.0 {
+        0.125 * curvature * length * length
+    } else {
+        0.5 * length
+    }
+}
+
 /// A capsule that holds a curved segment: every point of the segment lies within `deviation`
 /// of the straight chord from `a` to `b`. Surfaces test it before looking for crossings on
 /// the arc itself.
@@ -210,15 +221,9 @@ impl CurvedSegment {
     }
 
     /// Largest distance of the arc over [0, s] from its chord (the segment between its ends):
-    /// the curvature |F| sin θ ≤ |F|, so while the arc turns by at most |F|s ≤ 2 rad it stays
-    /// within the sagitta of a circle of that curvature, ≤ |F| s²/8; beyond, every point is
-    /// within s/2 of one of the ends.
+    /// its curvature is |F| sin θ ≤ |F| ([`deviation_bound`]).
     pub fn max_deviation(&self, s: f64) -> f64 {
-        if self.f * s <= 2.0 {
-            0.125 * self.f * s * s
-        } else {
-            0.5 * s
-        }
+        deviation_bound(self.f, s)
     }
 
     /// The region that holds the arc over [0, s]: within [`Self::max_deviation`] of its chord.

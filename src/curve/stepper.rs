@@ -1,6 +1,6 @@
 //! Steppers: one step of a ray through a medium, behind one small interface.
 
-use super::segment::{ArcHull, ArcPoint, CurvedSegment};
+use super::segment::{deviation_bound, ArcHull, ArcPoint, CurvedSegment};
 use crate::media::{IndexSample, Medium};
 use glam::DVec3;
 
@@ -76,15 +76,10 @@ impl ArcPath {
     /// chain is C¹ with curvature at most the larger |F|, so one arc's bound applies to it.
     pub fn hull(&self, start: &RayState, end: &RayState, length: f64) -> ArcHull {
         let curvature = self.forces[0].length().max(self.forces[1].length());
-        let turn = curvature * length;
         ArcHull {
             a: start.position,
             b: end.position,
-            deviation: if turn <= 2.0 {
-                0.125 * turn * length
-            } else {
-                0.5 * length
-            },
+            deviation: deviation_bound(curvature, length),
         }
     }
 }
