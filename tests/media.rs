@@ -133,7 +133,21 @@ fn media() -> Vec<(&'static str, Box<dyn Medium>)> {
                     DVec3::splat(-1.0),
                     DVec3::new(1.0, 1.5, 1.0),
                     [4, 3, 5],
+                    grid_values.clone(),
+                    Interpolation::Linear,
+                )
+                .unwrap(),
+            ),
+        ),
+        (
+            "cubic grid",
+            Box::new(
+                GridMedium::new(
+                    DVec3::splat(-1.0),
+                    DVec3::new(1.0, 1.5, 1.0),
+                    [4, 3, 5],
                     grid_values,
+                    Interpolation::Cubic,
                 )
                 .unwrap(),
             ),
@@ -359,6 +373,7 @@ fn profiles_have_their_defining_values() {
         DVec3::ONE,
         [2, 2, 2],
         vec![1.0, 2.0, 1.0, 2.0, 1.0, 2.0, 1.0, 2.0],
+        Interpolation::Linear,
     )
     .unwrap();
     assert_eq!(g.sample(DVec3::new(1.0, 0.0, 0.0)).unwrap().n, 2.0);
@@ -413,4 +428,112 @@ fn march_accumulates_optical_depth_and_optical_path() {
             out.optical_path
         );
     }
+}
+
+/// The cubic grid (issue 15's evidence 2): ∇n is continuous across cell faces where the
+/// trilinear one jumps; on a grid sampled from the exponential medium n = 1.2·exp(0.4 x +
+/// 0.25 y) the largest error of n over 2 000 points falls at the interpolant's order as the
+/// grid is refined (cubic 3, linear 2; slopes within ±0.4: the sup over a finite sample
+/// wobbles), and a ray through the grid lands where the analytic medium's does, the cubic
+/// grid's always closer than the linear one's and within 1e-7 at 64 cells (RKN at tolerance
+/// 1e-11: its own error ~1e-11). The ray's error sequence is not monotone (the cell phase of
+/// its path changes with the grid), so its order is printed, not asserted.
+#[test]
+fn cubic_grid_is_c1_and_converges_at_third_order() {
+    use grinlight::curve::{march_with, Bounds, MarchLimits, RayState, StepControl, StepperKind};
+    let analytic = ExponentialMedium {
+        n0: 1.2,
+        gradient: DVec3::new(0.4, 0.25, 0.0),
+        origin: DVec3::ZERO,
+    };
+    let grid = |cells: usize, interpolation| {
+        let n = cells + 1;
+        let (lo, hi) = (DVec3::splat(-1.0), DVec3::splat(1.0));
+        let mut values = Vec::with_capacity(n * n * n);
+        for k in 0..n {
+            for j in 0..n {
+                for i in 0..n {
+                    let ijk = DVec3::new(i as f64, j as f64, k as f64);
+                    values.push(
+                        analytic
+                            .sample(lo + (hi - lo) * ijk / cells as f64)
+                            .unwrap()
+                            .n,
+                    );
+                }
+            }
+        }
+        GridMedium::new(lo, hi, [n; 3], values, interpolation).unwrap()
+    };
+    // Continuity across the face x = 0 of an 8-cell grid (cells of 0.25), at a generic point.
+    for (interpolation, continuous) in
+        [(Interpolation::Cubic, true), (Interpolation::Linear, false)]
+    {
+        let g = grid(8, interpolation);
+        let p = DVec3::new(0.0, 0.1234, -0.377);
+        let eps = 1e-9;
+        let jump = (g.sample(p + eps * DVec3::X).unwrap().grad
+            - g.sample(p - eps * DVec3::X).unwrap().grad)
+            .length();
+        println!("{interpolation:?}: ∇n jump across a cell face {jump:e}");
+        assert_eq!(jump < 1e-6, continuous, "{interpolation:?}: {jump:e}");
+    }
+    let mut rng = rand_pcg::Pcg64Mcg::seed_from_u64(15);
+    let points: Vec<DVec3> = (0..2000)
+        .map(|_| {
+            DVec3::new(
+                rng.gen_range(-1.0..1.0),
+                rng.gen_range(-1.0..1.0),
+                rng.gen_range(-1.0..1.0),
+            )
+        })
+        .collect();
+    let end = |m: &dyn Medium| {
+        let start =
+            RayState::new(m, DVec3::new(-0.9, -0.3, 0.1), DVec3::new(1.0, 0.2, 0.05)).unwrap();
+        let limits = MarchLimits {
+            length: 1.6,
+            max_steps: 1_000_000,
+            bounds: Bounds::Unbounded,
+        };
+        march_with(
+            StepperKind::Rkn,
+            m,
+            StepControl::Adaptive { tolerance: 1e-11 },
+            start,
+            &limits,
+            |_, _| std::ops::ControlFlow::Continue(()),
+        )
+        .state
+        .position
+    };
+    let exact = end(&analytic);
+    let cells = [8, 16, 32, 64];
+    let mut ray_errors = Vec::new();
+    for (interpolation, order) in [(Interpolation::Cubic, 3.0), (Interpolation::Linear, 2.0)] {
+        let (mut sup, mut rays) = (Vec::new(), Vec::new());
+        for &c in &cells {
+            let g = grid(c, interpolation);
+            sup.push(
+                points
+                    .iter()
+                    .map(|&p| (g.sample(p).unwrap().n - analytic.sample(p).unwrap().n).abs())
+                    .fold(0.0, f64::max),
+            );
+            rays.push((end(&g) - exact).length());
+        }
+        let slopes: Vec<f64> = sup.windows(2).map(|e| (e[0] / e[1]).log2()).collect();
+        println!("{interpolation:?}: sup |Δn| {sup:?} slopes {slopes:?}; ray errors {rays:?}");
+        for s in &slopes {
+            assert!(
+                (s - order).abs() <= 0.4,
+                "{interpolation:?}: slopes {slopes:?}"
+            );
+        }
+        ray_errors.push(rays);
+    }
+    for (cubic, linear) in ray_errors[0].iter().zip(&ray_errors[1]) {
+        assert!(cubic < linear, "cubic {cubic:e} vs linear {linear:e}");
+    }
+    assert!(ray_errors[0][3] < 1e-7, "{:e}", ray_errors[0][3]);
 }

@@ -87,6 +87,8 @@ const BAD: &[(&str, usize, usize, &str)] = &[
     ("[[medium]]\nname = \"g\"\nprofile = \"grid\"\nbounds = [[0,0,0],[1,1,1]]\ndims = [2,2,2]\nvalues = [1,1,1,1,1,1,1,1]\nfile = \"x.txt\"\n", 6, 1, "exactly one"),
     // Grid: missing file.
     ("[[medium]]\nname = \"g\"\nprofile = \"grid\"\nbounds = [[0,0,0],[1,1,1]]\ndims = [2,2,2]\nfile = \"no_such_grid.txt\"\n", 6, 1, "cannot read"),
+    // An interpolation that does not exist.
+    ("[[medium]]\nname = \"g\"\nprofile = \"grid\"\nbounds = [[0,0,0],[1,1,1]]\ndims = [2,2,2]\nvalues = [1,1,1,1,1,1,1,1]\ninterpolation = \"quintic\"\n", 7, 1, "expected linear or cubic"),
     // Not TOML at all.
     ("[[medium]\nname = 1\n", 1, 9, "invalid table header"),
     // Unknown top-level table.

@@ -12,7 +12,7 @@ mod spherical;
 mod table;
 
 pub use absorbing::Absorbing;
-pub use grid::{GridError, GridMedium};
+pub use grid::{GridError, GridMedium, Interpolation};
 pub use planar::{ExponentialMedium, HeightTable, LinearMedium, UniformMedium};
 pub use radial::{Axis, ParabolicFiber, RadialTable, SechFiber};
 pub use spherical::{

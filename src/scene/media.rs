@@ -6,8 +6,8 @@ use super::table::TableReader;
 use crate::error::Result;
 use crate::media::{
     Absorbing, Axis, BlackHole, ExactBlackHole, ExponentialMedium, FishEye, GridError, GridMedium,
-    HeightTable, LinearMedium, Luneburg, Medium, ParabolicFiber, RadialTable, SechFiber,
-    UniformMedium,
+    HeightTable, Interpolation, LinearMedium, Luneburg, Medium, ParabolicFiber, RadialTable,
+    SechFiber, UniformMedium,
 };
 use crate::spectrum::{Dispersion, LAMBDA_D};
 use glam::DVec3;
@@ -232,7 +232,21 @@ fn read_grid(t: &mut TableReader) -> Result<GridMedium> {
         }
         _ => return Err(t.error("values", "give exactly one of `values` and `file`")),
     };
-    GridMedium::new(min, max, dims, values).map_err(|e| {
+    let interpolation = match t
+        .string_opt("interpolation")?
+        .as_deref()
+        .unwrap_or("linear")
+    {
+        "linear" => Interpolation::Linear,
+        "cubic" => Interpolation::Cubic,
+        other => {
+            return Err(t.error(
+                "interpolation",
+                format!("unknown interpolation '{other}' (expected linear or cubic)"),
+            ))
+        }
+    };
+    GridMedium::new(min, max, dims, values, interpolation).map_err(|e| {
         let key = match e {
             GridError::TooFewNodes(_) | GridError::TooManyNodes(_) => "dims",
             GridError::EmptyBox => "bounds",
