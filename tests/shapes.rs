@@ -210,7 +210,7 @@ fn bvh_equals_a_loop_over_all_primitives() {
         // BVH search refines on a shorter bracket once a nearer hit is known).
         let want = nearest(&|p| p.intersect_segment(&seg, 0.0, 1.5).map(|h| h.t));
         let got = accel
-            .intersect_segment(&seg, 0.0, 1.5)
+            .intersect_segment(&seg, &seg.hull(1.5), 0.0, 1.5)
             .map(|(i, h)| (i, h.t));
         match (got, want) {
             (Some((gi, gt)), Some((wi, wt))) => assert!(
@@ -276,7 +276,7 @@ fn coaxial_stack_equals_a_loop_over_all_primitives() {
         if case % 10 == 0 {
             let seg = CurvedSegment::new(o, d, rv(&mut rng) * 3.0);
             let want = nearest(&|p| p.intersect_segment(&seg, 0.0, 1.5).map(|h| h.t));
-            let got = accel.intersect_segment(&seg, 0.0, 1.5);
+            let got = accel.intersect_segment(&seg, &seg.hull(1.5), 0.0, 1.5);
             // The refinement stops at 1e-14 of its bracket (≤ the length 1.5), which depends on
             // the nearest hit found so far: allow 1e-12 of the length.
             match (got.map(|(i, h)| (i, h.t)), want) {

@@ -149,15 +149,16 @@ impl Accel {
     }
 
     /// Nearest crossing of a curved segment with any primitive at arclength s ∈ (s_min, length].
-    /// Candidates are the primitives whose boxes meet the segment's box: its chord's box grown
-    /// by its largest deviation from the chord.
+    /// `hull` holds the segment over [0, length] (`seg.hull(length)`, which a caller has
+    /// usually built already); candidates are the primitives whose boxes meet its box and
+    /// that [`Primitive::may_cross`] it.
     pub fn intersect_segment(
         &self,
         seg: &CurvedSegment,
+        hull: &ArcHull,
         s_min: f64,
         length: f64,
     ) -> Option<(usize, Hit)> {
-        let hull = seg.hull(length);
         let (lo, hi) = hull.bounds();
         let mut best: Option<(usize, Hit)> = None;
         for stack in &self.stacks {
@@ -165,7 +166,7 @@ impl Accel {
             if lo.cmple(s_hi).all() && s_lo.cmple(hi).all() {
                 let limit = best.map_or(length, |(_, h)| h.t);
                 if let Some(hit) =
-                    stack.intersect_segment(&self.primitives, seg, &hull, s_min, limit)
+                    stack.intersect_segment(&self.primitives, seg, hull, s_min, limit)
                 {
                     best = Some(hit);
                 }
@@ -179,7 +180,7 @@ impl Accel {
             for i in node.first_index..node.first_index + node.prim_count {
                 let id = self.in_bvh[bvh.primitive_indices[i as usize] as usize];
                 let prim = &self.primitives[id];
-                if !prim.may_cross(&hull) {
+                if !prim.may_cross(hull) {
                     continue;
                 }
                 let limit = best.map_or(length, |(_, h)| h.t);

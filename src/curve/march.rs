@@ -100,8 +100,8 @@ pub struct MarchOutcome {
     pub state: RayState,
     /// Arclength travelled.
     pub arclength: f64,
-    /// Optical path length ∫ n ds travelled ([`step_optical_path`] per step: as accurate as
-    /// the positions of a fourth-order stepper).
+    /// Optical path length ∫ n ds travelled: the sum of the steps' own
+    /// [`Step::optical_path`], each to its stepper's order.
     pub optical_path: f64,
     /// Optical depth ∫ σa ds of absorption travelled (trapezoid rule per step); the ray's
     /// transmittance is exp(−optical_depth).

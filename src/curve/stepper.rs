@@ -210,12 +210,13 @@ pub fn step_doubling(
 pub struct ArcChain;
 
 impl ArcChain {
-    /// The step and the midpoint-force arc's end and optical path (the embedded estimate).
+    /// The step and the midpoint-force arc of length h (the embedded solution, evaluated
+    /// only when an estimate is wanted).
     fn step_and_embedded<M: Medium + ?Sized>(
         medium: &M,
         state: &RayState,
         h: f64,
-    ) -> Option<(Step, ArcPoint, f64)> {
+    ) -> Option<(Step, CurvedSegment)> {
         let half = 0.5 * h;
         let (x, t) = (state.position, state.direction);
         let f1 = state.index.log_gradient();
@@ -249,14 +250,13 @@ impl ArcChain {
                 forces: [fb, fa],
             }),
         };
-        let embedded_path = state.index.n * midpoint_arc.relative_optical_path(h);
-        Some((step, midpoint_arc.at(h), embedded_path))
+        Some((step, midpoint_arc))
     }
 }
 
 impl Stepper for ArcChain {
     fn step<M: Medium + ?Sized>(&self, medium: &M, state: &RayState, h: f64) -> Option<Step> {
-        Self::step_and_embedded(medium, state, h).map(|(step, ..)| step)
+        Self::step_and_embedded(medium, state, h).map(|(step, _)| step)
     }
 
     fn order(&self) -> u32 {
@@ -279,10 +279,11 @@ impl Stepper for ArcChain {
         state: &RayState,
         h: f64,
     ) -> Option<EstimatedStep> {
-        let (step, embedded, embedded_path) = Self::step_and_embedded(medium, state, h)?;
+        let (step, midpoint_arc) = Self::step_and_embedded(medium, state, h)?;
+        let embedded_path = state.index.n * midpoint_arc.relative_optical_path(h);
         Some(EstimatedStep {
             step,
-            error: step_discrepancy(&step.state, &embedded, h)
+            error: step_discrepancy(&step.state, &midpoint_arc.at(h), h)
                 + (step.optical_path - embedded_path).abs() / state.index.n,
         })
     }

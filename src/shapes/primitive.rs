@@ -167,8 +167,8 @@ impl Primitive {
                 height,
             } => {
                 let oc = o - base;
-                let dp = d - axis * d.dot(axis);
-                let op = oc - axis * oc.dot(axis);
+                let dp = across_axis(d, axis);
+                let op = across_axis(oc, axis);
                 let a = dp.length_squared();
                 if a == 0.0 {
                     return None;
@@ -215,8 +215,7 @@ impl Primitive {
             Primitive::Tube {
                 base, axis, radius, ..
             } => {
-                let d = x - base;
-                let p = d - axis * d.dot(axis);
+                let p = across_axis(x - base, axis);
                 (p.length_squared() - radius * radius, 2.0 * p)
             }
             _ => {
@@ -241,10 +240,7 @@ impl Primitive {
     pub fn normal_at(&self, x: DVec3) -> DVec3 {
         match *self {
             Primitive::Sphere { center, .. } => (x - center).normalize(),
-            Primitive::Tube { base, axis, .. } => {
-                let d = x - base;
-                (d - axis * d.dot(axis)).normalize()
-            }
+            Primitive::Tube { base, axis, .. } => across_axis(x - base, axis).normalize(),
             _ => self.plane().expect("planar").1,
         }
     }
@@ -267,10 +263,7 @@ impl Primitive {
                 height,
             } => {
                 let along = |x: DVec3| (x - base).dot(axis);
-                let off_axis = |x: DVec3| {
-                    let d = x - base;
-                    (d - axis * d.dot(axis)).length()
-                };
+                let off_axis = |x: DVec3| across_axis(x - base, axis).length();
                 let (za, zb) = (along(hull.a), along(hull.b));
                 let beyond_ends = za.max(zb) < -dev || za.min(zb) > height + dev;
                 let inside = off_axis(hull.a).max(off_axis(hull.b)) + dev < radius;
@@ -356,4 +349,9 @@ fn plane_coordinates(r: DVec3, e1: DVec3, e2: DVec3) -> (f64, f64) {
     let (p, q) = (r.dot(e1), r.dot(e2));
     let det = a * c - b * b;
     ((c * p - b * q) / det, (a * q - b * p) / det)
+}
+
+/// The part of `v` across the unit `axis` (a tube's radial offset).
+fn across_axis(v: DVec3, axis: DVec3) -> DVec3 {
+    v - axis * v.dot(axis)
 }

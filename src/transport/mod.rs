@@ -595,7 +595,8 @@ impl<'a> Tracer<'a> {
         }
         let half = 0.5 * len;
         path.arcs(prev).iter().enumerate().find_map(|(k, arc)| {
-            let (prim, h) = self.scene.accel.intersect_segment(arc, 0.0, half)?;
+            let hull = arc.hull(half);
+            let (prim, h) = self.scene.accel.intersect_segment(arc, &hull, 0.0, half)?;
             let p = arc.at(h.t);
             Some(Crossing {
                 prim,
@@ -635,7 +636,7 @@ impl<'a> Tracer<'a> {
             return None;
         }
         accel
-            .intersect_segment(&seg, 0.0, len)
+            .intersect_segment(&seg, &hull, 0.0, len)
             .map(|(prim, h)| {
                 let p = seg.at(h.t);
                 Crossing {
