@@ -221,7 +221,7 @@ impl CurvedSegment {
     }
 
     /// Largest distance of the arc over [0, s] from its chord (the segment between its ends):
-    /// its curvature is |F| sin θ ≤ |F| ([`deviation_bound`]).
+    /// its curvature is |F| sin θ ≤ |F| (the bound of `deviation_bound`).
     pub fn max_deviation(&self, s: f64) -> f64 {
         deviation_bound(self.f, s)
     }
