@@ -419,6 +419,81 @@ where
     best
 }
 
+/// Marches from `start` with the given step lengths (no error control), then on with the
+/// last length until the ray leaves `limits.bounds`, whose crossing is located as [`march`]
+/// does. An adaptive march's step sequence jumps as its start moves, so its end is a
+/// function of the start only to its tolerance; a march with a fixed sequence is a smooth
+/// function of the start, which makes it the one to difference for derivatives (Bock's
+/// internal numerical differentiation): replay the sequence of a neighbouring adaptive march
+/// (the lengths its observer saw) and it is as accurate as that march. Ends `LeftBounds`,
+/// `Captured`, `LengthReached` or `MaxSteps`.
+pub fn march_replay<S, M>(
+    stepper: &S,
+    medium: &M,
+    start: RayState,
+    lengths: &[f64],
+    limits: &MarchLimits,
+) -> MarchOutcome
+where
+    S: Stepper,
+    M: Medium + ?Sized,
+{
+    let mut out = MarchOutcome {
+        state: start,
+        arclength: 0.0,
+        optical_path: 0.0,
+        optical_depth: 0.0,
+        steps: 0,
+        attempts: 0,
+        min_step: f64::INFINITY,
+        reason: Termination::LengthReached,
+    };
+    let Some(&last) = lengths.last() else {
+        return out;
+    };
+    let mut observe = |_: f64, _: &Step| ControlFlow::Continue(());
+    for h in lengths.iter().copied().chain(std::iter::repeat(last)) {
+        if out.arclength >= limits.length {
+            return out;
+        }
+        if out.attempts >= limits.max_steps {
+            out.reason = Termination::MaxSteps;
+            return out;
+        }
+        out.attempts += 1;
+        let state = out.state;
+        // The step an adaptive march keeps (RK4's is its two half steps, not one whole).
+        let Some(step) = stepper.estimated_step(medium, &state, h).map(|e| e.step) else {
+            out.reason = Termination::Captured;
+            return out;
+        };
+        if leaves(limits, step.state.position) {
+            let exit = locate_exit(stepper, medium, &state, step, limits);
+            let _ = accept(&mut out, medium, exit, &mut observe);
+            out.reason = Termination::LeftBounds;
+            return out;
+        }
+        let _ = accept(&mut out, medium, step, &mut observe);
+    }
+    unreachable!("the step lengths repeat without end")
+}
+
+/// [`march_replay`] with the stepper chosen at run time.
+pub fn march_replay_with<M: Medium + ?Sized>(
+    kind: StepperKind,
+    medium: &M,
+    start: RayState,
+    lengths: &[f64],
+    limits: &MarchLimits,
+) -> MarchOutcome {
+    match kind {
+        StepperKind::Arc => march_replay(&ArcChain, medium, start, lengths, limits),
+        StepperKind::Rk4 => march_replay(&Rk4Sharma, medium, start, lengths, limits),
+        StepperKind::Rkn => march_replay(&Rkn64, medium, start, lengths, limits),
+        StepperKind::Snell => march_replay(&SnellSteps, medium, start, lengths, limits),
+    }
+}
+
 /// [`march`] with the stepper chosen at run time.
 pub fn march_with<M, O>(
     kind: StepperKind,

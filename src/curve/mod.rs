@@ -8,7 +8,8 @@ mod stepper;
 
 pub use bounds::Bounds;
 pub use march::{
-    march, march_with, step_optical_depth, MarchLimits, MarchOutcome, StepControl, Termination,
+    march, march_replay, march_replay_with, march_with, step_optical_depth, MarchLimits,
+    MarchOutcome, StepControl, Termination,
 };
 pub use segment::{accurate_cross, ArcHull, ArcPoint, CurvedSegment};
 pub use stepper::{

@@ -90,7 +90,7 @@ pub struct TraceArgs {
     /// Stepper: rk4 (Sharma's RK4, step doubling), rkn (the RKN6(4) pair: sixth order, the
     /// most accurate per unit time), arc (a fourth-order chain of exact constant-gradient
     /// arcs), snell (iterative Snell steps).
-    #[arg(long, default_value = "rk4")]
+    #[arg(long, default_value = "rkn")]
     stepper: StepperKind,
     /// Step control.
     #[arg(long, value_enum, default_value = "adaptive")]
@@ -98,8 +98,8 @@ pub struct TraceArgs {
     /// Step length for `fixed`, initial step for `tessendorf` (default: the medium's hint).
     #[arg(long)]
     step: Option<f64>,
-    /// Tolerance of `adaptive`: the step's error estimate per unit arclength [default: 1e-9
-    /// rk4, 1e-8 rkn, 1e-6 arc, 1e-5 snell].
+    /// Tolerance of `adaptive`: the step's error estimate per unit arclength [default: 1e-6
+    /// rkn, 1e-9 rk4, 1e-6 arc, 1e-5 snell].
     #[arg(long)]
     tol: Option<f64>,
     /// T_max of `tessendorf`.
