@@ -565,7 +565,7 @@ fn curved_connections_match_independent_answers() {
 /// Surface hits on curved paths against a fine reference march: rays in a sech fiber medium
 /// (n0 1.5, g 0.8 about the z axis; they turn through ~1 rad) meet a sphere, a quad and a disk
 /// after 1–4 units. Each stepper at its default control (the arc chain finds hits on its own
-/// arcs; RK steps on a mean-force stand-in, re-taken in fine sub-steps) must put the hit point
+/// arcs; RK steps on their quintic Hermite path, `curve::HermitePath`) must put the hit point
 /// where RKN at tolerance 1e-13 does, within 10·tol·L of the default position bound
 /// (`tests/validation.rs`), and on the same primitive.
 #[test]

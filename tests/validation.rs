@@ -839,3 +839,59 @@ fn replayed_marches_differentiate_smoothly() {
         );
     }
 }
+
+/// A step's quintic Hermite path (`curve::HermitePath`, where RK steps look for surfaces)
+/// against the ray itself: sech fiber (n0 1.5, g 1), a skew ray; the two end states and the
+/// reference points come from an RKN march at tolerance 1e-13 (errs ≲ 1e-13 here). The path's
+/// largest deviation over 16 interior points must fall as len⁶ (measured slopes printed;
+/// bar 5.5–6.5 between steps of 0.8, 0.4 and 0.2) and every point must lie in its hull (the
+/// capsule that decides whether a surface may be met).
+#[test]
+fn hermite_step_paths_are_sixth_order_and_held_by_their_hull() {
+    use grinlight::curve::{HermitePath, Path};
+    let fiber = z_fiber(|axis| SechFiber {
+        n0: 1.5,
+        g: 1.0,
+        axis,
+    });
+    let start = RayState::new(
+        &fiber,
+        DVec3::new(0.4, -0.2, 0.0),
+        DVec3::new(0.3, 0.25, 1.0),
+    )
+    .unwrap();
+    let fine = StepControl::Adaptive { tolerance: 1e-13 };
+    let state_at = |s: f64| {
+        let limits = MarchLimits {
+            length: s,
+            max_steps: 1_000_000,
+            bounds: Bounds::Unbounded,
+        };
+        let out = march_with(StepperKind::Rkn, &fiber, fine, start, &limits, |_, _| {
+            std::ops::ControlFlow::Continue(())
+        });
+        assert_eq!(out.reason, Termination::LengthReached);
+        out.state
+    };
+    let mut errors = Vec::new();
+    for len in [0.8, 0.4, 0.2] {
+        let path = HermitePath::new(&start, &state_at(len), len);
+        let hull = path.hull();
+        let mut worst = 0.0f64;
+        for i in 1..16 {
+            let s = len * i as f64 / 16.0;
+            let p = path.at(s).position;
+            worst = worst.max((p - state_at(s).position).length());
+            assert!(
+                hull.chord_distance(p) <= hull.deviation * (1.0 + 1e-12),
+                "len {len}: a point outside the hull"
+            );
+        }
+        errors.push(worst);
+    }
+    let slopes: Vec<f64> = errors.windows(2).map(|w| (w[0] / w[1]).log2()).collect();
+    println!("Hermite path errors {errors:?}, slopes {slopes:.2?}");
+    for slope in slopes {
+        assert!((5.5..6.5).contains(&slope), "slope {slope}");
+    }
+}

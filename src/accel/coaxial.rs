@@ -9,7 +9,7 @@
 //! binary search, and the candidates (with one neighbour either side, so a point a rounding error
 //! from a boundary is safe) are tested exactly: O(log N) per ray.
 
-use crate::curve::{ArcHull, CurvedSegment};
+use crate::curve::{ArcHull, Path};
 use crate::shapes::{Hit, Primitive};
 use glam::DVec3;
 
@@ -173,11 +173,11 @@ impl CoaxialStack {
             .chain(self.caps.iter().flatten().map(|c| c.2))
     }
 
-    /// Nearest crossing of a curved segment with a member at arclength s ∈ (s_min, length].
-    pub fn intersect_segment(
+    /// Nearest crossing of a curved path with a member at arclength s ∈ (s_min, length].
+    pub fn intersect_segment<P: Path + ?Sized>(
         &self,
         primitives: &[Primitive],
-        seg: &CurvedSegment,
+        seg: &P,
         hull: &ArcHull,
         s_min: f64,
         length: f64,

@@ -6,7 +6,7 @@ mod coaxial;
 
 use coaxial::CoaxialStack;
 
-use crate::curve::{ArcHull, CurvedSegment};
+use crate::curve::{ArcHull, Path};
 use crate::shapes::{Hit, Primitive};
 use glam::{DVec3, Vec3A};
 use obvhs::aabb::Aabb;
@@ -148,13 +148,13 @@ impl Accel {
         found
     }
 
-    /// Nearest crossing of a curved segment with any primitive at arclength s ∈ (s_min, length].
-    /// `hull` holds the segment over [0, length] (`seg.hull(length)`, which a caller has
-    /// usually built already); candidates are the primitives whose boxes meet its box and
+    /// Nearest crossing of a curved path (an exact arc, a step's Hermite path) with any
+    /// primitive at arclength s ∈ (s_min, length]. `hull` holds the path over [0, length]
+    /// (which a caller has usually built already); candidates are the primitives whose boxes meet its box and
     /// that [`Primitive::may_cross`] it.
-    pub fn intersect_segment(
+    pub fn intersect_segment<P: Path + ?Sized>(
         &self,
-        seg: &CurvedSegment,
+        seg: &P,
         hull: &ArcHull,
         s_min: f64,
         length: f64,

@@ -2,11 +2,13 @@
 //! ([`CurvedSegment`]), the steppers, step control and the march with its termination reasons.
 
 mod bounds;
+mod hermite;
 mod march;
 mod segment;
 mod stepper;
 
 pub use bounds::Bounds;
+pub use hermite::{HermitePath, Path};
 pub use march::{
     march, march_replay, march_replay_with, march_with, step_optical_depth, MarchLimits,
     MarchOutcome, StepControl, Termination,

@@ -1,18 +1,19 @@
-//! Where a curved segment crosses an implicit surface g(x) = 0.
+//! Where a curved path (an exact arc, a step's Hermite path) crosses an implicit surface
+//! g(x) = 0.
 
-use crate::curve::CurvedSegment;
+use crate::curve::Path;
 use glam::DVec3;
 
 /// All arclengths s ∈ [0, length] where g(x(s)) = 0 along the segment, in order, each refined
 /// to ~1e-13 relative.
 ///
-/// The segment is cut into pieces short against its curvature (|F|·piece ≤ 1/4, at least 4),
+/// The path is cut into pieces short against its curvature (κ·piece ≤ 1/4, at least 4),
 /// on which f(s) = g(x(s)) has at most one extremum. A piece whose ends differ in sign holds
 /// a root; a piece whose ends share a sign but whose slope f′ = ∇g·t̂ turns toward zero may
 /// dip across it twice (a curved path entering and leaving, DESIGN §5), so its extremum is
 /// located by bisection on f′ and tested too.
-pub fn segment_roots(
-    seg: &CurvedSegment,
+pub fn segment_roots<P: Path + ?Sized>(
+    seg: &P,
     length: f64,
     g: impl Fn(DVec3) -> (f64, DVec3),
 ) -> Vec<f64> {
@@ -21,7 +22,7 @@ pub fn segment_roots(
         let (v, grad) = g(p.position);
         (v, grad.dot(p.direction))
     };
-    let pieces = ((4.0 * seg.force() * length).ceil() as usize).clamp(4, 256);
+    let pieces = ((4.0 * seg.curvature() * length).ceil() as usize).clamp(4, 256);
     let mut roots = Vec::new();
     let mut a = 0.0;
     let (mut fa, mut da) = eval(0.0);

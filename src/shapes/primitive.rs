@@ -1,6 +1,6 @@
 //! The primitives: sphere, open cylinder (tube), parallelogram (quad), disk and triangle.
 
-use crate::curve::{ArcHull, CurvedSegment};
+use crate::curve::{ArcHull, Path};
 use glam::DVec3;
 
 /// Where a ray meets a primitive.
@@ -278,7 +278,12 @@ impl Primitive {
     }
 
     /// Nearest crossing of a curved segment with the primitive at arclength s ∈ (s_min, length].
-    pub fn intersect_segment(&self, seg: &CurvedSegment, s_min: f64, length: f64) -> Option<Hit> {
+    pub fn intersect_segment<P: Path + ?Sized>(
+        &self,
+        seg: &P,
+        s_min: f64,
+        length: f64,
+    ) -> Option<Hit> {
         super::segment_roots(seg, length, |x| self.implicit(x))
             .into_iter()
             .filter(|&s| s > s_min)

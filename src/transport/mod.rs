@@ -14,8 +14,8 @@ pub mod visibility;
 use crate::bsdf::Bsdf;
 use crate::color::Rgb;
 use crate::curve::{
-    march_with, step_optical_depth, ArcHull, ArcPath, Bounds, CurvedSegment, MarchLimits,
-    MarchOutcome, RayState, StepControl, Termination,
+    march_with, step_optical_depth, ArcPath, Bounds, HermitePath, MarchLimits, MarchOutcome, Path,
+    RayState, StepControl, Termination,
 };
 use crate::lights::SceneBall;
 use crate::material::Material;
@@ -465,50 +465,7 @@ impl<'a> Tracer<'a> {
         stats.curved_steps += out.steps;
         stats.record_end(out.reason);
         match (hit, out.reason) {
-            // Found on the path the step took (the arc chain's arcs): exact.
-            (Some(hit), _) if hit.on_path => hit.event,
-            (Some(hit), _) => {
-                // The step that met a surface, taken again in 16 fixed sub-steps: the hit of
-                // a mean-force arc errs by O(len² |∇F|) in position and direction, which the
-                // step control does not bound (it controls the stepper's end point). With
-                // long adaptive steps in a strongly varying medium that error decided
-                // Fresnel and total-internal-reflection outcomes: a fiber's transmitted flux
-                // drifted by 2.6 % between tolerances 1e-9 and 1e-5 (measured). Re-taken, the
-                // arc error falls 256×.
-                let sub = MarchLimits {
-                    length: hit.len * (1.0 + 1e-9),
-                    max_steps: 64,
-                    bounds: Bounds::Unbounded,
-                };
-                let fine = StepControl::Fixed {
-                    step: hit.len / 16.0,
-                };
-                match self.march_to_surface(medium, fine, hit.before, &sub, &mut |_| {}) {
-                    (Some(refined), r) => {
-                        stats.curved_steps += r.steps;
-                        // Its distance and depth count from `before`.
-                        match refined.event {
-                            Event::Surface {
-                                prim,
-                                position,
-                                normal,
-                                direction,
-                                distance,
-                                optical_depth,
-                            } => Event::Surface {
-                                prim,
-                                position,
-                                normal,
-                                direction,
-                                distance: distance + hit.before_s,
-                                optical_depth: optical_depth + hit.before_depth,
-                            },
-                            other => other,
-                        }
-                    }
-                    _ => hit.event,
-                }
-            }
+            (Some(hit), _) => hit,
             (None, Termination::LeftBounds) => Event::Escaped {
                 position: out.state.position,
                 direction: out.state.direction,
@@ -521,8 +478,7 @@ impl<'a> Tracer<'a> {
     }
 
     /// Marches from `start` until an accepted step's path meets a surface: the hit (its
-    /// distance and depth from `start`), the state before that step, its arclength and depth
-    /// and the step's length, with the march's outcome. `path` is shown each accepted point
+    /// distance and depth from `start`), with the march's outcome. `path` is shown each accepted point
     /// before the hit.
     fn march_to_surface(
         &self,
@@ -531,7 +487,7 @@ impl<'a> Tracer<'a> {
         start: RayState,
         limits: &MarchLimits,
         path: &mut dyn FnMut(DVec3),
-    ) -> (Option<CurvedHit>, MarchOutcome) {
+    ) -> (Option<Event>, MarchOutcome) {
         let mut prev = start;
         let (mut prev_s, mut prev_depth) = (0.0, 0.0);
         let mut hit = None;
@@ -552,21 +508,14 @@ impl<'a> Tracer<'a> {
                     None => self.crossing_between(&prev, st, len),
                 };
                 if let Some(c) = found {
-                    hit = Some(CurvedHit {
-                        event: Event::Surface {
-                            prim: c.prim,
-                            position: c.position,
-                            normal: c.normal,
-                            direction: c.direction,
-                            distance: prev_s + c.along,
-                            optical_depth: prev_depth
-                                + step_optical_depth(medium, prev.position, c.position, c.along),
-                        },
-                        on_path: step.arcs.is_some(),
-                        before: prev,
-                        before_s: prev_s,
-                        before_depth: prev_depth,
-                        len,
+                    hit = Some(Event::Surface {
+                        prim: c.prim,
+                        position: c.position,
+                        normal: c.normal,
+                        direction: c.direction,
+                        distance: prev_s + c.along,
+                        optical_depth: prev_depth
+                            + step_optical_depth(medium, prev.position, c.position, c.along),
                     });
                     return ControlFlow::Break(());
                 }
@@ -608,37 +557,25 @@ impl<'a> Tracer<'a> {
         })
     }
 
-    /// The first surface between two accepted states `len` apart whose path between is not
-    /// known (RK steps): the exact arc with the mean F of the ends, then a straight connector
-    /// from the arc's end to the step's end — a continuous path from one state to the next, so
-    /// no surface between them is stepped over. Skipped when no surface can meet the capsule
-    /// that holds both (the arc's hull widened by the connector's length).
+    /// The first surface between two accepted states `len` apart whose stepper knows only the
+    /// ends (RK4, RKN, Snell): on the step's quintic Hermite path ([`HermitePath`]), which
+    /// joins the two states continuously, so no surface between them is stepped over, and
+    /// errs from the ray by O(len⁶), so the hit is as good as the step's ends. Skipped when no
+    /// surface can meet the capsule of its control polygon.
     fn crossing_between(&self, prev: &RayState, st: &RayState, len: f64) -> Option<Crossing> {
         let accel = &self.scene.accel;
         if accel.is_empty() {
             return None;
         }
-        let seg = CurvedSegment::new(
-            prev.position,
-            prev.direction,
-            0.5 * (prev.index.log_gradient() + st.index.log_gradient()),
-        );
-        let hull = seg.hull(len);
-        let arc_end = hull.b;
-        let gap = st.position - arc_end;
-        let gap_len = gap.length();
-        let covering = ArcHull {
-            a: prev.position,
-            b: st.position,
-            deviation: hull.deviation + gap_len,
-        };
-        if !accel.may_hit(&covering) {
+        let path = HermitePath::new(prev, st, len);
+        let hull = path.hull();
+        if !accel.may_hit(&hull) {
             return None;
         }
         accel
-            .intersect_segment(&seg, &hull, 0.0, len)
+            .intersect_segment(&path, &hull, 0.0, len)
             .map(|(prim, h)| {
-                let p = seg.at(h.t);
+                let p = path.at(h.t);
                 Crossing {
                     prim,
                     normal: h.normal,
@@ -646,18 +583,6 @@ impl<'a> Tracer<'a> {
                     direction: p.direction,
                     along: h.t,
                 }
-            })
-            .or_else(|| {
-                (gap_len > 0.0)
-                    .then(|| accel.intersect_ray(arc_end, gap / gap_len, 0.0, gap_len))
-                    .flatten()
-                    .map(|(prim, h)| Crossing {
-                        prim,
-                        normal: h.normal,
-                        position: arc_end + h.t * gap / gap_len,
-                        direction: st.direction,
-                        along: len + h.t,
-                    })
             })
     }
 }
@@ -670,19 +595,6 @@ struct Crossing {
     direction: DVec3,
     /// Arclength from the step's start.
     along: f64,
-}
-
-/// A curved path's first surface: the event, and the step that met it.
-struct CurvedHit {
-    event: Event,
-    /// Whether it was found on the path the step itself took (exact), not on a stand-in.
-    on_path: bool,
-    /// The state at the start of that step, its arclength and optical depth from the start.
-    before: RayState,
-    before_s: f64,
-    before_depth: f64,
-    /// The step's length.
-    len: f64,
 }
 
 /// `control`, with a Tessendorf control's ξ stream keyed by the ray itself (its seed mixed
