@@ -92,6 +92,7 @@ fn signed(p: &Primitive, x: DVec3) -> f64 {
         Primitive::Quad { origin, e1, e2 } => (x - origin).dot(e1.cross(e2).normalize()),
         Primitive::Disk { center, normal, .. } => (x - center).dot(normal),
         Primitive::Triangle { v0, e1, e2 } => (x - v0).dot(e1.cross(e2).normalize()),
+        Primitive::Mesh(_) => unreachable!("meshes are tested triangle by triangle"),
     }
 }
 
@@ -120,6 +121,7 @@ fn on_primitive(p: &Primitive, x: DVec3) -> bool {
             let v = e1.cross(x - v0).dot(n) / n.length_squared();
             u >= 0.0 && v >= 0.0 && u + v <= 1.0
         }
+        Primitive::Mesh(_) => unreachable!("meshes are tested triangle by triangle"),
     }
 }
 
@@ -164,7 +166,9 @@ fn curved_hits_match_brute_force() {
         let seg = CurvedSegment::new(rv(&mut rng) * 1.5, rv(&mut rng), rv(&mut rng) * 4.0);
         let length = rng.gen_range(0.2..2.0);
         for p in &prims {
-            let got = p.intersect_segment(&seg, 0.0, length).map(|h| h.t);
+            let got = p
+                .intersect_segment(&seg, &seg.hull(length), 0.0, length)
+                .map(|h| h.t);
             let want = brute_force(p, |s| seg.at(s).position, 0.0, length);
             match (got, want) {
                 (Some(g), Some(w)) => {
@@ -208,7 +212,10 @@ fn bvh_equals_a_loop_over_all_primitives() {
         let seg = CurvedSegment::new(o, d, rv(&mut rng) * 3.0);
         // Same primitive, same arclength to 1e-12 relative (the refinement's tolerance; the
         // BVH search refines on a shorter bracket once a nearer hit is known).
-        let want = nearest(&|p| p.intersect_segment(&seg, 0.0, 1.5).map(|h| h.t));
+        let want = nearest(&|p| {
+            p.intersect_segment(&seg, &seg.hull(1.5), 0.0, 1.5)
+                .map(|h| h.t)
+        });
         let got = accel
             .intersect_segment(&seg, &seg.hull(1.5), 0.0, 1.5)
             .map(|(i, h)| (i, h.t));
@@ -275,7 +282,10 @@ fn coaxial_stack_equals_a_loop_over_all_primitives() {
         stack_hits += usize::from(want.is_some_and(|(i, _)| i >= 30));
         if case % 10 == 0 {
             let seg = CurvedSegment::new(o, d, rv(&mut rng) * 3.0);
-            let want = nearest(&|p| p.intersect_segment(&seg, 0.0, 1.5).map(|h| h.t));
+            let want = nearest(&|p| {
+                p.intersect_segment(&seg, &seg.hull(1.5), 0.0, 1.5)
+                    .map(|h| h.t)
+            });
             let got = accel.intersect_segment(&seg, &seg.hull(1.5), 0.0, 1.5);
             // The refinement stops at 1e-14 of its bracket (≤ the length 1.5), which depends on
             // the nearest hit found so far: allow 1e-12 of the length.
@@ -289,4 +299,95 @@ fn coaxial_stack_equals_a_loop_over_all_primitives() {
         }
     }
     assert!(stack_hits > 1000, "{stack_hits} of 3000 rays hit the stack");
+}
+
+/// A compact mesh (`TriangleMesh`: f32 vertices shared by index, its own BVH) answers as its
+/// triangles do one by one: a subdivided octahedron on the unit sphere (2 048 triangles,
+/// vertices stored in f32) inside one `Primitive::Mesh`, against the same f32 vertices as
+/// 2 048 f64 `Primitive::Triangle`s in the scene BVH. Straight rays: the same nearest hit,
+/// distance and normal, bit for bit (the same f64 test on the same vertices). Curved
+/// segments: the same hit to 1e-12 of the length (the root search refines on brackets that
+/// depend on the nearest hit found so far), and `may_hit` agrees on every capsule.
+#[test]
+fn a_mesh_answers_as_its_triangles_do() {
+    use grinlight::shapes::TriangleMesh;
+    // An octahedron, each face split in four 4 times (8 · 4⁴ = 2 048), projected on the sphere.
+    let mut tris: Vec<[DVec3; 3]> = Vec::new();
+    let axes = [DVec3::X, DVec3::Y, DVec3::Z];
+    for &sx in &[-1.0, 1.0] {
+        for &sy in &[-1.0, 1.0] {
+            for &sz in &[-1.0, 1.0] {
+                tris.push([axes[0] * sx, axes[1] * sy, axes[2] * sz]);
+            }
+        }
+    }
+    for _ in 0..4 {
+        tris = tris
+            .iter()
+            .flat_map(|&[a, b, c]| {
+                let (ab, bc, ca) = (
+                    (a + b).normalize(),
+                    (b + c).normalize(),
+                    (c + a).normalize(),
+                );
+                [[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]
+            })
+            .collect();
+    }
+    assert_eq!(tris.len(), 2048);
+    // Shared vertices, stored in f32.
+    let mut vertices: Vec<[f32; 3]> = Vec::new();
+    let mut index = |p: DVec3| {
+        let v = p.as_vec3().to_array();
+        match vertices.iter().position(|&w| w == v) {
+            Some(i) => i as u32,
+            None => {
+                vertices.push(v);
+                vertices.len() as u32 - 1
+            }
+        }
+    };
+    let triangles: Vec<[u32; 3]> = tris.iter().map(|t| t.map(&mut index)).collect();
+    let f64_of = |i: u32| DVec3::from(vertices[i as usize].map(f64::from));
+    let loose: Vec<Primitive> = triangles
+        .iter()
+        .map(|t| Primitive::triangle(f64_of(t[0]), f64_of(t[1]), f64_of(t[2])))
+        .collect();
+    assert_eq!(vertices.len(), 1026, "an octahedral sphere's vertex count");
+    let mesh = TriangleMesh::new(vertices.clone(), triangles).unwrap();
+    let one = Accel::new(vec![Primitive::Mesh(std::sync::Arc::new(mesh))]);
+    let many = Accel::new(loose);
+    let mut rng = Pcg64Mcg::seed_from_u64(11);
+    let (mut hits, mut curved_hits) = (0, 0);
+    for case in 0..1500 {
+        let o = rv(&mut rng) * 1.6;
+        let d = rv(&mut rng).normalize();
+        let a = one.intersect_ray(o, d, 0.0, 10.0).map(|(_, h)| h);
+        let b = many.intersect_ray(o, d, 0.0, 10.0).map(|(_, h)| h);
+        assert_eq!(a, b, "case {case}");
+        hits += usize::from(a.is_some());
+        let seg = CurvedSegment::new(o, d, rv(&mut rng) * 3.0);
+        let hull = seg.hull(1.5);
+        assert_eq!(one.may_hit(&hull), many.may_hit(&hull), "case {case}");
+        let a = one.intersect_segment(&seg, &hull, 0.0, 1.5).map(|(_, h)| h);
+        let b = many
+            .intersect_segment(&seg, &hull, 0.0, 1.5)
+            .map(|(_, h)| h);
+        match (a, b) {
+            (Some(x), Some(y)) => {
+                assert!(
+                    (x.t - y.t).abs() <= 1e-12 * 1.5,
+                    "case {case}: {} vs {}",
+                    x.t,
+                    y.t
+                );
+                assert!((x.normal - y.normal).length() < 1e-12, "case {case}");
+                curved_hits += 1;
+            }
+            (None, None) => {}
+            other => panic!("case {case}: {other:?}"),
+        }
+    }
+    println!("{hits} straight and {curved_hits} curved hits of 1500");
+    assert!(hits > 250 && curved_hits > 250, "too few hits to compare");
 }

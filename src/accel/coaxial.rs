@@ -185,7 +185,7 @@ impl CoaxialStack {
         let mut best: Option<(usize, Hit)> = None;
         for id in self.members().filter(|&id| primitives[id].may_cross(hull)) {
             let limit = best.map_or(length, |(_, h)| h.t);
-            if let Some(h) = primitives[id].intersect_segment(seg, s_min, limit) {
+            if let Some(h) = primitives[id].intersect_segment(seg, hull, s_min, limit) {
                 best = Some((id, h));
             }
         }

@@ -7,7 +7,7 @@ mod coaxial;
 use coaxial::CoaxialStack;
 
 use crate::curve::{ArcHull, Path};
-use crate::shapes::{Hit, Primitive};
+use crate::shapes::{padded_box as padded, Hit, Primitive};
 use glam::{DVec3, Vec3A};
 use obvhs::aabb::Aabb;
 use obvhs::bvh2::builder::build_bvh2;
@@ -22,15 +22,6 @@ impl Boundable for Bounds {
     fn aabb(&self) -> Aabb {
         self.0
     }
-}
-
-/// f32 box containing the f64 box [lo, hi].
-fn padded(lo: DVec3, hi: DVec3) -> Aabb {
-    let pad = |v: DVec3| v.abs() * 1e-6 + DVec3::splat(1e-6);
-    Aabb::new(
-        Vec3A::from((lo - pad(lo)).as_vec3()),
-        Vec3A::from((hi + pad(hi)).as_vec3()),
-    )
 }
 
 /// Primitives with a BVH over them; a hit reports the primitive's index in `primitives`.
@@ -184,7 +175,7 @@ impl Accel {
                     continue;
                 }
                 let limit = best.map_or(length, |(_, h)| h.t);
-                if let Some(h) = prim.intersect_segment(seg, s_min, limit) {
+                if let Some(h) = prim.intersect_segment(seg, hull, s_min, limit) {
                     best = Some((id, h));
                 }
             }

@@ -1,12 +1,21 @@
 //! Wavefront OBJ meshes: triangles through tobj, and a line-precise diagnosis of files it
 //! cannot use (tobj's own errors name neither the line nor the cause).
 
-use glam::DVec3;
 use std::path::Path;
 
-/// The triangles (vertex triples, as in the file) of an OBJ file; faces of zero area are left
-/// out. The error names the file, the line where it can, and what is wrong there.
-pub fn load_triangles(path: &Path) -> Result<Vec<[DVec3; 3]>, String> {
+/// An OBJ file's triangles: vertex positions (as the file has them, f32) and index triples
+/// into them, all objects and groups of the file in one list.
+pub struct ObjTriangles {
+    /// Vertex positions.
+    pub positions: Vec<[f32; 3]>,
+    /// Triangles as indices into `positions` (faces with more corners are fanned by tobj).
+    pub triangles: Vec<[u32; 3]>,
+}
+
+/// The triangles of an OBJ file (zero-area ones included: whether a triangle has an area
+/// depends on where the scene puts it). The error names the file, the line where it can, and
+/// what is wrong there.
+pub fn load_triangles(path: &Path) -> Result<ObjTriangles, String> {
     let bytes = std::fs::read(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
     let at = |what: String| format!("{}: {what}", path.display());
     let options = tobj::LoadOptions {
@@ -21,35 +30,35 @@ pub fn load_triangles(path: &Path) -> Result<Vec<[DVec3; 3]>, String> {
         Ok((models, _materials)) => models,
         Err(e) => return Err(at(diagnose(&bytes).unwrap_or_else(|| e.to_string()))),
     };
-    let mut triangles = Vec::new();
-    let mut faces = 0usize;
-    for model in &models {
-        let pos = &model.mesh.positions;
-        if pos.iter().any(|c| !c.is_finite()) {
+    let mut out = ObjTriangles {
+        positions: Vec::new(),
+        triangles: Vec::new(),
+    };
+    for model in models {
+        let mesh = model.mesh;
+        if mesh.positions.iter().any(|c| !c.is_finite()) {
             return Err(at(
                 diagnose(&bytes).unwrap_or_else(|| "a vertex is not finite".into())
             ));
         }
-        let vertex = |i: u32| {
-            let i = i as usize * 3;
-            DVec3::new(pos[i] as f64, pos[i + 1] as f64, pos[i + 2] as f64)
-        };
-        for f in model.mesh.indices.chunks_exact(3) {
-            faces += 1;
-            let t = [vertex(f[0]), vertex(f[1]), vertex(f[2])];
-            if (t[1] - t[0]).cross(t[2] - t[0]).length_squared() > 0.0 {
-                triangles.push(t);
-            }
-        }
+        let offset = u32::try_from(out.positions.len())
+            .ok()
+            .filter(|o| o.checked_add(mesh.positions.len() as u32 / 3).is_some())
+            .ok_or_else(|| at("more than 2³² vertices".into()))?;
+        out.positions
+            .extend(mesh.positions.chunks_exact(3).map(|p| [p[0], p[1], p[2]]));
+        out.triangles.extend(
+            mesh.indices
+                .chunks_exact(3)
+                .map(|f| [f[0] + offset, f[1] + offset, f[2] + offset]),
+        );
     }
-    if triangles.is_empty() {
-        return Err(at(match (diagnose(&bytes), faces) {
-            (Some(problem), _) => problem,
-            (None, 0) => "has no faces (no `f` lines)".into(),
-            (None, n) => format!("all {n} triangles have zero area"),
-        }));
+    if out.triangles.is_empty() {
+        return Err(at(
+            diagnose(&bytes).unwrap_or_else(|| "has no faces (no `f` lines)".into())
+        ));
     }
-    Ok(triangles)
+    Ok(out)
 }
 
 /// The first line of an OBJ file that cannot be used, and why: not text, a vertex that is not

@@ -11,7 +11,7 @@ use crate::lights::{Emitter, Light};
 use crate::material::Material;
 use crate::receiver::Receiver;
 use crate::settings::{OutputSettings, PhotonSettings, Settings, TraceSettings};
-use crate::shapes::Primitive;
+use crate::shapes::{Primitive, TriangleMesh};
 use crate::spectrum::emission::Shape;
 use crate::spectrum::{Dispersion, Spectrum, LAMBDA_MAX, LAMBDA_MIN};
 use glam::{DMat3, DVec3};
@@ -383,33 +383,44 @@ fn read_mesh(t: &mut TableReader) -> Result<Vec<Primitive>> {
     let m = DMat3::from_rotation_z(rot.z.to_radians())
         * DMat3::from_rotation_y(rot.y.to_radians())
         * DMat3::from_rotation_x(rot.x.to_radians());
-    let triangles = super::mesh::load_triangles(&path).map_err(|e| t.error("file", e))?;
-    let mut tris = Vec::with_capacity(triangles.len());
-    for [a, b, c] in triangles {
-        let [a, b, c] = [a, b, c].map(|p| translate + m * (scale * p));
+    let obj = super::mesh::load_triangles(&path).map_err(|e| t.error("file", e))?;
+    // Placed in f64, stored in f32: the stored vertices are the geometry.
+    let mut vertices = obj.positions;
+    for v in &mut vertices {
+        let p = translate + m * (scale * DVec3::from(v.map(f64::from)));
         t.check(
             "scale",
-            [a, b, c]
-                .iter()
-                .all(|p| p.abs().max_element() <= MAX_MAGNITUDE),
+            p.abs().max_element() <= MAX_MAGNITUDE,
             format!(
                 "{}: scaled and moved, a vertex lies beyond ±{MAX_MAGNITUDE:e}",
                 path.display()
             ),
         )?;
-        if (b - a).cross(c - a).length_squared() > 0.0 {
-            tris.push(Primitive::triangle(a, b, c));
-        }
+        *v = p.as_vec3().to_array();
     }
-    t.check(
-        "scale",
-        !tris.is_empty(),
-        format!(
-            "{}: every triangle has zero area at this scale",
-            path.display()
-        ),
-    )?;
-    Ok(tris)
+    let faces = obj.triangles.len();
+    let at = |i: u32| DVec3::from(vertices[i as usize].map(f64::from));
+    let mut triangles = obj.triangles;
+    triangles.retain(|&[a, b, c]| (at(b) - at(a)).cross(at(c) - at(a)).length_squared() > 0.0);
+    if triangles.is_empty() {
+        // A file with an unusable line says so rather than "zero area" (read again: only here).
+        let problem = std::fs::read(&path)
+            .ok()
+            .and_then(|b| super::mesh::diagnose(&b));
+        return Err(match problem {
+            Some(p) => t.error("file", format!("{}: {p}", path.display())),
+            None => t.error(
+                "scale",
+                format!(
+                    "{}: all {faces} triangles have zero area at this scale",
+                    path.display()
+                ),
+            ),
+        });
+    }
+    triangles.shrink_to_fit();
+    let mesh = TriangleMesh::new(vertices, triangles).map_err(|e| t.error("file", e))?;
+    Ok(vec![Primitive::Mesh(std::sync::Arc::new(mesh))])
 }
 
 /// A light's optional `spectrum` (None: not given — the light is D65 in bands and its RGB in

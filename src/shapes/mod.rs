@@ -3,7 +3,10 @@
 //! made of these.
 
 mod curved;
+mod mesh;
 mod primitive;
 
 pub use curved::segment_roots;
+pub use mesh::TriangleMesh;
+pub(crate) use primitive::padded_box;
 pub use primitive::{Hit, Primitive};

@@ -1,7 +1,11 @@
-//! The primitives: sphere, open cylinder (tube), parallelogram (quad), disk and triangle.
+//! The primitives: sphere, open cylinder (tube), parallelogram (quad), disk, triangle and
+//! triangle mesh.
 
+use super::mesh::TriangleMesh;
 use crate::curve::{ArcHull, Path};
-use glam::DVec3;
+use glam::{DVec3, Vec3A};
+use obvhs::aabb::Aabb;
+use std::sync::Arc;
 
 /// Where a ray meets a primitive.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -14,7 +18,7 @@ pub struct Hit {
 }
 
 /// A surface primitive. Vectors in scene units.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum Primitive {
     /// A sphere.
     Sphere {
@@ -64,6 +68,8 @@ pub enum Primitive {
         /// v2 − v0.
         e2: DVec3,
     },
+    /// A triangle mesh (shared, compact; its own BVH): one surface, many triangles.
+    Mesh(Arc<TriangleMesh>),
 }
 
 impl Primitive {
@@ -105,6 +111,7 @@ impl Primitive {
                 (center - ext, center + ext)
             }
             Primitive::Triangle { v0, e1, e2 } => corners(&[v0, v0 + e1, v0 + e2]),
+            Primitive::Mesh(ref mesh) => mesh.bounds(),
         }
     }
 
@@ -143,6 +150,7 @@ impl Primitive {
     pub fn intersect_ray(&self, o: DVec3, d: DVec3, t_min: f64, t_max: f64) -> Option<Hit> {
         let valid = |t: f64| t > t_min && t < t_max;
         match *self {
+            Primitive::Mesh(ref mesh) => mesh.intersect_ray(o, d, t_min, t_max),
             Primitive::Sphere { center, radius } => {
                 // Hearn & Baker: discriminant from the perpendicular offset (no cancellation).
                 let oc = o - center;
@@ -252,6 +260,7 @@ impl Primitive {
     pub fn may_cross(&self, hull: &ArcHull) -> bool {
         let dev = hull.deviation;
         match *self {
+            Primitive::Mesh(ref mesh) => mesh.may_cross(hull),
             Primitive::Sphere { center, radius } => {
                 let far = (hull.a - center).length().max((hull.b - center).length());
                 far + dev >= radius && hull.chord_distance(center) - dev <= radius
@@ -277,13 +286,18 @@ impl Primitive {
         }
     }
 
-    /// Nearest crossing of a curved segment with the primitive at arclength s ∈ (s_min, length].
+    /// Nearest crossing of a curved path held by `hull` with the primitive at arclength
+    /// s ∈ (s_min, length].
     pub fn intersect_segment<P: Path + ?Sized>(
         &self,
         seg: &P,
+        hull: &ArcHull,
         s_min: f64,
         length: f64,
     ) -> Option<Hit> {
+        if let Primitive::Mesh(mesh) = self {
+            return mesh.intersect_segment(seg, hull, s_min, length);
+        }
         super::segment_roots(seg, length, |x| self.implicit(x))
             .into_iter()
             .filter(|&s| s > s_min)
@@ -329,6 +343,16 @@ impl std::fmt::Display for Primitive {
                 write!(f, "disk {ring} at {} facing {}", v(center), v(normal))
             }
             Primitive::Triangle { v0, .. } => write!(f, "triangle at {}", v(v0)),
+            Primitive::Mesh(ref mesh) => {
+                let (lo, hi) = mesh.bounds();
+                write!(
+                    f,
+                    "mesh of {} triangles in {} – {}",
+                    mesh.len(),
+                    v(lo),
+                    v(hi)
+                )
+            }
         }
     }
 }
@@ -339,6 +363,16 @@ fn ordered(a: f64, b: f64) -> (f64, f64) {
     } else {
         (b, a)
     }
+}
+
+/// An f32 box containing the f64 box [lo, hi], rounded outward (BVHs hold f32 boxes; the
+/// exact tests are in f64).
+pub(crate) fn padded_box(lo: DVec3, hi: DVec3) -> Aabb {
+    let pad = |v: DVec3| v.abs() * 1e-6 + DVec3::splat(1e-6);
+    Aabb::new(
+        Vec3A::from((lo - pad(lo)).as_vec3()),
+        Vec3A::from((hi + pad(hi)).as_vec3()),
+    )
 }
 
 fn corners(pts: &[DVec3]) -> (DVec3, DVec3) {

@@ -1,0 +1,206 @@
+//! A triangle mesh stored compactly: f32 vertices shared through u32 indices, with its own
+//! BVH, so that millions of triangles fit (seed 004: a GRIN medium bounded by "millions of
+//! independent triangles"). The f32 vertices *are* the geometry; every test converts them to
+//! f64 exactly and runs in f64, as for any other primitive.
+
+use super::primitive::{padded_box, Hit, Primitive};
+use crate::curve::{ArcHull, Path};
+use glam::{DVec3, Vec3A};
+use obvhs::aabb::Aabb;
+use obvhs::bvh2::builder::build_bvh2;
+use obvhs::bvh2::Bvh2;
+use obvhs::ray::{Ray, RayHit};
+use obvhs::{Boundable, BvhBuildParams};
+
+/// Triangles over shared vertices, with a BVH over the triangles.
+pub struct TriangleMesh {
+    vertices: Vec<[f32; 3]>,
+    triangles: Vec<[u32; 3]>,
+    bvh: Bvh2,
+    /// f64 bounds of all vertices.
+    bounds: (DVec3, DVec3),
+}
+
+/// A triangle's padded f32 box, for the BVH build.
+struct TriangleBox(Aabb);
+
+impl Boundable for TriangleBox {
+    fn aabb(&self) -> Aabb {
+        self.0
+    }
+}
+
+impl TriangleMesh {
+    /// The mesh of `triangles` (indices into `vertices`), or why not: at least one
+    /// triangle, every index a vertex, every vertex finite. Zero-area triangles are kept out
+    /// of the BVH's answers by the triangle test itself.
+    pub fn new(vertices: Vec<[f32; 3]>, triangles: Vec<[u32; 3]>) -> Result<Self, String> {
+        if triangles.is_empty() {
+            return Err("a mesh needs at least one triangle".into());
+        }
+        if let Some(t) = triangles
+            .iter()
+            .find(|t| t.iter().any(|&i| i as usize >= vertices.len()))
+        {
+            return Err(format!(
+                "triangle {t:?} names a vertex beyond the {} given",
+                vertices.len()
+            ));
+        }
+        if vertices.iter().flatten().any(|c| !c.is_finite()) {
+            return Err("a vertex is not finite".into());
+        }
+        let vertex = |i: u32| DVec3::from(vertices[i as usize].map(f64::from));
+        let boxes: Vec<TriangleBox> = triangles
+            .iter()
+            .map(|t| {
+                let (lo, hi) = t
+                    .iter()
+                    .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &i| {
+                        (lo.min(vertex(i)), hi.max(vertex(i)))
+                    });
+                TriangleBox(padded_box(lo, hi))
+            })
+            .collect();
+        let mut bvh = build_bvh2(
+            &boxes,
+            BvhBuildParams::medium_build(),
+            &mut Default::default(),
+        );
+        drop(boxes);
+        // Only the nodes and the leaf order are traversed: the build's bookkeeping goes.
+        bvh.parents = Vec::new();
+        bvh.primitives_to_nodes = Vec::new();
+        bvh.primitive_indices_freelist = Vec::new();
+        bvh.nodes.shrink_to_fit();
+        bvh.primitive_indices.shrink_to_fit();
+        let bounds = vertices
+            .iter()
+            .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), v| {
+                let p = DVec3::from(v.map(f64::from));
+                (lo.min(p), hi.max(p))
+            });
+        Ok(Self {
+            vertices,
+            triangles,
+            bvh,
+            bounds,
+        })
+    }
+
+    /// Number of triangles.
+    pub fn len(&self) -> usize {
+        self.triangles.len()
+    }
+
+    /// Whether the mesh has no triangle (never: [`TriangleMesh::new`] refuses that).
+    pub fn is_empty(&self) -> bool {
+        self.triangles.is_empty()
+    }
+
+    /// Bytes held: vertices, triangles and the BVH's nodes and leaf order.
+    pub fn bytes(&self) -> usize {
+        use std::mem::size_of_val;
+        size_of_val(self.vertices.as_slice())
+            + size_of_val(self.triangles.as_slice())
+            + size_of_val(self.bvh.nodes.as_slice())
+            + size_of_val(self.bvh.primitive_indices.as_slice())
+    }
+
+    /// Axis-aligned bounds (min, max) of the vertices.
+    pub fn bounds(&self) -> (DVec3, DVec3) {
+        self.bounds
+    }
+
+    /// Triangle `i` as a primitive, in f64.
+    fn triangle(&self, i: usize) -> Primitive {
+        let [a, b, c] =
+            self.triangles[i].map(|k| DVec3::from(self.vertices[k as usize].map(f64::from)));
+        Primitive::triangle(a, b, c)
+    }
+
+    /// Nearest hit of the straight ray o + t d (d unit) with t ∈ (t_min, t_max).
+    pub fn intersect_ray(&self, o: DVec3, d: DVec3, t_min: f64, t_max: f64) -> Option<Hit> {
+        let ray = Ray::new(
+            Vec3A::from(o.as_vec3()),
+            Vec3A::from(d.as_vec3()),
+            0.0,
+            (t_max as f32).next_up(),
+        );
+        let mut best: Option<Hit> = None;
+        let mut hit = RayHit::none();
+        self.bvh.ray_traverse(ray, &mut hit, |_, i| {
+            let id = self.bvh.primitive_indices[i] as usize;
+            let limit = best.map_or(t_max, |h| h.t);
+            match self.triangle(id).intersect_ray(o, d, t_min, limit) {
+                Some(h) => {
+                    best = Some(h);
+                    // Round up: the f32 bound must not cull a node holding an f64 tie.
+                    (h.t as f32).next_up()
+                }
+                None => f32::INFINITY,
+            }
+        });
+        best
+    }
+
+    /// Calls `visit` with each triangle whose box meets the hull's box and that may meet
+    /// the path it holds, until `visit` returns false.
+    fn candidates(&self, hull: &ArcHull, mut visit: impl FnMut(Primitive) -> bool) {
+        let (lo, hi) = hull.bounds();
+        self.bvh
+            .aabb_traverse(padded_box(lo, hi), |bvh, node_index| {
+                let node = &bvh.nodes[node_index as usize];
+                (node.first_index..node.first_index + node.prim_count).all(|i| {
+                    let tri = self.triangle(bvh.primitive_indices[i as usize] as usize);
+                    !tri.may_cross(hull) || visit(tri)
+                })
+            });
+    }
+
+    /// Whether any triangle may meet a path held by `hull`.
+    pub fn may_cross(&self, hull: &ArcHull) -> bool {
+        let mut found = false;
+        self.candidates(hull, |_| {
+            found = true;
+            false
+        });
+        found
+    }
+
+    /// Nearest crossing of a curved path held by `hull` with a triangle at arclength
+    /// s ∈ (s_min, length].
+    pub fn intersect_segment<P: Path + ?Sized>(
+        &self,
+        seg: &P,
+        hull: &ArcHull,
+        s_min: f64,
+        length: f64,
+    ) -> Option<Hit> {
+        let mut best: Option<Hit> = None;
+        self.candidates(hull, |tri| {
+            let limit = best.map_or(length, |h| h.t);
+            if let Some(h) = tri.intersect_segment(seg, hull, s_min, limit) {
+                best = Some(h);
+            }
+            true
+        });
+        best
+    }
+}
+
+/// Two meshes are equal when their vertices and triangles are (the BVH follows from them).
+impl PartialEq for TriangleMesh {
+    fn eq(&self, other: &Self) -> bool {
+        self.vertices == other.vertices && self.triangles == other.triangles
+    }
+}
+
+impl std::fmt::Debug for TriangleMesh {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("TriangleMesh")
+            .field("vertices", &self.vertices.len())
+            .field("triangles", &self.triangles.len())
+            .finish()
+    }
+}
