@@ -112,10 +112,14 @@ impl TriangleMesh {
         self.bounds
     }
 
+    /// The corners of triangle `i`, in f64.
+    fn corners(&self, i: usize) -> [DVec3; 3] {
+        self.triangles[i].map(|k| DVec3::from(self.vertices[k as usize].map(f64::from)))
+    }
+
     /// Triangle `i` as a primitive, in f64.
     fn triangle(&self, i: usize) -> Primitive {
-        let [a, b, c] =
-            self.triangles[i].map(|k| DVec3::from(self.vertices[k as usize].map(f64::from)));
+        let [a, b, c] = self.corners(i);
         Primitive::triangle(a, b, c)
     }
 
@@ -144,18 +148,40 @@ impl TriangleMesh {
         best
     }
 
-    /// Calls `visit` with each triangle whose box meets the hull's box and that may meet
-    /// the path it holds, until `visit` returns false.
+    /// Calls `visit` with each triangle that may meet the path `hull` holds, until `visit`
+    /// returns false: the BVH is descended where a node's box, grown by the hull's deviation,
+    /// meets the hull's chord (a long diagonal step's own box would take in a whole patch of
+    /// a fine mesh's surface), and a leaf's triangles are kept where
+    /// [`Primitive::may_cross`] says so.
     fn candidates(&self, hull: &ArcHull, mut visit: impl FnMut(Primitive) -> bool) {
-        let (lo, hi) = hull.bounds();
-        self.bvh
-            .aabb_traverse(padded_box(lo, hi), |bvh, node_index| {
-                let node = &bvh.nodes[node_index as usize];
-                (node.first_index..node.first_index + node.prim_count).all(|i| {
-                    let tri = self.triangle(bvh.primitive_indices[i as usize] as usize);
-                    !tri.may_cross(hull) || visit(tri)
-                })
-            });
+        let nodes = &self.bvh.nodes;
+        let mut stack = NodeStack::new();
+        stack.push(0);
+        while let Some(index) = stack.pop() {
+            let node = &nodes[index as usize];
+            let (lo, hi) = (node.aabb().min.as_dvec3(), node.aabb().max.as_dvec3());
+            if !chord_meets_box(hull, lo - hull.deviation, hi + hull.deviation) {
+                continue;
+            }
+            if node.is_leaf() {
+                let leaf = node.first_index..node.first_index + node.prim_count;
+                for i in leaf {
+                    let [a, b, c] = self.corners(self.bvh.primitive_indices[i as usize] as usize);
+                    let grow = DVec3::splat(hull.deviation);
+                    let (lo, hi) = (a.min(b).min(c) - grow, a.max(b).max(c) + grow);
+                    if !chord_meets_box(hull, lo, hi) {
+                        continue;
+                    }
+                    let tri = Primitive::triangle(a, b, c);
+                    if tri.may_cross(hull) && !visit(tri) {
+                        return;
+                    }
+                }
+            } else {
+                stack.push(node.first_index);
+                stack.push(node.first_index + 1);
+            }
+        }
     }
 
     /// Whether any triangle may meet a path held by `hull`.
@@ -186,6 +212,65 @@ impl TriangleMesh {
             true
         });
         best
+    }
+}
+
+/// Whether the segment from `hull.a` to `hull.b` meets the box [lo, hi] (slab test; a
+/// degenerate chord is its end point).
+fn chord_meets_box(hull: &ArcHull, lo: DVec3, hi: DVec3) -> bool {
+    let d = hull.b - hull.a;
+    let (mut t0, mut t1) = (0.0f64, 1.0f64);
+    for k in 0..3 {
+        if d[k] == 0.0 {
+            if hull.a[k] < lo[k] || hull.a[k] > hi[k] {
+                return false;
+            }
+            continue;
+        }
+        let (ta, tb) = ((lo[k] - hull.a[k]) / d[k], (hi[k] - hull.a[k]) / d[k]);
+        t0 = t0.max(ta.min(tb));
+        t1 = t1.min(ta.max(tb));
+        if t0 > t1 {
+            return false;
+        }
+    }
+    true
+}
+
+/// A traversal stack: 64 entries inline (a BVH of 10⁷ triangles is ~30 deep), more on the
+/// heap for a degenerate tree.
+struct NodeStack {
+    inline: [u32; 64],
+    len: usize,
+    spill: Vec<u32>,
+}
+
+impl NodeStack {
+    fn new() -> Self {
+        Self {
+            inline: [0; 64],
+            len: 0,
+            spill: Vec::new(),
+        }
+    }
+
+    fn push(&mut self, v: u32) {
+        if self.len < self.inline.len() {
+            self.inline[self.len] = v;
+            self.len += 1;
+        } else {
+            self.spill.push(v);
+        }
+    }
+
+    fn pop(&mut self) -> Option<u32> {
+        if let Some(v) = self.spill.pop() {
+            return Some(v);
+        }
+        (self.len > 0).then(|| {
+            self.len -= 1;
+            self.inline[self.len]
+        })
     }
 }
 

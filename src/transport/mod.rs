@@ -560,18 +560,16 @@ impl<'a> Tracer<'a> {
     /// The first surface between two accepted states `len` apart whose stepper knows only the
     /// ends (RK4, RKN, Snell): on the step's quintic Hermite path ([`HermitePath`]), which
     /// joins the two states continuously, so no surface between them is stepped over, and
-    /// errs from the ray by O(len⁶), so the hit is as good as the step's ends. Skipped when no
-    /// surface can meet the capsule of its control polygon.
+    /// errs from the ray by O(len⁶), so the hit is as good as the step's ends. Surfaces the
+    /// capsule of its control polygon cannot meet are not searched.
     fn crossing_between(&self, prev: &RayState, st: &RayState, len: f64) -> Option<Crossing> {
         let accel = &self.scene.accel;
         if accel.is_empty() {
             return None;
         }
         let path = HermitePath::new(prev, st, len);
+        // The search culls by the hull itself (a separate `may_hit` would traverse twice).
         let hull = path.hull();
-        if !accel.may_hit(&hull) {
-            return None;
-        }
         accel
             .intersect_segment(&path, &hull, 0.0, len)
             .map(|(prim, h)| {

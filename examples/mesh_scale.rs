@@ -1,0 +1,192 @@
+//! Meshes at scale: a Luneburg lens bounded by a triangulated sphere (a cube sphere: six
+//! faces of N × N cells, two triangles a cell, written as an OBJ) against the analytic
+//! sphere of `scenes/luneburg.toml`, rendered at 200 × 150. For each size: OBJ load and BVH
+//! build time, the mesh's bytes per triangle (vertices, indices, BVH), the process's resident
+//! memory per triangle after the scene is built and at its peak (each size runs in a process
+//! of its own, so peaks do not carry over), and the render time against the analytic lens's.
+//!
+//! `cargo run --release --example mesh_scale` (sizes 1.2·10⁴, 1.3·10⁵, 1.3·10⁶ and 10⁷
+//! triangles; the OBJ files go to out/, 10⁷ triangles ≈ 0.4 GB) or `-- --sizes 30,330`.
+
+use grinlight::scene::load::parse_scene;
+use grinlight::shapes::Primitive;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// Writes the cube sphere of radius `radius` with `n` × `n` cells a face to `path`; its
+/// triangles wind counter-clockwise seen from outside (outward normals).
+fn write_cube_sphere(path: &Path, n: usize, radius: f64) -> std::io::Result<usize> {
+    let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);
+    let faces: [([f64; 3], [f64; 3], [f64; 3]); 6] = [
+        ([1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]),
+        ([-1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, 1.0, 0.0]),
+        ([0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]),
+        ([0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]),
+        ([0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]),
+        ([0.0, 0.0, -1.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0]),
+    ];
+    let mut triangles = 0;
+    for (f, (c, u, v)) in faces.iter().enumerate() {
+        for j in 0..=n {
+            for i in 0..=n {
+                let (a, b) = (
+                    2.0 * i as f64 / n as f64 - 1.0,
+                    2.0 * j as f64 / n as f64 - 1.0,
+                );
+                let p: Vec<f64> = (0..3).map(|k| c[k] + a * u[k] + b * v[k]).collect();
+                let len = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
+                let q: Vec<f32> = p.iter().map(|x| (radius * x / len) as f32).collect();
+                writeln!(out, "v {} {} {}", q[0], q[1], q[2])?;
+            }
+        }
+        // u × v = c on every face above, so (i, j) → (i + 1, j) → (i + 1, j + 1) turns
+        // counter-clockwise seen from outside.
+        let base = f * (n + 1) * (n + 1) + 1;
+        let at = |i: usize, j: usize| base + j * (n + 1) + i;
+        for j in 0..n {
+            for i in 0..n {
+                let (a, b, c, d) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+                writeln!(out, "f {a} {b} {c}\nf {a} {c} {d}")?;
+                triangles += 2;
+            }
+        }
+    }
+    out.flush()?;
+    Ok(triangles)
+}
+
+/// A field of /proc/self/status in bytes (VmRSS, VmHWM).
+fn status_bytes(field: &str) -> f64 {
+    let text = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
+    text.lines()
+        .find(|l| l.starts_with(field))
+        .and_then(|l| l.split_whitespace().nth(1))
+        .and_then(|kb| kb.parse::<f64>().ok())
+        .map_or(f64::NAN, |kb| kb * 1024.0)
+}
+
+/// The Luneburg scene at 200 × 150 with its lens bounded by `mesh` (None: the analytic sphere).
+fn scene_text(mesh: Option<&Path>) -> String {
+    let text = std::fs::read_to_string("scenes/luneburg.toml").expect("run from the repository");
+    let text = text.replace("width = 400\nheight = 300", "width = 200\nheight = 150");
+    match mesh {
+        None => text,
+        Some(path) => text.replace(
+            "type = \"sphere\"\ncenter = [0.0, 0.0, 0.0]\nradius = 0.5\nmaterial = \"luneburg\"",
+            &format!(
+                "type = \"mesh\"\nfile = \"{}\"\nmaterial = \"luneburg\"",
+                path.display()
+            ),
+        ),
+    }
+}
+
+/// One size, in this process: prints a table row's fields as `key=value` lines.
+fn one(n: usize) {
+    std::fs::create_dir_all("out").unwrap();
+    let obj = PathBuf::from(format!("out/mesh_scale_{n}.obj"))
+        .canonicalize()
+        .unwrap_or_else(|_| {
+            std::env::current_dir()
+                .unwrap()
+                .join(format!("out/mesh_scale_{n}.obj"))
+        });
+    let triangles = write_cube_sphere(&obj, n, 0.5).expect("write the OBJ");
+    let rss0 = status_bytes("VmRSS:");
+    let t = Instant::now();
+    let (scene, settings) = parse_scene(Path::new("scenes/luneburg.toml"), scene_text(Some(&obj)))
+        .expect("the mesh scene parses");
+    let load = t.elapsed().as_secs_f64();
+    let rss1 = status_bytes("VmRSS:");
+    let bytes = scene
+        .accel
+        .primitives()
+        .iter()
+        .find_map(|p| match p {
+            Primitive::Mesh(m) => Some(m.bytes()),
+            _ => None,
+        })
+        .expect("a mesh");
+    let t = Instant::now();
+    grinlight::render::render(&scene, &settings, &()).expect("render");
+    let render = t.elapsed().as_secs_f64();
+    let peak = status_bytes("VmHWM:");
+    let tri = triangles as f64;
+    println!("triangles={triangles}");
+    println!("load={load}");
+    println!("mesh_bytes={}", bytes as f64 / tri);
+    println!("rss={}", (rss1 - rss0) / tri);
+    println!("peak={}", peak / tri);
+    println!("render={render}");
+    std::fs::remove_file(&obj).ok();
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    if let Some(i) = args.iter().position(|a| a == "--one") {
+        one(args[i + 1].parse().expect("--one N"));
+        return;
+    }
+    let sizes: Vec<usize> = args
+        .iter()
+        .position(|a| a == "--sizes")
+        .map(|i| {
+            args[i + 1]
+                .split(',')
+                .map(|s| s.parse().expect("--sizes N,N,…"))
+                .collect()
+        })
+        .unwrap_or_else(|| vec![32, 104, 330, 913]);
+    // The analytic lens, median of 3.
+    let analytic = median(
+        (0..3)
+            .map(|_| {
+                let (scene, settings) =
+                    parse_scene(Path::new("scenes/luneburg.toml"), scene_text(None)).unwrap();
+                let t = Instant::now();
+                grinlight::render::render(&scene, &settings, &()).unwrap();
+                t.elapsed().as_secs_f64()
+            })
+            .collect(),
+    );
+    println!("analytic sphere: render {analytic:.2} s (200 × 150, median of 3)\n");
+    println!("| triangles | OBJ load + BVH (s) | mesh bytes/triangle | RSS after build, bytes/triangle | peak RSS, bytes/triangle | render (s) | render / analytic |");
+    println!("|---|---|---|---|---|---|---|");
+    let exe = std::env::current_exe().unwrap();
+    for n in sizes {
+        let out = std::process::Command::new(&exe)
+            .args(["--one", &n.to_string()])
+            .output()
+            .expect("run one size");
+        let text = String::from_utf8_lossy(&out.stdout);
+        let field = |k: &str| -> f64 {
+            text.lines()
+                .find_map(|l| l.strip_prefix(&format!("{k}=")))
+                .and_then(|v| v.parse().ok())
+                .unwrap_or(f64::NAN)
+        };
+        if !out.status.success() {
+            println!(
+                "| N = {n}: failed: {} |",
+                String::from_utf8_lossy(&out.stderr).trim()
+            );
+            continue;
+        }
+        println!(
+            "| {:.3e} | {:.2} | {:.1} | {:.1} | {:.1} | {:.2} | {:.2}× |",
+            field("triangles"),
+            field("load"),
+            field("mesh_bytes"),
+            field("rss"),
+            field("peak"),
+            field("render"),
+            field("render") / analytic
+        );
+    }
+}
