@@ -10,6 +10,8 @@ pub struct ObjTriangles {
     pub positions: Vec<[f32; 3]>,
     /// Triangles as indices into `positions` (faces with more corners are fanned by tobj).
     pub triangles: Vec<[u32; 3]>,
+    /// The file's vertex normals (`vn`), one per position, when every face gives them.
+    pub normals: Option<Vec<[f32; 3]>>,
 }
 
 /// The triangles of an OBJ file (zero-area ones included: whether a triangle has an area
@@ -33,6 +35,7 @@ pub fn load_triangles(path: &Path) -> Result<ObjTriangles, String> {
     let mut out = ObjTriangles {
         positions: Vec::new(),
         triangles: Vec::new(),
+        normals: Some(Vec::new()),
     };
     for model in models {
         let mesh = model.mesh;
@@ -47,6 +50,15 @@ pub fn load_triangles(path: &Path) -> Result<ObjTriangles, String> {
             .ok_or_else(|| at("more than 2³² vertices".into()))?;
         out.positions
             .extend(mesh.positions.chunks_exact(3).map(|p| [p[0], p[1], p[2]]));
+        // tobj's single index gives each position its normal when the faces name them.
+        out.normals = out
+            .normals
+            .take()
+            .filter(|_| mesh.normals.len() == mesh.positions.len())
+            .map(|mut n| {
+                n.extend(mesh.normals.chunks_exact(3).map(|v| [v[0], v[1], v[2]]));
+                n
+            });
         out.triangles.extend(
             mesh.indices
                 .chunks_exact(3)

@@ -12,10 +12,13 @@ use obvhs::bvh2::Bvh2;
 use obvhs::ray::{Ray, RayHit};
 use obvhs::{Boundable, BvhBuildParams};
 
-/// Triangles over shared vertices, with a BVH over the triangles.
+/// Triangles over shared vertices, with a BVH over the triangles; with vertex normals, a
+/// smooth mesh (its hits' shading normals interpolated across each triangle).
 pub struct TriangleMesh {
     vertices: Vec<[f32; 3]>,
     triangles: Vec<[u32; 3]>,
+    /// Unit vertex normals, one per vertex, or none (a faceted mesh).
+    normals: Option<Vec<[f32; 3]>>,
     bvh: Bvh2,
     /// f64 bounds of all vertices.
     bounds: (DVec3, DVec3),
@@ -31,10 +34,30 @@ impl Boundable for TriangleBox {
 }
 
 impl TriangleMesh {
-    /// The mesh of `triangles` (indices into `vertices`), or why not: at least one
-    /// triangle, every index a vertex, every vertex finite. Zero-area triangles are kept out
-    /// of the BVH's answers by the triangle test itself.
-    pub fn new(vertices: Vec<[f32; 3]>, triangles: Vec<[u32; 3]>) -> Result<Self, String> {
+    /// The mesh of `triangles` (indices into `vertices`), smooth when `normals` gives each
+    /// vertex a normal, or why not: at least one triangle, every index a vertex, every vertex
+    /// finite, one finite non-zero normal per vertex. Zero-area triangles are kept out of the
+    /// BVH's answers by the triangle test itself.
+    pub fn new(
+        vertices: Vec<[f32; 3]>,
+        triangles: Vec<[u32; 3]>,
+        normals: Option<Vec<[f32; 3]>>,
+    ) -> Result<Self, String> {
+        if let Some(n) = &normals {
+            if n.len() != vertices.len() {
+                return Err(format!(
+                    "{} vertex normals for {} vertices",
+                    n.len(),
+                    vertices.len()
+                ));
+            }
+            if n.iter().any(|v| {
+                let l = DVec3::from(v.map(f64::from)).length();
+                !(l.is_finite() && l > 0.0)
+            }) {
+                return Err("a vertex normal is zero or not finite".into());
+            }
+        }
         if triangles.is_empty() {
             return Err("a mesh needs at least one triangle".into());
         }
@@ -83,6 +106,7 @@ impl TriangleMesh {
         Ok(Self {
             vertices,
             triangles,
+            normals,
             bvh,
             bounds,
         })
@@ -98,10 +122,16 @@ impl TriangleMesh {
         self.triangles.is_empty()
     }
 
-    /// Bytes held: vertices, triangles and the BVH's nodes and leaf order.
+    /// Whether the mesh has vertex normals (smooth shading).
+    pub fn is_smooth(&self) -> bool {
+        self.normals.is_some()
+    }
+
+    /// Bytes held: vertices, normals, triangles and the BVH's nodes and leaf order.
     pub fn bytes(&self) -> usize {
         use std::mem::size_of_val;
         size_of_val(self.vertices.as_slice())
+            + self.normals.as_deref().map_or(0, size_of_val)
             + size_of_val(self.triangles.as_slice())
             + size_of_val(self.bvh.nodes.as_slice())
             + size_of_val(self.bvh.primitive_indices.as_slice())
@@ -123,6 +153,35 @@ impl TriangleMesh {
         Primitive::triangle(a, b, c)
     }
 
+    /// `hit` on triangle `i` at `point`, with the vertex normals interpolated there (by
+    /// barycentric weights) as its shading normal, turned to the geometric normal's side; a
+    /// faceted mesh's hits keep their geometric normal.
+    fn shaded(&self, i: usize, point: DVec3, hit: Hit) -> Hit {
+        let Some(normals) = &self.normals else {
+            return hit;
+        };
+        let [a, b, c] = self.corners(i);
+        let (e1, e2, r) = (b - a, c - a, point - a);
+        let (d00, d01, d11) = (e1.dot(e1), e1.dot(e2), e2.dot(e2));
+        let (d20, d21) = (r.dot(e1), r.dot(e2));
+        let det = d00 * d11 - d01 * d01;
+        let v = ((d11 * d20 - d01 * d21) / det).clamp(0.0, 1.0);
+        let w = ((d00 * d21 - d01 * d20) / det).clamp(0.0, 1.0 - v);
+        let n = |k: usize| DVec3::from(normals[self.triangles[i][k] as usize].map(f64::from));
+        let shading = ((1.0 - v - w) * n(0) + v * n(1) + w * n(2)).normalize_or_zero();
+        if shading == DVec3::ZERO {
+            return hit;
+        }
+        Hit {
+            shading: if shading.dot(hit.normal) < 0.0 {
+                -shading
+            } else {
+                shading
+            },
+            ..hit
+        }
+    }
+
     /// Nearest hit of the straight ray o + t d (d unit) with t ∈ (t_min, t_max).
     pub fn intersect_ray(&self, o: DVec3, d: DVec3, t_min: f64, t_max: f64) -> Option<Hit> {
         let ray = Ray::new(
@@ -131,21 +190,21 @@ impl TriangleMesh {
             0.0,
             (t_max as f32).next_up(),
         );
-        let mut best: Option<Hit> = None;
+        let mut best: Option<(usize, Hit)> = None;
         let mut hit = RayHit::none();
         self.bvh.ray_traverse(ray, &mut hit, |_, i| {
             let id = self.bvh.primitive_indices[i] as usize;
-            let limit = best.map_or(t_max, |h| h.t);
+            let limit = best.map_or(t_max, |(_, h)| h.t);
             match self.triangle(id).intersect_ray(o, d, t_min, limit) {
                 Some(h) => {
-                    best = Some(h);
+                    best = Some((id, h));
                     // Round up: the f32 bound must not cull a node holding an f64 tie.
                     (h.t as f32).next_up()
                 }
                 None => f32::INFINITY,
             }
         });
-        best
+        best.map(|(id, h)| self.shaded(id, o + h.t * d, h))
     }
 
     /// Calls `visit` with each triangle that may meet the path `hull` holds, until `visit`
@@ -153,7 +212,7 @@ impl TriangleMesh {
     /// meets the hull's chord (a long diagonal step's own box would take in a whole patch of
     /// a fine mesh's surface), and a leaf's triangles are kept where
     /// [`Primitive::may_cross`] says so.
-    fn candidates(&self, hull: &ArcHull, mut visit: impl FnMut(Primitive) -> bool) {
+    fn candidates(&self, hull: &ArcHull, mut visit: impl FnMut(usize, Primitive) -> bool) {
         let nodes = &self.bvh.nodes;
         let mut stack = NodeStack::new();
         stack.push(0);
@@ -166,14 +225,15 @@ impl TriangleMesh {
             if node.is_leaf() {
                 let leaf = node.first_index..node.first_index + node.prim_count;
                 for i in leaf {
-                    let [a, b, c] = self.corners(self.bvh.primitive_indices[i as usize] as usize);
+                    let id = self.bvh.primitive_indices[i as usize] as usize;
+                    let [a, b, c] = self.corners(id);
                     let grow = DVec3::splat(hull.deviation);
                     let (lo, hi) = (a.min(b).min(c) - grow, a.max(b).max(c) + grow);
                     if !chord_meets_box(hull, lo, hi) {
                         continue;
                     }
                     let tri = Primitive::triangle(a, b, c);
-                    if tri.may_cross(hull) && !visit(tri) {
+                    if tri.may_cross(hull) && !visit(id, tri) {
                         return;
                     }
                 }
@@ -187,7 +247,7 @@ impl TriangleMesh {
     /// Whether any triangle may meet a path held by `hull`.
     pub fn may_cross(&self, hull: &ArcHull) -> bool {
         let mut found = false;
-        self.candidates(hull, |_| {
+        self.candidates(hull, |_, _| {
             found = true;
             false
         });
@@ -203,15 +263,15 @@ impl TriangleMesh {
         s_min: f64,
         length: f64,
     ) -> Option<Hit> {
-        let mut best: Option<Hit> = None;
-        self.candidates(hull, |tri| {
-            let limit = best.map_or(length, |h| h.t);
+        let mut best: Option<(usize, Hit)> = None;
+        self.candidates(hull, |id, tri| {
+            let limit = best.map_or(length, |(_, h)| h.t);
             if let Some(h) = tri.intersect_segment(seg, hull, s_min, limit) {
-                best = Some(h);
+                best = Some((id, h));
             }
             true
         });
-        best
+        best.map(|(id, h)| self.shaded(id, seg.at(h.t).position, h))
     }
 }
 
@@ -277,7 +337,9 @@ impl NodeStack {
 /// Two meshes are equal when their vertices and triangles are (the BVH follows from them).
 impl PartialEq for TriangleMesh {
     fn eq(&self, other: &Self) -> bool {
-        self.vertices == other.vertices && self.triangles == other.triangles
+        self.vertices == other.vertices
+            && self.triangles == other.triangles
+            && self.normals == other.normals
     }
 }
 
@@ -286,6 +348,7 @@ impl std::fmt::Debug for TriangleMesh {
         f.debug_struct("TriangleMesh")
             .field("vertices", &self.vertices.len())
             .field("triangles", &self.triangles.len())
+            .field("smooth", &self.is_smooth())
             .finish()
     }
 }

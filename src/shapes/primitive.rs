@@ -15,6 +15,20 @@ pub struct Hit {
     /// Unit geometric normal at the hit: outward for spheres and tubes, the primitive's own
     /// normal for quads, disks and triangles (not flipped toward the ray).
     pub normal: DVec3,
+    /// Unit shading normal, on the same side as `normal`: a smooth mesh's interpolated
+    /// vertex normal, else `normal` itself.
+    pub shading: DVec3,
+}
+
+impl Hit {
+    /// A hit whose shading normal is its geometric one.
+    pub fn flat(t: f64, normal: DVec3) -> Self {
+        Self {
+            t,
+            normal,
+            shading: normal,
+        }
+    }
 }
 
 /// A surface primitive. Vectors in scene units.
@@ -163,10 +177,10 @@ impl Primitive {
                 let q = -b - b.signum() * disc.sqrt();
                 let c = oc.length_squared() - radius * radius;
                 let (t0, t1) = ordered(q, if q != 0.0 { c / q } else { 0.0 });
-                [t0, t1].into_iter().find(|&t| valid(t)).map(|t| Hit {
-                    t,
-                    normal: (o + t * d - center) / radius,
-                })
+                [t0, t1]
+                    .into_iter()
+                    .find(|&t| valid(t))
+                    .map(|t| Hit::flat(t, (o + t * d - center) / radius))
             }
             Primitive::Tube {
                 base,
@@ -193,10 +207,7 @@ impl Primitive {
                     let h = (oc + t * d).dot(axis);
                     (valid(t) && (0.0..=height).contains(&h)).then(|| {
                         let p = oc + t * d;
-                        Hit {
-                            t,
-                            normal: (p - axis * p.dot(axis)).normalize(),
-                        }
+                        Hit::flat(t, (p - axis * p.dot(axis)).normalize())
                     })
                 })
             }
@@ -207,7 +218,7 @@ impl Primitive {
                     return None;
                 }
                 let t = (p0 - o).dot(n) / denom;
-                (valid(t) && self.contains_planar(o + t * d)).then_some(Hit { t, normal: n })
+                (valid(t) && self.contains_planar(o + t * d)).then_some(Hit::flat(t, n))
             }
         }
     }
@@ -303,10 +314,7 @@ impl Primitive {
             .filter(|&s| s > s_min)
             .find_map(|s| {
                 let x = seg.at(s).position;
-                self.accepts(x).then(|| Hit {
-                    t: s,
-                    normal: self.normal_at(x),
-                })
+                self.accepts(x).then(|| Hit::flat(s, self.normal_at(x)))
             })
     }
 }

@@ -10,7 +10,7 @@
 //! The factors of the single refractions telescope into this one ratio, which is why no
 //! BSDF carries them. Power (a photon's flux) never scales.
 
-use super::{facing, Event, HeroTracer, Stats, Tracer};
+use super::{facing, Event, HeroTracer, Normals, Stats, Tracer};
 use crate::color::Rgb;
 use crate::material::Material;
 use glam::DVec3;
@@ -311,7 +311,7 @@ impl<'w> Walker<'w> {
                 .next_event_along(at.origin, at.dir, at.medium, lent.stats, &mut |p| {
                     observer.point(p)
                 });
-        let (prim, position, normal, incoming) = match event {
+        let (prim, position, normals, incoming) = match event {
             Event::Lost => return ControlFlow::Break(End::Lost),
             _ if self.absorbed(chain, event.transmittance(), lent.rng) => {
                 return ControlFlow::Break(End::Absorbed)
@@ -320,9 +320,18 @@ impl<'w> Walker<'w> {
                 prim,
                 position,
                 normal,
+                shading,
                 direction,
                 ..
-            } => (prim, position, normal, direction),
+            } => (
+                prim,
+                position,
+                Normals {
+                    geometric: normal,
+                    shading,
+                },
+                direction,
+            ),
             Event::Escaped {
                 position,
                 direction,
@@ -335,6 +344,7 @@ impl<'w> Walker<'w> {
         };
         observer.point(position);
         let surface = scene.surfaces[prim];
+        let normal = normals.geometric;
         let side = facing(normal, incoming);
         match &scene.materials[surface.material] {
             Material::Emissive { radiance } => ControlFlow::Break(End::Emitter {
@@ -364,7 +374,7 @@ impl<'w> Walker<'w> {
                 ControlFlow::Continue(())
             }
             Material::Mirror { .. } | Material::Dielectric => {
-                let hit = (prim, position, normal, incoming);
+                let hit = (prim, position, normals, incoming);
                 self.bounce(chain, (at, hit), lent.rng, observer)
             }
         }
@@ -384,11 +394,11 @@ impl<'w> Walker<'w> {
     }
 
     /// Reflects or refracts the chain at a specular surface `hit` = (primitive, position,
-    /// geometric normal, arrival direction).
+    /// normals, arrival direction).
     fn bounce(
         &mut self,
         chain: &mut Chain,
-        (at, (prim, position, normal, incoming)): (&mut Cursor, (usize, DVec3, DVec3, DVec3)),
+        (at, (prim, position, normals, incoming)): (&mut Cursor, (usize, DVec3, Normals, DVec3)),
         rng: &mut impl Rng,
         observer: &mut dyn Observer,
     ) -> ControlFlow<End> {
@@ -406,7 +416,7 @@ impl<'w> Walker<'w> {
         };
         let Some(b) = self
             .tracer
-            .specular_bounce(surface, at.medium, position, incoming, normal, u)
+            .specular_bounce(surface, at.medium, position, incoming, normals, u)
         else {
             return ControlFlow::Break(End::Lost);
         };

@@ -30,15 +30,18 @@ use std::ops::ControlFlow;
 /// What a ray meets next.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Event {
-    /// A surface: the primitive, the hit point, the primitive's geometric normal there and
-    /// the ray's direction on arrival.
+    /// A surface: the primitive, the hit point, the primitive's geometric and shading normals
+    /// there and the ray's direction on arrival.
     Surface {
         /// Primitive index.
         prim: usize,
         /// Hit point.
         position: DVec3,
-        /// Geometric normal (see [`crate::shapes::Hit`]).
+        /// Geometric normal (see [`crate::shapes::Hit`]): which side the ray is on.
         normal: DVec3,
+        /// Shading normal, on the geometric normal's side: what a specular surface reflects
+        /// and refracts about.
+        shading: DVec3,
         /// Unit direction of arrival.
         direction: DVec3,
         /// Path length from the origin to the hit (scene units).
@@ -90,6 +93,17 @@ pub struct Bounce {
 }
 
 pub use crate::math::{facing, offset};
+
+/// A surface's two normals at a hit (see [`crate::shapes::Hit`]): the geometric one tells
+/// which side a ray is on, the shading one (same side) is what a specular surface reflects
+/// and refracts about.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Normals {
+    /// Unit geometric normal.
+    pub geometric: DVec3,
+    /// Unit shading normal.
+    pub shading: DVec3,
+}
 
 /// Where rays travel: the scene, how rays travel in it, the sphere holding everything in it,
 /// and the sphere beyond which rays count as escaped.
@@ -345,9 +359,13 @@ impl<'a> Tracer<'a> {
         medium: Option<usize>,
         position: DVec3,
         incoming: DVec3,
-        normal: DVec3,
+        normals: Normals,
         u: f64,
     ) -> Option<Bounce> {
+        let Normals {
+            geometric: normal,
+            shading,
+        } = normals;
         let scene = self.scene;
         let side = facing(normal, incoming);
         let (bsdf, beyond) = match &scene.materials[surface.material] {
@@ -377,7 +395,24 @@ impl<'a> Tracer<'a> {
             }
             Material::Diffuse { .. } | Material::Emissive { .. } => return None,
         };
-        let s = bsdf.sample(-incoming, side, (0.0, 0.0, u))?;
+        // About the shading normal on the arrival side, unless that would send the path to
+        // the wrong side of the geometric surface (a reflection into it, a refraction back out
+        // of it) or the ray arrives from behind the shading normal: then about the geometric
+        // one, so a smooth mesh neither leaks light nor blackens its facets' edges.
+        let shade = if side == normal { shading } else { -shading };
+        let about = |n: DVec3| {
+            let s = bsdf.sample(-incoming, n, (0.0, 0.0, u))?;
+            let lands = s.wi.dot(side);
+            ((s.transmitted && lands < 0.0) || (!s.transmitted && lands > 0.0)).then_some(s)
+        };
+        let s = if shade == side {
+            bsdf.sample(-incoming, side, (0.0, 0.0, u))?
+        } else {
+            match about(shade) {
+                Some(s) => s,
+                None => bsdf.sample(-incoming, side, (0.0, 0.0, u))?,
+            }
+        };
         Some(Bounce {
             origin: offset(position, if s.transmitted { -side } else { side }),
             direction: s.wi,
@@ -423,6 +458,7 @@ impl<'a> Tracer<'a> {
                         prim,
                         position: origin + h.t * dir,
                         normal: h.normal,
+                        shading: h.shading,
                         direction: dir,
                         distance: h.t,
                         optical_depth: depth(h.t),
@@ -512,6 +548,7 @@ impl<'a> Tracer<'a> {
                         prim: c.prim,
                         position: c.position,
                         normal: c.normal,
+                        shading: c.shading,
                         direction: c.direction,
                         distance: prev_s + c.along,
                         optical_depth: prev_depth
@@ -550,6 +587,7 @@ impl<'a> Tracer<'a> {
             Some(Crossing {
                 prim,
                 normal: h.normal,
+                shading: h.shading,
                 position: p.position,
                 direction: p.direction,
                 along: k as f64 * half + h.t,
@@ -577,6 +615,7 @@ impl<'a> Tracer<'a> {
                 Crossing {
                     prim,
                     normal: h.normal,
+                    shading: h.shading,
                     position: p.position,
                     direction: p.direction,
                     along: h.t,
@@ -589,6 +628,7 @@ impl<'a> Tracer<'a> {
 struct Crossing {
     prim: usize,
     normal: DVec3,
+    shading: DVec3,
     position: DVec3,
     direction: DVec3,
     /// Arclength from the step's start.
