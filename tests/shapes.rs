@@ -7,6 +7,8 @@ use grinlight::shapes::Primitive;
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 
+mod common;
+
 fn rv(rng: &mut Pcg64Mcg) -> DVec3 {
     DVec3::new(
         rng.gen_range(-1.0..1.0),
@@ -400,65 +402,6 @@ fn a_mesh_answers_as_its_triangles_do() {
     assert!(hits > 250 && curved_hits > 250, "too few hits to compare");
 }
 
-/// An octahedral sphere of radius 1 (8·4^k triangles) as OBJ text, with its exact sphere
-/// normals as `vn` when `normals`, else with its vertices shared by the triangles that meet
-/// there (so that normals computed from the faces are smooth).
-fn sphere_obj(k: usize, normals: bool) -> String {
-    let mut tris: Vec<[DVec3; 3]> = Vec::new();
-    for &sx in &[-1.0, 1.0] {
-        for &sy in &[-1.0, 1.0] {
-            for &sz in &[-1.0, 1.0] {
-                // Counter-clockwise seen from outside: the outward normal.
-                let (a, b, c) = (DVec3::X * sx, DVec3::Y * sy, DVec3::Z * sz);
-                let flip = (b - a).cross(c - a).dot(a + b + c) < 0.0;
-                tris.push(if flip { [a, c, b] } else { [a, b, c] });
-            }
-        }
-    }
-    for _ in 0..k {
-        tris = tris
-            .iter()
-            .flat_map(|&[a, b, c]| {
-                let (ab, bc, ca) = (
-                    (a + b).normalize(),
-                    (b + c).normalize(),
-                    (c + a).normalize(),
-                );
-                [[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]
-            })
-            .collect();
-    }
-    let mut text = String::new();
-    if normals {
-        for t in &tris {
-            for p in t {
-                text += &format!("v {} {} {}\nvn {} {} {}\n", p.x, p.y, p.z, p.x, p.y, p.z);
-            }
-        }
-        for i in 0..tris.len() {
-            let (a, b, c) = (3 * i + 1, 3 * i + 2, 3 * i + 3);
-            text += &format!("f {a}//{a} {b}//{b} {c}//{c}\n");
-        }
-        return text;
-    }
-    let mut vertices: Vec<DVec3> = Vec::new();
-    let mut faces = String::new();
-    for t in &tris {
-        let ids = t.map(|p| match vertices.iter().position(|&q| q == p) {
-            Some(i) => i + 1,
-            None => {
-                vertices.push(p);
-                vertices.len()
-            }
-        });
-        faces += &format!("f {} {} {}\n", ids[0], ids[1], ids[2]);
-    }
-    for p in &vertices {
-        text += &format!("v {} {} {}\n", p.x, p.y, p.z);
-    }
-    text + &faces
-}
-
 /// A smooth mesh refracts as the surface it approximates: a glass ball (n = 1.5, radius 1)
 /// as the analytic sphere, and as an octahedral sphere of 2 048 triangles given its exact
 /// vertex normals (`vn`), faceted (`smooth = false`) and smooth, and without `vn` but with
@@ -477,8 +420,8 @@ fn a_smooth_mesh_refracts_as_its_surface_does() {
     use grinlight::transport::{Event, Normals, Stats, Tracer};
     let dir = std::env::temp_dir().join(format!("grinlight-smooth-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    std::fs::write(dir.join("ball.obj"), sphere_obj(4, true)).unwrap();
-    std::fs::write(dir.join("shared.obj"), sphere_obj(4, false)).unwrap();
+    std::fs::write(dir.join("ball.obj"), common::sphere_obj(4, true)).unwrap();
+    std::fs::write(dir.join("shared.obj"), common::sphere_obj(4, false)).unwrap();
     let scene_with = |shape: &str| {
         parse_scene(
             &dir.join("s.toml"),

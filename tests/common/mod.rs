@@ -1,3 +1,64 @@
 #![allow(dead_code)]
 
 pub mod bigarc;
+
+use glam::DVec3;
+
+/// An octahedral sphere of radius 1 (8·4^k triangles) as OBJ text, with its exact sphere
+/// normals as `vn` when `normals`, else with its vertices shared by the triangles that meet
+/// there (so that normals computed from the faces are smooth).
+pub fn sphere_obj(k: usize, normals: bool) -> String {
+    let mut tris: Vec<[DVec3; 3]> = Vec::new();
+    for &sx in &[-1.0, 1.0] {
+        for &sy in &[-1.0, 1.0] {
+            for &sz in &[-1.0, 1.0] {
+                // Counter-clockwise seen from outside: the outward normal.
+                let (a, b, c) = (DVec3::X * sx, DVec3::Y * sy, DVec3::Z * sz);
+                let flip = (b - a).cross(c - a).dot(a + b + c) < 0.0;
+                tris.push(if flip { [a, c, b] } else { [a, b, c] });
+            }
+        }
+    }
+    for _ in 0..k {
+        tris = tris
+            .iter()
+            .flat_map(|&[a, b, c]| {
+                let (ab, bc, ca) = (
+                    (a + b).normalize(),
+                    (b + c).normalize(),
+                    (c + a).normalize(),
+                );
+                [[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]
+            })
+            .collect();
+    }
+    let mut text = String::new();
+    if normals {
+        for t in &tris {
+            for p in t {
+                text += &format!("v {} {} {}\nvn {} {} {}\n", p.x, p.y, p.z, p.x, p.y, p.z);
+            }
+        }
+        for i in 0..tris.len() {
+            let (a, b, c) = (3 * i + 1, 3 * i + 2, 3 * i + 3);
+            text += &format!("f {a}//{a} {b}//{b} {c}//{c}\n");
+        }
+        return text;
+    }
+    let mut vertices: Vec<DVec3> = Vec::new();
+    let mut faces = String::new();
+    for t in &tris {
+        let ids = t.map(|p| match vertices.iter().position(|&q| q == p) {
+            Some(i) => i + 1,
+            None => {
+                vertices.push(p);
+                vertices.len()
+            }
+        });
+        faces += &format!("f {} {} {}\n", ids[0], ids[1], ids[2]);
+    }
+    for p in &vertices {
+        text += &format!("v {} {} {}\n", p.x, p.y, p.z);
+    }
+    text + &faces
+}
