@@ -537,3 +537,35 @@ fn cubic_grid_is_c1_and_converges_at_third_order() {
     }
     assert!(ray_errors[0][3] < 1e-7, "{:e}", ray_errors[0][3]);
 }
+
+/// Grids of air's state become indices by the Gladstone–Dale relation n − 1 = K ρ (K = 2.2644e-4
+/// m³/kg) and, for temperature, the ideal gas ρ = p M/(R T): at 0 °C and 101 325 Pa air's
+/// n − 1 is 2.9262e-4 (the constant's definition: to 1e-4 of n − 1, the rounding of K), at
+/// 50 °C it is 273.15/323.15 of that, a density of 1.29228 kg/m³ gives the same as 0 °C, and
+/// at 2 atm n − 1 doubles. A hot cell has the lower index (a mirage's cause).
+#[test]
+fn grids_of_temperature_and_density_are_air_indices() {
+    use grinlight::scene::load::parse_scene;
+    let n_of = |extra: &str, value: f64| {
+        let text = format!(
+            "ambient = \"g\"\n[[medium]]\nname = \"g\"\nprofile = \"grid\"\n\
+             bounds = [[0,0,0],[1,1,1]]\ndims = [2,2,2]\nvalues = [{v},{v},{v},{v},{v},{v},{v},{v}]\n{extra}",
+            v = value
+        );
+        let (scene, settings) = parse_scene(std::path::Path::new("air.toml"), text).unwrap();
+        grinlight::transport::Tracer::new(&scene, &settings.trace)
+            .index(Some(0), DVec3::splat(0.5))
+            .unwrap()
+    };
+    let stp = 2.9262e-4;
+    let cold = n_of("quantity = \"temperature\"\n", 273.15) - 1.0;
+    let hot = n_of("quantity = \"temperature\"\n", 323.15) - 1.0;
+    let dense = n_of("quantity = \"density\"\n", 1.29228) - 1.0;
+    let high = n_of("quantity = \"temperature\"\npressure = 202650\n", 273.15) - 1.0;
+    println!("n − 1: 0 °C {cold:.6e}, 50 °C {hot:.6e}, ρ_STP {dense:.6e}, 2 atm {high:.6e}");
+    assert!((cold / stp - 1.0).abs() < 1e-4, "{cold}");
+    assert!((hot / (stp * 273.15 / 323.15) - 1.0).abs() < 1e-4, "{hot}");
+    assert!((dense / cold - 1.0).abs() < 1e-4, "{dense}");
+    assert!((high / (2.0 * cold) - 1.0).abs() < 1e-12, "{high}");
+    assert!(n_of("", 1.3) == 1.3, "values are indices by default");
+}

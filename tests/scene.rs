@@ -89,6 +89,12 @@ const BAD: &[(&str, usize, usize, &str)] = &[
     ("[[medium]]\nname = \"g\"\nprofile = \"grid\"\nbounds = [[0,0,0],[1,1,1]]\ndims = [2,2,2]\nfile = \"no_such_grid.txt\"\n", 6, 1, "cannot read"),
     // An interpolation that does not exist.
     ("[[medium]]\nname = \"g\"\nprofile = \"grid\"\nbounds = [[0,0,0],[1,1,1]]\ndims = [2,2,2]\nvalues = [1,1,1,1,1,1,1,1]\ninterpolation = \"quintic\"\n", 7, 1, "expected linear or cubic"),
+    // Grid quantities: a temperature ≤ 0, a negative density, an unknown quantity, a pressure
+    // ≤ 0.
+    ("[[medium]]\nname = \"g\"\nprofile = \"grid\"\nbounds = [[0,0,0],[1,1,1]]\ndims = [2,2,2]\nvalues = [300,300,300,300,300,300,300,0]\nquantity = \"temperature\"\n", 6, 1, "value #7: 0 is not a temperature"),
+    ("[[medium]]\nname = \"g\"\nprofile = \"grid\"\nbounds = [[0,0,0],[1,1,1]]\ndims = [2,2,2]\nvalues = [1,1,1,-1,1,1,1,1]\nquantity = \"density\"\n", 6, 1, "value #3: -1 is not a density"),
+    ("[[medium]]\nname = \"g\"\nprofile = \"grid\"\nbounds = [[0,0,0],[1,1,1]]\ndims = [2,2,2]\nvalues = [1,1,1,1,1,1,1,1]\nquantity = \"pressure\"\n", 7, 1, "expected index, density or temperature"),
+    ("[[medium]]\nname = \"g\"\nprofile = \"grid\"\nbounds = [[0,0,0],[1,1,1]]\ndims = [2,2,2]\nvalues = [300,300,300,300,300,300,300,300]\nquantity = \"temperature\"\npressure = 0\n", 8, 1, "key `pressure`: must be > 0"),
     // Not TOML at all.
     ("[[medium]\nname = 1\n", 1, 9, "invalid table header"),
     // Unknown top-level table.

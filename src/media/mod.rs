@@ -5,6 +5,7 @@
 //! stepper needs both at the same point.
 
 mod absorbing;
+mod air;
 mod grid;
 mod planar;
 mod radial;
@@ -12,6 +13,7 @@ mod spherical;
 mod table;
 
 pub use absorbing::Absorbing;
+pub use air::{GridQuantity, GAS_CONSTANT, GLADSTONE_DALE_AIR, MOLAR_MASS_AIR, STANDARD_PRESSURE};
 pub use grid::{GridError, GridMedium, Interpolation};
 pub use planar::{ExponentialMedium, HeightTable, LinearMedium, UniformMedium};
 pub use radial::{Axis, ParabolicFiber, RadialTable, SechFiber};

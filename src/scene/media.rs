@@ -6,8 +6,8 @@ use super::table::TableReader;
 use crate::error::Result;
 use crate::media::{
     Absorbing, Axis, BlackHole, ExactBlackHole, ExponentialMedium, FishEye, GridError, GridMedium,
-    HeightTable, Interpolation, LinearMedium, Luneburg, Medium, ParabolicFiber, RadialTable,
-    SechFiber, UniformMedium,
+    GridQuantity, HeightTable, Interpolation, LinearMedium, Luneburg, Medium, ParabolicFiber,
+    RadialTable, SechFiber, UniformMedium, GLADSTONE_DALE_AIR, STANDARD_PRESSURE,
 };
 use crate::spectrum::{Dispersion, LAMBDA_D};
 use glam::DVec3;
@@ -232,6 +232,16 @@ fn read_grid(t: &mut TableReader) -> Result<GridMedium> {
         }
         _ => return Err(t.error("values", "give exactly one of `values` and `file`")),
     };
+    let quantity = read_grid_quantity(t)?;
+    let values = values
+        .into_iter()
+        .enumerate()
+        .map(|(i, v)| {
+            quantity
+                .index(v)
+                .map_err(|e| t.error(key, format!("value #{i}: {e}")))
+        })
+        .collect::<Result<Vec<f64>>>()?;
     let interpolation = match t
         .string_opt("interpolation")?
         .as_deref()
@@ -253,6 +263,29 @@ fn read_grid(t: &mut TableReader) -> Result<GridMedium> {
             _ => key,
         };
         t.error(key, e)
+    })
+}
+
+/// A grid's `quantity`: `index` (the default), `density` (kg/m³, with `gladstone_dale` in
+/// m³/kg, air's by default) or `temperature` (K, air at `pressure` Pa, 101 325 by default).
+fn read_grid_quantity(t: &mut TableReader) -> Result<GridQuantity> {
+    let quantity = t.string_opt("quantity")?;
+    let gladstone_dale = |t: &mut TableReader| t.positive_or("gladstone_dale", GLADSTONE_DALE_AIR);
+    Ok(match quantity.as_deref().unwrap_or("index") {
+        "index" => GridQuantity::Index,
+        "density" => GridQuantity::Density {
+            gladstone_dale: gladstone_dale(t)?,
+        },
+        "temperature" => GridQuantity::Temperature {
+            pressure: t.positive_or("pressure", STANDARD_PRESSURE)?,
+            gladstone_dale: gladstone_dale(t)?,
+        },
+        other => {
+            return Err(t.error(
+                "quantity",
+                format!("unknown quantity '{other}' (expected index, density or temperature)"),
+            ))
+        }
     })
 }
 

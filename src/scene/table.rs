@@ -117,6 +117,13 @@ impl<'a> TableReader<'a> {
         Ok(x)
     }
 
+    /// An optional number > 0.
+    pub fn positive_or(&mut self, key: &str, default: f64) -> Result<f64> {
+        let x = self.f64_or(key, default)?;
+        self.check(key, x > 0.0, format!("must be > 0, got {x}"))?;
+        Ok(x)
+    }
+
     /// Fails at `key` with `message` unless `ok`.
     pub fn check(&self, key: &str, ok: bool, message: impl std::fmt::Display) -> Result<()> {
         if ok {
