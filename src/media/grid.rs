@@ -14,7 +14,8 @@ pub struct GridMedium {
     max: DVec3,
     dims: [usize; 3],
     values: Vec<f64>,
-    min_cell: f64,
+    /// Node spacing along each axis.
+    cell: DVec3,
     interpolation: Interpolation,
 }
 
@@ -124,7 +125,7 @@ impl GridMedium {
             max,
             dims,
             values,
-            min_cell: cell.min_element(),
+            cell,
             interpolation,
         })
     }
@@ -274,9 +275,16 @@ impl Medium for GridMedium {
         // A cubic interpolant may overshoot between nodes; n stays the data's sign.
         (n > 0.0).then_some(IndexSample { n, grad })
     }
-    /// One cell: features of the data are a cell wide (and the trilinear gradient jumps at
-    /// cell faces).
-    fn step_hint(&self, _p: DVec3, _dir: DVec3) -> f64 {
-        self.min_cell
+    /// The length along `dir` that crosses one cell along some axis: features of the data
+    /// are a cell wide (and the trilinear gradient jumps at cell faces), so a layered grid's
+    /// thin cells bound a step across the layers, not along them. Beyond the box along an
+    /// axis n is constant along it: that axis bounds a step only by the way back in plus one
+    /// cell, and not at all while `p` moves away.
+    fn step_hint(&self, p: DVec3, dir: DVec3) -> f64 {
+        let outside = (self.min - p).max(p - self.max).max(DVec3::ZERO);
+        let away = (p.cmplt(self.min) & dir.cmplt(DVec3::ZERO))
+            | (p.cmpgt(self.max) & dir.cmpgt(DVec3::ZERO));
+        let reach = (outside + self.cell) / dir.abs();
+        DVec3::select(away, DVec3::INFINITY, reach).min_element()
     }
 }

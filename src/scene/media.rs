@@ -292,7 +292,9 @@ fn read_grid_quantity(t: &mut TableReader) -> Result<GridQuantity> {
 fn read_grid_file(t: &TableReader, path: &std::path::Path) -> Result<Vec<f64>> {
     let text = std::fs::read_to_string(path)
         .map_err(|e| t.error("file", format!("cannot read {}: {e}", path.display())))?;
-    text.split_whitespace()
+    // `#` starts a comment that runs to the end of its line.
+    text.lines()
+        .flat_map(|line| line.split('#').next().unwrap_or("").split_whitespace())
         .enumerate()
         .map(|(i, w)| {
             w.parse::<f64>().map_err(|_| {
