@@ -14,9 +14,8 @@ fn main() -> std::io::Result<()> {
     let (nx, ny, nz) = (11usize, 33usize, 31usize);
     let (x0, x1, y1, z0, z1) = (-4.0f64, 4.0f64, 0.4f64, -40.0f64, 0.0f64);
     let (air, road, height) = (300.0f64, 345.0f64, 0.04f64);
-    let mut out = std::io::BufWriter::new(std::fs::File::create(
-        "scenes/heat_haze_temperature.txt",
-    )?);
+    let mut out =
+        std::io::BufWriter::new(std::fs::File::create("scenes/heat_haze_temperature.txt")?);
     writeln!(
         out,
         "# Air temperature (K) for scenes/heat_haze.toml, written by examples/heat_haze_field.rs"
@@ -30,9 +29,7 @@ fn main() -> std::io::Result<()> {
                     let x = x0 + (x1 - x0) * i as f64 / (nx - 1) as f64;
                     // Plumes: a product of slow waves, wider higher up.
                     let w = 1.0 + 4.0 * y;
-                    let plume = 0.25
-                        * (1.3 * x / w + 0.7).sin()
-                        * (0.45 * z / w + 0.4 * x).sin();
+                    let plume = 0.25 * (1.3 * x / w + 0.7).sin() * (0.45 * z / w + 0.4 * x).sin();
                     let t = air + (road - air) * (-y / height).exp() * (1.0 + plume);
                     format!("{t:.3}")
                 })

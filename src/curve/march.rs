@@ -116,6 +116,22 @@ pub struct MarchOutcome {
     pub reason: Termination,
 }
 
+impl MarchOutcome {
+    /// Nothing travelled yet: at `start`, no steps, ending `LengthReached` unless told.
+    fn at(start: RayState) -> Self {
+        MarchOutcome {
+            state: start,
+            arclength: 0.0,
+            optical_path: 0.0,
+            optical_depth: 0.0,
+            steps: 0,
+            attempts: 0,
+            min_step: f64::INFINITY,
+            reason: Termination::LengthReached,
+        }
+    }
+}
+
 /// Marches a ray from `start` with `stepper` under `control` until one of `limits` ends it.
 /// `observe` sees every accepted step (first the start, as a step of length 0) with the
 /// arclength at its end; returning `ControlFlow::Break` ends the march with
@@ -133,16 +149,7 @@ where
     M: Medium + ?Sized,
     O: FnMut(f64, &Step) -> ControlFlow<()>,
 {
-    let mut out = MarchOutcome {
-        state: start,
-        arclength: 0.0,
-        optical_path: 0.0,
-        optical_depth: 0.0,
-        steps: 0,
-        attempts: 0,
-        min_step: f64::INFINITY,
-        reason: Termination::LengthReached,
-    };
+    let mut out = MarchOutcome::at(start);
     let at_start = Step {
         state: start,
         length: 0.0,
@@ -438,16 +445,7 @@ where
     S: Stepper,
     M: Medium + ?Sized,
 {
-    let mut out = MarchOutcome {
-        state: start,
-        arclength: 0.0,
-        optical_path: 0.0,
-        optical_depth: 0.0,
-        steps: 0,
-        attempts: 0,
-        min_step: f64::INFINITY,
-        reason: Termination::LengthReached,
-    };
+    let mut out = MarchOutcome::at(start);
     let Some(&last) = lengths.last() else {
         return out;
     };
