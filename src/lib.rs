@@ -46,4 +46,5 @@ pub mod scene;
 pub mod settings;
 pub mod shapes;
 pub mod spectrum;
+pub mod texture;
 pub mod transport;

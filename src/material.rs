@@ -1,15 +1,19 @@
 //! Surface materials and the Fresnel equations at a dielectric interface.
 
 use crate::color::Rgb;
+use crate::texture::Texture;
 use glam::DVec3;
+use std::sync::Arc;
 
 /// How a surface scatters light.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Material {
     /// Lambertian, BRDF = albedo/π, two-sided.
     Diffuse {
-        /// Reflectance per channel in [0, 1].
+        /// Reflectance per channel in [0, 1] (times the texture's, if any).
         albedo: Rgb,
+        /// An image texture over the surface's (u, v), multiplying `albedo`.
+        texture: Option<Arc<Texture>>,
     },
     /// A perfect mirror.
     Mirror {

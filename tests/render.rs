@@ -247,3 +247,59 @@ fn a_tessellated_luneburg_lens_renders_as_the_analytic_one() {
     assert!((same_seed - 1.0).abs() < 0.005, "{same_seed}");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// Image textures: an 8 × 8 sRGB PNG whose quadrants are red, green / blue, 50 % grey (top row
+/// first) on a quad that fills a 64 × 64 view, u along its first edge and v along its second
+/// (bottom to top). The albedo layer at the quadrants' centres (u, v = ¼ or ¾) must be their
+/// linear values (sRGB 128 → 0.2158) to 1e-6: there the bilinear lookup and a pixel's jitter
+/// see one colour. Also a 2 × 1 texture's lookup against its definition, wrapped and between
+/// texel centres (1e-12).
+#[test]
+fn textures_put_their_texels_where_the_surface_coordinates_say() {
+    use grinlight::texture::{srgb_decode, Texture};
+    let grey = srgb_decode(128.0 / 255.0) as f64;
+    assert!((grey - 0.2158).abs() < 1e-4, "{grey}");
+    let t = Texture::from_texels(2, 1, vec![[0.0, 0.0, 0.0], [1.0, 1.0, 1.0]]);
+    for (u, want) in [
+        (0.25, 0.0),
+        (0.75, 1.0),
+        (0.5, 0.5),
+        (1.25, 0.0),
+        (-0.25, 1.0),
+        (0.0, 0.5),
+    ] {
+        let got = t.at(glam::DVec2::new(u, 0.5)).0.x;
+        assert!((got - want).abs() < 1e-12, "u {u}: {got} vs {want}");
+    }
+    let dir = std::env::temp_dir().join(format!("grinlight-tex-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let texels: [[u8; 3]; 4] = [[255, 0, 0], [0, 255, 0], [0, 0, 255], [128, 128, 128]];
+    let img = image::RgbImage::from_fn(8, 8, |x, y| {
+        image::Rgb(texels[(y / 4 * 2 + x / 4) as usize])
+    });
+    img.save(dir.join("t.png")).unwrap();
+    let text = "[[material]]\nname = \"t\"\ntype = \"diffuse\"\ntexture = \"t.png\"\n\
+                [[shape]]\ntype = \"quad\"\nvertices = [[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]]\nmaterial = \"t\"\n\
+                [[light]]\ntype = \"environment\"\nsky = \"checker\"\n\
+                [camera]\nposition = [0, 0, 2]\nlook_at = [0, 0, 0]\nfov_y_deg = 53.13010235415598\nwidth = 64\nheight = 64\n\
+                [render]\nspp = 4\nphotons = 1000\ncaustic_photons = 0\ngather = 0\n";
+    let scene = parse_scene(&dir.join("s.toml"), text.to_string()).unwrap();
+    let albedo = render(&scene, 0).layer("albedo").unwrap();
+    let linear = |c: [u8; 3]| c.map(|v| srgb_decode(v as f32 / 255.0));
+    // Quadrant (i, j) from the top-left is centred at u = (i + ½)/2, v = 1 − (j + ½)/2: pixel
+    // (64 u, 64 (1 − v)) from the top-left.
+    for (k, &texel) in texels.iter().enumerate() {
+        let (i, j) = (k % 2, k / 2);
+        let (x, y) = (16 + 32 * i, 16 + 32 * j);
+        let got = albedo[y * 64 + x];
+        let want = linear(texel);
+        println!("texel ({i}, {j}): albedo {got:?}, texel {want:?}");
+        for c in 0..3 {
+            assert!(
+                (got[c] - want[c]).abs() < 1e-6,
+                "texel ({i}, {j}): {got:?} vs {want:?}"
+            );
+        }
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}

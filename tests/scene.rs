@@ -89,6 +89,8 @@ const BAD: &[(&str, usize, usize, &str)] = &[
     ("[[medium]]\nname = \"g\"\nprofile = \"grid\"\nbounds = [[0,0,0],[1,1,1]]\ndims = [2,2,2]\nfile = \"no_such_grid.txt\"\n", 6, 1, "cannot read"),
     // An interpolation that does not exist.
     ("[[medium]]\nname = \"g\"\nprofile = \"grid\"\nbounds = [[0,0,0],[1,1,1]]\ndims = [2,2,2]\nvalues = [1,1,1,1,1,1,1,1]\ninterpolation = \"quintic\"\n", 7, 1, "expected linear or cubic"),
+    // A texture that is not there.
+    ("[[material]]\nname = \"m\"\ntype = \"diffuse\"\ntexture = \"no_such_texture.png\"\n", 4, 1, "key `texture`: cannot read"),
     // Grid quantities: a temperature ≤ 0, a negative density, an unknown quantity, a pressure
     // ≤ 0.
     ("[[medium]]\nname = \"g\"\nprofile = \"grid\"\nbounds = [[0,0,0],[1,1,1]]\ndims = [2,2,2]\nvalues = [300,300,300,300,300,300,300,0]\nquantity = \"temperature\"\n", 6, 1, "value #7: 0 is not a temperature"),

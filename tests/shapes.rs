@@ -356,7 +356,7 @@ fn a_mesh_answers_as_its_triangles_do() {
         .map(|t| Primitive::triangle(f64_of(t[0]), f64_of(t[1]), f64_of(t[2])))
         .collect();
     assert_eq!(vertices.len(), 1026, "an octahedral sphere's vertex count");
-    let mesh = TriangleMesh::new(vertices.clone(), triangles, None).unwrap();
+    let mesh = TriangleMesh::new(vertices.clone(), triangles, None, None).unwrap();
     let one = Accel::new(vec![Primitive::Mesh(std::sync::Arc::new(mesh))]);
     let many = Accel::new(loose);
     let mut rng = Pcg64Mcg::seed_from_u64(11);

@@ -12,6 +12,8 @@ pub struct ObjTriangles {
     pub triangles: Vec<[u32; 3]>,
     /// The file's vertex normals (`vn`), one per position, when every face gives them.
     pub normals: Option<Vec<[f32; 3]>>,
+    /// The file's texture coordinates (`vt`), one per position, when every face gives them.
+    pub texcoords: Option<Vec<[f32; 2]>>,
 }
 
 /// The triangles of an OBJ file (zero-area ones included: whether a triangle has an area
@@ -36,6 +38,7 @@ pub fn load_triangles(path: &Path) -> Result<ObjTriangles, String> {
         positions: Vec::new(),
         triangles: Vec::new(),
         normals: Some(Vec::new()),
+        texcoords: Some(Vec::new()),
     };
     for model in models {
         let mesh = model.mesh;
@@ -50,7 +53,16 @@ pub fn load_triangles(path: &Path) -> Result<ObjTriangles, String> {
             .ok_or_else(|| at("more than 2³² vertices".into()))?;
         out.positions
             .extend(mesh.positions.chunks_exact(3).map(|p| [p[0], p[1], p[2]]));
-        // tobj's single index gives each position its normal when the faces name them.
+        // tobj's single index gives each position its normal and (u, v) when the faces name
+        // them.
+        out.texcoords = out
+            .texcoords
+            .take()
+            .filter(|_| 3 * mesh.texcoords.len() == 2 * mesh.positions.len())
+            .map(|mut t| {
+                t.extend(mesh.texcoords.chunks_exact(2).map(|v| [v[0], v[1]]));
+                t
+            });
         out.normals = out
             .normals
             .take()

@@ -14,7 +14,9 @@ use crate::settings::{OutputSettings, PhotonSettings, Settings, TraceSettings};
 use crate::shapes::{Primitive, TriangleMesh};
 use crate::spectrum::emission::Shape;
 use crate::spectrum::{Dispersion, Spectrum, LAMBDA_MAX, LAMBDA_MIN};
+use crate::texture::Texture;
 use glam::{DMat3, DVec3};
+use std::sync::Arc;
 
 /// What fills a dielectric: a named medium or a uniform index.
 #[derive(Clone, Debug)]
@@ -197,12 +199,19 @@ fn unit_color(t: &mut TableReader, key: &str, default: Option<Rgb>) -> Result<Rg
 pub fn read_material(t: &mut TableReader) -> Result<(Material, Option<Interior>)> {
     let kind = t.string("type")?;
     Ok(match kind.as_str() {
-        "diffuse" => (
-            Material::Diffuse {
-                albedo: unit_color(t, "albedo", None)?,
-            },
-            None,
-        ),
+        "diffuse" => {
+            // An image over the surface's (u, v), multiplied by `albedo` (then 1 by default).
+            let texture = match t.has("texture") {
+                true => {
+                    let path = t.input_file("texture")?;
+                    let texture = Texture::load(&path).map_err(|e| t.error("texture", e))?;
+                    Some(Arc::new(texture))
+                }
+                false => None,
+            };
+            let albedo = unit_color(t, "albedo", texture.as_ref().map(|_| Rgb::ONE))?;
+            (Material::Diffuse { albedo, texture }, None)
+        }
         "mirror" => (
             Material::Mirror {
                 reflectance: unit_color(t, "reflectance", Some(Rgb::ONE))?,
@@ -432,7 +441,8 @@ fn read_mesh(t: &mut TableReader) -> Result<Vec<Primitive>> {
         }
         (true, None) => Some(vertex_normals(&vertices, &triangles)),
     };
-    let mesh = TriangleMesh::new(vertices, triangles, normals).map_err(|e| t.error("file", e))?;
+    let mesh = TriangleMesh::new(vertices, triangles, normals, obj.texcoords)
+        .map_err(|e| t.error("file", e))?;
     Ok(vec![Primitive::Mesh(std::sync::Arc::new(mesh))])
 }
 

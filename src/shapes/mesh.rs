@@ -5,7 +5,7 @@
 
 use super::primitive::{padded_box, Hit, Primitive};
 use crate::curve::{ArcHull, Path};
-use glam::{DVec3, Vec3A};
+use glam::{DVec2, DVec3, Vec3A};
 use obvhs::aabb::Aabb;
 use obvhs::bvh2::builder::build_bvh2;
 use obvhs::bvh2::Bvh2;
@@ -19,6 +19,8 @@ pub struct TriangleMesh {
     triangles: Vec<[u32; 3]>,
     /// Unit vertex normals, one per vertex, or none (a faceted mesh).
     normals: Option<Vec<[f32; 3]>>,
+    /// Texture coordinates (u, v), one pair per vertex, or none.
+    texcoords: Option<Vec<[f32; 2]>>,
     bvh: Bvh2,
     /// f64 bounds of all vertices.
     bounds: (DVec3, DVec3),
@@ -35,14 +37,25 @@ impl Boundable for TriangleBox {
 
 impl TriangleMesh {
     /// The mesh of `triangles` (indices into `vertices`), smooth when `normals` gives each
-    /// vertex a normal, or why not: at least one triangle, every index a vertex, every vertex
-    /// finite, one finite non-zero normal per vertex. Zero-area triangles are kept out of the
-    /// BVH's answers by the triangle test itself.
+    /// vertex a normal, textured by `texcoords` when it gives each a (u, v), or why not: at
+    /// least one triangle, every index a vertex, every vertex finite, one finite non-zero
+    /// normal and one finite (u, v) per vertex. Zero-area triangles are kept out of the BVH's
+    /// answers by the triangle test itself.
     pub fn new(
         vertices: Vec<[f32; 3]>,
         triangles: Vec<[u32; 3]>,
         normals: Option<Vec<[f32; 3]>>,
+        texcoords: Option<Vec<[f32; 2]>>,
     ) -> Result<Self, String> {
+        if let Some(t) = &texcoords {
+            if t.len() != vertices.len() || t.iter().flatten().any(|c| !c.is_finite()) {
+                return Err(format!(
+                    "{} texture coordinates for {} vertices, or one not finite",
+                    t.len(),
+                    vertices.len()
+                ));
+            }
+        }
         if let Some(n) = &normals {
             if n.len() != vertices.len() {
                 return Err(format!(
@@ -107,6 +120,7 @@ impl TriangleMesh {
             vertices,
             triangles,
             normals,
+            texcoords,
             bvh,
             bounds,
         })
@@ -132,6 +146,7 @@ impl TriangleMesh {
         use std::mem::size_of_val;
         size_of_val(self.vertices.as_slice())
             + self.normals.as_deref().map_or(0, size_of_val)
+            + self.texcoords.as_deref().map_or(0, size_of_val)
             + size_of_val(self.triangles.as_slice())
             + size_of_val(self.bvh.nodes.as_slice())
             + size_of_val(self.bvh.primitive_indices.as_slice())
@@ -153,13 +168,12 @@ impl TriangleMesh {
         Primitive::triangle(a, b, c)
     }
 
-    /// `hit` on triangle `i` at `point`, with the vertex normals interpolated there (by
-    /// barycentric weights) as its shading normal, turned to the geometric normal's side; a
-    /// faceted mesh's hits keep their geometric normal.
+    /// `hit` on triangle `i` at `point`, completed there by barycentric weights: its (u, v)
+    /// (the texture coordinates interpolated, or the weights of the second and third corners
+    /// without them) and, on a smooth mesh, its shading normal (the vertex normals
+    /// interpolated, turned to the geometric normal's side; a faceted mesh's hits keep their
+    /// geometric normal).
     fn shaded(&self, i: usize, point: DVec3, hit: Hit) -> Hit {
-        let Some(normals) = &self.normals else {
-            return hit;
-        };
         let [a, b, c] = self.corners(i);
         let (e1, e2, r) = (b - a, c - a, point - a);
         let (d00, d01, d11) = (e1.dot(e1), e1.dot(e2), e2.dot(e2));
@@ -167,19 +181,26 @@ impl TriangleMesh {
         let det = d00 * d11 - d01 * d01;
         let v = ((d11 * d20 - d01 * d21) / det).clamp(0.0, 1.0);
         let w = ((d00 * d21 - d01 * d20) / det).clamp(0.0, 1.0 - v);
-        let n = |k: usize| DVec3::from(normals[self.triangles[i][k] as usize].map(f64::from));
-        let shading = ((1.0 - v - w) * n(0) + v * n(1) + w * n(2)).normalize_or_zero();
-        if shading == DVec3::ZERO {
-            return hit;
-        }
-        Hit {
-            shading: if shading.dot(hit.normal) < 0.0 {
-                -shading
-            } else {
-                shading
-            },
-            ..hit
-        }
+        let (corner, weight) = (self.triangles[i], [1.0 - v - w, v, w]);
+        let uv = match &self.texcoords {
+            Some(t) => (0..3)
+                .map(|k| weight[k] * DVec2::from(t[corner[k] as usize].map(f64::from)))
+                .sum(),
+            None => DVec2::new(v, w),
+        };
+        let shading = match &self.normals {
+            Some(n) => (0..3)
+                .map(|k| weight[k] * DVec3::from(n[corner[k] as usize].map(f64::from)))
+                .sum::<DVec3>()
+                .normalize_or_zero(),
+            None => DVec3::ZERO,
+        };
+        let shading = match shading {
+            DVec3::ZERO => hit.normal,
+            s if s.dot(hit.normal) < 0.0 => -s,
+            s => s,
+        };
+        Hit { shading, uv, ..hit }
     }
 
     /// Nearest hit of the straight ray o + t d (d unit) with t ∈ (t_min, t_max).
@@ -340,6 +361,7 @@ impl PartialEq for TriangleMesh {
         self.vertices == other.vertices
             && self.triangles == other.triangles
             && self.normals == other.normals
+            && self.texcoords == other.texcoords
     }
 }
 

@@ -3,7 +3,7 @@
 
 use super::mesh::TriangleMesh;
 use crate::curve::{ArcHull, Path};
-use glam::{DVec3, Vec3A};
+use glam::{DVec2, DVec3, Vec3A};
 use obvhs::aabb::Aabb;
 use std::sync::Arc;
 
@@ -18,15 +18,18 @@ pub struct Hit {
     /// Unit shading normal, on the same side as `normal`: a smooth mesh's interpolated
     /// vertex normal, else `normal` itself.
     pub shading: DVec3,
+    /// Surface coordinates (u, v) of the hit, for textures (see [`Primitive::uv_at`]).
+    pub uv: DVec2,
 }
 
 impl Hit {
-    /// A hit whose shading normal is its geometric one.
+    /// A hit whose shading normal is its geometric one; its (u, v) still to be set.
     pub fn flat(t: f64, normal: DVec3) -> Self {
         Self {
             t,
             normal,
             shading: normal,
+            uv: DVec2::ZERO,
         }
     }
 }
@@ -160,11 +163,57 @@ impl Primitive {
         }
     }
 
+    /// Surface coordinates of a point `x` on the primitive: a sphere's and a tube's
+    /// longitude (u, around the axis, 0 to 1) and latitude or height (v, 0 at the bottom, 1 at
+    /// the top); a quad's (u, v) along its two edges from its first corner; a triangle's
+    /// weights of its second and third corners; a disk's position across its square, 0 to 1
+    /// (a mesh's come from its hits: the file's `vt` or the weights of the corners).
+    pub fn uv_at(&self, x: DVec3) -> DVec2 {
+        let around = |p: DVec3, axis: DVec3| {
+            let (e1, e2) = axis.any_orthonormal_pair();
+            0.5 + p.dot(e2).atan2(p.dot(e1)) / std::f64::consts::TAU
+        };
+        match *self {
+            Primitive::Sphere { center, radius } => {
+                let d = ((x - center) / radius).clamp(DVec3::NEG_ONE, DVec3::ONE);
+                DVec2::new(around(d, DVec3::Y), 1.0 - d.y.acos() / std::f64::consts::PI)
+            }
+            Primitive::Tube {
+                base, axis, height, ..
+            } => DVec2::new(around(x - base, axis), (x - base).dot(axis) / height),
+            Primitive::Quad { origin, e1, e2 } => plane_coordinates(x - origin, e1, e2).into(),
+            Primitive::Triangle { v0, e1, e2 } => plane_coordinates(x - v0, e1, e2).into(),
+            Primitive::Disk {
+                center,
+                normal,
+                radius,
+                ..
+            } => {
+                let (e1, e2) = normal.any_orthonormal_pair();
+                let p = (x - center) / (2.0 * radius);
+                DVec2::new(0.5 + p.dot(e1), 0.5 + p.dot(e2))
+            }
+            Primitive::Mesh(_) => DVec2::ZERO,
+        }
+    }
+
     /// Nearest hit of the straight ray o + t d (d unit) with t ∈ (t_min, t_max).
     pub fn intersect_ray(&self, o: DVec3, d: DVec3, t_min: f64, t_max: f64) -> Option<Hit> {
+        if let Primitive::Mesh(mesh) = self {
+            return mesh.intersect_ray(o, d, t_min, t_max);
+        }
+        let hit = self.flat_ray_hit(o, d, t_min, t_max)?;
+        Some(Hit {
+            uv: self.uv_at(o + hit.t * d),
+            ..hit
+        })
+    }
+
+    /// [`Self::intersect_ray`] for the analytic primitives, (u, v) not yet set.
+    fn flat_ray_hit(&self, o: DVec3, d: DVec3, t_min: f64, t_max: f64) -> Option<Hit> {
         let valid = |t: f64| t > t_min && t < t_max;
         match *self {
-            Primitive::Mesh(ref mesh) => mesh.intersect_ray(o, d, t_min, t_max),
+            Primitive::Mesh(_) => None,
             Primitive::Sphere { center, radius } => {
                 // Hearn & Baker: discriminant from the perpendicular offset (no cancellation).
                 let oc = o - center;
@@ -314,7 +363,10 @@ impl Primitive {
             .filter(|&s| s > s_min)
             .find_map(|s| {
                 let x = seg.at(s).position;
-                self.accepts(x).then(|| Hit::flat(s, self.normal_at(x)))
+                self.accepts(x).then(|| Hit {
+                    uv: self.uv_at(x),
+                    ..Hit::flat(s, self.normal_at(x))
+                })
             })
     }
 }

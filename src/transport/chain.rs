@@ -311,7 +311,7 @@ impl<'w> Walker<'w> {
                 .next_event_along(at.origin, at.dir, at.medium, lent.stats, &mut |p| {
                     observer.point(p)
                 });
-        let (prim, position, normals, incoming) = match event {
+        let (prim, position, normals, uv, incoming) = match event {
             Event::Lost => return ControlFlow::Break(End::Lost),
             _ if self.absorbed(chain, event.transmittance(), lent.rng) => {
                 return ControlFlow::Break(End::Absorbed)
@@ -321,6 +321,7 @@ impl<'w> Walker<'w> {
                 position,
                 normal,
                 shading,
+                uv,
                 direction,
                 ..
             } => (
@@ -330,6 +331,7 @@ impl<'w> Walker<'w> {
                     geometric: normal,
                     shading,
                 },
+                uv,
                 direction,
             ),
             Event::Escaped {
@@ -356,12 +358,14 @@ impl<'w> Walker<'w> {
                 position,
                 direction: incoming,
             }),
-            Material::Diffuse { albedo } => ControlFlow::Break(End::Diffuse {
+            Material::Diffuse { albedo, texture } => ControlFlow::Break(End::Diffuse {
                 prim,
                 position,
                 normal: side,
                 direction: incoming,
-                albedo: self.tracer.reflectance(*albedo),
+                albedo: self
+                    .tracer
+                    .reflectance(texture.as_ref().map_or(*albedo, |t| *albedo * t.at(uv))),
             }),
             Material::Detector { receiver } => {
                 if observer

@@ -23,7 +23,7 @@ use crate::media::Medium;
 use crate::scene::{Scene, Surface};
 use crate::settings::TraceSettings;
 use crate::spectrum::{colour, Hero, LAMBDA_D};
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 pub use stats::Stats;
 use std::ops::ControlFlow;
 
@@ -42,6 +42,8 @@ pub enum Event {
         /// Shading normal, on the geometric normal's side: what a specular surface reflects
         /// and refracts about.
         shading: DVec3,
+        /// Surface coordinates (u, v) of the hit, for textures.
+        uv: DVec2,
         /// Unit direction of arrival.
         direction: DVec3,
         /// Path length from the origin to the hit (scene units).
@@ -459,6 +461,7 @@ impl<'a> Tracer<'a> {
                         position: origin + h.t * dir,
                         normal: h.normal,
                         shading: h.shading,
+                        uv: h.uv,
                         direction: dir,
                         distance: h.t,
                         optical_depth: depth(h.t),
@@ -549,6 +552,7 @@ impl<'a> Tracer<'a> {
                         position: c.position,
                         normal: c.normal,
                         shading: c.shading,
+                        uv: c.uv,
                         direction: c.direction,
                         distance: prev_s + c.along,
                         optical_depth: prev_depth
@@ -588,6 +592,7 @@ impl<'a> Tracer<'a> {
                 prim,
                 normal: h.normal,
                 shading: h.shading,
+                uv: h.uv,
                 position: p.position,
                 direction: p.direction,
                 along: k as f64 * half + h.t,
@@ -616,6 +621,7 @@ impl<'a> Tracer<'a> {
                     prim,
                     normal: h.normal,
                     shading: h.shading,
+                    uv: h.uv,
                     position: p.position,
                     direction: p.direction,
                     along: h.t,
@@ -629,6 +635,7 @@ struct Crossing {
     prim: usize,
     normal: DVec3,
     shading: DVec3,
+    uv: DVec2,
     position: DVec3,
     direction: DVec3,
     /// Arclength from the step's start.

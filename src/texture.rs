@@ -1,0 +1,78 @@
+//! Image textures: an 8- or 16-bit sRGB image (PNG, JPEG, …) decoded to linear RGB, looked up
+//! by surface coordinates (u, v) with bilinear filtering, repeating beyond [0, 1].
+//! Convention: u runs left to right along the image's rows, v from its bottom row up.
+
+use crate::color::Rgb;
+use glam::DVec2;
+use std::path::Path;
+
+/// A texture in linear RGB.
+#[derive(Clone, PartialEq)]
+pub struct Texture {
+    width: usize,
+    height: usize,
+    /// Row-major from the top row.
+    texels: Vec<[f32; 3]>,
+}
+
+/// The linear value of an sRGB-encoded channel in [0, 1].
+pub fn srgb_decode(x: f32) -> f32 {
+    if x <= 0.040_45 {
+        x / 12.92
+    } else {
+        ((x + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+impl Texture {
+    /// The image at `path`, or why not (the message names the file).
+    pub fn load(path: &Path) -> Result<Self, String> {
+        let img = image::open(path)
+            .map_err(|e| format!("cannot read {} as an image: {e}", path.display()))?
+            .to_rgb32f();
+        let (width, height) = (img.width() as usize, img.height() as usize);
+        if width == 0 || height == 0 {
+            return Err(format!("{}: the image is empty", path.display()));
+        }
+        let texels = img.pixels().map(|p| p.0.map(srgb_decode)).collect();
+        Ok(Self {
+            width,
+            height,
+            texels,
+        })
+    }
+
+    /// A texture from linear texels, row-major from the top (`width` × `height` of them).
+    pub fn from_texels(width: usize, height: usize, texels: Vec<[f32; 3]>) -> Self {
+        assert_eq!(texels.len(), width * height, "texel count");
+        Self {
+            width,
+            height,
+            texels,
+        }
+    }
+
+    /// The linear colour at `uv`: bilinear between texel centres, repeating.
+    pub fn at(&self, uv: DVec2) -> Rgb {
+        let x = uv.x.rem_euclid(1.0) * self.width as f64 - 0.5;
+        let y = (1.0 - uv.y.rem_euclid(1.0)) * self.height as f64 - 0.5;
+        let (x0, y0) = (x.floor(), y.floor());
+        let (fx, fy) = (x - x0, y - y0);
+        let texel = |i: f64, j: f64| {
+            let i = (i as i64).rem_euclid(self.width as i64) as usize;
+            let j = (j as i64).rem_euclid(self.height as i64) as usize;
+            let t = self.texels[j * self.width + i];
+            Rgb::new(t[0] as f64, t[1] as f64, t[2] as f64)
+        };
+        texel(x0, y0) * ((1.0 - fx) * (1.0 - fy))
+            + texel(x0 + 1.0, y0) * (fx * (1.0 - fy))
+            + texel(x0, y0 + 1.0) * ((1.0 - fx) * fy)
+            + texel(x0 + 1.0, y0 + 1.0) * (fx * fy)
+    }
+}
+
+impl std::fmt::Debug for Texture {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "Texture({} × {})", self.width, self.height)
+    }
+}
