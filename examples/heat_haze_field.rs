@@ -1,5 +1,6 @@
 //! Writes `scenes/heat_haze_temperature.txt`, the air temperature (K) over a sunlit road for
-//! `scenes/heat_haze.toml`: 300 K air, a road surface at 345 K whose heat reaches a few
+//! `scenes/heat_haze.toml`, and `scenes/heat_haze_board.png`, the texture of the board beside
+//! the road (concentric yellow and black rings on blue, so its mirror image shows). The air: 300 K air, a road surface at 345 K whose heat reaches a few
 //! centimetres up (an exponential boundary layer, scale height 4 cm), broken into warm and
 //! cool cells across and along the road (convective plumes) that widen and rise with height.
 //! The grid is 11 × 33 × 31 nodes over x ∈ [−4, 4], y ∈ [0, 0.4], z ∈ [−40, 0] m (1.25 cm
@@ -37,5 +38,18 @@ fn main() -> std::io::Result<()> {
             writeln!(out, "{}", line.join(" "))?;
         }
     }
-    out.flush()
+    out.flush()?;
+    // The board: 96 × 64 sRGB pixels, rings around its centre.
+    let board = image::RgbImage::from_fn(96, 64, |x, y| {
+        let (dx, dy) = (x as f64 - 47.5, y as f64 - 31.5);
+        let r = (dx * dx + dy * dy).sqrt();
+        match r {
+            r if r < 28.0 && (r / 7.0) as u32 % 2 == 0 => image::Rgb([250, 200, 20]),
+            r if r < 28.0 => image::Rgb([20, 20, 20]),
+            _ => image::Rgb([30, 60, 170]),
+        }
+    });
+    board
+        .save("scenes/heat_haze_board.png")
+        .map_err(std::io::Error::other)
 }

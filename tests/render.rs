@@ -250,7 +250,8 @@ fn a_tessellated_luneburg_lens_renders_as_the_analytic_one() {
 
 /// Image textures: an 8 × 8 sRGB PNG whose quadrants are red, green / blue, 50 % grey (top row
 /// first) on a quad that fills a 64 × 64 view, u along its first edge and v along its second
-/// (bottom to top). The albedo layer at the quadrants' centres (u, v = ¼ or ¾) must be their
+/// (bottom to top), and on the same square as an OBJ mesh with those (u, v) as its `vt`. The
+/// albedo layer at the quadrants' centres (u, v = ¼ or ¾) must be their
 /// linear values (sRGB 128 → 0.2158) to 1e-6: there the bilinear lookup and a pixel's jitter
 /// see one colour. Also a 2 × 1 texture's lookup against its definition, wrapped and between
 /// texel centres (1e-12).
@@ -283,22 +284,36 @@ fn textures_put_their_texels_where_the_surface_coordinates_say() {
                 [[light]]\ntype = \"environment\"\nsky = \"checker\"\n\
                 [camera]\nposition = [0, 0, 2]\nlook_at = [0, 0, 0]\nfov_y_deg = 53.13010235415598\nwidth = 64\nheight = 64\n\
                 [render]\nspp = 4\nphotons = 1000\ncaustic_photons = 0\ngather = 0\n";
-    let scene = parse_scene(&dir.join("s.toml"), text.to_string()).unwrap();
-    let albedo = render(&scene, 0).layer("albedo").unwrap();
+    // The same square as an OBJ mesh whose `vt` give its corners the quad's (u, v).
+    std::fs::write(
+        dir.join("sq.obj"),
+        "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n\
+         f 1/1 2/2 3/3\nf 1/1 3/3 4/4\n",
+    )
+    .unwrap();
+    let mesh = text.replace(
+        "type = \"quad\"\nvertices = [[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]]",
+        "type = \"mesh\"\nfile = \"sq.obj\"",
+    );
+    assert_ne!(mesh, text, "the quad was replaced");
     let linear = |c: [u8; 3]| c.map(|v| srgb_decode(v as f32 / 255.0));
-    // Quadrant (i, j) from the top-left is centred at u = (i + ½)/2, v = 1 − (j + ½)/2: pixel
-    // (64 u, 64 (1 − v)) from the top-left.
-    for (k, &texel) in texels.iter().enumerate() {
-        let (i, j) = (k % 2, k / 2);
-        let (x, y) = (16 + 32 * i, 16 + 32 * j);
-        let got = albedo[y * 64 + x];
-        let want = linear(texel);
-        println!("texel ({i}, {j}): albedo {got:?}, texel {want:?}");
-        for c in 0..3 {
-            assert!(
-                (got[c] - want[c]).abs() < 1e-6,
-                "texel ({i}, {j}): {got:?} vs {want:?}"
-            );
+    for (shape, text) in [("quad", text), ("mesh", mesh.as_str())] {
+        let scene = parse_scene(&dir.join("s.toml"), text.to_string()).unwrap();
+        let albedo = render(&scene, 0).layer("albedo").unwrap();
+        // Quadrant (i, j) from the top-left is centred at u = (i + ½)/2, v = 1 − (j + ½)/2:
+        // pixel (64 u, 64 (1 − v)) from the top-left.
+        for (k, &texel) in texels.iter().enumerate() {
+            let (i, j) = (k % 2, k / 2);
+            let (x, y) = (16 + 32 * i, 16 + 32 * j);
+            let got = albedo[y * 64 + x];
+            let want = linear(texel);
+            println!("{shape} texel ({i}, {j}): albedo {got:?}, texel {want:?}");
+            for c in 0..3 {
+                assert!(
+                    (got[c] - want[c]).abs() < 1e-6,
+                    "{shape} ({i}, {j}): {got:?} vs {want:?}"
+                );
+            }
         }
     }
     std::fs::remove_dir_all(&dir).ok();
