@@ -44,7 +44,7 @@ fn main() -> std::io::Result<()> {
         let (dx, dy) = (x as f64 - 47.5, y as f64 - 31.5);
         let r = (dx * dx + dy * dy).sqrt();
         match r {
-            r if r < 28.0 && (r / 7.0) as u32 % 2 == 0 => image::Rgb([250, 200, 20]),
+            r if r < 28.0 && ((r / 7.0) as u32).is_multiple_of(2) => image::Rgb([250, 200, 20]),
             r if r < 28.0 => image::Rgb([20, 20, 20]),
             _ => image::Rgb([30, 60, 170]),
         }
