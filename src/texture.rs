@@ -52,8 +52,10 @@ impl Texture {
         }
     }
 
-    /// The linear colour at `uv`: bilinear between texel centres, repeating.
+    /// The linear colour at `uv`: bilinear between texel centres, repeating (a non-finite
+    /// `uv`, which no sound surface gives, reads (0, 0) rather than spreading NaN).
     pub fn at(&self, uv: DVec2) -> Rgb {
+        let uv = if uv.is_finite() { uv } else { DVec2::ZERO };
         let x = uv.x.rem_euclid(1.0) * self.width as f64 - 0.5;
         let y = (1.0 - uv.y.rem_euclid(1.0)) * self.height as f64 - 0.5;
         let (x0, y0) = (x.floor(), y.floor());

@@ -254,7 +254,7 @@ fn a_tessellated_luneburg_lens_renders_as_the_analytic_one() {
 /// albedo layer at the quadrants' centres (u, v = ¼ or ¾) must be their
 /// linear values (sRGB 128 → 0.2158) to 1e-6: there the bilinear lookup and a pixel's jitter
 /// see one colour. Also a 2 × 1 texture's lookup against its definition, wrapped and between
-/// texel centres (1e-12).
+/// texel centres (1e-12), and finite for a NaN (u, v).
 #[test]
 fn textures_put_their_texels_where_the_surface_coordinates_say() {
     use grinlight::texture::{srgb_decode, Texture};
@@ -272,6 +272,10 @@ fn textures_put_their_texels_where_the_surface_coordinates_say() {
         let got = t.at(glam::DVec2::new(u, 0.5)).0.x;
         assert!((got - want).abs() < 1e-12, "u {u}: {got} vs {want}");
     }
+    assert!(
+        t.at(glam::DVec2::NAN).0.is_finite(),
+        "a NaN (u, v) reads a texel"
+    );
     let dir = std::env::temp_dir().join(format!("grinlight-tex-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let texels: [[u8; 3]; 4] = [[255, 0, 0], [0, 255, 0], [0, 0, 255], [128, 128, 128]];

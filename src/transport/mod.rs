@@ -607,7 +607,7 @@ impl<'a> Tracer<'a> {
     /// capsule of its control polygon cannot meet are not searched.
     fn crossing_between(&self, prev: &RayState, st: &RayState, len: f64) -> Option<Crossing> {
         let accel = &self.scene.accel;
-        if accel.is_empty() {
+        if accel.is_empty() || len <= 0.0 {
             return None;
         }
         let path = HermitePath::new(prev, st, len);
