@@ -24,6 +24,10 @@ pub struct TriangleMesh {
     bvh: Bvh2,
     /// f64 bounds of all vertices.
     bounds: (DVec3, DVec3),
+    /// A ball around the bounds' centre that no triangle meets (radius 0 where one passes
+    /// through the centre): a lens's or a ball's empty core, where a curved step's capsule
+    /// needs no search at all.
+    core: (DVec3, f64),
 }
 
 /// A triangle's padded f32 box, for the BVH build.
@@ -116,6 +120,25 @@ impl TriangleMesh {
                 let p = DVec3::from(v.map(f64::from));
                 (lo.min(p), hi.max(p))
             });
+        let centre = 0.5 * (bounds.0 + bounds.1);
+        // A lower bound on each triangle's distance from the centre: the larger of the
+        // distances to its box and to its plane (shrunk by 1e-9 against rounding).
+        let core = triangles
+            .iter()
+            .map(|t| {
+                let [a, b, c] = t.map(vertex);
+                let to_box = (a.min(b).min(c) - centre)
+                    .max(centre - a.max(b).max(c))
+                    .max(DVec3::ZERO)
+                    .length();
+                let n = (b - a).cross(c - a);
+                let to_plane = match n.length() {
+                    l if l > 0.0 => (centre - a).dot(n).abs() / l,
+                    _ => 0.0,
+                };
+                to_box.max(to_plane)
+            })
+            .fold(f64::INFINITY, f64::min);
         Ok(Self {
             vertices,
             triangles,
@@ -123,6 +146,7 @@ impl TriangleMesh {
             texcoords,
             bvh,
             bounds,
+            core: (centre, core * (1.0 - 1e-9)),
         })
     }
 
@@ -234,6 +258,11 @@ impl TriangleMesh {
     /// a fine mesh's surface), and a leaf's triangles are kept where
     /// [`Primitive::may_cross`] says so.
     fn candidates(&self, hull: &ArcHull, mut visit: impl FnMut(usize, Primitive) -> bool) {
+        let (centre, radius) = self.core;
+        let room = radius - hull.deviation;
+        if (hull.a - centre).length() < room && (hull.b - centre).length() < room {
+            return;
+        }
         let nodes = &self.bvh.nodes;
         let mut stack = NodeStack::new();
         stack.push(0);
