@@ -42,7 +42,8 @@ impl Texture {
         })
     }
 
-    /// A texture from linear texels, row-major from the top (`width` × `height` of them).
+    /// A texture from linear texels, row-major from the top. Panics unless there are
+    /// `width` × `height` of them (a caller's error, not a user's: files go through [`Self::load`]).
     pub fn from_texels(width: usize, height: usize, texels: Vec<[f32; 3]>) -> Self {
         assert_eq!(texels.len(), width * height, "texel count");
         Self {

@@ -313,29 +313,7 @@ fn coaxial_stack_equals_a_loop_over_all_primitives() {
 #[test]
 fn a_mesh_answers_as_its_triangles_do() {
     use grinlight::shapes::TriangleMesh;
-    // An octahedron, each face split in four 4 times (8 · 4⁴ = 2 048), projected on the sphere.
-    let mut tris: Vec<[DVec3; 3]> = Vec::new();
-    let axes = [DVec3::X, DVec3::Y, DVec3::Z];
-    for &sx in &[-1.0, 1.0] {
-        for &sy in &[-1.0, 1.0] {
-            for &sz in &[-1.0, 1.0] {
-                tris.push([axes[0] * sx, axes[1] * sy, axes[2] * sz]);
-            }
-        }
-    }
-    for _ in 0..4 {
-        tris = tris
-            .iter()
-            .flat_map(|&[a, b, c]| {
-                let (ab, bc, ca) = (
-                    (a + b).normalize(),
-                    (b + c).normalize(),
-                    (c + a).normalize(),
-                );
-                [[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]
-            })
-            .collect();
-    }
+    let tris = common::octahedral_sphere(4);
     assert_eq!(tris.len(), 2048);
     // Shared vertices, stored in f32.
     let mut vertices: Vec<[f32; 3]> = Vec::new();

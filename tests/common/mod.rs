@@ -4,15 +4,13 @@ pub mod bigarc;
 
 use glam::DVec3;
 
-/// An octahedral sphere of radius 1 (8·4^k triangles) as OBJ text, with its exact sphere
-/// normals as `vn` when `normals`, else with its vertices shared by the triangles that meet
-/// there (so that normals computed from the faces are smooth).
-pub fn sphere_obj(k: usize, normals: bool) -> String {
+/// An octahedral sphere of radius 1: the octahedron's faces split in four `k` times and
+/// projected on the sphere (8·4^k triangles), wound counter-clockwise seen from outside.
+pub fn octahedral_sphere(k: usize) -> Vec<[DVec3; 3]> {
     let mut tris: Vec<[DVec3; 3]> = Vec::new();
     for &sx in &[-1.0, 1.0] {
         for &sy in &[-1.0, 1.0] {
             for &sz in &[-1.0, 1.0] {
-                // Counter-clockwise seen from outside: the outward normal.
                 let (a, b, c) = (DVec3::X * sx, DVec3::Y * sy, DVec3::Z * sz);
                 let flip = (b - a).cross(c - a).dot(a + b + c) < 0.0;
                 tris.push(if flip { [a, c, b] } else { [a, b, c] });
@@ -32,6 +30,14 @@ pub fn sphere_obj(k: usize, normals: bool) -> String {
             })
             .collect();
     }
+    tris
+}
+
+/// [`octahedral_sphere`] as OBJ text, with its exact sphere normals as `vn` when `normals`,
+/// else with its vertices shared by the triangles that meet there (so that normals computed
+/// from the faces are smooth).
+pub fn sphere_obj(k: usize, normals: bool) -> String {
+    let tris = octahedral_sphere(k);
     let mut text = String::new();
     if normals {
         for t in &tris {
