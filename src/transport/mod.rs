@@ -11,7 +11,7 @@ pub mod connect;
 mod stats;
 pub mod visibility;
 
-use crate::bsdf::Bsdf;
+use crate::bsdf::{Bsdf, BsdfSample};
 use crate::color::Rgb;
 use crate::curve::{
     march_with, step_optical_depth, ArcPath, Bounds, HermitePath, MarchLimits, MarchOutcome, Path,
@@ -22,6 +22,7 @@ use crate::material::Material;
 use crate::media::Medium;
 use crate::scene::{Scene, Surface};
 use crate::settings::TraceSettings;
+use crate::shapes::Hit;
 use crate::spectrum::{colour, Hero, LAMBDA_D};
 use glam::{DVec2, DVec3};
 pub use stats::Stats;
@@ -402,18 +403,13 @@ impl<'a> Tracer<'a> {
         // of it) or the ray arrives from behind the shading normal: then about the geometric
         // one, so a smooth mesh neither leaks light nor blackens its facets' edges.
         let shade = if side == normal { shading } else { -shading };
-        let about = |n: DVec3| {
-            let s = bsdf.sample(-incoming, n, (0.0, 0.0, u))?;
+        let lands_right = |s: &BsdfSample| {
             let lands = s.wi.dot(side);
-            ((s.transmitted && lands < 0.0) || (!s.transmitted && lands > 0.0)).then_some(s)
+            (s.transmitted && lands < 0.0) || (!s.transmitted && lands > 0.0)
         };
-        let s = if shade == side {
-            bsdf.sample(-incoming, side, (0.0, 0.0, u))?
-        } else {
-            match about(shade) {
-                Some(s) => s,
-                None => bsdf.sample(-incoming, side, (0.0, 0.0, u))?,
-            }
+        let s = match bsdf.sample(-incoming, shade, (0.0, 0.0, u)) {
+            Some(s) if shade == side || lands_right(&s) => s,
+            _ => bsdf.sample(-incoming, side, (0.0, 0.0, u))?,
         };
         Some(Bounce {
             origin: offset(position, if s.transmitted { -side } else { side }),
@@ -550,9 +546,9 @@ impl<'a> Tracer<'a> {
                     hit = Some(Event::Surface {
                         prim: c.prim,
                         position: c.position,
-                        normal: c.normal,
-                        shading: c.shading,
-                        uv: c.uv,
+                        normal: c.hit.normal,
+                        shading: c.hit.shading,
+                        uv: c.hit.uv,
                         direction: c.direction,
                         distance: prev_s + c.along,
                         optical_depth: prev_depth
@@ -586,17 +582,8 @@ impl<'a> Tracer<'a> {
         let half = 0.5 * len;
         path.arcs(prev).iter().enumerate().find_map(|(k, arc)| {
             let hull = arc.hull(half);
-            let (prim, h) = self.scene.accel.intersect_segment(arc, &hull, 0.0, half)?;
-            let p = arc.at(h.t);
-            Some(Crossing {
-                prim,
-                normal: h.normal,
-                shading: h.shading,
-                uv: h.uv,
-                position: p.position,
-                direction: p.direction,
-                along: k as f64 * half + h.t,
-            })
+            let found = self.scene.accel.intersect_segment(arc, &hull, 0.0, half)?;
+            Some(Crossing::on(arc, k as f64 * half, found))
         })
     }
 
@@ -615,31 +602,32 @@ impl<'a> Tracer<'a> {
         let hull = path.hull();
         accel
             .intersect_segment(&path, &hull, 0.0, len)
-            .map(|(prim, h)| {
-                let p = path.at(h.t);
-                Crossing {
-                    prim,
-                    normal: h.normal,
-                    shading: h.shading,
-                    uv: h.uv,
-                    position: p.position,
-                    direction: p.direction,
-                    along: h.t,
-                }
-            })
+            .map(|found| Crossing::on(&path, 0.0, found))
     }
 }
 
 /// Where a step's path meets a surface.
 struct Crossing {
     prim: usize,
-    normal: DVec3,
-    shading: DVec3,
-    uv: DVec2,
+    hit: Hit,
     position: DVec3,
     direction: DVec3,
     /// Arclength from the step's start.
     along: f64,
+}
+
+impl Crossing {
+    /// Primitive `prim`'s `hit` on `path`, a piece of the step that starts `offset` into it.
+    fn on<P: Path + ?Sized>(path: &P, offset: f64, (prim, hit): (usize, Hit)) -> Self {
+        let p = path.at(hit.t);
+        Crossing {
+            prim,
+            hit,
+            position: p.position,
+            direction: p.direction,
+            along: offset + hit.t,
+        }
+    }
 }
 
 /// `control`, with a Tessendorf control's ξ stream keyed by the ray itself (its seed mixed
