@@ -1,17 +1,20 @@
 //! The film: per pixel, the sums of camera samples' values for every layer an integrator
 //! writes and the number of samples summed — raw sums, never means, so films of the same view
-//! rendered apart (other passes, other machines) merge by adding ([`Film::merge`]). Developed,
+//! rendered apart (other passes, other machines) merge by adding ([`Film::merge`]). The sums
+//! are fixed-point ([`Fixed`]): adding is exact, so a film merged from parts is bit for bit
+//! the film of one run, in whatever order the parts come. Developed,
 //! each layer is its sum over its count, and `beauty` the sum of the radiance layers; written
 //! as a multi-layer EXR (one RGB layer each, readable by standard OpenEXR tools) and a
 //! tone-mapped sRGB PNG preview of `beauty`.
 
 use crate::color::{preview_byte, Rgb};
 use crate::error::{Error, Result};
+use crate::exact::Fixed;
 use exr::prelude::*;
 use std::path::Path;
 
 /// What a layer holds.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum LayerKind {
     /// A part of the radiance reaching the camera (W/(m²·sr)); `beauty` is their sum.
     Radiance,
@@ -20,16 +23,34 @@ pub enum LayerKind {
 }
 
 /// One layer an integrator writes besides `beauty`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct Layer {
     /// Its name in the EXR.
-    pub name: &'static str,
+    pub name: std::borrow::Cow<'static, str>,
     /// What it holds.
     pub kind: LayerKind,
 }
 
+impl Layer {
+    /// A part of the radiance named `name`.
+    pub const fn radiance(name: &'static str) -> Layer {
+        Layer {
+            name: std::borrow::Cow::Borrowed(name),
+            kind: LayerKind::Radiance,
+        }
+    }
+
+    /// A description of what the camera sees, named `name`.
+    pub const fn aux(name: &'static str) -> Layer {
+        Layer {
+            name: std::borrow::Cow::Borrowed(name),
+            kind: LayerKind::Aux,
+        }
+    }
+}
+
 /// Sums of samples per layer and pixel, and the samples per pixel.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Film {
     /// Width in pixels.
     pub width: usize,
@@ -37,10 +58,13 @@ pub struct Film {
     pub height: usize,
     /// The layers summed (`beauty` is developed from them).
     pub layers: Vec<Layer>,
-    /// Per layer, per pixel (row-major from the top): the sum of the samples' values.
-    sums: Vec<Vec<Rgb>>,
+    /// Per layer, per pixel (row-major from the top): the sum of the samples' values, RGB.
+    sums: Vec<Vec<[Fixed; 3]>>,
     /// Per pixel: the number of samples summed.
     counts: Vec<u64>,
+    /// Pixel values left out because a fixed-point sum cannot hold them (not finite, or of
+    /// magnitude ≥ [`Fixed::LIMIT`]): a render reports them.
+    rejected: u64,
 }
 
 impl Film {
@@ -50,18 +74,31 @@ impl Film {
             width,
             height,
             layers: layers.to_vec(),
-            sums: vec![vec![Rgb::ZERO; width * height]; layers.len()],
+            sums: vec![vec![[Fixed::ZERO; 3]; width * height]; layers.len()],
             counts: vec![0; width * height],
+            rejected: 0,
         }
     }
 
-    /// Adds `samples` samples at pixel (x, y) whose values sum to `values` (one per layer).
+    /// Adds `samples` samples at pixel (x, y) whose values sum to `values` (one per layer),
+    /// each rounded to the nearest 2⁻⁶⁴; a value a fixed-point sum cannot hold adds nothing
+    /// and is counted in [`Film::rejected`].
     pub fn add(&mut self, x: usize, y: usize, values: &[Rgb], samples: u64) {
         let i = y * self.width + x;
         for (plane, v) in self.sums.iter_mut().zip(values) {
-            plane[i] += *v;
+            for (sum, c) in plane[i].iter_mut().zip(v.to_array()) {
+                match Fixed::from_f64(c) {
+                    Some(f) => *sum += f,
+                    None => self.rejected += 1,
+                }
+            }
         }
         self.counts[i] += samples;
+    }
+
+    /// Pixel values left out (see [`Film::add`]).
+    pub fn rejected(&self) -> u64 {
+        self.rejected
     }
 
     /// Adds another film of the same view (size and layers): its samples join these.
@@ -79,12 +116,13 @@ impl Film {
         }
         for (a, b) in self.sums.iter_mut().zip(&other.sums) {
             for (x, y) in a.iter_mut().zip(b) {
-                *x += *y;
+                add_rgb(x, y);
             }
         }
         for (a, b) in self.counts.iter_mut().zip(&other.counts) {
             *a += b;
         }
+        self.rejected += other.rejected;
         Ok(())
     }
 
@@ -94,17 +132,18 @@ impl Film {
             for x in 0..tile.width {
                 let (i, j) = (y * tile.width + x, (y0 + y) * self.width + x0 + x);
                 for (a, b) in self.sums.iter_mut().zip(&tile.sums) {
-                    a[j] += b[i];
+                    add_rgb(&mut a[j], &b[i]);
                 }
                 self.counts[j] += tile.counts[i];
             }
         }
+        self.rejected += tile.rejected;
     }
 
     /// The layers' names, `beauty` first.
-    pub fn names(&self) -> Vec<&'static str> {
+    pub fn names(&self) -> Vec<&str> {
         std::iter::once("beauty")
-            .chain(self.layers.iter().map(|l| l.name))
+            .chain(self.layers.iter().map(|l| &*l.name))
             .collect()
     }
 
@@ -116,7 +155,13 @@ impl Film {
     /// The developed layer `name` (`beauty`: the sum of the radiance layers), row-major, linear
     /// RGB in f32; None for a layer the film does not hold.
     pub fn layer(&self, name: &str) -> Option<Vec<[f32; 3]>> {
-        let mean = |plane: &[Rgb], i: usize| plane[i] / self.counts[i].max(1) as f64;
+        let mean = |plane: &[[Fixed; 3]], i: usize| {
+            Rgb::new(
+                plane[i][0].to_f64(),
+                plane[i][1].to_f64(),
+                plane[i][2].to_f64(),
+            ) / self.counts[i].max(1) as f64
+        };
         let pixels = self.width * self.height;
         let plane: Vec<Rgb> = if name == "beauty" {
             (0..pixels)
@@ -187,6 +232,13 @@ impl Film {
             image::Rgb(p.map(|c| preview_byte(c * exposure)))
         });
         crate::plot::save(&img, path)
+    }
+}
+
+/// Adds fixed-point RGB `b` to `a`.
+fn add_rgb(a: &mut [Fixed; 3], b: &[Fixed; 3]) {
+    for (x, y) in a.iter_mut().zip(b) {
+        *x += *y;
     }
 }
 

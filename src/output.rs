@@ -25,6 +25,8 @@ pub enum Kind {
     Png,
     /// A CSV table whose first line is a header of lower-case names separated by commas.
     Csv,
+    /// A grinlight partial result (see [`crate::shard`]).
+    Partial,
 }
 
 impl Kind {
@@ -33,6 +35,7 @@ impl Kind {
             Kind::Exr => "an EXR image",
             Kind::Png => "a PNG image",
             Kind::Csv => "a CSV table",
+            Kind::Partial => "a grinlight partial result",
         }
     }
 
@@ -40,6 +43,7 @@ impl Kind {
     fn recognises(self, head: &[u8]) -> bool {
         match self {
             Kind::Exr => head.starts_with(&[0x76, 0x2f, 0x31, 0x01]),
+            Kind::Partial => head.starts_with(crate::shard::MAGIC),
             Kind::Png => head.starts_with(b"\x89PNG\r\n\x1a\n"),
             Kind::Csv => {
                 let line = head.split(|&b| b == b'\n').next().unwrap_or_default();

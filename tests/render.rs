@@ -45,12 +45,7 @@ fn photon_flux_onto_a_disk_matches_the_closed_form() {
             parse_scene(Path::new("flux.toml"), format!("{receiver}{light}")).unwrap();
         let tracer = Tracer::new(&scene, &settings.trace);
         let sources = Sources::new(&tracer);
-        let photons = Photons {
-            batch: Batch::Global,
-            seed: 0,
-            pass: 0,
-            count: 200_000,
-        };
+        let photons = Photons::all(Batch::Global, 0, 0, 200_000);
         let (sink, stats) = shoot(&tracer, &sources, photons, &|| false);
         let photons = sink.photons;
         assert_eq!(stats.photons_emitted, 200_000);

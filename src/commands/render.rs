@@ -11,8 +11,9 @@ use crate::receiver::{self, Measurement};
 use crate::report::Report;
 use crate::scene::{self, Description, Scene};
 use crate::settings::Settings;
-use std::path::PathBuf;
-use std::time::Instant;
+use crate::shard::{Header, Partial, Saving, Shard};
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
 
 /// The most photon paths a figure draws (each is kept in memory).
 pub const MAX_PATHS: u64 = 10_000;
@@ -28,10 +29,16 @@ pub struct RenderJob {
     pub output: Option<PathBuf>,
     /// The command line's values of `[render]` and `[camera]` keys.
     pub overrides: Overrides,
-    /// Write the EXR and PNG every this many passes (0: only at the end).
+    /// Save the partial (and write the EXR and PNG) every this many passes and after every
+    /// block of receiver photons (0: every minute, and at the end).
     pub checkpoint: u32,
     /// Draw the paths of this many receiver photons through the scene's GRIN fiber (0: none).
     pub paths: u64,
+    /// Render only this slice of the work, into a partial result (`output`: the partial
+    /// file, ending in `.partial`; default `<scene stem>.shard-K-of-N.partial`).
+    pub shard: Option<Shard>,
+    /// Continue the partial a killed or interrupted run of the same job saved.
+    pub resume: bool,
 }
 
 /// Values that replace the scene's `[render]` and `[camera]` keys of the same names; each is
@@ -119,18 +126,24 @@ impl Overrides {
 /// What a render produced (its files are written; its report was shown line by line).
 #[derive(Default)]
 pub struct RenderOutcome {
-    /// The camera render's film and report, if the scene has a camera.
+    /// The camera render's film and report, if the scene has a camera (and, with a shard,
+    /// its film holds passes).
     pub film: Option<(Film, Report)>,
-    /// Each receiver's measurement, in scene order.
+    /// Each receiver's measurement, in scene order (none for a shard: its partial holds the
+    /// tallies).
     pub measurements: Vec<Measurement>,
     /// Where the receiver photons' power went.
     pub budget: Option<Budget>,
-    /// Whether it was stopped early (an interrupt): the files hold what was done.
+    /// Whether it was stopped early (an interrupt): the files hold what was done, and the
+    /// partial saved beside them lets `--resume` continue.
     pub partial: bool,
 }
 
+/// How often a running render saves its partial when no `--checkpoint` asks for more.
+const SAVE_INTERVAL: Duration = Duration::from_secs(60);
+
 /// The files a render writes.
-struct Files {
+pub(super) struct Files {
     exr: PathBuf,
     png: Option<PathBuf>,
     /// Per receiver: bins CSV, heat map, radial CSV, radial plot.
@@ -140,9 +153,13 @@ struct Files {
 }
 
 impl Files {
-    /// Names every file the render of `scene` writes (`png`: with the preview) and checks
-    /// each (see [`Outputs`]).
-    fn plan(scene: &Scene, exr: PathBuf, png: bool, paths: u64) -> Result<Self> {
+    /// Names every file the render of `scene` writes (`png`: with the preview) and adds each
+    /// to `outputs` (see [`Outputs`]).
+    pub(super) fn plan(
+        scene: &Scene,
+        (exr, png, paths): (PathBuf, bool, u64),
+        outputs: &mut Outputs,
+    ) -> Result<Self> {
         if !scene::objects::is_exr(&exr) {
             return Err(Error::Usage(format!(
                 "{}: the output is a multi-layer EXR and must end in .exr (the PNG preview and \
@@ -150,8 +167,7 @@ impl Files {
                 exr.display()
             )));
         }
-        let stem = exr.with_extension("");
-        let beside = |suffix: &str| PathBuf::from(format!("{}.{suffix}", stem.display()));
+        let beside = |suffix: &str| beside(&exr, suffix);
         let files = Files {
             png: (scene.camera.is_some() && png).then(|| exr.with_extension("png")),
             receivers: scene
@@ -165,7 +181,6 @@ impl Files {
             paths: (paths > 0).then(|| beside("paths.png")),
             exr,
         };
-        let mut outputs = Outputs::new(&scene.inputs);
         if scene.camera.is_some() {
             outputs.add(&files.exr, Kind::Exr)?;
         }
@@ -193,11 +208,18 @@ impl Files {
     }
 }
 
+/// `path` without its extension, then `.suffix`.
+fn beside(path: &Path, suffix: &str) -> PathBuf {
+    PathBuf::from(format!("{}.{suffix}", path.with_extension("").display()))
+}
+
 /// Runs `grinlight render`: loads the scene, applies the job's overrides, checks every output
-/// file and the memory and threads it needs before any work, measures the receivers (if any),
-/// renders the camera view (if any), and writes every file atomically. The observer is shown
-/// the report line by line; when it asks to stop, the files hold what was done and the
-/// outcome is marked partial.
+/// file and the memory and threads it needs before any work, then does the work of the job's
+/// shard (all of it without one) — receiver photons, then passes — saving its partial as it
+/// goes. Without a shard it writes the results (EXR, PNG, receiver files) atomically; with
+/// one, the shard's partial, for `grinlight merge`. `--resume` continues the partial a killed
+/// or interrupted run left. The observer is shown the report line by line; when it asks to
+/// stop, the files hold what was done and the outcome is marked partial.
 pub fn render(job: &RenderJob, observer: &dyn Observer) -> Result<RenderOutcome> {
     let (mut description, mut settings) = scene::load_description(&job.scene)?;
     job.overrides.apply(&mut description, &mut settings)?;
@@ -209,40 +231,126 @@ pub fn render(job: &RenderJob, observer: &dyn Observer) -> Result<RenderOutcome>
             job.scene.display()
         )));
     }
-    let exr = job
-        .output
-        .clone()
-        .or_else(|| settings.output.path.clone())
-        .unwrap_or_else(|| {
-            PathBuf::from(job.scene.file_stem().unwrap_or_default()).with_extension("exr")
-        });
-    let files = Files::plan(&scene, exr, settings.output.png, job.paths)?;
+    let shard = job.shard.unwrap_or(Shard::WHOLE);
+    if job.shard.is_some() && (settings.time_budget.is_some() || job.paths > 0) {
+        return Err(Error::Usage(
+            "--shard renders a fixed share of the work: give --passes, not --time-budget, \
+             and draw --paths from a whole render"
+                .into(),
+        ));
+    }
+    let mut outputs = Outputs::new(&scene.inputs);
+    let (files, state) = match job.shard {
+        Some(s) => {
+            let state = job.output.clone().unwrap_or_else(|| {
+                PathBuf::from(format!(
+                    "{}.shard-{}-of-{}.partial",
+                    job.scene.file_stem().unwrap_or_default().to_string_lossy(),
+                    s.index,
+                    s.count
+                ))
+            });
+            if state.extension().is_none_or(|e| e != "partial") {
+                return Err(Error::Usage(format!(
+                    "{}: a shard writes a partial result, whose name ends in .partial",
+                    state.display()
+                )));
+            }
+            (None, state)
+        }
+        None => {
+            let exr = output_exr(job.output.clone(), &settings, &job.scene);
+            let state = beside(&exr, "partial");
+            let files = Files::plan(&scene, (exr, settings.output.png, job.paths), &mut outputs)?;
+            (Some(files), state)
+        }
+    };
+    outputs.add(&state, Kind::Partial)?;
     crate::resources::check_memory(
         crate::render::memory_needed(&scene, &settings),
         &format!("rendering {}", job.scene.display()),
     )?;
-    let mut outcome = RenderOutcome::default();
-    if !scene.receivers.is_empty() {
-        let (measurements, budget, report) =
-            measure_receivers(&scene, &settings, &files, observer)?;
-        outcome.partial |= report.partial.is_some();
-        if let (Some(fiber), false) = (fiber, outcome.partial) {
-            let paths = Paths {
-                fiber,
-                count: job.paths,
-                first: &measurements[0],
-            };
-            draw_paths(&scene, &settings, paths, &files, observer)?;
+    let header = Header::new(&scene, &settings, shard)?;
+    let partial = start_partial(header, &state, job.resume)?;
+    let save = |p: &Partial| -> Result<()> {
+        p.write(&state)?;
+        if let (Some(files), Some(film)) = (&files, &p.film) {
+            files.write_film(film, settings.output.exposure)?;
         }
-        outcome.measurements = measurements;
-        outcome.budget = Some(budget);
+        observer.line(&format!(
+            "saved {} ({} of the passes, {} receiver photons){}",
+            state.display(),
+            p.passes.len(),
+            p.photons.len(),
+            if files.is_some() {
+                ", and the images"
+            } else {
+                ""
+            }
+        ));
+        Ok(())
+    };
+    let saving = Saving {
+        every: job.checkpoint,
+        interval: SAVE_INTERVAL,
+        save: &save,
+    };
+    let start = Instant::now();
+    let ran = crate::shard::run(&scene, &settings, partial, observer, &saving)?;
+    let interrupted = ran.interrupted();
+    let Some(files) = files else {
+        ran.partial.write(&state)?;
+        let (passes, photons) = ran.partial.remaining();
+        observer.line(&format!(
+            "shard {shard} of {} in {:.2} s: wrote {} (passes {}, receiver photons {}){}",
+            job.scene.display(),
+            start.elapsed().as_secs_f64(),
+            state.display(),
+            ran.partial.passes,
+            ran.partial.photons,
+            if interrupted {
+                format!(
+                    "; PARTIAL (interrupted): passes {passes} and photons {photons} remain, \
+                     continue with --resume"
+                )
+            } else {
+                "; merge the shards with `grinlight merge`".into()
+            }
+        ));
+        return Ok(RenderOutcome {
+            partial: interrupted,
+            film: ran.partial.film.zip(ran.camera),
+            ..RenderOutcome::default()
+        });
+    };
+    if interrupted {
+        ran.partial.write(&state)?;
+        observer.line(&format!(
+            "PARTIAL (interrupted): saved {}; `grinlight render {} --resume` (with the same \
+             options) continues it",
+            state.display(),
+            job.scene.display()
+        ));
     }
-    if scene.camera.is_none() || outcome.partial {
-        return Ok(outcome);
+    let mut outcome = publish(
+        (&scene, &settings),
+        ran.partial,
+        (ran.receivers.as_ref(), ran.camera.as_ref()),
+        &files,
+        observer,
+    )?;
+    outcome.partial = interrupted;
+    if let (Some(fiber), false) = (fiber, interrupted) {
+        let paths = Paths {
+            fiber,
+            count: job.paths,
+            first: &outcome.measurements[0],
+        };
+        draw_paths(&scene, &settings, paths, &files, observer)?;
     }
-    let (film, report) = render_camera(job, (&scene, &settings), &files, observer)?;
-    outcome.partial |= report.partial.is_some();
-    outcome.film = Some((film, report));
+    if !interrupted && state.exists() {
+        std::fs::remove_file(&state).map_err(|e| Error::io(&state, e))?;
+    }
     Ok(outcome)
 }
 
@@ -270,34 +378,159 @@ fn fiber_to_draw(job: &RenderJob, description: &Description) -> Result<Option<Gr
     }
 }
 
-/// Renders the camera view, writing the film (and checkpoints), and reports it.
-fn render_camera(
-    job: &RenderJob,
+/// The EXR a render writes: the job's, else the scene's `[output] path`, else
+/// `<scene stem>.exr` in the working directory.
+pub(super) fn output_exr(output: Option<PathBuf>, settings: &Settings, scene: &Path) -> PathBuf {
+    output
+        .or_else(|| settings.output.path.clone())
+        .unwrap_or_else(|| {
+            PathBuf::from(scene.file_stem().unwrap_or_default()).with_extension("exr")
+        })
+}
+
+/// The partial a render starts from: the one saved at `state` when resuming (it must be of
+/// the same render), else an empty one — refusing to replace an unfinished one at `state`
+/// without `--resume` (hours of work may be in it).
+fn start_partial(header: Header, state: &Path, resume: bool) -> Result<Partial> {
+    if resume {
+        if !state.exists() {
+            return Err(Error::Usage(format!(
+                "--resume: {} does not exist: nothing to resume (run without --resume)",
+                state.display()
+            )));
+        }
+        let saved = Partial::read(state)?;
+        if let Some(d) = header.difference(&saved.header) {
+            return Err(Error::Usage(format!(
+                "--resume: {} is a partial of another render ({d}): give the options it was \
+                 started with",
+                state.display()
+            )));
+        }
+        if saved.header.shard != header.shard {
+            return Err(Error::Usage(format!(
+                "--resume: {} is shard {}, not {}",
+                state.display(),
+                saved.header.shard,
+                header.shard
+            )));
+        }
+        return Ok(saved);
+    }
+    if state.exists() {
+        if let Ok(saved) = Partial::read(state) {
+            if !saved.is_complete() {
+                return Err(Error::Usage(format!(
+                    "{} holds an unfinished render ({} passes, {} receiver photons done): \
+                     continue it with --resume, or remove it to start again",
+                    state.display(),
+                    saved.passes.len(),
+                    saved.photons.len()
+                )));
+            }
+        }
+    }
+    Ok(Partial::empty(header))
+}
+
+/// Writes a render's results from its partial (a whole render's, or shards merged): each
+/// receiver's files and flux, the energy budget, and the film's EXR and PNG. Reports of the
+/// work (`receivers`, `camera`) are shown when given. A partial lacking photons gives an
+/// estimate scaled to the whole batch; the report says so.
+pub(super) fn publish(
     (scene, settings): (&Scene, &Settings),
+    partial: Partial,
+    (receivers, camera): (Option<&Report>, Option<&Report>),
     files: &Files,
     observer: &dyn Observer,
-) -> Result<(Film, Report)> {
-    let start = Instant::now();
-    let checkpoints = Checkpoints {
-        outer: observer,
-        every: job.checkpoint,
-        files,
-        exposure: settings.output.exposure,
-        start,
+) -> Result<RenderOutcome> {
+    let mut outcome = RenderOutcome::default();
+    if !scene.receivers.is_empty() {
+        let books = &partial.books;
+        let total = partial.header.photons;
+        let scale = total as f64 / books.traced.max(1) as f64;
+        let measurements = books.measurements(&scene.receivers, scale);
+        let budget = books.ledger.statement(scale);
+        if books.traced < total {
+            observer.line(&format!(
+                "PARTIAL: {} of {total} receiver photons, fluxes scaled to the whole batch",
+                books.traced
+            ));
+        }
+        if let Some(report) = receivers {
+            observer.line(&format!(
+                "measured {} receiver(s) with {} photons in {:.2} s ({:.0} photons/s)",
+                scene.receivers.len(),
+                report.stats.photons_emitted,
+                report.seconds.0,
+                report.stats.photons_emitted as f64 / report.seconds.0.max(1e-9)
+            ));
+            observer.line(&report.stats.summary());
+        }
+        for ((r, m), [csv, png, radial_csv, radial_png]) in scene
+            .receivers
+            .iter()
+            .zip(&measurements)
+            .zip(&files.receivers)
+        {
+            let profile = receiver::radial_profile(r, m);
+            receiver::write_csv(r, m, csv)?;
+            receiver::write_png(r, m, png)?;
+            receiver::write_radial_csv(&profile, radial_csv)?;
+            receiver::write_radial_png(&r.name, &[("measured", &profile)], radial_png)?;
+            observer.line(&format!(
+                "receiver '{}': flux {:.6e} ± {:.1e} W; wrote {} (.png, .radial.csv, .radial.png)",
+                r.name,
+                m.flux.0,
+                m.flux.1,
+                csv.display()
+            ));
+            for ((lo, hi), b) in r.bands.iter().zip(&m.bands) {
+                observer.line(&format!(
+                    "  band {lo}–{hi} nm: flux {:.6e} ± {:.1e} W",
+                    b.flux.0, b.flux.1
+                ));
+            }
+        }
+        observer.line(&budget.table(scene.accel.primitives()));
+        outcome.measurements = measurements;
+        outcome.budget = Some(budget);
+    }
+    let missing = partial.remaining().0;
+    let Some(film) = partial.film else {
+        return Ok(outcome);
     };
-    let (film, report) = crate::render::render(scene, settings, &checkpoints)?;
     files.write_film(&film, settings.output.exposure)?;
-    let camera = scene.camera.as_ref().expect("render() checked the camera");
-    observer.line(&format!(
-        "rendered {} ({}×{}, {} spp × {} passes) in {:.2} s",
-        job.scene.display(),
-        camera.width,
-        camera.height,
+    let what = format!(
+        "{} ({}×{}, {} spp × {} passes{})",
+        scene.path().display(),
+        film.width,
+        film.height,
         settings.spp,
-        report.passes,
-        start.elapsed().as_secs_f64()
-    ));
-    observer.line(&report.summary());
+        partial.passes.len(),
+        match missing.is_empty() {
+            true => String::new(),
+            false => format!("; PARTIAL: passes {missing} missing"),
+        }
+    );
+    match camera {
+        Some(r) => observer.line(&format!(
+            "rendered {what} in {:.2} s",
+            r.seconds.0 + r.seconds.1 + r.seconds.2
+        )),
+        None => observer.line(&format!("merged {what}")),
+    }
+    if film.rejected() > 0 {
+        observer.warning(&format!(
+            "{} pixel values were not finite or beyond ±{:.2e} and were left out of the film",
+            film.rejected(),
+            crate::exact::Fixed::LIMIT
+        ));
+    }
+    let report = camera.cloned().unwrap_or_default();
+    if camera.is_some() {
+        observer.line(&report.summary());
+    }
     observer.line(&format!(
         "wrote {} (layers: {})",
         files.exr.display(),
@@ -306,61 +539,8 @@ fn render_camera(
     if let Some(png) = &files.png {
         observer.line(&format!("wrote {}", png.display()));
     }
-    Ok((film, report))
-}
-
-/// Measures the receivers and writes their files; reports the flux of each and the energy
-/// budget.
-fn measure_receivers(
-    scene: &Scene,
-    settings: &Settings,
-    files: &Files,
-    observer: &dyn Observer,
-) -> Result<(Vec<Measurement>, Budget, Report)> {
-    let start = Instant::now();
-    let (measurements, budget, report) = crate::render::measure(scene, settings, 0, observer)?;
-    let mut lines = Vec::new();
-    for ((r, m), [csv, png, radial_csv, radial_png]) in scene
-        .receivers
-        .iter()
-        .zip(&measurements)
-        .zip(&files.receivers)
-    {
-        let profile = receiver::radial_profile(r, m);
-        receiver::write_csv(r, m, csv)?;
-        receiver::write_png(r, m, png)?;
-        receiver::write_radial_csv(&profile, radial_csv)?;
-        receiver::write_radial_png(&r.name, &[("measured", &profile)], radial_png)?;
-        lines.push(format!(
-            "receiver '{}': flux {:.6e} ± {:.1e} W; wrote {} (.png, .radial.csv, .radial.png)",
-            r.name,
-            m.flux.0,
-            m.flux.1,
-            csv.display()
-        ));
-        for ((lo, hi), b) in r.bands.iter().zip(&m.bands) {
-            lines.push(format!(
-                "  band {lo}–{hi} nm: flux {:.6e} ± {:.1e} W",
-                b.flux.0, b.flux.1
-            ));
-        }
-    }
-    if let Some(p) = &report.partial {
-        observer.line(&format!("PARTIAL (interrupted): {p}"));
-    }
-    observer.line(&format!(
-        "measured {} receiver(s) with {} photons in {:.2} s ({:.0} photons/s)",
-        scene.receivers.len(),
-        report.stats.photons_emitted,
-        start.elapsed().as_secs_f64(),
-        report.stats.photons_emitted as f64 / report.seconds.0.max(1e-9)
-    ));
-    observer.line(&report.stats.summary());
-    for l in lines {
-        observer.line(&l);
-    }
-    observer.line(&budget.table(scene.accel.primitives()));
-    Ok((measurements, budget, report))
+    outcome.film = Some((film, report));
+    Ok(outcome)
 }
 
 /// Which photon paths seed 004 fig. 5 draws: the first `count` of the receiver batch.
@@ -392,36 +572,4 @@ fn draw_paths(
     )?;
     observer.line(&format!("wrote {}: {legend}", out.display()));
     Ok(())
-}
-
-/// The caller's observer, with the film written every `every` passes.
-struct Checkpoints<'a> {
-    outer: &'a dyn Observer,
-    every: u32,
-    files: &'a Files,
-    exposure: f32,
-    start: Instant,
-}
-
-impl Observer for Checkpoints<'_> {
-    fn progress(&self, p: crate::render::Progress) {
-        self.outer.progress(p);
-    }
-    fn line(&self, text: &str) {
-        self.outer.line(text);
-    }
-    fn stop_requested(&self) -> bool {
-        self.outer.stop_requested()
-    }
-    fn pass_done(&self, passes: u32, film: &Film) -> Result<()> {
-        if self.every > 0 && passes.is_multiple_of(self.every) {
-            self.files.write_film(film, self.exposure)?;
-            self.outer.line(&format!(
-                "pass {passes}: wrote {} at {:.1} s",
-                self.files.exr.display(),
-                self.start.elapsed().as_secs_f64()
-            ));
-        }
-        self.outer.pass_done(passes, film)
-    }
 }

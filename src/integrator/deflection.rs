@@ -15,7 +15,7 @@
 
 use super::{CameraRay, Integrator, Sample};
 use crate::color::Rgb;
-use crate::film::{Layer, LayerKind};
+use crate::film::Layer;
 use crate::report::Report;
 use crate::transport::{Event, Stats, Tracer};
 use glam::DVec3;
@@ -23,10 +23,7 @@ use std::f64::consts::PI;
 use std::time::Instant;
 
 /// The layers, in order: only the environment is seen.
-const LAYERS: &[Layer] = &[Layer {
-    name: "emitted",
-    kind: LayerKind::Radiance,
-}];
+const LAYERS: &[Layer] = &[Layer::radiance("emitted")];
 
 /// Uniform nodes in α over [0, π] before refinement.
 const UNIFORM: usize = 1024;

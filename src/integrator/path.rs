@@ -14,7 +14,7 @@ use super::direct::{camera_path, direct, emission_seen, hero, VisiblePoint};
 use super::{CameraRay, Integrator, Sample};
 use crate::bsdf::Bsdf;
 use crate::color::Rgb;
-use crate::film::{Layer, LayerKind};
+use crate::film::Layer;
 use crate::report::Report;
 use crate::transport::chain::{Carried, End, Policy, Ray, Walker};
 use crate::transport::{offset, Tracer};
@@ -22,26 +22,11 @@ use rand::Rng;
 
 /// The layers, in order; `beauty` is their radiance sum.
 const LAYERS: &[Layer] = &[
-    Layer {
-        name: "direct",
-        kind: LayerKind::Radiance,
-    },
-    Layer {
-        name: "indirect",
-        kind: LayerKind::Radiance,
-    },
-    Layer {
-        name: "emitted",
-        kind: LayerKind::Radiance,
-    },
-    Layer {
-        name: "albedo",
-        kind: LayerKind::Aux,
-    },
-    Layer {
-        name: "normal",
-        kind: LayerKind::Aux,
-    },
+    Layer::radiance("direct"),
+    Layer::radiance("indirect"),
+    Layer::radiance("emitted"),
+    Layer::aux("albedo"),
+    Layer::aux("normal"),
 ];
 
 /// Bounces before Russian roulette starts.

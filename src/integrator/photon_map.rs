@@ -14,7 +14,7 @@ use super::direct::{camera_path, direct, hero};
 use super::{CameraRay, Integrator, Sample};
 use crate::bsdf::Bsdf;
 use crate::color::Rgb;
-use crate::film::{Layer, LayerKind};
+use crate::film::Layer;
 use crate::photon::{shoot, Batch, PhotonMap, Photons, Sources};
 use crate::report::Report;
 use crate::scene::Scene;
@@ -63,30 +63,12 @@ impl Plan {
 
 /// The layers, in order; `beauty` is their radiance sum.
 const LAYERS: &[Layer] = &[
-    Layer {
-        name: "direct",
-        kind: LayerKind::Radiance,
-    },
-    Layer {
-        name: "caustic",
-        kind: LayerKind::Radiance,
-    },
-    Layer {
-        name: "secondary",
-        kind: LayerKind::Radiance,
-    },
-    Layer {
-        name: "emitted",
-        kind: LayerKind::Radiance,
-    },
-    Layer {
-        name: "albedo",
-        kind: LayerKind::Aux,
-    },
-    Layer {
-        name: "normal",
-        kind: LayerKind::Aux,
-    },
+    Layer::radiance("direct"),
+    Layer::radiance("caustic"),
+    Layer::radiance("secondary"),
+    Layer::radiance("emitted"),
+    Layer::aux("albedo"),
+    Layer::aux("normal"),
 ];
 
 /// The photon mapper of a scene.
@@ -131,12 +113,7 @@ impl<'a> PhotonMapper<'a> {
         stop: &(dyn Fn() -> bool + Sync),
     ) -> Option<PhotonMap> {
         let t0 = Instant::now();
-        let photons = Photons {
-            batch,
-            seed: self.seed,
-            pass: index as u64,
-            count,
-        };
+        let photons = Photons::all(batch, self.seed, index as u64, count);
         let (sink, stats) = shoot(self.tracer, &self.sources, photons, stop);
         let t1 = Instant::now();
         report.stats.add(&stats);

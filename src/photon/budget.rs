@@ -3,6 +3,8 @@
 //! what they measure is how it divides (out through which face, reflected, absorbed, lost).
 //! Photons that carry a wavelength are also booked in every receiver band holding it.
 
+use crate::exact::ExactSum;
+use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
 /// How a photon's path ended.
@@ -23,37 +25,57 @@ pub enum Fate {
     Lost,
 }
 
-/// Power per fate, in the lights' power unit (W), as the mean over the RGB channels.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct Budget {
+/// Power per fate, in the lights' power unit (W), as the mean over the RGB channels; each
+/// entry a `T`: an [`ExactSum`] while photons are booked (a [`Ledger`], so that ledgers of
+/// photons traced apart add exactly), an f64 once read ([`Ledger::statement`]).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Budget<T = f64> {
     /// Power of the photons emitted.
-    pub emitted: f64,
+    pub emitted: T,
     /// Escaped after last leaving a dielectric through a primitive, by primitive index.
-    pub out_through: BTreeMap<usize, f64>,
+    pub out_through: BTreeMap<usize, T>,
     /// See [`Fate::Reflected`].
-    pub reflected: f64,
+    pub reflected: T,
     /// See [`Fate::Missed`].
-    pub missed: f64,
+    pub missed: T,
     /// See [`Fate::Absorbed`].
-    pub absorbed: f64,
+    pub absorbed: T,
     /// See [`Fate::Lost`].
-    pub lost: f64,
+    pub lost: T,
     /// The same for the photons in each wavelength band [lo, hi) nm (in
-    /// [`Budget::with_bands`] order; empty: no bands).
-    pub bands: Vec<((f64, f64), Budget)>,
+    /// [`Ledger::with_bands`] order; empty: no bands).
+    pub bands: Vec<((f64, f64), Budget<T>)>,
 }
 
-impl Budget {
-    /// An empty budget that also books photons by wavelength `bands` [lo, hi) nm.
-    pub fn with_bands(bands: &[(f64, f64)]) -> Budget {
+/// The books a batch keeps as its photons end: exact sums.
+pub type Ledger = Budget<ExactSum>;
+
+impl<T> Budget<T> {
+    /// Every entry mapped by `f`.
+    fn map<U>(&self, f: &impl Fn(&T) -> U) -> Budget<U> {
+        Budget {
+            emitted: f(&self.emitted),
+            out_through: self.out_through.iter().map(|(&p, w)| (p, f(w))).collect(),
+            reflected: f(&self.reflected),
+            missed: f(&self.missed),
+            absorbed: f(&self.absorbed),
+            lost: f(&self.lost),
+            bands: self.bands.iter().map(|(b, x)| (*b, x.map(f))).collect(),
+        }
+    }
+}
+
+impl Ledger {
+    /// An empty ledger that also books photons by wavelength `bands` [lo, hi) nm.
+    pub fn with_bands(bands: &[(f64, f64)]) -> Ledger {
         Budget {
             bands: bands.iter().map(|&b| (b, Budget::default())).collect(),
             ..Budget::default()
         }
     }
 
-    /// The budgets of the bands holding wavelength `nm` (none without one).
-    fn bands_at(&mut self, nm: Option<f64>) -> impl Iterator<Item = &mut Budget> {
+    /// The ledgers of the bands holding wavelength `nm` (none without one).
+    fn bands_at(&mut self, nm: Option<f64>) -> impl Iterator<Item = &mut Ledger> {
         self.bands
             .iter_mut()
             .filter(move |((lo, hi), _)| nm.is_some_and(|nm| (*lo..*hi).contains(&nm)))
@@ -62,8 +84,8 @@ impl Budget {
 
     /// Books the emission of a photon of `power` at wavelength `nm` (None: it carries all).
     pub fn emit(&mut self, power: f64, nm: Option<f64>) {
-        self.emitted += power;
-        self.bands_at(nm).for_each(|b| b.emitted += power);
+        self.emitted.add(power);
+        self.bands_at(nm).for_each(|b| b.emitted.add(power));
     }
 
     /// Books a photon of `power` at wavelength `nm` that ended as `fate`.
@@ -74,17 +96,17 @@ impl Budget {
 
     fn book_here(&mut self, fate: Fate, power: f64) {
         match fate {
-            Fate::OutThrough(p) => *self.out_through.entry(p).or_default() += power,
-            Fate::Reflected => self.reflected += power,
-            Fate::Missed => self.missed += power,
-            Fate::Absorbed => self.absorbed += power,
-            Fate::Lost => self.lost += power,
+            Fate::OutThrough(p) => self.out_through.entry(p).or_default().add(power),
+            Fate::Reflected => self.reflected.add(power),
+            Fate::Missed => self.missed.add(power),
+            Fate::Absorbed => self.absorbed.add(power),
+            Fate::Lost => self.lost.add(power),
         }
     }
 
-    /// Adds another budget's entries to this one (band by band: both have the same bands, or
-    /// this one none yet).
-    pub fn add(&mut self, other: &Budget) {
+    /// Adds another ledger's entries to this one, exactly (band by band: both have the same
+    /// bands, or this one none yet).
+    pub fn add(&mut self, other: &Ledger) {
         if self.bands.is_empty() {
             self.bands = other
                 .bands
@@ -95,31 +117,24 @@ impl Budget {
         for ((_, mine), (_, theirs)) in self.bands.iter_mut().zip(&other.bands) {
             mine.add(theirs);
         }
-        self.emitted += other.emitted;
-        for (&p, &w) in &other.out_through {
-            *self.out_through.entry(p).or_default() += w;
+        self.emitted.merge(&other.emitted);
+        for (&p, w) in &other.out_through {
+            self.out_through.entry(p).or_default().merge(w);
         }
-        self.reflected += other.reflected;
-        self.missed += other.missed;
-        self.absorbed += other.absorbed;
-        self.lost += other.lost;
+        self.reflected.merge(&other.reflected);
+        self.missed.merge(&other.missed);
+        self.absorbed.merge(&other.absorbed);
+        self.lost.merge(&other.lost);
     }
 
-    /// Multiplies every entry by `factor` (a batch's share traced, to its full power).
-    pub fn scale(&mut self, factor: f64) {
-        self.emitted *= factor;
-        for w in self.out_through.values_mut() {
-            *w *= factor;
-        }
-        self.reflected *= factor;
-        self.missed *= factor;
-        self.absorbed *= factor;
-        self.lost *= factor;
-        for (_, b) in &mut self.bands {
-            b.scale(factor);
-        }
+    /// The budget these books hold, every entry times `factor` (1, or a batch's share traced
+    /// to its full power).
+    pub fn statement(&self, factor: f64) -> Budget {
+        self.map(&|w: &ExactSum| w.value() * factor)
     }
+}
 
+impl Budget {
     /// The sum of all fates (equal to `emitted` up to rounding).
     pub fn booked(&self) -> f64 {
         self.out_through.values().sum::<f64>()

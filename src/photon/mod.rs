@@ -19,7 +19,7 @@
 mod budget;
 mod map;
 
-pub use budget::{Budget, Fate};
+pub use budget::{Budget, Fate, Ledger};
 pub use map::{Photon, PhotonMap};
 
 use crate::bsdf::Bsdf;
@@ -267,12 +267,13 @@ pub struct Sink {
     /// Receiver crossings.
     pub detections: Vec<Detection>,
     /// Where the photons' power went.
-    pub budget: Budget,
+    pub budget: Ledger,
 }
 
-/// Which photons a batch traces: photons `0..count` of pass `pass`, their random streams
-/// keyed by `seed` and by what the batch is for.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// Which photons a batch traces: photons `traced` of the `count` of pass `pass` (each
+/// carrying 1/`count` of the power), their random streams keyed by `seed` and by what the
+/// batch is for. Photon `i` is the same photon whatever range it is traced in.
+#[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Photons {
     /// What the batch is for.
     pub batch: Batch,
@@ -280,11 +281,24 @@ pub struct Photons {
     pub seed: u64,
     /// The pass.
     pub pass: u64,
-    /// How many.
+    /// How many photons the batch has.
     pub count: u64,
+    /// Which of them are traced (a sub-range of `0..count`).
+    pub traced: std::ops::Range<u64>,
 }
 
 impl Photons {
+    /// All `count` photons of pass `pass` of `batch`.
+    pub fn all(batch: Batch, seed: u64, pass: u64, count: u64) -> Photons {
+        Photons {
+            batch,
+            seed,
+            pass,
+            count,
+            traced: 0..count,
+        }
+    }
+
     /// The random stream of photon `i`, advanced past its launch from `sources`, and the
     /// launch (None where the chosen source emits nothing for these numbers).
     fn launch(&self, tracer: &Tracer, sources: &Sources, i: u64) -> (Pcg64Mcg, Option<Launch>) {
@@ -311,18 +325,24 @@ impl Photons {
 }
 
 /// Traces `photons` and returns what they left, in photon order, with
-/// the transport statistics. Runs on the current rayon pool. Once `stop` answers true, chunks
-/// not yet started are skipped: the photons traced are then a subset of whole chunks,
-/// counted in the statistics' `photons_emitted` (their powers stay those of a batch of
-/// `count`).
+/// the transport statistics. Runs on the current rayon pool, in chunks of [`CHUNK`] photon
+/// indices. Once `stop` answers true, chunks not yet started are skipped: the photons traced
+/// are then a subset of whole chunks, counted in the statistics' `photons_emitted` (their
+/// powers stay those of a batch of `count`).
 pub fn shoot(
     tracer: &Tracer,
     sources: &Sources,
     photons: Photons,
     stop: &(dyn Fn() -> bool + Sync),
 ) -> (Sink, Stats) {
-    let Photons { batch, count, .. } = photons;
-    if sources.is_empty() || count == 0 {
+    let Photons {
+        batch,
+        count,
+        ref traced,
+        ..
+    } = photons;
+    let traced = traced.start..traced.end.min(count);
+    if sources.is_empty() || traced.is_empty() {
         return (Sink::default(), Stats::default());
     }
     // The receivers' wavelength bands, each once, booked apart in the energy budget.
@@ -332,18 +352,18 @@ pub fn shoot(
             bands.push(*band);
         }
     }
-    let chunks: Vec<(Sink, Stats)> = (0..count.div_ceil(CHUNK))
+    let chunks: Vec<(Sink, Stats)> = (traced.start / CHUNK..traced.end.div_ceil(CHUNK))
         .into_par_iter()
         .map(|c| {
             let mut stored = Sink {
-                budget: Budget::with_bands(&bands),
+                budget: Ledger::with_bands(&bands),
                 ..Sink::default()
             };
             let mut stats = Stats::default();
             if stop() {
                 return (stored, stats);
             }
-            for i in c * CHUNK..((c + 1) * CHUNK).min(count) {
+            for i in (c * CHUNK).max(traced.start)..((c + 1) * CHUNK).min(traced.end) {
                 let (mut rng, emission) = photons.launch(tracer, sources, i);
                 stats.photons_emitted += 1;
                 if let Some(e) = emission {
@@ -400,12 +420,7 @@ pub fn photon_paths(
     if sources.is_empty() {
         return paths;
     }
-    let photons = Photons {
-        batch: Batch::Receivers,
-        seed,
-        pass,
-        count,
-    };
+    let photons = Photons::all(Batch::Receivers, seed, pass, count);
     for i in 0..count {
         let (mut rng, emission) = photons.launch(tracer, sources, i);
         if let Some(e) = emission {

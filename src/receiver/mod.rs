@@ -11,7 +11,9 @@ mod output;
 mod statistics;
 
 pub use output::{draw_heat_map, write_csv, write_png, write_radial_csv, write_radial_png};
-pub use statistics::{compare, measure, radial_profile, Comparison, Measurement, Profile};
+pub use statistics::{
+    compare, measure, radial_profile, tally, Comparison, Measurement, Profile, Tally,
+};
 
 use crate::shapes::Primitive;
 use glam::DVec3;

@@ -2,6 +2,9 @@
 //! crossings, the radial profile, and how two measurements compare.
 
 use super::{Detection, Receiver};
+use crate::exact::ExactSum;
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
 
 /// What a receiver measured: irradiance and its standard error per bin.
 #[derive(Clone, Debug, PartialEq)]
@@ -36,73 +39,135 @@ impl Measurement {
 pub fn measure(receivers: &[Receiver], detections: &[Detection], photons: u64) -> Vec<Measurement> {
     receivers
         .iter()
+        .zip(tally(receivers, detections))
+        .map(|(rec, t)| t.measurement(rec, photons, 1.0))
+        .collect()
+}
+
+/// Each receiver's tally of `detections` (in photon order), with its bands.
+pub fn tally(receivers: &[Receiver], detections: &[Detection]) -> Vec<Tally> {
+    receivers
+        .iter()
         .enumerate()
         .map(|(r, rec)| {
             let mine = |d: &&Detection| d.receiver == r as u32;
-            let mut m = tally(rec, detections.iter().filter(mine), photons);
-            m.bands = rec
+            let mut t = Tally::of(detections.iter().filter(mine));
+            t.bands = rec
                 .bands
                 .iter()
                 .map(|&(lo, hi)| {
                     let inside = |d: &&Detection| mine(d) && (lo..hi).contains(&d.wavelength);
-                    tally(rec, detections.iter().filter(inside), photons)
+                    Tally::of(detections.iter().filter(inside))
                 })
                 .collect();
-            m
+            t
         })
         .collect()
 }
 
-/// One receiver's measurement from its detections among `photons` photons. A bin's value is
-/// the sum Σ x_i over photons of their flux into it; as the photons are independent, its
-/// variance is N·Var(x) = Σ x² − (Σ x)²/N (crossings of one bin by one photon are added
-/// first).
-fn tally<'a>(
-    rec: &Receiver,
-    detections: impl Iterator<Item = &'a Detection>,
-    photons: u64,
-) -> Measurement {
-    let n = photons.max(1) as f64;
-    let bins = rec.bins.0 * rec.bins.1;
-    let (mut sum, mut sq) = (vec![0.0; bins], vec![0.0; bins]);
-    let (mut total, mut total_sq) = (0.0, 0.0);
-    let mut photon_total = (u64::MAX, 0.0);
-    let mut last: Option<(u64, u32, f64)> = None;
-    let close = |(_, bin, x): (u64, u32, f64), sq: &mut Vec<f64>| sq[bin as usize] += x * x;
-    for d in detections {
-        sum[d.bin as usize] += d.flux;
-        total += d.flux;
-        match &mut last {
-            Some((p, b, x)) if *p == d.photon && *b == d.bin => *x += d.flux,
-            _ => {
-                if let Some(l) = last {
-                    close(l, &mut sq);
+/// Σ x and Σ x² over photons of their flux x into something (a bin, a receiver), exactly.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+struct Moments {
+    sum: ExactSum,
+    squares: ExactSum,
+}
+
+impl Moments {
+    fn merge(&mut self, other: &Moments) {
+        self.sum.merge(&other.sum);
+        self.squares.merge(&other.squares);
+    }
+
+    /// The sum over N photons, times `scale`, and its standard error: as the photons are
+    /// independent, the sum's variance is N·Var(x) = Σ x² − (Σ x)²/N.
+    fn estimate(&self, photons: u64, scale: f64) -> (f64, f64) {
+        let (s, q) = (self.sum.value(), self.squares.value());
+        let variance = (q - s * s / photons.max(1) as f64).max(0.0);
+        (s * scale, variance.sqrt() * scale)
+    }
+}
+
+/// What one receiver's crossings add up to, per bin (those crossed) and in all, and the same
+/// for each of its wavelength bands: exact sums, so tallies of disjoint sets of photons (other
+/// ranges, other machines) merge into bit for bit the tally of all of them.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Tally {
+    bins: BTreeMap<u32, Moments>,
+    total: Moments,
+    bands: Vec<Tally>,
+}
+
+impl Tally {
+    /// The tally of one receiver's detections, in photon order (a photon's crossings of one
+    /// bin are added before squaring).
+    fn of<'a>(detections: impl Iterator<Item = &'a Detection>) -> Tally {
+        let mut t = Tally::default();
+        let mut bin: Option<(u64, u32, f64)> = None;
+        let mut photon: Option<(u64, f64)> = None;
+        for d in detections {
+            t.bins.entry(d.bin).or_default().sum.add(d.flux);
+            t.total.sum.add(d.flux);
+            match &mut bin {
+                Some((p, b, x)) if *p == d.photon && *b == d.bin => *x += d.flux,
+                _ => {
+                    if let Some((_, b, x)) = bin.replace((d.photon, d.bin, d.flux)) {
+                        t.bins.entry(b).or_default().squares.add(x * x);
+                    }
                 }
-                last = Some((d.photon, d.bin, d.flux));
+            }
+            match &mut photon {
+                Some((p, x)) if *p == d.photon => *x += d.flux,
+                _ => {
+                    if let Some((_, x)) = photon.replace((d.photon, d.flux)) {
+                        t.total.squares.add(x * x);
+                    }
+                }
             }
         }
-        if photon_total.0 == d.photon {
-            photon_total.1 += d.flux;
-        } else {
-            total_sq += photon_total.1 * photon_total.1;
-            photon_total = (d.photon, d.flux);
+        if let Some((_, b, x)) = bin {
+            t.bins.entry(b).or_default().squares.add(x * x);
+        }
+        if let Some((_, x)) = photon {
+            t.total.squares.add(x * x);
+        }
+        t
+    }
+
+    /// Adds the tally of other photons of the same receiver, exactly.
+    pub fn merge(&mut self, other: &Tally) {
+        for (b, m) in &other.bins {
+            self.bins.entry(*b).or_default().merge(m);
+        }
+        self.total.merge(&other.total);
+        if self.bands.is_empty() {
+            self.bands = vec![Tally::default(); other.bands.len()];
+        }
+        for (a, b) in self.bands.iter_mut().zip(&other.bands) {
+            a.merge(b);
         }
     }
-    if let Some(l) = last {
-        close(l, &mut sq);
-    }
-    total_sq += photon_total.1 * photon_total.1;
-    let area = rec.bin_area();
-    let se = |s: f64, q: f64| (q - s * s / n).max(0.0).sqrt();
-    Measurement {
-        irradiance: sum.iter().map(|s| s / area).collect(),
-        stderr: sum
-            .iter()
-            .zip(&sq)
-            .map(|(s, q)| se(*s, *q) / area)
-            .collect(),
-        flux: (total, se(total, total_sq)),
-        bands: Vec::new(),
+
+    /// The measurement of receiver `rec` from this tally of `photons` photons, every flux
+    /// times `scale` (1, or the share of a batch traced, to its full count).
+    pub fn measurement(&self, rec: &Receiver, photons: u64, scale: f64) -> Measurement {
+        let area = rec.bin_area();
+        let (mut irradiance, mut stderr) = (vec![0.0; rec.bins.0 * rec.bins.1], Vec::new());
+        stderr.resize(irradiance.len(), 0.0);
+        for (&b, m) in &self.bins {
+            let (e, se) = m.estimate(photons, scale);
+            irradiance[b as usize] = e / area;
+            stderr[b as usize] = se / area;
+        }
+        Measurement {
+            irradiance,
+            stderr,
+            flux: self.total.estimate(photons, scale),
+            bands: self
+                .bands
+                .iter()
+                .map(|b| b.measurement(rec, photons, scale))
+                .collect(),
+        }
     }
 }
 

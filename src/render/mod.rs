@@ -13,7 +13,7 @@ use crate::film::Film;
 use crate::integrator::{
     CameraRay, DeflectionTable, Integrator, PathTracer, PhotonMapper, Plan, Sample,
 };
-use crate::photon::{shoot, Batch, Budget, Photons, Sources};
+use crate::photon::{shoot, Batch, Budget, Ledger, Photons, Sources};
 use crate::receiver::{self, Measurement};
 pub use crate::report::Report;
 use crate::sampling::{stream, Purpose};
@@ -70,8 +70,7 @@ pub trait Observer: Sync {
         Ok(())
     }
     /// Whether to stop as soon as possible (an interrupt): a render abandons its current pass
-    /// — tiles not yet started keep the passes they have — and returns what it has, marked
-    /// as partial in its [`Report`].
+    /// and returns the passes it finished, marked as partial in its [`Report`].
     fn stop_requested(&self) -> bool {
         false
     }
@@ -93,11 +92,23 @@ pub fn render(
     settings: &Settings,
     observer: &dyn Observer,
 ) -> Result<(Film, Report)> {
-    let tracer = Tracer::new(scene, &settings.trace);
     let passes = Passes {
         first: 0,
         count: settings.passes,
     };
+    render_passes(scene, settings, passes, observer)
+}
+
+/// Renders `passes` of the scene's camera view (of the `settings.passes` a whole render has:
+/// pass p is the same pass whichever range it is rendered in, so films of disjoint ranges
+/// merge into the film of their union).
+pub fn render_passes(
+    scene: &Scene,
+    settings: &Settings,
+    passes: Passes,
+    observer: &dyn Observer,
+) -> Result<(Film, Report)> {
+    let tracer = Tracer::new(scene, &settings.trace);
     match settings.integrator {
         Kind::PhotonMap => {
             let stop = || observer.stop_requested();
@@ -130,7 +141,9 @@ pub struct Passes {
     pub count: u32,
 }
 
-/// Renders `passes` of the tracer's scene with `integrator` into one film.
+/// Renders `passes` of the tracer's scene with `integrator` into one film. Stopped by the
+/// observer, it returns the film of the passes it finished (a pass cut short is left out, so
+/// that the film is exactly those passes), and its report says so.
 pub fn render_with<I: Integrator>(
     integrator: &I,
     tracer: &Tracer,
@@ -150,6 +163,8 @@ pub fn render_with<I: Integrator>(
         time_budget: settings.time_budget,
     });
     let stop = || observer.stop_requested();
+    // The film of the whole passes done.
+    let mut whole = Film::new(w, h, layers);
     for k in 0..passes.count {
         let pass = passes.first.saturating_add(k);
         let over_budget = settings
@@ -199,13 +214,14 @@ pub fn render_with<I: Integrator>(
             break;
         }
         report.passes = k + 1;
-        observer.pass_done(report.passes, &assemble(&tiles, w, h, layers))?;
+        whole = assemble(&tiles, w, h, layers);
+        observer.pass_done(report.passes, &whole)?;
     }
     if report.partial.is_none() && stop() && report.passes < passes.count {
         report.partial = Some(format!("{} of {} passes", report.passes, passes.count));
     }
     observer.progress(Progress::Done);
-    Ok((assemble(&tiles, w, h, layers), report))
+    Ok((whole, report))
 }
 
 /// The camera's film size in pixels, or an error naming the scene that has no camera.
@@ -349,45 +365,100 @@ pub fn measure(
     pass: u64,
     observer: &dyn Observer,
 ) -> Result<(Vec<Measurement>, Budget, Report)> {
+    let count = settings.receiver_photons;
+    let (books, report) = trace_receivers(scene, settings, (pass, 0..count), observer)?;
+    let scale = count as f64 / books.traced.max(1) as f64;
+    Ok((
+        books.measurements(&scene.receivers, scale),
+        books.ledger.statement(scale),
+        report,
+    ))
+}
+
+/// What the receiver photons traced left: each receiver's tally, the energy ledger, and how
+/// many photons were traced. Books of disjoint photon ranges add exactly ([`Books::add`]).
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Books {
+    /// Per receiver, in scene order.
+    pub tallies: Vec<receiver::Tally>,
+    /// Where the photons' power went.
+    pub ledger: Ledger,
+    /// Photons traced.
+    pub traced: u64,
+}
+
+impl Books {
+    /// Adds the books of other photons of the same batch.
+    pub fn add(&mut self, other: &Books) {
+        if self.tallies.is_empty() {
+            self.tallies = vec![Default::default(); other.tallies.len()];
+        }
+        for (a, b) in self.tallies.iter_mut().zip(&other.tallies) {
+            a.merge(b);
+        }
+        self.ledger.add(&other.ledger);
+        self.traced += other.traced;
+    }
+
+    /// Each receiver's measurement, every flux times `scale` (1 when the whole batch was
+    /// traced).
+    pub fn measurements(&self, receivers: &[receiver::Receiver], scale: f64) -> Vec<Measurement> {
+        receivers
+            .iter()
+            .zip(&self.tallies)
+            .map(|(r, t)| t.measurement(r, self.traced, scale))
+            .collect()
+    }
+}
+
+/// Traces photons `traced` of the receiver batch of stream pass `pass` (each carrying
+/// 1/`settings.receiver_photons` of the lights' power) and books their receiver crossings and
+/// fates. Stopped by `observer`, the books hold the whole chunks traced, and the report says
+/// so.
+pub fn trace_receivers(
+    scene: &Scene,
+    settings: &Settings,
+    (pass, traced): (u64, std::ops::Range<u64>),
+    observer: &dyn Observer,
+) -> Result<(Books, Report)> {
     let tracer = Tracer::new(scene, &settings.trace);
     let sources = Sources::new(&tracer);
     let pool = thread_pool(settings.threads)?;
-    let count = settings.receiver_photons;
+    let count = traced.end - traced.start;
     observer.progress(Progress::Measuring {
         photons: count,
         receivers: scene.receivers.len(),
     });
     let t0 = Instant::now();
-    let (mut sink, stats) = pool.install(|| {
+    let (sink, stats) = pool.install(|| {
         let photons = Photons {
-            batch: Batch::Receivers,
-            seed: settings.seed,
-            pass,
-            count,
+            traced,
+            ..Photons::all(
+                Batch::Receivers,
+                settings.seed,
+                pass,
+                settings.receiver_photons,
+            )
         };
         shoot(&tracer, &sources, photons, &|| observer.stop_requested())
     });
     observer.progress(Progress::Done);
-    let traced = stats.photons_emitted;
+    let done = stats.photons_emitted;
     let mut report = Report {
         passes: 1,
         stats,
         seconds: (t0.elapsed().as_secs_f64(), 0.0, 0.0),
         ..Report::default()
     };
-    if traced < count && !sources.is_empty() {
-        report.partial = Some(format!("{traced} of {count} receiver photons"));
-        let scale = count as f64 / traced.max(1) as f64;
-        for d in &mut sink.detections {
-            d.flux *= scale;
-        }
-        sink.budget.scale(scale);
+    if done < count && !sources.is_empty() {
+        report.partial = Some(format!("{done} of {count} receiver photons"));
     }
-    Ok((
-        receiver::measure(&scene.receivers, &sink.detections, traced.max(1)),
-        sink.budget,
-        report,
-    ))
+    let books = Books {
+        tallies: receiver::tally(&scene.receivers, &sink.detections),
+        ledger: sink.budget,
+        traced: if sources.is_empty() { count } else { done },
+    };
+    Ok((books, report))
 }
 
 /// Bytes a render of `scene` needs at its peak, estimated from above for typical scenes: the
@@ -403,10 +474,11 @@ pub fn memory_needed(scene: &Scene, settings: &Settings) -> u64 {
         .camera
         .as_ref()
         .map_or(0, |c| c.width as u64 * c.height as u64);
-    // Each tile's film and the whole one (f64 RGB sums per layer, a count), a developed copy
-    // (f32 RGB per layer) being written.
+    // The tiles' films, the whole film of the passes done and the partial's (fixed-point RGB
+    // sums per layer, a count), a developed copy (f32 RGB per layer) being written.
     let layers = 7;
-    let film = pixels * (2 * (layers * size_of::<crate::color::Rgb>() + 8) + layers * 12) as u64;
+    let sums = layers * size_of::<[crate::exact::Fixed; 3]>() + 8;
+    let film = pixels * (3 * sums + layers * 12) as u64;
     let per_photon = 2 * size_of::<crate::photon::Photon>() as u64 + 32;
     let caustic = if plan.caustic {
         settings.photons.caustic

@@ -2,8 +2,9 @@
 
 use clap::{Parser, Subcommand, ValueEnum};
 use glam::DVec3;
-use grinlight::commands::{Overrides, RenderJob, TraceControl, TraceJob, ValidateJob};
+use grinlight::commands::{MergeJob, Overrides, RenderJob, TraceControl, TraceJob, ValidateJob};
 use grinlight::curve::StepperKind;
+use grinlight::shard::Shard;
 use std::path::PathBuf;
 
 #[derive(Parser)]
@@ -41,6 +42,34 @@ pub enum Command {
     Validate(ValidateArgs),
     /// Trace one ray through a medium of a scene (unbounded) and print where it ends.
     Trace(TraceArgs),
+    /// Merge the partial results of a render's shards (`render --shard K/N`) into its EXR,
+    /// PNG, receiver files and energy budget: bit for bit those of one whole render.
+    Merge(MergeArgs),
+}
+
+/// `grinlight merge` options.
+#[derive(clap::Args)]
+pub struct MergeArgs {
+    /// The shards' partial files (.partial), in any order.
+    #[arg(required = true)]
+    partials: Vec<PathBuf>,
+    /// Output EXR, ending in .exr (default: the scene's [output] path, else <scene name>.exr
+    /// here); the PNG preview and receiver files are written beside it.
+    #[arg(short, long)]
+    output: Option<PathBuf>,
+    /// Merge even if shards are missing: an estimate from the work there is (said so).
+    #[arg(long)]
+    allow_missing: bool,
+}
+
+impl From<MergeArgs> for MergeJob {
+    fn from(a: MergeArgs) -> Self {
+        MergeJob {
+            partials: a.partials,
+            output: a.output,
+            allow_missing: a.allow_missing,
+        }
+    }
 }
 
 /// `grinlight validate` options.
@@ -128,9 +157,18 @@ pub struct RenderArgs {
     /// Scene file (TOML).
     scene: PathBuf,
     /// Output EXR, ending in .exr (default: [output] path, else <scene name>.exr here); the
-    /// PNG preview and receiver files are written beside it.
+    /// PNG preview and receiver files are written beside it. With --shard: the partial file,
+    /// ending in .partial (default: <scene name>.shard-K-of-N.partial here).
     #[arg(short, long)]
     output: Option<PathBuf>,
+    /// Render only the K-th of N slices of the passes and receiver photons, into a partial
+    /// result for `grinlight merge` (e.g. one task of a Slurm job array).
+    #[arg(long, value_parser = parse_shard)]
+    shard: Option<Shard>,
+    /// Continue the render (or shard) a kill or an interrupt stopped, from the partial it
+    /// saved (<output>.partial, or the shard's file); give the same options.
+    #[arg(long)]
+    resume: bool,
     /// Camera samples per pixel per pass (≥ 1).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
     spp: Option<u32>,
@@ -175,7 +213,8 @@ pub struct RenderArgs {
     /// Start no new pass after this many seconds (with no --passes: as many as fit).
     #[arg(long)]
     time_budget: Option<f64>,
-    /// Write the EXR (and PNG) every N passes, not only at the end.
+    /// Save the partial and write the EXR (and PNG) every N passes and after every block of
+    /// receiver photons (default: every minute and at the end).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
     checkpoint: Option<u32>,
     /// Photons traced for the scene's receivers (≥ 1).
@@ -186,6 +225,10 @@ pub struct RenderArgs {
     /// <output stem>.paths.png.
     #[arg(long)]
     paths: Option<u64>,
+}
+
+fn parse_shard(s: &str) -> std::result::Result<Shard, String> {
+    Shard::parse(s).map_err(|e| e.to_string())
 }
 
 fn parse_vec(s: &str) -> std::result::Result<DVec3, String> {
@@ -229,6 +272,8 @@ impl From<RenderArgs> for RenderJob {
             },
             checkpoint: a.checkpoint.unwrap_or(0),
             paths: a.paths.unwrap_or(0),
+            shard: a.shard,
+            resume: a.resume,
         }
     }
 }

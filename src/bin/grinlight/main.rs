@@ -21,6 +21,7 @@ fn run(cli: Cli, console: &console::Console) -> Result<bool, Error> {
             commands::trace(&args.into(), console)?;
             true
         }
+        Command::Merge(args) => !commands::merge(&args.into(), console)?.partial,
     })
 }
 

@@ -1,0 +1,61 @@
+//! `grinlight merge`: the partial results of a render's shards merged into its results, bit
+//! for bit those of one run of the whole render (see [`crate::shard`]).
+
+use super::render::{output_exr, publish, Files, RenderOutcome};
+use super::Observer;
+use crate::error::{Error, Result};
+use crate::output::Outputs;
+use crate::scene;
+use crate::shard::{Header, Partial, Shard};
+use std::path::PathBuf;
+
+/// What `grinlight merge` is asked to do.
+#[derive(Clone, Debug, Default)]
+pub struct MergeJob {
+    /// The partial files, one per shard, in any order.
+    pub partials: Vec<PathBuf>,
+    /// The EXR to write (None: the scene's `[output] path`, else `<scene stem>.exr` in the
+    /// working directory); the PNG preview and receivers' files are named after it.
+    pub output: Option<PathBuf>,
+    /// Merge even when shards are missing: the film holds the passes there are, the
+    /// receivers' fluxes are scaled from the photons there are (an estimate, said so).
+    pub allow_missing: bool,
+}
+
+/// Runs `grinlight merge`: reads the partials, refuses any that are not parts of one render
+/// (naming the difference), duplicates and overlaps, and missing work unless allowed; reloads
+/// the scene they name (refusing it if its files changed since) and writes the render's
+/// results as `grinlight render` does.
+pub fn merge(job: &MergeJob, observer: &dyn Observer) -> Result<RenderOutcome> {
+    let parts = job
+        .partials
+        .iter()
+        .map(|p| Ok((p.clone(), Partial::read(p)?)))
+        .collect::<Result<Vec<_>>>()?;
+    let merged = Partial::merge(&parts, job.allow_missing)?;
+    let path = &merged.header.scene;
+    let (description, settings) = scene::load_description(path)?;
+    let scene = description.build();
+    if Header::new(&scene, &settings, Shard::WHOLE)?.inputs != merged.header.inputs {
+        return Err(Error::Usage(format!(
+            "{}: the scene or a file it reads changed since the partials were rendered: merging \
+             them would describe a scene that no longer exists",
+            path.display()
+        )));
+    }
+    let exr = output_exr(job.output.clone(), &settings, path);
+    let mut outputs = Outputs::new(scene.inputs.iter().chain(&job.partials));
+    let files = Files::plan(&scene, (exr, settings.output.png, 0), &mut outputs)?;
+    observer.line(&format!(
+        "merging {} partial(s) of {} ({} shard(s)): passes {}, receiver photons {}",
+        parts.len(),
+        path.display(),
+        parts[0].1.header.shard.count,
+        merged.passes,
+        merged.photons
+    ));
+    let complete = merged.is_complete();
+    let mut outcome = publish((&scene, &settings), merged, (None, None), &files, observer)?;
+    outcome.partial = !complete;
+    Ok(outcome)
+}

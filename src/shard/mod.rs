@@ -1,0 +1,360 @@
+//! Scaling out (DESIGN.md §13): a render as independent slices of work, each kept as an exact
+//! partial result, merged into the result one run would have produced.
+//!
+//! A render's work is its passes (pass p draws from streams keyed by p) and its receiver
+//! photons (photon i from streams keyed by i). A [`Shard`] K/N takes the K-th of N contiguous
+//! slices of both. Its [`Partial`] keeps sums, never means — the film's fixed-point sums, the
+//! receivers' exact tallies, the energy ledger — with which passes and photons it holds, and a
+//! [`Header`] saying what it is a part of (the program, the scene and its inputs' contents,
+//! every setting that shapes the result). Partials of the same header merge by adding
+//! ([`Partial::merge`]), exactly and in any order, so N shards merged are bit for bit the
+//! single run. [`run`] does a partial's remaining work, saving it as it goes (a checkpoint
+//! that `--resume` continues).
+//!
+//! grinlight provides the shard and the merge, not a scheduler: a cluster's own (a Slurm job
+//! array, a Ray driver; `cluster/` in the repository) runs the shards.
+
+mod coverage;
+mod run;
+
+pub use coverage::Coverage;
+pub use run::{run, Ran, Saving, BLOCK};
+
+use crate::error::{Error, Result};
+use crate::film::Film;
+use crate::render::Books;
+use crate::scene::Scene;
+use crate::settings::Settings;
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+
+/// The K-th of N slices of a render's work (1 ≤ K ≤ N).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Shard {
+    /// K, from 1.
+    pub index: u32,
+    /// N.
+    pub count: u32,
+}
+
+impl Shard {
+    /// All the work: 1/1.
+    pub const WHOLE: Shard = Shard { index: 1, count: 1 };
+
+    /// Parses "K/N" (as a command line writes it), naming what is wrong.
+    pub fn parse(text: &str) -> Result<Shard> {
+        let bad = |why: &str| Error::Usage(format!("--shard {text}: {why} (write K/N, 1 ≤ K ≤ N)"));
+        let (k, n) = text.split_once('/').ok_or_else(|| bad("no '/'"))?;
+        let number = |s: &str| {
+            s.trim()
+                .parse::<u32>()
+                .map_err(|_| bad("not a whole number"))
+        };
+        let (index, count) = (number(k)?, number(n)?);
+        if index == 0 || index > count {
+            return Err(bad("K out of range"));
+        }
+        Ok(Shard { index, count })
+    }
+
+    /// This shard's slice of `0..total`: [⌊(K−1)·total/N⌋, ⌊K·total/N⌋), so the N slices
+    /// tile it and differ in size by at most one.
+    pub fn slice(&self, total: u64) -> std::ops::Range<u64> {
+        let at = |k: u32| (total as u128 * k as u128 / self.count as u128) as u64;
+        at(self.index - 1)..at(self.index)
+    }
+}
+
+impl std::fmt::Display for Shard {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}/{}", self.index, self.count)
+    }
+}
+
+/// What a partial result is a part of. Two partials merge only when their headers agree in
+/// everything but the shard's index.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Header {
+    /// The program and version that rendered it.
+    pub program: String,
+    /// The scene file, absolute.
+    pub scene: PathBuf,
+    /// FNV-1a hash of the contents of the scene file and every file it reads, in order.
+    pub inputs: u64,
+    /// Every setting that shapes the result, as (name, value).
+    pub settings: Vec<(String, String)>,
+    /// Which slice.
+    pub shard: Shard,
+    /// Passes of the whole render (0: no camera).
+    pub passes: u32,
+    /// Receiver photons of the whole render (0: no receivers).
+    pub photons: u64,
+}
+
+impl Header {
+    /// The header of shard `shard` of the render of `scene` with `settings`: reads the
+    /// scene's input files to hash them.
+    pub fn new(scene: &Scene, settings: &Settings, shard: Shard) -> Result<Header> {
+        let camera = scene.camera.as_ref();
+        let mut values = vec![
+            ("seed", settings.seed.to_string()),
+            ("spp", settings.spp.to_string()),
+            ("integrator", format!("{:?}", settings.integrator)),
+            ("deflection_table", settings.deflection_table.to_string()),
+            ("trace", format!("{:?}", settings.trace)),
+            ("photons", format!("{:?}", settings.photons)),
+        ];
+        if let Some(c) = camera {
+            values.push(("camera", format!("{}×{}", c.width, c.height)));
+        }
+        Ok(Header {
+            program: format!("grinlight {}", env!("CARGO_PKG_VERSION")),
+            scene: std::path::absolute(scene.path()).map_err(|e| Error::io(scene.path(), e))?,
+            inputs: hash_files(&scene.inputs)?,
+            settings: values
+                .into_iter()
+                .map(|(k, v)| (k.to_string(), v))
+                .collect(),
+            shard,
+            passes: if camera.is_some() { settings.passes } else { 0 },
+            photons: if scene.receivers.is_empty() {
+                0
+            } else {
+                settings.receiver_photons
+            },
+        })
+    }
+
+    /// The first way `other` differs from this header apart from the shard's index, said in
+    /// words; None when they agree.
+    pub fn difference(&self, other: &Header) -> Option<String> {
+        let differ = |what: &str, a: &dyn std::fmt::Debug, b: &dyn std::fmt::Debug| {
+            Some(format!("{what}: {a:?} against {b:?}"))
+        };
+        if self.program != other.program {
+            return differ("program", &self.program, &other.program);
+        }
+        if self.scene != other.scene {
+            return differ("scene", &self.scene, &other.scene);
+        }
+        if self.inputs != other.inputs {
+            return Some(
+                "the scene's files (the scene or a file it reads) changed between them".into(),
+            );
+        }
+        for ((k, a), (_, b)) in self.settings.iter().zip(&other.settings) {
+            if a != b {
+                return differ(k, a, b);
+            }
+        }
+        if self.settings.len() != other.settings.len() {
+            return differ("settings", &self.settings, &other.settings);
+        }
+        if self.shard.count != other.shard.count {
+            return differ("shard count", &self.shard.count, &other.shard.count);
+        }
+        if (self.passes, self.photons) != (other.passes, other.photons) {
+            return differ(
+                "passes and receiver photons",
+                &(self.passes, self.photons),
+                &(other.passes, other.photons),
+            );
+        }
+        None
+    }
+}
+
+/// FNV-1a (64-bit) over the files' contents, each followed by its length.
+fn hash_files(paths: &[PathBuf]) -> Result<u64> {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    let mut eat = |bytes: &[u8]| {
+        for &b in bytes {
+            h = (h ^ b as u64).wrapping_mul(0x0100_0000_01b3);
+        }
+    };
+    for p in paths {
+        let bytes = std::fs::read(p).map_err(|e| Error::io(p, e))?;
+        eat(&bytes);
+        eat(&(bytes.len() as u64).to_le_bytes());
+    }
+    Ok(h)
+}
+
+/// A partial result: what a slice of a render's work added up to, in sums.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Partial {
+    /// What it is a part of.
+    pub header: Header,
+    /// The passes its film holds.
+    pub passes: Coverage,
+    /// The film of those passes (None: none yet, or no camera).
+    pub film: Option<Film>,
+    /// The receiver photons its books hold.
+    pub photons: Coverage,
+    /// The receivers' books of those photons.
+    pub books: Books,
+}
+
+/// The first bytes of a partial file.
+pub const MAGIC: &[u8] = b"GRINLIGHT PARTIAL 1\n";
+
+impl Partial {
+    /// A partial holding nothing yet.
+    pub fn empty(header: Header) -> Partial {
+        Partial {
+            header,
+            passes: Coverage::default(),
+            film: None,
+            photons: Coverage::default(),
+            books: Books::default(),
+        }
+    }
+
+    /// The work of its shard this partial does not hold yet: (passes, receiver photons).
+    pub fn remaining(&self) -> (Coverage, Coverage) {
+        let shard = self.header.shard;
+        (
+            self.passes.missing(shard.slice(self.header.passes as u64)),
+            self.photons.missing(shard.slice(self.header.photons)),
+        )
+    }
+
+    /// Whether it holds all of its shard's work.
+    pub fn is_complete(&self) -> bool {
+        let (p, r) = self.remaining();
+        p.is_empty() && r.is_empty()
+    }
+
+    /// Adds the film of `passes` (none of which it holds).
+    pub fn add_passes(&mut self, passes: std::ops::Range<u64>, film: Film) -> Result<()> {
+        self.passes.insert(passes)?;
+        match &mut self.film {
+            Some(f) => f.merge(&film),
+            None => {
+                self.film = Some(film);
+                Ok(())
+            }
+        }
+    }
+
+    /// Adds the books of receiver photons `photons` (none of which it holds).
+    pub fn add_photons(&mut self, photons: std::ops::Range<u64>, books: &Books) -> Result<()> {
+        self.photons.insert(photons)?;
+        self.books.add(books);
+        Ok(())
+    }
+
+    /// Reads a partial file, naming the file in every error.
+    pub fn read(path: &Path) -> Result<Partial> {
+        let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+        let body = bytes.strip_prefix(MAGIC).ok_or_else(|| {
+            Error::Usage(format!(
+                "{}: not a grinlight partial result (made by `render --shard`)",
+                path.display()
+            ))
+        })?;
+        postcard::from_bytes(body).map_err(|e| {
+            Error::Usage(format!(
+                "{}: a damaged or incompatible partial result: {e}",
+                path.display()
+            ))
+        })
+    }
+
+    /// Writes it to `path` atomically.
+    pub fn write(&self, path: &Path) -> Result<()> {
+        let mut bytes = MAGIC.to_vec();
+        bytes.extend(postcard::to_stdvec(self).map_err(|e| Error::Image {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+        })?);
+        crate::output::write_atomic(path, |tmp| {
+            std::fs::write(tmp, &bytes).map_err(|e| Error::io(path, e))
+        })
+    }
+
+    /// Merges partials of one render (named by their files, for messages): refuses partials
+    /// of another scene, other inputs, other settings or another program, the same shard
+    /// twice, and overlapping work; and, unless `allow_missing`, a result that lacks any of
+    /// the render's passes or photons.
+    pub fn merge(parts: &[(PathBuf, Partial)], allow_missing: bool) -> Result<Partial> {
+        let Some(((first_path, first), rest)) = parts.split_first() else {
+            return Err(Error::Usage(
+                "nothing to merge: name the partial files".into(),
+            ));
+        };
+        let mut merged = Partial::empty(Header {
+            shard: Shard::WHOLE,
+            ..first.header.clone()
+        });
+        let mut seen: Vec<(u32, &PathBuf)> = Vec::new();
+        for (path, part) in
+            std::iter::once((first_path, first)).chain(rest.iter().map(|(p, x)| (p, x)))
+        {
+            if let Some(d) = first.header.difference(&part.header) {
+                return Err(Error::Usage(format!(
+                    "{} and {} are not parts of one render: {d}",
+                    first_path.display(),
+                    path.display()
+                )));
+            }
+            if let Some((_, other)) = seen.iter().find(|(k, _)| *k == part.header.shard.index) {
+                return Err(Error::Usage(format!(
+                    "{} and {} are both shard {}: each shard once",
+                    other.display(),
+                    path.display(),
+                    part.header.shard
+                )));
+            }
+            seen.push((part.header.shard.index, path));
+            let overlap = |what: &str| {
+                Error::Usage(format!(
+                    "{}: its {what} overlap another partial's (shard {}): each piece of work once",
+                    path.display(),
+                    part.header.shard
+                ))
+            };
+            for r in part.passes.ranges() {
+                merged
+                    .passes
+                    .insert(r.clone())
+                    .map_err(|_| overlap("passes"))?;
+            }
+            for r in part.photons.ranges() {
+                merged
+                    .photons
+                    .insert(r.clone())
+                    .map_err(|_| overlap("receiver photons"))?;
+            }
+            if let Some(film) = &part.film {
+                match &mut merged.film {
+                    Some(f) => f.merge(film)?,
+                    None => merged.film = Some(film.clone()),
+                }
+            }
+            merged.books.add(&part.books);
+        }
+        let (passes, photons) = merged.remaining();
+        let complete = passes.is_empty() && photons.is_empty();
+        if !allow_missing && !complete {
+            let mut lacks = Vec::new();
+            if !passes.is_empty() {
+                lacks.push(format!("passes {passes} of {}", merged.header.passes));
+            }
+            if !photons.is_empty() {
+                lacks.push(format!(
+                    "receiver photons {photons} of {}",
+                    merged.header.photons
+                ));
+            }
+            return Err(Error::Usage(format!(
+                "the partials lack {} (of {} shards, {} given): render the missing shards, or \
+                 merge with --allow-missing for an estimate from what is there",
+                lacks.join(" and "),
+                first.header.shard.count,
+                parts.len()
+            )));
+        }
+        Ok(merged)
+    }
+}

@@ -1,0 +1,342 @@
+//! Scaling out: a render cut into shards, each rendered apart into a partial result, merges
+//! into bit for bit the result of one run (films, receivers, energy budget); a killed render
+//! resumes to the same result; partials of different renders are refused, naming the
+//! difference.
+
+use grinlight::commands::{self, MergeJob, Overrides, RenderJob, RenderOutcome};
+use grinlight::shard::{Partial, Shard};
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output, Stdio};
+use std::time::{Duration, Instant};
+
+/// A fresh directory holding copies of the Cornell box and the LED-lit fiber scenes.
+fn workspace(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("grinlight-shard-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::copy("scenes/cornell_caustic.toml", dir.join("cornell.toml")).unwrap();
+    std::fs::copy("scenes/fiber_led.toml", dir.join("fiber.toml")).unwrap();
+    dir
+}
+
+/// A small Cornell render: 7 passes of photon maps (progressive caustics), so that every
+/// shard count up to 7 has passes to do.
+fn cornell(dir: &Path) -> RenderJob {
+    RenderJob {
+        scene: dir.join("cornell.toml"),
+        overrides: Overrides {
+            width: Some(24),
+            height: Some(18),
+            spp: Some(1),
+            photons: Some(3_000),
+            caustic_photons: Some(3_000),
+            passes: Some(7),
+            threads: Some(2),
+            ..Overrides::default()
+        },
+        ..RenderJob::default()
+    }
+}
+
+/// The fiber measured with 30 000 receiver photons.
+fn fiber(dir: &Path) -> RenderJob {
+    RenderJob {
+        scene: dir.join("fiber.toml"),
+        overrides: Overrides {
+            receiver_photons: Some(30_000),
+            threads: Some(2),
+            ..Overrides::default()
+        },
+        ..RenderJob::default()
+    }
+}
+
+/// Renders `job` whole into `dir/name.exr`, then as N shards merged into `dir/name-N.exr`.
+fn whole_and_merged(
+    dir: &Path,
+    job: &RenderJob,
+    name: &str,
+    n: u32,
+) -> (RenderOutcome, RenderOutcome) {
+    let whole = commands::render(
+        &RenderJob {
+            output: Some(dir.join(format!("{name}.exr"))),
+            ..job.clone()
+        },
+        &(),
+    )
+    .unwrap();
+    let mut partials = Vec::new();
+    // Shards in reverse order: the order of the work does not matter.
+    for k in (1..=n).rev() {
+        let path = dir.join(format!("{name}-{k}-of-{n}.partial"));
+        let shard = commands::render(
+            &RenderJob {
+                output: Some(path.clone()),
+                shard: Some(Shard { index: k, count: n }),
+                ..job.clone()
+            },
+            &(),
+        )
+        .unwrap();
+        assert!(!shard.partial);
+        partials.push(path);
+    }
+    let merged = commands::merge(
+        &MergeJob {
+            partials,
+            output: Some(dir.join(format!("{name}-{n}.exr"))),
+            allow_missing: false,
+        },
+        &(),
+    )
+    .unwrap();
+    (whole, merged)
+}
+
+/// Evidence 1: N = 1, 2, 3, 7 shards of the fiber receiver and of a Cornell render merge
+/// into the single run's result: every film sum, every bin's irradiance and standard error,
+/// every energy-budget entry identical to the bit (`==` on f64 and on the fixed-point sums);
+/// the EXR files byte for byte. The progressive caustic is included: its radius schedule is a
+/// function of the pass index alone, so a pass is the same pass in any shard.
+#[test]
+fn shards_merge_into_the_single_run_bit_for_bit() {
+    let dir = workspace("merge");
+    for n in [1, 2, 3, 7] {
+        let (whole, merged) = whole_and_merged(&dir, &cornell(&dir), "cornell", n);
+        let (a, b) = (
+            &whole.film.as_ref().unwrap().0,
+            &merged.film.as_ref().unwrap().0,
+        );
+        assert_eq!(a, b, "Cornell film, {n} shards");
+        assert!(
+            a.counts().iter().all(|&c| c == 7),
+            "every pixel has 7 passes"
+        );
+        assert_eq!(
+            std::fs::read(dir.join("cornell.exr")).unwrap(),
+            std::fs::read(dir.join(format!("cornell-{n}.exr"))).unwrap(),
+            "Cornell EXR, {n} shards"
+        );
+        let (whole, merged) = whole_and_merged(&dir, &fiber(&dir), "fiber", n);
+        assert_eq!(whole.measurements, merged.measurements, "fiber, {n} shards");
+        assert_eq!(whole.budget, merged.budget, "fiber budget, {n} shards");
+        assert!(whole.measurements[0].flux.0 > 0.0);
+        assert_eq!(
+            std::fs::read(dir.join("fiber.exit.csv")).unwrap(),
+            std::fs::read(dir.join(format!("fiber-{n}.exit.csv"))).unwrap()
+        );
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+fn grinlight(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_grinlight"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .expect("run grinlight")
+}
+
+/// Starts `grinlight render ARGS` in `dir` and SIGKILLs it once `watch` has been saved
+/// `saves` times (its modification time changed), at most 120 s on.
+fn kill_after_saves(dir: &Path, args: &[&str], watch: &str, saves: usize) {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_grinlight"))
+        .args(args)
+        .current_dir(dir)
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let start = Instant::now();
+    let (mut seen, mut last) = (0, None);
+    while seen < saves {
+        assert!(
+            start.elapsed() < Duration::from_secs(120),
+            "{watch} not saved"
+        );
+        assert!(child.try_wait().unwrap().is_none(), "ended before the kill");
+        let modified = std::fs::metadata(dir.join(watch))
+            .and_then(|m| m.modified())
+            .ok();
+        if modified.is_some() && modified != last {
+            seen += 1;
+            last = modified;
+        }
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    child.kill().unwrap();
+    child.wait().unwrap();
+}
+
+/// Evidence 2: `kill -9` in the middle of a render, then `--resume`: the same result as an
+/// uninterrupted render — for a camera render (after two of six passes: the EXR byte for
+/// byte) and for a receiver shard (after one of two blocks of photons: the partial's books
+/// bit for bit).
+#[test]
+fn a_killed_render_resumes_to_the_same_result() {
+    let dir = workspace("resume");
+    let camera = [
+        "render",
+        "cornell.toml",
+        "--width",
+        "32",
+        "--height",
+        "24",
+        "--spp",
+        "1",
+        "--photons",
+        "20000",
+        "--caustic-photons",
+        "20000",
+        "--passes",
+        "6",
+        "--checkpoint",
+        "1",
+        "--threads",
+        "1",
+    ];
+    let with = |extra: &[&'static str]| [&camera[..], extra].concat();
+    assert!(grinlight(&dir, &with(&["-o", "whole.exr"]))
+        .status
+        .success());
+    kill_after_saves(&dir, &with(&["-o", "killed.exr"]), "killed.partial", 2);
+    let saved = Partial::read(&dir.join("killed.partial")).unwrap();
+    assert!(!saved.is_complete(), "killed after the render ended");
+    // Starting again without --resume would throw the saved passes away: refused.
+    let again = grinlight(&dir, &with(&["-o", "killed.exr"]));
+    assert!(!again.status.success());
+    assert!(String::from_utf8_lossy(&again.stderr).contains("--resume"));
+    let resumed = grinlight(&dir, &with(&["-o", "killed.exr", "--resume"]));
+    assert!(
+        resumed.status.success(),
+        "{}",
+        String::from_utf8_lossy(&resumed.stderr)
+    );
+    assert_eq!(
+        std::fs::read(dir.join("whole.exr")).unwrap(),
+        std::fs::read(dir.join("killed.exr")).unwrap()
+    );
+    assert!(
+        !dir.join("killed.partial").exists(),
+        "a finished render keeps no state"
+    );
+
+    // A receiver shard of two blocks of photons, killed after the first.
+    let photons = (grinlight::shard::BLOCK + 20_000).to_string();
+    let shard = [
+        "render",
+        "fiber.toml",
+        "--shard",
+        "1/1",
+        "--receiver-photons",
+        &photons,
+        "--checkpoint",
+        "1",
+    ];
+    let out = |o: &'static str| [&shard[..], &["-o", o]].concat();
+    assert!(grinlight(&dir, &out("whole.partial")).status.success());
+    kill_after_saves(
+        &dir,
+        &out("killed-fiber.partial"),
+        "killed-fiber.partial",
+        1,
+    );
+    let saved = Partial::read(&dir.join("killed-fiber.partial")).unwrap();
+    assert_eq!(saved.photons.len(), grinlight::shard::BLOCK);
+    let resume = [&out("killed-fiber.partial")[..], &["--resume"]].concat();
+    assert!(grinlight(&dir, &resume).status.success());
+    let (a, b) = (
+        Partial::read(&dir.join("whole.partial")).unwrap(),
+        Partial::read(&dir.join("killed-fiber.partial")).unwrap(),
+    );
+    assert_eq!(a.books, b.books);
+    assert_eq!(a.photons, b.photons);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// Evidence 3: merging partials that are not parts of one render is refused with a message
+/// naming the difference; so are duplicates, overlaps, missing shards (unless allowed), files
+/// that are not partials, and a resume with other options.
+#[test]
+fn mismatched_partials_are_refused_naming_the_difference() {
+    let dir = workspace("refuse");
+    let shard = |k: u32, n: u32, seed: u64, out: &str| {
+        let mut job = cornell(&dir);
+        job.overrides.seed = Some(seed);
+        job.overrides.passes = Some(2);
+        job.shard = Some(Shard { index: k, count: n });
+        job.output = Some(dir.join(out));
+        commands::render(&job, &()).unwrap();
+        dir.join(out)
+    };
+    let a = shard(1, 2, 1, "a.partial");
+    let b = shard(2, 2, 1, "b.partial");
+    let other_seed = shard(2, 2, 9, "seed.partial");
+    let of_three = shard(2, 3, 1, "three.partial");
+    let mut fib = fiber(&dir);
+    fib.shard = Some(Shard { index: 2, count: 2 });
+    fib.output = Some(dir.join("fiber.partial"));
+    commands::render(&fib, &()).unwrap();
+    std::fs::write(dir.join("notes.partial"), "my notes\n").unwrap();
+    let merge = |parts: &[&Path], allow_missing: bool| {
+        commands::merge(
+            &MergeJob {
+                partials: parts.iter().map(|p| p.to_path_buf()).collect(),
+                output: Some(dir.join("m.exr")),
+                allow_missing,
+            },
+            &(),
+        )
+        .err()
+        .map(|e| e.to_string())
+        .unwrap_or_default()
+    };
+    let cases: &[(&[&Path], &str)] = &[
+        (&[&a, &other_seed], "seed: \"1\" against \"9\""),
+        (&[&a, &of_three], "shard count"),
+        (&[&a, &dir.join("fiber.partial")], "scene"),
+        (&[&a, &a], "both shard 1/2"),
+        (&[&a], "lack passes 1..2 of 2"),
+        (&[&a, &dir.join("notes.partial")], "not a grinlight partial"),
+        (&[&a, &dir.join("gone.partial")], "gone.partial"),
+    ];
+    for (parts, want) in cases {
+        let message = merge(parts, false);
+        assert!(
+            message.contains(want),
+            "{parts:?}: {message:?} lacks {want:?}"
+        );
+    }
+    assert_eq!(merge(&[&b, &a], false), "");
+    // With --allow-missing, one shard of two gives the film of its pass, marked partial.
+    let lone = commands::merge(
+        &MergeJob {
+            partials: vec![a.clone()],
+            output: Some(dir.join("lone.exr")),
+            allow_missing: true,
+        },
+        &(),
+    )
+    .unwrap();
+    assert!(lone.partial);
+    // A scene edited after its shards were rendered is refused at the merge.
+    let text = std::fs::read_to_string(dir.join("cornell.toml")).unwrap();
+    std::fs::write(
+        dir.join("cornell.toml"),
+        text.replace("spp = 16", "spp = 15"),
+    )
+    .unwrap();
+    assert!(merge(&[&a, &b], false).contains("changed since"));
+    std::fs::write(dir.join("cornell.toml"), text).unwrap();
+    // Resuming with other options names the difference.
+    let mut job = cornell(&dir);
+    job.overrides.passes = Some(2);
+    job.overrides.seed = Some(3);
+    job.shard = Some(Shard { index: 1, count: 2 });
+    job.output = Some(a.clone());
+    job.resume = true;
+    let e = commands::render(&job, &()).err().unwrap().to_string();
+    assert!(e.contains("seed: \"3\" against \"1\""), "{e}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
