@@ -340,3 +340,62 @@ fn mismatched_partials_are_refused_naming_the_difference() {
     assert!(e.contains("seed: \"3\" against \"1\""), "{e}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// The Slurm recipe's job scripts (`cluster/slurm/`), run as plain local processes with the
+/// environment a job array gives its tasks: three shard tasks (the second one twice, as a
+/// requeued task would be: it resumes its own finished partial) and the merge task give the
+/// single run's receiver files byte for byte. (`cluster/slurm/local-test.sh` runs them under a
+/// real single-node Slurm; it needs root, so it is not part of CI.)
+#[test]
+fn the_slurm_job_scripts_run_as_local_processes() {
+    let dir = workspace("slurm");
+    let repo = std::env::current_dir().unwrap();
+    let script = |name: &str| repo.join("cluster/slurm").join(name);
+    let run = |args: &[&str], task: Option<u32>| {
+        let mut c = Command::new("bash");
+        c.args(args)
+            .current_dir(&dir)
+            .env("GRINLIGHT", env!("CARGO_BIN_EXE_grinlight"));
+        if let Some(k) = task {
+            c.env("SLURM_ARRAY_TASK_ID", k.to_string())
+                .env("SLURM_ARRAY_TASK_COUNT", "3");
+        }
+        let out = c.output().unwrap();
+        assert!(
+            out.status.success(),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    };
+    std::fs::create_dir_all(dir.join("out")).unwrap();
+    let render = script("render.sbatch");
+    let render = render.to_str().unwrap();
+    for k in [1, 2, 2, 3] {
+        run(
+            &[render, "fiber.toml", "out", "--receiver-photons", "20000"],
+            Some(k),
+        );
+    }
+    run(
+        &[script("merge.sbatch").to_str().unwrap(), "out", "3"],
+        None,
+    );
+    assert!(grinlight(
+        &dir,
+        &[
+            "render",
+            "fiber.toml",
+            "--receiver-photons",
+            "20000",
+            "-o",
+            "one.exr"
+        ]
+    )
+    .status
+    .success());
+    assert_eq!(
+        std::fs::read(dir.join("one.exit.csv")).unwrap(),
+        std::fs::read(dir.join("out/result.exit.csv")).unwrap()
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
