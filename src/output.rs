@@ -15,6 +15,9 @@ use std::io::Read;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
 
+/// The first bytes of a grinlight partial result ([`crate::shard::Partial`]).
+pub const PARTIAL_MAGIC: &[u8] = b"GRINLIGHT PARTIAL 1\n";
+
 /// What kind of file an output is: what an existing file at its path must look like to be
 /// replaced.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -43,7 +46,7 @@ impl Kind {
     fn recognises(self, head: &[u8]) -> bool {
         match self {
             Kind::Exr => head.starts_with(&[0x76, 0x2f, 0x31, 0x01]),
-            Kind::Partial => head.starts_with(crate::shard::MAGIC),
+            Kind::Partial => head.starts_with(PARTIAL_MAGIC),
             Kind::Png => head.starts_with(b"\x89PNG\r\n\x1a\n"),
             Kind::Csv => {
                 let line = head.split(|&b| b == b'\n').next().unwrap_or_default();

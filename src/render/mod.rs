@@ -31,10 +31,12 @@ const TILE: usize = 16;
 /// What a render or a measurement reports as it goes.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Progress {
-    /// A receiver measurement starts: photons to trace, receivers.
+    /// A receiver measurement (or a block of one) starts: photons to trace, receivers.
     Measuring {
-        /// Photons to trace.
-        photons: u64,
+        /// The photons traced now (indices in the batch).
+        photons: (u64, u64),
+        /// Photons in the batch.
+        of: u64,
         /// Receivers measured.
         receivers: usize,
     },
@@ -426,7 +428,8 @@ pub fn trace_receivers(
     let pool = thread_pool(settings.threads)?;
     let count = traced.end - traced.start;
     observer.progress(Progress::Measuring {
-        photons: count,
+        photons: (traced.start, traced.end),
+        of: settings.receiver_photons,
         receivers: scene.receivers.len(),
     });
     let t0 = Instant::now();

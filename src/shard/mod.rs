@@ -22,6 +22,7 @@ pub use run::{run, Ran, Saving, BLOCK};
 
 use crate::error::{Error, Result};
 use crate::film::Film;
+use crate::output::PARTIAL_MAGIC as MAGIC;
 use crate::render::Books;
 use crate::scene::Scene;
 use crate::settings::Settings;
@@ -194,9 +195,6 @@ pub struct Partial {
     /// The receivers' books of those photons.
     pub books: Books,
 }
-
-/// The first bytes of a partial file.
-pub const MAGIC: &[u8] = b"GRINLIGHT PARTIAL 1\n";
 
 impl Partial {
     /// A partial holding nothing yet.

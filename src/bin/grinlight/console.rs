@@ -71,10 +71,17 @@ impl Console {
 impl Observer for Console {
     fn progress(&self, p: Progress) {
         match p {
-            Progress::Measuring { photons, receivers } => {
-                let bar = ProgressBar::new_spinner().with_message(format!(
-                    "tracing {photons} photons for {receivers} receiver(s)"
-                ));
+            Progress::Measuring {
+                photons: (first, end),
+                of,
+                receivers,
+            } => {
+                let what = match (first, end) {
+                    (0, e) if e == of => format!("{of} photons"),
+                    _ => format!("photons {first}..{end} of {of}"),
+                };
+                let bar = ProgressBar::new_spinner()
+                    .with_message(format!("tracing {what} for {receivers} receiver(s)"));
                 bar.enable_steady_tick(std::time::Duration::from_millis(200));
                 self.show(Bar {
                     bar,
