@@ -218,19 +218,38 @@ fn read_fixed(t: &mut TableReader, profile: &str) -> Result<Box<dyn Medium>> {
 }
 
 fn read_grid(t: &mut TableReader) -> Result<GridMedium> {
-    let bounds = t.vec3_list("bounds")?;
-    let [min, max] = bounds[..] else {
-        return Err(t.error("bounds", "expected [[min x, y, z], [max x, y, z]]"));
-    };
-    let dims: [usize; 3] = t.counts("dims")?;
-    let values = t.f64_list_opt("values")?;
-    let (values, key) = match (values, t.has("file")) {
-        (Some(v), false) => (v, "values"),
-        (None, true) => {
-            let path = t.input_file("file")?;
-            (read_grid_file(t, &path)?, "file")
+    let file = t.has("file").then(|| t.input_file("file")).transpose()?;
+    let vdb = file
+        .as_ref()
+        .filter(|f| f.extension().is_some_and(|e| e.eq_ignore_ascii_case("vdb")));
+    let (min, max, dims, values, key) = if let Some(path) = vdb {
+        for key in ["bounds", "dims", "values"] {
+            if t.has(key) {
+                return Err(t.error(
+                    key,
+                    "a VDB file gives the grid's voxels, their place and their count: leave out \
+                     `bounds`, `dims` and `values`",
+                ));
+            }
         }
-        _ => return Err(t.error("values", "give exactly one of `values` and `file`")),
+        let name = t.string_opt("grid")?;
+        let background = t.f64_opt("background")?;
+        let dense = super::vdb::read(path, name.as_deref(), background)
+            .map_err(|e| t.error("file", format!("{}: {e}", path.display())))?;
+        (dense.min, dense.max, dense.dims, dense.values, "file")
+    } else {
+        let bounds = t.vec3_list("bounds")?;
+        let [min, max] = bounds[..] else {
+            return Err(t.error("bounds", "expected [[min x, y, z], [max x, y, z]]"));
+        };
+        let dims: [usize; 3] = t.counts("dims")?;
+        let values = t.f64_list_opt("values")?;
+        let (values, key) = match (values, &file) {
+            (Some(v), None) => (v, "values"),
+            (None, Some(path)) => (read_grid_file(t, path)?, "file"),
+            _ => return Err(t.error("values", "give exactly one of `values` and `file`")),
+        };
+        (min, max, dims, values, key)
     };
     let quantity = read_grid_quantity(t)?;
     let values = values

@@ -9,6 +9,7 @@ pub mod model;
 pub mod objects;
 pub mod source;
 pub mod table;
+pub mod vdb;
 
 pub use load::{load_description, load_scene};
 pub use model::{Description, Media, Scene, Shape, Surface};

@@ -104,10 +104,12 @@ impl<'a> TableReader<'a> {
 
     /// An optional finite number.
     pub fn f64_or(&mut self, key: &str, default: f64) -> Result<f64> {
-        match self.take(key) {
-            Some(v) => self.number(key, &v),
-            None => Ok(default),
-        }
+        Ok(self.f64_opt(key)?.unwrap_or(default))
+    }
+
+    /// An optional finite number (None: absent).
+    pub fn f64_opt(&mut self, key: &str) -> Result<Option<f64>> {
+        self.take(key).map(|v| self.number(key, &v)).transpose()
     }
 
     /// A required number > 0.
