@@ -29,25 +29,43 @@ fn temperature(i: i32, j: i32, k: i32) -> f64 {
 fn a_vdb_grid_loads_with_its_voxels_and_place() {
     let t = vdb::read(Path::new(PLUME), Some("temperature"), Some(300.0)).unwrap();
     assert_eq!(t.dims, [12, 10, 8]);
-    assert!((t.min - world(-3, 0, 0)).abs().max_element() < 1e-12, "{}", t.min);
-    assert!((t.max - world(8, 9, 7)).abs().max_element() < 1e-12, "{}", t.max);
+    assert!(
+        (t.min - world(-3, 0, 0)).abs().max_element() < 1e-12,
+        "{}",
+        t.min
+    );
+    assert!(
+        (t.max - world(8, 9, 7)).abs().max_element() < 1e-12,
+        "{}",
+        t.max
+    );
     let (mut active, mut inactive) = (0, 0);
     for (n, v) in t.values.iter().enumerate() {
         let (i, j, k) = (n % 12, n / 12 % 10, n / 120);
         let want = temperature(i as i32 - 3, j as i32, k as i32);
         if want >= 300.5 {
             active += 1;
-            assert!((v - want as f32 as f64).abs() <= 3e-5, "({i},{j},{k}): {v} vs {want}");
+            assert!(
+                (v - want as f32 as f64).abs() <= 3e-5,
+                "({i},{j},{k}): {v} vs {want}"
+            );
         } else {
             inactive += 1;
             assert_eq!(*v, 300.0, "({i},{j},{k})");
         }
     }
-    assert!(active > 800 && inactive > 50, "{active} active, {inactive} inactive");
+    assert!(
+        active > 800 && inactive > 50,
+        "{active} active, {inactive} inactive"
+    );
     // The density grid is active everywhere: no background needed; found by name.
     let d = vdb::read(Path::new(PLUME), Some("density"), None).unwrap();
     for (n, v) in d.values.iter().enumerate() {
-        let (i, j, k) = ((n % 12) as f64 - 3.0, (n / 12 % 10) as f64, (n / 120) as f64);
+        let (i, j, k) = (
+            (n % 12) as f64 - 3.0,
+            (n / 12 % 10) as f64,
+            (n / 120) as f64,
+        );
         assert_eq!(*v, (1.2 - 0.001 * (i + 2.0 * j + 3.0 * k)) as f32 as f64);
     }
 }
@@ -69,11 +87,18 @@ fn a_vdb_temperature_grid_is_a_medium_of_air() {
     };
     for (i, j, k) in [(0, 4, 3), (2, 5, 1), (-3, 0, 0), (8, 9, 7)] {
         let want = temperature(i, j, k);
-        let stored = if want >= 300.5 { want as f32 as f64 } else { 300.0 };
+        let stored = if want >= 300.5 {
+            want as f32 as f64
+        } else {
+            300.0
+        };
         let n = tracer.index(Some(0), world(i, j, k)).unwrap();
         let expected = air.index(stored).unwrap();
         // Cubic interpolation reproduces the nodes to rounding (1e-15 of n).
-        assert!((n - expected).abs() < 1e-12, "({i},{j},{k}): {n} vs {expected}");
+        assert!(
+            (n - expected).abs() < 1e-12,
+            "({i},{j},{k}): {n} vs {expected}"
+        );
     }
 }
 
@@ -92,9 +117,8 @@ fn bad_vdb_input_is_a_clear_error() {
     std::fs::write(dir.join("garbage.vdb"), header_only).unwrap();
     let medium = |keys: &str| {
         let path = dir.join("s.toml");
-        let text = format!(
-            "ambient = \"p\"\n[[medium]]\nname = \"p\"\nprofile = \"grid\"\n{keys}\n"
-        );
+        let text =
+            format!("ambient = \"p\"\n[[medium]]\nname = \"p\"\nprofile = \"grid\"\n{keys}\n");
         std::fs::write(&path, &text).unwrap();
         grinlight::scene::load::load_scene(&path)
             .err()

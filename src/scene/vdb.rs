@@ -45,7 +45,8 @@ pub fn read(path: &Path, name: Option<&str>, background: Option<f64>) -> Result<
             .map(|(n, d)| (n.clone(), d.grid_type.clone()))
             .collect();
         grids.sort();
-        let scalar = |t: &str| t.starts_with("Tree_float_5_4_3") || t.starts_with("Tree_double_5_4_3");
+        let scalar =
+            |t: &str| t.starts_with("Tree_float_5_4_3") || t.starts_with("Tree_double_5_4_3");
         let listing = || {
             grids
                 .iter()
@@ -79,11 +80,17 @@ pub fn read(path: &Path, name: Option<&str>, background: Option<f64>) -> Result<
         }
         let read_err = |e| format!("grid '{name}' cannot be read: {e:?}");
         if kind.starts_with("Tree_double") {
-            densify(&reader.read_grid::<f64>(&name).map_err(read_err)?, background, |v| v)
+            densify(
+                &reader.read_grid::<f64>(&name).map_err(read_err)?,
+                background,
+                |v| v,
+            )
         } else {
-            densify(&reader.read_grid::<f32>(&name).map_err(read_err)?, background, |v| {
-                v as f64
-            })
+            densify(
+                &reader.read_grid::<f32>(&name).map_err(read_err)?,
+                background,
+                |v| v as f64,
+            )
         }
         .map_err(|e| format!("grid '{name}': {e}"))
     })
@@ -119,7 +126,10 @@ fn densify<T: Copy>(
             translation,
             voxel_size,
             ..
-        } => (DVec3::from_array(translation.to_array()), voxel_size.to_array()),
+        } => (
+            DVec3::from_array(translation.to_array()),
+            voxel_size.to_array(),
+        ),
     };
     let voxel = DVec3::from_array(voxel);
     // The active box: voxels, and tiles of 8³ or 128³ voxels.
