@@ -309,6 +309,20 @@ fn mismatched_partials_are_refused_naming_the_difference() {
         );
     }
     assert_eq!(merge(&[&b, &a], false), "");
+    // A whole render whose saved state would be `a.partial` (it renders to `a.exr`) leaves
+    // that shard's result alone; the same shard run again replaces its own finished partial.
+    let before = std::fs::read(&a).unwrap();
+    let mut whole = cornell(&dir);
+    whole.overrides.passes = Some(2);
+    whole.overrides.seed = Some(1);
+    whole.output = Some(dir.join("a.exr"));
+    let e = commands::render(&whole, &()).err().unwrap().to_string();
+    assert!(
+        e.contains("holds the partial result of another render (shard count: 1 against 2)"),
+        "{e}"
+    );
+    assert_eq!(std::fs::read(&a).unwrap(), before);
+    assert_eq!(shard(1, 2, 1, "a.partial"), a);
     // With --allow-missing, one shard of two gives the film of its pass, marked partial.
     let lone = commands::merge(
         &MergeJob {

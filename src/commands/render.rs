@@ -393,48 +393,45 @@ pub(super) fn output_exr(output: Option<PathBuf>, settings: &Settings, scene: &P
 }
 
 /// The partial a render starts from: the one saved at `state` when resuming (it must be of
-/// the same render), else an empty one — refusing to replace an unfinished one at `state`
-/// without `--resume` (hours of work may be in it).
+/// the same render), else an empty one. A partial already at `state` is replaced only when it
+/// is a finished one of this same render; an unfinished one of it needs `--resume` (hours of
+/// work may be in it), and one of any other render is left alone (a shard's result, say).
 fn start_partial(header: Header, state: &Path, resume: bool) -> Result<Partial> {
-    if resume {
-        if !state.exists() {
-            return Err(Error::Usage(format!(
-                "--resume: {} does not exist: nothing to resume (run without --resume)",
-                state.display()
-            )));
-        }
-        let saved = Partial::read(state)?;
-        if let Some(d) = header.difference(&saved.header) {
-            return Err(Error::Usage(format!(
-                "--resume: {} is a partial of another render ({d}): give the options it was \
-                 started with",
-                state.display()
-            )));
-        }
-        if saved.header.shard != header.shard {
-            return Err(Error::Usage(format!(
-                "--resume: {} is shard {}, not {}",
-                state.display(),
-                saved.header.shard,
-                header.shard
-            )));
-        }
-        return Ok(saved);
+    if resume && !state.exists() {
+        return Err(Error::Usage(format!(
+            "--resume: {} does not exist: nothing to resume (run without --resume)",
+            state.display()
+        )));
     }
-    if state.exists() {
-        if let Ok(saved) = Partial::read(state) {
-            if !saved.is_complete() {
-                return Err(Error::Usage(format!(
-                    "{} holds an unfinished render ({} passes, {} receiver photons done): \
-                     continue it with --resume, or remove it to start again",
-                    state.display(),
-                    saved.passes.len(),
-                    saved.photons.len()
-                )));
-            }
-        }
+    if !state.exists() {
+        return Ok(Partial::empty(header));
     }
-    Ok(Partial::empty(header))
+    let saved = Partial::read(state)?;
+    let difference = header.difference(&saved.header).or_else(|| {
+        (saved.header.shard != header.shard)
+            .then(|| format!("shard {} against {}", header.shard, saved.header.shard))
+    });
+    match (difference, resume, saved.is_complete()) {
+        (Some(d), true, _) => Err(Error::Usage(format!(
+            "--resume: {} is a partial of another render ({d}): give the options it was \
+             started with",
+            state.display()
+        ))),
+        (Some(d), false, _) => Err(Error::Usage(format!(
+            "{} holds the partial result of another render ({d}): refusing to replace it \
+             (move it, or choose another output)",
+            state.display()
+        ))),
+        (None, true, _) => Ok(saved),
+        (None, false, false) => Err(Error::Usage(format!(
+            "{} holds this render unfinished ({} passes, {} receiver photons done): continue \
+             it with --resume, or remove it to start again",
+            state.display(),
+            saved.passes.len(),
+            saved.photons.len()
+        ))),
+        (None, false, true) => Ok(Partial::empty(header)),
+    }
 }
 
 /// Writes a render's results from its partial (a whole render's, or shards merged): each
