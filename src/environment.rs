@@ -3,7 +3,7 @@
 //! top row); the map is turned by `rotation` about +y.
 
 use crate::color::Rgb;
-use crate::lights::{covering_disk, Emission, SceneBall};
+use crate::lights::{covering_disk, Aim, Emission};
 use crate::sampling::{uniform_sphere, UNIFORM_SPHERE_PDF};
 use glam::DVec3;
 use std::f64::consts::{PI, TAU};
@@ -82,12 +82,12 @@ impl Environment {
 
 impl Environment {
     /// A photon of environment light for four uniform numbers: its direction of arrival is
-    /// uniform over the sphere and it starts on a disk covering the scene ball, so the power
+    /// uniform over the sphere and it starts on a disk covering `aim`'s target, so the power
     /// estimate is L(ω)·area/pdf(ω) (see [`Emission`]).
-    pub fn emit(&self, u: [f64; 4], ball: SceneBall) -> Emission {
+    pub fn emit(&self, u: [f64; 4], aim: Aim) -> Emission {
         let from = uniform_sphere((u[0], u[1]));
         let direction = -from;
-        let (origin, area) = covering_disk(ball, direction, (u[2], u[3]));
+        let (origin, area) = covering_disk(aim, direction, (u[2], u[3]));
         Emission {
             origin,
             direction,
@@ -98,7 +98,7 @@ impl Environment {
     /// A weight for choosing the environment among the lights: its power through the
     /// covering disk (W, mean over channels), with the mean radiance taken over a fixed
     /// 64 × 128 grid of directions (equal solid angle per cell).
-    pub fn selection_power(&self, ball: SceneBall) -> f64 {
+    pub fn selection_power(&self, aim: Aim) -> f64 {
         let (rows, cols) = (64, 128);
         let mut sum = Rgb::ZERO;
         for i in 0..rows {
@@ -111,7 +111,8 @@ impl Environment {
             }
         }
         let mean = sum / (rows * cols) as f64;
-        mean.element_sum() / 3.0 * 4.0 * PI * PI * ball.1 * ball.1
+        let r = aim.target.1;
+        mean.element_sum() / 3.0 * 4.0 * PI * PI * r * r
     }
 }
 

@@ -26,15 +26,39 @@ pub struct Emission {
 /// emitted from a disk of this radius that covers it.
 pub type SceneBall = (DVec3, f64);
 
-/// A disk of radius `ball.1` perpendicular to unit `direction`, upstream of the scene ball,
-/// sampled uniformly: the start of a parallel-light photon, and the disk's area.
-pub fn covering_disk(ball: SceneBall, direction: DVec3, uv: (f64, f64)) -> (DVec3, f64) {
-    let (center, radius) = ball;
+/// Where parallel and environment light's photons are sent: through the `target` ball, from a
+/// plane upstream of the whole `scene` ball (so that nothing in the scene is skipped). The
+/// target is the scene ball itself, or a ball holding what a batch of photons must meet (the
+/// specular surfaces, for caustic photons): light missing it is not traced, and the photons
+/// through it carry its power only.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Aim {
+    /// The ball holding the scene.
+    pub scene: SceneBall,
+    /// The ball the photons are sent through.
+    pub target: SceneBall,
+}
+
+impl Aim {
+    /// At the whole scene.
+    pub fn whole(scene: SceneBall) -> Aim {
+        Aim {
+            scene,
+            target: scene,
+        }
+    }
+}
+
+/// A disk of the target's radius perpendicular to unit `direction` around the line through
+/// the target's centre, in the plane 2 scene radii upstream of the scene's centre, sampled
+/// uniformly: the start of a parallel-light photon, and the disk's area.
+pub fn covering_disk(aim: Aim, direction: DVec3, uv: (f64, f64)) -> (DVec3, f64) {
+    let ((center, radius), (target, r)) = (aim.scene, aim.target);
     let (x, y) = uniform_disk(uv);
     let frame = Frame::new(direction);
-    let origin =
-        center - direction * (2.0 * radius) + frame.to_world(DVec3::new(x, y, 0.0)) * radius;
-    (origin, PI * radius * radius)
+    let upstream = (target - center).dot(direction) + 2.0 * radius;
+    let origin = target - direction * upstream + frame.to_world(DVec3::new(x, y, 0.0)) * r;
+    (origin, PI * r * r)
 }
 /// The emitting surface of an area light.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -323,9 +347,9 @@ impl Light {
     }
 
     /// A photon from this light for four uniform numbers `u` (see [`Emission`]); `None` when
-    /// this sample emits nothing (a spot's falloff edge). `ball` bounds the scene, for
-    /// directional light.
-    pub fn emit(&self, u: [f64; 4], ball: SceneBall) -> Option<Emission> {
+    /// this sample emits nothing (a spot's falloff edge). Directional light is sent as `aim`
+    /// says.
+    pub fn emit(&self, u: [f64; 4], aim: Aim) -> Option<Emission> {
         let emission = |origin, direction, power| {
             Some(Emission {
                 origin,
@@ -380,15 +404,16 @@ impl Light {
                 direction,
                 irradiance,
             } => {
-                let (origin, area) = covering_disk(ball, *direction, (u[0], u[1]));
+                let (origin, area) = covering_disk(aim, *direction, (u[0], u[1]));
                 emission(origin, *direction, *irradiance * area)
             }
         }
     }
 
     /// A weight for choosing among lights, proportional to the light's power (W, mean over
-    /// channels); exact except for a spot, where the falloff is taken as linear in cos θ.
-    pub fn selection_power(&self, ball: SceneBall) -> f64 {
+    /// channels) as sent by `aim`; exact except for a spot, where the falloff is taken as
+    /// linear in cos θ.
+    pub fn selection_power(&self, aim: Aim) -> f64 {
         let p = match self {
             Light::Point { intensity, .. } => *intensity * (4.0 * PI),
             Light::Spot {
@@ -401,7 +426,9 @@ impl Light {
             Light::Led {
                 peak_intensity, m, ..
             } => *peak_intensity * (TAU / (m + 1.0)),
-            Light::Directional { irradiance, .. } => *irradiance * (PI * ball.1 * ball.1),
+            Light::Directional { irradiance, .. } => {
+                *irradiance * (PI * aim.target.1 * aim.target.1)
+            }
         };
         p.element_sum() / 3.0
     }

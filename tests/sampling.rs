@@ -148,7 +148,7 @@ fn led_emission_follows_its_profile() {
         peak_intensity: Rgb::splat(2.0 * (m + 1.0) / TAU),
         m,
     };
-    let ball = (DVec3::ZERO, 1.0);
+    let ball = grinlight::lights::Aim::whole((DVec3::ZERO, 1.0));
     chi2(
         "led",
         |r| {
@@ -183,7 +183,7 @@ fn spot_emission_carries_its_power() {
     for _ in 0..n {
         if let Some(e) = spot.emit(
             [rng.gen(), rng.gen(), rng.gen(), rng.gen()],
-            (DVec3::ZERO, 1.0),
+            grinlight::lights::Aim::whole((DVec3::ZERO, 1.0)),
         ) {
             assert!(e.direction.z >= cos_outer - 1e-12);
             sum += e.power.x;

@@ -74,7 +74,10 @@ const LAYERS: &[Layer] = &[
 /// The photon mapper of a scene.
 pub struct PhotonMapper<'a> {
     tracer: &'a Tracer<'a>,
+    /// The global photons' sources.
     sources: Sources<'a>,
+    /// The caustic photons' (parallel and environment light aimed at the specular surfaces).
+    caustic_sources: Sources<'a>,
     plan: Plan,
     photons: PhotonSettings,
     seed: u64,
@@ -96,6 +99,7 @@ impl<'a> PhotonMapper<'a> {
         Self {
             tracer,
             sources: Sources::new(tracer),
+            caustic_sources: Sources::for_caustics(tracer),
             plan: Plan::of(tracer.scene, &settings.photons),
             photons: settings.photons,
             seed: settings.seed,
@@ -114,7 +118,11 @@ impl<'a> PhotonMapper<'a> {
     ) -> Option<PhotonMap> {
         let t0 = Instant::now();
         let photons = Photons::all(batch, self.seed, index as u64, count);
-        let (sink, stats) = shoot(self.tracer, &self.sources, photons, stop);
+        let sources = match batch {
+            Batch::Caustic => &self.caustic_sources,
+            _ => &self.sources,
+        };
+        let (sink, stats) = shoot(self.tracer, sources, photons, stop);
         let t1 = Instant::now();
         report.stats.add(&stats);
         if stop() {

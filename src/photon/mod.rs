@@ -25,7 +25,8 @@ pub use map::{Photon, PhotonMap};
 use crate::bsdf::Bsdf;
 use crate::color::Rgb;
 use crate::environment::Environment;
-use crate::lights::{Emission, Light};
+use crate::lights::{Aim, Emission, Light};
+use crate::material::Material;
 use crate::receiver::Detection;
 use crate::sampling::{stream, Purpose};
 use crate::spectrum::{colour, Spectrum};
@@ -144,6 +145,8 @@ impl Launch {
 /// The scene's photon sources with a discrete distribution proportional to their power.
 pub struct Sources<'a> {
     sources: Vec<Placed<'a>>,
+    /// Where parallel and environment light is sent.
+    aim: Aim,
     /// Whether receiver photons carry a wavelength ([`crate::scene::Scene::is_spectral`]).
     spectral: bool,
     /// Whether map photons take a hero wavelength ([`crate::scene::Scene::is_dispersive`]).
@@ -157,6 +160,41 @@ impl<'a> Sources<'a> {
     /// into (a light inside a dielectric shape emits into its interior; parallel and
     /// environment light into the ambient medium); sources of zero power are left out.
     pub fn new(tracer: &Tracer<'a>) -> Self {
+        Self::aimed(tracer, Aim::whole(tracer.ball))
+    }
+
+    /// The sources of caustic photons: as [`Sources::new`], but parallel and environment
+    /// light sent only through a ball holding the scene's specular surfaces (mirrors,
+    /// dielectrics), as Jensen's projection maps do — a caustic photon must meet one before
+    /// its first diffuse surface. The ball is the specular surfaces' bounding box's, grown by
+    /// 10 % for photons that curve into them in a gradient medium (those bent in from
+    /// farther are missed). A small glass object in a large sunlit scene then catches
+    /// (R/r)² times more of them.
+    pub fn for_caustics(tracer: &Tracer<'a>) -> Self {
+        let scene = tracer.scene;
+        let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
+        for (p, s) in scene.accel.primitives().iter().zip(&scene.surfaces) {
+            if matches!(
+                scene.materials[s.material],
+                Material::Mirror { .. } | Material::Dielectric
+            ) {
+                let (a, b) = p.bounds();
+                (lo, hi) = (lo.min(a), hi.max(b));
+            }
+        }
+        let target = (0.5 * (lo + hi), 0.55 * (hi - lo).length());
+        let aim = Aim {
+            scene: tracer.ball,
+            target: if lo.cmple(hi).all() && target.1 < tracer.ball.1 {
+                target
+            } else {
+                tracer.ball
+            },
+        };
+        Self::aimed(tracer, aim)
+    }
+
+    fn aimed(tracer: &Tracer<'a>, aim: Aim) -> Self {
         let scene = tracer.scene;
         let mut sources = Vec::new();
         let mut weights = Vec::new();
@@ -170,7 +208,7 @@ impl<'a> Sources<'a> {
                 medium,
                 spectrum: scene.light_spectrum(i),
             });
-            weights.push(light.selection_power(tracer.ball));
+            weights.push(light.selection_power(aim));
         }
         if let Some(env) = &scene.environment {
             sources.push(Placed {
@@ -178,7 +216,7 @@ impl<'a> Sources<'a> {
                 medium: scene.ambient,
                 spectrum: None,
             });
-            weights.push(env.selection_power(tracer.ball));
+            weights.push(env.selection_power(aim));
         }
         let total: f64 = weights.iter().filter(|w| w.is_finite() && **w > 0.0).sum();
         let mut kept = Vec::new();
@@ -196,6 +234,7 @@ impl<'a> Sources<'a> {
         }
         Self {
             sources: kept,
+            aim,
             cdf,
             spectral: scene.is_spectral(),
             dispersive: scene.is_dispersive(),
@@ -224,9 +263,9 @@ impl<'a> Sources<'a> {
             spectrum,
         } = self.sources[i];
         let e = match source {
-            Source::Light(l) => l.emit(rest, tracer.ball)?,
+            Source::Light(l) => l.emit(rest, self.aim)?,
             Source::Environment(env) => {
-                let e = env.emit(rest, tracer.ball);
+                let e = env.emit(rest, self.aim);
                 let n = tracer.index(medium, e.origin).unwrap_or(1.0);
                 Emission {
                     power: e.power * (n * n),
