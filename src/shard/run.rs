@@ -55,7 +55,7 @@ pub fn run(
 ) -> Result<Ran> {
     let saver = Saver {
         saving,
-        last: Mutex::new(Instant::now()),
+        last: Mutex::new((Instant::now(), Duration::ZERO)),
     };
     let (passes, photons) = partial.remaining();
     let mut ran = Ran {
@@ -115,18 +115,26 @@ pub fn run(
 /// Saves a partial when its `Saving` says it is due.
 struct Saver<'a> {
     saving: &'a Saving<'a>,
-    last: Mutex<Instant>,
+    /// When the last save ended, and how long it took.
+    last: Mutex<(Instant, Duration)>,
 }
 
+/// Saves by time keep at least this many times their own duration apart (a large film's
+/// partial takes seconds to write: at most 5 % of the run goes to saving it).
+const SAVE_COST_FACTOR: u32 = 20;
+
 impl Saver<'_> {
-    /// Whether to save now: at a `boundary` the saving asks for, or when its interval is up.
+    /// Whether to save now: at a `boundary` the saving asks for, or when its interval (and
+    /// [`SAVE_COST_FACTOR`] times the last save's duration) is up.
     fn due(&self, boundary: bool) -> bool {
-        boundary || self.last.lock().expect("saver lock").elapsed() >= self.saving.interval
+        let (at, cost) = *self.last.lock().expect("saver lock");
+        boundary || at.elapsed() >= self.saving.interval.max(cost * SAVE_COST_FACTOR)
     }
 
     fn save(&self, partial: &Partial) -> Result<()> {
+        let t0 = Instant::now();
         (self.saving.save)(partial)?;
-        *self.last.lock().expect("saver lock") = Instant::now();
+        *self.last.lock().expect("saver lock") = (Instant::now(), t0.elapsed());
         Ok(())
     }
 }
