@@ -1,6 +1,9 @@
-//! Wavefront OBJ meshes: triangles through tobj, and a line-precise diagnosis of files it
-//! cannot use (tobj's own errors name neither the line nor the cause).
+//! Wavefront OBJ meshes: the triangles of a file, read line by line (its `v`, `vt`, `vn` and
+//! `f` lines; faces fanned), and a line-precise diagnosis of files that cannot be used.
 
+use std::collections::HashMap;
+use std::fs::File;
+use std::io::{BufRead, BufReader};
 use std::path::Path;
 
 /// An OBJ file's triangles: vertex positions (as the file has them, f32) and index triples
@@ -8,7 +11,7 @@ use std::path::Path;
 pub struct ObjTriangles {
     /// Vertex positions.
     pub positions: Vec<[f32; 3]>,
-    /// Triangles as indices into `positions` (faces with more corners are fanned by tobj).
+    /// Triangles as indices into `positions` (faces with more corners fanned).
     pub triangles: Vec<[u32; 3]>,
     /// The file's vertex normals (`vn`), one per position, when every face gives them.
     pub normals: Option<Vec<[f32; 3]>>,
@@ -17,72 +20,187 @@ pub struct ObjTriangles {
 }
 
 /// The triangles of an OBJ file (zero-area ones included: whether a triangle has an area
-/// depends on where the scene puts it). The error names the file, the line where it can, and
-/// what is wrong there.
+/// depends on where the scene puts it), read line by line: what is kept is the vertices and
+/// the corners' indices, never the file's text. Faces of more than three corners are fanned
+/// from their first. The error names the file, the line where it can, and what is wrong
+/// there.
 pub fn load_triangles(path: &Path) -> Result<ObjTriangles, String> {
-    let bytes = std::fs::read(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
     let at = |what: String| format!("{}: {what}", path.display());
-    let options = tobj::LoadOptions {
-        triangulate: true,
-        single_index: true,
-        ..Default::default()
-    };
-    let loaded = tobj::load_obj_buf(&mut bytes.as_slice(), &options, |_| {
-        Err(tobj::LoadError::OpenFileFailed)
-    });
-    let models = match loaded {
-        Ok((models, _materials)) => models,
-        Err(e) => return Err(at(diagnose(&bytes).unwrap_or_else(|| e.to_string()))),
-    };
-    let mut out = ObjTriangles {
-        positions: Vec::new(),
-        triangles: Vec::new(),
-        normals: Some(Vec::new()),
-        texcoords: Some(Vec::new()),
-    };
-    for model in models {
-        let mesh = model.mesh;
-        if mesh.positions.iter().any(|c| !c.is_finite()) {
-            return Err(at(
-                diagnose(&bytes).unwrap_or_else(|| "a vertex is not finite".into())
-            ));
-        }
-        let offset = u32::try_from(out.positions.len())
+    let file = File::open(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    // What is wrong is found again by reading the file whole (errors are rare).
+    let fail = |fallback: &str| {
+        at(std::fs::read(path)
             .ok()
-            .filter(|o| o.checked_add(mesh.positions.len() as u32 / 3).is_some())
-            .ok_or_else(|| at("more than 2³² vertices".into()))?;
-        out.positions
-            .extend(mesh.positions.chunks_exact(3).map(|p| [p[0], p[1], p[2]]));
-        // tobj's single index gives each position its normal and (u, v) when the faces name
-        // them.
-        out.texcoords = out
-            .texcoords
-            .take()
-            .filter(|_| 3 * mesh.texcoords.len() == 2 * mesh.positions.len())
-            .map(|mut t| {
-                t.extend(mesh.texcoords.chunks_exact(2).map(|v| [v[0], v[1]]));
-                t
-            });
-        out.normals = out
-            .normals
-            .take()
-            .filter(|_| mesh.normals.len() == mesh.positions.len())
-            .map(|mut n| {
-                n.extend(mesh.normals.chunks_exact(3).map(|v| [v[0], v[1], v[2]]));
-                n
-            });
-        out.triangles.extend(
-            mesh.indices
-                .chunks_exact(3)
-                .map(|f| [f[0] + offset, f[1] + offset, f[2] + offset]),
-        );
+            .and_then(|b| diagnose(&b))
+            .unwrap_or_else(|| fallback.into()))
+    };
+    let mut obj = Parsed::default();
+    let mut reader = BufReader::new(file);
+    let mut line = Vec::new();
+    loop {
+        line.clear();
+        match reader.read_until(b'\n', &mut line) {
+            Ok(0) => break,
+            Ok(_) => {}
+            Err(e) => return Err(at(format!("cannot read: {e}"))),
+        }
+        let text = std::str::from_utf8(&line).map_err(|_| fail("not text"))?;
+        obj.line(text)
+            .ok_or_else(|| fail("a line that is not OBJ"))?;
     }
-    if out.triangles.is_empty() {
-        return Err(at(
-            diagnose(&bytes).unwrap_or_else(|| "has no faces (no `f` lines)".into())
-        ));
+    obj.finish().map_err(|why| fail(&why))
+}
+
+/// An OBJ file as read so far: vertices, texture coordinates and normals as given, and per
+/// triangle corner the (0-based) indices of each (`NONE` where a corner gives none).
+#[derive(Default)]
+struct Parsed {
+    positions: Vec<[f32; 3]>,
+    texcoords: Vec<[f32; 2]>,
+    normals: Vec<[f32; 3]>,
+    /// Per corner: vertex, texture coordinate, normal.
+    corners: Vec<[u32; 3]>,
+}
+
+/// A corner that gives no texture coordinate or normal.
+const NONE: u32 = u32::MAX;
+
+/// The next `N` words as finite numbers (None if there are fewer or one is not).
+fn finite<'a, const N: usize>(words: &mut impl Iterator<Item = &'a str>) -> Option<[f32; N]> {
+    let mut out = [0.0; N];
+    for x in &mut out {
+        *x = words.next()?.parse().ok().filter(|x: &f32| x.is_finite())?;
     }
-    Ok(out)
+    Some(out)
+}
+
+impl Parsed {
+    /// Takes one line; None when it is unusable (the caller diagnoses it).
+    fn line(&mut self, text: &str) -> Option<()> {
+        let mut words = text.split_whitespace();
+        match words.next() {
+            Some("v") => {
+                let [x, y, z] = finite(&mut words)?;
+                self.positions.push([x, y, z]);
+            }
+            Some("vt") => {
+                let [u] = finite(&mut words)?;
+                let v = match words.next() {
+                    Some(w) => w.parse().ok().filter(|v: &f32| v.is_finite())?,
+                    None => 0.0,
+                };
+                self.texcoords.push([u, v]);
+            }
+            Some("vn") => {
+                let [x, y, z] = finite(&mut words)?;
+                self.normals.push([x, y, z]);
+            }
+            Some("f") => {
+                let corners: Vec<[u32; 3]> =
+                    words.map(|c| self.corner(c)).collect::<Option<_>>()?;
+                if corners.len() < 3 {
+                    return None;
+                }
+                for k in 1..corners.len() - 1 {
+                    self.corners
+                        .extend([corners[0], corners[k], corners[k + 1]]);
+                }
+            }
+            _ => {}
+        }
+        Some(())
+    }
+
+    /// A corner `v[/vt][/vn]` as 0-based indices: positive ones may refer forward (checked at
+    /// the end), negative ones count back from the last of their kind so far.
+    fn corner(&self, text: &str) -> Option<[u32; 3]> {
+        let counts = [
+            self.positions.len(),
+            self.texcoords.len(),
+            self.normals.len(),
+        ];
+        let mut out = [NONE; 3];
+        for (kind, index) in text.split('/').enumerate() {
+            if kind > 2 {
+                return None;
+            }
+            if index.is_empty() && kind > 0 {
+                continue;
+            }
+            let i: i64 = index.parse().ok()?;
+            let resolved = match i {
+                0 => return None,
+                i if i > 0 => i - 1,
+                i => counts[kind] as i64 + i,
+            };
+            out[kind] = u32::try_from(resolved).ok().filter(|&r| r != NONE)?;
+        }
+        Some(out)
+    }
+
+    /// The triangles: the vertices as the file has them when no corner names a texture
+    /// coordinate or a normal; else one vertex per distinct (v, vt, vn), with the normals and
+    /// texture coordinates kept only when every corner gives them.
+    fn finish(self) -> Result<ObjTriangles, String> {
+        if self.corners.is_empty() {
+            return Err("has no faces (no `f` lines)".into());
+        }
+        let counts = [
+            self.positions.len(),
+            self.texcoords.len(),
+            self.normals.len(),
+        ];
+        if self
+            .corners
+            .iter()
+            .any(|c| (0..3).any(|k| c[k] != NONE && c[k] as usize >= counts[k]))
+        {
+            return Err("a face names an index that does not exist".into());
+        }
+        let every = |k: usize| self.corners.iter().all(|c| c[k] != NONE);
+        let (all_vt, all_vn) = (every(1), every(2));
+        if self.corners.iter().all(|c| c[1] == NONE && c[2] == NONE) {
+            return Ok(ObjTriangles {
+                triangles: self
+                    .corners
+                    .chunks_exact(3)
+                    .map(|t| [t[0][0], t[1][0], t[2][0]])
+                    .collect(),
+                positions: self.positions,
+                normals: None,
+                texcoords: None,
+            });
+        }
+        let mut index: HashMap<[u32; 3], u32> = HashMap::new();
+        let mut out = ObjTriangles {
+            positions: Vec::new(),
+            triangles: Vec::with_capacity(self.corners.len() / 3),
+            normals: all_vn.then(Vec::new),
+            texcoords: all_vt.then(Vec::new),
+        };
+        let mut vertex = |c: [u32; 3]| -> Result<u32, String> {
+            if let Some(&i) = index.get(&c) {
+                return Ok(i);
+            }
+            let i = u32::try_from(out.positions.len())
+                .map_err(|_| "more than 2³² vertices".to_string())?;
+            out.positions.push(self.positions[c[0] as usize]);
+            if let Some(t) = &mut out.texcoords {
+                t.push(self.texcoords[c[1] as usize]);
+            }
+            if let Some(n) = &mut out.normals {
+                n.push(self.normals[c[2] as usize]);
+            }
+            index.insert(c, i);
+            Ok(i)
+        };
+        let mut triangles = Vec::with_capacity(self.corners.len() / 3);
+        for t in self.corners.chunks_exact(3) {
+            triangles.push([vertex(t[0])?, vertex(t[1])?, vertex(t[2])?]);
+        }
+        out.triangles = triangles;
+        Ok(out)
+    }
 }
 
 /// The first line of an OBJ file that cannot be used, and why: not text, a vertex that is not
@@ -180,4 +298,52 @@ fn face_problem<'a>(
         }
     }
     None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(text: &str) -> Result<ObjTriangles, String> {
+        let mut obj = Parsed::default();
+        for line in text.lines() {
+            obj.line(line).ok_or_else(|| format!("bad line {line:?}"))?;
+        }
+        obj.finish()
+    }
+
+    /// Polygons are fanned from their first corner; negative indices count back; forward
+    /// references resolve; positions alone keep the file's vertices.
+    #[test]
+    fn faces_fan_and_indices_resolve() {
+        let t = parse("f 1 2 3 4\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf -4 -2 -1\n").unwrap();
+        assert_eq!(t.positions.len(), 4);
+        assert_eq!(t.triangles, vec![[0, 1, 2], [0, 2, 3], [0, 2, 3]]);
+        assert!(t.normals.is_none() && t.texcoords.is_none());
+        assert!(
+            parse("v 0 0 0\nf 1 2 3\n").is_err(),
+            "index beyond the vertices"
+        );
+        assert!(parse("v 0 0 0\nf 1 1\n").is_err(), "two corners");
+        assert!(
+            parse("v 0 0 0\nv 1 0 0\nf 1 2 -3\n").is_err(),
+            "back beyond the start"
+        );
+    }
+
+    /// Corners naming normals and texture coordinates get one vertex per distinct triple;
+    /// the normals and coordinates are kept only when every corner gives them.
+    #[test]
+    fn corners_with_normals_and_coordinates_split_vertices() {
+        let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nvn 0 0 -1\nvt 0.5\nvt 0 1\n\
+                    f 1/1/1 2/2/1 3/1/1\nf 1/1/2 3/1/2 2/2/2\n";
+        let t = parse(text).unwrap();
+        assert_eq!(t.positions.len(), 6, "each position with two normals");
+        assert_eq!(t.triangles, vec![[0, 1, 2], [3, 4, 5]]);
+        let n = t.normals.unwrap();
+        assert_eq!((n[0], n[3]), ([0.0, 0.0, 1.0], [0.0, 0.0, -1.0]));
+        assert_eq!(t.texcoords.unwrap()[0], [0.5, 0.0]);
+        let mixed = parse("v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3\n").unwrap();
+        assert!(mixed.normals.is_none(), "a corner without a normal");
+    }
 }
