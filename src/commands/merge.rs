@@ -6,7 +6,7 @@ use super::Observer;
 use crate::error::{Error, Result};
 use crate::output::Outputs;
 use crate::scene;
-use crate::shard::{Header, Partial, Shard};
+use crate::shard::{Header, Merge, Partial, Shard};
 use std::path::PathBuf;
 
 /// What `grinlight merge` is asked to do.
@@ -27,12 +27,12 @@ pub struct MergeJob {
 /// the scene they name (refusing it if its files changed since) and writes the render's
 /// results as `grinlight render` does.
 pub fn merge(job: &MergeJob, observer: &dyn Observer) -> Result<RenderOutcome> {
-    let parts = job
-        .partials
-        .iter()
-        .map(|p| Ok((p.clone(), Partial::read(p)?)))
-        .collect::<Result<Vec<_>>>()?;
-    let merged = Partial::merge(&parts, job.allow_missing)?;
+    let mut merge = Merge::new();
+    for p in &job.partials {
+        merge.add(p, Partial::read(p)?)?;
+    }
+    let shards = job.partials.len();
+    let merged = merge.finish(job.allow_missing)?;
     let path = &merged.header.scene;
     let (description, settings) = scene::load_description(path)?;
     let scene = description.build();
@@ -47,10 +47,9 @@ pub fn merge(job: &MergeJob, observer: &dyn Observer) -> Result<RenderOutcome> {
     let mut outputs = Outputs::new(scene.inputs.iter().chain(&job.partials));
     let files = Files::plan(&scene, (exr, settings.output.png, 0), &mut outputs)?;
     observer.line(&format!(
-        "merging {} partial(s) of {} ({} shard(s)): passes {}, receiver photons {}",
-        parts.len(),
+        "merging {} partial(s) of {}: passes {}, receiver photons {}",
+        shards,
         path.display(),
-        parts[0].1.header.shard.count,
         merged.passes,
         merged.photons
     ));

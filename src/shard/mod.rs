@@ -15,9 +15,11 @@
 //! array, a Ray driver; `cluster/` in the repository) runs the shards.
 
 mod coverage;
+mod merge;
 mod run;
 
 pub use coverage::Coverage;
+pub use merge::Merge;
 pub use run::{run, Ran, Saving, BLOCK};
 
 use crate::error::{Error, Result};
@@ -269,90 +271,5 @@ impl Partial {
         crate::output::write_atomic(path, |tmp| {
             std::fs::write(tmp, &bytes).map_err(|e| Error::io(path, e))
         })
-    }
-
-    /// Merges partials of one render (named by their files, for messages): refuses partials
-    /// of another scene, other inputs, other settings or another program, the same shard
-    /// twice, and overlapping work; and, unless `allow_missing`, a result that lacks any of
-    /// the render's passes or photons.
-    pub fn merge(parts: &[(PathBuf, Partial)], allow_missing: bool) -> Result<Partial> {
-        let Some(((first_path, first), rest)) = parts.split_first() else {
-            return Err(Error::Usage(
-                "nothing to merge: name the partial files".into(),
-            ));
-        };
-        let mut merged = Partial::empty(Header {
-            shard: Shard::WHOLE,
-            ..first.header.clone()
-        });
-        let mut seen: Vec<(u32, &PathBuf)> = Vec::new();
-        for (path, part) in
-            std::iter::once((first_path, first)).chain(rest.iter().map(|(p, x)| (p, x)))
-        {
-            if let Some(d) = first.header.difference(&part.header) {
-                return Err(Error::Usage(format!(
-                    "{} and {} are not parts of one render: {d}",
-                    first_path.display(),
-                    path.display()
-                )));
-            }
-            if let Some((_, other)) = seen.iter().find(|(k, _)| *k == part.header.shard.index) {
-                return Err(Error::Usage(format!(
-                    "{} and {} are both shard {}: each shard once",
-                    other.display(),
-                    path.display(),
-                    part.header.shard
-                )));
-            }
-            seen.push((part.header.shard.index, path));
-            let overlap = |what: &str| {
-                Error::Usage(format!(
-                    "{}: its {what} overlap another partial's (shard {}): each piece of work once",
-                    path.display(),
-                    part.header.shard
-                ))
-            };
-            for r in part.passes.ranges() {
-                merged
-                    .passes
-                    .insert(r.clone())
-                    .map_err(|_| overlap("passes"))?;
-            }
-            for r in part.photons.ranges() {
-                merged
-                    .photons
-                    .insert(r.clone())
-                    .map_err(|_| overlap("receiver photons"))?;
-            }
-            if let Some(film) = &part.film {
-                match &mut merged.film {
-                    Some(f) => f.merge(film)?,
-                    None => merged.film = Some(film.clone()),
-                }
-            }
-            merged.books.add(&part.books);
-        }
-        let (passes, photons) = merged.remaining();
-        let complete = passes.is_empty() && photons.is_empty();
-        if !allow_missing && !complete {
-            let mut lacks = Vec::new();
-            if !passes.is_empty() {
-                lacks.push(format!("passes {passes} of {}", merged.header.passes));
-            }
-            if !photons.is_empty() {
-                lacks.push(format!(
-                    "receiver photons {photons} of {}",
-                    merged.header.photons
-                ));
-            }
-            return Err(Error::Usage(format!(
-                "the partials lack {} (of {} shards, {} given): render the missing shards, or \
-                 merge with --allow-missing for an estimate from what is there",
-                lacks.join(" and "),
-                first.header.shard.count,
-                parts.len()
-            )));
-        }
-        Ok(merged)
     }
 }
