@@ -22,33 +22,40 @@ pub struct MergeJob {
     pub allow_missing: bool,
 }
 
-/// Runs `grinlight merge`: reads the partials, refuses any that are not parts of one render
-/// (naming the difference), duplicates and overlaps, and missing work unless allowed; reloads
-/// the scene they name (refusing it if its files changed since) and writes the render's
-/// results as `grinlight render` does.
+/// Runs `grinlight merge`: reads the first partial, reloads the scene it names (refusing it if
+/// its files changed since) and checks every file the merge will write; then reads the
+/// partials one at a time, refusing any that is not a part of the same render (naming the
+/// difference), duplicates and overlaps, and missing work unless allowed; and writes the
+/// render's results as `grinlight render` does.
 pub fn merge(job: &MergeJob, observer: &dyn Observer) -> Result<RenderOutcome> {
-    let mut merge = Merge::new();
-    for p in &job.partials {
-        merge.add(p, Partial::read(p)?)?;
-    }
-    let shards = job.partials.len();
-    let merged = merge.finish(job.allow_missing)?;
-    let path = &merged.header.scene;
-    let (description, settings) = scene::load_description(path)?;
+    let Some((first_path, rest)) = job.partials.split_first() else {
+        return Err(Error::Usage(
+            "nothing to merge: name the partial files".into(),
+        ));
+    };
+    let first = Partial::read(first_path)?;
+    let path = first.header.scene.clone();
+    let (description, settings) = scene::load_description(&path)?;
     let scene = description.build();
-    if Header::new(&scene, &settings, Shard::WHOLE)?.inputs != merged.header.inputs {
+    if Header::new(&scene, &settings, Shard::WHOLE)?.inputs != first.header.inputs {
         return Err(Error::Usage(format!(
             "{}: the scene or a file it reads changed since the partials were rendered: merging \
              them would describe a scene that no longer exists",
             path.display()
         )));
     }
-    let exr = output_exr(job.output.clone(), &settings, path);
+    let exr = output_exr(job.output.clone(), &settings, &path);
     let mut outputs = Outputs::new(scene.inputs.iter().chain(&job.partials));
     let files = Files::plan(&scene, (exr, settings.output.png, 0), &mut outputs)?;
+    let mut merge = Merge::new();
+    merge.add(first_path, first)?;
+    for p in rest {
+        merge.add(p, Partial::read(p)?)?;
+    }
+    let merged = merge.finish(job.allow_missing)?;
     observer.line(&format!(
-        "merging {} partial(s) of {}: passes {}, receiver photons {}",
-        shards,
+        "merged {} partial(s) of {}: passes {}, receiver photons {}",
+        job.partials.len(),
         path.display(),
         merged.passes,
         merged.photons
