@@ -3,8 +3,8 @@
 //! rounds at every addition, so (a + b) + c and a + (b + c) may differ in the last bit; these
 //! sums keep an integer instead, and integer addition is associative.
 //!
-//! - [`ExactSum`]: the exact sum of any f64 values (a "superaccumulator": the whole binary range
-//!   of f64 as 32-bit digits), read back within one rounding of the exact value. 544 bytes:
+//! - [`ExactSum`]: the exact sum of any f64 values (a "superaccumulator": f64's binary range
+//!   as 32-bit digits, kept over the window its values reach), read back correctly rounded:
 //!   for receivers' bins and energy budgets.
 //! - [`Fixed`]: a fixed-point number with 64 integer and 64 fraction bits, 16 bytes: for films,
 //!   whose millions of pixels could not each hold an `ExactSum`. Values must lie in
@@ -12,19 +12,21 @@
 
 use serde::{Deserialize, Serialize};
 
-/// 32-bit digits covering bit positions 2⁻¹⁰⁷⁴ to 2¹⁰²³ of an f64 (2 045 positions plus the
-/// 85 bits a shifted 53-bit significand spans) with room for carries above.
-const DIGITS: usize = 68;
 /// Additions between carry propagations: each changes a digit by less than 2³², an i64 holds
 /// 2⁶³, so 2³⁰ leaves a factor 2 spare.
 const ADDS_BEFORE_CARRY: u32 = 1 << 30;
 
-/// The exact sum of f64 values: Σ dᵢ·2^(32i − 1074) over 32-bit digits dᵢ. Adding is exact
-/// (no rounding, whatever the order or grouping); [`ExactSum::value`] rounds once. A non-finite
+/// The exact sum of f64 values: Σ dᵢ·2^(32(lo + i) − 1074) over 32-bit digits dᵢ, kept only
+/// over the window of digits its values reach (a bin's photon fluxes span a few digits, so a
+/// sum is tens of bytes, not the 544 the whole f64 range would take). Adding is exact (no
+/// rounding, whatever the order or grouping); [`ExactSum::value`] rounds once. A non-finite
 /// value added makes the sum non-finite (NaN, or the infinity added), never silently finite.
-#[derive(Clone, Debug, Serialize, Deserialize)]
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
 pub struct ExactSum {
-    /// Digits, least significant first; between carries each may exceed 32 bits.
+    /// The digit position of `digits[0]`.
+    lo: u32,
+    /// Digits, least significant first; between carries each may exceed 32 bits. The last is
+    /// signed (two's complement over the window).
     digits: Vec<i64>,
     /// Additions since the last carry propagation.
     #[serde(skip)]
@@ -33,21 +35,11 @@ pub struct ExactSum {
     special: f64,
 }
 
-impl Default for ExactSum {
-    fn default() -> Self {
-        Self {
-            digits: vec![0; DIGITS],
-            adds: 0,
-            special: 0.0,
-        }
-    }
-}
-
 impl PartialEq for ExactSum {
     fn eq(&self, other: &Self) -> bool {
         let special = |s: f64| (s.is_nan(), if s.is_nan() { 0.0 } else { s });
-        special(self.special) == special(other.special)
-            && self.clone().carried().digits == other.clone().carried().digits
+        let (a, b) = (self.clone().canonical(), other.clone().canonical());
+        special(self.special) == special(other.special) && (a.lo, a.digits) == (b.lo, b.digits)
     }
 }
 
@@ -67,7 +59,7 @@ impl ExactSum {
             return;
         }
         let bits = x.to_bits();
-        let exponent = ((bits >> 52) & 0x7ff) as usize;
+        let exponent = ((bits >> 52) & 0x7ff) as u32;
         let fraction = (bits & ((1 << 52) - 1)) as i128;
         // x = m·2^(p − 1074) with m the integer significand.
         let (m, p) = match exponent {
@@ -75,7 +67,7 @@ impl ExactSum {
             e => (fraction | 1 << 52, e - 1),
         };
         let v = if x < 0.0 { -m } else { m } << (p % 32);
-        let i = p / 32;
+        let i = self.cover(p / 32, p / 32 + 3);
         self.digits[i] += (v & 0xffff_ffff) as i64;
         self.digits[i + 1] += ((v >> 32) & 0xffff_ffff) as i64;
         self.digits[i + 2] += (v >> 64) as i64;
@@ -85,14 +77,20 @@ impl ExactSum {
         }
     }
 
-    /// Adds another exact sum (exactly).
+    /// Adds another exact sum (exactly), digit by digit: after this sum's carries each of its
+    /// digits is below 2³² in magnitude (the top one aside), and the other's below 2⁶² (fewer
+    /// than 2³⁰ additions since its last carry), so no digit overflows.
     pub fn merge(&mut self, other: &ExactSum) {
-        self.carry();
-        let other = other.clone().carried();
-        for (a, b) in self.digits.iter_mut().zip(&other.digits) {
-            *a += b;
-        }
         self.special += other.special;
+        if other.digits.is_empty() {
+            return;
+        }
+        self.carry();
+        let top = other.lo + other.digits.len() as u32;
+        let at = self.cover(other.lo, top);
+        for (k, d) in other.digits.iter().enumerate() {
+            self.digits[at + k] += d;
+        }
         self.carry();
     }
 
@@ -102,17 +100,18 @@ impl ExactSum {
         if self.special != 0.0 || self.special.is_nan() {
             return self.special;
         }
-        let mut s = self.clone().carried();
-        let negative = s.digits[DIGITS - 1] < 0;
-        if negative {
-            s.digits.iter_mut().for_each(|d| *d = -*d);
-            s = s.carried();
-        }
-        let Some(top) = s.digits.iter().rposition(|&d| d != 0) else {
+        let mut s = self.clone().canonical();
+        let Some(&top_digit) = s.digits.last() else {
             return 0.0;
         };
-        // The top three digits (≥ 65 significant bits), with a sticky bit for anything below:
-        // one correctly rounded conversion.
+        let negative = top_digit < 0;
+        if negative {
+            s.digits.iter_mut().for_each(|d| *d = -*d);
+            s = s.canonical();
+        }
+        let top = s.digits.len() - 1;
+        // The top three digits (≥ 65 significant bits when there are three), with a sticky bit
+        // for anything below: one correctly rounded conversion.
         let low = top.saturating_sub(2);
         let mut head: u128 = 0;
         for k in (low..=top).rev() {
@@ -121,7 +120,7 @@ impl ExactSum {
         if s.digits[..low].iter().any(|&d| d != 0) {
             head |= 1;
         }
-        let exponent = 32 * low as i32 - 1074;
+        let exponent = 32 * (s.lo + low as u32) as i32 - 1074;
         let magnitude = head as f64 * pow2(exponent / 2) * pow2(exponent - exponent / 2);
         if negative {
             -magnitude
@@ -130,21 +129,85 @@ impl ExactSum {
         }
     }
 
-    /// Propagates carries: every digit but the top one in [0, 2³²), the top one signed (two's
-    /// complement), so that equal sums have equal digits.
+    /// Makes the window reach digit positions `lo..hi` (at least); returns the index of
+    /// position `lo` in `digits`. New digits are 0, which keeps the value: a digit is an
+    /// integer times its weight wherever it sits (the top one's sign only matters to
+    /// [`ExactSum::canonical`]).
+    fn cover(&mut self, lo: u32, hi: u32) -> usize {
+        if self.digits.is_empty() {
+            self.lo = lo;
+            self.digits = vec![0; (hi - lo) as usize];
+            return 0;
+        }
+        if lo < self.lo {
+            let grow = (self.lo - lo) as usize;
+            self.digits.splice(0..0, std::iter::repeat_n(0, grow));
+            self.lo = lo;
+        }
+        let top = self.lo + self.digits.len() as u32;
+        if hi > top {
+            self.digits
+                .resize(self.digits.len() + (hi - top) as usize, 0);
+        }
+        (lo - self.lo) as usize
+    }
+
+    /// Propagates carries: every digit but the top one in [0, 2³²), the top one signed and in
+    /// [−2³¹, 2³¹).
     fn carry(&mut self) {
+        let Some(last) = self.digits.len().checked_sub(1) else {
+            return;
+        };
         let mut carry = 0i64;
-        for d in &mut self.digits[..DIGITS - 1] {
+        for d in &mut self.digits[..last] {
             let t = *d + carry;
             *d = t & 0xffff_ffff;
             carry = t >> 32;
         }
-        self.digits[DIGITS - 1] += carry;
+        self.digits[last] += carry;
+        // The top digit stays small (a window grows rather than let it overflow).
+        while let Some(&top) = self.digits.last() {
+            if (-(1i64 << 31)..1 << 31).contains(&top) {
+                break;
+            }
+            let n = self.digits.len() - 1;
+            self.digits[n] = top & 0xffff_ffff;
+            self.digits.push(top >> 32);
+        }
         self.adds = 0;
     }
 
-    fn carried(mut self) -> Self {
+    /// The unique form of the value: carried (the top digit in [−2³¹, 2³¹)), and no digit that
+    /// could be dropped at either end.
+    fn canonical(mut self) -> Self {
         self.carry();
+        // Drop high digits that only repeat the sign of the one below.
+        while self.digits.len() >= 2 {
+            let n = self.digits.len();
+            let (top, below) = (self.digits[n - 1], self.digits[n - 2]);
+            match top {
+                0 if below < 1 << 31 => {
+                    self.digits.pop();
+                }
+                -1 if below >= 1 << 31 => {
+                    self.digits.pop();
+                    self.digits[n - 2] = below - (1 << 32);
+                }
+                _ => break,
+            }
+        }
+        if self.digits == [0] {
+            self.digits.clear();
+        }
+        // Drop low zero digits.
+        let zeros = self.digits.iter().take_while(|&&d| d == 0).count();
+        if zeros > 0 && zeros < self.digits.len() {
+            self.digits.drain(..zeros);
+            self.lo += zeros as u32;
+        }
+        if self.digits.is_empty() {
+            self.lo = 0;
+        }
         self
     }
 }
@@ -265,6 +328,8 @@ mod tests {
     #[test]
     fn carries_after_many_additions() {
         let mut s = ExactSum::new();
+        s.add(1.0);
+        s.add(-1.0);
         s.adds = ADDS_BEFORE_CARRY - 10;
         for _ in 0..100 {
             s.add(1e300);

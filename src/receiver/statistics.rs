@@ -3,6 +3,7 @@
 
 use super::{Detection, Receiver};
 use crate::exact::ExactSum;
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -44,20 +45,27 @@ pub fn measure(receivers: &[Receiver], detections: &[Detection], photons: u64) -
         .collect()
 }
 
-/// Each receiver's tally of `detections` (in photon order), with its bands.
+/// Each receiver's tally of `detections` (in photon order), with its bands: the detections
+/// grouped by receiver in one pass (keeping their order), the receivers tallied in parallel.
 pub fn tally(receivers: &[Receiver], detections: &[Detection]) -> Vec<Tally> {
+    let mut grouped: Vec<Vec<&Detection>> = vec![Vec::new(); receivers.len()];
+    for d in detections {
+        if let Some(g) = grouped.get_mut(d.receiver as usize) {
+            g.push(d);
+        }
+    }
     receivers
-        .iter()
-        .enumerate()
-        .map(|(r, rec)| {
-            let mine = |d: &&Detection| d.receiver == r as u32;
-            let mut t = Tally::of(detections.iter().filter(mine));
+        .par_iter()
+        .zip(grouped)
+        .map(|(rec, mine)| {
+            let bins = rec.bins.0 * rec.bins.1;
+            let mut t = Tally::of(mine.iter().copied(), bins);
             t.bands = rec
                 .bands
                 .iter()
                 .map(|&(lo, hi)| {
-                    let inside = |d: &&Detection| mine(d) && (lo..hi).contains(&d.wavelength);
-                    Tally::of(detections.iter().filter(inside))
+                    let inside = |d: &&Detection| (lo..hi).contains(&d.wavelength);
+                    Tally::of(mine.iter().copied().filter(inside), bins)
                 })
                 .collect();
             t
@@ -100,18 +108,31 @@ pub struct Tally {
 impl Tally {
     /// The tally of one receiver's detections, in photon order (a photon's crossings of one
     /// bin are added before squaring).
-    fn of<'a>(detections: impl Iterator<Item = &'a Detection>) -> Tally {
-        let mut t = Tally::default();
+    fn of<'a>(detections: impl Iterator<Item = &'a Detection>, bins: usize) -> Tally {
+        // The bins crossed, in the order first crossed, found through a table of all bins.
+        let mut slot = vec![u32::MAX; bins];
+        let mut crossed: Vec<(u32, Moments)> = Vec::new();
+        let mut at = |b: u32, crossed: &mut Vec<(u32, Moments)>| {
+            let s = &mut slot[b as usize];
+            if *s == u32::MAX {
+                *s = crossed.len() as u32;
+                crossed.push((b, Moments::default()));
+            }
+            *s as usize
+        };
+        let mut total = Moments::default();
         let mut bin: Option<(u64, u32, f64)> = None;
         let mut photon: Option<(u64, f64)> = None;
         for d in detections {
-            t.bins.entry(d.bin).or_default().sum.add(d.flux);
-            t.total.sum.add(d.flux);
+            let i = at(d.bin, &mut crossed);
+            crossed[i].1.sum.add(d.flux);
+            total.sum.add(d.flux);
             match &mut bin {
                 Some((p, b, x)) if *p == d.photon && *b == d.bin => *x += d.flux,
                 _ => {
                     if let Some((_, b, x)) = bin.replace((d.photon, d.bin, d.flux)) {
-                        t.bins.entry(b).or_default().squares.add(x * x);
+                        let j = at(b, &mut crossed);
+                        crossed[j].1.squares.add(x * x);
                     }
                 }
             }
@@ -119,18 +140,23 @@ impl Tally {
                 Some((p, x)) if *p == d.photon => *x += d.flux,
                 _ => {
                     if let Some((_, x)) = photon.replace((d.photon, d.flux)) {
-                        t.total.squares.add(x * x);
+                        total.squares.add(x * x);
                     }
                 }
             }
         }
         if let Some((_, b, x)) = bin {
-            t.bins.entry(b).or_default().squares.add(x * x);
+            let j = at(b, &mut crossed);
+            crossed[j].1.squares.add(x * x);
         }
         if let Some((_, x)) = photon {
-            t.total.squares.add(x * x);
+            total.squares.add(x * x);
         }
-        t
+        Tally {
+            bins: crossed.into_iter().collect(),
+            total,
+            bands: Vec::new(),
+        }
     }
 
     /// Adds the tally of other photons of the same receiver, exactly.
