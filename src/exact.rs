@@ -325,6 +325,27 @@ mod tests {
         assert!(bad.value().is_nan());
     }
 
+    /// A sum of values of one magnitude keeps a few digits; one spanning the range grows its
+    /// window and still sums exactly.
+    #[test]
+    fn keeps_only_the_digits_its_values_reach() {
+        let mut s = ExactSum::new();
+        for k in 0..10_000 {
+            s.add(1e-9 * (1.0 + k as f64 * 1e-4));
+        }
+        assert!(s.clone().canonical().digits.len() <= 4, "{s:?}");
+        s.add(1e300);
+        s.add(-1e300);
+        s.add(5e-324);
+        s.add(-5e-324);
+        let mut t = ExactSum::new();
+        for k in (0..10_000).rev() {
+            t.add(1e-9 * (1.0 + k as f64 * 1e-4));
+        }
+        assert_eq!(s, t);
+        assert_eq!(s.value(), t.value());
+    }
+
     #[test]
     fn carries_after_many_additions() {
         let mut s = ExactSum::new();
