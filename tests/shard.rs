@@ -170,7 +170,7 @@ fn kill_after_saves(dir: &Path, args: &[&str], watch: &str, saves: usize) {
 }
 
 /// Evidence 2: `kill -9` in the middle of a render, then `--resume`: the same result as an
-/// uninterrupted render — for a camera render (after two of six passes: the EXR byte for
+/// uninterrupted render — for a camera render (after two of twelve passes: the EXR byte for
 /// byte) and for a receiver shard (after one of two blocks of photons: the partial's books
 /// bit for bit).
 #[test]
@@ -190,7 +190,7 @@ fn a_killed_render_resumes_to_the_same_result() {
         "--caustic-photons",
         "20000",
         "--passes",
-        "6",
+        "12",
         "--checkpoint",
         "1",
         "--threads",
@@ -223,7 +223,7 @@ fn a_killed_render_resumes_to_the_same_result() {
     );
 
     // A receiver shard of two blocks of photons, killed after the first.
-    let photons = (grinlight::shard::BLOCK + 20_000).to_string();
+    let photons = (grinlight::shard::BLOCK + 120_000).to_string();
     let shard = [
         "render",
         "fiber.toml",
