@@ -97,8 +97,11 @@ pub fn read(path: &Path, name: Option<&str>, background: Option<f64>) -> Result<
 }
 
 /// Runs `f`, turning a panic of the VDB reader into an error (without its message on the
-/// terminal).
+/// terminal). The panic hook is process-wide: reads are serialised, so that two at once cannot
+/// leave the silent hook in place of the previous one.
 fn guarded<T>(f: impl FnOnce() -> Result<T, String> + std::panic::UnwindSafe) -> Result<T, String> {
+    static HOOK: std::sync::Mutex<()> = std::sync::Mutex::new(());
+    let _one_at_a_time = HOOK.lock().unwrap_or_else(|e| e.into_inner());
     let hook = std::panic::take_hook();
     std::panic::set_hook(Box::new(|_| {}));
     let result = std::panic::catch_unwind(f);
