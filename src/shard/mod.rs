@@ -7,7 +7,7 @@
 //! receivers' exact tallies, the energy ledger — with which passes and photons it holds, and a
 //! [`Header`] saying what it is a part of (the program, the scene and its inputs' contents,
 //! every setting that shapes the result). Partials of the same header merge by adding
-//! ([`Partial::merge`]), exactly and in any order, so N shards merged are bit for bit the
+//! ([`Merge`]), exactly and in any order, so N shards merged are bit for bit the
 //! single run. [`run`] does a partial's remaining work, saving it as it goes (a checkpoint
 //! that `--resume` continues).
 //!
