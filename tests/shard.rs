@@ -413,3 +413,21 @@ fn the_slurm_job_scripts_run_as_local_processes() {
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A render ended by its time budget is whole with the passes that fitted: not partial, no
+/// saved state left behind, every pixel with the same passes.
+#[test]
+fn a_time_budget_ends_a_whole_render() {
+    let dir = workspace("budget");
+    let mut job = cornell(&dir);
+    job.overrides.passes = None;
+    job.overrides.time_budget = Some(0.3);
+    job.output = Some(dir.join("b.exr"));
+    let outcome = commands::render(&job, &()).unwrap();
+    assert!(!outcome.partial);
+    let (film, report) = outcome.film.unwrap();
+    assert!(report.passes >= 1);
+    assert!(film.counts().iter().all(|&c| c == report.passes as u64));
+    assert!(!dir.join("b.partial").exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -296,12 +296,8 @@ pub fn render(job: &RenderJob, observer: &dyn Observer) -> Result<RenderOutcome>
         save: &save,
     };
     let start = Instant::now();
-    let mut ran = crate::shard::run(&scene, &settings, partial, observer, &saving)?;
+    let ran = crate::shard::run(&scene, &settings, partial, observer, &saving)?;
     let interrupted = ran.interrupted();
-    if settings.time_budget.is_some() && !interrupted {
-        // The budget, not a pass count, ended the render: it is whole with the passes done.
-        ran.partial.header.passes = ran.partial.passes.len() as u32;
-    }
     let Some(files) = files else {
         ran.partial.write(&state)?;
         let (passes, photons) = ran.partial.remaining();

@@ -45,7 +45,8 @@ impl Ran {
 
 /// Does `partial`'s remaining work on `scene` with `settings` (those its header was made
 /// from): the receiver photons first, in [`BLOCK`]s, then the passes; saved as `saving` says.
-/// An interrupt (the observer's stop) ends it with the whole blocks and passes done.
+/// An interrupt (the observer's stop) ends it with the whole blocks and passes done; a time
+/// budget ends it whole, with the passes that fitted.
 pub fn run(
     scene: &Scene,
     settings: &Settings,
@@ -108,6 +109,10 @@ pub fn run(
         if stopped {
             break;
         }
+    }
+    if settings.time_budget.is_some() && !ran.interrupted() {
+        // The budget, not a pass count, ended the render: it is whole with the passes done.
+        ran.partial.header.passes = ran.partial.passes.len() as u32;
     }
     Ok(ran)
 }
