@@ -19,35 +19,15 @@ export GRINLIGHT=$repo/target/release/grinlight
 work=$(mktemp -d /tmp/grinlight-ray.XXXXXX)
 echo "Ray $("$venv/bin/python" -c 'import ray; print(ray.__version__)'), local, $cores cores"
 
-seconds() {
-    local t0 t1
-    t0=$(date +%s.%N)
-    "$@" >/dev/null 2>&1
-    t1=$(date +%s.%N)
-    awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.2f", b - a }'
+# Renders a scene as N shards on Ray and merges them (the driver does both).
+shards() {
+    local n=$1 out=$2 scene=$3
+    shift 3
+    "$venv/bin/python" "$repo/cluster/ray/driver.py" "$scene" "$n" "$out" "$@"
 }
 
-printf '\n| scene | work | one process, 1 thread | one process, %s threads | Ray, N shards × 1 CPU (with Ray'"'"'s start) | merged = single run |\n' "$cores"
-printf '|---|---|---|---|---|---|\n'
-run_scene() {
-    local name=$1 scene=$2 files=$3
-    shift 3
-    local dir=$work/$name
-    mkdir -p "$dir"
-    local t1 tn
-    t1=$(seconds "$GRINLIGHT" render "$scene" -o "$dir/one.exr" --threads 1 "$@")
-    tn=$(seconds "$GRINLIGHT" render "$scene" -o "$dir/single.exr" --threads 0 "$@")
-    for n in 2 4; do
-        local out=$dir/ray-$n t same=yes
-        t=$(seconds "$venv/bin/python" "$repo/cluster/ray/driver.py" "$scene" "$n" "$out" "$@")
-        for f in $files; do
-            cmp -s "$dir/single.$f" "$out/result.$f" || same="NO ($f differs)"
-        done
-        printf '| %s | %s | %s s | %s s | N = %s: %s s | %s |\n' "$name" "$*" "$t1" "$tn" "$n" "$t" "$same"
-    done
-}
-run_scene fiber "$repo/scenes/fiber_led.toml" "exit.csv exit.radial.csv" --receiver-photons 1000000
-run_scene cornell "$repo/scenes/cornell_caustic.toml" "exr png" --passes 8
+source "$repo/cluster/compare.sh"
+compare_all "Ray (with Ray's start)"
 echo
 echo "machine: $cores cores; at most $cores shards run at once here. Ray's own start (a few"
 echo "seconds) is in its times. work files: $work"

@@ -71,42 +71,16 @@ wait_queue() {
     while [[ -n $(squeue -h -o %i) ]]; do sleep 0.2; done
 }
 
-# The wall time of a command, in seconds.
-seconds() {
-    local t0 t1
-    t0=$(date +%s.%N)
-    "$@" >/dev/null
-    t1=$(date +%s.%N)
-    awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.2f", b - a }'
+# Renders a scene as N shards through the queue: the job array and its merge job.
+shards() {
+    local n=$1 out=$2 scene=$3
+    shift 3
+    "$repo/cluster/slurm/submit.sh" "$scene" "$n" "$out" "$@" >/dev/null
+    wait_queue
 }
 
-printf '\n| scene | work | one process, 1 thread | one process, %s threads | Slurm, N shards × 1 CPU | merged = single run |\n' "$cores"
-printf '|---|---|---|---|---|---|\n'
-run_scene() {
-    local name=$1 scene=$2 files=$3
-    shift 3
-    local dir=$work/$name
-    mkdir -p "$dir"
-    local t1 tn
-    t1=$(seconds "$GRINLIGHT" render "$scene" -o "$dir/one.exr" --threads 1 "$@")
-    tn=$(seconds "$GRINLIGHT" render "$scene" -o "$dir/single.exr" --threads 0 "$@")
-    for n in 2 4; do
-        local out=$dir/slurm-$n
-        local t0 t
-        t0=$(date +%s.%N)
-        "$repo/cluster/slurm/submit.sh" "$scene" "$n" "$out" "$@" >/dev/null
-        wait_queue
-        t=$(awk -v a="$t0" -v b="$(date +%s.%N)" 'BEGIN { printf "%.2f", b - a }')
-        local same=yes
-        for f in $files; do
-            cmp -s "$dir/single.$f" "$out/result.$f" || same="NO ($f differs)"
-        done
-        [[ -e $out/result.${files%% *} ]] || same="NO (no result: see $out/*.log)"
-        printf '| %s | %s | %s s | %s s | N = %s: %s s | %s |\n' "$name" "$*" "$t1" "$tn" "$n" "$t" "$same"
-    done
-}
-run_scene fiber "$repo/scenes/fiber_led.toml" "exit.csv exit.radial.csv" --receiver-photons 1000000
-run_scene cornell "$repo/scenes/cornell_caustic.toml" "exr png" --passes 8
+source "$repo/cluster/compare.sh"
+compare_all Slurm
 echo
 echo "machine: $cores cores; on $cores cores N shards can run at most $cores at once, so the"
 echo "Slurm run's speed-up over one process with 1 thread is at most $cores×, and it cannot beat one"
