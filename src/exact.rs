@@ -16,6 +16,10 @@ use serde::{Deserialize, Serialize};
 /// 2⁶³, so 2³⁰ leaves a factor 2 spare.
 const ADDS_BEFORE_CARRY: u32 = 1 << 30;
 
+/// Digit positions an exact sum can reach: f64's 2098 binary positions (2⁻¹⁰⁷⁴ to 2¹⁰²⁴) are
+/// 66 digits; carries of up to 2⁶⁴ additions reach two more; 72 leaves room.
+const MAX_POSITIONS: usize = 72;
+
 /// The exact sum of f64 values: Σ dᵢ·2^(32(lo + i) − 1074) over 32-bit digits dᵢ, kept only
 /// over the window of digits its values reach (a bin's photon fluxes span a few digits, so a
 /// sum is tens of bytes, not the 544 the whole f64 range would take). Adding is exact (no
@@ -47,6 +51,14 @@ impl ExactSum {
     /// A sum of nothing (0).
     pub fn new() -> Self {
         Self::default()
+    }
+
+    /// Whether it is a sum [`ExactSum::add`] and [`ExactSum::merge`] could have made (one read
+    /// from a file): its window inside f64's range of digit positions, every digit within the
+    /// bound merging relies on (2⁶²).
+    pub fn is_well_formed(&self) -> bool {
+        (self.lo as usize).saturating_add(self.digits.len()) <= MAX_POSITIONS
+            && self.digits.iter().all(|d| d.unsigned_abs() < 1 << 62)
     }
 
     /// Adds `x` exactly.

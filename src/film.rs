@@ -96,6 +96,23 @@ impl Film {
         self.counts[i] += samples;
     }
 
+    /// Whether its buffers match its size and layers (a film read from a file): the reason
+    /// when not.
+    pub fn check(&self) -> std::result::Result<(), String> {
+        let pixels = self.width.checked_mul(self.height);
+        if pixels.is_none_or(|p| self.counts.len() != p || self.sums.iter().any(|s| s.len() != p))
+            || self.sums.len() != self.layers.len()
+        {
+            return Err(format!(
+                "a {}×{} film of {} layers whose buffers do not match",
+                self.width,
+                self.height,
+                self.layers.len()
+            ));
+        }
+        Ok(())
+    }
+
     /// Pixel values left out (see [`Film::add`]).
     pub fn rejected(&self) -> u64 {
         self.rejected

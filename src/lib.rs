@@ -30,6 +30,7 @@ pub mod error;
 pub mod exact;
 pub mod fiber;
 pub mod film;
+pub mod input;
 pub mod integrator;
 pub mod lights;
 pub mod material;

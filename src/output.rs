@@ -15,8 +15,8 @@ use std::io::Read;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
 
-/// The first bytes of a grinlight partial result ([`crate::shard::Partial`]).
-pub const PARTIAL_MAGIC: &[u8] = b"GRINLIGHT PARTIAL 1\n";
+/// The first bytes of a grinlight partial result of any version ([`crate::shard::file`]).
+pub const PARTIAL_MAGIC: &[u8] = b"GRINLIGHT PARTIAL ";
 
 /// What kind of file an output is: what an existing file at its path must look like to be
 /// replaced.

@@ -3,7 +3,7 @@
 //! resumes to the same result; partials of different renders are refused, naming the
 //! difference.
 
-use grinlight::commands::{self, MergeJob, Overrides, RenderJob, RenderOutcome};
+use grinlight::commands::{self, MergeJob, Observer, Overrides, RenderJob, RenderOutcome};
 use grinlight::shard::{Partial, Shard};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
@@ -79,7 +79,7 @@ fn whole_and_merged(
             &(),
         )
         .unwrap();
-        assert!(!shard.partial);
+        assert!(!shard.interrupted);
         partials.push(path);
     }
     let merged = commands::merge(
@@ -318,7 +318,7 @@ fn mismatched_partials_are_refused_naming_the_difference() {
     whole.output = Some(dir.join("a.exr"));
     let e = commands::render(&whole, &()).err().unwrap().to_string();
     assert!(
-        e.contains("holds the partial result of another render (shard count: 1 against 2)"),
+        e.contains("holds a shard's result (made by `render --shard`"),
         "{e}"
     );
     assert_eq!(std::fs::read(&a).unwrap(), before);
@@ -333,7 +333,7 @@ fn mismatched_partials_are_refused_naming_the_difference() {
         &(),
     )
     .unwrap();
-    assert!(lone.partial);
+    assert!(lone.incomplete && !lone.interrupted);
     // A scene edited after its shards were rendered is refused at the merge.
     let text = std::fs::read_to_string(dir.join("cornell.toml")).unwrap();
     std::fs::write(
@@ -424,10 +424,171 @@ fn a_time_budget_ends_a_whole_render() {
     job.overrides.time_budget = Some(0.3);
     job.output = Some(dir.join("b.exr"));
     let outcome = commands::render(&job, &()).unwrap();
-    assert!(!outcome.partial);
+    assert!(!outcome.interrupted);
     let (film, report) = outcome.film.unwrap();
     assert!(report.passes >= 1);
     assert!(film.counts().iter().all(|&c| c == report.passes as u64));
     assert!(!dir.join("b.partial").exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// A finished shard's result is never replaced nor removed by a whole render whose saved
+/// state would be at its path: not when the render finishes (it would remove its state), not
+/// when it checkpoints and is killed (it would save a few passes over the finished shard).
+/// The render is refused before any work, the file is untouched, and it still merges.
+#[test]
+fn a_whole_render_leaves_a_finished_shard_result_alone() {
+    let dir = workspace("keep-shard");
+    let x = dir.join("x.partial");
+    let mut job = cornell(&dir);
+    job.overrides.passes = Some(3);
+    job.shard = Some(Shard::WHOLE);
+    job.output = Some(x.clone());
+    commands::render(&job, &()).unwrap();
+    let before = std::fs::read(&x).unwrap();
+    for checkpoint in [0, 1] {
+        let whole = RenderJob {
+            shard: None,
+            output: Some(dir.join("x.exr")),
+            checkpoint,
+            ..job.clone()
+        };
+        let e = commands::render(&whole, &()).err().unwrap().to_string();
+        assert!(e.contains("holds a shard's result"), "{e}");
+        assert_eq!(std::fs::read(&x).unwrap(), before, "x.partial untouched");
+        assert!(!dir.join("x.exr").exists(), "no work was done");
+    }
+    let merged = commands::merge(
+        &MergeJob {
+            partials: vec![x.clone()],
+            output: Some(dir.join("m.exr")),
+            allow_missing: false,
+        },
+        &(),
+    )
+    .unwrap();
+    assert!(!merged.incomplete);
+    // The shard run again over its own finished result finishes from it: the same bytes.
+    commands::render(&job, &()).unwrap();
+    assert_eq!(std::fs::read(&x).unwrap(), before);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// Stops a render after its first finished pass (an interrupt, as Ctrl-C gives).
+struct StopAfterFirstPass(std::sync::atomic::AtomicBool);
+
+impl Observer for StopAfterFirstPass {
+    fn pass_done(&self, _: u32, _: &grinlight::film::Film) -> grinlight::error::Result<()> {
+        self.0.store(true, std::sync::atomic::Ordering::SeqCst);
+        Ok(())
+    }
+    fn stop_requested(&self) -> bool {
+        self.0.load(std::sync::atomic::Ordering::SeqCst)
+    }
+}
+
+/// Evidence: a byte flipped at every 1 % of a partial file — a merged shard's and an
+/// interrupted render's saved state — is refused before anything is merged or resumed,
+/// naming the file, and never panics; the merge writes nothing, the resume neither.
+#[test]
+fn damaged_partials_are_refused_before_any_merge_or_resume() {
+    let dir = workspace("flip");
+    let mut job = cornell(&dir);
+    job.overrides.passes = Some(3);
+    job.overrides.width = Some(16);
+    job.overrides.height = Some(12);
+    let shards: Vec<PathBuf> = (1..=3)
+        .map(|k| {
+            let path = dir.join(format!("s{k}.partial"));
+            commands::render(
+                &RenderJob {
+                    shard: Some(Shard { index: k, count: 3 }),
+                    output: Some(path.clone()),
+                    ..job.clone()
+                },
+                &(),
+            )
+            .unwrap();
+            path
+        })
+        .collect();
+    // An interrupted whole render: its state k.partial holds one pass of three.
+    let whole = RenderJob {
+        output: Some(dir.join("k.exr")),
+        ..job.clone()
+    };
+    let stopped = commands::render(&whole, &StopAfterFirstPass(Default::default())).unwrap();
+    assert!(stopped.interrupted);
+    let state = dir.join("k.partial");
+    let flip_each_percent = |path: &Path, attempt: &dyn Fn() -> Option<String>| {
+        let good = std::fs::read(path).unwrap();
+        for percent in 0..100 {
+            let at = good.len() * percent / 100;
+            let mut bad = good.clone();
+            bad[at] ^= 0x5a;
+            std::fs::write(path, &bad).unwrap();
+            let e = attempt().unwrap_or_else(|| panic!("{path:?}: byte {at} flipped, accepted"));
+            assert!(
+                e.contains(&*path.to_string_lossy()) && !e.contains("panicked"),
+                "byte {at}: {e}"
+            );
+        }
+        std::fs::write(path, &good).unwrap();
+    };
+    let out = dir.join("m.exr");
+    flip_each_percent(&shards[1], &|| {
+        let r = commands::merge(
+            &MergeJob {
+                partials: shards.clone(),
+                output: Some(out.clone()),
+                allow_missing: false,
+            },
+            &(),
+        );
+        assert!(!out.exists(), "a damaged merge wrote its image");
+        r.err().map(|e| e.to_string())
+    });
+    flip_each_percent(&state, &|| {
+        let r = commands::render(
+            &RenderJob {
+                resume: true,
+                ..whole.clone()
+            },
+            &(),
+        );
+        r.err().map(|e| e.to_string())
+    });
+    // Truncated or grown by a byte: refused by its lengths, before its payload is read.
+    let good = std::fs::read(&shards[1]).unwrap();
+    for bad in [&good[..good.len() - 1], &[&good[..], &[0]].concat()[..]] {
+        std::fs::write(&shards[1], bad).unwrap();
+        let e = Partial::read(&shards[1]).err().unwrap().to_string();
+        assert!(e.contains("bytes where its lengths say"), "{e}");
+    }
+    // Undamaged, both work.
+    std::fs::write(&shards[1], &good).unwrap();
+    commands::render(
+        &RenderJob {
+            resume: true,
+            ..whole.clone()
+        },
+        &(),
+    )
+    .unwrap();
+    assert!(!state.exists(), "a finished render removes its own state");
+    let merged = commands::merge(
+        &MergeJob {
+            partials: shards,
+            output: Some(out.clone()),
+            allow_missing: false,
+        },
+        &(),
+    )
+    .unwrap();
+    assert!(!merged.incomplete);
+    assert_eq!(
+        std::fs::read(&out).unwrap(),
+        std::fs::read(dir.join("k.exr")).unwrap()
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -6,6 +6,7 @@ use super::Observer;
 use crate::error::{Error, Result};
 use crate::output::Outputs;
 use crate::scene;
+use crate::shard::file::Opened;
 use crate::shard::{Header, Merge, Partial, Shard};
 use std::path::PathBuf;
 
@@ -28,16 +29,25 @@ pub struct MergeJob {
 /// difference), duplicates and overlaps, and missing work unless allowed; and writes the
 /// render's results as `grinlight render` does.
 pub fn merge(job: &MergeJob, observer: &dyn Observer) -> Result<RenderOutcome> {
-    let Some((first_path, rest)) = job.partials.split_first() else {
+    if job.partials.is_empty() {
         return Err(Error::Usage(
             "nothing to merge: name the partial files".into(),
         ));
-    };
-    let first = Partial::read(first_path)?;
-    let path = first.header.scene.clone();
+    }
+    // Every header first: a partial of another render, or a damaged header, is refused
+    // before any payload is read.
+    let mut merge = Merge::new();
+    let mut first = None;
+    for p in &job.partials {
+        let header = Opened::open(p)?.header;
+        merge.admit(p, &header)?;
+        first.get_or_insert(header);
+    }
+    let first = first.expect("at least one partial");
+    let path = first.scene.clone();
     let (description, settings) = scene::load_description(&path)?;
     let scene = description.build();
-    if Header::new(&scene, &settings, Shard::WHOLE)?.inputs != first.header.inputs {
+    if Header::new(&scene, &settings, Shard::WHOLE, first.role)?.inputs != first.inputs {
         return Err(Error::Usage(format!(
             "{}: the scene or a file it reads changed since the partials were rendered: merging \
              them would describe a scene that no longer exists",
@@ -47,10 +57,15 @@ pub fn merge(job: &MergeJob, observer: &dyn Observer) -> Result<RenderOutcome> {
     let exr = output_exr(job.output.clone(), &settings, &path);
     let mut outputs = Outputs::new(scene.inputs.iter().chain(&job.partials));
     let files = Files::plan(&scene, (exr, settings.output.png, 0), &mut outputs)?;
-    let mut merge = Merge::new();
-    merge.add(first_path, first)?;
-    for p in rest {
-        merge.add(p, Partial::read(p)?)?;
+    for p in &job.partials {
+        let part = Partial::read(p)?;
+        part.fits(&scene).map_err(|why| {
+            Error::Usage(format!(
+                "{}: a damaged partial result ({why}): refusing to use it",
+                p.display()
+            ))
+        })?;
+        merge.add(p, part)?;
     }
     let merged = merge.finish(job.allow_missing)?;
     observer.line(&format!(
@@ -62,6 +77,6 @@ pub fn merge(job: &MergeJob, observer: &dyn Observer) -> Result<RenderOutcome> {
     ));
     let complete = merged.is_complete();
     let mut outcome = publish((&scene, &settings), merged, (None, None), &files, observer)?;
-    outcome.partial = !complete;
+    outcome.incomplete = !complete;
     Ok(outcome)
 }

@@ -11,7 +11,8 @@ use crate::receiver::{self, Measurement};
 use crate::report::Report;
 use crate::scene::{self, Description, Scene};
 use crate::settings::Settings;
-use crate::shard::{Header, Partial, Saving, Shard};
+use crate::shard::file::Opened;
+use crate::shard::{Header, Partial, Role, Saving, Shard};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
@@ -134,9 +135,12 @@ pub struct RenderOutcome {
     pub measurements: Vec<Measurement>,
     /// Where the receiver photons' power went.
     pub budget: Option<Budget>,
-    /// Whether it was stopped early (an interrupt): the files hold what was done, and the
-    /// partial saved beside them lets `--resume` continue.
-    pub partial: bool,
+    /// Whether an interrupt stopped it early: the files hold what was done, and the partial
+    /// saved beside them lets `--resume` continue.
+    pub interrupted: bool,
+    /// Whether its results hold less than the whole render's work (interrupted, or a merge
+    /// of some of the shards with `--allow-missing`); the report says so.
+    pub incomplete: bool,
 }
 
 /// How often a running render saves its partial when no `--checkpoint` asks for more.
@@ -270,8 +274,18 @@ pub fn render(job: &RenderJob, observer: &dyn Observer) -> Result<RenderOutcome>
         crate::render::memory_needed(&scene, &settings),
         &format!("rendering {}", job.scene.display()),
     )?;
-    let header = Header::new(&scene, &settings, shard)?;
-    let partial = start_partial(header, &state, job.resume)?;
+    let role = match job.shard {
+        Some(_) => Role::Shard,
+        None => Role::Checkpoint,
+    };
+    let header = Header::new(&scene, &settings, shard, role)?;
+    let partial = start_partial(header.clone(), &state, job.resume, observer)?;
+    partial.fits(&scene).map_err(|why| {
+        Error::Usage(format!(
+            "{}: a damaged partial result ({why}): refusing to use it",
+            state.display()
+        ))
+    })?;
     let save = |p: &Partial| -> Result<()> {
         p.write(&state)?;
         if let (Some(files), Some(film)) = (&files, &p.film) {
@@ -318,7 +332,8 @@ pub fn render(job: &RenderJob, observer: &dyn Observer) -> Result<RenderOutcome>
             }
         ));
         return Ok(RenderOutcome {
-            partial: interrupted,
+            interrupted,
+            incomplete: interrupted,
             film: ran.partial.film.zip(ran.camera),
             ..RenderOutcome::default()
         });
@@ -339,7 +354,8 @@ pub fn render(job: &RenderJob, observer: &dyn Observer) -> Result<RenderOutcome>
         &files,
         observer,
     )?;
-    outcome.partial = interrupted;
+    outcome.interrupted = interrupted;
+    outcome.incomplete = interrupted;
     if let (Some(fiber), false) = (fiber, interrupted) {
         let paths = Paths {
             fiber,
@@ -348,8 +364,8 @@ pub fn render(job: &RenderJob, observer: &dyn Observer) -> Result<RenderOutcome>
         };
         draw_paths(&scene, &settings, paths, &files, observer)?;
     }
-    if !interrupted && state.exists() {
-        std::fs::remove_file(&state).map_err(|e| Error::io(&state, e))?;
+    if !interrupted {
+        remove_own_checkpoint(&state, &header)?;
     }
     Ok(outcome)
 }
@@ -389,10 +405,17 @@ pub(super) fn output_exr(output: Option<PathBuf>, settings: &Settings, scene: &P
 }
 
 /// The partial a render starts from: the one saved at `state` when resuming (it must be of
-/// the same render), else an empty one. A partial already at `state` is replaced only when it
-/// is a finished one of this same render; an unfinished one of it needs `--resume` (hours of
-/// work may be in it), and one of any other render is left alone (a shard's result, say).
-fn start_partial(header: Header, state: &Path, resume: bool) -> Result<Partial> {
+/// the same render), else an empty one. A partial already at `state` is never replaced by
+/// another: an unfinished one of this render needs `--resume` (hours of work may be in it), a
+/// finished one of this render is finished from (its results are the same), and one of any
+/// other render or role — a shard's result at a whole render's state path, say — is refused,
+/// as is a damaged one.
+fn start_partial(
+    header: Header,
+    state: &Path,
+    resume: bool,
+    observer: &dyn Observer,
+) -> Result<Partial> {
     if resume && !state.exists() {
         return Err(Error::Usage(format!(
             "--resume: {} does not exist: nothing to resume (run without --resume)",
@@ -407,6 +430,18 @@ fn start_partial(header: Header, state: &Path, resume: bool) -> Result<Partial> 
         (saved.header.shard != header.shard)
             .then(|| format!("shard {} against {}", header.shard, saved.header.shard))
     });
+    if saved.header.role != header.role {
+        let what = match saved.header.role {
+            Role::Shard => "a shard's result (made by `render --shard`, for `grinlight merge`)",
+            Role::Checkpoint => {
+                "the saved state of a whole render (continued by `render --resume`)"
+            }
+        };
+        return Err(Error::Usage(format!(
+            "{} holds {what}: refusing to replace it (move it, or choose another output)",
+            state.display()
+        )));
+    }
     match (difference, resume, saved.is_complete()) {
         (Some(d), true, _) => Err(Error::Usage(format!(
             "--resume: {} is a partial of another render ({d}): give the options it was \
@@ -426,7 +461,27 @@ fn start_partial(header: Header, state: &Path, resume: bool) -> Result<Partial> 
             saved.passes.len(),
             saved.photons.len()
         ))),
-        (None, false, true) => Ok(Partial::empty(header)),
+        (None, false, true) => {
+            observer.line(&format!(
+                "{} holds this render finished: its results are written from it",
+                state.display()
+            ));
+            Ok(saved)
+        }
+    }
+}
+
+/// Removes a finished whole render's saved state at `state` — only if it is this render's
+/// checkpoint (`header`): a file another run put there since is left alone.
+fn remove_own_checkpoint(state: &Path, header: &Header) -> Result<()> {
+    if header.role != Role::Checkpoint || !state.exists() {
+        return Ok(());
+    }
+    match Opened::open(state) {
+        Ok(o) if o.header == *header => {
+            std::fs::remove_file(state).map_err(|e| Error::io(state, e))
+        }
+        _ => Ok(()),
     }
 }
 

@@ -127,6 +127,40 @@ impl Ledger {
         self.lost.merge(&other.lost);
     }
 
+    /// Whether a ledger read from a file fits a scene of `primitives` primitives and `bands`
+    /// wavelength bands (every sum well formed, every primitive booked one of the scene's):
+    /// the reason when not.
+    pub fn fits(&self, primitives: usize, bands: usize) -> Result<(), String> {
+        let sums = [
+            &self.emitted,
+            &self.reflected,
+            &self.missed,
+            &self.absorbed,
+            &self.lost,
+        ];
+        if !sums
+            .into_iter()
+            .chain(self.out_through.values())
+            .all(ExactSum::is_well_formed)
+        {
+            return Err("a malformed sum in its energy budget".into());
+        }
+        if let Some(p) = self.out_through.keys().find(|&&p| p >= primitives) {
+            return Err(format!(
+                "an energy budget through primitive {p} of a scene of {primitives}"
+            ));
+        }
+        if !self.bands.is_empty() && self.bands.len() != bands {
+            return Err(format!(
+                "an energy budget of {} wavelength bands where the scene has {bands}",
+                self.bands.len()
+            ));
+        }
+        self.bands
+            .iter()
+            .try_for_each(|(_, b)| b.fits(primitives, 0))
+    }
+
     /// The budget these books hold, every entry times `factor` (1, or a batch's share traced
     /// to its full power).
     pub fn statement(&self, factor: f64) -> Budget {

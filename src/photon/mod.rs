@@ -384,13 +384,7 @@ pub fn shoot(
     if sources.is_empty() || traced.is_empty() {
         return (Sink::default(), Stats::default());
     }
-    // The receivers' wavelength bands, each once, booked apart in the energy budget.
-    let mut bands: Vec<(f64, f64)> = Vec::new();
-    for band in tracer.scene.receivers.iter().flat_map(|r| &r.bands) {
-        if !bands.contains(band) {
-            bands.push(*band);
-        }
-    }
+    let bands = crate::receiver::distinct_bands(&tracer.scene.receivers);
     let chunks: Vec<(Sink, Stats)> = (traced.start / CHUNK..traced.end.div_ceil(CHUNK))
         .into_par_iter()
         .map(|c| {

@@ -95,3 +95,15 @@ impl Receiver {
         )
     }
 }
+
+/// The wavelength bands of `receivers`, each once, in the order first named: the bands an
+/// energy budget books apart.
+pub fn distinct_bands(receivers: &[Receiver]) -> Vec<(f64, f64)> {
+    let mut bands: Vec<(f64, f64)> = Vec::new();
+    for band in receivers.iter().flat_map(|r| &r.bands) {
+        if !bands.contains(band) {
+            bands.push(*band);
+        }
+    }
+    bands
+}

@@ -173,6 +173,39 @@ impl Tally {
         }
     }
 
+    /// Whether a tally read from a file fits `rec` (its bins, its bands, well-formed sums):
+    /// the reason when not.
+    pub fn fits(&self, rec: &Receiver) -> Result<(), String> {
+        let bins = rec.bins.0 * rec.bins.1;
+        if let Some(b) = self.bins.keys().find(|&&b| b as usize >= bins) {
+            return Err(format!(
+                "a tally of bin {b} for receiver '{}' of {bins} bins",
+                rec.name
+            ));
+        }
+        if !self
+            .bins
+            .values()
+            .chain([&self.total])
+            .all(|m| m.sum.is_well_formed() && m.squares.is_well_formed())
+        {
+            return Err(format!("a malformed sum in receiver '{}'", rec.name));
+        }
+        if !self.bands.is_empty() && self.bands.len() != rec.bands.len() {
+            return Err(format!(
+                "{} bands for receiver '{}' of {}",
+                self.bands.len(),
+                rec.name,
+                rec.bands.len()
+            ));
+        }
+        let flat = Receiver {
+            bands: Vec::new(),
+            ..rec.clone()
+        };
+        self.bands.iter().try_for_each(|b| b.fits(&flat))
+    }
+
     /// The measurement of receiver `rec` from this tally of `photons` photons, every flux
     /// times `scale` (1, or the share of a batch traced, to its full count).
     pub fn measurement(&self, rec: &Receiver, photons: u64, scale: f64) -> Measurement {

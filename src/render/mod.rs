@@ -402,6 +402,28 @@ impl Books {
         self.traced += other.traced;
     }
 
+    /// Whether books read from a file fit `receivers` and a scene of `primitives` primitives
+    /// (a tally per receiver, of its bins and bands; a budget of its primitives): the reason
+    /// when not.
+    pub fn fits(
+        &self,
+        receivers: &[receiver::Receiver],
+        primitives: usize,
+    ) -> std::result::Result<(), String> {
+        if !self.tallies.is_empty() && self.tallies.len() != receivers.len() {
+            return Err(format!(
+                "books of {} receivers for a scene of {}",
+                self.tallies.len(),
+                receivers.len()
+            ));
+        }
+        for (t, r) in self.tallies.iter().zip(receivers) {
+            t.fits(r)?;
+        }
+        self.ledger
+            .fits(primitives, receiver::distinct_bands(receivers).len())
+    }
+
     /// Each receiver's measurement, every flux times `scale` (1 when the whole batch was
     /// traced).
     pub fn measurements(&self, receivers: &[receiver::Receiver], scale: f64) -> Vec<Measurement> {

@@ -302,7 +302,7 @@ fn named<'a>(
 
 /// Reads and parses the scene file at `path`: its description and settings.
 pub fn load_description(path: &Path) -> Result<(Description, Settings)> {
-    let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+    let text = crate::input::read_text(path, crate::input::MAX_SCENE_BYTES, "a scene file")?;
     parse_description(path, text)
 }
 

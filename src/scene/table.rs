@@ -147,7 +147,11 @@ impl<'a> TableReader<'a> {
     /// (remembered as an input of the scene).
     pub fn input_file(&mut self, key: &str) -> Result<std::path::PathBuf> {
         let name = self.string(key)?;
-        Ok(self.source.input(&name))
+        let path = self.source.input(&name);
+        match crate::input::not_regular(&path) {
+            Some(why) => Err(self.error(key, format!("{}: {why}", path.display()))),
+            None => Ok(path),
+        }
     }
 
     /// An optional path relative to the scene file's directory (of a file the run writes).

@@ -24,6 +24,18 @@ impl Coverage {
         self.0.iter().map(|r| r.end - r.start).sum()
     }
 
+    /// Whether it is well formed (sorted, non-empty, disjoint and non-adjacent ranges, as
+    /// [`Coverage::insert`] keeps them) and holds only indices of `whole`.
+    pub fn is_within(&self, whole: Range<u64>) -> bool {
+        self.0.iter().all(|r| r.start < r.end)
+            && self.0.windows(2).all(|w| w[0].end < w[1].start)
+            && self
+                .0
+                .first()
+                .zip(self.0.last())
+                .is_none_or(|(a, b)| a.start >= whole.start && b.end <= whole.end)
+    }
+
     /// Adds `r`; an error if any of it is already held (work done twice).
     pub fn insert(&mut self, r: Range<u64>) -> Result<()> {
         if r.is_empty() {

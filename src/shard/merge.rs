@@ -1,6 +1,7 @@
-//! Merging the partials of one render, one at a time: each is checked against the first,
-//! added and dropped, so a merge holds one merged result and one partial whatever the number
-//! of shards.
+//! Merging the partials of one render: every partial's header is checked first (read alone,
+//! before any payload), then each partial is read, added and dropped, so a merge refuses a
+//! mismatch before it reads the sums and holds one merged result and one partial whatever the
+//! number of shards.
 
 use super::{Header, Partial, Shard};
 use crate::error::{Error, Result};
@@ -9,11 +10,12 @@ use std::path::{Path, PathBuf};
 /// Partials of one render merged so far.
 #[derive(Default)]
 pub struct Merge {
-    /// The merged result, and the first partial's file and header (what every other must
-    /// agree with).
-    merged: Option<(Partial, PathBuf, Header)>,
-    /// Each shard index added, with its file.
-    seen: Vec<(u32, PathBuf)>,
+    /// The first header admitted, and its file: what every other must agree with.
+    first: Option<(PathBuf, Header)>,
+    /// Each shard admitted, with its file and header.
+    admitted: Vec<(PathBuf, Header)>,
+    /// The merged result (None: nothing added yet).
+    merged: Option<Partial>,
 }
 
 impl Merge {
@@ -22,40 +24,61 @@ impl Merge {
         Merge::default()
     }
 
-    /// Adds the partial read from `path`: refused (naming both files and the difference) if it
-    /// is of another scene, other inputs, other settings, another shard count or program, a
-    /// shard already added, or work already added.
-    pub fn add(&mut self, path: &Path, part: Partial) -> Result<()> {
-        let Some((merged, first_path, first)) = &mut self.merged else {
-            self.seen
-                .push((part.header.shard.index, path.to_path_buf()));
-            let header = part.header.clone();
-            let whole = Partial {
-                header: Header {
-                    shard: Shard::WHOLE,
-                    ..part.header.clone()
-                },
-                ..part
-            };
-            self.merged = Some((whole, path.to_path_buf(), header));
-            return Ok(());
-        };
-        if let Some(d) = first.difference(&part.header) {
-            return Err(Error::Usage(format!(
-                "{} and {} are not parts of one render: {d}",
-                first_path.display(),
-                path.display()
-            )));
+    /// Admits the partial at `path` with `header` (its file's header, read alone): refused
+    /// (naming both files and the difference) if it is of another scene, other inputs, other
+    /// settings, another shard count or program, or a shard already admitted.
+    pub fn admit(&mut self, path: &Path, header: &Header) -> Result<()> {
+        if let Some((first_path, first)) = &self.first {
+            if let Some(d) = first.difference(header) {
+                return Err(Error::Usage(format!(
+                    "{} and {} are not parts of one render: {d}",
+                    first_path.display(),
+                    path.display()
+                )));
+            }
         }
-        let shard = part.header.shard;
-        if let Some((_, other)) = self.seen.iter().find(|(k, _)| *k == shard.index) {
+        let shard = header.shard;
+        if let Some((other, _)) = self
+            .admitted
+            .iter()
+            .find(|(_, h)| h.shard.index == shard.index)
+        {
             return Err(Error::Usage(format!(
                 "{} and {} are both shard {shard}: each shard once",
                 other.display(),
                 path.display(),
             )));
         }
-        self.seen.push((shard.index, path.to_path_buf()));
+        self.first
+            .get_or_insert_with(|| (path.to_path_buf(), header.clone()));
+        self.admitted.push((path.to_path_buf(), header.clone()));
+        Ok(())
+    }
+
+    /// Adds `part`, read from `path` after it was admitted with the same header: refused when
+    /// it holds work already added.
+    pub fn add(&mut self, path: &Path, part: Partial) -> Result<()> {
+        if !self
+            .admitted
+            .iter()
+            .any(|(p, h)| p == path && *h == part.header)
+        {
+            return Err(Error::Usage(format!(
+                "{}: changed while it was being merged",
+                path.display()
+            )));
+        }
+        let Some(merged) = &mut self.merged else {
+            self.merged = Some(Partial {
+                header: Header {
+                    shard: Shard::WHOLE,
+                    ..part.header.clone()
+                },
+                ..part
+            });
+            return Ok(());
+        };
+        let shard = part.header.shard;
         let overlap = |what: &str| {
             Error::Usage(format!(
                 "{}: its {what} overlap another partial's (shard {shard}): each piece of work once",
@@ -86,7 +109,7 @@ impl Merge {
     /// The merged result; unless `allow_missing`, refused when it lacks any of the render's
     /// passes or receiver photons.
     pub fn finish(self, allow_missing: bool) -> Result<Partial> {
-        let Some((merged, _, first)) = self.merged else {
+        let (Some(merged), Some((_, first))) = (self.merged, self.first) else {
             return Err(Error::Usage(
                 "nothing to merge: name the partial files".into(),
             ));
@@ -110,7 +133,7 @@ impl Merge {
              merge with --allow-missing for an estimate from what is there",
             lacks.join(" and "),
             first.shard.count,
-            self.seen.len()
+            self.admitted.len()
         )))
     }
 }

@@ -15,6 +15,7 @@
 //! array, a Ray driver; `cluster/` in the repository) runs the shards.
 
 mod coverage;
+pub mod file;
 mod merge;
 mod run;
 
@@ -24,7 +25,6 @@ pub use run::{run, Ran, Saving, BLOCK};
 
 use crate::error::{Error, Result};
 use crate::film::Film;
-use crate::output::PARTIAL_MAGIC as MAGIC;
 use crate::render::Books;
 use crate::scene::Scene;
 use crate::settings::Settings;
@@ -74,12 +74,25 @@ impl std::fmt::Display for Shard {
     }
 }
 
+/// What a partial file is for, and so who may replace or remove it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Role {
+    /// A shard's result (`render --shard`), for `grinlight merge`: a render resumes or keeps
+    /// it, never replaces or removes it.
+    Shard,
+    /// A whole render's saved state beside its EXR, for `--resume`: the render that owns it
+    /// replaces it as it goes and removes it when it finishes.
+    Checkpoint,
+}
+
 /// What a partial result is a part of. Two partials merge only when their headers agree in
-/// everything but the shard's index.
+/// everything but the shard's index (and role).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Header {
     /// The program and version that rendered it.
     pub program: String,
+    /// A shard's result or a whole render's saved state.
+    pub role: Role,
     /// The scene file, absolute.
     pub scene: PathBuf,
     /// FNV-1a hash of the contents of the scene file and every file it reads, in order.
@@ -95,9 +108,9 @@ pub struct Header {
 }
 
 impl Header {
-    /// The header of shard `shard` of the render of `scene` with `settings`: reads the
-    /// scene's input files to hash them.
-    pub fn new(scene: &Scene, settings: &Settings, shard: Shard) -> Result<Header> {
+    /// The header of shard `shard` of the render of `scene` with `settings`, in `role`: reads
+    /// the scene's input files to hash them.
+    pub fn new(scene: &Scene, settings: &Settings, shard: Shard, role: Role) -> Result<Header> {
         let camera = scene.camera.as_ref();
         let mut values = vec![
             ("seed", settings.seed.to_string()),
@@ -112,6 +125,7 @@ impl Header {
         }
         Ok(Header {
             program: format!("grinlight {}", env!("CARGO_PKG_VERSION")),
+            role,
             scene: std::path::absolute(scene.path()).map_err(|e| Error::io(scene.path(), e))?,
             inputs: hash_files(&scene.inputs)?,
             settings: values
@@ -169,16 +183,12 @@ impl Header {
 
 /// FNV-1a (64-bit) over the files' contents, each followed by its length.
 fn hash_files(paths: &[PathBuf]) -> Result<u64> {
-    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-    let mut eat = |bytes: &[u8]| {
-        for &b in bytes {
-            h = (h ^ b as u64).wrapping_mul(0x0100_0000_01b3);
-        }
-    };
+    let mut h = file::FNV_START;
     for p in paths {
+        crate::input::check_regular(p)?;
         let bytes = std::fs::read(p).map_err(|e| Error::io(p, e))?;
-        eat(&bytes);
-        eat(&(bytes.len() as u64).to_le_bytes());
+        h = file::fnv1a(h, &bytes);
+        h = file::fnv1a(h, &(bytes.len() as u64).to_le_bytes());
     }
     Ok(h)
 }
@@ -244,30 +254,62 @@ impl Partial {
         Ok(())
     }
 
-    /// Reads a partial file, naming the file in every error.
+    /// Whether it is whole and consistent: the shard within its count, the work it holds
+    /// within its shard's slices, a film whose buffers match its size and the header's camera,
+    /// receivers' books of the photons it holds. The reason when not.
+    pub fn check(&self) -> std::result::Result<(), String> {
+        let h = &self.header;
+        if h.shard.index == 0 || h.shard.index > h.shard.count {
+            return Err(format!("shard {} does not exist", h.shard));
+        }
+        let within = |c: &Coverage, total: u64, what: &str| {
+            let slice = h.shard.slice(total);
+            match c.is_within(slice.clone()) {
+                true => Ok(()),
+                false => Err(format!(
+                    "its {what} {c} are not a part of its shard's {}..{}",
+                    slice.start, slice.end
+                )),
+            }
+        };
+        within(&self.passes, h.passes as u64, "passes")?;
+        within(&self.photons, h.photons, "receiver photons")?;
+        if self.books.traced != self.photons.len() {
+            return Err(format!(
+                "books of {} photons for {} receiver photons",
+                self.books.traced,
+                self.photons.len()
+            ));
+        }
+        if let Some(film) = &self.film {
+            film.check()?;
+            let size = format!("{}×{}", film.width, film.height);
+            if !h.settings.iter().any(|(k, v)| k == "camera" && *v == size) {
+                return Err(format!("a {size} film of another camera"));
+            }
+        }
+        Ok(())
+    }
+
+    /// Whether its books fit `scene` (a tally per receiver of its bins and bands, budget
+    /// entries of its primitives): the reason when not.
+    pub fn fits(&self, scene: &Scene) -> std::result::Result<(), String> {
+        self.books
+            .fits(&scene.receivers, scene.accel.primitives().len())
+    }
+
+    /// Reads a partial file: its header and payload checked (see [`file`]), and the result
+    /// ([`Partial::check`]); every error names the file.
     pub fn read(path: &Path) -> Result<Partial> {
-        let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
-        let body = bytes.strip_prefix(MAGIC).ok_or_else(|| {
-            Error::Usage(format!(
-                "{}: not a grinlight partial result (made by `render --shard`)",
-                path.display()
-            ))
-        })?;
-        postcard::from_bytes(body).map_err(|e| {
-            Error::Usage(format!(
-                "{}: a damaged or incompatible partial result: {e}",
-                path.display()
-            ))
-        })
+        file::Opened::open(path)?.payload()
     }
 
     /// Writes it to `path` atomically.
     pub fn write(&self, path: &Path) -> Result<()> {
-        let mut bytes = MAGIC.to_vec();
-        bytes.extend(postcard::to_stdvec(self).map_err(|e| Error::Image {
+        let bytes = file::encode(self).map_err(|e| Error::Image {
             path: path.to_path_buf(),
             message: e.to_string(),
-        })?);
+        })?;
         crate::output::write_atomic(path, |tmp| {
             std::fs::write(tmp, &bytes).map_err(|e| Error::io(path, e))
         })

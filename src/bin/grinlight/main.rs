@@ -12,7 +12,7 @@ use grinlight::error::Error;
 /// Runs the command; true when it finished, false when an interrupt cut it short.
 fn run(cli: Cli, console: &console::Console) -> Result<bool, Error> {
     Ok(match cli.command {
-        Command::Render(args) => !commands::render(&args.into(), console)?.partial,
+        Command::Render(args) => !commands::render(&args.into(), console)?.interrupted,
         Command::Validate(args) => {
             commands::validate(&args.into(), console)?;
             true
@@ -21,7 +21,10 @@ fn run(cli: Cli, console: &console::Console) -> Result<bool, Error> {
             commands::trace(&args.into(), console)?;
             true
         }
-        Command::Merge(args) => !commands::merge(&args.into(), console)?.partial,
+        Command::Merge(args) => {
+            commands::merge(&args.into(), console)?;
+            true
+        }
     })
 }
 
