@@ -83,4 +83,46 @@ impl Camera {
             }
         }
     }
+
+    /// The angle (rad) between the pinhole rays through the centre pixel and its right-hand
+    /// neighbour: the angular size of a pixel at the film's centre.
+    pub fn pixel_angle(&self) -> f64 {
+        let (cx, cy) = (self.width / 2, self.height / 2);
+        crate::math::angle_between(
+            self.direction(cx, cy, 0.5, 0.5),
+            self.direction(cx + 1, cy, 0.5, 0.5),
+        )
+    }
+
+    /// Whether the unit direction `dir` from the eye falls on the film (the pinhole view).
+    pub fn sees(&self, dir: DVec3) -> bool {
+        let depth = dir.dot(self.forward);
+        if depth <= 0.0 {
+            return false;
+        }
+        let aspect = self.width as f64 / self.height as f64;
+        let (x, y) = (dir.dot(self.right) / depth, dir.dot(self.up) / depth);
+        x.abs() <= self.tan_half_fov_y * aspect && y.abs() <= self.tan_half_fov_y
+    }
+
+    /// The range [lo, hi] of angles (rad) between `axis` (unit) and the pinhole rays of the
+    /// film: 0 when the view holds `axis`, π when it holds −`axis`, else the extremes over the
+    /// film's border, sampled at every pixel edge (so within half a pixel).
+    pub fn angles_to(&self, axis: DVec3) -> (f64, f64) {
+        let (w, h) = (self.width, self.height);
+        let border = (0..=w)
+            .flat_map(|x| [(x, 0), (x, h)])
+            .chain((0..=h).flat_map(|y| [(0, y), (w, y)]))
+            .map(|(x, y)| crate::math::angle_between(self.direction(x, y, 0.0, 0.0), axis));
+        let (mut lo, mut hi) = border.fold((f64::INFINITY, 0.0f64), |(lo, hi), a| {
+            (lo.min(a), hi.max(a))
+        });
+        if self.sees(axis) {
+            lo = 0.0;
+        }
+        if self.sees(-axis) {
+            hi = std::f64::consts::PI;
+        }
+        (lo, hi)
+    }
 }

@@ -17,3 +17,10 @@ pub fn facing(normal: DVec3, direction: DVec3) -> DVec3 {
 pub fn offset(p: DVec3, side: DVec3) -> DVec3 {
     p + side * (1e-9 * (1.0 + p.abs().max_element()))
 }
+
+/// The angle (rad) between unit vectors `a` and `b`, accurate to rounding for every angle:
+/// 2·atan2(|a − b|, |a + b|). (acos of the dot product loses small angles: below ≈ 2·10⁻⁸ rad
+/// it reads 0.)
+pub fn angle_between(a: DVec3, b: DVec3) -> f64 {
+    2.0 * (a - b).length().atan2((a + b).length())
+}

@@ -189,6 +189,11 @@ where
         let h_try = h.min(remaining);
         // One trial: the step, whether to accept it, and the next h.
         let (step, next_h, requested) = match control {
+            // A fixed step below the rounding of the position would not move the ray.
+            StepControl::Fixed { step } if step <= round_off_floor(&state) => {
+                out.reason = Termination::StepUnderflow;
+                return out;
+            }
             StepControl::Fixed { step } => match stepper.step(medium, &state, h_try) {
                 Some(s) if plausible(&state, &s, h_try) => (s, step, h_try),
                 // A step that did not advance about h (RK4 flung out by a near-singular n∇n)

@@ -8,10 +8,16 @@
 //! and a rotation. Tabulated in α, not in the impact parameter: nearly equal impact parameters
 //! around α = 90° are far apart in α (seed 002's smeared strip).
 //!
-//! Nodes: uniform in α, then every interval bisected until linear interpolation of δ meets
-//! its traced midpoint within [`TOLERANCE`] — near the capture angle, where δ diverges
+//! Nodes: uniform in α over the view's range of angles (a node at least every pixel, so no
+//! feature a pixel wide falls between two), then every interval bisected until linear
+//! interpolation of δ meets its traced midpoint within the table's tolerance ([`TOLERANCE`],
+//! or 0.003 of a pixel for narrower views) — near the capture angle, where δ diverges
 //! logarithmically, this packs nodes geometrically, down to a millionth of a pixel — and
 //! every interval holding the capture boundary bisected down to [`BOUNDARY`].
+//!
+//! The table is checked against rays traced directly; a render uses it only when the check
+//! finds every ray within a tenth of a pixel and no capture disagreement
+//! ([`TableCheck::accepts`]), and traces every ray otherwise, saying so.
 
 use super::{CameraRay, Integrator, Sample};
 use crate::color::Rgb;
@@ -25,12 +31,21 @@ use std::time::Instant;
 /// The layers, in order: only the environment is seen.
 const LAYERS: &[Layer] = &[Layer::radiance("emitted")];
 
-/// Uniform nodes in α over [0, π] before refinement.
+/// Fewest uniform nodes in α over the view's range before refinement.
 const UNIFORM: usize = 1024;
-/// Largest error of linearly interpolated δ at an interval's midpoint (rad): 0.003 of a pixel
-/// of seed 000's view (40° over 1920 pixels), and 100× the traced turns' own error at the
-/// shipped tolerance, so the bisection does not chase that noise.
+/// Most uniform nodes (a view 2¹⁶ pixels across).
+const MAX_UNIFORM: usize = 1 << 16;
+/// Largest error of linearly interpolated δ at an interval's midpoint (rad) in wide views:
+/// 0.003 of a pixel of a 40° view over 1920 pixels, and 100× the traced turns' own error at
+/// the shipped tolerance, so the bisection does not chase that noise. Narrower views use
+/// 0.003 of their pixel.
 pub const TOLERANCE: f64 = 1e-6;
+/// The fewest nodes a table may trace before it is given up.
+const MIN_BUDGET: usize = 1 << 15;
+/// Tolerance of the table in pixels (see [`TOLERANCE`]).
+const PIXEL_TOLERANCE: f64 = 0.003;
+/// The largest error the check may find for the table to be used, in pixels.
+const ACCEPTED_PIXELS: f64 = 0.1;
 /// Width (rad) to which an interval holding the capture boundary is narrowed; no other
 /// interval is split below it.
 const BOUNDARY: f64 = 1e-12;
@@ -55,6 +70,16 @@ pub struct TableCheck {
     pub rms: f64,
     /// Rays the table and the trace disagree on capturing (within [`BOUNDARY`] of it).
     pub disagreements: usize,
+    /// The angle of a pixel at the film's centre (rad).
+    pub pixel: f64,
+}
+
+impl TableCheck {
+    /// Whether the table may stand in for tracing: every checked ray within a tenth of a
+    /// pixel of its traced direction, and no capture disagreement.
+    pub fn accepts(&self) -> bool {
+        self.disagreements == 0 && self.max <= ACCEPTED_PIXELS * self.pixel
+    }
 }
 
 /// The deflection table of a camera before a spherically symmetric ambient medium.
@@ -68,6 +93,10 @@ pub struct DeflectionTable<'a> {
     /// x errs by ≈ (h/x)²/8: within [`TOLERANCE`] from x ≈ 350 h = 3.5·10⁻⁴ pixel on, so only
     /// rays closer than that to the shadow's edge are interpolated more coarsely.
     finest: f64,
+    /// Largest error of interpolated δ at an interval's midpoint (rad).
+    tolerance: f64,
+    /// The range of α the camera's rays span (rad), with a pixel's margin each side.
+    range: (f64, f64),
     /// The camera's position.
     eye: DVec3,
     /// Unit vector from the camera toward the centre.
@@ -76,6 +105,12 @@ pub struct DeflectionTable<'a> {
     scale: f64,
     /// Nodes, α increasing.
     nodes: Vec<Node>,
+    /// Most nodes the build may trace: a table costing more rays than the film's pixels is no
+    /// gain (at least [`MIN_BUDGET`]). A build that reaches it — the traced turns noisier than
+    /// the tolerance, so bisection chases the noise — is given up.
+    budget: usize,
+    /// Nodes traced so far by the build.
+    traced: std::sync::atomic::AtomicUsize,
     /// Seconds the build took.
     pub build_seconds: f64,
     /// The check against direct tracing.
@@ -114,26 +149,40 @@ impl<'a> DeflectionTable<'a> {
         }
         let n = tracer.index(Some(ambient), camera.position)?;
         let start = Instant::now();
-        let (cx, cy) = (camera.width / 2, camera.height / 2);
-        let pixel = camera
-            .ray(cx, cy, 0.5, 0.5, (0.5, 0.5))
-            .1
-            .angle_between(camera.ray(cx + 1, cy, 0.5, 0.5, (0.5, 0.5)).1);
+        let pixel = camera.pixel_angle();
+        let (lo, hi) = camera.angles_to(axis);
         let mut table = Self {
             tracer,
             stop,
             finest: 1e-6 * pixel,
+            tolerance: TOLERANCE.min(PIXEL_TOLERANCE * pixel),
+            range: ((lo - pixel).max(0.0), (hi + pixel).min(PI)),
             eye: camera.position,
             axis,
             scale: n * n,
             nodes: Vec::new(),
+            budget: (camera.width as usize * camera.height as usize).max(MIN_BUDGET),
+            traced: Default::default(),
             build_seconds: 0.0,
             check: TableCheck::default(),
         };
         table.build();
         table.build_seconds = start.elapsed().as_secs_f64();
-        table.check = table.verify();
+        if !table.over_budget() {
+            table.check = table.verify();
+        }
         Some(table)
+    }
+
+    /// Whether the build traced more nodes than its budget (and was given up).
+    fn over_budget(&self) -> bool {
+        self.traced.load(std::sync::atomic::Ordering::Relaxed) > self.budget
+    }
+
+    /// Whether a render may use the table in place of tracing: built within its budget, and
+    /// its check accepts it ([`TableCheck::accepts`]).
+    pub fn usable(&self) -> bool {
+        !self.over_budget() && self.check.accepts()
     }
 
     /// Nodes in the table.
@@ -158,6 +207,8 @@ impl<'a> DeflectionTable<'a> {
 
     /// Traces the ray at `alpha`: its node.
     fn trace(&self, alpha: f64, stats: &mut Stats) -> Node {
+        self.traced
+            .fetch_add(1, std::sync::atomic::Ordering::Relaxed);
         let across = self.across();
         let dir = self.direction(alpha, across);
         let medium = self.tracer.camera_medium;
@@ -171,12 +222,19 @@ impl<'a> DeflectionTable<'a> {
         Node { alpha, turn }
     }
 
-    /// Builds the nodes: uniform, then refined in parallel per uniform interval.
+    /// Builds the nodes: uniform over the view's range (at least one a pixel), then refined
+    /// in parallel per uniform interval.
     fn build(&mut self) {
         use rayon::prelude::*;
-        let uniform: Vec<Node> = (0..=UNIFORM)
+        let (lo, hi) = self.range;
+        let pixels = ((hi - lo) / (1e6 * self.finest)).ceil();
+        let count = (pixels as usize).clamp(UNIFORM, MAX_UNIFORM);
+        let uniform: Vec<Node> = (0..=count)
             .into_par_iter()
-            .map(|i| self.trace(PI * i as f64 / UNIFORM as f64, &mut Stats::default()))
+            .map(|i| {
+                let alpha = lo + (hi - lo) * i as f64 / count as f64;
+                self.trace(alpha.min(hi), &mut Stats::default())
+            })
             .collect();
         let mut nodes: Vec<Node> = uniform
             .par_windows(2)
@@ -201,7 +259,7 @@ impl<'a> DeflectionTable<'a> {
         let width = b.alpha - a.alpha;
         let boundary = a.turn.is_some() != b.turn.is_some();
         let floor = if boundary { BOUNDARY } else { self.finest };
-        if width <= floor || (self.stop)() {
+        if width <= floor || (self.stop)() || self.over_budget() {
             return Vec::new();
         }
         let m = self.trace(0.5 * (a.alpha + b.alpha), &mut Stats::default());
@@ -209,7 +267,7 @@ impl<'a> DeflectionTable<'a> {
             (Some(ta), Some(tb), Some(tm)) => {
                 let tb = tb + (2.0 * PI) * ((ta - tb) / (2.0 * PI)).round();
                 let tm = tm + (2.0 * PI) * ((ta - tm) / (2.0 * PI)).round();
-                (0.5 * (ta + tb) - tm).abs() <= TOLERANCE
+                (0.5 * (ta + tb) - tm).abs() <= self.tolerance
             }
             (None, None, None) => true,
             _ => false,
@@ -244,8 +302,8 @@ impl<'a> DeflectionTable<'a> {
 
     /// Where the camera ray along unit `dir` leaves (None: captured).
     pub fn escape_direction(&self, dir: DVec3) -> Option<DVec3> {
-        let along = dir.dot(self.axis).clamp(-1.0, 1.0);
-        let alpha = along.acos();
+        let along = dir.dot(self.axis);
+        let alpha = crate::math::angle_between(dir, self.axis);
         let turn = self.turn(alpha)?;
         let across = (dir - along * self.axis)
             .try_normalize()
@@ -279,7 +337,7 @@ impl<'a> DeflectionTable<'a> {
                         _ => None,
                     };
                 match (table, traced) {
-                    (Some(a), Some(b)) => Some(a.angle_between(b)),
+                    (Some(a), Some(b)) => Some(crate::math::angle_between(a, b)),
                     (None, None) => Some(0.0),
                     _ => None,
                 }
@@ -291,18 +349,29 @@ impl<'a> DeflectionTable<'a> {
             max: errors.iter().copied().fold(0.0, f64::max),
             rms: (errors.iter().map(|e| e * e).sum::<f64>() / errors.len().max(1) as f64).sqrt(),
             disagreements: angles.len() - errors.len(),
+            pixel: camera.pixel_angle(),
         }
     }
 
     /// One line for the render's report.
     pub fn summary(&self) -> String {
         let c = self.check;
+        if self.over_budget() {
+            return format!(
+                "deflection table: given up after {} nodes over {:.3e}..{:.3e} rad in {:.2} s \
+                 (the traced turns vary more than its tolerance of {:.1e} rad between them)",
+                self.budget, self.range.0, self.range.1, self.build_seconds, self.tolerance
+            );
+        }
         format!(
-            "deflection table: {} nodes built in {:.2} s; checked on {} directions traced directly: max angle error {:.2e} rad, rms {:.2e} rad, {} capture disagreement(s)",
+            "deflection table: {} nodes over {:.3e}..{:.3e} rad built in {:.2} s; checked on {} directions traced directly: max angle error {:.2e} rad ({:.1e} pixel), rms {:.2e} rad, {} capture disagreement(s)",
             self.nodes.len(),
+            self.range.0,
+            self.range.1,
             self.build_seconds,
             c.rays,
             c.max,
+            c.max / c.pixel,
             c.rms,
             c.disagreements
         )

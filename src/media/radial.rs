@@ -129,8 +129,13 @@ impl Medium for RadialTable {
         let grad = if r > 0.0 { rv * (dn / r) } else { DVec3::ZERO };
         (n > 0.0).then_some(IndexSample { n, grad })
     }
-    /// The smallest node spacing.
-    fn step_hint(&self, _p: DVec3, _dir: DVec3) -> f64 {
-        self.table.min_spacing()
+    /// Four node spacings where `p` lies, outside the table the distance to it plus four end
+    /// spacings (see [`MonotoneCubic::reach`]) — radii, so along `dir` the step may be
+    /// 1/|dir⊥| times longer, dir⊥ the part of `dir` across the axis (at most 10⁴ times: a ray
+    /// along the axis). A node search, not a scan: the cost of a step grows with the log of
+    /// the node count.
+    fn step_hint(&self, p: DVec3, dir: DVec3) -> f64 {
+        let across = dir - self.axis.axis * dir.dot(self.axis.axis);
+        self.table.reach(self.axis.radial(p).length()) / across.length().max(1e-4)
     }
 }

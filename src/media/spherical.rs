@@ -23,19 +23,23 @@ impl Medium for Luneburg {
         Some(self.center)
     }
     fn sample(&self, p: DVec3) -> Option<IndexSample> {
-        let d = p - self.center;
-        let u2 = d.length_squared() / (self.radius * self.radius);
+        // In units of R (d/R, never R², which underflows for the smallest lenses).
+        let v = (p - self.center) / self.radius;
+        let u2 = v.length_squared();
         if u2 > 1.0 {
             return Some(IndexSample::constant(1.0));
         }
         let n = (2.0 - u2).sqrt();
         Some(IndexSample {
             n,
-            grad: -d / (n * self.radius * self.radius),
+            grad: -v / (n * self.radius),
         })
     }
-    fn step_hint(&self, _p: DVec3, _dir: DVec3) -> f64 {
-        0.25 * self.radius
+    /// A quarter of R inside the lens; outside, where n = 1, the distance to the lens plus
+    /// that (a step may reach the lens, not cross it): a ray far from a small lens is not
+    /// held to the lens's scale.
+    fn step_hint(&self, p: DVec3, _dir: DVec3) -> f64 {
+        ((p - self.center).length() - self.radius).max(0.0) + 0.25 * self.radius
     }
 }
 
@@ -113,19 +117,21 @@ impl Medium for BlackHole {
     }
     fn sample(&self, p: DVec3) -> Option<IndexSample> {
         let d = p - self.center;
-        let rho = d.length() / self.rs;
-        if rho <= self.horizon() * (1.0 + Self::CAPTURE_MARGIN) || rho == 0.0 {
+        let r = d.length();
+        // In u = 1/ρ = rs/r, which neither overflows for the smallest rs nor loses ρ² to
+        // infinity: n = 1/D with D = 1 − u + q²u².
+        let u = self.rs / r;
+        if r == 0.0 || u.is_nan() || u * self.horizon() * (1.0 + Self::CAPTURE_MARGIN) >= 1.0 {
             return None;
         }
         let q2 = self.q * self.q;
-        let den = rho * rho - rho + q2;
+        let den = 1.0 - u + q2 * u * u;
         if den <= 0.0 {
             return None;
         }
-        let n = rho * rho / den;
-        // dn/dρ = ρ(2q² − ρ)/den², and ∇ρ = d/(|d| rs) = d/(ρ rs²).
-        let dn_drho = rho * (2.0 * q2 - rho) / (den * den);
-        let grad = d * (dn_drho / (rho * self.rs * self.rs));
+        let n = 1.0 / den;
+        // dn/du = (1 − 2q²u)/D², and ∇u = −u d/r².
+        let grad = d * (-(1.0 - 2.0 * q2 * u) * n * n * u / (r * r));
         (n.is_finite() && grad.is_finite()).then_some(IndexSample { n, grad })
     }
     /// A quarter of the distance to the horizon (far away, a quarter of the distance to the

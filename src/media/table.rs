@@ -120,12 +120,4 @@ impl MonotoneCubic {
         let i = self.x.partition_point(|&xi| xi <= t) - 1;
         4.0 * (self.x[i + 1] - self.x[i])
     }
-
-    /// The smallest node spacing.
-    pub fn min_spacing(&self) -> f64 {
-        self.x
-            .windows(2)
-            .map(|w| w[1] - w[0])
-            .fold(f64::INFINITY, f64::min)
-    }
 }

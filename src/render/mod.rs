@@ -118,8 +118,15 @@ pub fn render_passes(
                 .deflection_table
                 .then(|| DeflectionTable::new(&tracer, &stop))
                 .flatten();
-            if let Some(table) = table {
-                return render_with(&table, &tracer, settings, passes, observer);
+            match table {
+                Some(table) if table.usable() => {
+                    return render_with(&table, &tracer, settings, passes, observer);
+                }
+                Some(table) => observer.warning(&format!(
+                    "{}: not within a tenth of a pixel, so every camera ray is traced instead",
+                    table.summary()
+                )),
+                None => {}
             }
             let integrator = PhotonMapper::new(&tracer, settings);
             render_with(&integrator, &tracer, settings, passes, observer)

@@ -10,6 +10,8 @@ use super::objects::{
 };
 use super::source::Source;
 use super::table::{SpannedTable, TableReader};
+use crate::camera::Camera;
+use crate::curve::StepControl;
 use crate::environment::Environment;
 use crate::error::{Error, Result};
 use crate::lights::Light;
@@ -204,11 +206,26 @@ fn read_settings(
     source: &Source,
     render: Option<Spanned<SpannedTable>>,
     output: Option<Spanned<SpannedTable>>,
+    camera: Option<&Camera>,
 ) -> Result<Settings> {
     let mut settings = match render {
         Some(table) => {
             let mut t = reader(source, table, "[render]");
             let r = read_render(&mut t)?;
+            if let (StepControl::Fixed { step }, Some(c)) = (r.trace.control, camera) {
+                // A step below the rounding of the coordinates rays start at would leave
+                // them where they are for every one of their steps.
+                let floor = 4.0 * f64::EPSILON * c.position.abs().max_element();
+                t.check(
+                    "step",
+                    step > floor,
+                    format!(
+                        "a fixed step of {step:e} cannot move a ray from the camera at {:?} \
+                         (the coordinates' rounding is {floor:.1e}): give a step above it",
+                        c.position.to_array()
+                    ),
+                )?;
+            }
             t.finish()?;
             r
         }
@@ -258,7 +275,7 @@ pub fn parse_description(path: &Path, text: String) -> Result<(Description, Sett
             Ok::<_, Error>(c)
         })
         .transpose()?;
-    let settings = read_settings(&source, file.render, file.output)?;
+    let settings = read_settings(&source, file.render, file.output, camera.as_ref())?;
     let description = Description {
         path: source.path.clone(),
         media,
