@@ -41,7 +41,8 @@ impl Deref for Rgb {
 
 impl std::fmt::Display for Rgb {
     fn fmt(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
-        write!(f, "{}", self.0)
+        let [r, g, b] = self.0.to_array();
+        write!(f, "[{r:?}, {g:?}, {b:?}]")
     }
 }
 

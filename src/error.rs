@@ -61,7 +61,7 @@ pub fn positive(flag: &str, v: f64) -> Result<f64> {
         Ok(v)
     } else {
         Err(Error::Usage(format!(
-            "--{flag} must be a number in (0, {:e}], got {v}",
+            "--{flag} must be a number in (0, {:e}], got {v:?}",
             MAX_MAGNITUDE
         )))
     }

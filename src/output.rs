@@ -134,6 +134,7 @@ impl Outputs {
                 ));
             }
         }
+        remove_stale_temporaries(path);
         // The directory must take a new file (the temporary one the output is written to).
         let probe = temporary(path);
         std::fs::OpenOptions::new()
@@ -150,6 +151,41 @@ impl Outputs {
         let _ = std::fs::remove_file(&probe);
         self.planned.push((resolved, path.to_path_buf()));
         Ok(())
+    }
+}
+
+/// Removes the temporary files of `path` that a grinlight process killed while writing it
+/// left behind (`.NAME.grinlight-PID-N.tmp` whose process PID no longer runs). Temporary
+/// files of running processes, and every other file, are left alone.
+fn remove_stale_temporaries(path: &Path) {
+    let Some(name) = path.file_name().map(|n| n.to_string_lossy().into_owned()) else {
+        return;
+    };
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    if !Path::new("/proc/self").exists() {
+        return; // No way to tell which processes run: leave every file.
+    }
+    let prefix = format!(".{name}.grinlight-");
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let file = entry.file_name().to_string_lossy().into_owned();
+        let Some(pid) = file
+            .strip_prefix(&prefix)
+            .and_then(|rest| rest.strip_suffix(".tmp"))
+            .and_then(|rest| rest.split_once('-'))
+            .and_then(|(pid, n)| n.parse::<u64>().ok().and(pid.parse::<u32>().ok()))
+        else {
+            continue;
+        };
+        let running = Path::new("/proc").join(pid.to_string()).exists();
+        if !running && entry.file_type().is_ok_and(|t| t.is_file()) {
+            let _ = std::fs::remove_file(entry.path());
+        }
     }
 }
 
@@ -172,6 +208,16 @@ pub fn write_atomic(path: &Path, write: impl FnOnce(&Path) -> Result<()>) -> Res
         std::fs::File::open(&tmp)
             .and_then(|f| f.sync_all())
             .map_err(|e| Error::io(&tmp, e))?;
+        let staged = GROUP.with_borrow_mut(|group| match group {
+            Some(files) => {
+                files.push((tmp.clone(), path.to_path_buf()));
+                true
+            }
+            None => false,
+        });
+        if staged {
+            return Ok(());
+        }
         std::fs::rename(&tmp, path).map_err(|e| Error::io(path, e))
     };
     let result = finish();
@@ -181,9 +227,109 @@ pub fn write_atomic(path: &Path, write: impl FnOnce(&Path) -> Result<()>) -> Res
     result
 }
 
+std::thread_local! {
+    /// The files written so far inside [`together`] on this thread: (temporary, target).
+    static GROUP: std::cell::RefCell<Option<Vec<(PathBuf, PathBuf)>>> =
+        const { std::cell::RefCell::new(None) };
+}
+
+/// Runs `write`, whose files (every [`write_atomic`] on this thread) land together: each is
+/// written complete to its temporary file first, and only when all are written are they
+/// renamed into place — so a disk that fills, or an error, part way leaves every previous
+/// file as it was (no new EXR beside an old PNG). On failure the temporary files are removed.
+pub fn together<T>(write: impl FnOnce() -> Result<T>) -> Result<T> {
+    let outer = GROUP.with_borrow_mut(|g| g.replace(Vec::new()));
+    let result = write();
+    let files = GROUP
+        .with_borrow_mut(|g| std::mem::replace(g, outer))
+        .expect("the group set above");
+    let nested = GROUP.with_borrow(|g| g.is_some());
+    let renamed = result.and_then(|value| {
+        if nested {
+            // An enclosing group renames them with its own.
+            GROUP.with_borrow_mut(|g| g.as_mut().expect("nested").extend(files.iter().cloned()));
+            return Ok(value);
+        }
+        for (tmp, path) in &files {
+            std::fs::rename(tmp, path).map_err(|e| Error::io(path, e))?;
+        }
+        Ok(value)
+    });
+    if renamed.is_err() {
+        for (tmp, _) in &files {
+            let _ = std::fs::remove_file(tmp);
+        }
+    }
+    renamed
+}
+
 /// Writes `text` to `path` atomically.
 pub fn write_text(path: &Path, text: &str) -> Result<()> {
     write_atomic(path, |tmp| {
         std::fs::write(tmp, text).map_err(|e| Error::io(path, e))
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Files written together land together: when the second of two writes fails (a full
+    /// disk, say), the first file keeps its previous content and no temporary file is left;
+    /// when both succeed, both are replaced.
+    #[test]
+    fn files_written_together_land_together() {
+        let dir = std::env::temp_dir().join(format!("grinlight-together-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let (a, b) = (dir.join("a.csv"), dir.join("b.csv"));
+        write_text(&a, "x\n1\n").unwrap();
+        write_text(&b, "x\n1\n").unwrap();
+        let failed = together(|| {
+            write_text(&a, "x\n2\n")?;
+            write_atomic(&b, |_| Err(Error::Usage("no space left".into())))
+        });
+        assert!(failed.is_err());
+        assert_eq!(std::fs::read_to_string(&a).unwrap(), "x\n1\n");
+        assert_eq!(std::fs::read_to_string(&b).unwrap(), "x\n1\n");
+        together(|| {
+            together(|| write_text(&a, "x\n3\n"))?;
+            assert_eq!(
+                std::fs::read_to_string(&a).unwrap(),
+                "x\n1\n",
+                "not before the end"
+            );
+            write_text(&b, "x\n3\n")
+        })
+        .unwrap();
+        assert_eq!(std::fs::read_to_string(&a).unwrap(), "x\n3\n");
+        assert_eq!(std::fs::read_to_string(&b).unwrap(), "x\n3\n");
+        let names: Vec<_> = std::fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().into_string().unwrap())
+            .collect();
+        assert_eq!(names.len(), 2, "{names:?}");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// A temporary file of a process that no longer runs is removed when its output is
+    /// planned again; a running process's (this one's) and other files stay.
+    #[test]
+    fn stale_temporaries_are_removed() {
+        let dir = std::env::temp_dir().join(format!("grinlight-stale-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let out = dir.join("m.exr");
+        // PID 4194305 exceeds Linux's largest (2²²): no process has it.
+        let stale = dir.join(".m.exr.grinlight-4194305-0.tmp");
+        let live = dir.join(format!(".m.exr.grinlight-{}-99.tmp", std::process::id()));
+        let other = dir.join(".m.exr.notes.tmp");
+        for f in [&stale, &live, &other] {
+            std::fs::write(f, "x").unwrap();
+        }
+        Outputs::new(Vec::<PathBuf>::new())
+            .add(&out, Kind::Exr)
+            .unwrap();
+        assert!(!stale.exists());
+        assert!(live.exists() && other.exists());
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 }

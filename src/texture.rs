@@ -27,9 +27,7 @@ pub fn srgb_decode(x: f32) -> f32 {
 impl Texture {
     /// The image at `path`, or why not (the message names the file).
     pub fn load(path: &Path) -> Result<Self, String> {
-        let img = image::open(path)
-            .map_err(|e| format!("cannot read {} as an image: {e}", path.display()))?
-            .to_rgb32f();
+        let img = open_image(path)?.to_rgb32f();
         let (width, height) = (img.width() as usize, img.height() as usize);
         if width == 0 || height == 0 {
             return Err(format!("{}: the image is empty", path.display()));
@@ -78,4 +76,37 @@ impl std::fmt::Debug for Texture {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(f, "Texture({} × {})", self.width, self.height)
     }
+}
+
+/// Bytes an image of w × h pixels takes while it is read and made RGB f32: the decoded
+/// image (up to 16 bytes a pixel) and its RGB f32 copy (12).
+fn image_bytes(width: u32, height: u32) -> u64 {
+    28 * width as u64 * height as u64
+}
+
+/// The image at `path` (a texture or an environment map), or why not (the message names the
+/// file). Its size is read first and checked against the memory this machine has available
+/// (the image crate's own 512 MiB cap does not apply: a large sky map is no error where there
+/// is memory for it).
+pub fn open_image(path: &Path) -> Result<image::DynamicImage, String> {
+    let cannot =
+        |e: &dyn std::fmt::Display| format!("cannot read {} as an image: {e}", path.display());
+    let reader = || {
+        image::ImageReader::open(path)
+            .and_then(|r| r.with_guessed_format())
+            .map_err(|e| cannot(&e))
+    };
+    let (width, height) = reader()?.into_dimensions().map_err(|e| cannot(&e))?;
+    let needed = image_bytes(width, height);
+    if let Some(free) = crate::resources::available_memory().filter(|&free| needed > free) {
+        return Err(format!(
+            "{}: a {width}×{height} image needs about {} of memory to read; this machine has {} available",
+            path.display(),
+            crate::resources::human(needed),
+            crate::resources::human(free)
+        ));
+    }
+    let mut reader = reader()?;
+    reader.no_limits();
+    reader.decode().map_err(|e| cannot(&e))
 }

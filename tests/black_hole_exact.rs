@@ -278,7 +278,7 @@ fn check_shadow(row: &[[f32; 3]]) {
 #[test]
 fn the_deflection_table_matches_direct_tracing_on_every_pixel() {
     use grinlight::integrator::DeflectionTable;
-    use grinlight::transport::{Event, Stats, Tracer};
+    use grinlight::transport::Tracer;
     for (file, edit) in [
         (
             "scenes/schwarzschild.toml",
@@ -298,27 +298,7 @@ fn the_deflection_table_matches_direct_tracing_on_every_pixel() {
         let tracer = Tracer::new(&scene, &settings.trace);
         let never = || false;
         let table = DeflectionTable::new(&tracer, &never).expect("the table applies");
-        let camera = scene.camera.as_ref().unwrap();
-        let mut worst: f64 = 0.0;
-        for py in 0..camera.height {
-            for px in 0..camera.width {
-                let (origin, dir) = camera.ray(px, py, 0.5, 0.5, (0.5, 0.5));
-                let traced = match tracer.next_event(
-                    origin,
-                    dir,
-                    tracer.camera_medium,
-                    &mut Stats::default(),
-                ) {
-                    Event::Escaped { direction, .. } => Some(direction),
-                    _ => None,
-                };
-                match (table.escape_direction(dir), traced) {
-                    (Some(a), Some(b)) => worst = worst.max(a.angle_between(b)),
-                    (None, None) => {}
-                    (a, b) => panic!("{file} pixel {px},{py}: table {a:?}, traced {b:?}"),
-                }
-            }
-        }
+        let worst = worst_table_error(&table, &tracer, file);
         assert!(worst < 1e-6, "{file}: {worst:e} rad");
         let films: Vec<_> = [1, 2]
             .map(|threads| {
@@ -364,6 +344,35 @@ fn the_deflection_series_meets_the_orbit_quadrature() {
     assert!((schwarzschild_deflection_series(mu, 20) - two).abs() < 1e-10);
 }
 
+/// The largest angle (rad) between the table's escape direction and the traced one over the
+/// centres of every pixel of the tracer's camera; a pixel one captures and the other does not
+/// fails (`what` names the scene).
+fn worst_table_error(
+    table: &grinlight::integrator::DeflectionTable,
+    tracer: &grinlight::transport::Tracer,
+    what: &str,
+) -> f64 {
+    use grinlight::transport::{Event, Stats};
+    let camera = tracer.scene.camera.as_ref().unwrap();
+    let mut worst: f64 = 0.0;
+    for py in 0..camera.height {
+        for px in 0..camera.width {
+            let (origin, dir) = camera.ray(px, py, 0.5, 0.5, (0.5, 0.5));
+            let traced =
+                match tracer.next_event(origin, dir, tracer.camera_medium, &mut Stats::default()) {
+                    Event::Escaped { direction, .. } => Some(direction),
+                    _ => None,
+                };
+            match (table.escape_direction(dir), traced) {
+                (Some(a), Some(b)) => worst = worst.max(grinlight::math::angle_between(a, b)),
+                (None, None) => {}
+                (a, b) => panic!("{what}: pixel {px},{py}: table {a:?}, traced {b:?}"),
+            }
+        }
+    }
+    worst
+}
+
 /// A camera scene before one ambient medium `medium` (TOML keys), at `distance` on the z
 /// axis looking at (0, `look`, 0) with vertical field `fov` degrees, 64 × 48, checker sky.
 fn narrow_view(medium: &str, distance: f64, look: f64, fov: f64) -> String {
@@ -385,7 +394,7 @@ fn narrow_view(medium: &str, distance: f64, look: f64, fov: f64) -> String {
 #[test]
 fn the_deflection_table_is_used_only_where_it_is_accurate() {
     use grinlight::integrator::DeflectionTable;
-    use grinlight::transport::{Event, Stats, Tracer};
+    use grinlight::transport::Tracer;
     let path = std::path::Path::new("narrow.toml");
     let accurate = [
         narrow_view("profile = \"schwarzschild\"\nrs = 1", 1e4, 10.0, 0.01),
@@ -399,26 +408,7 @@ fn the_deflection_table_is_used_only_where_it_is_accurate() {
         assert!(table.usable(), "{}", table.summary());
         let camera = scene.camera.as_ref().unwrap();
         let pixel = camera.pixel_angle();
-        let mut worst: f64 = 0.0;
-        for py in 0..camera.height {
-            for px in 0..camera.width {
-                let (origin, dir) = camera.ray(px, py, 0.5, 0.5, (0.5, 0.5));
-                let traced = match tracer.next_event(
-                    origin,
-                    dir,
-                    tracer.camera_medium,
-                    &mut Stats::default(),
-                ) {
-                    Event::Escaped { direction, .. } => Some(direction),
-                    _ => None,
-                };
-                match (table.escape_direction(dir), traced) {
-                    (Some(a), Some(b)) => worst = worst.max(grinlight::math::angle_between(a, b)),
-                    (None, None) => {}
-                    (a, b) => panic!("{text}: pixel {px},{py}: table {a:?}, traced {b:?}"),
-                }
-            }
-        }
+        let worst = worst_table_error(&table, &tracer, &text);
         println!("{}: worst {:.2e} pixel", table.summary(), worst / pixel);
         assert!(worst < 0.1 * pixel, "{text}: {:e} pixel", worst / pixel);
     }

@@ -93,6 +93,23 @@ fn exr_with(value: f32) -> Vec<u8> {
     bytes
 }
 
+/// A scene case whose space is filled with the medium of `medium` (its keys), lit.
+fn ambient_case(name: &'static str, medium: &str, expect: Expect) -> Case {
+    Case {
+        name,
+        files: vec![(
+            "s.toml",
+            format!("ambient = \"a\"\n{BASE}{LIGHT}[[medium]]\nname = \"a\"\n{medium}\n")
+                .into_bytes(),
+        )],
+        args: render(""),
+        expect,
+    }
+}
+
+/// A partial file's magic line of this version.
+const PARTIAL: &[u8] = b"GRINLIGHT PARTIAL 2\n";
+
 fn env_case(name: &'static str, image: Vec<u8>, expect: Expect) -> Case {
     Case {
         name,
@@ -296,6 +313,39 @@ fn cases() -> Vec<Case> {
         scene_case("light on the surface", "[[light]]\ntype = \"point\"\nposition = [0, 0, 0]\nintensity = 1\n", Finite("rendered")),
         Case { name: "a sound render with receivers", files: vec![("s.toml", scene(&receiver("size = [1, 1]\nbins = [4, 4]\n")))], args: render(""), expect: Finite("receiver 'r': flux") },
     ];
+    // Odd media, meshes and spectra: a finite result in bounded time, or a precise error.
+    let radial = |nodes: usize, span: f64| {
+        let r: Vec<String> = (0..nodes)
+            .map(|i| format!("{:e}", span * i as f64 / (nodes - 1) as f64))
+            .collect();
+        let n: Vec<String> = (0..nodes)
+            .map(|i| format!("{:e}", 1.5 - 0.1 * (i as f64 / (nodes - 1) as f64).powi(2)))
+            .collect();
+        format!(
+            "profile = \"radial_table\"\naxis = [0, 1, 0]\nr = [{}]\nn = [{}]",
+            r.join(","),
+            n.join(",")
+        )
+    };
+    v.extend([
+        ambient_case("luneburg ambient of radius 1e-6", "profile = \"luneburg\"\nradius = 1e-6", Finite("rendered")),
+        ambient_case("luneburg ambient of radius 1e-300", "profile = \"luneburg\"\nradius = 1e-300", Finite("rendered")),
+        ambient_case("black_hole of rs 1e-160", "profile = \"black_hole\"\ncenter = [0, 0, -5]\nrs = 1e-160", Finite("rendered")),
+        ambient_case("radial_table of 100 000 nodes", &radial(100_000, 0.01), Finite("rendered")),
+        ambient_case("a fixed step of 1e-300", "profile = \"linear\"\nn0 = 1.0\ngradient = [0, 0.1, 0]", Error(""))
+            .with_scene_replace("spp = 1", "spp = 1\ncontrol = \"fixed\"\nstep = 1e-300", "cannot move a ray"),
+        mesh_case("100 000 copies of one triangle", &format!("v -1 -1 0.5\nv 1 -1 0.5\nv 0 1 0.5\n{}", "f 1 2 3\n".repeat(100_000)), "", Finite("rendered")),
+        mesh_case("a vertex at 1e38", "v 0 0 0\nv 1e38 0 0\nv 0 1 0\nf 1 2 3\n", "", Error("key `file`: m.obj: vertex 2 lies at")),
+        scene_case("a laser line 0.01 nm wide", "[[light]]\ntype = \"point\"\nposition = [0, 0, 1]\nintensity = 1\nspectrum = { gaussian = [532, 0.01] }\n", Finite("rendered")),
+        scene_case("cauchy of 100 000 terms", &format!("[[material]]\nname = \"g\"\ntype = \"dielectric\"\nior = {{ cauchy = [1.5{}] }}\n", ", 0".repeat(100_000)), Error("1 to 16 terms")),
+        Case { name: "--shard 1/99999999999999999999", files: vec![("s.toml", scene(LIGHT))], args: render("--shard 1/99999999999999999999"), expect: Error("is more than 4294967295 shards") },
+        Case { name: "render /dev/zero", files: vec![], args: args("render /dev/zero"), expect: Error("not a regular file") },
+        Case { name: "merge /dev/zero", files: vec![], args: args("merge /dev/zero -o m.exr"), expect: Error("not a regular file") },
+        Case { name: "a scene of 65 MiB", files: vec![("s.toml", vec![b'#'; 65 << 20])], args: render(""), expect: Error("larger than 64 MiB") },
+        Case { name: "a partial of its magic line alone", files: vec![("p.partial", PARTIAL.to_vec())], args: args("merge p.partial -o m.exr"), expect: Error("p.partial: a damaged partial result (it ends inside its header)") },
+        Case { name: "a partial of another version", files: vec![("p.partial", b"GRINLIGHT PARTIAL 1\nxyz".to_vec())], args: args("merge p.partial -o m.exr"), expect: Error("of file version 1") },
+        Case { name: "a partial with a 4 GiB header", files: vec![("p.partial", [PARTIAL, &[0xff; 4]].concat())], args: args("merge p.partial -o m.exr"), expect: Error("a header of 4294967295 bytes") },
+    ]);
     v.push(Case {
         name: "trace --dir 0,0,0",
         files: vec![(
@@ -458,6 +508,71 @@ fn hostile_input_ends_in_a_clear_error_or_a_finite_result() {
         if !leftovers.is_empty() {
             failures.push(format!("{name}: left {leftovers:?}"));
         }
+    }
+    let _ = std::fs::remove_dir_all(&root);
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// A pipe or a huge file given as an input: every input must be a regular file, so a FIFO
+/// given as a mesh, texture, environment, grid, VDB file, scene or partial is refused at once
+/// (reading it would block forever), and a partial's header is checked before its payload is
+/// read (a 3 GB sparse file given as a partial is refused by its header, not read whole).
+#[test]
+fn pipes_and_huge_files_are_refused_as_inputs() {
+    let root = std::env::temp_dir().join(format!("grinlight-fifo-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&root);
+    std::fs::create_dir_all(&root).unwrap();
+    let light = format!("{BASE}{LIGHT}");
+    let cases: Vec<(&str, String, Vec<String>)> = vec![
+        ("mesh", format!("{light}[[shape]]\ntype = \"mesh\"\nfile = \"pipe\"\nmaterial = \"white\"\n"), render("")),
+        ("texture", format!("{light}[[material]]\nname = \"t\"\ntype = \"diffuse\"\ntexture = \"pipe\"\n"), render("")),
+        ("environment", format!("{light}[[light]]\ntype = \"environment\"\nfile = \"pipe\"\n"), render("")),
+        ("grid file", format!("{light}[[medium]]\nname = \"g\"\nprofile = \"grid\"\nbounds = [[0,0,0],[1,1,1]]\ndims = [2,2,2]\nfile = \"pipe\"\n"), render("")),
+        ("vdb file", format!("{light}[[medium]]\nname = \"g\"\nprofile = \"grid\"\nfile = \"pipe\"\n"), render("")),
+        ("scene", light.clone(), args("render pipe")),
+        ("partial", light.clone(), args("merge pipe -o m.exr")),
+    ];
+    let mut failures = Vec::new();
+    for (k, (what, scene_text, arguments)) in cases.iter().enumerate() {
+        let dir = root.join(format!("case{k}"));
+        std::fs::create_dir_all(&dir).unwrap();
+        std::fs::write(dir.join("s.toml"), scene_text).unwrap();
+        let made = Command::new("mkfifo")
+            .arg(dir.join("pipe"))
+            .status()
+            .unwrap();
+        assert!(made.success(), "mkfifo");
+        let (code, _, stderr, took) = run(&dir, arguments, Duration::from_secs(10));
+        if took >= Duration::from_secs(10)
+            || code != Some(1)
+            || !stderr.contains("not a regular file")
+        {
+            failures.push(format!("{what}: exit {code:?} after {took:?}: {stderr}"));
+        }
+    }
+    // A sparse 3 GB file that starts like a partial: refused by its header's length.
+    let dir = root.join("sparse");
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = std::fs::File::create(dir.join("big.partial")).unwrap();
+    use std::io::Write;
+    (&file)
+        .write_all(b"GRINLIGHT PARTIAL 2\n\x10\x00\x00\x00")
+        .unwrap();
+    file.set_len(3 << 30).unwrap();
+    let (code, _, stderr, took) = run(
+        &dir,
+        &args("merge big.partial -o m.exr"),
+        Duration::from_secs(10),
+    );
+    if took >= Duration::from_secs(10)
+        || code != Some(1)
+        || !stderr.contains(
+            "big.partial: a damaged partial result (its header's checksum does not match)",
+        )
+    {
+        failures.push(format!(
+            "sparse partial: exit {code:?} after {took:?}: {stderr}"
+        ));
     }
     let _ = std::fs::remove_dir_all(&root);
     assert!(failures.is_empty(), "{}", failures.join("\n"));

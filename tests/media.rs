@@ -569,3 +569,64 @@ fn grids_of_temperature_and_density_are_air_indices() {
     assert!((high / (2.0 * cold) - 1.0).abs() < 1e-12, "{high}");
     assert!(n_of("", 1.3) == 1.3, "values are indices by default");
 }
+
+/// The weak-field black hole in 1/ρ: for the smallest rs its index is 1 + rs/r to rounding
+/// (ρ² would overflow: rs = 1e-160 at r = 1 gives ρ² = 1e320), and for ordinary rs the same
+/// as ρ²/(ρ² − ρ + q²) evaluated directly, to 1e-15.
+#[test]
+fn the_weak_field_black_hole_holds_for_any_rs() {
+    let p = DVec3::new(0.6, 0.0, 0.8);
+    for rs in [1e-300, 1e-160, 1e-150] {
+        let hole = BlackHole {
+            center: DVec3::ZERO,
+            rs,
+            q: 0.0,
+        };
+        let s = hole.sample(p).expect("far outside the horizon");
+        assert_eq!(s.n, 1.0, "rs {rs}");
+        // |∇n| = rs/r² to first order in rs.
+        assert!(
+            ((s.grad / rs).length() - 1.0).abs() < 1e-12,
+            "rs {rs:e}: {:?}",
+            s.grad
+        );
+    }
+    for (rs, q) in [(0.01, 0.0), (0.3, 0.2), (0.5, 0.45)] {
+        let hole = BlackHole {
+            center: DVec3::ZERO,
+            rs,
+            q,
+        };
+        let rho = 1.0 / rs;
+        let direct = rho * rho / (rho * rho - rho + q * q);
+        let s = hole.sample(p).unwrap();
+        assert!((s.n - direct).abs() < 1e-15 * direct, "rs {rs}, q {q}");
+    }
+}
+
+/// A tabulated fiber's step hint is its node spacing where the ray is, not the smallest
+/// spacing anywhere (found by a node search, not a scan of the table): a table with one fine
+/// interval at the axis gives 4 coarse spacings at r = 0.5, over |dir⊥| (a ray at 60° to the
+/// axis: 2/√3 of it), and beyond the table the distance to it plus 4 end spacings.
+#[test]
+fn a_tabulated_fibers_step_follows_its_local_spacing() {
+    let mut r = vec![0.0, 1e-6];
+    r.extend((1..=10).map(|i| 0.1 * i as f64));
+    let n: Vec<f64> = r.iter().map(|x| 1.5 - 0.1 * x * x).collect();
+    let axis = Axis {
+        center: DVec3::ZERO,
+        axis: DVec3::Z,
+    };
+    let table = RadialTable::new(r, n, axis).unwrap();
+    let across = DVec3::new(3f64.sqrt() / 2.0, 0.0, 0.5);
+    let at = |x: f64| DVec3::new(x, 0.0, 0.0);
+    let spacing = 0.1;
+    assert!(
+        (table.step_hint(at(0.55), across) - 4.0 * spacing / (3f64.sqrt() / 2.0)).abs() < 1e-12
+    );
+    assert!((table.step_hint(at(3.0), DVec3::X) - (2.0 + 4.0 * spacing)).abs() < 1e-12);
+    assert!(
+        table.step_hint(at(5e-7), DVec3::X) < 1e-5,
+        "the fine interval where it is"
+    );
+}

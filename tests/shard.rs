@@ -334,6 +334,19 @@ fn mismatched_partials_are_refused_naming_the_difference() {
     )
     .unwrap();
     assert!(lone.incomplete && !lone.interrupted);
+    // From the command line it exits 0 (done; 130 is for an interrupt) and says PARTIAL.
+    let out = grinlight(
+        &dir,
+        &[
+            "merge",
+            a.to_str().unwrap(),
+            "--allow-missing",
+            "-o",
+            "lone-cli.exr",
+        ],
+    );
+    assert_eq!(out.status.code(), Some(0), "{out:?}");
+    assert!(String::from_utf8_lossy(&out.stdout).contains("PARTIAL: passes 1..2 missing"));
     // A scene edited after its shards were rendered is refused at the merge.
     let text = std::fs::read_to_string(dir.join("cornell.toml")).unwrap();
     std::fs::write(

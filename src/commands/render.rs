@@ -226,6 +226,9 @@ fn beside(path: &Path, suffix: &str) -> PathBuf {
 /// stop, the files hold what was done and the outcome is marked partial.
 pub fn render(job: &RenderJob, observer: &dyn Observer) -> Result<RenderOutcome> {
     let (mut description, mut settings) = scene::load_description(&job.scene)?;
+    for w in &description.warnings {
+        observer.warning(w);
+    }
     job.overrides.apply(&mut description, &mut settings)?;
     let fiber = fiber_to_draw(job, &description)?;
     let scene = description.build();
@@ -234,6 +237,17 @@ pub fn render(job: &RenderJob, observer: &dyn Observer) -> Result<RenderOutcome>
             "{}: the scene has no [camera] and no [[receiver]]: nothing to render",
             job.scene.display()
         )));
+    }
+    if let Some(c) = &scene.camera {
+        let tracer = crate::transport::Tracer::new(&scene, &settings.trace);
+        if tracer.index(tracer.camera_medium, c.position).is_none() {
+            observer.warning(&format!(
+                "the camera at {:?} is where its medium captures light (inside a black hole's \
+                 horizon, or where the index is not positive): every camera ray ends there and \
+                 the image is black",
+                c.position.to_array()
+            ));
+        }
     }
     let shard = job.shard.unwrap_or(Shard::WHOLE);
     if job.shard.is_some() && (settings.time_budget.is_some() || job.paths > 0) {
@@ -287,10 +301,13 @@ pub fn render(job: &RenderJob, observer: &dyn Observer) -> Result<RenderOutcome>
         ))
     })?;
     let save = |p: &Partial| -> Result<()> {
-        p.write(&state)?;
-        if let (Some(files), Some(film)) = (&files, &p.film) {
-            files.write_film(film, settings.output.exposure)?;
-        }
+        crate::output::together(|| {
+            p.write(&state)?;
+            match (&files, &p.film) {
+                (Some(files), Some(film)) => files.write_film(film, settings.output.exposure),
+                _ => Ok(()),
+            }
+        })?;
         observer.line(&format!(
             "saved {} ({} of the passes, {} receiver photons){}",
             state.display(),
@@ -490,6 +507,25 @@ fn remove_own_checkpoint(state: &Path, header: &Header) -> Result<()> {
 /// work (`receivers`, `camera`) are shown when given. A partial lacking photons gives an
 /// estimate scaled to the whole batch; the report says so.
 pub(super) fn publish(
+    (scene, settings): (&Scene, &Settings),
+    partial: Partial,
+    (receivers, camera): (Option<&Report>, Option<&Report>),
+    files: &Files,
+    observer: &dyn Observer,
+) -> Result<RenderOutcome> {
+    crate::output::together(|| {
+        write_results(
+            (scene, settings),
+            partial,
+            (receivers, camera),
+            files,
+            observer,
+        )
+    })
+}
+
+/// [`publish`]'s writes, each file written to its temporary file.
+fn write_results(
     (scene, settings): (&Scene, &Settings),
     partial: Partial,
     (receivers, camera): (Option<&Report>, Option<&Report>),

@@ -95,7 +95,7 @@ impl TraceControl {
             } => {
                 if !(t_min >= 0.0 && t_max > t_min) {
                     return Err(Error::Usage(format!(
-                        "need 0 ≤ --tmin < --tmax, got {t_min} and {t_max}"
+                        "need 0 ≤ --tmin < --tmax, got {t_min:?} and {t_max:?}"
                     )));
                 }
                 StepControl::Tessendorf {

@@ -246,6 +246,7 @@ pub fn parse_description(path: &Path, text: String) -> Result<(Description, Sett
         path: path.to_path_buf(),
         text,
         inputs: Default::default(),
+        warnings: Default::default(),
     };
     let file: SceneFile = toml::from_str(&source.text).map_err(|e| {
         let offset = e.span().map_or(0, |s| s.start);
@@ -290,6 +291,7 @@ pub fn parse_description(path: &Path, text: String) -> Result<(Description, Sett
         inputs: std::iter::once(source.path.clone())
             .chain(source.inputs.take())
             .collect(),
+        warnings: source.warnings.take(),
     };
     Ok((description, settings))
 }

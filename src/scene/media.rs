@@ -36,7 +36,7 @@ pub fn read_medium(t: &mut TableReader) -> Result<Profile> {
     t.check(
         "absorption",
         absorption.is_finite() && absorption >= 0.0,
-        format!("must be a finite number ≥ 0 (1/length), got {absorption}"),
+        format!("must be a finite number ≥ 0 (1/length), got {absorption:?}"),
     )?;
     let absorbing = move |inner: Box<dyn Medium>| -> Box<dyn Medium> {
         if absorption > 0.0 {
@@ -199,7 +199,7 @@ fn read_fixed(t: &mut TableReader, profile: &str) -> Result<Box<dyn Medium>> {
             let center = t.vec3_or("center", DVec3::ZERO)?;
             let rs = t.positive("rs")?;
             let q = t.f64_or("q", 0.0)?;
-            t.check("q", q >= 0.0, format!("must be ≥ 0, got {q}"))?;
+            t.check("q", q >= 0.0, format!("must be ≥ 0, got {q:?}"))?;
             Box::new(BlackHole { center, rs, q })
         }
         "schwarzschild" | "reissner_nordstrom" => {
@@ -210,7 +210,7 @@ fn read_fixed(t: &mut TableReader, profile: &str) -> Result<Box<dyn Medium>> {
             } else {
                 t.f64("q")?
             };
-            t.check("q", q >= 0.0, format!("must be ≥ 0, got {q}"))?;
+            t.check("q", q >= 0.0, format!("must be ≥ 0, got {q:?}"))?;
             Box::new(ExactBlackHole { center, rs, q })
         }
         _ => Box::new(read_grid(t)?),

@@ -157,6 +157,9 @@ pub struct Description {
     pub camera: Option<Camera>,
     /// The scene file and every file it reads (meshes, images, grids).
     pub inputs: Vec<PathBuf>,
+    /// What its user should know though it loads (file:line:col: message): shown by the
+    /// commands that render it.
+    pub warnings: Vec<String>,
 }
 
 impl Description {

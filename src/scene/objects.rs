@@ -396,8 +396,19 @@ fn read_mesh(t: &mut TableReader) -> Result<Vec<Primitive>> {
     let smooth = t.bool_or("smooth", obj.normals.is_some())?;
     // Placed in f64, stored in f32: the stored vertices are the geometry.
     let mut vertices = obj.positions;
-    for v in &mut vertices {
-        let p = translate + m * (scale * DVec3::from(v.map(f64::from)));
+    for (i, v) in vertices.iter_mut().enumerate() {
+        let given = DVec3::from(v.map(f64::from));
+        t.check(
+            "file",
+            given.abs().max_element() <= MAX_MAGNITUDE,
+            format!(
+                "{}: vertex {} lies at {:?}, beyond ±{MAX_MAGNITUDE:e}",
+                path.display(),
+                i + 1,
+                v
+            ),
+        )?;
+        let p = translate + m * (scale * given);
         t.check(
             "scale",
             p.abs().max_element() <= MAX_MAGNITUDE,
@@ -427,6 +438,16 @@ fn read_mesh(t: &mut TableReader) -> Result<Vec<Primitive>> {
                 ),
             ),
         });
+    }
+    let duplicates = super::mesh::drop_duplicate_triangles(&vertices, &mut triangles);
+    if duplicates > 0 {
+        t.warn(
+            "file",
+            format!(
+                "{}: {duplicates} triangle(s) repeat an earlier one's corners and were left out",
+                path.display()
+            ),
+        );
     }
     triangles.shrink_to_fit();
     let normals = match (smooth, obj.normals) {
@@ -593,8 +614,8 @@ pub fn read_environment(t: &mut TableReader) -> Result<Environment> {
     let sky = match (t.has("file"), t.string_opt("sky")?) {
         (true, None) => {
             let path = t.input_file("file")?;
-            let img = image::open(&path)
-                .map_err(|e| t.error("file", format!("cannot read {}: {e}", path.display())))?
+            let img = crate::texture::open_image(&path)
+                .map_err(|e| t.error("file", e))?
                 .to_rgb32f();
             let bad = img
                 .pixels()

@@ -13,6 +13,8 @@ pub struct Source {
     pub text: String,
     /// The files the scene reads besides itself, as resolved (see [`Source::input`]).
     pub(super) inputs: std::cell::RefCell<Vec<PathBuf>>,
+    /// What the scene's user should know though the scene loads (file:line:col: message).
+    pub(super) warnings: std::cell::RefCell<Vec<String>>,
 }
 
 impl Source {

@@ -27,6 +27,9 @@ pub struct TableReader<'a> {
     asked: Vec<String>,
 }
 
+/// The most terms a Cauchy law takes (published fits use two to four).
+const MAX_CAUCHY_TERMS: usize = 16;
+
 impl<'a> TableReader<'a> {
     /// A reader of `table`, which spans `span` in `source`.
     pub fn new(
@@ -47,6 +50,12 @@ impl<'a> TableReader<'a> {
     /// Renames the table in later messages.
     pub fn describe(&mut self, what: impl Into<String>) {
         self.what = what.into();
+    }
+
+    /// Notes `message` at `key` as a warning of the scene (the scene still loads).
+    pub fn warn(&self, key: &str, message: impl std::fmt::Display) {
+        let text = self.error(key, message).to_string();
+        self.source.warnings.borrow_mut().push(text);
     }
 
     /// An error at `key`'s value (or at the table when the key is absent).
@@ -85,7 +94,7 @@ impl<'a> TableReader<'a> {
             }
         };
         if !x.is_finite() {
-            Err(self.error(key, format!("must be finite, got {x}")))
+            Err(self.error(key, format!("must be finite, got {x:?}")))
         } else if x.abs() > MAX_MAGNITUDE {
             Err(self.error(
                 key,
@@ -115,14 +124,14 @@ impl<'a> TableReader<'a> {
     /// A required number > 0.
     pub fn positive(&mut self, key: &str) -> Result<f64> {
         let x = self.f64(key)?;
-        self.check(key, x > 0.0, format!("must be > 0, got {x}"))?;
+        self.check(key, x > 0.0, format!("must be > 0, got {x:?}"))?;
         Ok(x)
     }
 
     /// An optional number > 0.
     pub fn positive_or(&mut self, key: &str, default: f64) -> Result<f64> {
         let x = self.f64_or(key, default)?;
-        self.check(key, x > 0.0, format!("must be > 0, got {x}"))?;
+        self.check(key, x > 0.0, format!("must be > 0, got {x:?}"))?;
         Ok(x)
     }
 
@@ -341,12 +350,12 @@ impl<'a> TableReader<'a> {
         self.check(
             key,
             c.min_element() >= 0.0,
-            format!("must not be negative, got {c}"),
+            format!("must not be negative, got {}", Rgb(c)),
         )?;
         Ok(Rgb(c))
     }
 
-    /// An optional quantity over wavelength (DESIGN §12): a number (the same at every
+    /// An optional quantity over wavelength: a number (the same at every
     /// wavelength), a named material (`"BK7"`, see [`Dispersion::names`]), or a table of one
     /// model: `{ sellmeier = [B1, B2, B3, C1, C2, C3] }` (λ in µm), `{ cauchy = [A, B, ...] }`
     /// (λ in µm), `{ abbe = [n_d, V_d] }` or `{ table = [[nm, value], ...] }`.
@@ -387,7 +396,7 @@ impl<'a> TableReader<'a> {
         self.check(
             key,
             least > 0.0,
-            format!("must be > 0 from 360 to 830 nm, got {least} there"),
+            format!("must be > 0 from 360 to 830 nm, got {least:?} there"),
         )?;
         Ok(d)
     }
@@ -415,7 +424,11 @@ impl<'a> TableReader<'a> {
             }
             "cauchy" => {
                 let c = coefficients()?;
-                self.check(key, !c.is_empty(), "cauchy takes [A, B, ...] (λ in µm)")?;
+                self.check(
+                    key,
+                    (1..=MAX_CAUCHY_TERMS).contains(&c.len()),
+                    format!("cauchy takes [A, B, ...] (λ in µm), 1 to {MAX_CAUCHY_TERMS} terms"),
+                )?;
                 Dispersion::Cauchy(c)
             }
             "abbe" => match coefficients()?[..] {

@@ -49,9 +49,11 @@ impl Shard {
         let bad = |why: &str| Error::Usage(format!("--shard {text}: {why} (write K/N, 1 ≤ K ≤ N)"));
         let (k, n) = text.split_once('/').ok_or_else(|| bad("no '/'"))?;
         let number = |s: &str| {
-            s.trim()
-                .parse::<u32>()
-                .map_err(|_| bad("not a whole number"))
+            let s = s.trim();
+            s.parse::<u32>().map_err(|_| match s.parse::<u128>() {
+                Ok(_) => bad(&format!("{s} is more than {} shards", u32::MAX)),
+                Err(_) => bad(&format!("`{s}` is not a whole number")),
+            })
         };
         let (index, count) = (number(k)?, number(n)?);
         if index == 0 || index > count {

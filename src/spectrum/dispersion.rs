@@ -94,11 +94,8 @@ impl Dispersion {
             Dispersion::Sellmeier(terms) => {
                 (1.0 + terms.iter().map(|(b, c)| b * um2 / (um2 - c)).sum::<f64>()).sqrt()
             }
-            Dispersion::Cauchy(a) => a
-                .iter()
-                .enumerate()
-                .map(|(k, ak)| ak / um2.powi(k as i32))
-                .sum(),
+            // Horner's rule in 1/λ²: no power of λ to overflow or vanish.
+            Dispersion::Cauchy(a) => a.iter().rev().fold(0.0, |acc, ak| ak + acc / um2),
             Dispersion::Table(t) => t.at(nm).0,
         }
     }
