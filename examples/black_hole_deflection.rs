@@ -1,4 +1,4 @@
-//! Seed 000 fig. 9 from the rendered rays: the camera rays of `scenes/black_hole.toml` along
+//! Tessendorf (2022) fig. 9 from the rendered rays: the camera rays of `scenes/black_hole.toml` along
 //! the image's middle row, traced through the hole's index by the renderer's own transport,
 //! give deflection against impact parameter. Each is compared with the exact deflection of the
 //! index model for a ray starting at the camera (`media::black_hole_deflection`) and with the
@@ -7,11 +7,11 @@
 //! `world_radius` R (a straight-line tail estimate, (rs/b)(1 − √(1 − (b/R)²)) ≈ rs b/2R²); writes `out/black_hole_deflection.csv` and a log-log plot
 //! `out/black_hole_deflection.png` (red: rendered rays, blue: exact, green: 2 rs/b).
 //!
-//! Then the same row of `scenes/schwarzschild.toml` (the exact index, DESIGN §11), each ray's
+//! Then the same row of `scenes/schwarzschild.toml` (the exact index), each ray's
 //! deflection against general relativity's between the camera and the point where the ray
 //! left the world ([`ExactBlackHole::gr_deflection`], no tail needed); both curves are drawn
 //! side by side (purple: exact hole's rendered rays, yellow: GR), with the perturbation series
-//! of GR's deflection from infinity to infinity to 20 orders (seed 000's eq. 27 is such a
+//! of GR's deflection from infinity to infinity to 20 orders (Tessendorf (2022) eq. 27 is such a
 //! series; [`schwarzschild_deflection_series`]), down to the photon sphere where it stops
 //! converging.
 

@@ -1,4 +1,4 @@
-//! Step-count invariance of the fiber receiver (seed 004 §5 reports that 20 to 100 steps leave
+//! Step-count invariance of the fiber receiver (Zhdanov et al. (2020) §5 reports that 20 to 100 steps leave
 //! the image unchanged): `scenes/fiber_led.toml` measured with every stepper under fixed steps
 //! (20, 50, 100 per fiber length) and adaptive control at several tolerances, each against a
 //! high-accuracy run (RK4, adaptive 1e-10). All runs use the same photon streams, so the

@@ -4,7 +4,7 @@
 //! compared with the GRIN fiber's (RK4, adaptive 1e-9). Two families of 64 rays each, all
 //! guided by the gradient (θ ≤ 0.16 rad inside, below the 0.163 rad at which they would reach
 //! the wall): meridional rays from the axis at angle θ, and skew rays from r = 0.1 mm turned
-//! by θ out of the meridional plane. Layerings: equal Δn (seed 004's rule) and equal width.
+//! by θ out of the meridional plane. Layerings: equal Δn (Zhdanov et al.'s (2020) rule) and equal width.
 //! Prints the RMS and median landing error against the layer count and writes
 //! `out/layering_study.csv` and `out/layering_study.png` (RMS error against the largest layer
 //! width, log-log; red equal Δn, blue equal width).

@@ -1,7 +1,7 @@
 //! Error against run time for every stepper × step control × tolerance on four rays:
 //! (a) a meridional ray in a sech fiber over 10 periods, launched at x0 with slope m (error:
 //! distance from the exact path sinh(g x) = sinh(g x0) cos(g z) + m cosh(g x0) sin(g z), which
-//! for m = 0 is the x(z) = asinh(sinh(g x0) cos(g z))/g; m ≠ 0 because a Snell step
+//! for m = 0 is x(z) = asinh(sinh(g x0) cos(g z))/g; m ≠ 0 because a Snell step
 //! cannot leave an exact turning point), (b) a Luneburg crossing (error: exit point against
 //! the antipodal focus), (c) black-hole rays at b = 3 rs (captured) and b = 20 rs (error: final
 //! position against an RK4 run at tolerance 1e-14, which agrees with the exact arc at 1e-12).

@@ -1,4 +1,4 @@
-//! The exact black holes of DESIGN §11 (Schwarzschild and Reissner–Nordström as index media in
+//! The exact black holes (Schwarzschild and Reissner–Nordström as index media in
 //! isotropic coordinates) against general relativity's own formulas in areal coordinates:
 //! the index, the horizon, the photon sphere, the deflection of traced rays
 //! ([`ExactBlackHole::gr_deflection`], GR's orbit quadrature from the metric, not from the
@@ -59,7 +59,7 @@ fn traced(
     (Some((deflection, exact)), out.steps)
 }
 
-/// DESIGN §11's check: n(ρ)·ρ = r/√f(r) — the index's Bouguer invariant is GR's impact
+/// n(ρ)·ρ = r/√f(r) — the index's Bouguer invariant is GR's impact
 /// parameter — at radii from just outside the horizon to far away, to rounding: 1e-11, as
 /// 1 − 2M/r + Q²/r² is ~1e-4 at 1.01 ρ_h and loses that much of its precision.
 #[test]
@@ -134,14 +134,14 @@ fn horizon_and_photon_sphere_are_grs() {
 /// same two observers (the finite start and end are in the formula, so nothing is
 /// extrapolated), for b from just outside capture to 10⁴ M.
 ///
-/// The bar, relative 1e-6 at every b at the default tolerance, is met by the RKN
+/// The bar, relative 1e-6 at every b at the default tolerance, is met by the RKN
 /// pair (`rkn`, sixth order, the default stepper) at its default tolerance (1e-6): measured
 /// ≤ 2.2e-7, at 10⁴ M (≤ 1.1e-7 up to 10³ M, ≤ 1.2e-8 closer in). RK4 at its
 /// default tolerance (1e-9) errs by ~1e-9 rad absolute at every b (measured 1.1e-9 at most,
 /// 3e-7 at 1.02 b_c where the deflection is 3.6 rad): 2e-9 rad there, or 2e-7 relative for
 /// the strongly bent rays; relative 1e-6 holds for it up to 10³ M (3.5e-7 measured) and, at
 /// tolerance 1e-10, up to 10⁴ M (5.3e-7 measured). Rays below the critical impact parameter
-/// are captured, finitely, in a bounded number of steps (no crawl: seed 000's step collapse).
+/// are captured, finitely, in a bounded number of steps (no crawl: Tessendorf's (2022) step collapse).
 #[test]
 fn traced_rays_meet_grs_deflection() {
     for q in [0.0, 0.3] {
@@ -271,7 +271,7 @@ fn check_shadow(row: &[[f32; 3]]) {
     }
 }
 
-/// Seed 002's deflection table against direct tracing on every pixel of small renders of the
+/// the Black Hole Simulator's (ebvalaim 2015) deflection table against direct tracing on every pixel of small renders of the
 /// exact scenes: each pixel's escape direction within the table's interpolation tolerance
 /// (1e-6 rad; measured 2.4e-7 at most on the HD view's check) and the same captured pixels;
 /// the render through the table the same for 1 and 2 threads.
@@ -312,7 +312,7 @@ fn the_deflection_table_matches_direct_tracing_on_every_pixel() {
     }
 }
 
-/// The perturbation series of GR's deflection (seed 000's eq. 27 is one; here in μ = M/r₀ to
+/// The perturbation series of GR's deflection (Tessendorf (2022) eq. 27 is one; here in μ = M/r₀ to
 /// 20 orders, `schwarzschild_deflection_series`) against GR's orbit quadrature from infinity to
 /// infinity: for μ from 0.001 to 0.2 (b from 1000 M to 6.7 M) within the series' truncation,
 /// the first neglected term's size ≈ (3μ)²¹ (1e-9 and below where μ ≤ 0.12), plus the

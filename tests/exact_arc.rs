@@ -1,4 +1,4 @@
-//! The exact arc (DESIGN §5) against the same arc evaluated in 320-bit arithmetic.
+//! The exact arc against the same arc evaluated in 320-bit arithmetic.
 
 mod common;
 
@@ -42,7 +42,7 @@ fn log_uniform(rng: &mut Pcg64Mcg, lo: f64, hi: f64) -> f64 {
 /// 3000 random cases over β ∈ [1e-9, π − 1e-9] (a third uniform, a third clustered
 /// log-uniformly at each end), |F| ∈ [1e-6, 1e3], s ∈ [1e-8, 50], both log-uniform.
 ///
-/// Tolerance 1e-12 (the issue's): the recipe's own error is ~1e-15 (DESIGN §5), the
+/// Tolerance 1e-12: the recipe's own error is ~1e-15, the
 /// reference's ~1e-90; 1e-12 leaves room for the ~ε·ln(2/σ) conditioning near β = π.
 #[test]
 fn exact_arc_matches_320_bit_reference_on_random_cases() {
@@ -92,7 +92,7 @@ fn exact_arc_stress_cases_are_finite_and_accurate() {
         let (ex, et) = errors(t0, DVec3::new(0.0, 0.0, 1e3), 1e3);
         assert!(ex <= 1e-12 && et <= 1e-12, "β={beta}: {ex:e} {et:e}");
     }
-    // sin β = 1e-300, against F: τ0 ≈ −690 (DESIGN §5 step 6). Its inherent error is
+    // sin β = 1e-300, against F: τ0 ≈ −690. Its inherent error is
     // ~ε ln(2/σ) ≈ 1.5e-13; tolerance 1e-12.
     let t0 = DVec3::new(1e-300, 0.0, -1.0);
     for s in [1e-3, 1.0, 300.0, 345.0, 400.0, 1e4] {
@@ -108,7 +108,7 @@ fn exact_arc_stress_cases_are_finite_and_accurate() {
     assert!(ex <= 1e-12 && et <= 1e-12);
 }
 
-/// ln(n(s)/n0) and ∫ n/n0 ds along an arc (the arc chain's optical path, DESIGN §10) against
+/// ln(n(s)/n0) and ∫ n/n0 ds along an arc (the arc chain's optical path) against
 /// the 320-bit arc's F·(x(s) − x0) and a composite Simpson rule over the f64 arc's own
 /// positions (2 000 panels: truncation ~1e-14 relative for |F|s ≤ 8), on 300 random cases;
 /// tolerance 1e-12 relative (measured 1.5e-15 and 7.8e-15: the closed forms lose nothing to
@@ -148,7 +148,7 @@ fn arc_index_gain_and_optical_path_match_references() {
             println!("t0 {t0} F {force}: gain {gain:e}, path {path:e}");
             assert!(!gain.is_nan() && !path.is_nan());
             // Exactly against F the ray runs into falling n; nearly against, it turns back
-            // (DESIGN §5 step 6) and n grows past f64 like the along-F ray's.
+            // and n grows past f64 like the along-F ray's.
             if t0 == -DVec3::X || force == DVec3::ZERO {
                 assert!(gain.is_finite() && path.is_finite());
             }

@@ -373,7 +373,7 @@ fn staircase_landing(layers: &[(f64, f64)], theta: f64, len: f64, gap: f64) -> f
 /// The layered twin is the staircase it is meant to be, and a staircase converges slowly:
 /// meridional principal rays from the axis (θ = 0.0025 … 0.16 rad, all turned by the
 /// gradient) land on the receiver where the independent 2-D model above puts them, to 1e-4 mm
-/// for at least 60 of 64 rays, for the Δn = 0.005 twin (seed 004's) and one of 200 equal
+/// for at least 60 of 64 rays, for the Δn = 0.005 twin (Zhdanov et al.'s (2020)) and one of 200 equal
 /// layers. (The renderer restarts each ray 2.1e-8 mm off the surface it left; over the up to
 /// ≈ 2000 interfaces a ray meets that shifts it by ≤ 4.2e-5 mm — measured up to 1.4e-5 mm.
 /// A ray may also meet an interface within rounding of the 1/2 reflectance and take the

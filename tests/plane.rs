@@ -1,4 +1,4 @@
-//! Curved segments against planes (seed 000 §5 with the two-crossing case of DESIGN §5).
+//! Curved segments against planes (Tessendorf 2022, §5, and the case of a path crossing a plane twice).
 
 use glam::DVec3;
 use grinlight::curve::CurvedSegment;
@@ -62,7 +62,7 @@ fn a_segment_that_enters_and_leaves_a_plane_is_detected() {
             .first_plane_crossing(normal, point, length)
             .expect("two-crossing case missed");
         let want = brute_force_crossing(&seg, normal, point, length).expect("oracle");
-        // 1e-9 relative in arclength (the refinement target).
+        // 1e-9 relative in arclength (the refinement target).
         assert!(
             (got - want).abs() <= 1e-9 * want,
             "below {below}: got {got}, oracle {want}"

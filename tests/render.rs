@@ -68,7 +68,7 @@ fn photon_flux_onto_a_disk_matches_the_closed_form() {
 /// seed); its noise with 64 stratified samples per pixel and 4·10⁵ photons is ~0.3 % of a
 /// block's mean away from the emitter and ~1 % on the blocks holding the emitter's edge.
 /// The photon estimate's own bias is largest in the room's corners (the k-nearest disk
-/// reaches past the wall's edge): ~2 % there, measured. Bars from the issue: mean ratio
+/// reaches past the wall's edge): ~2 % there, measured. Bars: mean ratio
 /// within 1 %, every 16 × 16 block within 3 %.
 #[test]
 fn cornell_diffuse_matches_the_reference() {

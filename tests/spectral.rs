@@ -9,7 +9,7 @@ use grinlight::scene::load_scene;
 use grinlight::spectrum::Dispersion;
 use std::path::Path;
 
-/// The minimum-deviation ray of a unit sphere of index `n` lit along −z (DESIGN §12:
+/// The minimum-deviation ray of a unit sphere of index `n` lit along −z (
 /// cos² i = (n² − 1)/3), traced exactly (straight chords, Snell, one internal reflection): its
 /// exit point and exit direction.
 fn descartes_ray(n: f64) -> (DVec3, DVec3) {
@@ -34,7 +34,7 @@ fn descartes_ray(n: f64) -> (DVec3, DVec3) {
 
 /// Descartes' closed form: the exit direction of the traced minimum-deviation ray makes the
 /// angle π − D with the antisolar direction +z, D = π + 2i − 4 asin(sin i / n), to rounding
-/// (1e-11 rad: chord intersections round to ~1e-13, amplified by acos and asin); and water's bow is 42.08° at n = 1.333 (DESIGN §12).
+/// (1e-11 rad: chord intersections round to ~1e-13, amplified by acos and asin); and water's bow is 42.08° at n = 1.333.
 #[test]
 fn the_descartes_ray_leaves_at_the_rainbow_angle() {
     for n in [1.333f64, 1.34, 1.517] {

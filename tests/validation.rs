@@ -1,4 +1,4 @@
-//! The curved-ray engine against exact solutions (DESIGN §7). Every tolerance is stated with
+//! The curved-ray engine against exact solutions. Every tolerance is stated with
 //! its reason next to the assertion.
 
 mod common;
@@ -129,10 +129,10 @@ fn exponential_medium_single_arc_step_is_exact() {
     }
 }
 
-/// The steppers' orders on a curved black-hole ray (DESIGN §10's case: the weak-field index
+/// The steppers' orders on a curved black-hole ray (the weak-field index
 /// with q = 0.1, rs = 1, from (−20, 6, 0.5) along +x for 40 rs), against the RKN pair at
 /// h = 0.02 (its error there, ~h⁶, is below 1e-15; rounding over its 2 000 steps ~1e-13):
-/// the arc chain 4 ± 0.2 (measured 3.97, 3.99, 4.00, as DESIGN's 3.97–3.99), the RKN pair
+/// the arc chain 4 ± 0.2 (measured 3.97, 3.99, 4.00), the RKN pair
 /// 6 ± 0.5 (5.62, 5.88; at h = 0.2 its error, 7e-12, meets the reference's rounding).
 #[test]
 fn orders_on_a_black_hole_ray() {
@@ -216,7 +216,7 @@ fn rk4_and_arc_chain_are_fourth_order_rkn_sixth() {
         assert!((o - 6.0).abs() <= 0.7, "RKN order {o}");
     }
     assert!((orders[2] - 6.0).abs() <= 0.4, "RKN order {}", orders[2]);
-    // The arc chain (DESIGN §10): 4 ± 0.2, the issue's band (measured 4.14, 4.07, 4.03; at
+    // The arc chain: 4 ± 0.2 (the band asked for) (measured 4.14, 4.07, 4.03; at
     // h = 0.4 the next terms still count: 4.40).
     for o in measured_order(StepperKind::Arc, &[0.1, 0.05, 0.025, 0.0125]) {
         assert!((o - 4.0).abs() <= 0.2, "arc order {o}");
@@ -249,7 +249,7 @@ fn sech_fiber_rays_follow_the_exact_path_with_every_stepper() {
     let length = 10.0 * std::f64::consts::TAU / g;
     for kind in StepperKind::ALL {
         // Snell steps cannot leave an exact turning point (see SnellSteps), so every stepper
-        // is checked on a ray launched with a slope; arc and RK4 also on the issue's ray
+        // is checked on a ray launched with a slope; arc and RK4 also on the sech ray
         // x(z) = asinh(sinh(g x0) cos(g z))/g launched parallel to the axis.
         let slopes: &[f64] = if kind == StepperKind::Snell {
             &[0.1]
@@ -283,7 +283,7 @@ fn sech_fiber_rays_follow_the_exact_path_with_every_stepper() {
     }
 }
 
-/// The issue's known-limit check for Snell steps: launched exactly at a turning point the ray
+/// The known-limit check for Snell steps: launched exactly at a turning point the ray
 /// is not bent (documented in SnellSteps); this pins that behaviour so a change is noticed.
 #[test]
 fn snell_steps_do_not_leave_an_exact_turning_point() {
@@ -515,7 +515,7 @@ fn black_hole_deflection_matches_quadrature_and_weak_field() {
         ));
     }
     // Weak field: φ/(2 rs/b) − 1 falls as c1 rs/b (measured c1 ≈ 2.35 for this index
-    // model; GR's is 15π/32 ≈ 1.47, DESIGN §7). The next term, ~c2 rs²/b² with c2 ≈ 7, makes
+    // model; GR's is 15π/32 ≈ 1.47). The next term, ~c2 rs²/b² with c2 ≈ 7, makes
     // (ratio − 1)·b differ between b = 100 and 1000 by ≈ 3 %: the bound is 5 %. At 1000 rs
     // the ratio is within 0.3 % of 1.
     println!("deflection/(2rs/b) − 1: {weak:?}");
@@ -580,7 +580,7 @@ fn black_hole_captures_rays_aimed_at_it() {
     }
 }
 
-/// Seed 000's settings (T_max 1e-2, T_min 1e-4, N_max 1e5, initial step 0.1) on a ray that
+/// Tessendorf's (2022) settings (T_max 1e-2, T_min 1e-4, N_max 1e5, initial step 0.1) on a ray that
 /// falls in: the step collapses toward the horizon and the march runs to N_max, as in the
 /// seed's figs. 6–7; the adaptive control ends the same ray as captured in under a tenth of
 /// N_max attempts (measured: RK4 997, RKN 1 487, arc chain 2 125; the chain's (4, 2) control
@@ -696,7 +696,7 @@ fn black_hole_deflection_from_a_finite_start_matches_quadrature() {
 /// optical path from the plane x = −R to the focus (R, 0, 0), R (1 + π/2) (the axial ray's
 /// ∫ √(2 − x²) dx), the part outside the lens being straight in n = 1.
 ///
-/// Bound: the position bound of `default_bound` (10·tol·L), as the issue asks ("within 10×
+/// Bound: the position bound of `default_bound` (10·tol·L), as asked ("within 10×
 /// the position tolerance"): the optical path must be as accurate as the position.
 #[test]
 fn optical_path_matches_closed_forms_with_every_stepper() {

@@ -1,5 +1,5 @@
 //! `grinlight render`: the scene's receivers measured (with the energy budget and, on request,
-//! seed 004's fiber figure), then its camera view rendered to a multi-layer EXR and a PNG.
+//! Zhdanov et al.'s (2020) fiber figure), then its camera view rendered to a multi-layer EXR and a PNG.
 
 use super::{at_least_one, positive, Observer};
 use crate::error::{Error, Result};
@@ -631,7 +631,7 @@ fn write_results(
     Ok(outcome)
 }
 
-/// Which photon paths seed 004 fig. 5 draws: the first `count` of the receiver batch.
+/// Which photon paths Zhdanov et al. (2020) fig. 5 draws: the first `count` of the receiver batch.
 struct Paths<'a> {
     fiber: GrinFiber,
     count: u64,
@@ -639,7 +639,7 @@ struct Paths<'a> {
     first: &'a Measurement,
 }
 
-/// Draws seed 004 fig. 5 for the scene's GRIN fiber.
+/// Draws Zhdanov et al. (2020) fig. 5 for the scene's GRIN fiber.
 fn draw_paths(
     scene: &Scene,
     settings: &Settings,

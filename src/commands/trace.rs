@@ -27,7 +27,7 @@ pub enum TraceControl {
         /// Step length.
         step: Option<f64>,
     },
-    /// Seed 000 §4's control.
+    /// Tessendorf (2022) §4's control.
     Tessendorf {
         /// Initial step (None: the medium's step hint, at most a hundredth of the length).
         step: Option<f64>,

@@ -17,7 +17,7 @@ pub enum StepControl {
         /// Step length (scene units).
         step: f64,
     },
-    /// Seed 000 §4 as intended (DESIGN §5b): a trial step is rejected and the step multiplied
+    /// Tessendorf (2022) §4 as intended: a trial step is rejected and the step multiplied
     /// by a random ξ ∈ (0, 1] while ε = |F' − F|/|F| > `t_max`; after an accepted step with
     /// ε < `t_min` the step is divided by ξ. ξ comes from a PCG stream keyed by `seed`, so runs
     /// repeat. Every trial counts against the march's step limit (N_max).
@@ -164,7 +164,7 @@ where
         StepControl::Tessendorf { seed, .. } => Some(Pcg64Mcg::new(u128::from(seed) | 1)),
         _ => None,
     };
-    // ξ ∈ (0, 1]: never zero (seed 000's shader left ξ = 0 unguarded).
+    // ξ ∈ (0, 1]: never zero (Tessendorf's (2022) shader left ξ = 0 unguarded).
     let mut xi = || 1.0 - rng.as_mut().map_or(0.5, |r| r.gen::<f64>());
     let mut h = match control {
         StepControl::Fixed { step } => step,
@@ -361,7 +361,7 @@ fn leaves(limits: &MarchLimits, p: glam::DVec3) -> bool {
     limits.bounds.signed_distance(p) > 0.0
 }
 
-/// ε = |F' − F|/|F| of seed 000 §4, with F = 0 guarded: 0 when both vanish, ∞ when only F does.
+/// ε = |F' − F|/|F| of Tessendorf (2022) §4, with F = 0 guarded: 0 when both vanish, ∞ when only F does.
 fn relative_force_change(a: &RayState, b: &RayState) -> f64 {
     let f0 = a.index.log_gradient();
     let f1 = b.index.log_gradient();

@@ -1,4 +1,4 @@
-//! The curved-segment engine shared by every pass (DESIGN §4–5): the exact arc
+//! The curved-segment engine shared by every pass: the exact arc
 //! ([`CurvedSegment`]), the steppers, step control and the march with its termination reasons.
 
 mod bounds;

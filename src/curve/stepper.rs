@@ -190,8 +190,8 @@ pub fn step_doubling(
     })
 }
 
-/// Tessendorf's exact arcs (seed 000 §2–3, DESIGN §5) chained into a fourth-order method: the
-/// commutator-free composition of DESIGN §10 (Celledoni, Marthinsen & Owren 2003). An arc is
+/// Tessendorf's exact arcs (Tessendorf 2022, §2–3) chained into a fourth-order method: the
+/// commutator-free composition of Celledoni, Marthinsen & Owren (2003). An arc is
 /// the exact flow of the ray equation with F = ∇ln n frozen; a step of length h samples F at
 /// three points reached by arcs and takes two arcs of h/2 under two weighted means of the four
 /// F's (in that order: swapped, the method is second order). The path is a chain of exact
@@ -566,7 +566,7 @@ impl Stepper for Rkn64 {
     }
 }
 
-/// Iterative Snell steps (seed 001): a straight step of length h, then the direction is
+/// Iterative Snell steps (the CS 184 nonlinear path tracer): a straight step of length h, then the direction is
 /// refracted at a virtual interface normal to ∇n (averaged over the step's ends) from n(x0)
 /// to n(x1), conserving the tangential part of n t̂; total internal reflection mirrors it.
 /// This is the ray in a medium of thin homogeneous layers normal to ∇n.

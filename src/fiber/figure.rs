@@ -1,4 +1,4 @@
-//! The three panels of seed 004 fig. 5 for a scene's GRIN fiber, from left to right: the index
+//! The three panels of Zhdanov et al. (2020) fig. 5 for a scene's GRIN fiber, from left to right: the index
 //! from the axis to the wall, photon paths through the fiber over its index, and the irradiance
 //! on a receiver.
 

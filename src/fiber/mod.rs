@@ -1,7 +1,7 @@
-//! The GRIN fiber as an instrument (seed 004 §5): a scene's fiber — a cylinder filled with a
+//! The GRIN fiber as an instrument (Zhdanov et al. (2020) §5): a scene's fiber — a cylinder filled with a
 //! gradient medium — its layered twin of homogeneous cylinders in optical contact, made by
 //! editing the scene's description and building again ([`Description::layer_fiber`]), the
-//! comparison of the two on a receiver ([`validate`]) and seed 004's figure ([`figure`]).
+//! comparison of the two on a receiver ([`validate`]) and Zhdanov et al.'s (2020) figure ([`figure`]).
 
 pub mod figure;
 mod validate;
@@ -150,7 +150,7 @@ impl Description {
     }
 
     /// Replaces the description's GRIN fiber — the cylinder whose interior is a non-uniform
-    /// medium — by concentric homogeneous cylinders in optical contact (seed 004 §5): a new
+    /// medium — by concentric homogeneous cylinders in optical contact (Zhdanov et al. (2020) §5): a new
     /// layer wherever the index along a radius has changed by `dn` since the layer's start
     /// or the layer is `max_width` wide (∞: no limit; see below), each with the area-weighted
     /// mean of the profile over its annulus, each layer a tube (a dielectric between it and

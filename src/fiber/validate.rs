@@ -1,5 +1,5 @@
 //! `grinlight validate`: a scene's GRIN fiber against its layered twins (concentric homogeneous
-//! cylinders, seed 004 §5), measured with independent photon streams and compared bin by bin
+//! cylinders, Zhdanov et al. (2020) §5), measured with independent photon streams and compared bin by bin
 //! on the first receiver.
 
 use super::Layer;

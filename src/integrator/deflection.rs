@@ -1,4 +1,4 @@
-//! Seed 002's deflection table, generalised (DESIGN §11): when the only non-uniform part of a
+//! the Black Hole Simulator's (ebvalaim 2015) deflection table, generalised: when the only non-uniform part of a
 //! scene is one spherically symmetric ambient medium seen against the environment (a black
 //! hole, a fish-eye or Luneburg ambient) and nothing else is in it, every camera ray is planar
 //! — it stays in the plane of its direction and the centre — and where it leaves depends on
@@ -6,7 +6,7 @@
 //! The table holds the turn δ(α) of the escaping direction (or that α is captured), traced
 //! once per render with the curved engine at the scene's tolerance; a pixel costs a lookup
 //! and a rotation. Tabulated in α, not in the impact parameter: nearly equal impact parameters
-//! around α = 90° are far apart in α (seed 002's smeared strip).
+//! around α = 90° are far apart in α (the Black Hole Simulator's (ebvalaim 2015) smeared strip).
 //!
 //! Nodes: uniform in α over the view's range of angles (a node at least every pixel, so no
 //! feature a pixel wide falls between two), then every interval bisected until linear
@@ -101,7 +101,7 @@ pub struct DeflectionTable<'a> {
     eye: DVec3,
     /// Unit vector from the camera toward the centre.
     axis: DVec3,
-    /// n² at the camera: environment radiance arriving there (DESIGN: vacuum radiance).
+    /// n² at the camera: environment radiance arriving there.
     scale: f64,
     /// Nodes, α increasing.
     nodes: Vec<Node>,

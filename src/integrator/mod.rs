@@ -2,12 +2,12 @@
 //! ([`crate::render`]) drives one over tiles and passes; each declares the film layers it
 //! writes and estimates one camera ray at a time from what its pass prepared.
 //!
-//! - [`PhotonMapper`]: seed 004's luminance components — direct light, the caustic map, and
+//! - [`PhotonMapper`]: Zhdanov et al.'s (2020) luminance components — direct light, the caustic map, and
 //!   secondary light by final gathering over the global map.
 //! - [`PathTracer`]: unidirectional path tracing through the same curved transport, an
 //!   independent reference for the photon mapper.
 //! - [`DeflectionTable`]: for a camera before one spherically symmetric ambient medium and
-//!   nothing else (a black hole), seed 002's table of where each ray leaves; chosen by
+//!   nothing else (a black hole), the Black Hole Simulator's (ebvalaim 2015) table of where each ray leaves; chosen by
 //!   [`crate::render::render`] in place of the photon mapper whenever it applies.
 //!
 //! Passes are independent: pass `i` draws from streams keyed by `i` and its caustic radius

@@ -1,4 +1,4 @@
-//! The photon mapper (seed 004 §4, Jensen): each pass traces a caustic and a global photon
+//! The photon mapper (Zhdanov et al. (2020) §4, Jensen): each pass traces a caustic and a global photon
 //! map, and each camera sample's visible point gets
 //! - **direct**: light with no specular interaction on the way ([`super::direct`]);
 //! - **caustic**: the caustic map's density estimate (photons with a specular bounce), with an

@@ -1,4 +1,4 @@
-//! Gradient-index media: the [`Medium`] interface and its index profiles (DESIGN §3).
+//! Gradient-index media: the [`Medium`] interface and its index profiles.
 //!
 //! Conventions: positions and lengths are in scene units; the index `n` is dimensionless and
 //! its gradient has units of 1/length. A medium answers `n` and `∇n` together, because every
@@ -52,7 +52,7 @@ impl IndexSample {
 /// A refractive-index field: the question every curved-ray stepper asks.
 ///
 /// A `Medium` is the field at one wavelength. A dispersive medium is a family of them, one per
-/// vacuum wavelength (`scene::Media::at_wavelength`); seed 004's question "which wavelengths
+/// vacuum wavelength (`scene::Media::at_wavelength`); Zhdanov et al.'s (2020) question "which wavelengths
 /// can share a path" is answered per medium by `scene::Media::is_dispersive` — all of them
 /// through a medium that is not, one through a medium that is — and asked by the transport
 /// where a path enters one (`transport::Tracer::disperses_in`, `disperses_at`).
@@ -97,7 +97,7 @@ pub trait Medium: Send + Sync {
     }
 
     /// The centre when n depends only on the distance from it (every ray then stays in the
-    /// plane of its direction and the centre: seed 002's deflection table applies). Default:
+    /// plane of its direction and the centre: the Black Hole Simulator's (ebvalaim 2015) deflection table applies). Default:
     /// None, not spherically symmetric.
     fn symmetry_center(&self) -> Option<DVec3> {
         None

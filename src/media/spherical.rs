@@ -1,5 +1,5 @@
 //! Profiles that depend on the distance from a centre: Luneburg lens, Maxwell fish-eye, black
-//! holes (seed 000's weak-field index and the exact Schwarzschild / Reissner–Nordström one).
+//! holes (Tessendorf's (2022) weak-field index and the exact Schwarzschild / Reissner–Nordström one).
 
 use super::{IndexSample, Medium};
 use glam::DVec3;
@@ -79,7 +79,7 @@ impl Medium for FishEye {
 }
 
 /// Weak-field index of a Reissner–Nordström black hole, n = ρ²/(ρ² − ρ + q²) with
-/// ρ = |x − center|/rs (seed 000 eq. 25). A ray is captured at and inside the horizon
+/// ρ = |x − center|/rs (Tessendorf (2022) eq. 25). A ray is captured at and inside the horizon
 /// ρ+ = (1 + √(1 − 4q²))/2, where the index diverges, and at the centre.
 #[derive(Clone, Debug)]
 pub struct BlackHole {
@@ -144,10 +144,10 @@ impl Medium for BlackHole {
 }
 
 /// A Reissner–Nordström black hole — Schwarzschild when `q` = 0 — as the exact index medium
-/// of DESIGN §11: in isotropic coordinates ρ (the scene's lengths: ρ = |x − center|) the
+/// (Misner, Thorne & Wheeler 1973): in isotropic coordinates ρ (the scene's lengths: ρ = |x − center|) the
 /// spatial metric is conformally flat, so light follows the rays of
 /// n(ρ) = A² / (1 − K/ρ²), A = 1 + M/ρ + K/ρ², K = (M² − Q²)/4,
-/// with M = rs/2 and Q = q·rs (seed 000's q). nρ is GR's turning-point impact parameter, so
+/// with M = rs/2 and Q = q·rs (Tessendorf's (2022) q). nρ is GR's turning-point impact parameter, so
 /// deflections are GR's exactly; far away n ≈ 1 + rs/ρ, the weak-field index. The areal
 /// radius is r = ρA ([`ExactBlackHole::areal_radius`]). Rays are captured at the horizon
 /// ρ_h = √K (q ≤ ½); with no horizon (q > ½) the singularity r = 0 lies at ρ₀ = (Q − M)/2,
@@ -286,7 +286,7 @@ fn turning_point(g: &dyn Fn(f64) -> f64, b: f64, past: impl Fn(f64) -> bool) -> 
 /// General relativity's deflection (rad) of a light ray passing a Schwarzschild hole of mass
 /// M (rs = 2M) from infinity to infinity, as the perturbation series in μ = M/r₀ (r₀ the areal
 /// radius of closest approach; the impact parameter is b = r₀/√(1 − 2μ)) summed to `terms`
-/// orders. Seed 000's eq. 27 is such a series (Rodriguez and Marín, 20 orders in 3rs/2b); its
+/// orders. Tessendorf (2022) eq. 27 is such a series (Rodriguez and Marín, 20 orders in 3rs/2b); its
 /// coefficients are not reproduced here, these are computed: with x = b·u, 1/b² = u₀²(1 − 2Mu₀)
 /// and x = x₀s, 1 − x² + 2(M/b)x³ = x₀²(1 − s)[(1 + s) − 2μ(1 + s + s²)], so
 /// π + α = 2∫₀¹ (1 − s²)^(−1/2) (1 − 2μh(s))^(−1/2) ds with h = (1 + s + s²)/(1 + s), and the

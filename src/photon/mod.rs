@@ -1,4 +1,4 @@
-//! The forward photon pass (seed 004 §4, Jensen's photon mapping): photons leave the lights in
+//! The forward photon pass (Zhdanov et al. (2020) §4, Jensen's photon mapping): photons leave the lights in
 //! proportion to their power, travel with the same transport as camera rays (curved in
 //! gradient media, Fresnel at dielectrics, mirrors), and are stored at diffuse hits.
 //!

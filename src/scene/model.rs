@@ -37,7 +37,7 @@ struct Entry {
 }
 
 /// The scene's media by name; [`Surface::interior`], [`Surface::exterior`] and the ambient
-/// medium refer to them by index. Seed 004 asks each medium which wavelengths can share a
+/// medium refer to them by index. Zhdanov et al. (2020) asks each medium which wavelengths can share a
 /// path through it: all of them unless it is dispersive ([`Media::is_dispersive`]), and then
 /// each wavelength has a path of its own ([`Media::at_wavelength`]).
 #[derive(Default)]

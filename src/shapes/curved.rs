@@ -10,7 +10,7 @@ use glam::DVec3;
 /// The path is cut into pieces short against its curvature (κ·piece ≤ 1/4, at least 4),
 /// on which f(s) = g(x(s)) has at most one extremum. A piece whose ends differ in sign holds
 /// a root; a piece whose ends share a sign but whose slope f′ = ∇g·t̂ turns toward zero may
-/// dip across it twice (a curved path entering and leaving, DESIGN §5), so its extremum is
+/// dip across it twice (a curved path entering and leaving), so its extremum is
 /// located by bisection on f′ and tested too.
 pub fn segment_roots<P: Path + ?Sized>(
     seg: &P,

@@ -1,5 +1,5 @@
 //! A triangle mesh stored compactly: f32 vertices shared through u32 indices, with its own
-//! BVH, so that millions of triangles fit (seed 004: a GRIN medium bounded by "millions of
+//! BVH, so that millions of triangles fit (Zhdanov et al. (2020): a GRIN medium bounded by "millions of
 //! independent triangles"). The f32 vertices *are* the geometry; every test converts them to
 //! f64 exactly and runs in f64, as for any other primitive.
 

@@ -1,4 +1,4 @@
-//! Scaling out (DESIGN.md §13): a render as independent slices of work, each kept as an exact
+//! Scaling out: a render as independent slices of work, each kept as an exact
 //! partial result, merged into the result one run would have produced.
 //!
 //! A render's work is its passes (pass p draws from streams keyed by p) and its receiver

@@ -1,4 +1,4 @@
-//! Wavelength as a physical quantity (DESIGN §12). Wavelengths are in nanometres (vacuum)
+//! Wavelength as a physical quantity. Wavelengths are in nanometres (vacuum)
 //! throughout, over the visible range [`LAMBDA_MIN`, `LAMBDA_MAX`] = 360–830 nm of the CIE
 //! 1931 observer. Here: [`dispersion`] (a refractive index as a function of wavelength — seed
 //! 004's media answer "which wavelengths share a path" with it: media whose index does not
@@ -30,7 +30,7 @@ pub const LAMBDA_F: f64 = 486.1327;
 pub const LAMBDA_C: f64 = 656.2725;
 
 /// A wavelength drawn for a path, with its probability density: the one wavelength the path
-/// carries on from where it meets dispersion (seed 004's "subset of wavelengths that share a
+/// carries on from where it meets dispersion (Zhdanov et al.'s (2020) "subset of wavelengths that share a
 /// path": all of them until then, one after). Drawn from the visible-importance density
 /// p(λ) ∝ 1/cosh²(0.0072 (λ − 538 nm)) over [`LAMBDA_MIN`, `LAMBDA_MAX`] (Radziszewski et al.
 /// 2009, as in pbrt-v4), which follows the eye's response and so keeps the colour noise of

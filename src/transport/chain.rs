@@ -149,7 +149,7 @@ pub trait Observer {
 
 impl Observer for () {}
 
-/// The wavelengths a path carries (seed 004's "subset of wavelengths that share a path"):
+/// The wavelengths a path carries (Zhdanov et al.'s (2020) "subset of wavelengths that share a path"):
 /// every one, seeing each medium at [`crate::spectrum::LAMBDA_D`] and every colour as RGB,
 /// until it meets dispersion, where it takes on `hero`'s one wavelength; or one, when `tracer`
 /// is at a wavelength (then `hero` is None). In a scene without dispersion `hero` is None and

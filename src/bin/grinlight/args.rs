@@ -24,7 +24,7 @@ pub struct Cli {
 pub enum Control {
     /// Error-controlled steps (default): --tol is the position error per unit arclength.
     Adaptive,
-    /// Seed 000 §4: --tmax, --tmin, random shrink/grow, --max-steps as N_max.
+    /// Tessendorf (2022) §4: --tmax, --tmin, random shrink/grow, --max-steps as N_max.
     Tessendorf,
     /// Fixed steps of --step.
     Fixed,
@@ -221,7 +221,7 @@ pub struct RenderArgs {
     #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
     receiver_photons: Option<u64>,
     /// Also draw the paths of the first N (≤ 10000) receiver photons through the scene's GRIN
-    /// fiber, with its index profile and the first receiver's irradiance (seed 004 fig. 5), as
+    /// fiber, with its index profile and the first receiver's irradiance (Zhdanov et al. (2020) fig. 5), as
     /// <output stem>.paths.png.
     #[arg(long)]
     paths: Option<u64>,

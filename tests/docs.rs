@@ -1,0 +1,163 @@
+//! The documentation stays true to the program: the README short, every link and picture in
+//! the documents there, the command-line reference the program's own help, and the documents
+//! and code speaking of the product, citing published works (docs/references.md).
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// The command-line reference as the program's help gives it.
+fn cli_reference() -> String {
+    let help = |args: &[&str]| {
+        let out = Command::new(env!("CARGO_BIN_EXE_grinlight"))
+            .args(args)
+            .output()
+            .expect("run grinlight");
+        assert!(out.status.success(), "{args:?}");
+        String::from_utf8(out.stdout).unwrap()
+    };
+    let mut doc = String::from(
+        "# Command-line reference\n\nGenerated from `grinlight help` (a test checks it is current; \
+         `GRINLIGHT_WRITE_DOCS=1 cargo test --release --test docs` rewrites it). The scene keys \
+         these options override are in [scene-format.md](scene-format.md); how to use them, in \
+         [guide.md](guide.md).\n\n## grinlight\n\n```\n",
+    );
+    doc += &help(&["--help"]);
+    doc += "```\n";
+    for command in ["render", "merge", "validate", "trace"] {
+        doc += &format!(
+            "\n## grinlight {command}\n\n```\n{}```\n",
+            help(&["help", command])
+        );
+    }
+    doc
+}
+
+#[test]
+fn the_cli_reference_is_the_programs_help() {
+    let path = Path::new("docs/cli.md");
+    let current = cli_reference();
+    if std::env::var_os("GRINLIGHT_WRITE_DOCS").is_some() {
+        std::fs::write(path, &current).unwrap();
+    }
+    assert!(
+        std::fs::read_to_string(path).is_ok_and(|t| t == current),
+        "docs/cli.md is stale: GRINLIGHT_WRITE_DOCS=1 cargo test --release --test docs"
+    );
+}
+
+#[test]
+fn the_readme_is_short() {
+    let lines = std::fs::read_to_string("README.md")
+        .unwrap()
+        .lines()
+        .count();
+    assert!(
+        lines <= 200,
+        "README.md has {lines} lines: the rest belongs in docs/"
+    );
+}
+
+/// README.md, CHANGELOG.md and every document in docs/.
+fn documents() -> Vec<PathBuf> {
+    let mut all = vec![PathBuf::from("README.md"), PathBuf::from("CHANGELOG.md")];
+    for entry in std::fs::read_dir("docs").unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "md") {
+            all.push(path);
+        }
+    }
+    all
+}
+
+/// Every `](target)` of a Markdown text that is not a web address or an anchor.
+fn local_links(text: &str) -> Vec<String> {
+    text.split("](")
+        .skip(1)
+        .filter_map(|rest| rest.split(')').next())
+        .map(|t| t.split('#').next().unwrap_or_default().trim().to_string())
+        .filter(|t| !t.is_empty() && !t.contains("://") && !t.starts_with("mailto:"))
+        .collect()
+}
+
+#[test]
+fn every_link_and_picture_in_the_documents_is_there() {
+    let mut missing = Vec::new();
+    for doc in documents() {
+        let text = std::fs::read_to_string(&doc).unwrap();
+        let dir = doc.parent().unwrap();
+        for link in local_links(&text) {
+            if !dir.join(&link).exists() {
+                missing.push(format!("{}: {link}", doc.display()));
+            }
+        }
+    }
+    assert!(missing.is_empty(), "{missing:#?}");
+}
+
+fn sources(dir: &Path, out: &mut Vec<PathBuf>) {
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.is_dir() {
+            sources(&path, out);
+        } else if path.extension().is_some_and(|e| {
+            ["rs", "toml", "md", "sh", "py", "sbatch"]
+                .iter()
+                .any(|x| e == *x)
+        }) {
+            out.push(path);
+        }
+    }
+}
+
+/// The repository speaks of the product: no words of how it was developed, and sources cited
+/// as published works (docs/references.md), not by names of documents a reader cannot open.
+/// CHANGELOG.md is the one place for history.
+#[test]
+fn the_repository_speaks_of_the_product() {
+    let mut files = vec![PathBuf::from("README.md"), PathBuf::from("Cargo.toml")];
+    for dir in [
+        "src", "tests", "examples", "scenes", "docs", "cluster", "bench",
+    ] {
+        if Path::new(dir).is_dir() {
+            sources(Path::new(dir), &mut files);
+        }
+    }
+    // Built from pieces, so this file does not match itself.
+    let words = [
+        ["seed", " 00"].concat(),
+        ["DESIGN", ".md"].concat(),
+        ["DESIGN", " §"].concat(),
+        ["sess", "ion"].concat(),
+        ["the ", "issue"].concat(),
+        ["issue", "'s"].concat(),
+        ["last ", "build"].concat(),
+        ["this ", "build"].concat(),
+    ];
+    let mut found = Vec::new();
+    for f in &files {
+        let Ok(text) = std::fs::read_to_string(f) else {
+            continue;
+        };
+        for (n, line) in text.lines().enumerate() {
+            let lower = line.to_lowercase();
+            if let Some(w) = words.iter().find(|w| lower.contains(&w.to_lowercase())) {
+                found.push(format!("{}:{}: '{w}': {}", f.display(), n + 1, line.trim()));
+            }
+        }
+    }
+    assert!(found.is_empty(), "{}", found.join("\n"));
+}
+
+/// The scene the README shows is a scene grinlight reads.
+#[test]
+fn the_readme_scene_loads() {
+    let readme = std::fs::read_to_string("README.md").unwrap();
+    let start = readme.find("```toml\n").expect("a TOML block") + 8;
+    let end = start + readme[start..].find("```").unwrap();
+    let (description, _) = grinlight::scene::load::parse_description(
+        Path::new("readme.toml"),
+        readme[start..end].to_string(),
+    )
+    .unwrap();
+    assert!(description.camera.is_some() && description.shapes.len() == 2);
+}
