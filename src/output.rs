@@ -18,6 +18,12 @@ use std::sync::atomic::{AtomicU64, Ordering};
 /// The first bytes of a grinlight partial result of any version ([`crate::shard::file`]).
 pub const PARTIAL_MAGIC: &[u8] = b"GRINLIGHT PARTIAL ";
 
+/// Whether `path` ends in `.exr` (any case).
+pub fn is_exr(path: &std::path::Path) -> bool {
+    path.extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("exr"))
+}
+
 /// What kind of file an output is: what an existing file at its path must look like to be
 /// replaced.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

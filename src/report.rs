@@ -3,6 +3,33 @@
 
 use crate::transport::Stats;
 
+/// Photons stored in each photon map.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Stored {
+    /// In the caustic map.
+    pub caustic: u64,
+    /// In the global map.
+    pub global: u64,
+}
+
+/// Seconds a render spent, by stage.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Seconds {
+    /// Tracing photons (the maps' or the receivers').
+    pub photons: f64,
+    /// Building the photon maps (kd-trees and the global map's precomputed irradiance).
+    pub maps: f64,
+    /// The camera pass (which includes the photon queries).
+    pub camera: f64,
+}
+
+impl Seconds {
+    /// All of it.
+    pub fn total(&self) -> f64 {
+        self.photons + self.maps + self.camera
+    }
+}
+
 /// Timings and photon counts of a render.
 #[derive(Clone, Debug, Default)]
 pub struct Report {
@@ -10,11 +37,10 @@ pub struct Report {
     pub passes: u32,
     /// Transport counts, summed over both passes of every pass.
     pub stats: Stats,
-    /// Photons stored in the caustic and global maps, summed over passes.
-    pub stored: (u64, u64),
-    /// Seconds tracing photons, building the maps (kd-trees and the global map's precomputed
-    /// irradiance), and in the camera pass (which includes the photon queries).
-    pub seconds: (f64, f64, f64),
+    /// Photons stored in the maps, summed over passes.
+    pub stored: Stored,
+    /// Where the time went.
+    pub seconds: Seconds,
     /// Set when the render was stopped before its end (see [`crate::render::Observer::stop_requested`]):
     /// what it holds.
     pub partial: Option<String>,
@@ -26,7 +52,11 @@ pub struct Report {
 impl Report {
     /// A multi-line summary.
     pub fn summary(&self) -> String {
-        let (trace, build, camera) = self.seconds;
+        let Seconds {
+            photons: trace,
+            maps: build,
+            camera,
+        } = self.seconds;
         let rate = if trace > 0.0 {
             self.stats.photons_emitted as f64 / trace
         } else {
@@ -42,8 +72,8 @@ impl Report {
              photon tracing {trace:.2} s, map build {build:.3} s, camera pass {camera:.2} s\n{}",
             self.passes,
             self.stats.photons_emitted,
-            self.stored.0,
-            self.stored.1,
+            self.stored.caustic,
+            self.stored.global,
             self.stats.summary()
         )
     }

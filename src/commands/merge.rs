@@ -1,7 +1,7 @@
 //! `grinlight merge`: the partial results of a render's shards merged into its results, bit
 //! for bit those of one run of the whole render (see [`crate::shard`]).
 
-use super::render::{output_exr, publish, Files, RenderOutcome};
+use super::render::{output_exr, publish, Files, RenderOutcome, Work};
 use super::Observer;
 use crate::error::{Error, Result};
 use crate::output::Outputs;
@@ -56,7 +56,7 @@ pub fn merge(job: &MergeJob, observer: &dyn Observer) -> Result<RenderOutcome> {
     }
     let exr = output_exr(job.output.clone(), &settings, &path);
     let mut outputs = Outputs::new(scene.inputs.iter().chain(&job.partials));
-    let files = Files::plan(&scene, (exr, settings.output.png, 0), &mut outputs)?;
+    let files = Files::plan(&scene, exr, settings.output.png, 0, &mut outputs)?;
     for p in &job.partials {
         let part = Partial::read(p)?;
         part.fits(&scene).map_err(|why| {
@@ -76,7 +76,7 @@ pub fn merge(job: &MergeJob, observer: &dyn Observer) -> Result<RenderOutcome> {
         merged.photons
     ));
     let complete = merged.is_complete();
-    let mut outcome = publish((&scene, &settings), merged, (None, None), &files, observer)?;
+    let mut outcome = publish(&scene, &settings, merged, Work::default(), &files, observer)?;
     outcome.incomplete = !complete;
     Ok(outcome)
 }

@@ -161,10 +161,12 @@ impl Files {
     /// to `outputs` (see [`Outputs`]).
     pub(super) fn plan(
         scene: &Scene,
-        (exr, png, paths): (PathBuf, bool, u64),
+        exr: PathBuf,
+        png: bool,
+        paths: u64,
         outputs: &mut Outputs,
     ) -> Result<Self> {
-        if !scene::objects::is_exr(&exr) {
+        if !crate::output::is_exr(&exr) {
             return Err(Error::Usage(format!(
                 "{}: the output is a multi-layer EXR and must end in .exr (the PNG preview and \
                  receiver files are written beside it)",
@@ -279,7 +281,7 @@ pub fn render(job: &RenderJob, observer: &dyn Observer) -> Result<RenderOutcome>
         None => {
             let exr = output_exr(job.output.clone(), &settings, &job.scene);
             let state = beside(&exr, "partial");
-            let files = Files::plan(&scene, (exr, settings.output.png, job.paths), &mut outputs)?;
+            let files = Files::plan(&scene, exr, settings.output.png, job.paths, &mut outputs)?;
             (Some(files), state)
         }
     };
@@ -364,13 +366,11 @@ pub fn render(job: &RenderJob, observer: &dyn Observer) -> Result<RenderOutcome>
             job.scene.display()
         ));
     }
-    let mut outcome = publish(
-        (&scene, &settings),
-        ran.partial,
-        (ran.receivers.as_ref(), ran.camera.as_ref()),
-        &files,
-        observer,
-    )?;
+    let work = Work {
+        receivers: ran.receivers.as_ref(),
+        camera: ran.camera.as_ref(),
+    };
+    let mut outcome = publish(&scene, &settings, ran.partial, work, &files, observer)?;
     outcome.interrupted = interrupted;
     outcome.incomplete = interrupted;
     if let (Some(fiber), false) = (fiber, interrupted) {
@@ -502,33 +502,36 @@ fn remove_own_checkpoint(state: &Path, header: &Header) -> Result<()> {
     }
 }
 
+/// The reports of the work a render did (none for a merge).
+#[derive(Clone, Copy, Default)]
+pub(super) struct Work<'a> {
+    /// The receiver photons' report.
+    pub receivers: Option<&'a Report>,
+    /// The camera's report.
+    pub camera: Option<&'a Report>,
+}
+
 /// Writes a render's results from its partial (a whole render's, or shards merged): each
-/// receiver's files and flux, the energy budget, and the film's EXR and PNG. Reports of the
-/// work (`receivers`, `camera`) are shown when given. A partial lacking photons gives an
-/// estimate scaled to the whole batch; the report says so.
+/// receiver's files and flux, the energy budget, and the film's EXR and PNG; they land
+/// together. The reports of the `work` are shown when given. A partial lacking photons gives
+/// an estimate scaled to the whole batch; the report says so.
 pub(super) fn publish(
-    (scene, settings): (&Scene, &Settings),
+    scene: &Scene,
+    settings: &Settings,
     partial: Partial,
-    (receivers, camera): (Option<&Report>, Option<&Report>),
+    work: Work,
     files: &Files,
     observer: &dyn Observer,
 ) -> Result<RenderOutcome> {
-    crate::output::together(|| {
-        write_results(
-            (scene, settings),
-            partial,
-            (receivers, camera),
-            files,
-            observer,
-        )
-    })
+    crate::output::together(|| write_results(scene, settings, partial, work, files, observer))
 }
 
 /// [`publish`]'s writes, each file written to its temporary file.
 fn write_results(
-    (scene, settings): (&Scene, &Settings),
+    scene: &Scene,
+    settings: &Settings,
     partial: Partial,
-    (receivers, camera): (Option<&Report>, Option<&Report>),
+    Work { receivers, camera }: Work,
     files: &Files,
     observer: &dyn Observer,
 ) -> Result<RenderOutcome> {
@@ -550,8 +553,8 @@ fn write_results(
                 "measured {} receiver(s) with {} photons in {:.2} s ({:.0} photons/s)",
                 scene.receivers.len(),
                 report.stats.photons_emitted,
-                report.seconds.0,
-                report.stats.photons_emitted as f64 / report.seconds.0.max(1e-9)
+                report.seconds.photons,
+                report.stats.photons_emitted as f64 / report.seconds.photons.max(1e-9)
             ));
             observer.line(&report.stats.summary());
         }
@@ -602,10 +605,7 @@ fn write_results(
         }
     );
     match camera {
-        Some(r) => observer.line(&format!(
-            "rendered {what} in {:.2} s",
-            r.seconds.0 + r.seconds.1 + r.seconds.2
-        )),
+        Some(r) => observer.line(&format!("rendered {what} in {:.2} s", r.seconds.total())),
         None => observer.line(&format!("merged {what}")),
     }
     if film.rejected() > 0 {

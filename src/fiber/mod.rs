@@ -1,12 +1,10 @@
 //! The GRIN fiber as an instrument (Zhdanov et al. (2020) §5): a scene's fiber — a cylinder filled with a
 //! gradient medium — its layered twin of homogeneous cylinders in optical contact, made by
 //! editing the scene's description and building again ([`Description::layer_fiber`]), the
-//! comparison of the two on a receiver ([`validate`]) and Zhdanov et al.'s (2020) figure ([`figure`]).
+//! drawing of its photons' paths ([`figure`]); `grinlight validate`
+//! ([`crate::commands::validate`]) compares the two on a receiver.
 
 pub mod figure;
-mod validate;
-
-pub use validate::{validate, ValidateJob};
 
 use crate::error::{Error, Result};
 use crate::media::{Medium, UniformMedium};

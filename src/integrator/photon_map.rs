@@ -132,8 +132,8 @@ impl<'a> PhotonMapper<'a> {
         if batch == Batch::Global {
             map.precompute_irradiance(self.photons.knn as usize, self.max_r2);
         }
-        report.seconds.0 += (t1 - t0).as_secs_f64();
-        report.seconds.1 += t1.elapsed().as_secs_f64();
+        report.seconds.photons += (t1 - t0).as_secs_f64();
+        report.seconds.maps += t1.elapsed().as_secs_f64();
         Some(map)
     }
 
@@ -232,8 +232,8 @@ impl Integrator for PhotonMapper<'_> {
             true => Some(self.map(Batch::Global, (index, self.photons.global), report, stop)?),
             false => None,
         };
-        report.stored.0 += caustic.as_ref().map_or(0, |m| m.len() as u64);
-        report.stored.1 += global.as_ref().map_or(0, |m| m.len() as u64);
+        report.stored.caustic += caustic.as_ref().map_or(0, |m| m.len() as u64);
+        report.stored.global += global.as_ref().map_or(0, |m| m.len() as u64);
         Some(Maps {
             index,
             caustic,

@@ -511,7 +511,7 @@ impl PhotonWalk<'_, '_> {
     }
 }
 
-impl chain::Observer for PhotonWalk<'_, '_> {
+impl chain::ChainEvents for PhotonWalk<'_, '_> {
     fn point(&mut self, p: DVec3) {
         let d = p - self.last;
         let p = if d.length() > self.reach {

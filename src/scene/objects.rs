@@ -169,7 +169,7 @@ pub fn read_output(t: &mut TableReader) -> Result<OutputSettings> {
     let path = t.output_file("path")?;
     t.check(
         "path",
-        path.as_ref().is_none_or(|p| is_exr(p)),
+        path.as_ref().is_none_or(|p| crate::output::is_exr(p)),
         "must name an EXR file (…/name.exr): the PNG preview and receiver files are written beside it",
     )?;
     Ok(OutputSettings {
@@ -177,12 +177,6 @@ pub fn read_output(t: &mut TableReader) -> Result<OutputSettings> {
         png: t.bool_or("png", true)?,
         exposure: exposure as f32,
     })
-}
-
-/// Whether `path` ends in `.exr` (any case).
-pub fn is_exr(path: &std::path::Path) -> bool {
-    path.extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("exr"))
 }
 
 fn unit_color(t: &mut TableReader, key: &str, default: Option<Rgb>) -> Result<Rgb> {

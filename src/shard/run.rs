@@ -73,7 +73,7 @@ pub fn run(
             let stopped = report.partial.is_some();
             let mut total = ran.receivers.take().unwrap_or_default();
             total.stats.add(&report.stats);
-            total.seconds.0 += report.seconds.0;
+            total.seconds.photons += report.seconds.photons;
             total.passes = 1;
             total.partial = report.partial;
             ran.receivers = Some(total);

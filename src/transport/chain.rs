@@ -126,7 +126,7 @@ impl Chain {
 }
 
 /// Told of what a chain passes (all optional).
-pub trait Observer {
+pub trait ChainEvents {
     /// A point the path passes: each accepted point of a curved stretch, each surface met,
     /// and where it leaves the world.
     fn point(&mut self, _p: DVec3) {}
@@ -147,7 +147,7 @@ pub trait Observer {
     }
 }
 
-impl Observer for () {}
+impl ChainEvents for () {}
 
 /// The wavelengths a path carries (Zhdanov et al.'s (2020) "subset of wavelengths that share a path"):
 /// every one, seeing each medium at [`crate::spectrum::LAMBDA_D`] and every colour as RGB,
@@ -247,7 +247,7 @@ impl<'w> Walker<'w> {
         ray: Ray,
         rng: &mut R,
         stats: &mut Stats,
-        observer: &mut dyn Observer,
+        observer: &mut dyn ChainEvents,
     ) -> Chain {
         let mut lent = Lent { rng, stats };
         let mut chain = Chain {
@@ -294,7 +294,7 @@ impl<'w> Walker<'w> {
         chain: &mut Chain,
         at: &mut Cursor,
         lent: &mut Lent<R>,
-        observer: &mut dyn Observer,
+        observer: &mut dyn ChainEvents,
     ) -> ControlFlow<End> {
         let scene = self.tracer.scene;
         if self.depth == 0 {
@@ -404,7 +404,7 @@ impl<'w> Walker<'w> {
         chain: &mut Chain,
         (at, (prim, position, normals, incoming)): (&mut Cursor, (usize, DVec3, Normals, DVec3)),
         rng: &mut impl Rng,
-        observer: &mut dyn Observer,
+        observer: &mut dyn ChainEvents,
     ) -> ControlFlow<End> {
         let scene = self.tracer.scene;
         let surface = scene.surfaces[prim];
@@ -460,7 +460,7 @@ pub fn principal_ray(
     max_events: u32,
 ) -> Option<(DVec3, u32)> {
     struct FirstDetector(Option<DVec3>);
-    impl Observer for FirstDetector {
+    impl ChainEvents for FirstDetector {
         fn detector(&mut self, _: usize, position: DVec3, _: Rgb) -> ControlFlow<()> {
             self.0 = Some(position);
             ControlFlow::Break(())

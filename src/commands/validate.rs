@@ -2,9 +2,9 @@
 //! cylinders, Zhdanov et al. (2020) §5), measured with independent photon streams and compared bin by bin
 //! on the first receiver.
 
-use super::Layer;
 use crate::error::{at_least_one, positive};
 use crate::error::{Error, Result};
+use crate::fiber::Layer;
 use crate::output::{Kind, Outputs};
 use crate::receiver;
 use crate::receiver::{Comparison, Measurement};
