@@ -4,7 +4,7 @@
 
 use super::media::{read_medium, uniform};
 use super::model::{Description, Media, Scene, Shape, Surface};
-use super::objects::{
+use super::read::{
     read_camera, read_environment, read_light_and_spectrum, read_material, read_output,
     read_receiver, read_render, read_shape, Interior,
 };

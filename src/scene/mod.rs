@@ -1,12 +1,12 @@
 //! Scenes: a TOML file read with every key's position kept ([`table`], [`source`]), its
-//! tables ([`media`], [`objects`], [`mesh`]) read into a [`Description`] ([`load`]), and the
+//! tables ([`media`], [`read`], [`mesh`]) read into a [`Description`] ([`load`]), and the
 //! description built into the render-ready [`Scene`] ([`model`]).
 
 pub mod load;
 pub mod media;
 pub mod mesh;
 pub mod model;
-pub mod objects;
+pub mod read;
 pub mod source;
 pub mod table;
 pub mod vdb;

@@ -1,0 +1,47 @@
+//! `[camera]`: the view. Every key's unit and default is in `docs/scene-format.md`.
+
+use crate::camera::Camera;
+use crate::error::Result;
+use crate::scene::table::TableReader;
+use glam::DVec3;
+
+/// `[camera]`.
+pub fn read_camera(t: &mut TableReader) -> Result<Camera> {
+    let position = t.vec3("position")?;
+    let look_at = t.vec3("look_at")?;
+    let up = t.vec3_or("up", DVec3::Y)?;
+    let width = t.count_or("width", 640)?;
+    let height = t.count_or("height", 480)?;
+    t.check("width", width <= 65_536, "must be at most 65536")?;
+    t.check("height", height <= 65_536, "must be at most 65536")?;
+    let (width, height) = (width as u32, height as u32);
+    let fov_y = match (t.has("fov_y_deg"), t.has("fov_x_deg")) {
+        (true, false) => t.f64("fov_y_deg")?,
+        (false, true) => Camera::fov_y_from_x(t.f64("fov_x_deg")?, width, height),
+        _ => {
+            return Err(t.error(
+                "fov_y_deg",
+                "give exactly one of `fov_y_deg` and `fov_x_deg`",
+            ))
+        }
+    };
+    let key = if t.has("fov_y_deg") {
+        "fov_y_deg"
+    } else {
+        "fov_x_deg"
+    };
+    t.check(
+        key,
+        fov_y > 0.0 && fov_y < 179.0,
+        "the field of view must be in (0°, 179°)",
+    )?;
+    let mut camera = Camera::new(position, look_at, up, fov_y, width, height)
+        .map_err(|e| t.error("look_at", e))?;
+    let aperture = t.f64_or("aperture_radius", 0.0)?;
+    t.check("aperture_radius", aperture >= 0.0, "must be ≥ 0")?;
+    if aperture > 0.0 {
+        let focus = t.positive("focus_distance")?;
+        camera.lens = Some((aperture, focus));
+    }
+    Ok(camera)
+}

@@ -1,0 +1,192 @@
+//! `[[light]]`: lights, their spectra, and the environment. Every key's unit and default is in `docs/scene-format.md`.
+
+use super::shape::parallelogram;
+use crate::color::Rgb;
+use crate::environment::{Environment, Sky};
+use crate::error::Result;
+use crate::lights::{Emitter, Light};
+use crate::scene::table::TableReader;
+use crate::spectrum::emission::Shape;
+use crate::spectrum::Spectrum;
+use glam::DVec3;
+
+/// A light's optional `spectrum` (None: not given — the light is D65 in bands and its RGB in
+/// images): the shape of its emission over wavelength, `"D65"`, `"E"` (equal energy),
+/// `{ blackbody = kelvin }` or `{ gaussian = [peak_nm, fwhm_nm] }` (an LED).
+pub fn read_spectrum(t: &mut TableReader) -> Result<Option<Spectrum>> {
+    let Some(value) = t.value_opt("spectrum") else {
+        return Ok(None);
+    };
+    let bad = |why: &str| {
+        t.error(
+            "spectrum",
+            format!("{why} (expected \"D65\", \"E\", {{ blackbody = kelvin }} or {{ gaussian = [peak_nm, fwhm_nm] }})"),
+        )
+    };
+    let shape = match &value {
+        toml::Value::String(s) if s == "D65" => Shape::D65,
+        toml::Value::String(s) if s == "E" => Shape::Equal,
+        toml::Value::Table(table) if table.len() == 1 => {
+            let (model, v) = table.iter().next().expect("one entry");
+            let numbers = t.numbers_in("spectrum", v)?;
+            match (model.as_str(), &numbers[..]) {
+                ("blackbody", &[k]) if k > 0.0 && k.is_finite() => Shape::Blackbody { kelvin: k },
+                ("gaussian", &[peak, fwhm])
+                    if fwhm > 0.0 && peak.is_finite() && fwhm.is_finite() =>
+                {
+                    Shape::Gaussian { peak, fwhm }
+                }
+                _ => return Err(bad(&format!("bad `{model}` spectrum"))),
+            }
+        }
+        toml::Value::String(s) => return Err(bad(&format!("unknown spectrum '{s}'"))),
+        _ => return Err(bad("not a spectrum")),
+    };
+    Spectrum::new(shape)
+        .map(Some)
+        .map_err(|e| t.error("spectrum", e))
+}
+
+/// A light and the spectrum it emits. With a `spectrum`, its power key (one number, or equal
+/// RGB: the power in W, intensity, radiance or irradiance as the light's type says) scales the
+/// spectrum, and the light appears in images in the spectrum's colour, ∫ Φ r̄ dλ
+/// ([`Spectrum::colour`]; channels outside sRGB's gamut clipped to zero). Without one, its RGB
+/// is its colour and it emits D65 in receiver bands.
+pub fn read_light_and_spectrum(
+    t: &mut TableReader,
+    kind: &str,
+) -> Result<(Light, Option<Spectrum>)> {
+    let mut light = read_light(t, kind)?;
+    let Some(spectrum) = read_spectrum(t)? else {
+        return Ok((light, None));
+    };
+    let value = light.colour_mut();
+    t.check(
+        "spectrum",
+        value.x == value.y && value.y == value.z,
+        "a light with a spectrum gives its power as one number (or equal RGB); the spectrum gives its colour",
+    )?;
+    let colour = spectrum.colour().0.max(DVec3::ZERO);
+    t.check(
+        "spectrum",
+        colour.max_element() > 0.0,
+        "the spectrum is invisible: no sRGB colour between 380 and 780 nm",
+    )?;
+    *value = Rgb(value.0 * colour);
+    Ok((light, Some(spectrum)))
+}
+
+/// A light of type `kind` (not `environment`).
+pub fn read_light(t: &mut TableReader, kind: &str) -> Result<Light> {
+    let area = |t: &mut TableReader, emitter: Emitter| -> Result<Light> {
+        let radiance = t.rgb_or("radiance", None)?;
+        Ok(Light::Area { emitter, radiance })
+    };
+    Ok(match kind {
+        "point" => Light::Point { position: t.vec3("position")?, intensity: t.rgb_or("intensity", None)? },
+        "spot" => {
+            let position = t.vec3("position")?;
+            let direction = t.direction_or("direction", -DVec3::Y)?;
+            let intensity = t.rgb_or("intensity", None)?;
+            let cone = t.f64("cone_deg")?;
+            t.check("cone_deg", cone > 0.0 && cone <= 180.0, "must be in (0°, 180°]")?;
+            let falloff = t.f64_or("falloff_deg", cone)?;
+            t.check("falloff_deg", (0.0..=cone).contains(&falloff), "must be in [0°, cone_deg]")?;
+            Light::Spot {
+                position,
+                direction,
+                intensity,
+                cos_inner: falloff.to_radians().cos(),
+                cos_outer: cone.to_radians().cos(),
+            }
+        }
+        "quad" => {
+            let (origin, e1, e2) = parallelogram(t, "vertices")?;
+            area(t, Emitter::Quad { origin, e1, e2 })?
+        }
+        "disk" => {
+            let emitter = Emitter::Disk {
+                center: t.vec3("center")?,
+                normal: t.direction_or("normal", -DVec3::Y)?,
+                radius: t.positive("radius")?,
+            };
+            area(t, emitter)?
+        }
+        "led" => {
+            let emitter = Emitter::Disk {
+                center: t.vec3("center")?,
+                normal: t.direction_or("normal", DVec3::Z)?,
+                radius: t.positive("radius")?,
+            };
+            let power = t.positive("power")?;
+            let m = t.f64_or("m", 1.0)?;
+            t.check("m", m >= 0.0, "must be ≥ 0")?;
+            let color = t.rgb_or("color", Some(Rgb::ONE))?;
+            let peak_intensity = color * (power * (m + 1.0) / std::f64::consts::TAU);
+            Light::Led { emitter, peak_intensity, m }
+        }
+        "directional" => Light::Directional { direction: t.direction_or("direction", -DVec3::Y)?, irradiance: t.rgb_or("irradiance", None)? },
+        other => return Err(t.error("type", format!("unknown light type '{other}' (point, spot, quad, disk, led, directional, environment)"))),
+    })
+}
+
+/// A `[[light]]` of type `environment`; image files are relative to `dir`.
+pub fn read_environment(t: &mut TableReader) -> Result<Environment> {
+    let sky = match (t.has("file"), t.string_opt("sky")?) {
+        (true, None) => {
+            let path = t.input_file("file")?;
+            let img = crate::texture::open_image(&path)
+                .map_err(|e| t.error("file", e))?
+                .to_rgb32f();
+            let bad = img
+                .pixels()
+                .filter(|p| !p.0.iter().all(|c| c.is_finite() && *c >= 0.0));
+            if let Some(first) = img
+                .enumerate_pixels()
+                .find(|(_, _, p)| !p.0.iter().all(|c| c.is_finite() && *c >= 0.0))
+            {
+                return Err(t.error(
+                    "file",
+                    format!(
+                        "{}: {} pixel(s) are not finite non-negative radiances, the first at \
+                         (x {}, y {}): {:?} (fix or clamp them in the image)",
+                        path.display(),
+                        bad.count(),
+                        first.0,
+                        first.1,
+                        first.2 .0
+                    ),
+                ));
+            }
+            Sky::Image {
+                width: img.width() as usize,
+                height: img.height() as usize,
+                pixels: img.pixels().map(|p| p.0).collect(),
+            }
+        }
+        (false, Some(sky)) => match sky.as_str() {
+            "starfield" => Sky::Starfield {
+                seed: t.natural_or("seed", 1)?,
+            },
+            "checker" => Sky::Checker {
+                squares: t.count_or("squares", 24)?.min(1 << 20) as u32,
+            },
+            other => {
+                return Err(t.error("sky", format!("unknown sky '{other}' (starfield, checker)")))
+            }
+        },
+        _ => {
+            return Err(t.error(
+                "file",
+                "give exactly one of `file` (a lat-long EXR or HDR) and `sky`",
+            ))
+        }
+    };
+    let scale = t.f64_or("scale", 1.0)?;
+    t.check("scale", scale >= 0.0, "must be ≥ 0")?;
+    Ok(Environment {
+        sky,
+        rotation: t.f64_or("rotation_deg", 0.0)?.to_radians(),
+        scale,
+    })
+}

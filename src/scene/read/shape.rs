@@ -1,0 +1,259 @@
+//! `[[shape]]`: primitives, boxes and OBJ meshes placed in the scene. Every key's unit and default is in `docs/scene-format.md`.
+
+use crate::error::Result;
+use crate::scene::table::{TableReader, MAX_MAGNITUDE};
+use crate::shapes::{Primitive, TriangleMesh};
+use glam::{DMat3, DVec3};
+
+/// A shape before names are resolved.
+pub struct ShapeDesc {
+    /// Its primitives.
+    pub primitives: Vec<Primitive>,
+    /// Material name.
+    pub material: String,
+    /// Interior override.
+    pub interior: Option<String>,
+}
+
+/// The parallelogram of four vertices v0..v3 (refs convention: triangles (v0,v1,v2), (v0,v2,v3)).
+pub(super) fn parallelogram(t: &mut TableReader, key: &str) -> Result<(DVec3, DVec3, DVec3)> {
+    let v = t.vec3_list(key)?;
+    t.check(
+        key,
+        v.len() == 4,
+        format!("expected 4 vertices, got {}", v.len()),
+    )?;
+    let (e1, e2) = (v[1] - v[0], v[3] - v[0]);
+    let scale = e1.length().max(e2.length());
+    t.check(
+        key,
+        (v[0] + e1 + e2 - v[2]).length() <= 1e-9 * scale.max(1e-300),
+        "the 4 vertices are not a parallelogram (v2 must be v1 + v3 − v0)",
+    )?;
+    t.check(key, e1.cross(e2).length() > 0.0, "the quad has zero area")?;
+    Ok((v[0], e1, e2))
+}
+
+/// `[[shape]]`; mesh files are relative to `dir`.
+pub fn read_shape(t: &mut TableReader) -> Result<ShapeDesc> {
+    let kind = t.string("type")?;
+    let primitives = match kind.as_str() {
+        "sphere" => vec![Primitive::Sphere {
+            center: t.vec3("center")?,
+            radius: t.positive("radius")?,
+        }],
+        "cylinder" => {
+            let base = t.vec3("base")?;
+            let axis = t.direction_or("axis", DVec3::Z)?;
+            let radius = t.positive("radius")?;
+            let height = t.positive("height")?;
+            let mut p = vec![Primitive::Tube {
+                base,
+                axis,
+                radius,
+                height,
+            }];
+            if t.bool_or("capped", true)? {
+                p.push(Primitive::Disk {
+                    center: base,
+                    normal: -axis,
+                    radius,
+                    inner: 0.0,
+                });
+                p.push(Primitive::Disk {
+                    center: base + axis * height,
+                    normal: axis,
+                    radius,
+                    inner: 0.0,
+                });
+            }
+            p
+        }
+        "box" => {
+            let (lo, hi) = (t.vec3("min")?, t.vec3("max")?);
+            t.check(
+                "max",
+                lo.cmplt(hi).all(),
+                "every component of `max` must exceed `min`",
+            )?;
+            box_faces(lo, hi)
+        }
+        "quad" => {
+            let (origin, e1, e2) = parallelogram(t, "vertices")?;
+            vec![Primitive::Quad { origin, e1, e2 }]
+        }
+        "disk" => {
+            let center = t.vec3("center")?;
+            let normal = t.direction_or("normal", DVec3::Y)?;
+            let radius = t.positive("radius")?;
+            let inner = t.f64_or("inner_radius", 0.0)?;
+            t.check(
+                "inner_radius",
+                (0.0..radius).contains(&inner),
+                "must be in [0, radius)",
+            )?;
+            vec![Primitive::Disk {
+                center,
+                normal,
+                radius,
+                inner,
+            }]
+        }
+        "mesh" => read_mesh(t)?,
+        other => {
+            return Err(t.error(
+                "type",
+                format!("unknown shape type '{other}' (sphere, cylinder, box, quad, disk, mesh)"),
+            ))
+        }
+    };
+    Ok(ShapeDesc {
+        primitives,
+        material: t.string("material")?,
+        interior: t.string_opt("interior")?,
+    })
+}
+
+/// The six outward-facing quads of an axis-aligned box.
+fn box_faces(lo: DVec3, hi: DVec3) -> Vec<Primitive> {
+    let d = hi - lo;
+    let (x, y, z) = (DVec3::X * d.x, DVec3::Y * d.y, DVec3::Z * d.z);
+    vec![
+        Primitive::Quad {
+            origin: lo,
+            e1: y,
+            e2: x,
+        }, // −z
+        Primitive::Quad {
+            origin: lo + z,
+            e1: x,
+            e2: y,
+        }, // +z
+        Primitive::Quad {
+            origin: lo,
+            e1: z,
+            e2: y,
+        }, // −x
+        Primitive::Quad {
+            origin: lo + x,
+            e1: y,
+            e2: z,
+        }, // +x
+        Primitive::Quad {
+            origin: lo,
+            e1: x,
+            e2: z,
+        }, // −y
+        Primitive::Quad {
+            origin: lo + y,
+            e1: z,
+            e2: x,
+        }, // +y
+    ]
+}
+
+fn read_mesh(t: &mut TableReader) -> Result<Vec<Primitive>> {
+    let path = t.input_file("file")?;
+    let translate = t.vec3_or("translate", DVec3::ZERO)?;
+    let scale = t.f64_or("scale", 1.0)?;
+    t.check("scale", scale != 0.0, "must not be 0")?;
+    let rot = t.vec3_or("rotate_deg", DVec3::ZERO)?;
+    let m = DMat3::from_rotation_z(rot.z.to_radians())
+        * DMat3::from_rotation_y(rot.y.to_radians())
+        * DMat3::from_rotation_x(rot.x.to_radians());
+    let obj = crate::scene::mesh::load_triangles(&path).map_err(|e| t.error("file", e))?;
+    let smooth = t.bool_or("smooth", obj.normals.is_some())?;
+    // Placed in f64, stored in f32: the stored vertices are the geometry.
+    let mut vertices = obj.positions;
+    for (i, v) in vertices.iter_mut().enumerate() {
+        let given = DVec3::from(v.map(f64::from));
+        t.check(
+            "file",
+            given.abs().max_element() <= MAX_MAGNITUDE,
+            format!(
+                "{}: vertex {} lies at {:?}, beyond ±{MAX_MAGNITUDE:e}",
+                path.display(),
+                i + 1,
+                v
+            ),
+        )?;
+        let p = translate + m * (scale * given);
+        t.check(
+            "scale",
+            p.abs().max_element() <= MAX_MAGNITUDE,
+            format!(
+                "{}: scaled and moved, a vertex lies beyond ±{MAX_MAGNITUDE:e}",
+                path.display()
+            ),
+        )?;
+        *v = p.as_vec3().to_array();
+    }
+    let faces = obj.triangles.len();
+    let at = |i: u32| DVec3::from(vertices[i as usize].map(f64::from));
+    let mut triangles = obj.triangles;
+    triangles.retain(|&[a, b, c]| (at(b) - at(a)).cross(at(c) - at(a)).length_squared() > 0.0);
+    if triangles.is_empty() {
+        // A file with an unusable line says so rather than "zero area" (read again: only here).
+        let problem = std::fs::read(&path)
+            .ok()
+            .and_then(|b| crate::scene::mesh::diagnose(&b));
+        return Err(match problem {
+            Some(p) => t.error("file", format!("{}: {p}", path.display())),
+            None => t.error(
+                "scale",
+                format!(
+                    "{}: all {faces} triangles have zero area at this scale",
+                    path.display()
+                ),
+            ),
+        });
+    }
+    let duplicates = crate::scene::mesh::drop_duplicate_triangles(&vertices, &mut triangles);
+    if duplicates > 0 {
+        t.warn(
+            "file",
+            format!(
+                "{}: {duplicates} triangle(s) repeat an earlier one's corners and were left out",
+                path.display()
+            ),
+        );
+    }
+    triangles.shrink_to_fit();
+    let normals = match (smooth, obj.normals) {
+        (false, _) => None,
+        // Normals transform by the inverse transpose: the rotation, and the sign of the scale.
+        (true, Some(mut n)) => {
+            for v in &mut n {
+                let w = scale.signum() * (m * DVec3::from(v.map(f64::from)));
+                *v = w.normalize_or_zero().as_vec3().to_array();
+            }
+            Some(n)
+        }
+        (true, None) => Some(vertex_normals(&vertices, &triangles)),
+    };
+    let mesh = TriangleMesh::new(vertices, triangles, normals, obj.texcoords)
+        .map_err(|e| t.error("file", e))?;
+    Ok(vec![Primitive::Mesh(std::sync::Arc::new(mesh))])
+}
+
+/// Vertex normals of a mesh without them, by Max's weights (J. Graphics Tools 4(2), 1999):
+/// at each corner, e1 × e2 / (|e1|² |e2|²) with e1, e2 the corner's edges, summed over the
+/// triangles that share the vertex (by index). Exact where the vertex and its neighbours lie on
+/// a sphere, and so O(h²) on smooth surfaces, where area or angle weights err by O(h) on
+/// irregular meshes. A vertex no triangle uses gets +z.
+fn vertex_normals(vertices: &[[f32; 3]], triangles: &[[u32; 3]]) -> Vec<[f32; 3]> {
+    let at = |i: u32| DVec3::from(vertices[i as usize].map(f64::from));
+    let mut sum = vec![DVec3::ZERO; vertices.len()];
+    for &[a, b, c] in triangles {
+        for (v, next, prev) in [(a, b, c), (b, c, a), (c, a, b)] {
+            let (e1, e2) = (at(next) - at(v), at(prev) - at(v));
+            let w = e1.length_squared() * e2.length_squared();
+            if w > 0.0 {
+                sum[v as usize] += e1.cross(e2) / w;
+            }
+        }
+    }
+    sum.into_iter()
+        .map(|n| n.try_normalize().unwrap_or(DVec3::Z).as_vec3().to_array())
+        .collect()
+}
