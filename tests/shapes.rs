@@ -3,7 +3,7 @@
 use glam::DVec3;
 use grinlight::accel::Accel;
 use grinlight::curve::CurvedSegment;
-use grinlight::shapes::Primitive;
+use grinlight::shapes::{Primitive, Triangle};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 
@@ -93,7 +93,7 @@ fn signed(p: &Primitive, x: DVec3) -> f64 {
         }
         Primitive::Quad { origin, e1, e2 } => (x - origin).dot(e1.cross(e2).normalize()),
         Primitive::Disk { center, normal, .. } => (x - center).dot(normal),
-        Primitive::Triangle { v0, e1, e2 } => (x - v0).dot(e1.cross(e2).normalize()),
+        Primitive::Triangle(Triangle { v0, e1, e2 }) => (x - v0).dot(e1.cross(e2).normalize()),
         Primitive::Mesh(_) => unreachable!("meshes are tested triangle by triangle"),
     }
 }
@@ -117,7 +117,7 @@ fn on_primitive(p: &Primitive, x: DVec3) -> bool {
             inner,
             ..
         } => (inner..=radius).contains(&(x - center).length()),
-        Primitive::Triangle { v0, e1, e2 } => {
+        Primitive::Triangle(Triangle { v0, e1, e2 }) => {
             let n = e1.cross(e2);
             let u = (x - v0).cross(e2).dot(n) / n.length_squared();
             let v = e1.cross(x - v0).dot(n) / n.length_squared();

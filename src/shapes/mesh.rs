@@ -3,7 +3,8 @@
 //! independent triangles"). The f32 vertices *are* the geometry; every test converts them to
 //! f64 exactly and runs in f64, as for any other primitive.
 
-use super::primitive::{padded_box, Hit, Primitive};
+use super::hit::{padded_box, Hit};
+use super::triangle::Triangle;
 use crate::curve::{ArcHull, Path};
 use glam::{DVec2, DVec3, Vec3A};
 use obvhs::aabb::Aabb;
@@ -186,10 +187,10 @@ impl TriangleMesh {
         self.triangles[i].map(|k| DVec3::from(self.vertices[k as usize].map(f64::from)))
     }
 
-    /// Triangle `i` as a primitive, in f64.
-    fn triangle(&self, i: usize) -> Primitive {
+    /// Triangle `i`, in f64.
+    fn triangle(&self, i: usize) -> Triangle {
         let [a, b, c] = self.corners(i);
-        Primitive::triangle(a, b, c)
+        Triangle::new(a, b, c)
     }
 
     /// `hit` on triangle `i` at `point`, completed there by barycentric weights: its (u, v)
@@ -256,8 +257,8 @@ impl TriangleMesh {
     /// returns false: the BVH is descended where a node's box, grown by the hull's deviation,
     /// meets the hull's chord (a long diagonal step's own box would take in a whole patch of
     /// a fine mesh's surface), and a leaf's triangles are kept where
-    /// [`Primitive::may_cross`] says so.
-    fn candidates(&self, hull: &ArcHull, mut visit: impl FnMut(usize, Primitive) -> bool) {
+    /// their plane may be crossed ([`super::Plane::may_cross`]).
+    fn candidates(&self, hull: &ArcHull, mut visit: impl FnMut(usize, Triangle) -> bool) {
         let (centre, radius) = self.core;
         let room = radius - hull.deviation;
         if (hull.a - centre).length() < room && (hull.b - centre).length() < room {
@@ -282,8 +283,8 @@ impl TriangleMesh {
                     if !chord_meets_box(hull, lo, hi) {
                         continue;
                     }
-                    let tri = Primitive::triangle(a, b, c);
-                    if tri.may_cross(hull) && !visit(id, tri) {
+                    let tri = Triangle::new(a, b, c);
+                    if tri.plane().may_cross(hull) && !visit(id, tri) {
                         return;
                     }
                 }
@@ -316,7 +317,7 @@ impl TriangleMesh {
         let mut best: Option<(usize, Hit)> = None;
         self.candidates(hull, |id, tri| {
             let limit = best.map_or(length, |(_, h)| h.t);
-            if let Some(h) = tri.intersect_segment(seg, hull, s_min, limit) {
+            if let Some(h) = tri.intersect_segment(seg, s_min, limit) {
                 best = Some((id, h));
             }
             true

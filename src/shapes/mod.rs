@@ -3,10 +3,14 @@
 //! made of these.
 
 mod curved;
+mod hit;
 mod mesh;
 mod primitive;
+mod triangle;
 
 pub use curved::segment_roots;
+pub(crate) use hit::padded_box;
+pub use hit::Hit;
 pub use mesh::TriangleMesh;
-pub(crate) use primitive::padded_box;
-pub use primitive::{Hit, Primitive};
+pub use primitive::Primitive;
+pub use triangle::{Plane, Triangle};

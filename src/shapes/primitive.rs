@@ -1,38 +1,12 @@
 //! The primitives: sphere, open cylinder (tube), parallelogram (quad), disk, triangle and
 //! triangle mesh.
 
+use super::hit::Hit;
 use super::mesh::TriangleMesh;
+use super::triangle::{plane_coordinates, Plane, Triangle};
 use crate::curve::{ArcHull, Path};
-use glam::{DVec2, DVec3, Vec3A};
-use obvhs::aabb::Aabb;
+use glam::{DVec2, DVec3};
 use std::sync::Arc;
-
-/// Where a ray meets a primitive.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Hit {
-    /// Distance along a straight ray, or arclength along a curved segment.
-    pub t: f64,
-    /// Unit geometric normal at the hit: outward for spheres and tubes, the primitive's own
-    /// normal for quads, disks and triangles (not flipped toward the ray).
-    pub normal: DVec3,
-    /// Unit shading normal, on the same side as `normal`: a smooth mesh's interpolated
-    /// vertex normal, else `normal` itself.
-    pub shading: DVec3,
-    /// Surface coordinates (u, v) of the hit, for textures (see [`Primitive::uv_at`]).
-    pub uv: DVec2,
-}
-
-impl Hit {
-    /// A hit whose shading normal is its geometric one; its (u, v) still to be set.
-    pub fn flat(t: f64, normal: DVec3) -> Self {
-        Self {
-            t,
-            normal,
-            shading: normal,
-            uv: DVec2::ZERO,
-        }
-    }
-}
 
 /// A surface primitive. Vectors in scene units.
 #[derive(Clone, Debug, PartialEq)]
@@ -76,15 +50,8 @@ pub enum Primitive {
         /// Inner radius (0: a full disk).
         inner: f64,
     },
-    /// The triangle v0, v0 + e1, v0 + e2, normal e1 × e2 normalised.
-    Triangle {
-        /// First vertex.
-        v0: DVec3,
-        /// v1 − v0.
-        e1: DVec3,
-        /// v2 − v0.
-        e2: DVec3,
-    },
+    /// A triangle.
+    Triangle(Triangle),
     /// A triangle mesh (shared, compact; its own BVH): one surface, many triangles.
     Mesh(Arc<TriangleMesh>),
 }
@@ -92,11 +59,7 @@ pub enum Primitive {
 impl Primitive {
     /// A triangle from three vertices.
     pub fn triangle(a: DVec3, b: DVec3, c: DVec3) -> Self {
-        Primitive::Triangle {
-            v0: a,
-            e1: b - a,
-            e2: c - a,
-        }
+        Primitive::Triangle(Triangle::new(a, b, c))
     }
 
     /// Axis-aligned bounds (min, max).
@@ -127,17 +90,18 @@ impl Primitive {
                 let ext = radius * (DVec3::ONE - normal * normal).max(DVec3::ZERO).sqrt();
                 (center - ext, center + ext)
             }
-            Primitive::Triangle { v0, e1, e2 } => corners(&[v0, v0 + e1, v0 + e2]),
+            Primitive::Triangle(Triangle { v0, e1, e2 }) => corners(&[v0, v0 + e1, v0 + e2]),
             Primitive::Mesh(ref mesh) => mesh.bounds(),
         }
     }
 
-    /// The plane of a planar primitive: (a point on it, unit normal).
-    fn plane(&self) -> Option<(DVec3, DVec3)> {
+    /// The plane of a planar primitive.
+    fn plane(&self) -> Option<Plane> {
+        let plane = |point, normal| Some(Plane { point, normal });
         match *self {
-            Primitive::Quad { origin, e1, e2 } => Some((origin, e1.cross(e2).normalize())),
-            Primitive::Disk { center, normal, .. } => Some((center, normal)),
-            Primitive::Triangle { v0, e1, e2 } => Some((v0, e1.cross(e2).normalize())),
+            Primitive::Quad { origin, e1, e2 } => plane(origin, e1.cross(e2).normalize()),
+            Primitive::Disk { center, normal, .. } => plane(center, normal),
+            Primitive::Triangle(t) => Some(t.plane()),
             _ => None,
         }
     }
@@ -155,10 +119,7 @@ impl Primitive {
                 inner,
                 ..
             } => (inner * inner..=radius * radius).contains(&(p - center).length_squared()),
-            Primitive::Triangle { v0, e1, e2 } => {
-                let (u, v) = plane_coordinates(p - v0, e1, e2);
-                u >= 0.0 && v >= 0.0 && u + v <= 1.0
-            }
+            Primitive::Triangle(t) => t.contains(p),
             _ => false,
         }
     }
@@ -182,7 +143,9 @@ impl Primitive {
                 base, axis, height, ..
             } => DVec2::new(around(x - base, axis), (x - base).dot(axis) / height),
             Primitive::Quad { origin, e1, e2 } => plane_coordinates(x - origin, e1, e2).into(),
-            Primitive::Triangle { v0, e1, e2 } => plane_coordinates(x - v0, e1, e2).into(),
+            Primitive::Triangle(Triangle { v0, e1, e2 }) => {
+                plane_coordinates(x - v0, e1, e2).into()
+            }
             Primitive::Disk {
                 center,
                 normal,
@@ -261,13 +224,10 @@ impl Primitive {
                 })
             }
             _ => {
-                let (p0, n) = self.plane()?;
-                let denom = d.dot(n);
-                if denom == 0.0 {
-                    return None;
-                }
-                let t = (p0 - o).dot(n) / denom;
-                (valid(t) && self.contains_planar(o + t * d)).then_some(Hit::flat(t, n))
+                let plane = self.plane()?;
+                let t = plane.ray_hit(o, d, t_min, t_max)?;
+                self.contains_planar(o + t * d)
+                    .then_some(Hit::flat(t, plane.normal))
             }
         }
     }
@@ -286,10 +246,7 @@ impl Primitive {
                 let p = across_axis(x - base, axis);
                 (p.length_squared() - radius * radius, 2.0 * p)
             }
-            _ => {
-                let (p0, n) = self.plane().expect("planar");
-                ((x - p0).dot(n), n)
-            }
+            _ => self.plane().expect("planar").implicit(x),
         }
     }
 
@@ -309,7 +266,7 @@ impl Primitive {
         match *self {
             Primitive::Sphere { center, .. } => (x - center).normalize(),
             Primitive::Tube { base, axis, .. } => across_axis(x - base, axis).normalize(),
-            _ => self.plane().expect("planar").1,
+            _ => self.plane().expect("planar").normal,
         }
     }
 
@@ -338,11 +295,7 @@ impl Primitive {
                 let inside = off_axis(hull.a).max(off_axis(hull.b)) + dev < radius;
                 !(beyond_ends || inside)
             }
-            _ => {
-                let (p0, n) = self.plane().expect("planar");
-                let (oa, ob) = ((hull.a - p0).dot(n), (hull.b - p0).dot(n));
-                oa.min(ob) <= dev && oa.max(ob) >= -dev
-            }
+            _ => self.plane().expect("planar").may_cross(hull),
         }
     }
 
@@ -402,7 +355,7 @@ impl std::fmt::Display for Primitive {
                 };
                 write!(f, "disk {ring} at {} facing {}", v(center), v(normal))
             }
-            Primitive::Triangle { v0, .. } => write!(f, "triangle at {}", v(v0)),
+            Primitive::Triangle(t) => write!(f, "triangle at {}", v(t.v0)),
             Primitive::Mesh(ref mesh) => {
                 let (lo, hi) = mesh.bounds();
                 write!(
@@ -425,29 +378,11 @@ fn ordered(a: f64, b: f64) -> (f64, f64) {
     }
 }
 
-/// An f32 box containing the f64 box [lo, hi], rounded outward (BVHs hold f32 boxes; the
-/// exact tests are in f64).
-pub(crate) fn padded_box(lo: DVec3, hi: DVec3) -> Aabb {
-    let pad = |v: DVec3| v.abs() * 1e-6 + DVec3::splat(1e-6);
-    Aabb::new(
-        Vec3A::from((lo - pad(lo)).as_vec3()),
-        Vec3A::from((hi + pad(hi)).as_vec3()),
-    )
-}
-
 fn corners(pts: &[DVec3]) -> (DVec3, DVec3) {
     pts.iter()
         .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &p| {
             (lo.min(p), hi.max(p))
         })
-}
-
-/// Coordinates (u, v) of an in-plane vector r = u e1 + v e2.
-fn plane_coordinates(r: DVec3, e1: DVec3, e2: DVec3) -> (f64, f64) {
-    let (a, b, c) = (e1.dot(e1), e1.dot(e2), e2.dot(e2));
-    let (p, q) = (r.dot(e1), r.dot(e2));
-    let det = a * c - b * b;
-    ((c * p - b * q) / det, (a * q - b * p) / det)
 }
 
 /// The part of `v` across the unit `axis` (a tube's radial offset).

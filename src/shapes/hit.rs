@@ -1,0 +1,41 @@
+//! Where a ray meets a surface, and the boxes BVHs hold.
+
+use glam::{DVec2, DVec3, Vec3A};
+use obvhs::aabb::Aabb;
+
+/// Where a ray meets a primitive.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Hit {
+    /// Distance along a straight ray, or arclength along a curved segment.
+    pub t: f64,
+    /// Unit geometric normal at the hit: outward for spheres and tubes, the primitive's own
+    /// normal for quads, disks and triangles (not flipped toward the ray).
+    pub normal: DVec3,
+    /// Unit shading normal, on the same side as `normal`: a smooth mesh's interpolated
+    /// vertex normal, else `normal` itself.
+    pub shading: DVec3,
+    /// Surface coordinates (u, v) of the hit, for textures (see [`Primitive::uv_at`]).
+    pub uv: DVec2,
+}
+
+impl Hit {
+    /// A hit whose shading normal is its geometric one; its (u, v) still to be set.
+    pub fn flat(t: f64, normal: DVec3) -> Self {
+        Self {
+            t,
+            normal,
+            shading: normal,
+            uv: DVec2::ZERO,
+        }
+    }
+}
+
+/// An f32 box containing the f64 box [lo, hi], rounded outward (BVHs hold f32 boxes; the
+/// exact tests are in f64).
+pub(crate) fn padded_box(lo: DVec3, hi: DVec3) -> Aabb {
+    let pad = |v: DVec3| v.abs() * 1e-6 + DVec3::splat(1e-6);
+    Aabb::new(
+        Vec3A::from((lo - pad(lo)).as_vec3()),
+        Vec3A::from((hi + pad(hi)).as_vec3()),
+    )
+}
