@@ -51,6 +51,16 @@ pub struct TraceSettings {
     pub world_radius: Option<f64>,
 }
 
+/// The most final-gather rays a camera sample may ask for, and the largest k of the
+/// k-nearest radius: the one limit the scene file and the command line both enforce.
+pub const MAX_GATHER_OR_KNN: u32 = 1 << 16;
+
+/// Why a `gather` or `knn` of `value` is refused, if it is: above [`MAX_GATHER_OR_KNN`].
+pub fn beyond_gather_or_knn_limit(value: u64) -> Option<String> {
+    (value > MAX_GATHER_OR_KNN as u64)
+        .then(|| format!("must be at most {MAX_GATHER_OR_KNN}, got {value}"))
+}
+
 /// The photon maps: how many photons per pass, and how the estimates read them.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PhotonSettings {

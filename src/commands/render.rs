@@ -92,9 +92,14 @@ impl Overrides {
         let p = &mut s.photons;
         p.global = self.photons.unwrap_or(p.global);
         p.caustic = self.caustic_photons.unwrap_or(p.caustic);
-        p.gather = self.gather.unwrap_or(p.gather);
         if let Some(k) = self.knn {
             p.knn = at_least_one("knn", k)?;
+        }
+        p.gather = self.gather.unwrap_or(p.gather);
+        for (flag, v) in [("gather", p.gather), ("knn", p.knn)] {
+            if let Some(why) = crate::settings::beyond_gather_or_knn_limit(v as u64) {
+                return Err(Error::Usage(format!("--{flag} {why}")));
+            }
         }
         if let Some(r) = self.radius {
             p.radius = Some(positive("radius", r)?);

@@ -199,13 +199,13 @@ pub struct RenderArgs {
     #[arg(long)]
     caustic_photons: Option<u64>,
     /// Final-gather rays per camera sample (0: no secondary light).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(0..=65536))]
+    #[arg(long, value_parser = clap::value_parser!(u32).range(0..=grinlight::settings::MAX_GATHER_OR_KNN as i64))]
     gather: Option<u32>,
     /// Photon gather radius (scene units): initial caustic radius, largest global radius.
     #[arg(long)]
     radius: Option<f64>,
     /// k of the k-nearest-photon radius (≥ 1).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=65536))]
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=grinlight::settings::MAX_GATHER_OR_KNN as i64))]
     knn: Option<u32>,
     /// Progressive passes (photon pass + camera pass; the caustic radius shrinks; ≥ 1).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]

@@ -67,17 +67,30 @@ pub fn read_render(t: &mut TableReader) -> Result<Settings> {
         photons: PhotonSettings {
             global: t.natural_or("photons", d.photons.global)?,
             caustic: t.natural_or("caustic_photons", d.photons.caustic)?,
-            gather: t
-                .natural_or("gather", d.photons.gather as u64)?
-                .min(1 << 16) as u32,
+            gather: {
+                let g = t.natural_or("gather", d.photons.gather as u64)?;
+                within_limit(t, "gather", g)?
+            },
             radius,
-            knn: t.count_or("knn", d.photons.knn as u64)?.min(1 << 16) as u32,
+            knn: {
+                let k = t.count_or("knn", d.photons.knn as u64)?;
+                within_limit(t, "knn", k)?
+            },
         },
         passes: t.count_or("passes", d.passes as u64)?.min(u32::MAX as u64) as u32,
         time_budget,
         receiver_photons: t.count_or("receiver_photons", d.receiver_photons)?,
         output: d.output,
     })
+}
+
+/// `gather` or `knn` = `v`, refused beyond the limit the command line enforces too
+/// ([`crate::settings::beyond_gather_or_knn_limit`]).
+fn within_limit(t: &TableReader, key: &str, v: u64) -> Result<u32> {
+    match crate::settings::beyond_gather_or_knn_limit(v) {
+        Some(why) => Err(t.error(key, why)),
+        None => Ok(v as u32),
+    }
 }
 
 /// A key that is either absent or a finite number > 0.
