@@ -74,7 +74,8 @@ impl TraceControl {
         self,
         stepper: StepperKind,
         medium: &dyn Medium,
-        (from, dir): (DVec3, DVec3),
+        from: DVec3,
+        dir: DVec3,
         length: f64,
     ) -> Result<StepControl> {
         Ok(match self {
@@ -161,7 +162,7 @@ pub fn trace(job: &TraceJob, observer: &dyn Observer) -> Result<MarchOutcome> {
     })?;
     let control = job
         .control
-        .resolve(job.stepper, medium, (job.from, start.direction), length)?;
+        .resolve(job.stepper, medium, job.from, start.direction, length)?;
     if job.stepper == StepperKind::Snell && at_turning_point(&start) {
         observer.warning(
             "--dir is perpendicular to ∇n at --from (a turning point): Snell steps              cannot bend a ray there and it will run straight; use --stepper rk4, rkn or arc",

@@ -68,7 +68,7 @@ pub fn validate(job: &ValidateJob, observer: &dyn Observer) -> Result<()> {
         crate::render::memory_needed(&grin, &grin_settings),
         &format!("measuring {}", job.scene.display()),
     )?;
-    let reference = measure_grin(job, (&grin, &grin_settings), observer)?;
+    let reference = measure_grin(job, &grin, &grin_settings, observer)?;
     let rec = &grin.receivers[0];
     observer.line(
         "| Δn | layers | widest layer | flux ratio (layered/GRIN) | χ²/dof | dof | max |z| | cut at max_depth | time (s) |\n\
@@ -131,7 +131,8 @@ fn cut(report: &Report) -> f64 {
 /// Measures the GRIN fiber on its first receiver (photon stream pass 0) and reports it.
 fn measure_grin(
     job: &ValidateJob,
-    (grin, settings): (&Scene, &Settings),
+    grin: &Scene,
+    settings: &Settings,
     observer: &dyn Observer,
 ) -> Result<Measurement> {
     let rec = &grin.receivers[0];

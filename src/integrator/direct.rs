@@ -137,7 +137,8 @@ fn straight_light(
 /// the curved connection to it (`uv` samples an LED's disk).
 fn curved_light(
     tracer: &Tracer,
-    (vp, m): (&VisiblePoint, usize),
+    vp: &VisiblePoint,
+    m: usize,
     light: &Light,
     uv: (f64, f64),
     stats: &mut Stats,
@@ -191,7 +192,7 @@ pub fn direct(carried: Carried, vp: &VisiblePoint, rng: &mut impl Rng, stats: &m
         let lit = match graded {
             None => straight_light(tracer, vp, origin, light, (rng.gen(), rng.gen())),
             Some(m) if !light.is_hittable() => {
-                curved_light(tracer, (vp, m), light, (rng.gen(), rng.gen()), stats)
+                curved_light(tracer, vp, m, light, (rng.gen(), rng.gen()), stats)
             }
             Some(_) => Rgb::ZERO,
         };

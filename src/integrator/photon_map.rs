@@ -112,7 +112,8 @@ impl<'a> PhotonMapper<'a> {
     fn map(
         &self,
         batch: Batch,
-        (index, count): (u32, u64),
+        index: u32,
+        count: u64,
         report: &mut Report,
         stop: &(dyn Fn() -> bool + Sync),
     ) -> Option<PhotonMap> {
@@ -168,7 +169,8 @@ impl<'a> PhotonMapper<'a> {
     fn secondary(
         &self,
         global: &PhotonMap,
-        (vp, carried): (&super::direct::VisiblePoint, Carried),
+        vp: &super::direct::VisiblePoint,
+        carried: Carried,
         s: &mut Sample,
     ) -> Rgb {
         let gather = self.photons.gather;
@@ -225,11 +227,11 @@ impl Integrator for PhotonMapper<'_> {
         stop: &(dyn Fn() -> bool + Sync),
     ) -> Option<Maps> {
         let caustic = match self.plan.caustic {
-            true => Some(self.map(Batch::Caustic, (index, self.photons.caustic), report, stop)?),
+            true => Some(self.map(Batch::Caustic, index, self.photons.caustic, report, stop)?),
             false => None,
         };
         let global = match self.plan.global {
-            true => Some(self.map(Batch::Global, (index, self.photons.global), report, stop)?),
+            true => Some(self.map(Batch::Global, index, self.photons.global, report, stop)?),
             false => None,
         };
         report.stored.caustic += caustic.as_ref().map_or(0, |m| m.len() as u64);
@@ -254,7 +256,7 @@ impl Integrator for PhotonMapper<'_> {
         s.values[5] += Rgb(vp.normal);
         s.values[0] += direct(c.carried, &vp, s.rng, s.stats);
         if let Some(global) = &maps.global {
-            let secondary = self.secondary(global, (&vp, c.carried), s);
+            let secondary = self.secondary(global, &vp, c.carried, s);
             s.values[2] += secondary;
         }
         if let Some(caustic) = &maps.caustic {

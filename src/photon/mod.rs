@@ -407,8 +407,10 @@ pub fn shoot(
                     };
                     trace_photon(
                         tracer,
-                        (e, photon),
-                        (&mut rng, &mut stats),
+                        e,
+                        photon,
+                        &mut rng,
+                        &mut stats,
                         &mut stored,
                         &mut |_| {},
                     );
@@ -464,13 +466,9 @@ pub fn photon_paths(
             };
             let mut path = Vec::new();
             let (mut sink, mut stats) = (Sink::default(), Stats::default());
-            trace_photon(
-                tracer,
-                (e, tag),
-                (&mut rng, &mut stats),
-                &mut sink,
-                &mut |p| path.push(p),
-            );
+            trace_photon(tracer, e, tag, &mut rng, &mut stats, &mut sink, &mut |p| {
+                path.push(p)
+            });
             paths.push(path);
         }
     }
@@ -553,8 +551,10 @@ impl chain::ChainEvents for PhotonWalk<'_, '_> {
 /// `path` is shown every point it passes.
 fn trace_photon(
     tracer: &Tracer,
-    (launch, tag): (Launch, Tagged),
-    (rng, stats): (&mut impl Rng, &mut Stats),
+    launch: Launch,
+    tag: Tagged,
+    rng: &mut impl Rng,
+    stats: &mut Stats,
     stored: &mut Sink,
     path: &mut dyn FnMut(DVec3),
 ) {

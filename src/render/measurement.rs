@@ -24,7 +24,7 @@ pub fn measure(
     observer: &dyn Observer,
 ) -> Result<(Vec<Measurement>, Budget, Report)> {
     let count = settings.receiver_photons;
-    let (books, report) = trace_receivers(scene, settings, (pass, 0..count), observer)?;
+    let (books, report) = trace_receivers(scene, settings, pass, 0..count, observer)?;
     let scale = count as f64 / books.traced.max(1) as f64;
     Ok((
         books.measurements(&scene.receivers, scale),
@@ -98,7 +98,8 @@ impl Books {
 pub fn trace_receivers(
     scene: &Scene,
     settings: &Settings,
-    (pass, traced): (u64, std::ops::Range<u64>),
+    pass: u64,
+    traced: std::ops::Range<u64>,
     observer: &dyn Observer,
 ) -> Result<(Books, Report)> {
     let tracer = Tracer::new(scene, &settings.trace);

@@ -152,11 +152,7 @@ pub fn render_with<I: Integrator>(
         };
         let done = pool.install(|| {
             camera_pass(
-                integrator,
-                &prepared,
-                (tracer, sampling),
-                &mut tiles,
-                observer,
+                integrator, &prepared, tracer, sampling, &mut tiles, observer,
             )
         });
         report.seconds.camera += t0.elapsed().as_secs_f64();
@@ -217,7 +213,8 @@ fn tiles(w: usize, h: usize, layers: &[crate::film::Layer]) -> Vec<Tile> {
 fn camera_pass<I: Integrator>(
     integrator: &I,
     prepared: &I::Pass,
-    (tracer, sampling): (&Tracer, Sampling),
+    tracer: &Tracer,
+    sampling: Sampling,
     tiles: &mut [Tile],
     observer: &dyn Observer,
 ) -> Vec<(Stats, bool)> {
@@ -227,7 +224,7 @@ fn camera_pass<I: Integrator>(
             let mut stats = Stats::default();
             let run = !observer.stop_requested();
             if run {
-                camera_tile(integrator, prepared, (tracer, sampling), tile, &mut stats);
+                camera_tile(integrator, prepared, tracer, sampling, tile, &mut stats);
             }
             observer.progress(Progress::Tile);
             (stats, run)
@@ -256,7 +253,8 @@ struct Sampling {
 fn camera_tile<I: Integrator>(
     integrator: &I,
     prepared: &I::Pass,
-    (tracer, sampling): (&Tracer, Sampling),
+    tracer: &Tracer,
+    sampling: Sampling,
     tile: &mut Tile,
     stats: &mut Stats,
 ) {

@@ -69,7 +69,7 @@ pub fn run(
         while start < r.end {
             let end = ((start / BLOCK + 1) * BLOCK).min(r.end);
             let (books, report) =
-                render::trace_receivers(scene, settings, (0, start..end), observer)?;
+                render::trace_receivers(scene, settings, 0, start..end, observer)?;
             let stopped = report.partial.is_some();
             let mut total = ran.receivers.take().unwrap_or_default();
             total.stats.add(&report.stats);
