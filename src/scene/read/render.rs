@@ -52,13 +52,11 @@ pub fn read_render(t: &mut TableReader) -> Result<Settings> {
     Ok(Settings {
         integrator,
         deflection_table: t.bool_or("deflection_table", d.deflection_table)?,
-        spp: t.count_or("spp", d.spp as u64)?.min(u32::MAX as u64) as u32,
+        spp: count_u32(t, "spp", d.spp)?,
         seed: t.natural_or("seed", d.seed)?,
         threads: t.natural_or("threads", 0)? as usize,
         trace: TraceSettings {
-            max_depth: t
-                .count_or("max_depth", d.trace.max_depth as u64)?
-                .min(u32::MAX as u64) as u32,
+            max_depth: count_u32(t, "max_depth", d.trace.max_depth)?,
             stepper,
             control,
             max_steps: t.count_or("max_steps", d.trace.max_steps)?,
@@ -77,11 +75,17 @@ pub fn read_render(t: &mut TableReader) -> Result<Settings> {
                 within_limit(t, "knn", k)?
             },
         },
-        passes: t.count_or("passes", d.passes as u64)?.min(u32::MAX as u64) as u32,
+        passes: count_u32(t, "passes", d.passes)?,
         time_budget,
         receiver_photons: t.count_or("receiver_photons", d.receiver_photons)?,
         output: d.output,
     })
+}
+
+/// An integer ≥ 1 that fits 32 bits (beyond, an error at `key`, never a silent clamp).
+fn count_u32(t: &mut TableReader, key: &str, default: u32) -> Result<u32> {
+    let v = t.count_or(key, default as u64)?;
+    u32::try_from(v).map_err(|_| t.error(key, format!("must be at most {}, got {v}", u32::MAX)))
 }
 
 /// `gather` or `knn` = `v`, refused beyond the limit the command line enforces too
