@@ -140,7 +140,7 @@ impl Outputs {
                 ));
             }
         }
-        remove_stale_temporaries(path);
+        remove_stale_temporaries(dir, name);
         // The directory must take a new file (the temporary one the output is written to).
         let probe = temporary(path);
         std::fs::OpenOptions::new()
@@ -160,21 +160,14 @@ impl Outputs {
     }
 }
 
-/// Removes the temporary files of `path` that a grinlight process killed while writing it
-/// left behind (`.NAME.grinlight-PID-N.tmp` whose process PID no longer runs). Temporary
+/// Removes the temporary files of the output `name` in `dir` that a grinlight process killed
+/// while writing it left behind (`.NAME.grinlight-PID-N.tmp` whose process PID no longer runs). Temporary
 /// files of running processes, and every other file, are left alone.
-fn remove_stale_temporaries(path: &Path) {
-    let Some(name) = path.file_name().map(|n| n.to_string_lossy().into_owned()) else {
-        return;
-    };
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d,
-        _ => Path::new("."),
-    };
+fn remove_stale_temporaries(dir: &Path, name: &std::ffi::OsStr) {
     if !Path::new("/proc/self").exists() {
         return; // No way to tell which processes run: leave every file.
     }
-    let prefix = format!(".{name}.grinlight-");
+    let prefix = temporary_prefix(name);
     let Ok(entries) = std::fs::read_dir(dir) else {
         return;
     };
@@ -195,12 +188,18 @@ fn remove_stale_temporaries(path: &Path) {
     }
 }
 
+/// The start of the name of every temporary file grinlight writes for an output named
+/// `name`: `.NAME.grinlight-`, then `PID-N.tmp`.
+fn temporary_prefix(name: &std::ffi::OsStr) -> String {
+    format!(".{}.grinlight-", name.to_string_lossy())
+}
+
 /// A fresh temporary path beside `path` (hidden, named after it and this process).
 fn temporary(path: &Path) -> PathBuf {
     static COUNTER: AtomicU64 = AtomicU64::new(0);
-    let name = path.file_name().unwrap_or_default().to_string_lossy();
+    let prefix = temporary_prefix(path.file_name().unwrap_or_default());
     let n = COUNTER.fetch_add(1, Ordering::Relaxed);
-    path.with_file_name(format!(".{name}.grinlight-{}-{n}.tmp", std::process::id()))
+    path.with_file_name(format!("{prefix}{}-{n}.tmp", std::process::id()))
 }
 
 /// Writes `path` atomically: `write` fills a temporary file beside it (it is given that

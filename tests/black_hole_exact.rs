@@ -271,7 +271,7 @@ fn check_shadow(row: &[[f32; 3]]) {
     }
 }
 
-/// the Black Hole Simulator's (ebvalaim 2015) deflection table against direct tracing on every pixel of small renders of the
+/// The deflection table against direct tracing on every pixel of small renders of the
 /// exact scenes: each pixel's escape direction within the table's interpolation tolerance
 /// (1e-6 rad; measured 2.4e-7 at most on the HD view's check) and the same captured pixels;
 /// the render through the table the same for 1 and 2 threads.

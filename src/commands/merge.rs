@@ -59,12 +59,7 @@ pub fn merge(job: &MergeJob, observer: &dyn Observer) -> Result<RenderOutcome> {
     let files = Files::plan(&scene, exr, settings.output.png, 0, &mut outputs)?;
     for p in &job.partials {
         let part = Partial::read(p)?;
-        part.fits(&scene).map_err(|why| {
-            Error::Usage(format!(
-                "{}: a damaged partial result ({why}): refusing to use it",
-                p.display()
-            ))
-        })?;
+        part.fits(&scene, p)?;
         merge.add(p, part)?;
     }
     let merged = merge.finish(job.allow_missing)?;

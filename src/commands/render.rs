@@ -301,12 +301,7 @@ pub fn render(job: &RenderJob, observer: &dyn Observer) -> Result<RenderOutcome>
     };
     let header = Header::new(&scene, &settings, shard, role)?;
     let partial = start_partial(header.clone(), &state, job.resume, observer)?;
-    partial.fits(&scene).map_err(|why| {
-        Error::Usage(format!(
-            "{}: a damaged partial result ({why}): refusing to use it",
-            state.display()
-        ))
-    })?;
+    partial.fits(&scene, &state)?;
     let save = |p: &Partial| -> Result<()> {
         crate::output::together(|| {
             p.write(&state)?;

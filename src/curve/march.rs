@@ -190,7 +190,7 @@ where
         // One trial: the step, whether to accept it, and the next h.
         let (step, next_h, requested) = match control {
             // A fixed step below the rounding of the position would not move the ray.
-            StepControl::Fixed { step } if step <= round_off_floor(&state) => {
+            StepControl::Fixed { step } if step <= round_off_floor(state.position) => {
                 out.reason = Termination::StepUnderflow;
                 return out;
             }
@@ -200,7 +200,7 @@ where
                 // is retried at half the length; the fixed length resumes afterwards.
                 Some(_) => {
                     h = 0.5 * h_try;
-                    if h <= round_off_floor(&state) {
+                    if h <= round_off_floor(state.position) {
                         out.reason = Termination::StepUnderflow;
                         return out;
                     }
@@ -236,7 +236,7 @@ where
             }
             StepControl::Adaptive { tolerance } => {
                 let h_try = h_try.min(medium.step_hint(state.position, state.direction));
-                let floor = round_off_floor(&state);
+                let floor = round_off_floor(state.position);
                 if h_try <= floor || h_try.is_nan() {
                     out.reason = Termination::StepUnderflow;
                     return out;
@@ -308,9 +308,9 @@ fn root(x: f64, p: u32) -> f64 {
     }
 }
 
-/// A step length below which a step cannot move the ray (a few ulps of its position).
-fn round_off_floor(state: &RayState) -> f64 {
-    4.0 * f64::EPSILON * state.position.abs().max_element()
+/// A step length below which a step cannot move a ray at `position` (a few ulps of it).
+pub fn round_off_floor(position: glam::DVec3) -> f64 {
+    4.0 * f64::EPSILON * position.abs().max_element()
 }
 
 /// Whether a step advanced about the arclength requested, as every stepper does on a smooth

@@ -10,8 +10,8 @@ mod stepper;
 pub use bounds::Bounds;
 pub use hermite::{HermitePath, Path};
 pub use march::{
-    march, march_replay, march_replay_with, march_with, step_optical_depth, MarchLimits,
-    MarchOutcome, StepControl, Termination,
+    march, march_replay, march_replay_with, march_with, round_off_floor, step_optical_depth,
+    MarchLimits, MarchOutcome, StepControl, Termination,
 };
 pub use segment::{accurate_cross, ArcHull, ArcPoint, CurvedSegment};
 pub use stepper::{

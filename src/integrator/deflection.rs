@@ -1,4 +1,4 @@
-//! the Black Hole Simulator's (ebvalaim 2015) deflection table, generalised: when the only non-uniform part of a
+//! The Black Hole Simulator's deflection table (ebvalaim 2015), generalised: when the only non-uniform part of a
 //! scene is one spherically symmetric ambient medium seen against the environment (a black
 //! hole, a fish-eye or Luneburg ambient) and nothing else is in it, every camera ray is planar
 //! — it stays in the plane of its direction and the centre — and where it leaves depends on
@@ -93,6 +93,8 @@ pub struct DeflectionTable<'a> {
     /// x errs by ≈ (h/x)²/8: within [`TOLERANCE`] from x ≈ 350 h = 3.5·10⁻⁴ pixel on, so only
     /// rays closer than that to the shadow's edge are interpolated more coarsely.
     finest: f64,
+    /// The angle of a pixel at the film's centre (rad).
+    pixel: f64,
     /// Largest error of interpolated δ at an interval's midpoint (rad).
     tolerance: f64,
     /// The range of α the camera's rays span (rad), with a pixel's margin each side.
@@ -155,6 +157,7 @@ impl<'a> DeflectionTable<'a> {
             tracer,
             stop,
             finest: 1e-6 * pixel,
+            pixel,
             tolerance: TOLERANCE.min(PIXEL_TOLERANCE * pixel),
             range: ((lo - pixel).max(0.0), (hi + pixel).min(PI)),
             eye: camera.position,
@@ -227,7 +230,7 @@ impl<'a> DeflectionTable<'a> {
     fn build(&mut self) {
         use rayon::prelude::*;
         let (lo, hi) = self.range;
-        let pixels = ((hi - lo) / (1e6 * self.finest)).ceil();
+        let pixels = ((hi - lo) / self.pixel).ceil();
         let count = (pixels as usize).clamp(UNIFORM, MAX_UNIFORM);
         let uniform: Vec<Node> = (0..=count)
             .into_par_iter()
@@ -349,7 +352,7 @@ impl<'a> DeflectionTable<'a> {
             max: errors.iter().copied().fold(0.0, f64::max),
             rms: (errors.iter().map(|e| e * e).sum::<f64>() / errors.len().max(1) as f64).sqrt(),
             disagreements: angles.len() - errors.len(),
-            pixel: camera.pixel_angle(),
+            pixel: self.pixel,
         }
     }
 

@@ -97,7 +97,7 @@ pub trait Medium: Send + Sync {
     }
 
     /// The centre when n depends only on the distance from it (every ray then stays in the
-    /// plane of its direction and the centre: the Black Hole Simulator's (ebvalaim 2015) deflection table applies). Default:
+    /// plane of its direction and the centre: the deflection table applies). Default:
     /// None, not spherically symmetric.
     fn symmetry_center(&self) -> Option<DVec3> {
         None

@@ -121,7 +121,7 @@ impl Medium for BlackHole {
         // In u = 1/ρ = rs/r, which neither overflows for the smallest rs nor loses ρ² to
         // infinity: n = 1/D with D = 1 − u + q²u².
         let u = self.rs / r;
-        if r == 0.0 || u.is_nan() || u * self.horizon() * (1.0 + Self::CAPTURE_MARGIN) >= 1.0 {
+        if r == 0.0 || u * self.horizon() * (1.0 + Self::CAPTURE_MARGIN) >= 1.0 {
             return None;
         }
         let q2 = self.q * self.q;

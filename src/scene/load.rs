@@ -215,7 +215,7 @@ fn read_settings(
             if let (StepControl::Fixed { step }, Some(c)) = (r.trace.control, camera) {
                 // A step below the rounding of the coordinates rays start at would leave
                 // them where they are for every one of their steps.
-                let floor = 4.0 * f64::EPSILON * c.position.abs().max_element();
+                let floor = crate::curve::round_off_floor(c.position);
                 t.check(
                     "step",
                     step > floor,

@@ -71,7 +71,7 @@ pub struct Opened {
 }
 
 /// A damaged or foreign file, named.
-fn damaged(path: &Path, why: impl std::fmt::Display) -> Error {
+pub(super) fn damaged(path: &Path, why: impl std::fmt::Display) -> Error {
     Error::Usage(format!(
         "{}: a damaged partial result ({why}): refusing to use it (render that shard again)",
         path.display()

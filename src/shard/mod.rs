@@ -187,7 +187,6 @@ impl Header {
 fn hash_files(paths: &[PathBuf]) -> Result<u64> {
     let mut h = file::FNV_START;
     for p in paths {
-        crate::input::check_regular(p)?;
         let bytes = std::fs::read(p).map_err(|e| Error::io(p, e))?;
         h = file::fnv1a(h, &bytes);
         h = file::fnv1a(h, &(bytes.len() as u64).to_le_bytes());
@@ -293,11 +292,12 @@ impl Partial {
         Ok(())
     }
 
-    /// Whether its books fit `scene` (a tally per receiver of its bins and bands, budget
-    /// entries of its primitives): the reason when not.
-    pub fn fits(&self, scene: &Scene) -> std::result::Result<(), String> {
+    /// Refuses it, as a damaged file at `path`, unless its books fit `scene` (a tally per
+    /// receiver of its bins and bands, budget entries of its primitives).
+    pub fn fits(&self, scene: &Scene, path: &Path) -> Result<()> {
         self.books
             .fits(&scene.receivers, scene.accel.primitives().len())
+            .map_err(|why| file::damaged(path, why))
     }
 
     /// Reads a partial file: its header and payload checked (see [`file`]), and the result

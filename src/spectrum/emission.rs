@@ -65,9 +65,7 @@ impl Shape {
             }
         }
     }
-}
 
-impl Shape {
     /// The power between `lo` and `hi` nm (lo ≤ hi, [`Shape::power`]'s scale): exact for a
     /// Gaussian — so a line far narrower than a nanometre keeps its power — and the midpoint
     /// rule for the smooth shapes.
