@@ -67,21 +67,6 @@ pub fn positive(flag: &str, v: f64) -> Result<f64> {
     }
 }
 
-/// `n` if it is at least 1, else a usage error naming the flag (the scene file refuses 0 for
-/// the same keys; so does the command line).
-pub fn at_least_one<T: Copy + PartialOrd + From<u8> + std::fmt::Display>(
-    flag: &str,
-    n: T,
-) -> Result<T> {
-    if n >= T::from(1) {
-        Ok(n)
-    } else {
-        Err(Error::Usage(format!(
-            "--{flag} must be at least 1, got {n}"
-        )))
-    }
-}
-
 /// The largest magnitude of a number the user gives (a scene file's, a command line's). Lengths, radiometric values and
 /// coefficients are multiplied together (squared distances, powers over areas, photon powers
 /// in f32): bounding every input at 1e30 keeps those products finite, where 1e308 would

@@ -51,15 +51,135 @@ pub struct TraceSettings {
     pub world_radius: Option<f64>,
 }
 
-/// The most final-gather rays a camera sample may ask for, and the largest k of the
-/// k-nearest radius: the one limit the scene file and the command line both enforce.
-pub const MAX_GATHER_OR_KNN: u32 = 1 << 16;
-
-/// Why a `gather` or `knn` of `value` is refused, if it is: above [`MAX_GATHER_OR_KNN`].
-pub fn beyond_gather_or_knn_limit(value: u64) -> Option<String> {
-    (value > MAX_GATHER_OR_KNN as u64)
-        .then(|| format!("must be at most {MAX_GATHER_OR_KNN}, got {value}"))
+/// The range an integer setting may take: one definition per key, read by the scene file
+/// (`[render]` and `[camera]`), by the command line's overrides (`--key`, `_` written `-`) and
+/// by the partial header's settings, so the three cannot disagree.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Count {
+    /// The scene file's key.
+    pub key: &'static str,
+    /// The smallest value allowed.
+    pub min: u64,
+    /// The largest value allowed.
+    pub max: u64,
 }
+
+impl Count {
+    /// `value`, or why it is refused (outside `min..=max`).
+    pub fn check(&self, value: u64) -> Result<u64, String> {
+        if (self.min..=self.max).contains(&value) {
+            Ok(value)
+        } else if value < self.min {
+            Err(format!("expected an integer ≥ {}, got {value}", self.min))
+        } else {
+            Err(format!("must be at most {}, got {value}", self.max))
+        }
+    }
+
+    /// The range in words, as `docs/scene-format.md` gives it: `1…65536`, or `≥ 1` where the
+    /// type's own limit is the only one.
+    pub fn range(&self) -> String {
+        if self.max == u64::MAX {
+            format!("≥ {}", self.min)
+        } else {
+            format!("{}…{}", self.min, self.max)
+        }
+    }
+
+    /// The command-line flag of the key (`--receiver-photons` for `receiver_photons`).
+    pub fn flag(&self) -> String {
+        format!("--{}", self.key.replace('_', "-"))
+    }
+}
+
+/// The most final-gather rays a camera sample may ask for, and the largest k of the
+/// k-nearest radius.
+pub const MAX_GATHER_OR_KNN: u64 = 1 << 16;
+
+/// The largest image side in pixels.
+pub const MAX_IMAGE_SIDE: u64 = 1 << 16;
+
+/// Camera samples per pixel per pass.
+pub const SPP: Count = Count {
+    key: "spp",
+    min: 1,
+    max: u32::MAX as u64,
+};
+/// Progressive passes.
+pub const PASSES: Count = Count {
+    key: "passes",
+    min: 1,
+    max: u32::MAX as u64,
+};
+/// Surface interactions along a path.
+pub const MAX_DEPTH: Count = Count {
+    key: "max_depth",
+    min: 1,
+    max: u32::MAX as u64,
+};
+/// Steps per curved march.
+pub const MAX_STEPS: Count = Count {
+    key: "max_steps",
+    min: 1,
+    max: u64::MAX,
+};
+/// Final-gather rays per camera sample (0: no secondary light).
+pub const GATHER: Count = Count {
+    key: "gather",
+    min: 0,
+    max: MAX_GATHER_OR_KNN,
+};
+/// k of the k-nearest-photon radius.
+pub const KNN: Count = Count {
+    key: "knn",
+    min: 1,
+    max: MAX_GATHER_OR_KNN,
+};
+/// Global-map photons per pass.
+pub const PHOTONS: Count = Count {
+    key: "photons",
+    min: 0,
+    max: u64::MAX,
+};
+/// Caustic-map photons per pass.
+pub const CAUSTIC_PHOTONS: Count = Count {
+    key: "caustic_photons",
+    min: 0,
+    max: u64::MAX,
+};
+/// Photons traced for the receivers.
+pub const RECEIVER_PHOTONS: Count = Count {
+    key: "receiver_photons",
+    min: 1,
+    max: u64::MAX,
+};
+/// Every integer setting, for the documentation's check.
+pub const COUNTS: [Count; 11] = [
+    SPP,
+    PASSES,
+    MAX_DEPTH,
+    MAX_STEPS,
+    GATHER,
+    KNN,
+    PHOTONS,
+    CAUSTIC_PHOTONS,
+    RECEIVER_PHOTONS,
+    WIDTH,
+    HEIGHT,
+];
+
+/// Image width in pixels.
+pub const WIDTH: Count = Count {
+    key: "width",
+    min: 1,
+    max: MAX_IMAGE_SIDE,
+};
+/// Image height in pixels.
+pub const HEIGHT: Count = Count {
+    key: "height",
+    min: 1,
+    max: MAX_IMAGE_SIDE,
+};
 
 /// The photon maps: how many photons per pass, and how the estimates read them.
 #[derive(Clone, Copy, Debug, PartialEq)]

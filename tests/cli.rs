@@ -267,3 +267,64 @@ fn validate_compares_each_band() {
     let _ = std::fs::remove_file(scene);
     let _ = std::fs::remove_file(plot);
 }
+
+/// The scene file and the command line hold each integer setting to one range
+/// (`grinlight::settings::COUNTS`): a value just outside it is refused by both, for the same
+/// reason, before any work.
+#[test]
+fn the_scene_file_and_the_command_line_refuse_the_same_values() {
+    let dir = temp("ranges");
+    std::fs::create_dir_all(&dir).unwrap();
+    let base = std::fs::read_to_string("scenes/cornell_diffuse.toml").unwrap();
+    let flags = [
+        "spp",
+        "passes",
+        "gather",
+        "knn",
+        "receiver_photons",
+        "width",
+        "height",
+    ];
+    for c in grinlight::settings::COUNTS
+        .iter()
+        .filter(|c| flags.contains(&c.key))
+    {
+        let table = if ["width", "height"].contains(&c.key) {
+            "[camera]"
+        } else {
+            "[render]"
+        };
+        let outside = [c.min.checked_sub(1), c.max.checked_add(1)];
+        for value in outside.into_iter().flatten() {
+            let why = c.check(value).unwrap_err();
+            let scene = dir.join(format!("{}-{value}.toml", c.key));
+            let own = format!("{} =", c.key);
+            let text: String = base
+                .lines()
+                .filter(|l| !l.starts_with(&own))
+                .map(|l| format!("{l}\n"))
+                .collect();
+            let text = text.replacen(table, &format!("{table}\n{own} {value}"), 1);
+            std::fs::write(&scene, text).unwrap();
+            let by_file = grinlight(&["render", scene.to_str().unwrap()]);
+            let by_flag = grinlight(&[
+                "render",
+                "scenes/cornell_diffuse.toml",
+                &c.flag(),
+                &value.to_string(),
+            ]);
+            for (how, out) in [("file", by_file), ("flag", by_flag)] {
+                let stderr = String::from_utf8_lossy(&out.stderr);
+                // A value beyond the flag's integer type is refused by the parser first.
+                let parsed = !stderr.contains("invalid value");
+                assert!(!out.status.success(), "{} = {value} by {how}", c.key);
+                assert!(
+                    !parsed || stderr.contains(&why),
+                    "{} = {value} by {how}: '{stderr}' lacks '{why}'",
+                    c.key
+                );
+            }
+        }
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -140,12 +140,63 @@ fn the_repository_speaks_of_the_product() {
         };
         for (n, line) in text.lines().enumerate() {
             let lower = line.to_lowercase();
-            if let Some(w) = words.iter().find(|w| lower.contains(&w.to_lowercase())) {
+            let word = words
+                .iter()
+                .find(|w| lower.contains(&w.to_lowercase()))
+                .cloned()
+                .or_else(|| numbered_work_item(&lower));
+            if let Some(w) = word {
                 found.push(format!("{}:{}: '{w}': {}", f.display(), n + 1, line.trim()));
             }
         }
     }
     assert!(found.is_empty(), "{}", found.join("\n"));
+}
+
+/// A tracker's work item named by number (the word issue or evidence and a number), if `line`
+/// (lower case) names one: the product's files cite what a reader can open, not a tracker.
+fn numbered_work_item(line: &str) -> Option<String> {
+    ["issue ", "issues ", "issue #", "evidence "]
+        .iter()
+        .find_map(|w| {
+            line.match_indices(w).find_map(|(at, _)| {
+                let after = &line[at + w.len()..];
+                let before = line[..at].chars().next_back();
+                let starts_word = before.is_none_or(|c| !c.is_alphanumeric());
+                (starts_word && after.starts_with(|c: char| c.is_ascii_digit()))
+                    .then(|| format!("{w}{}", &after[..1]))
+            })
+        })
+}
+
+#[test]
+fn numbered_work_items_are_recognised() {
+    // Built from pieces, so this file does not match itself.
+    let named = |w: &str, n: &str| numbered_work_item(&format!("/// ({w}{n}'s): a file"));
+    assert!(named("issue ", "15").is_some());
+    assert!(named("evidence ", "3").is_some());
+    assert!(named("issue #", "24").is_some());
+    assert!(numbered_work_item("n = 1.5 (issue of glass), 4 passes").is_none());
+    assert!(numbered_work_item("value #7 is not a number").is_none());
+}
+
+/// Every integer setting's range in the scene-format reference is the range the program holds
+/// the scene file and the command line to (`grinlight::settings::COUNTS`).
+#[test]
+fn the_scene_format_gives_each_settings_range() {
+    let doc = std::fs::read_to_string("docs/scene-format.md").unwrap();
+    for c in grinlight::settings::COUNTS {
+        let key = format!("`{}`", c.key);
+        let row = doc
+            .lines()
+            .find(|l| l.starts_with('|') && l.split('|').nth(1).is_some_and(|k| k.contains(&key)))
+            .unwrap_or_else(|| panic!("docs/scene-format.md has no row for {key}"));
+        assert!(
+            row.contains(&c.range()),
+            "docs/scene-format.md: {key} should give its range {}: {row}",
+            c.range()
+        );
+    }
 }
 
 /// The scene the README shows is a scene grinlight reads.

@@ -430,7 +430,7 @@ fn march_accumulates_optical_depth_and_optical_path() {
     }
 }
 
-/// The cubic grid (issue 15's evidence 2): ∇n is continuous across cell faces where the
+/// The cubic grid: ∇n is continuous across cell faces where the
 /// trilinear one jumps; on a grid sampled from the exponential medium n = 1.2·exp(0.4 x +
 /// 0.25 y) the largest error of n over 2 000 points falls at the interpolant's order as the
 /// grid is refined (cubic 3, linear 2; slopes within ±0.4: the sup over a finite sample

@@ -194,7 +194,7 @@ fn furnace_sphere_reaches_the_analytic_radiance() {
 
 mod common;
 
-/// Issue 15's first evidence at test size: `scenes/luneburg.toml` at 96 × 72 with its lens
+/// A meshed lens renders as the analytic one: `scenes/luneburg.toml` at 96 × 72 with its lens
 /// as the analytic sphere and as a smooth 2 048-triangle octahedral sphere (the file's exact
 /// normals, scaled to R = 0.5). The mesh's render must differ from the analytic one no more
 /// than two analytic renders of different seeds differ from each other: over 8 × 8-pixel

@@ -94,7 +94,7 @@ fn whole_and_merged(
     (whole, merged)
 }
 
-/// Evidence 1: N = 1, 2, 3, 7 shards of the fiber receiver and of a Cornell render merge
+/// N = 1, 2, 3, 7 shards of the fiber receiver and of a Cornell render merge
 /// into the single run's result: every film sum, every bin's irradiance and standard error,
 /// every energy-budget entry identical to the bit (`==` on f64 and on the fixed-point sums);
 /// the EXR files byte for byte. The progressive caustic is included: its radius schedule is a
@@ -169,7 +169,7 @@ fn kill_after_saves(dir: &Path, args: &[&str], watch: &str, saves: usize) {
     child.wait().unwrap();
 }
 
-/// Evidence 2: `kill -9` in the middle of a render, then `--resume`: the same result as an
+/// `kill -9` in the middle of a render, then `--resume`: the same result as an
 /// uninterrupted render — for a camera render (after two of twelve passes: the EXR byte for
 /// byte) and for a receiver shard (after one of two blocks of photons: the partial's books
 /// bit for bit).
@@ -255,7 +255,7 @@ fn a_killed_render_resumes_to_the_same_result() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
-/// Evidence 3: merging partials that are not parts of one render is refused with a message
+/// Merging partials that are not parts of one render is refused with a message
 /// naming the difference; so are duplicates, overlaps, missing shards (unless allowed), files
 /// that are not partials, and a resume with other options.
 #[test]

@@ -1,4 +1,4 @@
-//! OpenVDB volumes as `grid` media (issue 15, evidence 3): `tests/data/plume.vdb`, written by
+//! OpenVDB volumes as `grid` media: `tests/data/plume.vdb`, written by
 //! OpenVDB 10.0.1 itself (`tests/data/make_plume_vdb.py`; Blosc-compressed float grids over
 //! two root nodes, a vec3 grid), loads and its values match the field it was written from;
 //! malformed or missing files and wrong keys are file:line:col errors, never a panic.

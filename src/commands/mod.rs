@@ -16,4 +16,4 @@ pub use validate::{validate, ValidateJob};
 
 pub use crate::render::{Observer, Progress};
 
-pub(crate) use crate::error::{at_least_one, positive};
+pub(crate) use crate::error::positive;

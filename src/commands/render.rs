@@ -1,7 +1,7 @@
 //! `grinlight render`: the scene's receivers measured (with the energy budget and, on request,
 //! Zhdanov et al.'s (2020) fiber figure), then its camera view rendered to a multi-layer EXR and a PNG.
 
-use super::{at_least_one, positive, Observer};
+use super::{positive, Observer};
 use crate::error::{Error, Result};
 use crate::fiber::GrinFiber;
 use crate::film::Film;
@@ -10,7 +10,7 @@ use crate::photon::Budget;
 use crate::receiver::{self, Measurement};
 use crate::report::Report;
 use crate::scene::{self, Description, Scene};
-use crate::settings::Settings;
+use crate::settings::{self, Count, Settings};
 use crate::shard::file::Opened;
 use crate::shard::{Header, Partial, Role, Saving, Shard};
 use std::path::{Path, PathBuf};
@@ -82,24 +82,29 @@ impl Overrides {
     /// Applies the values to a loaded scene's settings and camera: the one place
     /// command-line values meet the scene file's.
     pub fn apply(&self, scene: &mut Description, s: &mut Settings) -> Result<()> {
+        let count = |c: Count, v: u64| {
+            c.check(v)
+                .map_err(|why| Error::Usage(format!("{} {why}", c.flag())))
+        };
         if let Some(n) = self.spp {
-            s.spp = at_least_one("spp", n)?;
+            s.spp = count(settings::SPP, n as u64)? as u32;
         }
         s.seed = self.seed.unwrap_or(s.seed);
         s.integrator = self.integrator.unwrap_or(s.integrator);
         s.deflection_table &= !self.no_table;
         s.threads = crate::resources::check_threads(self.threads.unwrap_or(s.threads))?;
         let p = &mut s.photons;
-        p.global = self.photons.unwrap_or(p.global);
-        p.caustic = self.caustic_photons.unwrap_or(p.caustic);
-        if let Some(k) = self.knn {
-            p.knn = at_least_one("knn", k)?;
+        if let Some(n) = self.photons {
+            p.global = count(settings::PHOTONS, n)?;
         }
-        p.gather = self.gather.unwrap_or(p.gather);
-        for (flag, v) in [("gather", p.gather), ("knn", p.knn)] {
-            if let Some(why) = crate::settings::beyond_gather_or_knn_limit(v as u64) {
-                return Err(Error::Usage(format!("--{flag} {why}")));
-            }
+        if let Some(n) = self.caustic_photons {
+            p.caustic = count(settings::CAUSTIC_PHOTONS, n)?;
+        }
+        if let Some(k) = self.knn {
+            p.knn = count(settings::KNN, k as u64)? as u32;
+        }
+        if let Some(g) = self.gather {
+            p.gather = count(settings::GATHER, g as u64)? as u32;
         }
         if let Some(r) = self.radius {
             p.radius = Some(positive("radius", r)?);
@@ -111,19 +116,18 @@ impl Overrides {
             }
         }
         if let Some(p) = self.passes {
-            s.passes = at_least_one("passes", p)?;
+            s.passes = count(settings::PASSES, p as u64)? as u32;
         }
         if let Some(n) = self.receiver_photons {
-            s.receiver_photons = at_least_one("receiver-photons", n)?;
-        }
-        for (flag, v) in [("width", self.width), ("height", self.height)] {
-            if v.is_some_and(|v| v == 0 || v > 65_536) {
-                return Err(Error::Usage(format!("--{flag} must be in 1..=65536")));
-            }
+            s.receiver_photons = count(settings::RECEIVER_PHOTONS, n)?;
         }
         if let Some(camera) = scene.camera.as_mut() {
-            camera.width = self.width.unwrap_or(camera.width);
-            camera.height = self.height.unwrap_or(camera.height);
+            if let Some(w) = self.width {
+                camera.width = count(settings::WIDTH, w as u64)? as u32;
+            }
+            if let Some(h) = self.height {
+                camera.height = count(settings::HEIGHT, h as u64)? as u32;
+            }
         }
         Ok(())
     }

@@ -165,12 +165,14 @@ pub fn trace(job: &TraceJob, observer: &dyn Observer) -> Result<MarchOutcome> {
         .resolve(job.stepper, medium, job.from, start.direction, length)?;
     if job.stepper == StepperKind::Snell && at_turning_point(&start) {
         observer.warning(
-            "--dir is perpendicular to ∇n at --from (a turning point): Snell steps              cannot bend a ray there and it will run straight; use --stepper rk4, rkn or arc",
+            "--dir is perpendicular to ∇n at --from (a turning point): Snell steps cannot bend a ray there and it will run straight; use --stepper rk4, rkn or arc",
         );
     }
     let limits = MarchLimits {
         length,
-        max_steps: job.max_steps,
+        max_steps: crate::settings::MAX_STEPS
+            .check(job.max_steps)
+            .map_err(|why| Error::Usage(format!("--max-steps {why}")))?,
         bounds: Bounds::Unbounded,
     };
     let (out, points) = trace_path(medium, job.stepper, control, start, &limits);

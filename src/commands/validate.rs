@@ -2,7 +2,7 @@
 //! cylinders, Zhdanov et al. (2020) §5), measured with independent photon streams and compared bin by bin
 //! on the first receiver.
 
-use crate::error::{at_least_one, positive};
+use crate::error::positive;
 use crate::error::{Error, Result};
 use crate::fiber::Layer;
 use crate::output::{Kind, Outputs};
@@ -47,7 +47,9 @@ pub fn validate(job: &ValidateJob, observer: &dyn Observer) -> Result<()> {
     let load = || -> Result<(Description, Settings)> {
         let (s, mut settings) = scene::load_description(&job.scene)?;
         if let Some(n) = job.photons {
-            settings.receiver_photons = at_least_one("photons", n)?;
+            settings.receiver_photons = crate::settings::RECEIVER_PHOTONS
+                .check(n)
+                .map_err(|why| Error::Usage(format!("--photons {why}")))?;
         }
         settings.threads = threads;
         if s.receivers.is_empty() {

@@ -19,7 +19,7 @@
 //! finds every ray within a tenth of a pixel and no capture disagreement
 //! ([`TableCheck::accepts`]), and traces every ray otherwise, saying so.
 
-use super::{CameraRay, Integrator, Sample};
+use super::{CameraRay, Integrator, Sample, Slot};
 use crate::color::Rgb;
 use crate::film::Layer;
 use crate::report::Report;
@@ -30,6 +30,7 @@ use std::time::Instant;
 
 /// The layers, in order: only the environment is seen.
 const LAYERS: &[Layer] = &[Layer::radiance("emitted")];
+const EMITTED: Slot = Slot(0);
 
 /// Fewest uniform nodes in α over the view's range before refinement.
 const UNIFORM: usize = 1024;
@@ -409,6 +410,6 @@ impl Integrator for DeflectionTable<'_> {
             (Some(d), Some(env)) => env.radiance(d) * self.scale,
             _ => Rgb::ZERO,
         };
-        sample.values[0] = radiance;
+        sample.add(EMITTED, radiance);
     }
 }

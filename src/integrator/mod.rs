@@ -42,6 +42,25 @@ pub struct Sample<'a> {
     pub values: &'a mut [Rgb],
 }
 
+impl Sample<'_> {
+    /// Adds `value` to the layer at `slot`.
+    pub fn add(&mut self, slot: Slot, value: Rgb) {
+        self.values[slot.0] += value;
+    }
+}
+
+/// A layer's place among an integrator's [`Integrator::layers`]: each integrator names its
+/// slots beside its layer list (and a test checks each slot names its layer).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Slot(pub usize);
+
+impl Slot {
+    /// The layer at this slot of `layers`.
+    pub fn of(self, layers: &[Layer]) -> &Layer {
+        &layers[self.0]
+    }
+}
+
 /// A camera ray: origin and unit direction.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CameraRay {

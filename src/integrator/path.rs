@@ -11,7 +11,7 @@
 //! misses it, the photon mapper does not.
 
 use super::direct::{camera_path, direct, emission_seen, hero, VisiblePoint};
-use super::{CameraRay, Integrator, Sample};
+use super::{CameraRay, Integrator, Sample, Slot};
 use crate::bsdf::Bsdf;
 use crate::color::Rgb;
 use crate::film::Layer;
@@ -28,6 +28,11 @@ const LAYERS: &[Layer] = &[
     Layer::aux("albedo"),
     Layer::aux("normal"),
 ];
+const DIRECT: Slot = Slot(0);
+const INDIRECT: Slot = Slot(1);
+const EMITTED: Slot = Slot(2);
+const ALBEDO: Slot = Slot(3);
+const NORMAL: Slot = Slot(4);
 
 /// Bounces before Russian roulette starts.
 const SURE_BOUNCES: u32 = 3;
@@ -46,7 +51,7 @@ impl<'a> PathTracer<'a> {
     /// The light reaching the camera from diffuse bounces after the visible point `vp`:
     /// direct light at every later diffuse point, and emission found through specular chains
     /// from every diffuse point.
-    fn indirect(&self, (mut vp, carried): (VisiblePoint, Carried), s: &mut Sample) -> Rgb {
+    fn indirect(&self, mut vp: VisiblePoint, carried: Carried, s: &mut Sample) -> Rgb {
         let mut walker = Walker::carrying(carried, Policy::Weighted);
         let mut sum = Rgb::ZERO;
         for bounce in 0.. {
@@ -112,12 +117,31 @@ impl Integrator for PathTracer<'_> {
             hero: hero.as_ref(),
         };
         let c = camera_path(carried, ray.origin, ray.direction, s.rng, s.stats);
-        s.values[2] += c.emitted;
+        s.add(EMITTED, c.emitted);
         let Some(vp) = c.visible else { return };
-        s.values[3] += vp.albedo;
-        s.values[4] += Rgb(vp.normal);
-        s.values[0] += direct(c.carried, &vp, s.rng, s.stats);
-        let indirect = self.indirect((vp, c.carried), s);
-        s.values[1] += indirect;
+        s.add(ALBEDO, vp.albedo);
+        s.add(NORMAL, Rgb(vp.normal));
+        let direct = direct(c.carried, &vp, s.rng, s.stats);
+        s.add(DIRECT, direct);
+        let indirect = self.indirect(vp, c.carried, s);
+        s.add(INDIRECT, indirect);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn each_slot_names_its_layer() {
+        for (slot, name) in [
+            (DIRECT, "direct"),
+            (INDIRECT, "indirect"),
+            (EMITTED, "emitted"),
+            (ALBEDO, "albedo"),
+            (NORMAL, "normal"),
+        ] {
+            assert_eq!(slot.of(LAYERS).name, name);
+        }
     }
 }

@@ -11,7 +11,7 @@
 //! - **emitted**: emitters and the environment seen along the camera's specular chain.
 
 use super::direct::{camera_path, direct, hero};
-use super::{CameraRay, Integrator, Sample};
+use super::{CameraRay, Integrator, Sample, Slot};
 use crate::bsdf::Bsdf;
 use crate::color::Rgb;
 use crate::film::Layer;
@@ -70,6 +70,12 @@ const LAYERS: &[Layer] = &[
     Layer::aux("albedo"),
     Layer::aux("normal"),
 ];
+const DIRECT: Slot = Slot(0);
+const CAUSTIC: Slot = Slot(1);
+const SECONDARY: Slot = Slot(2);
+const EMITTED: Slot = Slot(3);
+const ALBEDO: Slot = Slot(4);
+const NORMAL: Slot = Slot(5);
 
 /// The photon mapper of a scene.
 pub struct PhotonMapper<'a> {
@@ -250,14 +256,15 @@ impl Integrator for PhotonMapper<'_> {
             hero: hero.as_ref(),
         };
         let c = camera_path(carried, ray.origin, ray.direction, s.rng, s.stats);
-        s.values[3] += c.emitted;
+        s.add(EMITTED, c.emitted);
         let Some(vp) = c.visible else { return };
-        s.values[4] += vp.albedo;
-        s.values[5] += Rgb(vp.normal);
-        s.values[0] += direct(c.carried, &vp, s.rng, s.stats);
+        s.add(ALBEDO, vp.albedo);
+        s.add(NORMAL, Rgb(vp.normal));
+        let direct = direct(c.carried, &vp, s.rng, s.stats);
+        s.add(DIRECT, direct);
         if let Some(global) = &maps.global {
             let secondary = self.secondary(global, &vp, c.carried, s);
-            s.values[2] += secondary;
+            s.add(SECONDARY, secondary);
         }
         if let Some(caustic) = &maps.caustic {
             let r2 = *r2.get_or_insert_with(|| self.caustic_r2(caustic, maps.index, &vp, s.stats));
@@ -265,7 +272,26 @@ impl Integrator for PhotonMapper<'_> {
                 .stats
                 .time_query(|| caustic.irradiance(vp.position, vp.normal, r2));
             let irradiance = c.carried.tracer.photon_irradiance(irradiance);
-            s.values[1] += vp.throughput * vp.albedo * irradiance * FRAC_1_PI;
+            s.add(CAUSTIC, vp.throughput * vp.albedo * irradiance * FRAC_1_PI);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn each_slot_names_its_layer() {
+        for (slot, name) in [
+            (DIRECT, "direct"),
+            (CAUSTIC, "caustic"),
+            (SECONDARY, "secondary"),
+            (EMITTED, "emitted"),
+            (ALBEDO, "albedo"),
+            (NORMAL, "normal"),
+        ] {
+            assert_eq!(slot.of(LAYERS).name, name);
         }
     }
 }

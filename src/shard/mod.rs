@@ -116,7 +116,7 @@ impl Header {
         let camera = scene.camera.as_ref();
         let mut values = vec![
             ("seed", settings.seed.to_string()),
-            ("spp", settings.spp.to_string()),
+            (crate::settings::SPP.key, settings.spp.to_string()),
             ("integrator", format!("{:?}", settings.integrator)),
             ("deflection_table", settings.deflection_table.to_string()),
             ("trace", format!("{:?}", settings.trace)),

@@ -84,8 +84,8 @@ pub struct ValidateArgs {
     /// layers are wide near the axis, where paraxial rays then feel no gradient.
     #[arg(long)]
     max_width: Option<f64>,
-    /// Photons per measurement (default: [render] receiver_photons).
-    #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
+    /// Photons per measurement (≥ 1; default: [render] receiver_photons).
+    #[arg(long)]
     photons: Option<u64>,
     /// Worker threads (0 = all cores).
     #[arg(long, default_value_t = 0)]
@@ -140,8 +140,8 @@ pub struct TraceArgs {
     /// Seed of the random ξ of `tessendorf`.
     #[arg(long, default_value_t = 1)]
     seed: u64,
-    /// Maximum number of step attempts (N_max).
-    #[arg(long, default_value_t = 1_000_000, value_parser = clap::value_parser!(u64).range(1..))]
+    /// Maximum number of step attempts (N_max, ≥ 1).
+    #[arg(long, default_value_t = 1_000_000)]
     max_steps: u64,
     /// Write every accepted step as CSV (step,s,x,y,z,dx,dy,dz,n).
     #[arg(long)]
@@ -170,7 +170,7 @@ pub struct RenderArgs {
     #[arg(long)]
     resume: bool,
     /// Camera samples per pixel per pass (≥ 1).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
+    #[arg(long)]
     spp: Option<u32>,
     /// How the view is estimated: photon_map (direct, caustic map, final gather over the
     /// global map) or path (unidirectional path tracing, a reference).
@@ -187,10 +187,10 @@ pub struct RenderArgs {
     #[arg(long)]
     threads: Option<usize>,
     /// Image width (the vertical field of view is kept).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=65536))]
+    #[arg(long)]
     width: Option<u32>,
     /// Image height.
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=65536))]
+    #[arg(long)]
     height: Option<u32>,
     /// Global-map photons per pass.
     #[arg(long)]
@@ -199,16 +199,16 @@ pub struct RenderArgs {
     #[arg(long)]
     caustic_photons: Option<u64>,
     /// Final-gather rays per camera sample (0: no secondary light).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(0..=grinlight::settings::MAX_GATHER_OR_KNN as i64))]
+    #[arg(long)]
     gather: Option<u32>,
     /// Photon gather radius (scene units): initial caustic radius, largest global radius.
     #[arg(long)]
     radius: Option<f64>,
     /// k of the k-nearest-photon radius (≥ 1).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=grinlight::settings::MAX_GATHER_OR_KNN as i64))]
+    #[arg(long)]
     knn: Option<u32>,
     /// Progressive passes (photon pass + camera pass; the caustic radius shrinks; ≥ 1).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
+    #[arg(long)]
     passes: Option<u32>,
     /// Start no new pass after this many seconds (with no --passes: as many as fit).
     #[arg(long)]
@@ -218,7 +218,7 @@ pub struct RenderArgs {
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
     checkpoint: Option<u32>,
     /// Photons traced for the scene's receivers (≥ 1).
-    #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
+    #[arg(long)]
     receiver_photons: Option<u64>,
     /// Also draw the paths of the first N (≤ 10000) receiver photons through the scene's GRIN
     /// fiber, with its index profile and the first receiver's irradiance (Zhdanov et al. (2020) fig. 5), as

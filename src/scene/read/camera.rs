@@ -3,6 +3,7 @@
 use crate::camera::Camera;
 use crate::error::Result;
 use crate::scene::table::TableReader;
+use crate::settings;
 use glam::DVec3;
 
 /// `[camera]`.
@@ -10,10 +11,8 @@ pub fn read_camera(t: &mut TableReader) -> Result<Camera> {
     let position = t.vec3("position")?;
     let look_at = t.vec3("look_at")?;
     let up = t.vec3_or("up", DVec3::Y)?;
-    let width = t.count_or("width", 640)?;
-    let height = t.count_or("height", 480)?;
-    t.check("width", width <= 65_536, "must be at most 65536")?;
-    t.check("height", height <= 65_536, "must be at most 65536")?;
+    let width = t.setting(settings::WIDTH, 640)?;
+    let height = t.setting(settings::HEIGHT, 480)?;
     let (width, height) = (width as u32, height as u32);
     let fov_y = match (t.has("fov_y_deg"), t.has("fov_x_deg")) {
         (true, false) => t.f64("fov_y_deg")?,

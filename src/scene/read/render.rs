@@ -3,7 +3,7 @@
 use crate::curve::{StepControl, StepperKind};
 use crate::error::Result;
 use crate::scene::table::TableReader;
-use crate::settings::{OutputSettings, PhotonSettings, Settings, TraceSettings};
+use crate::settings::{self, OutputSettings, PhotonSettings, Settings, TraceSettings};
 
 /// `[render]`: every setting but the output's.
 pub fn read_render(t: &mut TableReader) -> Result<Settings> {
@@ -52,49 +52,28 @@ pub fn read_render(t: &mut TableReader) -> Result<Settings> {
     Ok(Settings {
         integrator,
         deflection_table: t.bool_or("deflection_table", d.deflection_table)?,
-        spp: count_u32(t, "spp", d.spp)?,
+        spp: t.setting(settings::SPP, d.spp as u64)? as u32,
         seed: t.natural_or("seed", d.seed)?,
         threads: t.natural_or("threads", 0)? as usize,
         trace: TraceSettings {
-            max_depth: count_u32(t, "max_depth", d.trace.max_depth)?,
+            max_depth: t.setting(settings::MAX_DEPTH, d.trace.max_depth as u64)? as u32,
             stepper,
             control,
-            max_steps: t.count_or("max_steps", d.trace.max_steps)?,
+            max_steps: t.setting(settings::MAX_STEPS, d.trace.max_steps)?,
             world_radius,
         },
         photons: PhotonSettings {
-            global: t.natural_or("photons", d.photons.global)?,
-            caustic: t.natural_or("caustic_photons", d.photons.caustic)?,
-            gather: {
-                let g = t.natural_or("gather", d.photons.gather as u64)?;
-                within_limit(t, "gather", g)?
-            },
+            global: t.setting(settings::PHOTONS, d.photons.global)?,
+            caustic: t.setting(settings::CAUSTIC_PHOTONS, d.photons.caustic)?,
+            gather: t.setting(settings::GATHER, d.photons.gather as u64)? as u32,
             radius,
-            knn: {
-                let k = t.count_or("knn", d.photons.knn as u64)?;
-                within_limit(t, "knn", k)?
-            },
+            knn: t.setting(settings::KNN, d.photons.knn as u64)? as u32,
         },
-        passes: count_u32(t, "passes", d.passes)?,
+        passes: t.setting(settings::PASSES, d.passes as u64)? as u32,
         time_budget,
-        receiver_photons: t.count_or("receiver_photons", d.receiver_photons)?,
+        receiver_photons: t.setting(settings::RECEIVER_PHOTONS, d.receiver_photons)?,
         output: d.output,
     })
-}
-
-/// An integer ≥ 1 that fits 32 bits (beyond, an error at `key`, never a silent clamp).
-fn count_u32(t: &mut TableReader, key: &str, default: u32) -> Result<u32> {
-    let v = t.count_or(key, default as u64)?;
-    u32::try_from(v).map_err(|_| t.error(key, format!("must be at most {}, got {v}", u32::MAX)))
-}
-
-/// `gather` or `knn` = `v`, refused beyond the limit the command line enforces too
-/// ([`crate::settings::beyond_gather_or_knn_limit`]).
-fn within_limit(t: &TableReader, key: &str, v: u64) -> Result<u32> {
-    match crate::settings::beyond_gather_or_knn_limit(v) {
-        Some(why) => Err(t.error(key, why)),
-        None => Ok(v as u32),
-    }
 }
 
 /// A key that is either absent or a finite number > 0.
