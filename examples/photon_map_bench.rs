@@ -36,6 +36,8 @@ fn main() {
                     position,
                     normal,
                     power: [1.0; 3],
+                    from: normal.as_vec3().to_array(),
+                    diffused: false,
                 }
             })
             .collect();

@@ -87,6 +87,13 @@ impl Mul<Rgb> for f64 {
     }
 }
 
+impl Div for Rgb {
+    type Output = Rgb;
+    fn div(self, o: Rgb) -> Rgb {
+        Rgb(self.0 / o.0)
+    }
+}
+
 impl Div<f64> for Rgb {
     type Output = Rgb;
     fn div(self, k: f64) -> Rgb {

@@ -31,6 +31,11 @@ pub enum Sky {
         /// Cells around the equator.
         squares: u32,
     },
+    /// The same radiance from every direction (a white furnace).
+    Uniform {
+        /// Radiance per channel, W/(m²·sr).
+        radiance: Rgb,
+    },
 }
 
 /// An environment: a sky, turned and scaled.
@@ -76,6 +81,7 @@ impl Environment {
                     let odd = ((u * n).floor() + (v * n * 0.5).floor()) as i64 % 2 == 0;
                     Rgb::splat(if odd { 1.0 } else { 0.1 })
                 }
+                Sky::Uniform { radiance } => *radiance,
             }
     }
 }

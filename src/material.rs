@@ -1,8 +1,9 @@
-//! Surface materials and the Fresnel equations at a dielectric interface.
+//! Surface materials: what a scene says a surface is. [`crate::bsdf`] is how it scatters;
+//! [`crate::transport::Tracer::vertex_bsdf`] makes the one from the other at a hit.
 
+use crate::bsdf::{Coat, Ggx, Lobes, Metal};
 use crate::color::Rgb;
 use crate::texture::Texture;
-use glam::DVec3;
 use std::sync::Arc;
 
 /// How a surface scatters light.
@@ -15,14 +16,31 @@ pub enum Material {
         /// An image texture over the surface's (u, v), multiplying `albedo`.
         texture: Option<Arc<Texture>>,
     },
-    /// A perfect mirror.
-    Mirror {
-        /// Reflectance per channel in [0, 1].
-        reflectance: Rgb,
+    /// A conductor (`conductor`, and `mirror`: a smooth one of constant reflectance), two-sided:
+    /// a mirror where `roughness` is below [`crate::bsdf::SMOOTH_ALPHA`], else GGX.
+    Conductor {
+        /// Its complex index or reflectance.
+        index: ConductorIndex,
+        /// GGX α.
+        roughness: f64,
     },
-    /// A smooth dielectric boundary: Fresnel reflection and Snell refraction, with the index
-    /// on each side evaluated at the hit point. The inside is the shape's interior medium.
-    Dielectric,
+    /// A dielectric boundary, with the index on each side evaluated at the hit point: Fresnel
+    /// reflection and Snell refraction where `roughness` is below
+    /// [`crate::bsdf::SMOOTH_ALPHA`], else Walter et al.'s rough interface. The inside is the
+    /// shape's interior medium.
+    Dielectric {
+        /// GGX α.
+        roughness: f64,
+    },
+    /// A diffuse base under a rough dielectric coat, two-sided.
+    Plastic {
+        /// The base's reflectance per channel in [0, 1] (times the texture's, if any).
+        albedo: Rgb,
+        /// An image texture over the surface's (u, v), multiplying `albedo`.
+        texture: Option<Arc<Texture>>,
+        /// The coat, with its tabulated albedo.
+        coat: Arc<Coat>,
+    },
     /// A receiver's detector plane: transparent, it records the photons crossing it.
     Detector {
         /// Index into the scene's receivers.
@@ -36,29 +54,40 @@ pub enum Material {
     },
 }
 
-/// Unpolarised Fresnel reflectance for a ray from index `n1` to `n2` with cos θi = `cos_i`
-/// (> 0); 1 under total internal reflection. Also returns cos θt.
-pub fn fresnel(cos_i: f64, n1: f64, n2: f64) -> (f64, f64) {
-    let eta = n1 / n2;
-    let sin2_t = eta * eta * (1.0 - cos_i * cos_i).max(0.0);
-    if sin2_t >= 1.0 {
-        return (1.0, 0.0);
+/// What a conductor's Fresnel reflectance is made from.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ConductorIndex {
+    /// The same reflectance at every angle (a `mirror`; `metal = "perfect"` is 1).
+    Constant(Rgb),
+    /// A measured metal's η + ik over wavelength, relative to vacuum.
+    Measured(&'static Metal),
+    /// η + ik per channel relative to vacuum (`eta`, `k`); at one wavelength, each read as
+    /// a smooth spectrum of its RGB ([`crate::spectrum::colour::reflectance`]).
+    Rgb {
+        /// Real part.
+        eta: Rgb,
+        /// Extinction coefficient.
+        k: Rgb,
+    },
+}
+
+impl Material {
+    /// The lobes of the BSDF this material makes at any hit (None for a detector or an
+    /// emitter, which scatter nothing): what the photon plan reads before any ray is traced.
+    pub fn lobes(&self) -> Option<Lobes> {
+        let rough = |alpha: f64| Ggx::rough([alpha, alpha]).is_some();
+        Some(match self {
+            Material::Diffuse { .. } => Lobes::DIFFUSE_REFLECTION,
+            Material::Conductor { roughness, .. } if rough(*roughness) => Lobes::GLOSSY_REFLECTION,
+            Material::Conductor { .. } => Lobes::SPECULAR_REFLECTION,
+            Material::Dielectric { roughness } if rough(*roughness) => {
+                Lobes::GLOSSY_REFLECTION.with(Lobes::GLOSSY_TRANSMISSION)
+            }
+            Material::Dielectric { .. } => {
+                Lobes::SPECULAR_REFLECTION.with(Lobes::SPECULAR_TRANSMISSION)
+            }
+            Material::Plastic { .. } => Lobes::DIFFUSE_REFLECTION.with(Lobes::GLOSSY_REFLECTION),
+            Material::Detector { .. } | Material::Emissive { .. } => return None,
+        })
     }
-    let cos_t = (1.0 - sin2_t).sqrt();
-    let rs = (n1 * cos_i - n2 * cos_t) / (n1 * cos_i + n2 * cos_t);
-    let rp = (n2 * cos_i - n1 * cos_t) / (n2 * cos_i + n1 * cos_t);
-    (0.5 * (rs * rs + rp * rp), cos_t)
-}
-
-/// Mirror reflection of direction `d` about unit normal `n`.
-pub fn reflect(d: DVec3, n: DVec3) -> DVec3 {
-    d - 2.0 * d.dot(n) * n
-}
-
-/// Refraction of unit `d` through a surface with unit normal `n` facing the incident side
-/// (d·n < 0), from `n1` to `n2`, given cos θt from [`fresnel`].
-pub fn refract(d: DVec3, n: DVec3, n1: f64, n2: f64, cos_t: f64) -> DVec3 {
-    let eta = n1 / n2;
-    let cos_i = -d.dot(n);
-    (eta * d + (eta * cos_i - cos_t) * n).normalize()
 }

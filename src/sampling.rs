@@ -59,6 +59,11 @@ impl Frame {
     pub fn to_world(&self, v: DVec3) -> DVec3 {
         v.x * self.t + v.y * self.b + v.z * self.n
     }
+
+    /// The local coordinates (x, y, z) (z along n) of world vector `v`.
+    pub fn to_local(&self, v: DVec3) -> DVec3 {
+        DVec3::new(v.dot(self.t), v.dot(self.b), v.dot(self.n))
+    }
 }
 
 /// A unit vector at polar cosine `cos` about +z and azimuth 2π·`u`.

@@ -12,6 +12,8 @@ fn photon(position: DVec3, normal: DVec3, power: f32) -> Photon {
         position,
         normal,
         power: [power; 3],
+        from: normal.as_vec3().to_array(),
+        diffused: false,
     }
 }
 

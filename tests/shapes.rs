@@ -395,7 +395,7 @@ fn a_mesh_answers_as_its_triangles_do() {
 #[test]
 fn a_smooth_mesh_refracts_as_its_surface_does() {
     use grinlight::scene::load::parse_scene;
-    use grinlight::transport::{Event, Normals, Stats, Tracer};
+    use grinlight::transport::{Event, Normals, Stats, SurfaceHit, Tracer};
     let dir = std::env::temp_dir().join(format!("grinlight-smooth-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("ball.obj"), common::sphere_obj(4, true)).unwrap();
@@ -426,26 +426,28 @@ fn a_smooth_mesh_refracts_as_its_surface_does() {
             position,
             normal,
             shading,
+            uv,
             direction,
             ..
         } = tracer.next_event(o, d, None, &mut stats)
         else {
             panic!("the ray meets the ball");
         };
+        let hit = SurfaceHit {
+            prim,
+            position,
+            normals: Normals {
+                geometric: normal,
+                shading,
+            },
+            uv,
+            incoming: direction,
+        };
         let b = tracer
-            .specular_bounce(
-                scene.surfaces[prim],
-                None,
-                position,
-                direction,
-                Normals {
-                    geometric: normal,
-                    shading,
-                },
-                0.999,
-            )
+            .vertex(hit, scene.surfaces[prim], None)
+            .and_then(|v| v.scatter((0.0, 0.0, 0.999)))
             .expect("a refraction");
-        (b.direction, b.direction.dot(normal))
+        (b.ray.direction, b.ray.direction.dot(normal))
     };
     let mut rng = Pcg64Mcg::seed_from_u64(3);
     let (mut flat, mut smooth, mut computed) = (Vec::new(), Vec::new(), Vec::new());

@@ -1,36 +1,30 @@
-//! What every integrator estimates the same way: a camera path to its visible point (the first
-//! diffuse surface after the specular and curved chain), the emission seen along a chain, and
-//! direct light at a diffuse point. Radiance per RGB channel, W/(m²·sr), scaled across indices
-//! as [`crate::transport::chain`] says; Lambertian BRDF = albedo/π. In a dispersive scene each
+//! What every integrator estimates the same way: a camera path to its first scattering vertex
+//! (the first surface after the specular and curved chain that is not purely specular), the
+//! emission seen along a chain, and direct light at a scattering vertex for any BSDF. Radiance
+//! per RGB channel, W/(m²·sr), scaled across indices as [`crate::transport::chain`] says. In a
+//! dispersive scene each
 //! camera sample draws a hero wavelength ([`hero`]) that its paths take on where they meet
 //! dispersion ([`Carried`]); colours are then read at it ([`Tracer::reflectance`],
 //! [`Tracer::radiance`]).
 
-use crate::bsdf::Bsdf;
 use crate::color::Rgb;
 use crate::lights::Light;
 use crate::spectrum::Hero;
 use crate::transport::chain::{Carried, Chain, End, Policy, Ray, Walker};
 use crate::transport::connect::connect;
-use crate::transport::{offset, visibility, HeroTracer, Stats, Tracer};
+use crate::transport::{offset, visibility, HeroTracer, Stats, Tracer, Vertex};
 use glam::DVec3;
 use rand::Rng;
-use std::f64::consts::FRAC_1_PI;
 
-/// A diffuse point a path has reached (the camera's first: its visible point).
+/// A scattering vertex a camera path has reached, with what radiance leaving it becomes at
+/// the camera.
 #[derive(Clone, Copy, Debug)]
-pub struct VisiblePoint {
-    /// Where.
-    pub position: DVec3,
-    /// Unit normal of the side the path arrived on.
-    pub normal: DVec3,
-    /// Albedo of the surface.
-    pub albedo: Rgb,
-    /// What radiance leaving the point becomes at the camera: the path's throughput (mirror
-    /// reflectances, albedos, absorption) times (n_camera/n_here)².
+pub struct VisiblePoint<'w> {
+    /// The vertex: where, its BSDF, ωo.
+    pub vertex: Vertex<'w>,
+    /// The path's throughput (reflectances, BSDF weights, absorption) times
+    /// (n_camera/n_here)².
     pub throughput: Rgb,
-    /// The medium the path arrived in (None: vacuum).
-    pub medium: Option<usize>,
 }
 
 /// What one camera path found.
@@ -38,8 +32,8 @@ pub struct VisiblePoint {
 pub struct Components<'w> {
     /// Emission and environment radiance met along the specular chain.
     pub emitted: Rgb,
-    /// The visible point, if the path reached a diffuse surface.
-    pub visible: Option<VisiblePoint>,
+    /// Its first scattering vertex, if it reached one.
+    pub visible: Option<VisiblePoint<'w>>,
     /// The wavelengths the path carries there.
     pub carried: Carried<'w>,
 }
@@ -89,29 +83,21 @@ pub fn camera_path<'w>(
         visible: None,
         carried: walker.carried(),
     };
-    if let End::Diffuse {
-        position,
-        normal,
-        albedo,
-        ..
-    } = chain.end
-    {
+    if let End::Scatter(vertex) = chain.end {
         out.visible = Some(VisiblePoint {
-            position,
-            normal,
-            albedo,
+            vertex,
             throughput: chain.weight * chain.radiance_scale(),
-            medium: chain.medium,
         });
     }
     out
 }
 
-/// One light sample of `light` at a visible point in a uniform medium, through a straight
-/// shadow ray (multiple importance weighted against the BSDF sample for area lights).
+/// One light sample of `light` at a scattering vertex in a uniform medium, through a straight
+/// shadow ray from its arrival side (multiple importance weighted against the BSDF sample
+/// for area lights).
 fn straight_light(
     tracer: &Tracer,
-    vp: &VisiblePoint,
+    vertex: &Vertex,
     origin: DVec3,
     light: &Light,
     uv: (f64, f64),
@@ -119,7 +105,7 @@ fn straight_light(
     let Some(inc) = light.sample_incident(origin, uv) else {
         return Rgb::ZERO;
     };
-    let cos = inc.wi.dot(vp.normal);
+    let cos = inc.wi.dot(vertex.normal);
     if cos <= 0.0 {
         return Rgb::ZERO;
     }
@@ -128,34 +114,38 @@ fn straight_light(
     } else {
         f64::INFINITY
     };
-    let kept = visibility::transmittance(tracer, origin, vp.medium, inc.wi, reach);
-    let weight = power_heuristic(inc.pdf, cos * FRAC_1_PI);
-    vp.albedo * FRAC_1_PI * tracer.radiance(inc.irradiance) * (cos * weight * kept)
+    let f = vertex.eval(inc.wi);
+    if f == Rgb::ZERO {
+        return Rgb::ZERO;
+    }
+    let kept = visibility::transmittance(tracer, origin, vertex.medium, inc.wi, reach);
+    let weight = power_heuristic(inc.pdf, vertex.pdf(inc.wi));
+    f * tracer.radiance(inc.irradiance) * (cos * weight * kept)
 }
 
-/// A point, spot, LED or parallel light at a visible point in gradient medium `m`, through
-/// the curved connection to it (`uv` samples an LED's disk).
+/// A point, spot, LED or parallel light at a scattering vertex in gradient medium `m`,
+/// through the curved connection to it (`uv` samples an LED's disk).
 fn curved_light(
     tracer: &Tracer,
-    vp: &VisiblePoint,
+    vertex: &Vertex,
     m: usize,
     light: &Light,
     uv: (f64, f64),
     stats: &mut Stats,
 ) -> Rgb {
-    let origin = offset(vp.position, vp.normal);
+    let origin = offset(vertex.position, vertex.normal);
     let Some(anchor) = light.anchor(uv) else {
         return Rgb::ZERO;
     };
     let Some(link) = connect(tracer, origin, m, &anchor, stats) else {
         return Rgb::ZERO;
     };
-    let cos = link.direction.dot(vp.normal);
+    let cos = link.direction.dot(vertex.normal);
     if cos <= 0.0 {
         return Rgb::ZERO;
     }
     let e = link.irradiance(&anchor, tracer.radiance(light.intensity(-link.arrival)));
-    vp.albedo * FRAC_1_PI * e * cos
+    vertex.eval(link.direction) * e * cos
 }
 
 /// The power heuristic's weight of a strategy of pdf `a` against one of pdf `b` (1 when `a`
@@ -168,67 +158,63 @@ fn power_heuristic(a: f64, b: f64) -> f64 {
     }
 }
 
-/// Direct light at a visible point: light that reaches it from an emitter or the environment
-/// with no specular interaction on the way.
+/// Direct light at a scattering vertex: light that reaches it from an emitter or the
+/// environment with no specular interaction on the way, reflected toward ωo by its BSDF.
 /// - In a uniform medium, one light sample of every light through a straight shadow ray
-///   (the visibility query: detectors are transparent, absorption applied), and one
-///   cosine-sampled (BSDF) ray, combined by multiple importance sampling with the power
-///   heuristic for area lights (the only lights both strategies can find).
+///   (the visibility query: detectors are transparent, absorption applied), and one BSDF
+///   ray, combined by multiple importance sampling with the power heuristic for area lights
+///   (the only lights both strategies can find). Light samples reach the arrival side; a
+///   transmitted BSDF ray is the only strategy for the other side (weight 1).
 /// - In a gradient medium a straight connection is not a light path: point, spot, LED and
 ///   parallel light are connected to along the curved path ([`connect`]), and the BSDF ray,
 ///   followed along its curved path, finds area lights and the environment (weight 1: there
 ///   are no area-light samples to weigh it against).
 ///
-/// A BSDF ray that meets a mirror or dielectric first carries nothing: that light is the
+/// A BSDF ray that meets a purely specular surface first carries nothing: that light is the
 /// caustic map's. A BSDF ray into a dispersive medium takes on the hero wavelength there;
 /// connections are traced at the wavelength(s) the path carries.
 pub fn direct(carried: Carried, vp: &VisiblePoint, rng: &mut impl Rng, stats: &mut Stats) -> Rgb {
     let tracer = carried.tracer;
     let scene = tracer.scene;
-    let graded = vp.medium.filter(|&m| !tracer.medium(m).is_uniform());
-    let origin = offset(vp.position, vp.normal);
+    let vertex = &vp.vertex;
+    let graded = vertex.medium.filter(|&m| !tracer.medium(m).is_uniform());
+    let origin = offset(vertex.position, vertex.normal);
     let mut radiance = Rgb::ZERO;
     for light in &scene.lights {
         let lit = match graded {
-            None => straight_light(tracer, vp, origin, light, (rng.gen(), rng.gen())),
+            None => straight_light(tracer, vertex, origin, light, (rng.gen(), rng.gen())),
             Some(m) if !light.is_hittable() => {
-                curved_light(tracer, vp, m, light, (rng.gen(), rng.gen()), stats)
+                curved_light(tracer, vertex, m, light, (rng.gen(), rng.gen()), stats)
             }
             Some(_) => Rgb::ZERO,
         };
         radiance += lit;
     }
-    let uniform = graded.is_none();
-    // The BSDF sample: f cos θ / pdf = albedo for cosine sampling.
-    let lambert = Bsdf::Lambert { albedo: vp.albedo };
-    let s = lambert
-        .sample(vp.normal, vp.normal, (rng.gen(), rng.gen(), 0.0))
-        .expect("a Lambertian surface always scatters");
-    let ray = Ray {
-        origin,
-        direction: s.wi,
-        medium: vp.medium,
+    let Some(s) = vertex.scatter_with(rng) else {
+        return vp.throughput * radiance;
     };
     let mut walker = Walker::carrying(carried, Policy::Unscattered);
-    let chain = walker.follow(ray, rng, stats, &mut ());
+    let chain = walker.follow(s.ray, rng, stats, &mut ());
+    // Light samples reach only the arrival side of a vertex in a uniform medium.
+    let weighed = graded.is_none() && !s.sample.transmitted();
     let mis = match chain.end {
         End::Emitter {
             prim,
             position,
             direction,
             ..
-        } if uniform => scene.surfaces[prim]
+        } if weighed => scene.surfaces[prim]
             .light
             .map_or(1.0, |l| match &scene.lights[l] {
                 Light::Area { emitter, .. } => {
                     let cos_l = -direction.dot(emitter.normal());
                     let t2 = (position - origin).length_squared();
-                    power_heuristic(s.pdf, t2 / (cos_l * emitter.area()))
+                    power_heuristic(s.sample.pdf, t2 / (cos_l * emitter.area()))
                 }
                 _ => 1.0,
             }),
         _ => 1.0,
     };
-    radiance += s.weight * emission_seen(walker.tracer, &chain) * mis;
+    radiance += s.sample.weight * emission_seen(walker.tracer, &chain) * mis;
     vp.throughput * radiance
 }

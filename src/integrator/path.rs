@@ -1,10 +1,11 @@
 //! Unidirectional path tracing through the curved transport: the camera's specular chain to
-//! its first diffuse point, then cosine-sampled bounces from diffuse point to diffuse point,
-//! each followed through mirrors, dielectrics and gradient media. At every diffuse point the
-//! light arriving with no specular interaction is the direct estimate ([`super::direct`]:
-//! light samples where a straight shadow ray is valid, curved connections and curved BSDF
-//! rays where it is not); a bounce whose chain reaches an emitter or the sky after a specular
-//! interaction adds that light (caustics). Russian roulette after three bounces.
+//! its first scattering vertex, then BSDF-sampled bounces from vertex to vertex (diffuse or
+//! glossy), each followed through purely specular surfaces and gradient media. At every
+//! vertex the light arriving with no specular interaction is the direct estimate
+//! ([`super::direct`]: light samples where a straight shadow ray is valid, curved connections
+//! and curved BSDF rays where it is not); a bounce whose chain reaches an emitter or the sky
+//! after a specular interaction adds that light (caustics). Russian roulette after three
+//! bounces.
 //!
 //! Light from point, spot, LED and parallel sources that reaches a diffuse point only through
 //! a specular chain (their caustics) cannot be found by any direction sample: the path tracer
@@ -12,12 +13,11 @@
 
 use super::direct::{camera_path, direct, emission_seen, hero, VisiblePoint};
 use super::{CameraRay, Integrator, Sample, Slot};
-use crate::bsdf::Bsdf;
 use crate::color::Rgb;
 use crate::film::Layer;
 use crate::report::Report;
-use crate::transport::chain::{Carried, End, Policy, Ray, Walker};
-use crate::transport::{offset, Tracer};
+use crate::transport::chain::{Carried, End, Policy, Walker};
+use crate::transport::Tracer;
 use rand::Rng;
 
 /// The layers, in order; `beauty` is their radiance sum.
@@ -48,10 +48,10 @@ impl<'a> PathTracer<'a> {
         Self { tracer }
     }
 
-    /// The light reaching the camera from diffuse bounces after the visible point `vp`:
-    /// direct light at every later diffuse point, and emission found through specular chains
-    /// from every diffuse point.
-    fn indirect(&self, mut vp: VisiblePoint, carried: Carried, s: &mut Sample) -> Rgb {
+    /// The light reaching the camera from bounces after the visible point `vp`: direct
+    /// light at every later scattering vertex, and emission found through specular chains
+    /// from every vertex.
+    fn indirect<'w>(&self, mut vp: VisiblePoint<'w>, carried: Carried<'w>, s: &mut Sample) -> Rgb {
         let mut walker = Walker::carrying(carried, Policy::Weighted);
         let mut sum = Rgb::ZERO;
         for bounce in 0.. {
@@ -62,35 +62,22 @@ impl<'a> PathTracer<'a> {
                 }
                 vp.throughput /= survive;
             }
-            let b = Bsdf::Lambert { albedo: vp.albedo }
-                .sample(vp.normal, vp.normal, (s.rng.gen(), s.rng.gen(), 0.0))
-                .expect("a Lambertian surface always scatters");
-            let ray = Ray {
-                origin: offset(vp.position, vp.normal),
-                direction: b.wi,
-                medium: vp.medium,
+            let Some(b) = vp.vertex.scatter_with(s.rng) else {
+                break;
             };
-            let chain = walker.follow(ray, s.rng, s.stats, &mut ());
-            let throughput = vp.throughput * b.weight * chain.weight;
+            let chain = walker.follow(b.ray, s.rng, s.stats, &mut ());
+            let weight = b.sample.weight;
+            let throughput = vp.throughput * weight * chain.weight;
             // With no specular bounce, emission here is the direct estimate's (already counted).
             if chain.specular > 0 {
-                sum += vp.throughput * b.weight * emission_seen(walker.tracer, &chain);
+                sum += vp.throughput * weight * emission_seen(walker.tracer, &chain);
             }
-            let End::Diffuse {
-                position,
-                normal,
-                albedo,
-                ..
-            } = chain.end
-            else {
+            let End::Scatter(vertex) = chain.end else {
                 break;
             };
             vp = VisiblePoint {
-                position,
-                normal,
-                albedo,
+                vertex,
                 throughput: throughput * chain.radiance_scale(),
-                medium: chain.medium,
             };
             sum += direct(walker.carried(), &vp, s.rng, s.stats);
         }
@@ -119,8 +106,8 @@ impl Integrator for PathTracer<'_> {
         let c = camera_path(carried, ray.origin, ray.direction, s.rng, s.stats);
         s.add(EMITTED, c.emitted);
         let Some(vp) = c.visible else { return };
-        s.add(ALBEDO, vp.albedo);
-        s.add(NORMAL, Rgb(vp.normal));
+        s.add(ALBEDO, vp.vertex.bsdf.albedo());
+        s.add(NORMAL, Rgb(vp.vertex.normal));
         let direct = direct(c.carried, &vp, s.rng, s.stats);
         s.add(DIRECT, direct);
         let indirect = self.indirect(vp, c.carried, s);

@@ -1,27 +1,31 @@
-//! The photon mapper (Zhdanov et al. (2020) §4, Jensen): each pass traces a caustic and a global photon
-//! map, and each camera sample's visible point gets
+//! The photon mapper (Zhdanov et al. (2020) §4, Jensen; glossy surfaces as in SPPM, Hachisuka
+//! and Jensen 2009, and pbrt-v4): each pass traces a caustic and a global photon map. A camera
+//! path goes through purely specular surfaces within its chain and through glossy-only
+//! vertices by sampling their BSDF (with direct light at each), and makes its visible point at
+//! the first vertex with a diffuse lobe — or at a glossy one when its depth is spent. There:
 //! - **direct**: light with no specular interaction on the way ([`super::direct`]);
-//! - **caustic**: the caustic map's density estimate (photons with a specular bounce), with an
-//!   Epanechnikov kernel of radius r_p at pass p: r₀ the k-nearest distance at the pixel's
-//!   first visible point in that pass (or the scene's `radius`), shrunk by Knaus and Zwicker's
-//!   probabilistic progressive schedule r_p² = r₀² Π_{j=1..p} (j + α)/(j + 1), α = 2/3: a
-//!   function of the pass index alone, so passes are independent and their films merge;
-//! - **secondary**: a final gather — cosine rays followed through specular surfaces to a
-//!   diffuse one, where the global map's precomputed irradiance is read;
-//! - **emitted**: emitters and the environment seen along the camera's specular chain.
+//! - **caustic**: the caustic map's density estimate (photons that met only specular or glossy
+//!   lobes since the light), each photon weighted by the BSDF f(ωo, ωi), with an Epanechnikov
+//!   kernel of radius r_p at pass p: r₀ the k-nearest distance at the pixel's first visible
+//!   point in that pass (or the scene's `radius`), shrunk by Knaus and Zwicker's probabilistic
+//!   progressive schedule r_p² = r₀² Π_{j=1..p} (j + α)/(j + 1), α = 2/3: a function of the
+//!   pass index alone, so passes are independent and their films merge;
+//! - **secondary**: a final gather — BSDF-sampled rays followed through specular surfaces to a
+//!   scattering vertex, where the global map gives the radiance leaving it: a Lambertian
+//!   surface's precomputed irradiance, or the k nearest photons weighted by its BSDF (through
+//!   a glossy lobe only photons a diffuse lobe scattered before: the rest are caustics);
+//! - **emitted**: emitters and the environment seen along the camera's chains.
 
-use super::direct::{camera_path, direct, hero};
+use super::direct::{camera_path, direct, emission_seen, hero, VisiblePoint};
 use super::{CameraRay, Integrator, Sample, Slot};
-use crate::bsdf::Bsdf;
 use crate::color::Rgb;
 use crate::film::Layer;
-use crate::photon::{shoot, Batch, PhotonMap, Photons, Sources};
+use crate::photon::{shoot, Batch, PhotonMap, Photons, Side, Sources};
 use crate::report::Report;
 use crate::scene::Scene;
 use crate::settings::{PhotonSettings, Settings};
-use crate::transport::chain::{Carried, End, Policy, Ray, Walker};
-use crate::transport::{offset, Stats, Tracer};
-use rand::Rng;
+use crate::transport::chain::{Carried, End, Policy, Walker};
+use crate::transport::{Stats, Tracer, Vertex};
 use std::f64::consts::FRAC_1_PI;
 use std::time::Instant;
 
@@ -32,31 +36,30 @@ pub const ALPHA: f64 = 2.0 / 3.0;
 /// Which photon maps a scene needs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Plan {
-    /// A caustic map: some light path can meet a specular surface before a diffuse one
-    /// (light through gradient media alone is the direct estimate's).
+    /// A caustic map: some light path can meet a specular or glossy lobe before a
+    /// scattering vertex (light through gradient media alone is the direct estimate's).
     pub caustic: bool,
-    /// A global map: secondary light is on (`gather` > 0) and something is diffuse.
+    /// A global map: secondary light is on (`gather` > 0) and something scatters.
     pub global: bool,
 }
 
 impl Plan {
-    /// What `scene` needs with `photons`: nothing without diffuse surfaces or without
+    /// What `scene` needs with `photons`: nothing without scattering surfaces or without
     /// emitters.
     pub fn of(scene: &Scene, photons: &PhotonSettings) -> Self {
-        use crate::material::Material;
-        let has = |f: fn(&Material) -> bool| {
+        let lobes = || {
             scene
                 .surfaces
                 .iter()
-                .any(|s| f(&scene.materials[s.material]))
+                .filter_map(|s| scene.materials[s.material].lobes())
         };
-        let diffuse = has(|m| matches!(m, Material::Diffuse { .. }));
-        let emits = !scene.lights.is_empty() || scene.environment.is_some();
         // (A receiver's detector is transparent: it neither bends nor stores light.)
-        let specular = has(|m| matches!(m, Material::Mirror { .. } | Material::Dielectric));
+        let scatters = lobes().any(|l| !l.is_specular());
+        let bends = lobes().any(|l| l != crate::bsdf::Lobes::DIFFUSE_REFLECTION);
+        let emits = !scene.lights.is_empty() || scene.environment.is_some();
         Self {
-            caustic: diffuse && emits && specular && photons.caustic > 0,
-            global: diffuse && emits && photons.gather > 0 && photons.global > 0,
+            caustic: scatters && emits && bends && photons.caustic > 0,
+            global: scatters && emits && photons.gather > 0 && photons.global > 0,
         }
     }
 }
@@ -150,15 +153,15 @@ impl<'a> PhotonMapper<'a> {
         &self,
         caustic: &PhotonMap,
         index: u32,
-        vp: &super::direct::VisiblePoint,
+        vp: &VisiblePoint,
         stats: &mut Stats,
     ) -> f64 {
         let r0 = match self.photons.radius {
             Some(r) => r * r,
             None => stats.time_query(|| {
                 caustic.knn_radius2(
-                    vp.position,
-                    vp.normal,
+                    vp.vertex.position,
+                    vp.vertex.normal,
                     self.photons.knn as usize,
                     self.max_r2,
                 )
@@ -167,49 +170,113 @@ impl<'a> PhotonMapper<'a> {
         r0 * schedule(index)
     }
 
-    /// Secondary light at a visible point: `gather` cosine rays, each followed through
-    /// specular surfaces to a diffuse one, where the global map's precomputed k-nearest
-    /// irradiance of the nearest photon gives the radiance leaving it. Emission and
+    /// Secondary light at a visible point: `gather` BSDF-sampled rays, each followed through
+    /// specular surfaces to a scattering vertex, where the global map gives the radiance
+    /// leaving it toward the ray ([`PhotonMapper::global_radiance`]). Emission and
     /// environment met by gather rays are not counted: that light is the direct or caustic
     /// part.
     fn secondary(
         &self,
         global: &PhotonMap,
-        vp: &super::direct::VisiblePoint,
+        vp: &VisiblePoint,
         carried: Carried,
         s: &mut Sample,
     ) -> Rgb {
         let gather = self.photons.gather;
-        let lambert = Bsdf::Lambert { albedo: vp.albedo };
         let mut sum = Rgb::ZERO;
         for _ in 0..gather {
             s.stats.gather_rays += 1;
-            let b = lambert
-                .sample(vp.normal, vp.normal, (s.rng.gen(), s.rng.gen(), 0.0))
-                .expect("a Lambertian surface always scatters");
-            let ray = Ray {
-                origin: offset(vp.position, vp.normal),
-                direction: b.wi,
-                medium: vp.medium,
+            let Some(b) = vp.vertex.scatter_with(s.rng) else {
+                continue;
             };
             let mut walker = Walker::carrying(carried, Policy::Weighted);
-            let chain = walker.follow(ray, s.rng, s.stats, &mut ());
-            if let End::Diffuse {
-                position,
-                normal,
-                albedo,
-                ..
-            } = chain.end
-            {
-                let e = s
-                    .stats
-                    .time_query(|| global.nearest_irradiance(position, normal));
-                let e = walker.tracer.photon_irradiance(e);
-                sum += b.weight * chain.weight * albedo * FRAC_1_PI * e * chain.radiance_scale();
+            let chain = walker.follow(b.ray, s.rng, s.stats, &mut ());
+            if let End::Scatter(y) = chain.end {
+                let tracer = walker.tracer;
+                let weight = b.sample.weight * chain.weight;
+                sum += match y.bsdf.lambert_albedo() {
+                    Some(albedo) => {
+                        let e = s
+                            .stats
+                            .time_query(|| global.nearest_irradiance(y.position, y.normal));
+                        weight * albedo * FRAC_1_PI * tracer.photon_irradiance(e)
+                    }
+                    None => {
+                        weight * tracer.photon_irradiance(self.photon_radiance(global, &y, s.stats))
+                    }
+                } * chain.radiance_scale();
             }
         }
         vp.throughput * sum / gather.max(1) as f64
     }
+
+    /// The radiance the global map says leaves the non-Lambertian vertex `y` toward ωo: the k
+    /// nearest photons, each weighted by the BSDF — through every lobe for a photon a diffuse
+    /// lobe scattered before, through the diffuse lobe alone for the others (through a glossy
+    /// lobe they are caustics of the visible point, the caustic map's). (At a Lambertian
+    /// surface the map's precomputed irradiance times albedo/π stands for it.)
+    fn photon_radiance(&self, global: &PhotonMap, y: &Vertex, stats: &mut Stats) -> Rgb {
+        let side = Side {
+            normal: y.normal,
+            both: y.lobes().transmits(),
+        };
+        let k = self.photons.knn as usize;
+        stats.time_query(|| {
+            global.knn_weighted(
+                y.position,
+                side,
+                k,
+                self.max_r2,
+                |_| true,
+                |p| {
+                    let wi = p.from_direction();
+                    let f = match p.diffused {
+                        true => y.eval(wi),
+                        false => y.eval_diffuse(wi),
+                    };
+                    f * p.flux()
+                },
+            )
+        })
+    }
+
+    /// The camera path's visible point: past glossy-only vertices by sampling their BSDF
+    /// (adding their direct light to `direct`, and emission met after a specular bounce to
+    /// `emitted`), to the first vertex with a diffuse lobe, or a glossy one where the path's
+    /// depth is spent.
+    fn visible_point<'w>(
+        &self,
+        mut vp: VisiblePoint<'w>,
+        carried: Carried<'w>,
+        found: &mut Found,
+        s: &mut Sample,
+    ) -> Option<(VisiblePoint<'w>, Carried<'w>)> {
+        let mut walker = Walker::carrying(carried, Policy::Weighted);
+        while !vp.vertex.lobes().has_diffuse() && walker.depth > 0 {
+            found.direct += direct(walker.carried(), &vp, s.rng, s.stats);
+            let b = vp.vertex.scatter_with(s.rng)?;
+            let chain = walker.follow(b.ray, s.rng, s.stats, &mut ());
+            let throughput = vp.throughput * b.sample.weight;
+            if chain.specular > 0 {
+                found.emitted += throughput * emission_seen(walker.tracer, &chain);
+            }
+            let End::Scatter(vertex) = chain.end else {
+                return None;
+            };
+            vp = VisiblePoint {
+                vertex,
+                throughput: throughput * chain.weight * chain.radiance_scale(),
+            };
+        }
+        Some((vp, walker.carried()))
+    }
+}
+
+/// Light a camera path found on its way to its visible point.
+#[derive(Default)]
+struct Found {
+    direct: Rgb,
+    emitted: Rgb,
 }
 
 /// r_p²/r₀² of Knaus and Zwicker's schedule at pass `index`: Π_{j=1..index} (j + α)/(j + 1).
@@ -257,22 +324,45 @@ impl Integrator for PhotonMapper<'_> {
         };
         let c = camera_path(carried, ray.origin, ray.direction, s.rng, s.stats);
         s.add(EMITTED, c.emitted);
-        let Some(vp) = c.visible else { return };
-        s.add(ALBEDO, vp.albedo);
-        s.add(NORMAL, Rgb(vp.normal));
-        let direct = direct(c.carried, &vp, s.rng, s.stats);
+        let Some(first) = c.visible else { return };
+        s.add(ALBEDO, first.vertex.bsdf.albedo());
+        s.add(NORMAL, Rgb(first.vertex.normal));
+        let mut found = Found::default();
+        let visible = self.visible_point(first, c.carried, &mut found, s);
+        s.add(DIRECT, found.direct);
+        s.add(EMITTED, found.emitted);
+        let Some((vp, carried)) = visible else { return };
+        let direct = direct(carried, &vp, s.rng, s.stats);
         s.add(DIRECT, direct);
         if let Some(global) = &maps.global {
-            let secondary = self.secondary(global, &vp, c.carried, s);
+            let secondary = self.secondary(global, &vp, carried, s);
             s.add(SECONDARY, secondary);
         }
         if let Some(caustic) = &maps.caustic {
             let r2 = *r2.get_or_insert_with(|| self.caustic_r2(caustic, maps.index, &vp, s.stats));
-            let (irradiance, _) = s
-                .stats
-                .time_query(|| caustic.irradiance(vp.position, vp.normal, r2));
-            let irradiance = c.carried.tracer.photon_irradiance(irradiance);
-            s.add(CAUSTIC, vp.throughput * vp.albedo * irradiance * FRAC_1_PI);
+            let v = &vp.vertex;
+            let caustic_light = match v.bsdf.lambert_albedo() {
+                Some(albedo) => {
+                    let (e, _) = s
+                        .stats
+                        .time_query(|| caustic.irradiance(v.position, v.normal, r2));
+                    let e = carried.tracer.photon_irradiance(e);
+                    vp.throughput * albedo * e * FRAC_1_PI
+                }
+                None => {
+                    let side = Side {
+                        normal: v.normal,
+                        both: v.lobes().transmits(),
+                    };
+                    let (l, _) = s.stats.time_query(|| {
+                        caustic.weighted(v.position, side, r2, |p| {
+                            v.eval(p.from_direction()) * p.flux()
+                        })
+                    });
+                    vp.throughput * carried.tracer.photon_irradiance(l)
+                }
+            };
+            s.add(CAUSTIC, caustic_light);
         }
     }
 }

@@ -8,7 +8,7 @@ use kiddo::immutable::float::kdtree::ImmutableKdTree;
 use kiddo::SquaredEuclidean;
 use std::num::NonZero;
 
-/// A photon at a diffuse surface.
+/// A photon at a scattering surface (diffuse or glossy).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Photon {
     /// Where it hit.
@@ -17,9 +17,20 @@ pub struct Photon {
     pub normal: DVec3,
     /// Flux it carries, W per channel (already divided by the photon count of its pass).
     pub power: [f32; 3],
+    /// Unit direction back toward where it came from (ωi of the BSDF that reflects it).
+    pub from: [f32; 3],
+    /// Whether a diffuse lobe scattered it before it arrived here (a final gather may then
+    /// read it through any lobe; otherwise only through a diffuse one: through a glossy lobe
+    /// it is a caustic, the caustic map's).
+    pub diffused: bool,
 }
 
 impl Photon {
+    /// [`Photon::from`] as f64.
+    pub fn from_direction(&self) -> DVec3 {
+        DVec3::from_array(self.from.map(f64::from))
+    }
+
     /// The flux as f64 RGB.
     pub fn flux(&self) -> Rgb {
         Rgb::new(
@@ -82,6 +93,31 @@ pub const SITE_STRIDE: usize = 8;
 /// same surface: its normal within ~25° of the query's (cos ≥ 0.9). This rejects photons on
 /// the other wall of a corner and on the back of a thin object.
 const SAME_SURFACE_COS: f64 = 0.9;
+
+/// Which photons a query point sees: those on its side of the surface of unit normal
+/// `normal`, or — at a surface that transmits (rough glass) — those on either side.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Side {
+    /// The query's unit normal.
+    pub normal: DVec3,
+    /// Whether photons on the other side count too.
+    pub both: bool,
+}
+
+impl Side {
+    /// The side of unit `normal` only.
+    pub fn of(normal: DVec3) -> Self {
+        Self {
+            normal,
+            both: false,
+        }
+    }
+
+    fn admits(&self, photon: &Photon) -> bool {
+        let cos = photon.normal.dot(self.normal);
+        cos >= SAME_SURFACE_COS || (self.both && cos <= -SAME_SURFACE_COS)
+    }
+}
 
 impl PhotonMap {
     /// Builds the tree over `photons`. At most u32::MAX photons are indexed (a pass of that
@@ -187,17 +223,17 @@ impl PhotonMap {
 
     /// Calls `f(photon, d²)` for every photon within squared distance `r2` of `p` (inclusive)
     /// that lies on the surface side with unit normal `normal`.
-    pub fn for_each_within(
-        &self,
-        p: DVec3,
-        normal: DVec3,
-        r2: f64,
-        mut f: impl FnMut(&Photon, f64),
-    ) {
+    pub fn for_each_within(&self, p: DVec3, normal: DVec3, r2: f64, f: impl FnMut(&Photon, f64)) {
+        self.for_each_seen(p, Side::of(normal), r2, f)
+    }
+
+    /// Calls `f(photon, d²)` for every photon within squared distance `r2` of `p` (inclusive)
+    /// that `side` admits.
+    pub fn for_each_seen(&self, p: DVec3, side: Side, r2: f64, mut f: impl FnMut(&Photon, f64)) {
         let Some(tree) = &self.tree else { return };
         for nn in tree.within_unsorted::<SquaredEuclidean>(&tree_point(p), r2) {
             let photon = &self.photons[nn.item as usize];
-            if photon.normal.dot(normal) >= SAME_SURFACE_COS {
+            if side.admits(photon) {
                 f(photon, nn.distance);
             }
         }
@@ -209,7 +245,7 @@ impl PhotonMap {
     fn nearest(
         &self,
         p: DVec3,
-        normal: DVec3,
+        side: Side,
         k: usize,
         max_r2: f64,
         keep: impl Fn(u32) -> bool,
@@ -228,10 +264,7 @@ impl PhotonMap {
             let found: Vec<(u32, f64)> = candidates
                 .into_iter()
                 .take_while(|nn| nn.distance <= max_r2)
-                .filter(|nn| {
-                    keep(nn.item)
-                        && self.photons[nn.item as usize].normal.dot(normal) >= SAME_SURFACE_COS
-                })
+                .filter(|nn| keep(nn.item) && side.admits(&self.photons[nn.item as usize]))
                 .take(k)
                 .map(|nn| (nn.item, nn.distance))
                 .collect();
@@ -245,7 +278,7 @@ impl PhotonMap {
     /// The squared distance from `p` to its k-th nearest photon on the surface side `normal`,
     /// or `max_r2` when fewer than k lie within that.
     pub fn knn_radius2(&self, p: DVec3, normal: DVec3, k: usize, max_r2: f64) -> f64 {
-        let found = self.nearest(p, normal, k.max(1), max_r2, |_| true);
+        let found = self.nearest(p, Side::of(normal), k.max(1), max_r2, |_| true);
         if found.len() == k.max(1) {
             found[found.len() - 1].1
         } else {
@@ -265,7 +298,23 @@ impl PhotonMap {
         max_r2: f64,
         keep: impl Fn(u32) -> bool,
     ) -> Rgb {
-        let found = self.nearest(p, normal, k.max(2), max_r2, keep);
+        self.knn_weighted(p, Side::of(normal), k, max_r2, keep, Photon::flux)
+    }
+
+    /// Σ weight(photon)·K(d) over the k nearest photons `side` and `keep` admit, with the
+    /// Epanechnikov kernel of r² the k-th distance² (or `max_r2` when fewer are found): with
+    /// weight = flux the irradiance, with weight = f(ωo, photon's ωi)·flux the radiance a BSDF
+    /// sends toward ωo.
+    pub fn knn_weighted(
+        &self,
+        p: DVec3,
+        side: Side,
+        k: usize,
+        max_r2: f64,
+        keep: impl Fn(u32) -> bool,
+        weight: impl Fn(&Photon) -> Rgb,
+    ) -> Rgb {
+        let found = self.nearest(p, side, k.max(2), max_r2, keep);
         let r2 = if found.len() == k.max(2) {
             found[found.len() - 1].1
         } else {
@@ -276,7 +325,7 @@ impl PhotonMap {
         }
         let sum: Rgb = found
             .iter()
-            .map(|&(i, d2)| self.photons[i as usize].flux() * (1.0 - d2 / r2))
+            .map(|&(i, d2)| weight(&self.photons[i as usize]) * (1.0 - d2 / r2))
             .sum();
         sum * (2.0 / (std::f64::consts::PI * r2))
     }
@@ -285,13 +334,26 @@ impl PhotonMap {
     /// the surface side `normal`, with the Epanechnikov kernel K(d) = 2(1 − d²/r²)/(π r²)
     /// (normalised over the disk): E = Σ Φ K. Also returns how many photons were found.
     pub fn irradiance(&self, p: DVec3, normal: DVec3, r2: f64) -> (Rgb, usize) {
+        self.weighted(p, Side::of(normal), r2, Photon::flux)
+    }
+
+    /// Σ weight(photon)·K(d) over the photons within squared radius `r2` that `side` admits,
+    /// with the Epanechnikov kernel (see [`PhotonMap::irradiance`], weight = flux); also how
+    /// many were found.
+    pub fn weighted(
+        &self,
+        p: DVec3,
+        side: Side,
+        r2: f64,
+        weight: impl Fn(&Photon) -> Rgb,
+    ) -> (Rgb, usize) {
         if r2 <= 0.0 {
             return (Rgb::ZERO, 0);
         }
         let mut sum = Rgb::ZERO;
         let mut count = 0;
-        self.for_each_within(p, normal, r2, |ph, d2| {
-            sum += ph.flux() * (1.0 - d2 / r2);
+        self.for_each_seen(p, side, r2, |ph, d2| {
+            sum += weight(ph) * (1.0 - d2 / r2);
             count += 1;
         });
         (sum * (2.0 / (std::f64::consts::PI * r2)), count)

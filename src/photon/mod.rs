@@ -20,18 +20,17 @@ mod budget;
 mod map;
 
 pub use budget::{Budget, Fate, Ledger};
-pub use map::{Photon, PhotonMap};
+pub use map::{Photon, PhotonMap, Side};
 
-use crate::bsdf::Bsdf;
+use crate::bsdf::Lobes;
 use crate::color::Rgb;
 use crate::environment::Environment;
 use crate::lights::{Aim, Emission, Light};
-use crate::material::Material;
 use crate::receiver::Detection;
 use crate::sampling::{stream, Purpose};
 use crate::spectrum::{colour, Spectrum};
 use crate::transport::chain::{self, End, Policy, Ray};
-use crate::transport::{offset, HeroTracer, Stats, Tracer};
+use crate::transport::{HeroTracer, Scattered, Stats, Tracer, Vertex};
 use glam::DVec3;
 use rand::Rng;
 use rand_pcg::Pcg64Mcg;
@@ -174,10 +173,8 @@ impl<'a> Sources<'a> {
         let scene = tracer.scene;
         let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
         for (p, s) in scene.accel.primitives().iter().zip(&scene.surfaces) {
-            if matches!(
-                scene.materials[s.material],
-                Material::Mirror { .. } | Material::Dielectric
-            ) {
+            let lobes = scene.materials[s.material].lobes();
+            if lobes.is_some_and(|l| l != Lobes::DIFFUSE_REFLECTION) {
                 let (a, b) = p.bounds();
                 (lo, hi) = (lo.min(a), hi.max(b));
             }
@@ -546,6 +543,46 @@ impl chain::ChainEvents for PhotonWalk<'_, '_> {
     }
 }
 
+/// A photon's scattering at `vertex`: a direction from its BSDF and Russian roulette on the
+/// sample's weight, the survivor's power divided by its chance (so it keeps its size); None
+/// when it is absorbed. A Lambertian vertex draws the roulette first (as photons always have:
+/// the same numbers, the same photons).
+fn scatter_photon(vertex: &Vertex, rng: &mut impl Rng) -> Option<PhotonBounce> {
+    let survived = |weight: Rgb, scattered| {
+        let survive = weight.max_element();
+        PhotonBounce {
+            weight: weight / survive,
+            scattered,
+        }
+    };
+    if let Some(albedo) = vertex.bsdf.lambert_albedo() {
+        let survive = albedo.max_element();
+        if rng.gen::<f64>() >= survive {
+            return None;
+        }
+        let scattered = vertex.scatter_with(rng)?;
+        return Some(survived(albedo, scattered));
+    }
+    let scattered = vertex.scatter_with(rng)?;
+    let weight = scattered.sample.weight;
+    let survive = weight.max_element().min(1.0);
+    if survive.is_nan() || survive <= 0.0 || rng.gen::<f64>() >= survive {
+        return None;
+    }
+    Some(PhotonBounce {
+        weight: weight / survive,
+        scattered,
+    })
+}
+
+/// A photon's way on from a scattering vertex.
+struct PhotonBounce {
+    /// What its power is multiplied by.
+    weight: Rgb,
+    /// Where it goes.
+    scattered: Scattered,
+}
+
 /// Follows one photon from its launch, drawing from `rng` and adding to `stats`, storing it
 /// into `stored` as its batch says and booking its power in `stored.budget` when it ends;
 /// `path` is shown every point it passes.
@@ -596,6 +633,8 @@ fn trace_photon(
         hero: hero.as_ref(),
     };
     let mut walker = chain::Walker::carrying(carried, Policy::Roulette);
+    // Whether a specular or glossy lobe, or a diffuse one, has scattered it since the light.
+    let (mut bent, mut diffused) = (false, false);
     let fate = loop {
         let chain = walker.follow(ray, rng, stats, &mut walk);
         match (chain.dispersed, launch.hero) {
@@ -611,49 +650,58 @@ fn trace_photon(
                 throughput *= chain.weight;
             }
         }
-        let (position, normal, albedo, arrival) = match chain.end {
-            End::Diffuse {
-                position,
-                normal,
-                albedo,
-                direction,
-                ..
-            } => (position, normal, albedo, direction),
+        let vertex = match chain.end {
+            End::Scatter(vertex) => vertex,
             End::Escaped { .. } => break walk.escaped(chain.medium),
             End::Emitter { .. } | End::Absorbed => break Fate::Absorbed,
             End::Lost | End::DepthLimit | End::Stopped => break Fate::Lost,
         };
+        bent |= chain.specular > 0;
         let photon = Photon {
-            position,
-            normal,
+            position: vertex.position,
+            normal: vertex.normal,
             power: (walk.power * seen_as).as_vec3().to_array(),
+            from: vertex.wo.as_vec3().to_array(),
+            diffused,
         };
         match tag.batch {
-            // L (S|G)* S (S|G)* D: at least one specular bounce. Light through gradient media
-            // alone (L G+ D) is the direct estimate's, which follows it along the curved path.
+            // L (S|G)+ X: at least one specular or glossy lobe and no diffuse one since the
+            // light. Light through gradient media alone (L G+ D) is the direct estimate's,
+            // which follows it along the curved path.
             Batch::Caustic => {
-                if chain.specular > 0 {
+                if bent {
                     stored.photons.push(photon);
                 }
-                break Fate::Absorbed;
             }
-            Batch::Global => stored.photons.push(photon),
+            // Every photon at a vertex with a diffuse lobe; at a glossy-only vertex those a
+            // diffuse lobe scattered before (the rest are caustics there).
+            Batch::Global => {
+                if diffused || vertex.lobes().has_diffuse() {
+                    stored.photons.push(photon);
+                }
+            }
             Batch::Receivers => {}
         }
-        let survive = albedo.max_element();
-        if rng.gen::<f64>() >= survive {
+        if tag.batch == Batch::Caustic && vertex.lobes() == Lobes::DIFFUSE_REFLECTION {
             break Fate::Absorbed;
         }
-        walk.power *= albedo / survive;
-        throughput *= albedo / survive;
-        let bounce = Bsdf::Lambert { albedo }
-            .sample(-arrival, normal, (rng.gen(), rng.gen(), 0.0))
-            .expect("a Lambertian surface always scatters");
-        ray = Ray {
-            origin: offset(position, normal),
-            direction: bounce.wi,
-            medium: chain.medium,
+        let Some(b) = scatter_photon(&vertex, rng) else {
+            break Fate::Absorbed;
         };
+        walk.power *= b.weight;
+        throughput *= b.weight;
+        if b.scattered.sample.lobe.has_diffuse() {
+            diffused = true;
+            if tag.batch == Batch::Caustic {
+                break Fate::Absorbed;
+            }
+        } else {
+            bent = true;
+            let to = b.scattered.ray.medium;
+            // What the budget tells of a glossy reflection or transmission, as of a smooth one.
+            let _ = chain::ChainEvents::specular(&mut walk, vertex.prim, vertex.medium, to);
+        }
+        ray = b.scattered.ray;
     };
     stored.budget.book(fate, walk.power.mean(), nm);
 }

@@ -130,7 +130,7 @@ fn read_shapes(
         let kind = &materials.list[material];
         t.check(
             "material",
-            !matches!(kind, Material::Dielectric) || interior.is_some(),
+            !matches!(kind, Material::Dielectric { .. }) || interior.is_some(),
             "a dielectric shape needs an interior",
         )?;
         // An emissive shape would be seen but would light nothing (it is neither sampled

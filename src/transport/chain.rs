@@ -1,5 +1,6 @@
-//! The specular chain: a path followed through mirrors, dielectrics and receivers' detectors
-//! (straight or curved between them) to its next diffuse surface, emitter or escape. It is
+//! The specular chain: a path followed through purely specular surfaces (smooth mirrors,
+//! conductors and dielectrics) and receivers' detectors (straight or curved between them) to
+//! its next scattering vertex (any other surface: diffuse, glossy), emitter or escape. It is
 //! the one such loop: camera paths, final-gather rays, the direct estimate's BSDF rays,
 //! photons and principal rays all walk it.
 //!
@@ -10,7 +11,8 @@
 //! The factors of the single refractions telescope into this one ratio, which is why no
 //! BSDF carries them. Power (a photon's flux) never scales.
 
-use super::{facing, Event, HeroTracer, Normals, Stats, Tracer};
+use super::{Event, HeroTracer, Normals, Stats, SurfaceHit, Tracer, Vertex};
+use crate::bsdf::Bsdf;
 use crate::color::Rgb;
 use crate::material::Material;
 use glam::DVec3;
@@ -46,20 +48,9 @@ pub enum Policy {
 
 /// Where a chain ended.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum End {
-    /// A diffuse surface.
-    Diffuse {
-        /// Primitive index.
-        prim: usize,
-        /// Hit point.
-        position: DVec3,
-        /// Unit normal of the side the path arrived on.
-        normal: DVec3,
-        /// Unit direction of arrival.
-        direction: DVec3,
-        /// Its albedo.
-        albedo: Rgb,
-    },
+pub enum End<'s> {
+    /// A scattering vertex: a surface whose BSDF is not purely specular.
+    Scatter(Vertex<'s>),
     /// An emitter: its radiance toward the path (zero from its back).
     Emitter {
         /// Primitive index.
@@ -88,9 +79,9 @@ pub enum End {
 
 /// A followed chain: how it ended and what it gathered on the way.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Chain {
+pub struct Chain<'s> {
     /// How it ended.
-    pub end: End,
+    pub end: End<'s>,
     /// Throughput (Weighted) or the photon's power factor (Roulette).
     pub weight: Rgb,
     /// The medium at the end.
@@ -99,7 +90,7 @@ pub struct Chain {
     pub n_start: f64,
     /// n at the end, in the end medium (at the escape point for an escape).
     pub n_end: f64,
-    /// Specular bounces (mirror or dielectric, not detectors) on the way.
+    /// Specular bounces (smooth mirrors, conductors and dielectrics; not detectors) on the way.
     pub specular: u32,
     /// Whether a stretch of it crossed a non-uniform medium (a curved path).
     pub curved: bool,
@@ -109,7 +100,7 @@ pub struct Chain {
     pub dispersed: Option<Rgb>,
 }
 
-impl Chain {
+impl Chain<'_> {
     /// (n_start/n_end)²: radiance formed at the end in its medium, as seen at the start.
     pub fn radiance_scale(&self) -> f64 {
         let r = self.n_start / self.n_end;
@@ -248,7 +239,7 @@ impl<'w> Walker<'w> {
         rng: &mut R,
         stats: &mut Stats,
         observer: &mut dyn ChainEvents,
-    ) -> Chain {
+    ) -> Chain<'w> {
         let mut lent = Lent { rng, stats };
         let mut chain = Chain {
             end: End::Lost,
@@ -278,7 +269,7 @@ impl<'w> Walker<'w> {
         chain.medium = at.medium;
         if !matches!(end, End::Escaped { .. }) {
             let p = match end {
-                End::Diffuse { position, .. } | End::Emitter { position, .. } => position,
+                End::Scatter(Vertex { position, .. }) | End::Emitter { position, .. } => position,
                 _ => at.origin,
             };
             chain.n_end = self.tracer.index(at.medium, p).unwrap_or(1.0);
@@ -291,11 +282,11 @@ impl<'w> Walker<'w> {
     /// detector or a specular surface.
     fn step<R: Rng>(
         &mut self,
-        chain: &mut Chain,
+        chain: &mut Chain<'w>,
         at: &mut Cursor,
         lent: &mut Lent<R>,
         observer: &mut dyn ChainEvents,
-    ) -> ControlFlow<End> {
+    ) -> ControlFlow<End<'w>> {
         let scene = self.tracer.scene;
         if self.depth == 0 {
             lent.stats.depth_limited += 1;
@@ -311,7 +302,7 @@ impl<'w> Walker<'w> {
                 .next_event_along(at.origin, at.dir, at.medium, lent.stats, &mut |p| {
                     observer.point(p)
                 });
-        let (prim, position, normals, uv, incoming) = match event {
+        let hit = match event {
             Event::Lost => return ControlFlow::Break(End::Lost),
             _ if self.absorbed(chain, event.transmittance(), lent.rng) => {
                 return ControlFlow::Break(End::Absorbed)
@@ -324,16 +315,16 @@ impl<'w> Walker<'w> {
                 uv,
                 direction,
                 ..
-            } => (
+            } => SurfaceHit {
                 prim,
                 position,
-                Normals {
+                normals: Normals {
                     geometric: normal,
                     shading,
                 },
                 uv,
-                direction,
-            ),
+                incoming: direction,
+            },
             Event::Escaped {
                 position,
                 direction,
@@ -344,42 +335,42 @@ impl<'w> Walker<'w> {
                 return ControlFlow::Break(End::Escaped { direction });
             }
         };
-        observer.point(position);
-        let surface = scene.surfaces[prim];
-        let normal = normals.geometric;
-        let side = facing(normal, incoming);
+        observer.point(hit.position);
+        let surface = scene.surfaces[hit.prim];
         match &scene.materials[surface.material] {
-            Material::Emissive { radiance } => ControlFlow::Break(End::Emitter {
-                prim,
-                radiance: match side == normal {
-                    true => self.tracer.radiance(*radiance),
-                    false => Rgb::ZERO,
-                },
-                position,
-                direction: incoming,
-            }),
-            Material::Diffuse { albedo, texture } => ControlFlow::Break(End::Diffuse {
-                prim,
-                position,
-                normal: side,
-                direction: incoming,
-                albedo: self
-                    .tracer
-                    .reflectance(texture.as_ref().map_or(*albedo, |t| *albedo * t.at(uv))),
-            }),
+            Material::Emissive { radiance } => {
+                let front = hit.incoming.dot(hit.normals.geometric) < 0.0;
+                ControlFlow::Break(End::Emitter {
+                    prim: hit.prim,
+                    radiance: match front {
+                        true => self.tracer.radiance(*radiance),
+                        false => Rgb::ZERO,
+                    },
+                    position: hit.position,
+                    direction: hit.incoming,
+                })
+            }
             Material::Detector { receiver } => {
                 if observer
-                    .detector(*receiver, position, chain.weight)
+                    .detector(*receiver, hit.position, chain.weight)
                     .is_break()
                 {
                     return ControlFlow::Break(End::Stopped);
                 }
-                at.origin = super::offset(position, incoming);
+                at.origin = super::offset(hit.position, hit.incoming);
                 ControlFlow::Continue(())
             }
-            Material::Mirror { .. } | Material::Dielectric => {
-                let hit = (prim, position, normals, incoming);
-                self.bounce(chain, (at, hit), lent.rng, observer)
+            material => {
+                if matches!(material, Material::Dielectric { .. }) {
+                    self.meet_dispersion(self.tracer.disperses_at(surface), chain);
+                }
+                let Some(vertex) = self.tracer.vertex(hit, surface, at.medium) else {
+                    return ControlFlow::Break(End::Lost);
+                };
+                match vertex.lobes().is_specular() {
+                    true => self.bounce(chain, at, &vertex, lent.rng, observer),
+                    false => ControlFlow::Break(End::Scatter(vertex)),
+                }
             }
         }
     }
@@ -397,52 +388,48 @@ impl<'w> Walker<'w> {
         }
     }
 
-    /// Reflects or refracts the chain at a specular surface `hit` = (primitive, position,
-    /// normals, arrival direction).
+    /// Reflects or refracts the chain at the purely specular `vertex`.
     fn bounce(
         &mut self,
         chain: &mut Chain,
-        (at, (prim, position, normals, incoming)): (&mut Cursor, (usize, DVec3, Normals, DVec3)),
+        at: &mut Cursor,
+        vertex: &Vertex,
         rng: &mut impl Rng,
         observer: &mut dyn ChainEvents,
-    ) -> ControlFlow<End> {
-        let scene = self.tracer.scene;
-        let surface = scene.surfaces[prim];
-        let mirror = matches!(scene.materials[surface.material], Material::Mirror { .. });
-        if !mirror {
-            self.meet_dispersion(self.tracer.disperses_at(surface), chain);
-        }
+    ) -> ControlFlow<End<'w>> {
         let u = match self.policy {
             Policy::Unscattered => return ControlFlow::Break(End::Stopped),
-            _ if mirror => 0.0,
+            // A mirror makes no choice and draws no number.
+            _ if matches!(vertex.bsdf, Bsdf::Conductor { .. }) => 0.0,
             Policy::Principal => 0.5,
             _ => rng.gen(),
         };
-        let Some(b) = self
-            .tracer
-            .specular_bounce(surface, at.medium, position, incoming, normals, u)
-        else {
+        let Some(b) = vertex.scatter((0.0, 0.0, u)) else {
             return ControlFlow::Break(End::Lost);
         };
+        let weight = b.sample.weight;
         match self.policy {
-            Policy::Weighted => chain.weight *= b.weight,
+            Policy::Weighted => chain.weight *= weight,
             Policy::Roulette => {
-                let survive = b.weight.max_element();
+                let survive = weight.max_element();
                 if survive < 1.0 && rng.gen::<f64>() >= survive {
                     return ControlFlow::Break(End::Absorbed);
                 }
-                chain.weight *= b.weight / survive.clamp(f64::MIN_POSITIVE, 1.0);
+                chain.weight *= weight / survive.clamp(f64::MIN_POSITIVE, 1.0);
             }
             Policy::Principal | Policy::Unscattered => {}
         }
         chain.specular += 1;
-        if observer.specular(prim, at.medium, b.medium).is_break() {
+        if observer
+            .specular(vertex.prim, at.medium, b.ray.medium)
+            .is_break()
+        {
             return ControlFlow::Break(End::Stopped);
         }
         *at = Cursor {
-            origin: b.origin,
-            dir: b.direction,
-            medium: b.medium,
+            origin: b.ray.origin,
+            dir: b.ray.direction,
+            medium: b.ray.medium,
         };
         ControlFlow::Continue(())
     }

@@ -9,16 +9,19 @@
 pub mod chain;
 pub mod connect;
 mod stats;
+mod vertex;
 pub mod visibility;
 
-use crate::bsdf::{Bsdf, BsdfSample};
+pub use vertex::{Scattered, Vertex};
+
+use crate::bsdf::{Bsdf, Ggx, Reflectance};
 use crate::color::Rgb;
 use crate::curve::{
     march_with, step_optical_depth, ArcPath, Bounds, HermitePath, MarchLimits, MarchOutcome, Path,
     RayState, StepControl, Termination,
 };
 use crate::lights::SceneBall;
-use crate::material::Material;
+use crate::material::{ConductorIndex, Material};
 use crate::media::Medium;
 use crate::scene::{Scene, Surface};
 use crate::settings::TraceSettings;
@@ -81,20 +84,6 @@ impl Event {
     }
 }
 
-/// A ray leaving a specular surface (mirror or dielectric).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Bounce {
-    /// Start, offset off the surface to the side the ray leaves on.
-    pub origin: DVec3,
-    /// Unit direction.
-    pub direction: DVec3,
-    /// The medium it travels in (None: vacuum).
-    pub medium: Option<usize>,
-    /// Throughput factor (the mirror's reflectance; 1 for a dielectric, whose Fresnel
-    /// choice between reflection and refraction is sampled).
-    pub weight: Rgb,
-}
-
 pub use crate::math::{facing, offset};
 
 /// A surface's two normals at a hit (see [`crate::shapes::Hit`]): the geometric one tells
@@ -106,6 +95,21 @@ pub struct Normals {
     pub geometric: DVec3,
     /// Unit shading normal.
     pub shading: DVec3,
+}
+
+/// Where a path meets a surface.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SurfaceHit {
+    /// Primitive index.
+    pub prim: usize,
+    /// Hit point.
+    pub position: DVec3,
+    /// The surface's normals there.
+    pub normals: Normals,
+    /// Surface coordinates (u, v), for textures.
+    pub uv: DVec2,
+    /// Unit direction of arrival.
+    pub incoming: DVec3,
 }
 
 /// Where rays travel: the scene, how rays travel in it, the sphere holding everything in it,
@@ -339,7 +343,7 @@ impl<'a> Tracer<'a> {
                 return scene.ambient;
             };
             let s = scene.surfaces[prim];
-            if matches!(scene.materials[s.material], Material::Dielectric) {
+            if matches!(scene.materials[s.material], Material::Dielectric { .. }) {
                 return if d.dot(h.normal) > 0.0 {
                     s.interior
                 } else {
@@ -350,73 +354,110 @@ impl<'a> Tracer<'a> {
         }
     }
 
-    /// What the specular surface `surface` does to a ray arriving along unit `incoming` in
-    /// `medium` at `position`, where the surface's geometric normal is `normal`: a receiver's
-    /// detector lets it pass unchanged; a mirror reflects; a dielectric reflects with the
-    /// Fresnel probability (decided by `u` ∈ [0,1)) and refracts otherwise, with n evaluated
-    /// at the hit point on each side. `None` for a diffuse or emissive surface, or where a
-    /// side's index cannot be evaluated (a singular medium).
-    pub fn specular_bounce(
+    /// The scattering vertex where a path arriving along unit `incoming` in `medium` meets
+    /// `surface` at `position` (with its normals and surface coordinates `uv` there): the
+    /// BSDF its material makes at the tracer's wavelength, with n evaluated at the hit point
+    /// on each side of a dielectric. None for a detector or an emitter (they scatter
+    /// nothing), or where a side's index cannot be evaluated (a singular medium).
+    pub fn vertex(
         &self,
+        hit: SurfaceHit,
         surface: Surface,
         medium: Option<usize>,
-        position: DVec3,
-        incoming: DVec3,
-        normals: Normals,
-        u: f64,
-    ) -> Option<Bounce> {
-        let Normals {
-            geometric: normal,
-            shading,
-        } = normals;
+    ) -> Option<Vertex<'a>> {
         let scene = self.scene;
-        let side = facing(normal, incoming);
+        let SurfaceHit {
+            prim,
+            position,
+            normals,
+            uv,
+            incoming,
+        } = hit;
+        let side = facing(normals.geometric, incoming);
+        let textured = |albedo: Rgb, texture: &Option<std::sync::Arc<crate::texture::Texture>>| {
+            self.reflectance(texture.as_ref().map_or(albedo, |t| albedo * t.at(uv)))
+        };
+        let outside = |m: Option<usize>| self.index(m, position);
         let (bsdf, beyond) = match &scene.materials[surface.material] {
-            Material::Detector { .. } => {
-                return Some(Bounce {
-                    origin: offset(position, incoming),
-                    direction: incoming,
-                    medium,
-                    weight: Rgb::ONE,
-                })
-            }
-            Material::Mirror { reflectance } => (
-                Bsdf::Mirror {
-                    reflectance: self.reflectance(*reflectance),
+            Material::Detector { .. } | Material::Emissive { .. } => return None,
+            Material::Diffuse { albedo, texture } => (
+                Bsdf::Lambert {
+                    albedo: textured(*albedo, texture),
                 },
                 medium,
             ),
-            Material::Dielectric => {
+            Material::Conductor { index, roughness } => (
+                Bsdf::Conductor {
+                    fresnel: self.conductor(index, outside(medium)?),
+                    ggx: Ggx::rough([*roughness; 2]),
+                },
+                medium,
+            ),
+            Material::Dielectric { roughness } => {
                 let inside = surface.interior?;
-                let to = if side == normal {
+                let to = if side == normals.geometric {
                     Some(inside)
                 } else {
                     surface.exterior.or(scene.ambient)
                 };
-                let (n1, n2) = (self.index(medium, position)?, self.index(to, position)?);
-                (Bsdf::Dielectric { n1, n2 }, to)
+                let (n1, n2) = (outside(medium)?, outside(to)?);
+                let ggx = Ggx::rough([*roughness; 2]);
+                (Bsdf::Dielectric { n1, n2, ggx }, to)
             }
-            Material::Diffuse { .. } | Material::Emissive { .. } => return None,
+            Material::Plastic {
+                albedo,
+                texture,
+                coat,
+            } => (
+                Bsdf::Plastic {
+                    albedo: textured(*albedo, texture),
+                    coat,
+                },
+                medium,
+            ),
         };
-        // About the shading normal on the arrival side, unless that would send the path to
-        // the wrong side of the geometric surface (a reflection into it, a refraction back out
-        // of it) or the ray arrives from behind the shading normal: then about the geometric
-        // one, so a smooth mesh neither leaks light nor blackens its facets' edges.
-        let shade = if side == normal { shading } else { -shading };
-        let lands_right = |s: &BsdfSample| {
-            let lands = s.wi.dot(side);
-            (s.transmitted && lands < 0.0) || (!s.transmitted && lands > 0.0)
+        let shading = if side == normals.geometric {
+            normals.shading
+        } else {
+            -normals.shading
         };
-        let s = match bsdf.sample(-incoming, shade, (0.0, 0.0, u)) {
-            Some(s) if shade == side || lands_right(&s) => s,
-            _ => bsdf.sample(-incoming, side, (0.0, 0.0, u))?,
-        };
-        Some(Bounce {
-            origin: offset(position, if s.transmitted { -side } else { side }),
-            direction: s.wi,
-            medium: if s.transmitted { beyond } else { medium },
-            weight: s.weight,
+        Some(Vertex {
+            prim,
+            position,
+            normal: side,
+            shading,
+            wo: -incoming,
+            bsdf,
+            medium,
+            beyond,
         })
+    }
+
+    /// A conductor's Fresnel reflectance at the tracer's wavelength(s), relative to an outside
+    /// of index `n_out`: a measured metal's exact term at one wavelength, or its colour (the
+    /// reflected D65 over the observer, [`crate::bsdf::Metal::colour`]) when the path carries
+    /// every wavelength.
+    fn conductor(&self, index: &ConductorIndex, n_out: f64) -> Reflectance {
+        let nm = self.wavelength.as_ref().map(|w| w.nm);
+        match (*index, nm) {
+            (ConductorIndex::Constant(c), _) => Reflectance::Constant(self.reflectance(c)),
+            (ConductorIndex::Measured(metal), Some(nm)) => {
+                let (eta, k) = metal.index(nm);
+                Reflectance::Complex {
+                    eta: Rgb::splat(eta / n_out),
+                    k: Rgb::splat(k / n_out),
+                }
+            }
+            (ConductorIndex::Measured(metal), None) => Reflectance::Measured { metal, n_out },
+            (ConductorIndex::Rgb { eta, k }, Some(nm)) => Reflectance::Complex {
+                eta: Rgb::splat(colour::reflectance(eta, nm) / n_out),
+                k: Rgb::splat(colour::reflectance(k, nm) / n_out),
+            },
+            (ConductorIndex::Rgb { eta, k }, None) => Reflectance::Complex {
+                eta: eta / n_out,
+                k: k / n_out,
+            },
+        }
     }
 
     /// The next event of a ray from `origin` along unit `dir` inside medium `medium` (None:

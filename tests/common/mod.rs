@@ -1,6 +1,7 @@
 #![allow(dead_code)]
 
 pub mod bigarc;
+pub mod chi2;
 
 use glam::DVec3;
 

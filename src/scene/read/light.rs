@@ -171,8 +171,14 @@ pub fn read_environment(t: &mut TableReader) -> Result<Environment> {
             "checker" => Sky::Checker {
                 squares: t.count_or("squares", 24)?.min(1 << 20) as u32,
             },
+            "uniform" => Sky::Uniform {
+                radiance: t.rgb_or("radiance", Some(crate::color::Rgb::ONE))?,
+            },
             other => {
-                return Err(t.error("sky", format!("unknown sky '{other}' (starfield, checker)")))
+                return Err(t.error(
+                    "sky",
+                    format!("unknown sky '{other}' (starfield, checker, uniform)"),
+                ))
             }
         },
         _ => {

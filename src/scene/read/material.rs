@@ -1,8 +1,9 @@
 //! `[[material]]`: surfaces, and what fills a dielectric. Every key's unit and default is in `docs/scene-format.md`.
 
+use crate::bsdf::{Coat, Ggx, SMOOTH_ALPHA};
 use crate::color::Rgb;
 use crate::error::Result;
-use crate::material::Material;
+use crate::material::{ConductorIndex, Material};
 use crate::scene::table::TableReader;
 use crate::spectrum::Dispersion;
 use crate::texture::Texture;
@@ -27,29 +28,126 @@ fn unit_color(t: &mut TableReader, key: &str, default: Option<Rgb>) -> Result<Rg
     Ok(c)
 }
 
+/// An optional image over the surface's (u, v) at `texture`, multiplying the albedo.
+fn texture(t: &mut TableReader) -> Result<Option<Arc<Texture>>> {
+    if !t.has("texture") {
+        return Ok(None);
+    }
+    let path = t.input_file("texture")?;
+    let texture = Texture::load(&path).map_err(|e| t.error("texture", e))?;
+    Ok(Some(Arc::new(texture)))
+}
+
+/// GGX α at `roughness` (`default` if absent), a number in [0, 1]; below
+/// [`crate::bsdf::SMOOTH_ALPHA`] the surface is smooth.
+fn roughness(t: &mut TableReader, default: f64) -> Result<f64> {
+    let alpha = t.f64_or("roughness", default)?;
+    t.check(
+        "roughness",
+        (0.0..=1.0).contains(&alpha),
+        format!("must be GGX α in [0, 1], got {alpha:?}"),
+    )?;
+    Ok(alpha)
+}
+
+/// A conductor's index: `metal` (a measured metal's symbol, or "perfect"), or `eta` and `k`
+/// (each a number or RGB).
+fn conductor_index(t: &mut TableReader) -> Result<ConductorIndex> {
+    match (t.has("metal"), t.has("eta"), t.has("k")) {
+        (true, false, false) => {
+            let name = t.string("metal")?;
+            if name == "perfect" {
+                return Ok(ConductorIndex::Constant(Rgb::ONE));
+            }
+            match crate::bsdf::metal(&name) {
+                Some(m) => Ok(ConductorIndex::Measured(m)),
+                None => {
+                    let known: Vec<&str> = crate::bsdf::METALS.iter().map(|m| m.symbol).collect();
+                    Err(t.error(
+                        "metal",
+                        format!("unknown metal '{name}' ({}, perfect)", known.join(", ")),
+                    ))
+                }
+            }
+        }
+        (false, true, true) => {
+            let eta = t.rgb_or("eta", None)?;
+            let k = t.rgb_or("k", None)?;
+            t.check(
+                "eta",
+                eta.min_element() > 0.0,
+                format!("η must be > 0, got {eta}"),
+            )?;
+            t.check(
+                "k",
+                k.min_element() >= 0.0,
+                format!("k must be ≥ 0, got {k}"),
+            )?;
+            Ok(ConductorIndex::Rgb { eta, k })
+        }
+        (false, true, false) => Err(t.error("eta", "`eta` needs `k` (the extinction coefficient)")),
+        (false, false, true) => Err(t.error("k", "`k` needs `eta` (the real part of the index)")),
+        (true, ..) => Err(t.error("metal", "give `metal` or `eta` and `k`, not both")),
+        (false, false, false) => Err(t.error(
+            "metal",
+            "a conductor needs `metal` (Ag, Al, Au, Cu or perfect) or `eta` and `k`",
+        )),
+    }
+}
+
 /// A material and, for a dielectric, what fills it.
 pub fn read_material(t: &mut TableReader) -> Result<(Material, Option<Interior>)> {
     let kind = t.string("type")?;
     Ok(match kind.as_str() {
         "diffuse" => {
-            // An image over the surface's (u, v), multiplied by `albedo` (then 1 by default).
-            let texture = match t.has("texture") {
-                true => {
-                    let path = t.input_file("texture")?;
-                    let texture = Texture::load(&path).map_err(|e| t.error("texture", e))?;
-                    Some(Arc::new(texture))
-                }
-                false => None,
-            };
+            let texture = texture(t)?;
             let albedo = unit_color(t, "albedo", texture.as_ref().map(|_| Rgb::ONE))?;
             (Material::Diffuse { albedo, texture }, None)
         }
         "mirror" => (
-            Material::Mirror {
-                reflectance: unit_color(t, "reflectance", Some(Rgb::ONE))?,
+            Material::Conductor {
+                index: ConductorIndex::Constant(unit_color(t, "reflectance", Some(Rgb::ONE))?),
+                roughness: 0.0,
             },
             None,
         ),
+        "conductor" => (
+            Material::Conductor {
+                index: conductor_index(t)?,
+                roughness: roughness(t, 0.0)?,
+            },
+            None,
+        ),
+        "plastic" => {
+            let texture = texture(t)?;
+            let albedo = unit_color(t, "albedo", texture.as_ref().map(|_| Rgb::ONE))?;
+            let ior = t.f64_or("ior", 1.5)?;
+            t.check(
+                "ior",
+                ior > 1.0 && ior <= 4.0,
+                format!(
+                    "the coat's index relative to its surroundings must be in (1, 4], got {ior:?}"
+                ),
+            )?;
+            let alpha = roughness(t, 0.1)?;
+            let Some(ggx) = Ggx::rough([alpha, alpha]) else {
+                return Err(t.error(
+                    "roughness",
+                    format!(
+                        "a plastic's coat is rough: roughness must be at least {SMOOTH_ALPHA}, got {alpha:?}"
+                    ),
+                ));
+            };
+            let coat = Arc::new(Coat::new(ior, ggx));
+            (
+                Material::Plastic {
+                    albedo,
+                    texture,
+                    coat,
+                },
+                None,
+            )
+        }
         "emissive" => (
             Material::Emissive {
                 radiance: t.rgb_or("radiance", None)?,
@@ -67,12 +165,16 @@ pub fn read_material(t: &mut TableReader) -> Result<(Material, Option<Interior>)
                     ))
                 }
             };
-            (Material::Dielectric, Some(interior))
+            let roughness = roughness(t, 0.0)?;
+            (Material::Dielectric { roughness }, Some(interior))
         }
         other => {
             return Err(t.error(
                 "type",
-                format!("unknown material type '{other}' (diffuse, mirror, dielectric, emissive)"),
+                format!(
+                    "unknown material type '{other}' (diffuse, mirror, conductor, dielectric, \
+                     plastic, emissive)"
+                ),
             ))
         }
     })

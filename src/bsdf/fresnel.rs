@@ -1,0 +1,89 @@
+//! The Fresnel equations: unpolarised reflectance at a smooth interface between dielectrics
+//! and at a conductor of complex index η + ik, with the mirror and refraction directions.
+
+use crate::color::Rgb;
+use glam::DVec3;
+
+/// Unpolarised Fresnel reflectance for a ray from index `n1` to `n2` with cos θi = `cos_i`
+/// (> 0); 1 under total internal reflection. Also returns cos θt.
+pub fn dielectric(cos_i: f64, n1: f64, n2: f64) -> (f64, f64) {
+    let eta = n1 / n2;
+    let sin2_t = eta * eta * (1.0 - cos_i * cos_i).max(0.0);
+    if sin2_t >= 1.0 {
+        return (1.0, 0.0);
+    }
+    let cos_t = (1.0 - sin2_t).sqrt();
+    let rs = (n1 * cos_i - n2 * cos_t) / (n1 * cos_i + n2 * cos_t);
+    let rp = (n2 * cos_i - n1 * cos_t) / (n2 * cos_i + n1 * cos_t);
+    (0.5 * (rs * rs + rp * rp), cos_t)
+}
+
+/// Unpolarised reflectance of a conductor of complex index `eta` + i`k` relative to the
+/// medium the light arrives in, at cos θi = `cos_i` ∈ [0, 1] (the exact form for a
+/// conductor: Born and Wolf §14.2; written as in Pharr, Jakob and Humphreys §8.2).
+pub fn conductor(cos_i: f64, eta: f64, k: f64) -> f64 {
+    let c2 = cos_i.clamp(0.0, 1.0).powi(2);
+    let s2 = 1.0 - c2;
+    let (e2, k2) = (eta * eta, k * k);
+    let t0 = e2 - k2 - s2;
+    let a2b2 = (t0 * t0 + 4.0 * e2 * k2).sqrt();
+    let a = (0.5 * (a2b2 + t0)).max(0.0).sqrt();
+    let t1 = a2b2 + c2;
+    let t2 = 2.0 * cos_i.clamp(0.0, 1.0) * a;
+    let rs = (t1 - t2) / (t1 + t2);
+    let t3 = c2 * a2b2 + s2 * s2;
+    let t4 = t2 * s2;
+    let rp = rs * (t3 - t4) / (t3 + t4);
+    let r = 0.5 * (rs + rp);
+    if r.is_finite() {
+        r.clamp(0.0, 1.0)
+    } else {
+        1.0
+    }
+}
+
+/// A conductor's reflectance per channel.
+pub fn conductor_rgb(cos_i: f64, eta: Rgb, k: Rgb) -> Rgb {
+    Rgb::new(
+        conductor(cos_i, eta.0.x, k.0.x),
+        conductor(cos_i, eta.0.y, k.0.y),
+        conductor(cos_i, eta.0.z, k.0.z),
+    )
+}
+
+/// Mirror reflection of direction `d` about unit normal `n`.
+pub fn reflect(d: DVec3, n: DVec3) -> DVec3 {
+    d - 2.0 * d.dot(n) * n
+}
+
+/// Refraction of unit `d` through a surface with unit normal `n` facing the incident side
+/// (d·n < 0), from `n1` to `n2`, given cos θt from [`dielectric`].
+pub fn refract(d: DVec3, n: DVec3, n1: f64, n2: f64, cos_t: f64) -> DVec3 {
+    let eta = n1 / n2;
+    let cos_i = -d.dot(n);
+    (eta * d + (eta * cos_i - cos_t) * n).normalize()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// With k = 0 the conductor's formula is the dielectric's (an independent form of the
+    /// same equations); at normal incidence it is ((η−1)² + k²)/((η+1)² + k²).
+    #[test]
+    fn the_conductor_formula_reduces_to_known_cases() {
+        for eta in [1.2, 1.5, 2.4] {
+            for i in 0..=100 {
+                let cos = i as f64 / 100.0;
+                let (r, _) = dielectric(cos.max(1e-9), 1.0, eta);
+                let c = conductor(cos.max(1e-9), eta, 0.0);
+                assert!((r - c).abs() < 1e-12, "η {eta} cos {cos}: {r} vs {c}");
+            }
+        }
+        for (eta, k) in [(0.2, 3.0), (1.1, 6.8), (0.05, 4.2)] {
+            let r0 = ((eta - 1.0f64).powi(2) + k * k) / ((eta + 1.0f64).powi(2) + k * k);
+            assert!((conductor(1.0, eta, k) - r0).abs() < 1e-12);
+            assert_eq!(conductor(0.0, eta, k), 1.0);
+        }
+    }
+}

@@ -1,0 +1,449 @@
+//! How a surface scatters light at one point: its lobes, and `sample`, `eval` and `pdf`.
+//! Directions are unit vectors pointing away from the surface (`wo` toward where the path
+//! came from, `wi` where it goes next); `n` is the unit shading normal on the side `wo` lies
+//! on. Work is done in the local frame of `n` ([`Frame`]). Radiance per RGB channel; f in
+//! 1/sr; pdfs per unit solid angle.
+//!
+//! **Basic radiance.** f is the transfer of basic radiance L/n² (and of power): a refraction's
+//! change of radiance, (n_far/n_near)², is accounted once for a whole path by the transport
+//! ([`crate::transport::chain`]), so no BSDF carries it. For a rough dielectric this is Walter
+//! et al.'s (2007) transmission term with the index of `wi`'s side squared in the numerator:
+//! sampling it then weighs (1 − F)·G₂/G₁ / (1 − F) = G₂/G₁, as the smooth interface weighs 1,
+//! and f(wo, wi)/n_wi² = f(wi, wo)/n_wo² (the generalised reciprocity).
+//!
+//! **Lobes.** Each BSDF names its lobes ([`Lobes`]): diffuse, glossy or specular (a delta),
+//! each in reflection or transmission. The one rule that reads them is
+//! [`Lobes::is_specular`]: a path continues through a purely specular surface within one
+//! chain; at any other it is a scattering vertex (photons are stored there, direct light is
+//! estimated there).
+
+mod fresnel;
+mod metals;
+mod microfacet;
+mod plastic;
+
+pub use fresnel::{conductor, conductor_rgb, dielectric, reflect, refract};
+pub use metals::{named as metal, Metal, METALS};
+pub use microfacet::{Ggx, SMOOTH_ALPHA};
+pub use plastic::Coat;
+
+use crate::color::Rgb;
+use crate::sampling::{cosine_hemisphere, Frame};
+use glam::DVec3;
+use std::f64::consts::FRAC_1_PI;
+
+/// The lobes of a BSDF, or the one lobe a sample came from: a set of flags.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Lobes(u8);
+
+impl Lobes {
+    /// Lambertian-like reflection.
+    pub const DIFFUSE_REFLECTION: Lobes = Lobes(1);
+    /// A microfacet reflection.
+    pub const GLOSSY_REFLECTION: Lobes = Lobes(2);
+    /// A microfacet transmission.
+    pub const GLOSSY_TRANSMISSION: Lobes = Lobes(4);
+    /// A mirror reflection (a delta).
+    pub const SPECULAR_REFLECTION: Lobes = Lobes(8);
+    /// A refraction through a smooth interface (a delta).
+    pub const SPECULAR_TRANSMISSION: Lobes = Lobes(16);
+    const SPECULAR: u8 = 8 | 16;
+    const DIFFUSE: u8 = 1;
+    const TRANSMISSION: u8 = 4 | 16;
+
+    /// Both sets of lobes.
+    pub const fn with(self, other: Lobes) -> Lobes {
+        Lobes(self.0 | other.0)
+    }
+
+    /// Whether every lobe is a delta: a path goes on through such a surface within its chain,
+    /// and nothing is stored or estimated there. The one place a vertex's kind is decided.
+    pub fn is_specular(self) -> bool {
+        self.0 & !Self::SPECULAR == 0
+    }
+
+    /// Whether some lobe is diffuse: there the photon mapper's camera path makes its visible
+    /// point (glossy-only vertices are passed by sampling the BSDF).
+    pub fn has_diffuse(self) -> bool {
+        self.0 & Self::DIFFUSE != 0
+    }
+
+    /// Whether some lobe crosses the surface.
+    pub fn transmits(self) -> bool {
+        self.0 & Self::TRANSMISSION != 0
+    }
+}
+
+/// The Fresnel reflectance of a conductor.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Reflectance {
+    /// The same reflectance at every angle (a mirror's; 1 for the perfect conductor of
+    /// furnace tests).
+    Constant(Rgb),
+    /// The exact conductor Fresnel term of complex index η + ik, relative to the medium
+    /// outside, per channel.
+    Complex {
+        /// Real part per channel.
+        eta: Rgb,
+        /// Extinction coefficient per channel.
+        k: Rgb,
+    },
+    /// A measured metal's colour ([`Metal::colour`]) seen from a medium of index `n_out`.
+    Measured {
+        /// The metal.
+        metal: &'static Metal,
+        /// The index outside.
+        n_out: f64,
+    },
+}
+
+impl Reflectance {
+    /// The reflectance at cos θ = `cos`.
+    pub fn at(&self, cos: f64) -> Rgb {
+        match *self {
+            Reflectance::Constant(r) => r,
+            Reflectance::Complex { eta, k } => conductor_rgb(cos, eta, k),
+            Reflectance::Measured { metal, n_out } => metal.colour(cos, n_out),
+        }
+    }
+}
+
+/// A scattering function at a surface point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Bsdf<'a> {
+    /// Lambertian, f = albedo/π on the side of `n`.
+    Lambert {
+        /// Reflectance per channel.
+        albedo: Rgb,
+    },
+    /// A conductor: a mirror reflection where `ggx` is None, else GGX microfacet reflection
+    /// with Smith's height-correlated G₂.
+    Conductor {
+        /// Its Fresnel reflectance.
+        fresnel: Reflectance,
+        /// The microsurface (None: smooth).
+        ggx: Option<Ggx>,
+    },
+    /// An interface from index `n1` (the side of `wo`) to `n2`: Fresnel reflection and Snell
+    /// refraction where `ggx` is None, else Walter et al.'s (2007) rough reflection and
+    /// transmission.
+    Dielectric {
+        /// Index on the side of `wo`.
+        n1: f64,
+        /// Index on the other side.
+        n2: f64,
+        /// The microsurface (None: smooth).
+        ggx: Option<Ggx>,
+    },
+    /// A diffuse base under a rough dielectric coat ([`Coat`]).
+    Plastic {
+        /// The base's reflectance per channel.
+        albedo: Rgb,
+        /// The coat.
+        coat: &'a Coat,
+    },
+}
+
+/// A sampled direction.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BsdfSample {
+    /// The new direction (unit).
+    pub wi: DVec3,
+    /// f·|cos θi| / pdf: what the path's throughput is multiplied by.
+    pub weight: Rgb,
+    /// Solid-angle pdf of `wi` (1/sr); ∞ for a specular (delta) choice.
+    pub pdf: f64,
+    /// The lobe it came from.
+    pub lobe: Lobes,
+}
+
+impl BsdfSample {
+    /// Whether `wi` crosses the surface.
+    pub fn transmitted(&self) -> bool {
+        self.lobe.transmits()
+    }
+
+    /// Whether it came from a delta lobe.
+    pub fn is_specular(&self) -> bool {
+        self.lobe.is_specular()
+    }
+}
+
+/// The local frame of `n` and `v` in it.
+fn local(n: DVec3, v: DVec3) -> (Frame, DVec3) {
+    let f = Frame::new(n);
+    let l = f.to_local(v);
+    (f, l)
+}
+
+impl Bsdf<'_> {
+    /// Its lobes.
+    pub fn lobes(&self) -> Lobes {
+        match self {
+            Bsdf::Lambert { .. } => Lobes::DIFFUSE_REFLECTION,
+            Bsdf::Conductor { ggx: None, .. } => Lobes::SPECULAR_REFLECTION,
+            Bsdf::Conductor { .. } => Lobes::GLOSSY_REFLECTION,
+            Bsdf::Dielectric { ggx: None, .. } => {
+                Lobes::SPECULAR_REFLECTION.with(Lobes::SPECULAR_TRANSMISSION)
+            }
+            Bsdf::Dielectric { .. } => Lobes::GLOSSY_REFLECTION.with(Lobes::GLOSSY_TRANSMISSION),
+            Bsdf::Plastic { .. } => Lobes::DIFFUSE_REFLECTION.with(Lobes::GLOSSY_REFLECTION),
+        }
+    }
+
+    /// Samples a direction for uniform numbers `u` (u.0, u.1 for the lobe's direction, u.2
+    /// for a discrete choice such as Fresnel's; a specular surface uses only u.2). None when
+    /// the sample carries nothing (it would leave on the wrong side of the surface).
+    pub fn sample(&self, wo: DVec3, n: DVec3, u: (f64, f64, f64)) -> Option<BsdfSample> {
+        // Smooth surfaces and the Lambertian lobe in world coordinates (as the transport has
+        // always computed them, to the bit); rough lobes in the local frame of `n`.
+        match *self {
+            Bsdf::Lambert { albedo } => {
+                let wi = Frame::new(n).to_world(cosine_hemisphere((u.0, u.1)));
+                return Some(BsdfSample {
+                    wi,
+                    weight: albedo,
+                    pdf: wi.dot(n).max(0.0) * FRAC_1_PI,
+                    lobe: Lobes::DIFFUSE_REFLECTION,
+                });
+            }
+            Bsdf::Conductor { fresnel, ggx: None } => {
+                return Some(BsdfSample {
+                    wi: reflect(-wo, n),
+                    weight: fresnel.at(wo.dot(n)),
+                    pdf: f64::INFINITY,
+                    lobe: Lobes::SPECULAR_REFLECTION,
+                })
+            }
+            Bsdf::Dielectric { n1, n2, ggx: None } => {
+                if wo.dot(n) < 0.0 {
+                    return None;
+                }
+                let (r, cos_t) = dielectric(wo.dot(n), n1, n2);
+                let (wi, lobe) = if u.2 < r {
+                    (reflect(-wo, n), Lobes::SPECULAR_REFLECTION)
+                } else {
+                    (refract(-wo, n, n1, n2, cos_t), Lobes::SPECULAR_TRANSMISSION)
+                };
+                return Some(BsdfSample {
+                    wi,
+                    weight: Rgb::ONE,
+                    pdf: f64::INFINITY,
+                    lobe,
+                });
+            }
+            _ => {}
+        }
+        let (frame, o) = local(n, wo);
+        if o.z <= 0.0 {
+            return None;
+        }
+        let s = match *self {
+            Bsdf::Conductor {
+                fresnel,
+                ggx: Some(g),
+            } => {
+                let m = g.sample_visible(o, (u.0, u.1));
+                let i = reflect(-o, m);
+                if i.z <= 0.0 {
+                    return None;
+                }
+                BsdfSample {
+                    wi: i,
+                    weight: fresnel.at(o.dot(m)) * (g.g2(i, o) / g.g1(o)),
+                    pdf: g.visible_d(o, m) / (4.0 * o.dot(m)),
+                    lobe: Lobes::GLOSSY_REFLECTION,
+                }
+            }
+            Bsdf::Dielectric {
+                n1,
+                n2,
+                ggx: Some(g),
+            } => {
+                let m = g.sample_visible(o, (u.0, u.1));
+                let (r, cos_t) = dielectric(o.dot(m), n1, n2);
+                let (i, lobe) = if u.2 < r {
+                    (reflect(-o, m), Lobes::GLOSSY_REFLECTION)
+                } else {
+                    (refract(-o, m, n1, n2, cos_t), Lobes::GLOSSY_TRANSMISSION)
+                };
+                if (i.z > 0.0) != (lobe == Lobes::GLOSSY_REFLECTION) || i.z == 0.0 {
+                    return None;
+                }
+                BsdfSample {
+                    wi: i,
+                    weight: Rgb::splat(g.g2(i, o) / g.g1(o)),
+                    pdf: rough_dielectric_pdf(&g, n1, n2, o, i),
+                    lobe,
+                }
+            }
+            Bsdf::Plastic { albedo, coat } => {
+                let p = coat.specular_probability(o.z, albedo);
+                let (i, lobe) = if u.2 < p {
+                    let m = coat.ggx.sample_visible(o, (u.0, u.1));
+                    (reflect(-o, m), Lobes::GLOSSY_REFLECTION)
+                } else {
+                    (cosine_hemisphere((u.0, u.1)), Lobes::DIFFUSE_REFLECTION)
+                };
+                if i.z <= 0.0 {
+                    return None;
+                }
+                let pdf = coat.pdf(o, i, p);
+                BsdfSample {
+                    wi: i,
+                    weight: coat.f(o, i, albedo) * (i.z / pdf),
+                    pdf,
+                    lobe,
+                }
+            }
+            _ => unreachable!("smooth and Lambertian BSDFs are sampled above"),
+        };
+        (s.weight.0.is_finite() && s.pdf > 0.0 && s.pdf.is_finite()).then(|| BsdfSample {
+            wi: frame.to_world(s.wi),
+            ..s
+        })
+    }
+
+    /// f(wo, wi) (1/sr) of the non-delta lobes: 0 for directions only a delta reaches.
+    pub fn eval(&self, wo: DVec3, wi: DVec3, n: DVec3) -> Rgb {
+        let (frame, o) = local(n, wo);
+        let i = frame.to_local(wi);
+        match *self {
+            Bsdf::Lambert { albedo } if o.z > 0.0 && i.z > 0.0 => albedo * FRAC_1_PI,
+            Bsdf::Conductor {
+                fresnel,
+                ggx: Some(g),
+            } if o.z > 0.0 && i.z > 0.0 => {
+                let m = (i + o).normalize();
+                fresnel.at(o.dot(m)) * (g.d(m) * g.g2(i, o) / (4.0 * i.z * o.z))
+            }
+            Bsdf::Dielectric {
+                n1,
+                n2,
+                ggx: Some(g),
+            } if o.z > 0.0 && i.z != 0.0 => Rgb::splat(rough_dielectric_f(&g, n1, n2, o, i)),
+            Bsdf::Plastic { albedo, coat } if o.z > 0.0 && i.z > 0.0 => coat.f(o, i, albedo),
+            _ => Rgb::ZERO,
+        }
+    }
+
+    /// The solid-angle pdf with which [`Bsdf::sample`] draws `wi` (0 for directions only a
+    /// delta lobe reaches).
+    pub fn pdf(&self, wo: DVec3, wi: DVec3, n: DVec3) -> f64 {
+        let (frame, o) = local(n, wo);
+        let i = frame.to_local(wi);
+        match *self {
+            Bsdf::Lambert { .. } if o.z > 0.0 => i.z.max(0.0) * FRAC_1_PI,
+            Bsdf::Conductor { ggx: Some(g), .. } if o.z > 0.0 && i.z > 0.0 => {
+                let m = (i + o).normalize();
+                g.visible_d(o, m) / (4.0 * o.dot(m))
+            }
+            Bsdf::Dielectric {
+                n1,
+                n2,
+                ggx: Some(g),
+            } if o.z > 0.0 && i.z != 0.0 => rough_dielectric_pdf(&g, n1, n2, o, i),
+            Bsdf::Plastic { albedo, coat } if o.z > 0.0 && i.z > 0.0 => {
+                coat.pdf(o, i, coat.specular_probability(o.z, albedo))
+            }
+            _ => 0.0,
+        }
+    }
+
+    /// f(wo, wi) of the diffuse lobe alone (the base of a plastic, a Lambertian surface; 0
+    /// for conductors and dielectrics).
+    pub fn eval_diffuse(&self, wo: DVec3, wi: DVec3, n: DVec3) -> Rgb {
+        match *self {
+            Bsdf::Lambert { .. } => self.eval(wo, wi, n),
+            Bsdf::Plastic { albedo, coat } => {
+                let (frame, o) = local(n, wo);
+                let i = frame.to_local(wi);
+                match o.z > 0.0 && i.z > 0.0 {
+                    true => coat.f_diffuse(o, i, albedo),
+                    false => Rgb::ZERO,
+                }
+            }
+            _ => Rgb::ZERO,
+        }
+    }
+
+    /// The Lambertian albedo where the BSDF is Lambertian (a photon map's precomputed
+    /// irradiance stands for its radiance there), else None.
+    pub fn lambert_albedo(&self) -> Option<Rgb> {
+        match self {
+            Bsdf::Lambert { albedo } => Some(*albedo),
+            _ => None,
+        }
+    }
+
+    /// A colour describing the surface for the albedo layer: the diffuse albedo, a
+    /// conductor's reflectance at normal incidence, white for a dielectric.
+    pub fn albedo(&self) -> Rgb {
+        match self {
+            Bsdf::Lambert { albedo } | Bsdf::Plastic { albedo, .. } => *albedo,
+            Bsdf::Conductor { fresnel, .. } => fresnel.at(1.0),
+            Bsdf::Dielectric { .. } => Rgb::ONE,
+        }
+    }
+}
+
+/// The microfacet normal of the pair (o, i) across an interface from `n1` (o's side) to `n2`
+/// (local, z > 0), or None where no microfacet refracts one into the other.
+fn half_vector(n1: f64, n2: f64, o: DVec3, i: DVec3) -> Option<DVec3> {
+    let reflected = i.z > 0.0;
+    let h = if reflected { o + i } else { n1 * o + n2 * i };
+    let len = h.length();
+    if len == 0.0 || !len.is_finite() {
+        return None;
+    }
+    let m = if h.z < 0.0 { -h / len } else { h / len };
+    // The facet must face o, and face i from its side.
+    let fits = o.dot(m) > 0.0 && (i.dot(m) > 0.0) == reflected;
+    fits.then_some(m)
+}
+
+/// 1 − F for a refracted pair through a facet, cos θ = `om` on the side of index `n1` and
+/// |`im`| on the side of `n2`: computed from the rarer side, where Snell's cos θt is well
+/// conditioned (from the denser side it loses digits near the critical angle).
+fn transmittance(n1: f64, n2: f64, om: f64, im: f64) -> f64 {
+    let r = match n1 <= n2 {
+        true => dielectric(om, n1, n2).0,
+        false => dielectric(im.abs(), n2, n1).0,
+    };
+    1.0 - r
+}
+
+/// Walter et al.'s (2007) rough dielectric f for basic radiance (see the module's notes).
+fn rough_dielectric_f(g: &Ggx, n1: f64, n2: f64, o: DVec3, i: DVec3) -> f64 {
+    let Some(m) = half_vector(n1, n2, o, i) else {
+        return 0.0;
+    };
+    let (om, im) = (o.dot(m), i.dot(m));
+    let dg = g.d(m) * g.g2(i, o);
+    if i.z > 0.0 {
+        let (r, _) = dielectric(om, n1, n2);
+        r * dg / (4.0 * i.z * o.z)
+    } else {
+        let t = transmittance(n1, n2, om, im);
+        let denom = n1 * om + n2 * im;
+        t * dg * (im.abs() * om * n2 * n2) / (i.z.abs() * o.z * denom * denom)
+    }
+}
+
+/// The pdf of [`Bsdf::sample`] for a rough dielectric: the visible normal's density, times
+/// the Fresnel choice, times the Jacobian of the reflection or refraction.
+fn rough_dielectric_pdf(g: &Ggx, n1: f64, n2: f64, o: DVec3, i: DVec3) -> f64 {
+    let Some(m) = half_vector(n1, n2, o, i) else {
+        return 0.0;
+    };
+    let (om, im) = (o.dot(m), i.dot(m));
+    let dm = g.visible_d(o, m);
+    if i.z > 0.0 {
+        let (r, _) = dielectric(om, n1, n2);
+        r * dm / (4.0 * om)
+    } else {
+        let t = transmittance(n1, n2, om, im);
+        let denom = n1 * om + n2 * im;
+        t * dm * n2 * n2 * im.abs() / (denom * denom)
+    }
+}

@@ -1,0 +1,122 @@
+//! Plastic: a Lambertian base under a rough dielectric coat, as Mitsuba's `roughplastic`
+//! models it (Jakob et al.; after Kelemen and Szirmay-Kalos 2001 and Weidlich and Wilkie
+//! 2007). Light either reflects off the coat (GGX, the dielectric Fresnel term) or enters,
+//! scatters in the base (albedo ρ) and among the coat's inner side, and leaves:
+//!
+//! f(ωo, ωi) = F(ωo·m) D(m) G₂ / (4 cos θi cos θo)
+//!           + ρ (1 − E(μi)) (1 − E(μo)) / (π η² (1 − ρ F̄ᵢ)),
+//!
+//! where E(μ) is the coat's directional albedo (the specular lobe's reflected fraction at
+//! cos θ = μ, tabulated once by quadrature over visible normals), 1 − E what enters, η the
+//! coat's index relative to the outside, and F̄ᵢ = 1 − T̄/η² the inner side's mean reflectance
+//! of diffuse light, T̄ = 2∫(1 − E(μ)) μ dμ (reciprocity: the inner mean transmittance is the
+//! outer one over η²). Its albedo is E(μo) + (1 − E(μo)) ρx/(1 − ρ + ρx), x = T̄/η² — at most
+//! 1, and 1 for ρ = 1: no energy is made, and a white plastic loses none.
+
+use super::fresnel::dielectric;
+use super::microfacet::Ggx;
+use super::reflect;
+use crate::color::Rgb;
+use glam::DVec3;
+use std::f64::consts::FRAC_1_PI;
+
+/// Nodes of the tabulated coat albedo E(μ), uniform in μ = cos θ over [0, 1].
+const NODES: usize = 65;
+
+/// A rough dielectric coat: its relative index, microsurface and tabulated albedo.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Coat {
+    /// The coat's index relative to the medium outside.
+    pub eta: f64,
+    /// Its microsurface.
+    pub ggx: Ggx,
+    /// E(μ) at μ = j/(NODES − 1).
+    albedo: Vec<f64>,
+    /// The inner side's mean reflectance F̄ᵢ of diffuse light.
+    inner_reflectance: f64,
+}
+
+impl Coat {
+    /// The coat of relative index `eta` (> 1) and roughness `ggx`: tabulates E(μ) by a
+    /// 64 × 64 midpoint rule over the visible normals' sampling square (smooth there) at each
+    /// of 65 angles.
+    pub fn new(eta: f64, ggx: Ggx) -> Self {
+        let n = 64;
+        let albedo: Vec<f64> = (0..NODES)
+            .map(|j| {
+                let mu = (j as f64 / (NODES - 1) as f64).max(1e-4);
+                let o = DVec3::new((1.0 - mu * mu).sqrt(), 0.0, mu);
+                let mut sum = 0.0;
+                for a in 0..n {
+                    for b in 0..n {
+                        let u = ((a as f64 + 0.5) / n as f64, (b as f64 + 0.5) / n as f64);
+                        let m = ggx.sample_visible(o, u);
+                        let i = reflect(-o, m);
+                        if i.z > 0.0 {
+                            sum += dielectric(o.dot(m), 1.0, eta).0 * ggx.g2(i, o) / ggx.g1(o);
+                        }
+                    }
+                }
+                sum / (n * n) as f64
+            })
+            .collect();
+        // T̄ = 2∫(1 − E) μ dμ by the trapezoid rule on the nodes.
+        let h = 1.0 / (NODES - 1) as f64;
+        let t_mean = 2.0
+            * h
+            * (0..NODES)
+                .map(|j| {
+                    let w = if j == 0 || j == NODES - 1 { 0.5 } else { 1.0 };
+                    w * (1.0 - albedo[j]) * j as f64 * h
+                })
+                .sum::<f64>();
+        Self {
+            eta,
+            ggx,
+            albedo,
+            inner_reflectance: 1.0 - t_mean / (eta * eta),
+        }
+    }
+
+    /// E(μ): the fraction the coat's specular lobe reflects at cos θ = `mu`.
+    pub fn coat_albedo(&self, mu: f64) -> f64 {
+        let x = mu.clamp(0.0, 1.0) * (NODES - 1) as f64;
+        let j = (x as usize).min(NODES - 2);
+        let t = x - j as f64;
+        self.albedo[j] * (1.0 - t) + self.albedo[j + 1] * t
+    }
+
+    /// f(o, i) in the local frame (both above the surface).
+    pub(super) fn f(&self, o: DVec3, i: DVec3, albedo: Rgb) -> Rgb {
+        let m = (o + i).normalize();
+        let specular = dielectric(o.dot(m), 1.0, self.eta).0 * self.ggx.d(m) * self.ggx.g2(i, o)
+            / (4.0 * i.z * o.z);
+        self.f_diffuse(o, i, albedo) + Rgb::splat(specular)
+    }
+
+    /// The diffuse part of f(o, i): the light that entered the coat and left again.
+    pub(super) fn f_diffuse(&self, o: DVec3, i: DVec3, albedo: Rgb) -> Rgb {
+        let enter = (1.0 - self.coat_albedo(i.z)) * (1.0 - self.coat_albedo(o.z));
+        albedo * (enter * FRAC_1_PI / (self.eta * self.eta))
+            / (Rgb::ONE - albedo * self.inner_reflectance)
+    }
+
+    /// The probability of sampling the coat's lobe at cos θo = `mu`: its share of the
+    /// reflected light for a grey base of the albedo's mean.
+    pub(super) fn specular_probability(&self, mu: f64, albedo: Rgb) -> f64 {
+        let e = self.coat_albedo(mu);
+        let d = (1.0 - e) * albedo.mean().clamp(0.0, 1.0);
+        if e + d > 0.0 {
+            (e / (e + d)).clamp(0.05, 0.95)
+        } else {
+            1.0
+        }
+    }
+
+    /// The mixture's pdf for `i` given `o` and the coat's probability `p`.
+    pub(super) fn pdf(&self, o: DVec3, i: DVec3, p: f64) -> f64 {
+        let m = (o + i).normalize();
+        let specular = self.ggx.visible_d(o, m) / (4.0 * o.dot(m));
+        p * specular + (1.0 - p) * i.z.max(0.0) * FRAC_1_PI
+    }
+}

@@ -1,0 +1,134 @@
+//! A surface point where a path scatters: the BSDF made there, the normals it is evaluated
+//! about, the direction the path arrived from and the media on both sides. The chain
+//! ([`super::chain`]) passes through vertices whose BSDF is purely specular and ends at any
+//! other (a scattering vertex), where the integrators estimate light and photons are stored.
+//!
+//! **Normals.** Specular and glossy lobes work about the shading normal (turned to the
+//! arrival side), unless a sample about it would leave on the wrong side of the geometric
+//! surface (a reflection into it, a refraction back out of it) or the path arrives from
+//! behind it: then about the geometric normal, so a smooth mesh neither leaks light nor
+//! blackens its facets' edges. Diffuse lobes work about the geometric normal.
+
+use super::chain::Ray;
+use super::offset;
+use crate::bsdf::{Bsdf, BsdfSample, Lobes};
+use crate::color::Rgb;
+use glam::DVec3;
+
+/// A surface point a path reached, with the BSDF it met there.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Vertex<'s> {
+    /// Primitive index.
+    pub prim: usize,
+    /// Where.
+    pub position: DVec3,
+    /// Unit geometric normal on the side the path arrived on.
+    pub normal: DVec3,
+    /// Unit shading normal turned to the arrival side.
+    pub shading: DVec3,
+    /// Unit direction back along the arrival (ωo).
+    pub wo: DVec3,
+    /// How the surface scatters here.
+    pub bsdf: Bsdf<'s>,
+    /// The medium on the arrival side (None: vacuum).
+    pub medium: Option<usize>,
+    /// The medium on the other side, where a transmitted path goes.
+    pub beyond: Option<usize>,
+}
+
+/// A direction sampled at a vertex and the ray leaving along it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Scattered {
+    /// The BSDF's sample (direction, weight f·|cos|/pdf, pdf, lobe).
+    pub sample: BsdfSample,
+    /// The ray leaving: offset off the surface to the side it leaves on, in that side's medium.
+    pub ray: Ray,
+}
+
+impl Vertex<'_> {
+    /// Its BSDF's lobes.
+    pub fn lobes(&self) -> Lobes {
+        self.bsdf.lobes()
+    }
+
+    /// The normal its BSDF is evaluated about for a direction leaving on the side `wi` lies
+    /// on (see the module's notes).
+    fn frame(&self) -> DVec3 {
+        match self.bsdf {
+            Bsdf::Lambert { .. } => self.normal,
+            _ if self.wo.dot(self.shading) > 0.0 => self.shading,
+            _ => self.normal,
+        }
+    }
+
+    /// Whether `wi` leaves on the side of the geometric surface its lobe says: above it for
+    /// a reflection, below for a transmission.
+    fn lands_right(&self, wi: DVec3, transmitted: bool) -> bool {
+        let lands = wi.dot(self.normal);
+        (transmitted && lands < 0.0) || (!transmitted && lands > 0.0)
+    }
+
+    /// f(ωo, `wi`) of the non-delta lobes; 0 where `wi` would leave on the wrong side.
+    pub fn eval(&self, wi: DVec3) -> Rgb {
+        let frame = self.frame();
+        if !self.lands_right(wi, wi.dot(frame) < 0.0) {
+            return Rgb::ZERO;
+        }
+        self.bsdf.eval(self.wo, wi, frame)
+    }
+
+    /// The diffuse lobe's part of [`Vertex::eval`].
+    pub fn eval_diffuse(&self, wi: DVec3) -> Rgb {
+        let frame = self.frame();
+        if !self.lands_right(wi, wi.dot(frame) < 0.0) {
+            return Rgb::ZERO;
+        }
+        self.bsdf.eval_diffuse(self.wo, wi, frame)
+    }
+
+    /// The pdf with which [`Vertex::scatter`] draws `wi` (per unit solid angle).
+    pub fn pdf(&self, wi: DVec3) -> f64 {
+        self.bsdf.pdf(self.wo, wi, self.frame())
+    }
+
+    /// A direction for uniform numbers `u` (see [`Bsdf::sample`]) and the ray leaving along
+    /// it; None where the BSDF gives none.
+    pub fn scatter(&self, u: (f64, f64, f64)) -> Option<Scattered> {
+        let frame = self.frame();
+        let s = match self.bsdf.sample(self.wo, frame, u) {
+            Some(s) if frame == self.normal || self.lands_right(s.wi, s.transmitted()) => s,
+            _ => self.bsdf.sample(self.wo, self.normal, u)?,
+        };
+        let transmitted = s.transmitted();
+        Some(Scattered {
+            sample: s,
+            ray: Ray {
+                origin: offset(
+                    self.position,
+                    if transmitted {
+                        -self.normal
+                    } else {
+                        self.normal
+                    },
+                ),
+                direction: s.wi,
+                medium: if transmitted {
+                    self.beyond
+                } else {
+                    self.medium
+                },
+            },
+        })
+    }
+
+    /// [`Vertex::scatter`] with its numbers drawn from `rng`: two for the direction and a
+    /// third only where the BSDF makes a discrete choice (a Lambertian surface draws two).
+    pub fn scatter_with(&self, rng: &mut impl rand::Rng) -> Option<Scattered> {
+        let u = (rng.gen(), rng.gen());
+        let choice = match self.bsdf {
+            Bsdf::Lambert { .. } | Bsdf::Conductor { .. } => 0.0,
+            Bsdf::Dielectric { .. } | Bsdf::Plastic { .. } => rng.gen(),
+        };
+        self.scatter((u.0, u.1, choice))
+    }
+}

