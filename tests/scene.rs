@@ -115,6 +115,20 @@ const BAD: &[(&str, usize, usize, &str)] = &[
     ("[[material]]\nname = \"m\"\ntype = \"diffuse\"\nalbedo = [0.5, 1.5, 0.5]\n", 4, 1, "reflectance must be ≤ 1"),
     ("[[material]]\nname = \"m\"\ntype = \"dielectric\"\n", 1, 1, "exactly one of `ior` and `interior`"),
     ("[[material]]\nname = \"m\"\ntype = \"dielectric\"\ninterior = \"nothing\"\n", 4, 1, "no medium named 'nothing'"),
+    // Glossy materials: roughness below 0, NaN or above 1; an unknown metal; eta without k,
+    // k without eta, both metal and eta; a plastic with a smooth coat or a coat of index ≤ 1;
+    // a negative k.
+    ("[[material]]\nname = \"m\"\ntype = \"conductor\"\nmetal = \"Au\"\nroughness = -0.1\n", 5, 1, "key `roughness`: must be GGX α in [0, 1]"),
+    ("[[material]]\nname = \"m\"\ntype = \"conductor\"\nmetal = \"Au\"\nroughness = nan\n", 5, 1, "key `roughness`: must be finite, got NaN"),
+    ("[[material]]\nname = \"m\"\ntype = \"dielectric\"\nior = 1.5\nroughness = 2\n", 5, 1, "key `roughness`: must be GGX α in [0, 1]"),
+    ("[[material]]\nname = \"m\"\ntype = \"conductor\"\nmetal = \"Pt\"\n", 4, 1, "unknown metal 'Pt' (Ag, Al, Au, Cu, perfect)"),
+    ("[[material]]\nname = \"m\"\ntype = \"conductor\"\neta = [0.2, 0.4, 1.4]\n", 4, 1, "key `eta`: `eta` needs `k`"),
+    ("[[material]]\nname = \"m\"\ntype = \"conductor\"\nk = 3\n", 4, 1, "key `k`: `k` needs `eta`"),
+    ("[[material]]\nname = \"m\"\ntype = \"conductor\"\nmetal = \"Au\"\neta = 1\nk = 1\n", 4, 1, "give `metal` or `eta` and `k`"),
+    ("[[material]]\nname = \"m\"\ntype = \"conductor\"\n", 1, 1, "a conductor needs `metal`"),
+    ("[[material]]\nname = \"m\"\ntype = \"conductor\"\neta = 1\nk = -1\n", 5, 1, "key `k`: must not be negative"),
+    ("[[material]]\nname = \"m\"\ntype = \"plastic\"\nalbedo = 0.5\nroughness = 0\n", 5, 1, "a plastic's coat is rough"),
+    ("[[material]]\nname = \"m\"\ntype = \"plastic\"\nalbedo = 0.5\nior = 1.0\n", 5, 1, "key `ior`: the coat's index"),
     // Shape: negative radius, unknown material, missing mesh file, non-parallelogram quad.
     ("[[material]]\nname = \"m\"\ntype = \"diffuse\"\nalbedo = [0.5, 0.5, 0.5]\n[[shape]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = -1\nmaterial = \"m\"\n", 8, 1, "key `radius`: must be > 0"),
     ("[[shape]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"nope\"\n", 5, 1, "no material named 'nope'"),

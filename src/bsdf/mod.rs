@@ -169,10 +169,14 @@ impl BsdfSample {
     }
 }
 
-/// The local frame of `n` and `v` in it.
+/// The local frame of `n` and unit `v` in it. Both are normalised first: a hit's normal is
+/// unit only to the accuracy of the hit point (a sphere's (p − c)/R is off by the point's
+/// error over R), and a frame that is not orthonormal would stretch every direction it turns —
+/// a path reflected many times inside a rough glass ball drifted 10⁻⁸ off unit length and
+/// its hit points off the surface by more than a ray's offset.
 fn local(n: DVec3, v: DVec3) -> (Frame, DVec3) {
-    let f = Frame::new(n);
-    let l = f.to_local(v);
+    let f = Frame::new(n.normalize());
+    let l = f.to_local(v).normalize();
     (f, l)
 }
 
@@ -299,7 +303,7 @@ impl Bsdf<'_> {
             _ => unreachable!("smooth and Lambertian BSDFs are sampled above"),
         };
         (s.weight.0.is_finite() && s.pdf > 0.0 && s.pdf.is_finite()).then(|| BsdfSample {
-            wi: frame.to_world(s.wi),
+            wi: frame.to_world(s.wi).normalize(),
             ..s
         })
     }

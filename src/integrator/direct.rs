@@ -215,6 +215,6 @@ pub fn direct(carried: Carried, vp: &VisiblePoint, rng: &mut impl Rng, stats: &m
             }),
         _ => 1.0,
     };
-    radiance += s.sample.weight * emission_seen(walker.tracer, &chain) * mis;
+    radiance += s.sample.weight * emission_seen(walker.tracer, &chain) * (mis * s.radiance_scale);
     vp.throughput * radiance
 }

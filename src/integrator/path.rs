@@ -66,7 +66,7 @@ impl<'a> PathTracer<'a> {
                 break;
             };
             let chain = walker.follow(b.ray, s.rng, s.stats, &mut ());
-            let weight = b.sample.weight;
+            let weight = b.sample.weight * b.radiance_scale;
             let throughput = vp.throughput * weight * chain.weight;
             // With no specular bounce, emission here is the direct estimate's (already counted).
             if chain.specular > 0 {

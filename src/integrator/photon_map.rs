@@ -2,10 +2,11 @@
 //! and Jensen 2009, and pbrt-v4): each pass traces a caustic and a global photon map. A camera
 //! path goes through purely specular surfaces within its chain and through glossy-only
 //! vertices by sampling their BSDF (with direct light at each), and makes its visible point at
-//! the first vertex with a diffuse lobe — or at a glossy one when its depth is spent. There:
+//! the first vertex with a diffuse lobe (photons are stored only at such vertices). There:
 //! - **direct**: light with no specular interaction on the way ([`super::direct`]);
 //! - **caustic**: the caustic map's density estimate (photons that met only specular or glossy
-//!   lobes since the light), each photon weighted by the BSDF f(ωo, ωi), with an Epanechnikov
+//!   lobes since the light), each photon weighted by the BSDF f(ωo, ωi) (albedo/π at a
+//!   Lambertian surface), with an Epanechnikov
 //!   kernel of radius r_p at pass p: r₀ the k-nearest distance at the pixel's first visible
 //!   point in that pass (or the scene's `radius`), shrunk by Knaus and Zwicker's probabilistic
 //!   progressive schedule r_p² = r₀² Π_{j=1..p} (j + α)/(j + 1), α = 2/3: a function of the
@@ -20,7 +21,7 @@ use super::direct::{camera_path, direct, emission_seen, hero, VisiblePoint};
 use super::{CameraRay, Integrator, Sample, Slot};
 use crate::color::Rgb;
 use crate::film::Layer;
-use crate::photon::{shoot, Batch, PhotonMap, Photons, Side, Sources};
+use crate::photon::{shoot, Batch, PhotonMap, Photons, Sources};
 use crate::report::Report;
 use crate::scene::Scene;
 use crate::settings::{PhotonSettings, Settings};
@@ -171,10 +172,11 @@ impl<'a> PhotonMapper<'a> {
     }
 
     /// Secondary light at a visible point: `gather` BSDF-sampled rays, each followed through
-    /// specular surfaces to a scattering vertex, where the global map gives the radiance
-    /// leaving it toward the ray ([`PhotonMapper::global_radiance`]). Emission and
-    /// environment met by gather rays are not counted: that light is the direct or caustic
-    /// part.
+    /// specular surfaces and glossy-only vertices (sampling their BSDF) to a vertex with a
+    /// diffuse lobe, where the global map gives the radiance leaving it: a Lambertian
+    /// surface's precomputed irradiance times albedo/π, or the k nearest photons weighted by
+    /// its BSDF ([`PhotonMapper::photon_radiance`]). Emission and environment met by gather
+    /// rays are not counted: that light is the direct or caustic part.
     fn secondary(
         &self,
         global: &PhotonMap,
@@ -186,26 +188,39 @@ impl<'a> PhotonMapper<'a> {
         let mut sum = Rgb::ZERO;
         for _ in 0..gather {
             s.stats.gather_rays += 1;
-            let Some(b) = vp.vertex.scatter_with(s.rng) else {
-                continue;
-            };
             let mut walker = Walker::carrying(carried, Policy::Weighted);
-            let chain = walker.follow(b.ray, s.rng, s.stats, &mut ());
-            if let End::Scatter(y) = chain.end {
-                let tracer = walker.tracer;
-                let weight = b.sample.weight * chain.weight;
-                sum += match y.bsdf.lambert_albedo() {
-                    Some(albedo) => {
-                        let e = s
-                            .stats
-                            .time_query(|| global.nearest_irradiance(y.position, y.normal));
-                        weight * albedo * FRAC_1_PI * tracer.photon_irradiance(e)
+            let mut vertex = vp.vertex;
+            let mut weight = Rgb::ONE;
+            let (y, scale) = loop {
+                let Some(b) = vertex.scatter_with(s.rng) else {
+                    break (None, 1.0);
+                };
+                let chain = walker.follow(b.ray, s.rng, s.stats, &mut ());
+                weight = weight * b.sample.weight * chain.weight * b.radiance_scale;
+                match chain.end {
+                    End::Scatter(y) if y.lobes().has_diffuse() => {
+                        break (Some(y), chain.radiance_scale())
                     }
-                    None => {
-                        weight * tracer.photon_irradiance(self.photon_radiance(global, &y, s.stats))
+                    End::Scatter(y) if walker.depth > 0 => {
+                        weight = weight * chain.radiance_scale();
+                        vertex = y;
                     }
-                } * chain.radiance_scale();
-            }
+                    _ => break (None, 1.0),
+                }
+            };
+            let Some(y) = y else { continue };
+            let tracer = walker.tracer;
+            sum += match y.bsdf.lambert_albedo() {
+                Some(albedo) => {
+                    let e = s
+                        .stats
+                        .time_query(|| global.nearest_irradiance(y.position, y.normal));
+                    weight * albedo * FRAC_1_PI * tracer.photon_irradiance(e)
+                }
+                None => {
+                    weight * tracer.photon_irradiance(self.photon_radiance(global, &y, s.stats))
+                }
+            } * scale;
         }
         vp.throughput * sum / gather.max(1) as f64
     }
@@ -216,15 +231,11 @@ impl<'a> PhotonMapper<'a> {
     /// lobe they are caustics of the visible point, the caustic map's). (At a Lambertian
     /// surface the map's precomputed irradiance times albedo/π stands for it.)
     fn photon_radiance(&self, global: &PhotonMap, y: &Vertex, stats: &mut Stats) -> Rgb {
-        let side = Side {
-            normal: y.normal,
-            both: y.lobes().transmits(),
-        };
         let k = self.photons.knn as usize;
         stats.time_query(|| {
             global.knn_weighted(
                 y.position,
-                side,
+                y.normal,
                 k,
                 self.max_r2,
                 |_| true,
@@ -242,8 +253,8 @@ impl<'a> PhotonMapper<'a> {
 
     /// The camera path's visible point: past glossy-only vertices by sampling their BSDF
     /// (adding their direct light to `direct`, and emission met after a specular bounce to
-    /// `emitted`), to the first vertex with a diffuse lobe, or a glossy one where the path's
-    /// depth is spent.
+    /// `emitted`), to the first vertex with a diffuse lobe; None where the path leaves, or
+    /// spends its depth among glossy vertices.
     fn visible_point<'w>(
         &self,
         mut vp: VisiblePoint<'w>,
@@ -252,11 +263,14 @@ impl<'a> PhotonMapper<'a> {
         s: &mut Sample,
     ) -> Option<(VisiblePoint<'w>, Carried<'w>)> {
         let mut walker = Walker::carrying(carried, Policy::Weighted);
-        while !vp.vertex.lobes().has_diffuse() && walker.depth > 0 {
+        while !vp.vertex.lobes().has_diffuse() {
+            if walker.depth == 0 {
+                return None;
+            }
             found.direct += direct(walker.carried(), &vp, s.rng, s.stats);
             let b = vp.vertex.scatter_with(s.rng)?;
             let chain = walker.follow(b.ray, s.rng, s.stats, &mut ());
-            let throughput = vp.throughput * b.sample.weight;
+            let throughput = vp.throughput * b.sample.weight * b.radiance_scale;
             if chain.specular > 0 {
                 found.emitted += throughput * emission_seen(walker.tracer, &chain);
             }
@@ -350,12 +364,8 @@ impl Integrator for PhotonMapper<'_> {
                     vp.throughput * albedo * e * FRAC_1_PI
                 }
                 None => {
-                    let side = Side {
-                        normal: v.normal,
-                        both: v.lobes().transmits(),
-                    };
                     let (l, _) = s.stats.time_query(|| {
-                        caustic.weighted(v.position, side, r2, |p| {
+                        caustic.weighted(v.position, v.normal, r2, |p| {
                             v.eval(p.from_direction()) * p.flux()
                         })
                     });

@@ -94,29 +94,10 @@ pub const SITE_STRIDE: usize = 8;
 /// the other wall of a corner and on the back of a thin object.
 const SAME_SURFACE_COS: f64 = 0.9;
 
-/// Which photons a query point sees: those on its side of the surface of unit normal
-/// `normal`, or — at a surface that transmits (rough glass) — those on either side.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Side {
-    /// The query's unit normal.
-    pub normal: DVec3,
-    /// Whether photons on the other side count too.
-    pub both: bool,
-}
-
-impl Side {
-    /// The side of unit `normal` only.
-    pub fn of(normal: DVec3) -> Self {
-        Self {
-            normal,
-            both: false,
-        }
-    }
-
-    fn admits(&self, photon: &Photon) -> bool {
-        let cos = photon.normal.dot(self.normal);
-        cos >= SAME_SURFACE_COS || (self.both && cos <= -SAME_SURFACE_COS)
-    }
+/// Whether `photon` lies on the surface side of unit normal `normal` (see
+/// [`SAME_SURFACE_COS`]).
+fn on_side(photon: &Photon, normal: DVec3) -> bool {
+    photon.normal.dot(normal) >= SAME_SURFACE_COS
 }
 
 impl PhotonMap {
@@ -182,12 +163,8 @@ impl PhotonMap {
             return Rgb::ZERO;
         };
         let query = tree_point(p);
-        let matches = |item: u32| {
-            self.photons[sites.photons[item as usize] as usize]
-                .normal
-                .dot(normal)
-                >= SAME_SURFACE_COS
-        };
+        let matches =
+            |item: u32| on_side(&self.photons[sites.photons[item as usize] as usize], normal);
         let value = |item: u32| {
             Rgb(DVec3::from_array(
                 sites.irradiance[item as usize].map(f64::from),
@@ -223,17 +200,17 @@ impl PhotonMap {
 
     /// Calls `f(photon, d²)` for every photon within squared distance `r2` of `p` (inclusive)
     /// that lies on the surface side with unit normal `normal`.
-    pub fn for_each_within(&self, p: DVec3, normal: DVec3, r2: f64, f: impl FnMut(&Photon, f64)) {
-        self.for_each_seen(p, Side::of(normal), r2, f)
-    }
-
-    /// Calls `f(photon, d²)` for every photon within squared distance `r2` of `p` (inclusive)
-    /// that `side` admits.
-    pub fn for_each_seen(&self, p: DVec3, side: Side, r2: f64, mut f: impl FnMut(&Photon, f64)) {
+    pub fn for_each_within(
+        &self,
+        p: DVec3,
+        normal: DVec3,
+        r2: f64,
+        mut f: impl FnMut(&Photon, f64),
+    ) {
         let Some(tree) = &self.tree else { return };
         for nn in tree.within_unsorted::<SquaredEuclidean>(&tree_point(p), r2) {
             let photon = &self.photons[nn.item as usize];
-            if side.admits(photon) {
+            if on_side(photon, normal) {
                 f(photon, nn.distance);
             }
         }
@@ -245,7 +222,7 @@ impl PhotonMap {
     fn nearest(
         &self,
         p: DVec3,
-        side: Side,
+        normal: DVec3,
         k: usize,
         max_r2: f64,
         keep: impl Fn(u32) -> bool,
@@ -264,7 +241,7 @@ impl PhotonMap {
             let found: Vec<(u32, f64)> = candidates
                 .into_iter()
                 .take_while(|nn| nn.distance <= max_r2)
-                .filter(|nn| keep(nn.item) && side.admits(&self.photons[nn.item as usize]))
+                .filter(|nn| keep(nn.item) && on_side(&self.photons[nn.item as usize], normal))
                 .take(k)
                 .map(|nn| (nn.item, nn.distance))
                 .collect();
@@ -278,7 +255,7 @@ impl PhotonMap {
     /// The squared distance from `p` to its k-th nearest photon on the surface side `normal`,
     /// or `max_r2` when fewer than k lie within that.
     pub fn knn_radius2(&self, p: DVec3, normal: DVec3, k: usize, max_r2: f64) -> f64 {
-        let found = self.nearest(p, Side::of(normal), k.max(1), max_r2, |_| true);
+        let found = self.nearest(p, normal, k.max(1), max_r2, |_| true);
         if found.len() == k.max(1) {
             found[found.len() - 1].1
         } else {
@@ -298,23 +275,24 @@ impl PhotonMap {
         max_r2: f64,
         keep: impl Fn(u32) -> bool,
     ) -> Rgb {
-        self.knn_weighted(p, Side::of(normal), k, max_r2, keep, Photon::flux)
+        self.knn_weighted(p, normal, k, max_r2, keep, Photon::flux)
     }
 
-    /// Σ weight(photon)·K(d) over the k nearest photons `side` and `keep` admit, with the
+    /// Σ weight(photon)·K(d) over the k nearest photons on the side `normal` that `keep`
+    /// admits, with the
     /// Epanechnikov kernel of r² the k-th distance² (or `max_r2` when fewer are found): with
     /// weight = flux the irradiance, with weight = f(ωo, photon's ωi)·flux the radiance a BSDF
     /// sends toward ωo.
     pub fn knn_weighted(
         &self,
         p: DVec3,
-        side: Side,
+        normal: DVec3,
         k: usize,
         max_r2: f64,
         keep: impl Fn(u32) -> bool,
         weight: impl Fn(&Photon) -> Rgb,
     ) -> Rgb {
-        let found = self.nearest(p, side, k.max(2), max_r2, keep);
+        let found = self.nearest(p, normal, k.max(2), max_r2, keep);
         let r2 = if found.len() == k.max(2) {
             found[found.len() - 1].1
         } else {
@@ -334,16 +312,16 @@ impl PhotonMap {
     /// the surface side `normal`, with the Epanechnikov kernel K(d) = 2(1 − d²/r²)/(π r²)
     /// (normalised over the disk): E = Σ Φ K. Also returns how many photons were found.
     pub fn irradiance(&self, p: DVec3, normal: DVec3, r2: f64) -> (Rgb, usize) {
-        self.weighted(p, Side::of(normal), r2, Photon::flux)
+        self.weighted(p, normal, r2, Photon::flux)
     }
 
-    /// Σ weight(photon)·K(d) over the photons within squared radius `r2` that `side` admits,
-    /// with the Epanechnikov kernel (see [`PhotonMap::irradiance`], weight = flux); also how
-    /// many were found.
+    /// Σ weight(photon)·K(d) over the photons within squared radius `r2` on the side
+    /// `normal`, with the Epanechnikov kernel (see [`PhotonMap::irradiance`], weight = flux);
+    /// also how many were found.
     pub fn weighted(
         &self,
         p: DVec3,
-        side: Side,
+        normal: DVec3,
         r2: f64,
         weight: impl Fn(&Photon) -> Rgb,
     ) -> (Rgb, usize) {
@@ -352,7 +330,7 @@ impl PhotonMap {
         }
         let mut sum = Rgb::ZERO;
         let mut count = 0;
-        self.for_each_seen(p, side, r2, |ph, d2| {
+        self.for_each_within(p, normal, r2, |ph, d2| {
             sum += weight(ph) * (1.0 - d2 / r2);
             count += 1;
         });

@@ -20,7 +20,7 @@ mod budget;
 mod map;
 
 pub use budget::{Budget, Fate, Ledger};
-pub use map::{Photon, PhotonMap, Side};
+pub use map::{Photon, PhotonMap};
 
 use crate::bsdf::Lobes;
 use crate::color::Rgb;
@@ -668,15 +668,17 @@ fn trace_photon(
             // L (S|G)+ X: at least one specular or glossy lobe and no diffuse one since the
             // light. Light through gradient media alone (L G+ D) is the direct estimate's,
             // which follows it along the curved path.
+            // Photons are stored only at vertices with a diffuse lobe: camera paths and final
+            // gathers pass glossy-only vertices by sampling them and read no photons there
+            // (and photons on the inside of a rough glass ball would be read by the floor it
+            // stands on, whose normal they share).
             Batch::Caustic => {
-                if bent {
+                if bent && vertex.lobes().has_diffuse() {
                     stored.photons.push(photon);
                 }
             }
-            // Every photon at a vertex with a diffuse lobe; at a glossy-only vertex those a
-            // diffuse lobe scattered before (the rest are caustics there).
             Batch::Global => {
-                if diffused || vertex.lobes().has_diffuse() {
+                if vertex.lobes().has_diffuse() {
                     stored.photons.push(photon);
                 }
             }

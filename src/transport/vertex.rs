@@ -43,6 +43,9 @@ pub struct Scattered {
     pub sample: BsdfSample,
     /// The ray leaving: offset off the surface to the side it leaves on, in that side's medium.
     pub ray: Ray,
+    /// What radiance arriving along the ray becomes toward ωo besides the sample's weight:
+    /// (n_ωo/n_ωi)² across a rough interface, 1 otherwise ([`Vertex::radiance_scale`]).
+    pub radiance_scale: f64,
 }
 
 impl Vertex<'_> {
@@ -86,6 +89,22 @@ impl Vertex<'_> {
         self.bsdf.eval_diffuse(self.wo, wi, frame)
     }
 
+    /// The change of radiance from light arriving along `wi` to light leaving toward ωo that
+    /// the BSDF leaves to the transport: basic radiance L/n² is what f carries, so radiance
+    /// from the other side of a rough interface (index n2, ωo's side n1) gains (n1/n2)². 1 for
+    /// reflection and for every other BSDF. Power (a photon's flux) never scales: photons
+    /// ignore it. (Through a smooth interface the chain's own end-to-end ratio accounts for
+    /// it: [`super::chain::Chain::radiance_scale`].)
+    pub fn radiance_scale(&self, wi: DVec3) -> f64 {
+        match self.bsdf {
+            Bsdf::Dielectric { n1, n2, .. } if wi.dot(self.normal) < 0.0 => {
+                let r = n1 / n2;
+                r * r
+            }
+            _ => 1.0,
+        }
+    }
+
     /// The pdf with which [`Vertex::scatter`] draws `wi` (per unit solid angle).
     pub fn pdf(&self, wi: DVec3) -> f64 {
         self.bsdf.pdf(self.wo, wi, self.frame())
@@ -101,6 +120,7 @@ impl Vertex<'_> {
         };
         let transmitted = s.transmitted();
         Some(Scattered {
+            radiance_scale: self.radiance_scale(s.wi),
             sample: s,
             ray: Ray {
                 origin: offset(

@@ -1,0 +1,160 @@
+#!/usr/bin/env python3
+"""Render a grinlight scene with Mitsuba 3 as an independent reference.
+
+    python3 bench/mitsuba_reference.py SCENE.toml OUT.exr [--spp N] [--rgb-metals OUT.toml]
+
+Reads the subset of grinlight's scene format that Cornell-box-like scenes use -- quads, boxes
+and spheres; diffuse, conductor, dielectric and plastic materials; quad lights -- and builds
+the same scene for Mitsuba's path tracer (box pixel filter, 64 path segments; variant scalar_rgb), with the conventions of refs/README.md: two-sided Lambertian quads, a one-sided
+emitter that reflects nothing, exact Fresnel, GGX with visible-normal sampling; plastic as
+`roughplastic` with `nonlinear = true` (light scattered among the base and the coat's inner
+side, ρ/(1 − ρ F̄ᵢ), as grinlight's plastic has it).
+
+A measured metal (`metal = "Au"`) is colour-converted differently by the two renderers; to
+compare the BSDFs themselves, --rgb-metals writes a copy of the scene whose metals are given
+by the RGB eta and k below, which both renderers then use as they are.
+
+Needs `pip install mitsuba` (3.9.1 was used for the figures in docs/validation.md).
+"""
+import argparse
+import os
+import tempfile
+import tomllib
+
+# RGB complex indices used for the comparison (the values common in RGB renderers for
+# these metals); both renderers read the same numbers.
+RGB_METALS = {
+    "Au": ([0.143, 0.374, 1.442], [3.983, 2.385, 1.603]),
+    "Ag": ([0.155, 0.117, 0.138], [4.828, 3.122, 2.147]),
+    "Cu": ([0.200, 0.924, 1.102], [3.912, 2.452, 2.142]),
+    "Al": ([1.657, 0.880, 0.521], [9.224, 6.270, 4.837]),
+}
+
+
+def rgb(v):
+    return v if isinstance(v, list) else [v, v, v]
+
+
+def write_obj(directory, name, quads):
+    """An OBJ of quads (each four corners v0..v3, normal (v1-v0)x(v3-v0)) as triangles."""
+    path = os.path.join(directory, name + ".obj")
+    with open(path, "w") as f:
+        for q in quads:
+            for v in q:
+                f.write("v %r %r %r\n" % tuple(v))
+        for i in range(len(quads)):
+            b = 4 * i + 1
+            f.write("f %d %d %d\nf %d %d %d\n" % (b, b + 1, b + 2, b, b + 2, b + 3))
+    return path
+
+
+def box_quads(lo, hi):
+    (x0, y0, z0), (x1, y1, z1) = lo, hi
+    return [
+        [[x0, y0, z0], [x0, y0, z1], [x0, y1, z1], [x0, y1, z0]],  # -x
+        [[x1, y0, z0], [x1, y1, z0], [x1, y1, z1], [x1, y0, z1]],  # +x
+        [[x0, y0, z0], [x1, y0, z0], [x1, y0, z1], [x0, y0, z1]],  # -y
+        [[x0, y1, z0], [x0, y1, z1], [x1, y1, z1], [x1, y1, z0]],  # +y
+        [[x0, y0, z0], [x0, y1, z0], [x1, y1, z0], [x1, y0, z0]],  # -z
+        [[x0, y0, z1], [x1, y0, z1], [x1, y1, z1], [x0, y1, z1]],  # +z
+    ]
+
+
+def bsdf(m):
+    kind = m["type"]
+    alpha = m.get("roughness", 0.0)
+    if kind == "diffuse":
+        return {"type": "twosided", "b": {"type": "diffuse",
+                "reflectance": {"type": "rgb", "value": rgb(m["albedo"])}}}
+    if kind == "conductor":
+        if "metal" in m:
+            eta, k = RGB_METALS[m["metal"]]
+        else:
+            eta, k = rgb(m["eta"]), rgb(m["k"])
+        b = {"type": "roughconductor" if alpha > 0 else "conductor",
+             "eta": {"type": "rgb", "value": eta}, "k": {"type": "rgb", "value": k}}
+        if alpha > 0:
+            b.update(distribution="ggx", alpha=alpha)
+        return {"type": "twosided", "b": b}
+    if kind == "dielectric":
+        b = {"type": "roughdielectric" if alpha > 0 else "dielectric",
+             "int_ior": float(m["ior"]), "ext_ior": 1.0}
+        if alpha > 0:
+            b.update(distribution="ggx", alpha=alpha)
+        return b
+    if kind == "plastic":
+        return {"type": "twosided", "b": {"type": "roughplastic", "distribution": "ggx",
+                "alpha": m.get("roughness", 0.1), "int_ior": float(m.get("ior", 1.5)),
+                "ext_ior": 1.0, "nonlinear": True,
+                "diffuse_reflectance": {"type": "rgb", "value": rgb(m["albedo"])}}}
+    raise SystemExit("material type %r is not converted" % kind)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("scene")
+    ap.add_argument("out")
+    ap.add_argument("--spp", type=int, default=4096)
+    ap.add_argument("--rgb-metals")
+    a = ap.parse_args()
+    with open(a.scene, "rb") as f:
+        scene = tomllib.load(f)
+    if a.rgb_metals:
+        text = open(a.scene).read()
+        for name, (eta, k) in RGB_METALS.items():
+            text = text.replace('metal = "%s"' % name, "eta = %r\nk = %r" % (eta, k))
+        with open(a.rgb_metals, "w") as f:
+            f.write(text)
+    import mitsuba as mi
+    # scalar_rgb: the LLVM variants of drjit 1.5 abort on the LLVM 14 and 15 libraries
+    # Debian ships ("Cannot select: fminimum").
+    mi.set_variant("scalar_rgb")
+    materials = {m["name"]: m for m in scene["material"]}
+    tmp = tempfile.mkdtemp()
+    cam = scene["camera"]
+    d = {
+        "type": "scene",
+        "integrator": {"type": "path", "max_depth": 65},
+        "sensor": {
+            "type": "perspective", "fov": cam["fov_y_deg"], "fov_axis": "y",
+            "to_world": mi.ScalarTransform4f().look_at(
+                origin=cam["position"], target=cam["look_at"], up=cam.get("up", [0, 1, 0])),
+            "film": {"type": "hdrfilm", "width": cam["width"], "height": cam["height"],
+                     "rfilter": {"type": "box"}, "pixel_format": "rgb"},
+            "sampler": {"type": "independent", "sample_count": a.spp},
+        },
+    }
+    for i, s in enumerate(scene["shape"]):
+        b = bsdf(materials[s["material"]])
+        if s["type"] == "sphere":
+            d["shape%d" % i] = {"type": "sphere", "center": s["center"],
+                                "radius": s["radius"], "bsdf": b}
+        elif s["type"] in ("quad", "box"):
+            quads = [s["vertices"]] if s["type"] == "quad" else box_quads(s["min"], s["max"])
+            d["shape%d" % i] = {"type": "obj", "filename": write_obj(tmp, "s%d" % i, quads),
+                                "face_normals": True, "bsdf": b}
+        else:
+            raise SystemExit("shape type %r is not converted" % s["type"])
+    for i, l in enumerate(scene.get("light", [])):
+        if l["type"] != "quad":
+            raise SystemExit("light type %r is not converted" % l["type"])
+        d["light%d" % i] = {
+            "type": "obj", "filename": write_obj(tmp, "l%d" % i, [l["vertices"]]),
+            "face_normals": True,
+            "bsdf": {"type": "diffuse", "reflectance": {"type": "rgb", "value": [0, 0, 0]}},
+            "emitter": {"type": "area", "radiance": {"type": "rgb", "value": rgb(l["radiance"])}},
+        }
+    loaded = mi.load_dict(d)
+    # Passes of 64 samples with their own seeds, averaged: the same estimate as one render of
+    # N samples, in bounded memory.
+    passes = max(1, a.spp // 64)
+    total = None
+    for p in range(passes):
+        image = mi.TensorXf(mi.render(loaded, spp=64, seed=p))
+        total = image if total is None else total + image
+    mi.util.write_bitmap(a.out, total / passes)
+    print("%s: %d spp in %d passes, variant %s" % (a.out, 64 * passes, passes, mi.variant()))
+
+
+if __name__ == "__main__":
+    main()
