@@ -202,7 +202,7 @@ impl<'a> PhotonMapper<'a> {
                         break (Some(y), chain.radiance_scale())
                     }
                     End::Scatter(y) if walker.depth > 0 => {
-                        weight = weight * chain.radiance_scale();
+                        weight *= chain.radiance_scale();
                         vertex = y;
                     }
                     _ => break (None, 1.0),
