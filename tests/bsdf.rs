@@ -13,6 +13,7 @@ use std::f64::consts::PI;
 
 mod common;
 use common::chi2::chi2;
+use common::quadrature;
 
 /// A direction at polar angle `theta` from +z, in the x–z plane.
 fn at(theta: f64) -> DVec3 {
@@ -162,32 +163,10 @@ fn reflection_is_reciprocal_and_transmission_obeys_its_reciprocity() {
     println!("transmission reciprocity: worst relative difference {worst:.1e}");
 }
 
-/// ∫ f(ωo, ωi) |cos θi| dωi by quadrature over microfacet normals (dωi = 4 |ωo·m| dωm for
-/// reflection), with cos θm = 1 − t² so nodes crowd where D peaks: independent of the
-/// visible-normal sampler. The directional albedo of single-scattering GGX with F = 1.
+/// The directional albedo of `bsdf` by quadrature over microfacet normals
+/// ([`quadrature::reflected_fraction`]), independent of the visible-normal sampler.
 fn reflected_fraction_by_quadrature(bsdf: &Bsdf, wo: DVec3) -> f64 {
-    let (nt, np) = (4000, 720);
-    let mut sum = 0.0;
-    for i in 0..nt {
-        let t = (i as f64 + 0.5) / nt as f64;
-        let cos = 1.0 - t * t;
-        let sin = (1.0 - cos * cos).max(0.0).sqrt();
-        for j in 0..np {
-            let phi = 2.0 * PI * (j as f64 + 0.5) / np as f64;
-            let m = DVec3::new(sin * phi.cos(), sin * phi.sin(), cos);
-            let om = wo.dot(m);
-            if om <= 0.0 {
-                continue;
-            }
-            let wi = 2.0 * om * m - wo;
-            if wi.z <= 0.0 {
-                continue;
-            }
-            let f = bsdf.eval(wo, wi, DVec3::Z).0.x;
-            sum += f * wi.z * 4.0 * om * 2.0 * t;
-        }
-    }
-    sum * (1.0 / nt as f64) * (2.0 * PI / np as f64)
+    quadrature::reflected_fraction(4000, 720, wo, |wi| bsdf.eval(wo, wi, DVec3::Z).0.x)
 }
 
 /// The mean sampling weight (the sampler's estimate of the same integral) and its standard
@@ -239,25 +218,17 @@ fn ggx_directional_albedo_matches_quadrature() {
     );
 }
 
-/// ∫ f(ωo, ωi) |cos θi| dωi over the whole sphere by a product quadrature in (cos θ, φ) on
-/// each hemisphere, with |cos θ| = 1 − t² crowding nodes toward the poles: independent of the
-/// samplers, fine enough for lobes of α ≥ 0.3.
+/// ∫ f(ωo, ωi) |cos θi| dωi over the whole sphere: the hemisphere quadrature on each side
+/// (nodes crowd toward both poles), independent of the samplers, fine enough for lobes of
+/// α ≥ 0.3.
 fn scattered_fraction_by_quadrature(bsdf: &Bsdf, wo: DVec3) -> f64 {
-    let (nt, np) = (3000, 720);
-    let mut sum = 0.0;
-    for i in 0..nt {
-        let t = (i as f64 + 0.5) / nt as f64;
-        let cos = 1.0 - t * t;
-        let sin = (1.0 - cos * cos).max(0.0).sqrt();
-        for j in 0..np {
-            let phi = 2.0 * PI * (j as f64 + 0.5) / np as f64;
-            for z in [cos, -cos] {
-                let wi = DVec3::new(sin * phi.cos(), sin * phi.sin(), z);
-                sum += bsdf.eval(wo, wi, DVec3::Z).0.x * cos * 2.0 * t;
-            }
-        }
-    }
-    sum * (1.0 / nt as f64) * (2.0 * PI / np as f64)
+    let side = |flip: f64| {
+        quadrature::hemisphere(3000, 720, |w| {
+            let wi = DVec3::new(w.x, w.y, flip * w.z);
+            bsdf.eval(wo, wi, DVec3::Z).0.x * w.z
+        })
+    };
+    side(1.0) + side(-1.0)
 }
 
 /// A rough dielectric reflects and transmits at most what arrives, from either side, at

@@ -7,8 +7,10 @@ use grinlight::bsdf::{Bsdf, Ggx, Reflectance};
 use grinlight::color::Rgb;
 use grinlight::scene::load::parse_scene;
 use grinlight::settings::{IntegratorKind, Settings};
-use std::f64::consts::PI;
 use std::path::Path;
+
+mod common;
+use common::quadrature;
 
 /// The directional albedo E(μ) of single-scattering GGX with F = 1: ∫ f cos θi dωi by a
 /// product quadrature over microfacet normals (dωi = 4 (ωo·m) dωm, cos θm = 1 − t²),
@@ -19,23 +21,7 @@ fn ggx_albedo(alpha: f64, mu: f64) -> f64 {
         ggx: Some(Ggx::isotropic(alpha)),
     };
     let wo = DVec3::new((1.0 - mu * mu).max(0.0).sqrt(), 0.0, mu);
-    let (nt, np) = (1500, 360);
-    let mut sum = 0.0;
-    for i in 0..nt {
-        let t = (i as f64 + 0.5) / nt as f64;
-        let cos = 1.0 - t * t;
-        let sin = (1.0 - cos * cos).max(0.0).sqrt();
-        for j in 0..np {
-            let phi = 2.0 * PI * (j as f64 + 0.5) / np as f64;
-            let m = DVec3::new(sin * phi.cos(), sin * phi.sin(), cos);
-            let om = wo.dot(m);
-            let wi = 2.0 * om * m - wo;
-            if om > 0.0 && wi.z > 0.0 {
-                sum += bsdf.eval(wo, wi, DVec3::Z).0.x * wi.z * 4.0 * om * 2.0 * t;
-            }
-        }
-    }
-    sum * (1.0 / nt as f64) * (2.0 * PI / np as f64)
+    quadrature::reflected_fraction(1500, 360, wo, |wi| bsdf.eval(wo, wi, DVec3::Z).0.x)
 }
 
 /// A sphere of `metal = "perfect"` with roughness α under a uniform white sky, seen from far

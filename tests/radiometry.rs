@@ -178,8 +178,8 @@ fn the_environment_seen_from_inside_a_medium_is_n_squared_brighter() {
 /// exact for it; 1e-12). Curved (n = exp(0.2 y)) to a wall at x = 2: against the integral
 /// along the exact arc (n's log-gradient is constant, so the arc is the path), by a
 /// 20 000-point midpoint rule; the march's trapezoid rule errs by L h² max|σa''|/12 per unit
-/// ≈ 5e-4 h² here (σa'' = 0.05 x'' ≤ 0.01), ≤ 1e-3 relative for any step h ≤ 1. Before,
-/// σa(origin)·length gave 0.1·5 = 0.5 instead of 1.125, and 0.21 instead of ≈ 0.32.
+/// ≈ 5e-4 h² here (σa'' = 0.05 x'' ≤ 0.01), ≤ 1e-3 relative for any step h ≤ 1. (σa at the
+/// origin times the length would give 0.1·5 = 0.5 instead of 1.125.)
 #[test]
 fn absorption_integrates_sigma_a_along_the_path() {
     let mut scene = parse(
@@ -404,10 +404,10 @@ fn tessendorf_draws_different_xi_for_different_rays() {
 /// straight for all purposes), its pillar — 3 m wide, 400 m away, 5 pixels of the view —
 /// renders as with a uniform ambient (the sky by the same cosine-sampled integral, the sun by
 /// a straight shadow ray), within 0.2 % at 8 spp and one pass: they differ by the rays'
-/// bending, ~1e-10 rad, and by the secondary light's photons. Before, the direct layer was
-/// zero in any gradient ambient and the caustic map's k-nearest radius (capped at 5 % of the
-/// scene, ≈ 20 m here) spread the pillar's few photons over a disk ten times its width: the
-/// sun-lit pillar came out 11× too dark after 8 passes (measured: 0.019 against 0.213).
+/// bending, ~1e-10 rad, and by the secondary light's photons. (Were the direct layer zero in
+/// a gradient ambient, the caustic map's k-nearest radius — capped at 5 % of the scene, ≈ 20 m
+/// here — would spread the pillar's few photons over a disk ten times its width, and the
+/// sun-lit pillar would come out 11× too dark after 8 passes: 0.019 against 0.213.)
 #[test]
 fn mirage_pillar_matches_a_uniform_ambient() {
     let text = std::fs::read_to_string("scenes/mirage.toml").unwrap();

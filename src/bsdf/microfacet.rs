@@ -108,26 +108,29 @@ impl Ggx {
 mod tests {
     use super::*;
 
-    /// ∫ D(m) m_z dω_m = 1 (the projected microfacet area is the macro-surface's), by a
-    /// product quadrature in (cos θ, φ) dense enough for the sharpest α tested.
+    /// ∫ g(m) dωm over the hemisphere, cos θ = 1 − t² crowding the nodes toward the normal
+    /// where D peaks (dω = 2t dt dφ), on `nt` × `np` midpoint nodes.
+    fn over_normals(nt: usize, np: usize, g: impl Fn(DVec3) -> f64) -> f64 {
+        let mut sum = 0.0;
+        for i in 0..nt {
+            let t = (i as f64 + 0.5) / nt as f64;
+            let cos = 1.0 - t * t;
+            let sin = (1.0 - cos * cos).max(0.0).sqrt();
+            for j in 0..np {
+                let phi = 2.0 * PI * (j as f64 + 0.5) / np as f64;
+                sum += g(DVec3::new(sin * phi.cos(), sin * phi.sin(), cos)) * 2.0 * t;
+            }
+        }
+        sum * (1.0 / nt as f64) * (2.0 * PI / np as f64)
+    }
+
+    /// ∫ D(m) m_z dω_m = 1 (the projected microfacet area is the macro-surface's), dense
+    /// enough for the sharpest α tested.
     #[test]
     fn the_distribution_is_normalised() {
         for alpha in [[0.05, 0.05], [0.3, 0.3], [1.0, 1.0], [0.1, 0.6]] {
             let ggx = Ggx::rough(alpha).unwrap();
-            let (nt, np) = (20_000, 256);
-            let mut sum = 0.0;
-            for i in 0..nt {
-                // cos θ = 1 − t², t ∈ (0, 1]: nodes crowd toward the normal where D peaks.
-                let t = (i as f64 + 0.5) / nt as f64;
-                let cos = 1.0 - t * t;
-                let sin = (1.0 - cos * cos).max(0.0).sqrt();
-                for j in 0..np {
-                    let phi = 2.0 * PI * (j as f64 + 0.5) / np as f64;
-                    let m = DVec3::new(sin * phi.cos(), sin * phi.sin(), cos);
-                    sum += ggx.d(m) * cos * 2.0 * t;
-                }
-            }
-            let integral = sum * (1.0 / nt as f64) * (2.0 * PI / np as f64);
+            let integral = over_normals(20_000, 256, |m| ggx.d(m) * m.z);
             assert!(
                 (integral - 1.0).abs() < 1e-4,
                 "α {alpha:?}: ∫D cos = {integral}"
@@ -142,19 +145,7 @@ mod tests {
             let ggx = Ggx::isotropic(alpha);
             for theta in [0.0f64, 0.7, 1.3] {
                 let wo = DVec3::new(theta.sin(), 0.0, theta.cos());
-                let (nt, np) = (8_000, 512);
-                let mut sum = 0.0;
-                for i in 0..nt {
-                    let t = (i as f64 + 0.5) / nt as f64;
-                    let cos = 1.0 - t * t;
-                    let sin = (1.0 - cos * cos).max(0.0).sqrt();
-                    for j in 0..np {
-                        let phi = 2.0 * PI * (j as f64 + 0.5) / np as f64;
-                        let m = DVec3::new(sin * phi.cos(), sin * phi.sin(), cos);
-                        sum += ggx.visible_d(wo, m) * 2.0 * t;
-                    }
-                }
-                let integral = sum * (1.0 / nt as f64) * (2.0 * PI / np as f64);
+                let integral = over_normals(8_000, 512, |m| ggx.visible_d(wo, m));
                 assert!(
                     (integral - 1.0).abs() < 2e-3,
                     "α {alpha}, θo {theta}: ∫D_wo = {integral}"

@@ -11,10 +11,11 @@
 //!   point in that pass (or the scene's `radius`), shrunk by Knaus and Zwicker's probabilistic
 //!   progressive schedule r_p² = r₀² Π_{j=1..p} (j + α)/(j + 1), α = 2/3: a function of the
 //!   pass index alone, so passes are independent and their films merge;
-//! - **secondary**: a final gather — BSDF-sampled rays followed through specular surfaces to a
-//!   scattering vertex, where the global map gives the radiance leaving it: a Lambertian
-//!   surface's precomputed irradiance, or the k nearest photons weighted by its BSDF (through
-//!   a glossy lobe only photons a diffuse lobe scattered before: the rest are caustics);
+//! - **secondary**: a final gather — BSDF-sampled rays followed through specular surfaces and
+//!   glossy-only vertices to a vertex with a diffuse lobe, where the global map gives the
+//!   radiance leaving it: a Lambertian surface's precomputed irradiance, or the k nearest
+//!   photons weighted by its BSDF (through a glossy lobe only photons a diffuse lobe scattered
+//!   before: the rest are caustics, the caustic map's);
 //! - **emitted**: emitters and the environment seen along the camera's chains.
 
 use super::direct::{camera_path, direct, emission_seen, hero, VisiblePoint};

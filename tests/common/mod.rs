@@ -2,6 +2,7 @@
 
 pub mod bigarc;
 pub mod chi2;
+pub mod quadrature;
 
 use glam::DVec3;
 
