@@ -18,6 +18,19 @@ pub fn dielectric(cos_i: f64, n1: f64, n2: f64) -> (f64, f64) {
     (0.5 * (rs * rs + rp * rp), cos_t)
 }
 
+/// 1 − [`dielectric`]'s reflectance, written without the cancellation of 1 − R: with
+/// 1 − r² = 4ab/(a + b)² for each polarisation, T = 2 n1 n2 cos θi cos θt (1/(n1 cos θi +
+/// n2 cos θt)² + 1/(n2 cos θi + n1 cos θt)²); 0 under total internal reflection. At grazing
+/// incidence, where R → 1, it keeps its digits.
+pub fn dielectric_transmittance(cos_i: f64, n1: f64, n2: f64) -> f64 {
+    let (r, cos_t) = dielectric(cos_i, n1, n2);
+    if r >= 1.0 {
+        return 0.0;
+    }
+    let (s, p) = (n1 * cos_i + n2 * cos_t, n2 * cos_i + n1 * cos_t);
+    2.0 * n1 * n2 * cos_i * cos_t * (1.0 / (s * s) + 1.0 / (p * p))
+}
+
 /// Unpolarised reflectance of a conductor of complex index `eta` + i`k` relative to the
 /// medium the light arrives in, at cos θi = `cos_i` ∈ [0, 1] (the exact form for a
 /// conductor: Born and Wolf §14.2; written as in Pharr, Jakob and Humphreys §8.2).
@@ -67,6 +80,23 @@ pub fn refract(d: DVec3, n: DVec3, n1: f64, n2: f64, cos_t: f64) -> DVec3 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The cancellation-free transmittance is 1 − R (1e-15 where R is not near 1).
+    #[test]
+    fn transmittance_is_one_minus_reflectance() {
+        for (n1, n2) in [(1.0, 1.5), (1.5, 1.0), (1.33, 2.4)] {
+            for i in 0..=1000 {
+                let cos = i as f64 / 1000.0;
+                let (r, _) = dielectric(cos.max(1e-9), n1, n2);
+                let t = dielectric_transmittance(cos.max(1e-9), n1, n2);
+                assert!(
+                    (t - (1.0 - r)).abs() < 1e-15,
+                    "{n1}→{n2} cos {cos}: {t} vs {}",
+                    1.0 - r
+                );
+            }
+        }
+    }
 
     /// With k = 0 the conductor's formula is the dielectric's (an independent form of the
     /// same equations); at normal incidence it is ((η−1)² + k²)/((η+1)² + k²).

@@ -22,7 +22,9 @@ mod metals;
 mod microfacet;
 mod plastic;
 
-pub use fresnel::{conductor, conductor_rgb, dielectric, reflect, refract};
+pub use fresnel::{
+    conductor, conductor_rgb, dielectric, dielectric_transmittance, reflect, refract,
+};
 pub use metals::{named as metal, Metal, METALS};
 pub use microfacet::{Ggx, SMOOTH_ALPHA};
 pub use plastic::Coat;
@@ -162,21 +164,17 @@ impl BsdfSample {
     pub fn transmitted(&self) -> bool {
         self.lobe.transmits()
     }
-
-    /// Whether it came from a delta lobe.
-    pub fn is_specular(&self) -> bool {
-        self.lobe.is_specular()
-    }
 }
 
-/// The local frame of `n` and unit `v` in it. Both are normalised first: a hit's normal is
-/// unit only to the accuracy of the hit point (a sphere's (p − c)/R is off by the point's
+/// The local frame of `n` and unit `v` in it. The normal is normalised first: a hit's normal
+/// is unit only to the accuracy of the hit point (a sphere's (p − c)/R is off by the point's
 /// error over R), and a frame that is not orthonormal would stretch every direction it turns —
 /// a path reflected many times inside a rough glass ball drifted 10⁻⁸ off unit length and
-/// its hit points off the surface by more than a ray's offset.
+/// its hit points off the surface by more than a ray's offset. (Sampled directions are
+/// normalised on the way out.)
 fn local(n: DVec3, v: DVec3) -> (Frame, DVec3) {
     let f = Frame::new(n.normalize());
-    let l = f.to_local(v).normalize();
+    let l = f.to_local(v);
     (f, l)
 }
 
@@ -408,13 +406,13 @@ fn half_vector(n1: f64, n2: f64, o: DVec3, i: DVec3) -> Option<DVec3> {
 
 /// 1 − F for a refracted pair through a facet, cos θ = `om` on the side of index `n1` and
 /// |`im`| on the side of `n2`: computed from the rarer side, where Snell's cos θt is well
-/// conditioned (from the denser side it loses digits near the critical angle).
+/// conditioned (from the denser side it loses digits near the critical angle), and without
+/// the cancellation of 1 − F at grazing incidence.
 fn transmittance(n1: f64, n2: f64, om: f64, im: f64) -> f64 {
-    let r = match n1 <= n2 {
-        true => dielectric(om, n1, n2).0,
-        false => dielectric(im.abs(), n2, n1).0,
-    };
-    1.0 - r
+    match n1 <= n2 {
+        true => dielectric_transmittance(om, n1, n2),
+        false => dielectric_transmittance(im.abs(), n2, n1),
+    }
 }
 
 /// Walter et al.'s (2007) rough dielectric f for basic radiance (see the module's notes).
