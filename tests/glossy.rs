@@ -150,3 +150,58 @@ fn roughness_zero_is_the_smooth_limit() {
         );
     }
 }
+
+/// What a material says its lobes are (read before any ray is traced: the photon plan, the
+/// caustic photons' aim) is what the BSDF it makes at a hit has (what decides a vertex).
+#[test]
+fn a_materials_lobes_are_its_bsdfs() {
+    use grinlight::transport::{Event, Normals, Stats, SurfaceHit, Tracer};
+    let materials = [
+        "type = \"diffuse\"\nalbedo = 0.5\n",
+        "type = \"mirror\"\n",
+        "type = \"conductor\"\nmetal = \"Cu\"\nroughness = 0.3\n",
+        "type = \"conductor\"\nmetal = \"perfect\"\nroughness = 0.0005\n",
+        "type = \"dielectric\"\nior = 1.5\n",
+        "type = \"dielectric\"\nior = 1.5\nroughness = 0.2\n",
+        "type = \"plastic\"\nalbedo = 0.5\n",
+    ];
+    for m in materials {
+        let text = format!(
+            "[[material]]\nname = \"m\"\n{m}\
+             [[shape]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"m\"\n"
+        );
+        let (scene, settings) = parse_scene(Path::new("lobes.toml"), text).unwrap();
+        let tracer = Tracer::new(&scene, &settings.trace);
+        let Event::Surface {
+            prim,
+            position,
+            normal,
+            shading,
+            uv,
+            direction,
+            ..
+        } = tracer.next_event(
+            DVec3::new(0.0, 0.0, 3.0),
+            -DVec3::Z,
+            None,
+            &mut Stats::default(),
+        )
+        else {
+            panic!("the ray meets the sphere");
+        };
+        let hit = SurfaceHit {
+            prim,
+            position,
+            normals: Normals {
+                geometric: normal,
+                shading,
+            },
+            uv,
+            incoming: direction,
+        };
+        let surface = scene.surfaces[prim];
+        let vertex = tracer.vertex(hit, surface, None).unwrap();
+        let material = scene.materials[surface.material].lobes().unwrap();
+        assert_eq!(vertex.lobes(), material, "{m}");
+    }
+}
