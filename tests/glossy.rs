@@ -155,7 +155,7 @@ fn roughness_zero_is_the_smooth_limit() {
 /// caustic photons' aim) is what the BSDF it makes at a hit has (what decides a vertex).
 #[test]
 fn a_materials_lobes_are_its_bsdfs() {
-    use grinlight::transport::{Event, Normals, Stats, SurfaceHit, Tracer};
+    use grinlight::transport::{Stats, Tracer};
     let materials = [
         "type = \"diffuse\"\nalbedo = 0.5\n",
         "type = \"mirror\"\n",
@@ -172,34 +172,16 @@ fn a_materials_lobes_are_its_bsdfs() {
         );
         let (scene, settings) = parse_scene(Path::new("lobes.toml"), text).unwrap();
         let tracer = Tracer::new(&scene, &settings.trace);
-        let Event::Surface {
-            prim,
-            position,
-            normal,
-            shading,
-            uv,
-            direction,
-            ..
-        } = tracer.next_event(
-            DVec3::new(0.0, 0.0, 3.0),
-            -DVec3::Z,
-            None,
-            &mut Stats::default(),
-        )
-        else {
-            panic!("the ray meets the sphere");
-        };
-        let hit = SurfaceHit {
-            prim,
-            position,
-            normals: Normals {
-                geometric: normal,
-                shading,
-            },
-            uv,
-            incoming: direction,
-        };
-        let surface = scene.surfaces[prim];
+        let hit = tracer
+            .next_event(
+                DVec3::new(0.0, 0.0, 3.0),
+                -DVec3::Z,
+                None,
+                &mut Stats::default(),
+            )
+            .surface_hit()
+            .expect("the ray meets the sphere");
+        let surface = scene.surfaces[hit.prim];
         let vertex = tracer.vertex(hit, surface, None).unwrap();
         let material = scene.materials[surface.material].lobes().unwrap();
         assert_eq!(vertex.lobes(), material, "{m}");

@@ -395,7 +395,7 @@ fn a_mesh_answers_as_its_triangles_do() {
 #[test]
 fn a_smooth_mesh_refracts_as_its_surface_does() {
     use grinlight::scene::load::parse_scene;
-    use grinlight::transport::{Event, Normals, Stats, SurfaceHit, Tracer};
+    use grinlight::transport::{Stats, Tracer};
     let dir = std::env::temp_dir().join(format!("grinlight-smooth-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("ball.obj"), common::sphere_obj(4, true)).unwrap();
@@ -421,33 +421,15 @@ fn a_smooth_mesh_refracts_as_its_surface_does() {
         let (scene, settings) = &scenes[k];
         let tracer = Tracer::new(scene, &settings.trace);
         let mut stats = Stats::default();
-        let Event::Surface {
-            prim,
-            position,
-            normal,
-            shading,
-            uv,
-            direction,
-            ..
-        } = tracer.next_event(o, d, None, &mut stats)
-        else {
-            panic!("the ray meets the ball");
-        };
-        let hit = SurfaceHit {
-            prim,
-            position,
-            normals: Normals {
-                geometric: normal,
-                shading,
-            },
-            uv,
-            incoming: direction,
-        };
+        let hit = tracer
+            .next_event(o, d, None, &mut stats)
+            .surface_hit()
+            .expect("the ray meets the ball");
         let b = tracer
-            .vertex(hit, scene.surfaces[prim], None)
+            .vertex(hit, scene.surfaces[hit.prim], None)
             .and_then(|v| v.scatter((0.0, 0.0, 0.999)))
             .expect("a refraction");
-        (b.ray.direction, b.ray.direction.dot(normal))
+        (b.ray.direction, b.ray.direction.dot(hit.normals.geometric))
     };
     let mut rng = Pcg64Mcg::seed_from_u64(3);
     let (mut flat, mut smooth, mut computed) = (Vec::new(), Vec::new(), Vec::new());

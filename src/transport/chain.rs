@@ -11,7 +11,7 @@
 //! The factors of the single refractions telescope into this one ratio, which is why no
 //! BSDF carries them. Power (a photon's flux) never scales.
 
-use super::{Event, HeroTracer, Normals, Stats, SurfaceHit, Tracer, Vertex};
+use super::{Event, HeroTracer, Stats, Tracer, Vertex};
 use crate::bsdf::Bsdf;
 use crate::color::Rgb;
 use crate::material::Material;
@@ -307,24 +307,7 @@ impl<'w> Walker<'w> {
             _ if self.absorbed(chain, event.transmittance(), lent.rng) => {
                 return ControlFlow::Break(End::Absorbed)
             }
-            Event::Surface {
-                prim,
-                position,
-                normal,
-                shading,
-                uv,
-                direction,
-                ..
-            } => SurfaceHit {
-                prim,
-                position,
-                normals: Normals {
-                    geometric: normal,
-                    shading,
-                },
-                uv,
-                incoming: direction,
-            },
+            Event::Surface { .. } => event.surface_hit().expect("a surface event"),
             Event::Escaped {
                 position,
                 direction,

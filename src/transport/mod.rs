@@ -73,6 +73,31 @@ pub enum Event {
 }
 
 impl Event {
+    /// Where the ray meets a surface, if it does.
+    pub fn surface_hit(&self) -> Option<SurfaceHit> {
+        match *self {
+            Event::Surface {
+                prim,
+                position,
+                normal,
+                shading,
+                uv,
+                direction,
+                ..
+            } => Some(SurfaceHit {
+                prim,
+                position,
+                normals: Normals {
+                    geometric: normal,
+                    shading,
+                },
+                uv,
+                incoming: direction,
+            }),
+            _ => None,
+        }
+    }
+
     /// The fraction exp(−∫σa ds) of light kept on the way to the event (0 when lost).
     pub fn transmittance(&self) -> f64 {
         match *self {
