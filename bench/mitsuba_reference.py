@@ -3,8 +3,9 @@
 
     python3 bench/mitsuba_reference.py SCENE.toml OUT.exr [--spp N] [--rgb-metals OUT.toml]
 
-Reads the subset of grinlight's scene format that Cornell-box-like scenes use -- quads, boxes
-and spheres; diffuse, conductor, dielectric and plastic materials; quad lights -- and builds
+Reads the subset of grinlight's scene format that Cornell-box-like scenes use -- quads, boxes,
+spheres and open cylinders; diffuse, conductor, dielectric and plastic materials; quad lights
+and a uniform sky -- and builds
 the same scene for Mitsuba's path tracer (box pixel filter, 64 path segments; variant scalar_rgb), with the conventions of refs/README.md: two-sided Lambertian quads, a one-sided
 emitter that reflects nothing, exact Fresnel, GGX with visible-normal sampling; plastic as
 `roughplastic` with `nonlinear = true` (light scattered among the base and the coat's inner
@@ -133,9 +134,19 @@ def main():
             quads = [s["vertices"]] if s["type"] == "quad" else box_quads(s["min"], s["max"])
             d["shape%d" % i] = {"type": "obj", "filename": write_obj(tmp, "s%d" % i, quads),
                                 "face_normals": True, "bsdf": b}
+        elif s["type"] == "cylinder" and not s.get("capped", True):
+            base, axis = s["base"], s.get("axis", [0, 0, 1])
+            norm = sum(a * a for a in axis) ** 0.5
+            top = [b + a / norm * s["height"] for b, a in zip(base, axis)]
+            d["shape%d" % i] = {"type": "cylinder", "p0": base, "p1": top,
+                                "radius": s["radius"], "bsdf": b}
         else:
             raise SystemExit("shape type %r is not converted" % s["type"])
     for i, l in enumerate(scene.get("light", [])):
+        if l["type"] == "environment" and l.get("sky") == "uniform":
+            d["light%d" % i] = {"type": "constant", "radiance": {
+                "type": "rgb", "value": rgb(l.get("radiance", 1.0))}}
+            continue
         if l["type"] != "quad":
             raise SystemExit("light type %r is not converted" % l["type"])
         d["light%d" % i] = {
