@@ -99,10 +99,10 @@ impl Metal {
     /// tested).
     fn colour_in_vacuum(&self, cos: f64) -> Rgb {
         static TABLES: [OnceLock<Vec<Rgb>>; 4] = [const { OnceLock::new() }; 4];
-        let slot = METALS
-            .iter()
-            .position(|m| m.symbol == self.symbol)
-            .expect("a metal of the table");
+        let Some(slot) = METALS.iter().position(|m| std::ptr::eq(m, self)) else {
+            // A metal made outside the table has no tabulated colour: sum its bands.
+            return self.banded_colour(cos, 1.0);
+        };
         let table = TABLES[slot].get_or_init(|| {
             (0..COLOUR_NODES)
                 .map(|i| self.banded_colour(i as f64 / (COLOUR_NODES - 1) as f64, 1.0))
@@ -121,7 +121,7 @@ const COLOUR_NODES: usize = 1025;
 /// The metals a scene may name.
 // Measured values: aluminium's k = 6.28 at 516.6 nm is data, not an approximation of τ.
 #[allow(clippy::approx_constant)]
-pub const METALS: [Metal; 4] = [
+pub static METALS: [Metal; 4] = [
     // silver
     Metal {
         symbol: "Ag",

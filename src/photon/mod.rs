@@ -544,35 +544,26 @@ impl chain::ChainEvents for PhotonWalk<'_, '_> {
 }
 
 /// A photon's scattering at `vertex`: a direction from its BSDF and Russian roulette on the
-/// sample's weight, the survivor's power divided by its chance (so it keeps its size); None
-/// when it is absorbed. A Lambertian vertex draws the roulette first (as photons always have:
+/// sample's weight ([`roulette`]); None when it is absorbed. A Lambertian vertex, whose weight
+/// (its albedo) is known before sampling, plays the roulette first (as photons always have:
 /// the same numbers, the same photons).
 fn scatter_photon(vertex: &Vertex, rng: &mut impl Rng) -> Option<PhotonBounce> {
-    let survived = |weight: Rgb, scattered| {
-        let survive = weight.max_element();
-        PhotonBounce {
-            weight: weight / survive,
-            scattered,
-        }
-    };
     if let Some(albedo) = vertex.bsdf.lambert_albedo() {
-        let survive = albedo.max_element();
-        if rng.gen::<f64>() >= survive {
-            return None;
-        }
+        let weight = roulette(albedo, rng)?;
         let scattered = vertex.scatter_with(rng)?;
-        return Some(survived(albedo, scattered));
+        return Some(PhotonBounce { weight, scattered });
     }
     let scattered = vertex.scatter_with(rng)?;
-    let weight = scattered.sample.weight;
+    let weight = roulette(scattered.sample.weight, rng)?;
+    Some(PhotonBounce { weight, scattered })
+}
+
+/// Russian roulette on a bounce of `weight`: the photon goes on with probability equal to its
+/// largest channel (at most 1) and its power is divided by that, so it keeps its size; None
+/// when it is absorbed (always for a weight of 0 or NaN).
+fn roulette(weight: Rgb, rng: &mut impl Rng) -> Option<Rgb> {
     let survive = weight.max_element().min(1.0);
-    if survive.is_nan() || survive <= 0.0 || rng.gen::<f64>() >= survive {
-        return None;
-    }
-    Some(PhotonBounce {
-        weight: weight / survive,
-        scattered,
-    })
+    (survive > 0.0 && rng.gen::<f64>() < survive).then(|| weight / survive)
 }
 
 /// A photon's way on from a scattering vertex.

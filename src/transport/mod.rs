@@ -402,7 +402,7 @@ impl<'a> Tracer<'a> {
         let textured = |albedo: Rgb, texture: &Option<std::sync::Arc<crate::texture::Texture>>| {
             self.reflectance(texture.as_ref().map_or(albedo, |t| albedo * t.at(uv)))
         };
-        let outside = |m: Option<usize>| self.index(m, position);
+        let index_at = |m: Option<usize>| self.index(m, position);
         let (bsdf, beyond) = match &scene.materials[surface.material] {
             Material::Detector { .. } | Material::Emissive { .. } => return None,
             Material::Diffuse { albedo, texture } => (
@@ -413,7 +413,7 @@ impl<'a> Tracer<'a> {
             ),
             Material::Conductor { index, roughness } => (
                 Bsdf::Conductor {
-                    fresnel: self.conductor(index, outside(medium)?),
+                    fresnel: self.conductor(index, index_at(medium)?),
                     ggx: Ggx::rough([*roughness; 2]),
                 },
                 medium,
@@ -425,7 +425,7 @@ impl<'a> Tracer<'a> {
                 } else {
                     surface.exterior.or(scene.ambient)
                 };
-                let (n1, n2) = (outside(medium)?, outside(to)?);
+                let (n1, n2) = (index_at(medium)?, index_at(to)?);
                 let ggx = Ggx::rough([*roughness; 2]);
                 (Bsdf::Dielectric { n1, n2, ggx }, to)
             }
