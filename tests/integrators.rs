@@ -150,3 +150,32 @@ fn passes_rendered_apart_merge_into_the_same_film() {
     let other = Film::new(4, 3, &whole.layers);
     assert!(merged.clone().merge(&other).is_err());
 }
+
+/// A caustic does not leak through a thin wall: a glass ball focuses a light onto the floor
+/// beside a wall standing on it, and the floor on the wall's other side — which no light
+/// reaches — reads no caustic light, although its estimate's radius (0.5) takes in the
+/// focus 0.35 away behind the wall. Exactly zero: a photon read through the wall would make
+/// it positive.
+#[test]
+fn a_caustic_does_not_leak_through_a_thin_wall() {
+    let text = "[camera]\nposition = [0.3, 1.5, 0]\nlook_at = [0.3, 0, 0]\nup = [0, 0, -1]\n\
+                fov_y_deg = 20\nwidth = 24\nheight = 24\n\
+                [render]\nspp = 4\ngather = 0\nphotons = 0\ncaustic_photons = 200000\n\
+                radius = 0.5\n\
+                [[material]]\nname = \"white\"\ntype = \"diffuse\"\nalbedo = [0.8, 0.8, 0.8]\n\
+                [[material]]\nname = \"glass\"\ntype = \"dielectric\"\nior = 1.5\n\
+                [[shape]]\ntype = \"quad\"\nmaterial = \"white\"\n\
+                vertices = [[-2, 0, -2], [-2, 0, 2], [2, 0, 2], [2, 0, -2]]\n\
+                [[shape]]\ntype = \"quad\"\nmaterial = \"white\"\n\
+                vertices = [[0, 0, -2], [0, 3, -2], [0, 3, 2], [0, 0, 2]]\n\
+                [[shape]]\ntype = \"sphere\"\ncenter = [-0.35, 0.3, 0]\nradius = 0.25\n\
+                material = \"glass\"\n\
+                [[light]]\ntype = \"quad\"\nradiance = [50, 50, 50]\n\
+                vertices = [[-0.45, 2, -0.1], [-0.25, 2, -0.1], [-0.25, 2, 0.1], [-0.45, 2, 0.1]]\n";
+    let (scene, settings) =
+        grinlight::scene::load::parse_scene(Path::new("wall.toml"), text.to_string()).unwrap();
+    let film = render(&(scene, settings));
+    let caustic = film.layer("caustic").unwrap();
+    let brightest = caustic.iter().flatten().fold(0.0f32, |m, &v| m.max(v));
+    assert_eq!(brightest, 0.0, "caustic light read through the wall");
+}

@@ -139,6 +139,31 @@ impl Accel {
         found
     }
 
+    /// Calls `f(id)` for every primitive whose box meets the box [`lo`, `hi`] (a stack's
+    /// members when the stack's box does).
+    pub fn boxes_meeting(&self, lo: DVec3, hi: DVec3, mut f: impl FnMut(usize)) {
+        for stack in &self.stacks {
+            let (s_lo, s_hi) = stack.bounds();
+            if lo.cmple(s_hi).all() && s_lo.cmple(hi).all() {
+                stack.members().for_each(&mut f);
+            }
+        }
+        if self.in_bvh.is_empty() {
+            return;
+        }
+        self.bvh.aabb_traverse(padded(lo, hi), |bvh, node_index| {
+            let node = &bvh.nodes[node_index as usize];
+            for i in node.first_index..node.first_index + node.prim_count {
+                let id = self.in_bvh[bvh.primitive_indices[i as usize] as usize];
+                let (p_lo, p_hi) = self.primitives[id].bounds();
+                if lo.cmple(p_hi).all() && p_lo.cmple(hi).all() {
+                    f(id);
+                }
+            }
+            true
+        });
+    }
+
     /// Nearest crossing of a curved path (an exact arc, a step's Hermite path) with any
     /// primitive at arclength s ∈ (s_min, length]. `hull` holds the path over [0, length]
     /// (which a caller has usually built already); candidates are the primitives whose boxes meet its box and

@@ -10,7 +10,10 @@
 //!   kernel of radius r_p at pass p: r₀ the k-nearest distance at the pixel's first visible
 //!   point in that pass (or the scene's `radius`), shrunk by Knaus and Zwicker's probabilistic
 //!   progressive schedule r_p² = r₀² Π_{j=1..p} (j + α)/(j + 1), α = 2/3: a function of the
-//!   pass index alone, so passes are independent and their films merge;
+//!   pass index alone, so passes are independent and their films merge. A photon that a
+//!   surface hides from the visible point (a thin wall standing on the floor between them)
+//!   is not read ([`Occluders`]): it lit another place, and read through the wall it leaks
+//!   that light (a ring's bright caustic read outside the ring);
 //! - **secondary**: a final gather — BSDF-sampled rays followed through specular surfaces and
 //!   glossy-only vertices to a vertex with a diffuse lobe, where the global map gives the
 //!   radiance leaving it: a Lambertian surface's precomputed irradiance, or the k nearest
@@ -27,6 +30,7 @@ use crate::report::Report;
 use crate::scene::Scene;
 use crate::settings::{PhotonSettings, Settings};
 use crate::transport::chain::{Carried, End, Policy, Walker};
+use crate::transport::visibility::Occluders;
 use crate::transport::{Stats, Tracer, Vertex};
 use std::f64::consts::FRAC_1_PI;
 use std::time::Instant;
@@ -356,22 +360,22 @@ impl Integrator for PhotonMapper<'_> {
         if let Some(caustic) = &maps.caustic {
             let r2 = *r2.get_or_insert_with(|| self.caustic_r2(caustic, maps.index, &vp, s.stats));
             let v = &vp.vertex;
-            let caustic_light = match v.bsdf.lambert_albedo() {
-                Some(albedo) => {
-                    let (e, _) = s
-                        .stats
-                        .time_query(|| caustic.irradiance(v.position, v.normal, r2));
-                    let e = carried.tracer.photon_irradiance(e);
-                    vp.throughput * albedo * e * FRAC_1_PI
-                }
-                None => {
-                    let (l, _) = s.stats.time_query(|| {
-                        caustic.weighted(v.position, v.normal, r2, |p| {
-                            v.eval(p.from_direction()) * p.flux()
-                        })
-                    });
-                    vp.throughput * carried.tracer.photon_irradiance(l)
-                }
+            let hidden = Occluders::around(self.tracer, v.prim, v.position, v.normal, r2.sqrt());
+            // Each photon through the BSDF; a Lambertian surface's albedo/π is applied once.
+            let lambert = v.bsdf.lambert_albedo();
+            let (sum, _) = s.stats.time_query(|| {
+                caustic.weighted(v.position, v.normal, r2, |p| {
+                    match (hidden.hide(p.position, p.normal), lambert) {
+                        (true, _) => Rgb::ZERO,
+                        (false, Some(_)) => p.flux(),
+                        (false, None) => v.eval(p.from_direction()) * p.flux(),
+                    }
+                })
+            });
+            let e = carried.tracer.photon_irradiance(sum);
+            let caustic_light = match lambert {
+                Some(albedo) => vp.throughput * albedo * e * FRAC_1_PI,
+                None => vp.throughput * e,
             };
             s.add(CAUSTIC, caustic_light);
         }

@@ -5,6 +5,7 @@
 use super::{offset, Tracer};
 use crate::material::Material;
 use glam::DVec3;
+use std::cell::OnceCell;
 
 /// The fraction of light kept along the straight segment from `from` along unit `dir` over
 /// `reach` (∞: to the world sphere) in `medium`: 0 if a surface other than a detector lies
@@ -35,5 +36,104 @@ pub fn transmittance(
             (-m.optical_depth(from, dir, length)).exp()
         }
         _ => 1.0,
+    }
+}
+
+/// The surfaces that may stand between a point on a surface and the photons a density
+/// estimate reads around it: every primitive but the point's own whose box meets the
+/// estimate's ball. A photon behind one of them — on the far side of a thin wall standing on
+/// the floor — lit another place than this one, and a disc estimate that read it would leak
+/// that light through the wall (a bright caustic inside a ring read outside it). Detectors
+/// hide nothing. They are looked up at the first photon asked about (most estimates find
+/// none); at most [`Near::KEPT`] are kept, and a crowded neighbourhood asks the whole scene.
+pub struct Occluders<'a> {
+    tracer: &'a Tracer<'a>,
+    /// The point's primitive.
+    prim: usize,
+    position: DVec3,
+    /// Where the straight connections start: the point, off its surface.
+    origin: DVec3,
+    radius: f64,
+    near: OnceCell<Near>,
+}
+
+/// The primitives near a point that may hide photons from it.
+struct Near {
+    ids: [usize; Near::KEPT],
+    count: usize,
+}
+
+impl Near {
+    /// Primitives listed one by one before a query falls back to the whole scene.
+    const KEPT: usize = 8;
+}
+
+impl<'a> Occluders<'a> {
+    /// The surfaces that may hide from `position` (on primitive `prim`, unit normal `normal`
+    /// on the side read) photons within `radius` of it.
+    pub fn around(
+        tracer: &'a Tracer<'a>,
+        prim: usize,
+        position: DVec3,
+        normal: DVec3,
+        radius: f64,
+    ) -> Self {
+        Self {
+            tracer,
+            prim,
+            position,
+            origin: offset(position, normal),
+            radius,
+            near: OnceCell::new(),
+        }
+    }
+
+    fn near(&self) -> &Near {
+        self.near.get_or_init(|| {
+            let scene = self.tracer.scene;
+            let mut near = Near {
+                ids: [0; Near::KEPT],
+                count: 0,
+            };
+            let reach = DVec3::splat(self.radius);
+            let (lo, hi) = (self.position - reach, self.position + reach);
+            scene.accel.boxes_meeting(lo, hi, |id| {
+                let detector = matches!(
+                    scene.materials[scene.surfaces[id].material],
+                    Material::Detector { .. }
+                );
+                if id != self.prim && !detector {
+                    if near.count < Near::KEPT {
+                        near.ids[near.count] = id;
+                    }
+                    near.count += 1;
+                }
+            });
+            near
+        })
+    }
+
+    /// Whether the straight segment from the point to `position` (a photon's, offset along
+    /// its unit `normal` as the point is) crosses a surface.
+    pub fn hide(&self, position: DVec3, normal: DVec3) -> bool {
+        let near = self.near();
+        if near.count == 0 {
+            return false;
+        }
+        let d = offset(position, normal) - self.origin;
+        let length = d.length();
+        if length <= 0.0 {
+            return false;
+        }
+        let (dir, reach) = (d / length, length * (1.0 - 1e-7));
+        let primitives = self.tracer.scene.accel.primitives();
+        match near.count <= Near::KEPT {
+            true => near.ids[..near.count].iter().any(|&id| {
+                primitives[id]
+                    .intersect_ray(self.origin, dir, 0.0, reach)
+                    .is_some()
+            }),
+            false => transmittance(self.tracer, self.origin, None, dir, reach) == 0.0,
+        }
     }
 }
