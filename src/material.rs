@@ -55,12 +55,13 @@ pub enum Material {
 }
 
 /// What a conductor's Fresnel reflectance is made from.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum ConductorIndex {
     /// The same reflectance at every angle (a `mirror`; `metal = "perfect"` is 1).
     Constant(Rgb),
-    /// A measured metal's η + ik over wavelength, relative to vacuum.
-    Measured(&'static Metal),
+    /// A measured metal's η + ik over wavelength, relative to vacuum: one of the named
+    /// metals, or one given by forms over wavelength (`eta` and `k`).
+    Measured(Arc<Metal>),
     /// η + ik per channel relative to vacuum (`eta`, `k`); at one wavelength, each read as
     /// a smooth spectrum of its RGB ([`crate::spectrum::colour::reflectance`]).
     Rgb {

@@ -187,3 +187,48 @@ fn a_materials_lobes_are_its_bsdfs() {
         assert_eq!(vertex.lobes(), material, "{m}");
     }
 }
+
+/// A conductor's `eta` and `k` given as forms over wavelength: gold's measured nodes given as
+/// `{ table = ... }` render the very picture `metal = "Au"` does (a monotone cubic through
+/// the nodes, sampled at them, is the table itself), smooth and rough, in RGB and at hero
+/// wavelengths (a dispersive glass ball in the scene makes camera samples draw one).
+#[test]
+fn a_metal_given_over_wavelength_is_the_named_one() {
+    let au = grinlight::bsdf::metal("Au").unwrap();
+    let table = |v: &[f64]| {
+        let rows: Vec<String> = grinlight::bsdf::WAVELENGTHS
+            .iter()
+            .zip(v)
+            .map(|(nm, x)| format!("[{nm}, {x}]"))
+            .collect();
+        format!("{{ table = [{}] }}", rows.join(", "))
+    };
+    for (roughness, glass) in [(0.0, ""), (0.2, ""), (0.2, "ior = \"F2\"")] {
+        let scene = |index: &str| {
+            format!(
+                "[camera]\nposition = [0, 0, 4]\nlook_at = [0, 0, 0]\nfov_y_deg = 40\n\
+                 width = 24\nheight = 24\n[render]\nspp = 4\nintegrator = \"path\"\n\
+                 [[material]]\nname = \"m\"\ntype = \"conductor\"\n{index}\n\
+                 roughness = {roughness}\n\
+                 [[material]]\nname = \"g\"\ntype = \"dielectric\"\n{}\n\
+                 [[shape]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"m\"\n\
+                 [[shape]]\ntype = \"sphere\"\ncenter = [1.2, 1.2, 1]\nradius = 0.3\n\
+                 material = \"g\"\n\
+                 [[light]]\ntype = \"environment\"\nsky = \"uniform\"\nradiance = [1, 0.8, 0.6]\n",
+                if glass.is_empty() { "ior = 1.5" } else { glass }
+            )
+        };
+        let given = format!("eta = {}\nk = {}", table(&au.eta), table(&au.k));
+        let render = |text: String| {
+            let (scene, settings) = parse_scene(Path::new("metal.toml"), text).unwrap();
+            grinlight::render::render(&scene, &settings, &()).unwrap().0
+        };
+        let named = render(scene("metal = \"Au\""));
+        let tabled = render(scene(&given));
+        assert_eq!(
+            named.layer("beauty").unwrap(),
+            tabled.layer("beauty").unwrap(),
+            "roughness {roughness}, {glass}"
+        );
+    }
+}

@@ -116,7 +116,7 @@ const BAD: &[(&str, usize, usize, &str)] = &[
     ("[[material]]\nname = \"m\"\ntype = \"dielectric\"\n", 1, 1, "exactly one of `ior` and `interior`"),
     ("[[material]]\nname = \"m\"\ntype = \"dielectric\"\ninterior = \"nothing\"\n", 4, 1, "no medium named 'nothing'"),
     // Glossy materials: roughness below 0, NaN or above 1; an unknown metal; eta without k,
-    // k without eta, both metal and eta; a plastic with a smooth coat or a coat of index ≤ 1;
+    // k without eta, both metal and eta; negative k or η over wavelength; a plastic with a smooth coat or a coat of index ≤ 1;
     // a negative k.
     ("[[material]]\nname = \"m\"\ntype = \"conductor\"\nmetal = \"Au\"\nroughness = -0.1\n", 5, 1, "key `roughness`: must be GGX α in [0, 1]"),
     ("[[material]]\nname = \"m\"\ntype = \"conductor\"\nmetal = \"Au\"\nroughness = nan\n", 5, 1, "key `roughness`: must be finite, got NaN"),
@@ -127,6 +127,8 @@ const BAD: &[(&str, usize, usize, &str)] = &[
     ("[[material]]\nname = \"m\"\ntype = \"conductor\"\nmetal = \"Au\"\neta = 1\nk = 1\n", 4, 1, "give `metal` or `eta` and `k`"),
     ("[[material]]\nname = \"m\"\ntype = \"conductor\"\n", 1, 1, "a conductor needs `metal`"),
     ("[[material]]\nname = \"m\"\ntype = \"conductor\"\neta = 1\nk = -1\n", 5, 1, "key `k`: must not be negative"),
+    ("[[material]]\nname = \"m\"\ntype = \"conductor\"\neta = 1\nk = { cauchy = [-0.5] }\n", 5, 1, "key `k`: k must be ≥ 0 from 360 to 830 nm"),
+    ("[[material]]\nname = \"m\"\ntype = \"conductor\"\neta = { cauchy = [-1] }\nk = 3\n", 4, 1, "key `eta`: must be > 0 from 360 to 830 nm"),
     ("[[material]]\nname = \"m\"\ntype = \"plastic\"\nalbedo = 0.5\nroughness = 0\n", 5, 1, "a plastic's coat is rough"),
     ("[[material]]\nname = \"m\"\ntype = \"plastic\"\nalbedo = 0.5\nior = 1.0\n", 5, 1, "key `ior`: the coat's index"),
     // Shape: negative radius, unknown material, missing mesh file, non-parallelogram quad.

@@ -22,7 +22,7 @@ pub const WAVELENGTHS: [f64; NODES] = [
 ];
 
 /// A metal's measured index.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug)]
 pub struct Metal {
     /// Its name in a scene file (`metal = "Au"`).
     pub symbol: &'static str,
@@ -30,9 +30,30 @@ pub struct Metal {
     pub eta: [f64; NODES],
     /// The extinction coefficient k at [`WAVELENGTHS`].
     pub k: [f64; NODES],
+    /// Its colour in vacuum at [`COLOUR_NODES`] values of cos θ, tabulated at first use.
+    vacuum: OnceLock<Vec<Rgb>>,
+}
+
+impl PartialEq for Metal {
+    /// The same index (whether its colour is tabulated yet does not matter).
+    fn eq(&self, other: &Self) -> bool {
+        (self.symbol, self.eta, self.k) == (other.symbol, other.eta, other.k)
+    }
 }
 
 impl Metal {
+    /// A metal of index η(λ) + i k(λ) (vacuum wavelength in nm) given as functions, sampled at
+    /// the table's [`WAVELENGTHS`] (so read as the measured ones are: linear between nodes,
+    /// whose spacing is 5–29 nm).
+    pub fn sampled(symbol: &'static str, eta: impl Fn(f64) -> f64, k: impl Fn(f64) -> f64) -> Self {
+        Metal {
+            symbol,
+            eta: WAVELENGTHS.map(&eta),
+            k: WAVELENGTHS.map(&k),
+            vacuum: OnceLock::new(),
+        }
+    }
+
     /// (η, k) at `nm`, interpolated linearly (held at the table's ends beyond them).
     pub fn index(&self, nm: f64) -> (f64, f64) {
         let w = &WAVELENGTHS;
@@ -95,15 +116,10 @@ impl Metal {
     }
 
     /// [`Metal::colour`] from vacuum (or air, n = 1), the common case: interpolated in cos θ
-    /// from a table of [`COLOUR_NODES`] built once per metal (within 1e-5 of the banded sum,
-    /// tested).
+    /// from a table of [`COLOUR_NODES`] built at the metal's first use (within 1e-5 of the
+    /// banded sum, tested).
     fn colour_in_vacuum(&self, cos: f64) -> Rgb {
-        static TABLES: [OnceLock<Vec<Rgb>>; 4] = [const { OnceLock::new() }; 4];
-        let Some(slot) = METALS.iter().position(|m| std::ptr::eq(m, self)) else {
-            // A metal made outside the table has no tabulated colour: sum its bands.
-            return self.banded_colour(cos, 1.0);
-        };
-        let table = TABLES[slot].get_or_init(|| {
+        let table = self.vacuum.get_or_init(|| {
             (0..COLOUR_NODES)
                 .map(|i| self.banded_colour(i as f64 / (COLOUR_NODES - 1) as f64, 1.0))
                 .collect()
@@ -138,6 +154,7 @@ pub static METALS: [Metal; 4] = [
             3.159375, 3.25, 3.348125, 3.45, 3.55375, 3.66, 3.76625, 3.88, 4.010625, 4.15, 4.293125,
             4.44, 4.58625, 4.74, 4.908125, 5.09, 5.28875, 5.5, 5.720624,
         ],
+        vacuum: OnceLock::new(),
     },
     // aluminium
     Metal {
@@ -154,6 +171,7 @@ pub static METALS: [Metal; 4] = [
             6.7, 6.85, 7.0, 7.15, 7.31, 7.48, 7.65, 7.82, 8.01, 8.21, 8.39, 8.57, 8.62, 8.6, 8.45,
             8.31, 8.21,
         ],
+        vacuum: OnceLock::new(),
     },
     // gold
     Metal {
@@ -170,6 +188,7 @@ pub static METALS: [Metal; 4] = [
             1.9565, 2.12, 2.32625, 2.54, 2.730625, 2.88, 2.940625, 2.97, 3.015, 3.06, 3.07, 3.15,
             3.445812, 3.8, 4.087687, 4.357, 4.610188, 4.86, 5.125813, 5.39, 5.63125,
         ],
+        vacuum: OnceLock::new(),
     },
     // copper
     Metal {
@@ -187,6 +206,7 @@ pub static METALS: [Metal; 4] = [
             3.458187, 3.67, 3.863125, 4.05, 4.239563, 4.43, 4.610188, 4.817, 5.034125, 5.26,
             5.485625,
         ],
+        vacuum: OnceLock::new(),
     },
 ];
 

@@ -25,7 +25,7 @@ mod plastic;
 pub use fresnel::{
     conductor, conductor_rgb, dielectric, dielectric_transmittance, reflect, refract,
 };
-pub use metals::{named as metal, Metal, METALS};
+pub use metals::{named as metal, Metal, METALS, WAVELENGTHS};
 pub use microfacet::{Ggx, SMOOTH_ALPHA};
 pub use plastic::Coat;
 
@@ -78,7 +78,7 @@ impl Lobes {
 
 /// The Fresnel reflectance of a conductor.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Reflectance {
+pub enum Reflectance<'a> {
     /// The same reflectance at every angle (a mirror's; 1 for the perfect conductor of
     /// furnace tests).
     Constant(Rgb),
@@ -93,13 +93,13 @@ pub enum Reflectance {
     /// A measured metal's colour ([`Metal::colour`]) seen from a medium of index `n_out`.
     Measured {
         /// The metal.
-        metal: &'static Metal,
+        metal: &'a Metal,
         /// The index outside.
         n_out: f64,
     },
 }
 
-impl Reflectance {
+impl Reflectance<'_> {
     /// The reflectance at cos θ = `cos`.
     pub fn at(&self, cos: f64) -> Rgb {
         match *self {
@@ -122,7 +122,7 @@ pub enum Bsdf<'a> {
     /// with Smith's height-correlated G₂.
     Conductor {
         /// Its Fresnel reflectance.
-        fresnel: Reflectance,
+        fresnel: Reflectance<'a>,
         /// The microsurface (None: smooth).
         ggx: Option<Ggx>,
     },

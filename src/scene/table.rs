@@ -350,6 +350,14 @@ impl<'a> TableReader<'a> {
         self.entries.iter().any(|(k, _, _)| k.get_ref() == key)
     }
 
+    /// Whether `key` holds a form over wavelength — a named material or a one-entry table
+    /// (`{ table = ... }`, `{ sellmeier = ... }`, ...) — rather than a number or an RGB triple.
+    pub fn is_over_wavelength(&self, key: &str) -> bool {
+        self.entries.iter().any(|(k, v, _)| {
+            k.get_ref() == key && matches!(v.get_ref(), Value::String(_) | Value::Table(_))
+        })
+    }
+
     /// An RGB triple of non-negative numbers; a single number means grey.
     pub fn rgb_or(&mut self, key: &str, default: Option<Rgb>) -> Result<Rgb> {
         let v = match (self.take(key), default) {

@@ -462,10 +462,10 @@ impl<'a> Tracer<'a> {
     /// of index `n_out`: a measured metal's exact term at one wavelength, or its colour (the
     /// reflected D65 over the observer, [`crate::bsdf::Metal::colour`]) when the path carries
     /// every wavelength.
-    fn conductor(&self, index: &ConductorIndex, n_out: f64) -> Reflectance {
+    fn conductor<'m>(&self, index: &'m ConductorIndex, n_out: f64) -> Reflectance<'m> {
         let nm = self.wavelength.as_ref().map(|w| w.nm);
-        match (*index, nm) {
-            (ConductorIndex::Constant(c), _) => Reflectance::Constant(self.reflectance(c)),
+        match (index, nm) {
+            (&ConductorIndex::Constant(c), _) => Reflectance::Constant(self.reflectance(c)),
             (ConductorIndex::Measured(metal), Some(nm)) => {
                 let (eta, k) = metal.index(nm);
                 Reflectance::Complex {
@@ -474,11 +474,11 @@ impl<'a> Tracer<'a> {
                 }
             }
             (ConductorIndex::Measured(metal), None) => Reflectance::Measured { metal, n_out },
-            (ConductorIndex::Rgb { eta, k }, Some(nm)) => Reflectance::Complex {
+            (&ConductorIndex::Rgb { eta, k }, Some(nm)) => Reflectance::Complex {
                 eta: Rgb::splat(colour::reflectance(eta, nm) / n_out),
                 k: Rgb::splat(colour::reflectance(k, nm) / n_out),
             },
-            (ConductorIndex::Rgb { eta, k }, None) => Reflectance::Complex {
+            (&ConductorIndex::Rgb { eta, k }, None) => Reflectance::Complex {
                 eta: eta / n_out,
                 k: k / n_out,
             },

@@ -1,5 +1,6 @@
 //! `[[material]]`: surfaces, and what fills a dielectric. Every key's unit and default is in `docs/scene-format.md`.
 
+use crate::bsdf::Metal;
 use crate::bsdf::{Coat, Ggx, SMOOTH_ALPHA};
 use crate::color::Rgb;
 use crate::error::Result;
@@ -51,7 +52,7 @@ fn roughness(t: &mut TableReader, default: f64) -> Result<f64> {
 }
 
 /// A conductor's index: `metal` (a measured metal's symbol, or "perfect"), or `eta` and `k`
-/// (each a number or RGB).
+/// (each a number or RGB; or, if either is, forms over wavelength, as indices are given).
 fn conductor_index(t: &mut TableReader) -> Result<ConductorIndex> {
     match (t.has("metal"), t.has("eta"), t.has("k")) {
         (true, false, false) => {
@@ -60,7 +61,7 @@ fn conductor_index(t: &mut TableReader) -> Result<ConductorIndex> {
                 return Ok(ConductorIndex::Constant(Rgb::ONE));
             }
             match crate::bsdf::metal(&name) {
-                Some(m) => Ok(ConductorIndex::Measured(m)),
+                Some(m) => Ok(ConductorIndex::Measured(Arc::new(m.clone()))),
                 None => {
                     let known: Vec<&str> = crate::bsdf::METALS.iter().map(|m| m.symbol).collect();
                     Err(t.error(
@@ -69,6 +70,18 @@ fn conductor_index(t: &mut TableReader) -> Result<ConductorIndex> {
                     ))
                 }
             }
+        }
+        (false, true, true) if t.is_over_wavelength("eta") || t.is_over_wavelength("k") => {
+            let eta = t.dispersion("eta")?;
+            let k = t.over_wavelength("k")?;
+            let least = k.min_visible();
+            t.check(
+                "k",
+                least >= 0.0,
+                format!("k must be ≥ 0 from 360 to 830 nm, got {least:?} there"),
+            )?;
+            let metal = Metal::sampled("eta/k", |nm| eta.at(nm), |nm| k.at(nm));
+            Ok(ConductorIndex::Measured(Arc::new(metal)))
         }
         (false, true, true) => {
             let eta = t.rgb_or("eta", None)?;
