@@ -51,3 +51,4 @@ pub mod shard;
 pub mod spectrum;
 pub mod texture;
 pub mod transport;
+pub mod volume;

@@ -49,6 +49,9 @@ impl Lobes {
     pub const SPECULAR_REFLECTION: Lobes = Lobes(8);
     /// A refraction through a smooth interface (a delta).
     pub const SPECULAR_TRANSMISSION: Lobes = Lobes(16);
+    /// Not a surface's: a scattering medium's phase function at a point inside it. Neither
+    /// specular nor diffuse — a path passes it by sampling, as a glossy-only vertex.
+    pub const PHASE: Lobes = Lobes(32);
     const SPECULAR: u8 = 8 | 16;
     const DIFFUSE: u8 = 1;
     const TRANSMISSION: u8 = 4 | 16;

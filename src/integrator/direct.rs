@@ -12,7 +12,7 @@ use crate::lights::Light;
 use crate::spectrum::Hero;
 use crate::transport::chain::{Carried, Chain, End, Policy, Ray, Walker};
 use crate::transport::connect::connect;
-use crate::transport::{offset, visibility, HeroTracer, Stats, Tracer, Vertex};
+use crate::transport::{visibility, HeroTracer, Stats, Tracer, Vertex};
 use glam::DVec3;
 use rand::Rng;
 
@@ -20,7 +20,7 @@ use rand::Rng;
 /// the camera.
 #[derive(Clone, Copy, Debug)]
 pub struct VisiblePoint<'w> {
-    /// The vertex: where, its BSDF, ωo.
+    /// The vertex: where, its BSDF or phase function, ωo.
     pub vertex: Vertex<'w>,
     /// The path's throughput (reflectances, BSDF weights, absorption) times
     /// (n_camera/n_here)².
@@ -93,19 +93,14 @@ pub fn camera_path<'w>(
 }
 
 /// One light sample of `light` at a scattering vertex in a uniform medium, through a straight
-/// shadow ray from its arrival side (multiple importance weighted against the BSDF sample
-/// for area lights).
-fn straight_light(
-    tracer: &Tracer,
-    vertex: &Vertex,
-    origin: DVec3,
-    light: &Light,
-    uv: (f64, f64),
-) -> Rgb {
+/// shadow ray from its arrival side (multiple importance weighted against the BSDF or phase
+/// sample for area lights).
+fn straight_light(tracer: &Tracer, vertex: &Vertex, light: &Light, uv: (f64, f64)) -> Rgb {
+    let origin = vertex.origin();
     let Some(inc) = light.sample_incident(origin, uv) else {
         return Rgb::ZERO;
     };
-    let cos = inc.wi.dot(vertex.normal);
+    let cos = vertex.cos(inc.wi);
     if cos <= 0.0 {
         return Rgb::ZERO;
     }
@@ -118,9 +113,11 @@ fn straight_light(
     if f == Rgb::ZERO {
         return Rgb::ZERO;
     }
-    let kept = visibility::transmittance(tracer, origin, vertex.medium, inc.wi, reach);
+    let medium = vertex.medium();
+    let kept = visibility::transmittance(tracer, origin, medium, inc.wi, reach);
+    let unscattered = visibility::unscattered(tracer, origin, medium, inc.wi, reach);
     let weight = power_heuristic(inc.pdf, vertex.pdf(inc.wi));
-    f * tracer.radiance(inc.irradiance) * (cos * weight * kept)
+    f * tracer.radiance(inc.irradiance) * (cos * weight * kept) * unscattered
 }
 
 /// A point, spot, LED or parallel light at a scattering vertex in gradient medium `m`,
@@ -133,19 +130,23 @@ fn curved_light(
     uv: (f64, f64),
     stats: &mut Stats,
 ) -> Rgb {
-    let origin = offset(vertex.position, vertex.normal);
     let Some(anchor) = light.anchor(uv) else {
         return Rgb::ZERO;
     };
-    let Some(link) = connect(tracer, origin, m, &anchor, stats) else {
+    let Some(link) = connect(tracer, vertex.origin(), m, &anchor, stats) else {
         return Rgb::ZERO;
     };
-    let cos = link.direction.dot(vertex.normal);
+    let cos = vertex.cos(link.direction);
     if cos <= 0.0 {
         return Rgb::ZERO;
     }
     let e = link.irradiance(&anchor, tracer.radiance(light.intensity(-link.arrival)));
-    vertex.eval(link.direction) * e * cos
+    let unscattered = tracer
+        .scene
+        .media()
+        .scattering(m)
+        .map_or(Rgb::ONE, |sc| sc.transmittance(link.length));
+    vertex.eval(link.direction) * e * unscattered * cos
 }
 
 /// The power heuristic's weight of a strategy of pdf `a` against one of pdf `b` (1 when `a`
@@ -177,12 +178,12 @@ pub fn direct(carried: Carried, vp: &VisiblePoint, rng: &mut impl Rng, stats: &m
     let tracer = carried.tracer;
     let scene = tracer.scene;
     let vertex = &vp.vertex;
-    let graded = vertex.medium.filter(|&m| !tracer.medium(m).is_uniform());
-    let origin = offset(vertex.position, vertex.normal);
+    let graded = vertex.medium().filter(|&m| !tracer.medium(m).is_uniform());
+    let origin = vertex.origin();
     let mut radiance = Rgb::ZERO;
     for light in &scene.lights {
         let lit = match graded {
-            None => straight_light(tracer, vertex, origin, light, (rng.gen(), rng.gen())),
+            None => straight_light(tracer, vertex, light, (rng.gen(), rng.gen())),
             Some(m) if !light.is_hittable() => {
                 curved_light(tracer, vertex, m, light, (rng.gen(), rng.gen()), stats)
             }

@@ -106,8 +106,8 @@ impl Integrator for PathTracer<'_> {
         let c = camera_path(carried, ray.origin, ray.direction, s.rng, s.stats);
         s.add(EMITTED, c.emitted);
         let Some(vp) = c.visible else { return };
-        s.add(ALBEDO, vp.vertex.bsdf.albedo());
-        s.add(NORMAL, Rgb(vp.vertex.normal));
+        s.add(ALBEDO, vp.vertex.albedo());
+        s.add(NORMAL, vp.vertex.normal());
         let direct = direct(c.carried, &vp, s.rng, s.stats);
         s.add(DIRECT, direct);
         let indirect = self.indirect(vp, c.carried, s);

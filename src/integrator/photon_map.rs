@@ -31,7 +31,7 @@ use crate::scene::Scene;
 use crate::settings::{PhotonSettings, Settings};
 use crate::transport::chain::{Carried, End, Policy, Walker};
 use crate::transport::visibility::Occluders;
-use crate::transport::{Stats, Tracer, Vertex};
+use crate::transport::{Stats, SurfaceVertex, Tracer, Vertex};
 use std::f64::consts::FRAC_1_PI;
 use std::time::Instant;
 
@@ -42,8 +42,9 @@ pub const ALPHA: f64 = 2.0 / 3.0;
 /// Which photon maps a scene needs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Plan {
-    /// A caustic map: some light path can meet a specular or glossy lobe before a
-    /// scattering vertex (light through gradient media alone is the direct estimate's).
+    /// A caustic map: some light path can meet a specular or glossy lobe, or scatter in a
+    /// medium, before a diffuse surface (light through gradient media alone is the direct
+    /// estimate's).
     pub caustic: bool,
     /// A global map: secondary light is on (`gather` > 0) and something scatters.
     pub global: bool,
@@ -59,9 +60,11 @@ impl Plan {
                 .iter()
                 .filter_map(|s| scene.materials[s.material].lobes())
         };
-        // (A receiver's detector is transparent: it neither bends nor stores light.)
-        let scatters = lobes().any(|l| !l.is_specular());
-        let bends = lobes().any(|l| l != crate::bsdf::Lobes::DIFFUSE_REFLECTION);
+        // (A receiver's detector is transparent: it neither bends nor stores light.) Light
+        // scattered in a medium on its way to a surface is a caustic of that surface.
+        let fog = scene.media().any_scatters();
+        let scatters = fog || lobes().any(|l| !l.is_specular());
+        let bends = fog || lobes().any(|l| l != crate::bsdf::Lobes::DIFFUSE_REFLECTION);
         let emits = !scene.lights.is_empty() || scene.environment.is_some();
         Self {
             caustic: scatters && emits && bends && photons.caustic > 0,
@@ -159,18 +162,13 @@ impl<'a> PhotonMapper<'a> {
         &self,
         caustic: &PhotonMap,
         index: u32,
-        vp: &VisiblePoint,
+        v: &SurfaceVertex,
         stats: &mut Stats,
     ) -> f64 {
         let r0 = match self.photons.radius {
             Some(r) => r * r,
             None => stats.time_query(|| {
-                caustic.knn_radius2(
-                    vp.vertex.position,
-                    vp.vertex.normal,
-                    self.photons.knn as usize,
-                    self.max_r2,
-                )
+                caustic.knn_radius2(v.position, v.normal, self.photons.knn as usize, self.max_r2)
             }),
         };
         r0 * schedule(index)
@@ -203,7 +201,7 @@ impl<'a> PhotonMapper<'a> {
                 let chain = walker.follow(b.ray, s.rng, s.stats, &mut ());
                 weight = weight * b.sample.weight * chain.weight * b.radiance_scale;
                 match chain.end {
-                    End::Scatter(y) if y.lobes().has_diffuse() => {
+                    End::Scatter(Vertex::Surface(y)) if y.lobes().has_diffuse() => {
                         break (Some(y), chain.radiance_scale())
                     }
                     End::Scatter(y) if walker.depth > 0 => {
@@ -235,7 +233,7 @@ impl<'a> PhotonMapper<'a> {
     /// lobe scattered before, through the diffuse lobe alone for the others (through a glossy
     /// lobe they are caustics of the visible point, the caustic map's). (At a Lambertian
     /// surface the map's precomputed irradiance times albedo/π stands for it.)
-    fn photon_radiance(&self, global: &PhotonMap, y: &Vertex, stats: &mut Stats) -> Rgb {
+    fn photon_radiance(&self, global: &PhotonMap, y: &SurfaceVertex, stats: &mut Stats) -> Rgb {
         let k = self.photons.knn as usize;
         stats.time_query(|| {
             global.knn_weighted(
@@ -256,19 +254,25 @@ impl<'a> PhotonMapper<'a> {
         })
     }
 
-    /// The camera path's visible point: past glossy-only vertices by sampling their BSDF
-    /// (adding their direct light to `direct`, and emission met after a specular bounce to
-    /// `emitted`), to the first vertex with a diffuse lobe; None where the path leaves, or
-    /// spends its depth among glossy vertices.
+    /// The camera path's visible point: past glossy-only vertices and points in scattering
+    /// media by sampling their BSDF or phase function (adding their direct light to `direct`,
+    /// and emission met after a specular bounce to `emitted`), to the first surface with a
+    /// diffuse lobe (returned with the path's point there); None where the path leaves, or
+    /// spends its depth before one.
     fn visible_point<'w>(
         &self,
         mut vp: VisiblePoint<'w>,
         carried: Carried<'w>,
         found: &mut Found,
         s: &mut Sample,
-    ) -> Option<(VisiblePoint<'w>, Carried<'w>)> {
+    ) -> Option<(VisiblePoint<'w>, SurfaceVertex<'w>, Carried<'w>)> {
         let mut walker = Walker::carrying(carried, Policy::Weighted);
-        while !vp.vertex.lobes().has_diffuse() {
+        loop {
+            if let Vertex::Surface(v) = vp.vertex {
+                if v.lobes().has_diffuse() {
+                    return Some((vp, v, walker.carried()));
+                }
+            }
             if walker.depth == 0 {
                 return None;
             }
@@ -287,7 +291,6 @@ impl<'a> PhotonMapper<'a> {
                 throughput: throughput * chain.weight * chain.radiance_scale(),
             };
         }
-        Some((vp, walker.carried()))
     }
 }
 
@@ -344,13 +347,15 @@ impl Integrator for PhotonMapper<'_> {
         let c = camera_path(carried, ray.origin, ray.direction, s.rng, s.stats);
         s.add(EMITTED, c.emitted);
         let Some(first) = c.visible else { return };
-        s.add(ALBEDO, first.vertex.bsdf.albedo());
-        s.add(NORMAL, Rgb(first.vertex.normal));
+        s.add(ALBEDO, first.vertex.albedo());
+        s.add(NORMAL, first.vertex.normal());
         let mut found = Found::default();
         let visible = self.visible_point(first, c.carried, &mut found, s);
         s.add(DIRECT, found.direct);
         s.add(EMITTED, found.emitted);
-        let Some((vp, carried)) = visible else { return };
+        let Some((vp, v, carried)) = visible else {
+            return;
+        };
         let direct = direct(carried, &vp, s.rng, s.stats);
         s.add(DIRECT, direct);
         if let Some(global) = &maps.global {
@@ -358,8 +363,7 @@ impl Integrator for PhotonMapper<'_> {
             s.add(SECONDARY, secondary);
         }
         if let Some(caustic) = &maps.caustic {
-            let r2 = *r2.get_or_insert_with(|| self.caustic_r2(caustic, maps.index, &vp, s.stats));
-            let v = &vp.vertex;
+            let r2 = *r2.get_or_insert_with(|| self.caustic_r2(caustic, maps.index, &v, s.stats));
             let hidden = Occluders::around(self.tracer, v.prim, v.position, v.normal, r2.sqrt());
             // Each photon through the BSDF; a Lambertian surface's albedo/π is applied once.
             let lambert = v.bsdf.lambert_albedo();

@@ -180,9 +180,11 @@ impl<'a> Sources<'a> {
             }
         }
         let target = (0.5 * (lo + hi), 0.55 * (hi - lo).length());
+        // A scattering medium may fill the scene: caustic photons are wanted everywhere.
+        let fog = scene.media().any_scatters();
         let aim = Aim {
             scene: tracer.ball,
-            target: if lo.cmple(hi).all() && target.1 < tracer.ball.1 {
+            target: if !fog && lo.cmple(hi).all() && target.1 < tracer.ball.1 {
                 target
             } else {
                 tracer.ball
@@ -543,12 +545,13 @@ impl chain::ChainEvents for PhotonWalk<'_, '_> {
     }
 }
 
-/// A photon's scattering at `vertex`: a direction from its BSDF and Russian roulette on the
-/// sample's weight ([`roulette`]); None when it is absorbed. A Lambertian vertex, whose weight
-/// (its albedo) is known before sampling, plays the roulette first (as photons always have:
-/// the same numbers, the same photons).
+/// A photon's scattering at `vertex`: a direction from its BSDF or phase function and
+/// Russian roulette on the sample's weight ([`roulette`]; a phase sample's is 1: what a
+/// medium absorbs was played for on the way); None when it is absorbed. A Lambertian vertex,
+/// whose weight (its albedo) is known before sampling, plays the roulette first (as photons
+/// always have: the same numbers, the same photons).
 fn scatter_photon(vertex: &Vertex, rng: &mut impl Rng) -> Option<PhotonBounce> {
-    if let Some(albedo) = vertex.bsdf.lambert_albedo() {
+    if let Some(albedo) = vertex.surface().and_then(|v| v.bsdf.lambert_albedo()) {
         let weight = roulette(albedo, rng)?;
         let scattered = vertex.scatter_with(rng)?;
         return Some(PhotonBounce { weight, scattered });
@@ -648,32 +651,29 @@ fn trace_photon(
             End::Lost | End::DepthLimit | End::Stopped => break Fate::Lost,
         };
         bent |= chain.specular > 0;
-        let photon = Photon {
-            position: vertex.position,
-            normal: vertex.normal,
-            power: (walk.power * seen_as).as_vec3().to_array(),
-            from: vertex.wo.as_vec3().to_array(),
-            diffused,
-        };
-        match tag.batch {
-            // L (S|G)+ X: at least one specular or glossy lobe and no diffuse one since the
-            // light. Light through gradient media alone (L G+ D) is the direct estimate's,
-            // which follows it along the curved path.
-            // Photons are stored only at vertices with a diffuse lobe: camera paths and final
-            // gathers pass glossy-only vertices by sampling them and read no photons there
-            // (and photons on the inside of a rough glass ball would be read by the floor it
-            // stands on, whose normal they share).
-            Batch::Caustic => {
-                if bent && vertex.lobes().has_diffuse() {
-                    stored.photons.push(photon);
-                }
+        // Photons are stored only at surfaces with a diffuse lobe: camera paths and final
+        // gathers pass glossy-only vertices and points in media by sampling them and read no
+        // photons there (and photons on the inside of a rough glass ball would be read by the
+        // floor it stands on, whose normal they share).
+        if let Vertex::Surface(v) = &vertex {
+            let photon = Photon {
+                position: v.position,
+                normal: v.normal,
+                power: (walk.power * seen_as).as_vec3().to_array(),
+                from: v.wo.as_vec3().to_array(),
+                diffused,
+            };
+            let stores = match tag.batch {
+                // L (S|G|V)+ D: at least one specular or glossy lobe or scattering in a medium,
+                // and no diffuse lobe, since the light. Light through gradient media alone
+                // (L G+ D) is the direct estimate's, which follows it along the curved path.
+                Batch::Caustic => bent,
+                Batch::Global => true,
+                Batch::Receivers => false,
+            };
+            if stores && v.lobes().has_diffuse() {
+                stored.photons.push(photon);
             }
-            Batch::Global => {
-                if vertex.lobes().has_diffuse() {
-                    stored.photons.push(photon);
-                }
-            }
-            Batch::Receivers => {}
         }
         if tag.batch == Batch::Caustic && vertex.lobes() == Lobes::DIFFUSE_REFLECTION {
             break Fate::Absorbed;
@@ -690,9 +690,12 @@ fn trace_photon(
             }
         } else {
             bent = true;
-            let to = b.scattered.ray.medium;
-            // What the budget tells of a glossy reflection or transmission, as of a smooth one.
-            let _ = chain::ChainEvents::specular(&mut walk, vertex.prim, vertex.medium, to);
+            if let Vertex::Surface(v) = &vertex {
+                let to = b.scattered.ray.medium;
+                // What the budget tells of a glossy reflection or transmission, as of a smooth
+                // one.
+                let _ = chain::ChainEvents::specular(&mut walk, v.prim, v.medium, to);
+            }
         }
         ray = b.scattered.ray;
     };

@@ -2,7 +2,7 @@
 //! resolved, and the [`Settings`] of its `[render]` and `[output]` tables; every error located
 //! at file:line:col and naming the key.
 
-use super::media::{read_medium, uniform};
+use super::media::{read_medium, read_scattering, uniform};
 use super::model::{Description, Media, Scene, Shape, Surface};
 use super::read::{
     read_camera, read_environment, read_light_and_spectrum, read_material, read_output,
@@ -69,8 +69,10 @@ fn read_media(source: &Source, tables: Vec<Spanned<SpannedTable>>) -> Result<Med
         let mut t = reader(source, table, "[[medium]]");
         let name = named(&mut t, media.names(), "medium")?;
         let medium = read_medium(&mut t)?;
+        let scattering = read_scattering(&mut t)?;
         t.finish()?;
-        media.add_profile(name, medium);
+        let i = media.add_profile(name, medium);
+        media.set_scattering(i, scattering);
     }
     Ok(media)
 }

@@ -3,6 +3,7 @@
 
 use super::model::Profile;
 use super::table::TableReader;
+use crate::color::Rgb;
 use crate::error::Result;
 use crate::media::{
     Absorbing, Axis, BlackHole, ExactBlackHole, ExponentialMedium, FishEye, GridError, GridMedium,
@@ -10,7 +11,9 @@ use crate::media::{
     RadialTable, SechFiber, UniformMedium, GLADSTONE_DALE_AIR, STANDARD_PRESSURE,
 };
 use crate::spectrum::{Dispersion, LAMBDA_D};
+use crate::volume::{Phase, Scattering};
 use glam::DVec3;
+use toml::Value;
 
 /// The profile names a `[[medium]]` table may give.
 pub const PROFILES: &[&str] = &[
@@ -52,6 +55,33 @@ pub fn read_medium(t: &mut TableReader) -> Result<Profile> {
         Profile::Fixed(m) => Profile::Fixed(absorbing(m)),
         Profile::Dispersive(at) => Profile::Dispersive(Box::new(move |nm| absorbing(at(nm)))),
     })
+}
+
+/// A `[[medium]]` table's scattering, if it scatters: `scattering` σs (a number or RGB,
+/// 1/length, ≥ 0; 0 or absent: it does not) and `phase` (`"isotropic"`, the default, or
+/// `{ hg = g }`, Henyey–Greenstein with −1 < g < 1).
+pub fn read_scattering(t: &mut TableReader) -> Result<Option<Scattering>> {
+    let sigma_s = t.rgb_or("scattering", Some(Rgb::ZERO))?;
+    let phase = match t.value_opt("phase") {
+        None => Phase::Isotropic,
+        Some(Value::String(name)) if name == "isotropic" => Phase::Isotropic,
+        Some(Value::Table(table)) if table.len() == 1 && table.contains_key("hg") => {
+            let g = t.numbers_in("phase", &table["hg"])?;
+            t.check(
+                "phase",
+                g.len() == 1 && g[0].abs() < 1.0,
+                format!("hg takes one mean cosine g with −1 < g < 1, got {g:?}"),
+            )?;
+            Phase::HenyeyGreenstein { g: g[0] }
+        }
+        Some(other) => {
+            return Err(t.error(
+                "phase",
+                format!("expected \"isotropic\" or {{ hg = g }}, got {other}"),
+            ))
+        }
+    };
+    Ok((sigma_s.max_element() > 0.0).then_some(Scattering { sigma_s, phase }))
 }
 
 /// The index profile of a `[[medium]]` table. Every index-valued key (`n`, `n0`) and the

@@ -14,6 +14,7 @@ use crate::media::Medium;
 use crate::receiver::Receiver;
 use crate::shapes::Primitive;
 use crate::spectrum::{Spectrum, LAMBDA_D};
+use crate::volume::Scattering;
 use std::path::{Path, PathBuf};
 
 /// How a dispersive medium is built at a vacuum wavelength (nm).
@@ -34,6 +35,8 @@ struct Entry {
     name: String,
     medium: Box<dyn Medium>,
     dispersion: Option<AtWavelength>,
+    /// How it scatters (None: it does not); the same at every wavelength.
+    scattering: Option<Scattering>,
 }
 
 /// The scene's media by name; [`Surface::interior`], [`Surface::exterior`] and the ambient
@@ -50,6 +53,7 @@ impl Media {
             name: name.into(),
             medium,
             dispersion: None,
+            scattering: None,
         });
         self.0.len() - 1
     }
@@ -60,6 +64,7 @@ impl Media {
             name: name.into(),
             medium: at(LAMBDA_D),
             dispersion: Some(at),
+            scattering: None,
         });
         self.0.len() - 1
     }
@@ -75,6 +80,21 @@ impl Media {
     /// The medium at index `i`, at [`LAMBDA_D`].
     pub fn at(&self, i: usize) -> &dyn Medium {
         self.0[i].medium.as_ref()
+    }
+
+    /// Sets how medium `i` scatters (None: it does not).
+    pub fn set_scattering(&mut self, i: usize, scattering: Option<Scattering>) {
+        self.0[i].scattering = scattering;
+    }
+
+    /// How medium `i` scatters (None: it does not).
+    pub fn scattering(&self, i: usize) -> Option<&Scattering> {
+        self.0[i].scattering.as_ref()
+    }
+
+    /// Whether any medium scatters.
+    pub fn any_scatters(&self) -> bool {
+        self.0.iter().any(|e| e.scattering.is_some())
     }
 
     /// Whether medium `i`'s index depends on wavelength.

@@ -11,7 +11,7 @@
 //! The factors of the single refractions telescope into this one ratio, which is why no
 //! BSDF carries them. Power (a photon's flux) never scales.
 
-use super::{Event, HeroTracer, Stats, Tracer, Vertex};
+use super::{Event, HeroTracer, MediumVertex, Stats, SurfaceVertex, Tracer, Vertex};
 use crate::bsdf::Bsdf;
 use crate::color::Rgb;
 use crate::material::Material;
@@ -49,7 +49,8 @@ pub enum Policy {
 /// Where a chain ended.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum End<'s> {
-    /// A scattering vertex: a surface whose BSDF is not purely specular.
+    /// A scattering vertex: a surface whose BSDF is not purely specular, or a point inside
+    /// a scattering medium where a free flight ended.
     Scatter(Vertex<'s>),
     /// An emitter: its radiance toward the path (zero from its back).
     Emitter {
@@ -269,7 +270,8 @@ impl<'w> Walker<'w> {
         chain.medium = at.medium;
         if !matches!(end, End::Escaped { .. }) {
             let p = match end {
-                End::Scatter(Vertex { position, .. }) | End::Emitter { position, .. } => position,
+                End::Scatter(v) => v.position(),
+                End::Emitter { position, .. } => position,
                 _ => at.origin,
             };
             chain.n_end = self.tracer.index(at.medium, p).unwrap_or(1.0);
@@ -297,11 +299,38 @@ impl<'w> Walker<'w> {
         chain.curved |= at
             .medium
             .is_some_and(|m| !self.tracer.medium(m).is_uniform());
-        let event =
-            self.tracer
-                .next_event_along(at.origin, at.dir, at.medium, lent.stats, &mut |p| {
-                    observer.point(p)
-                });
+        let scattering = at.medium.and_then(|m| scene.media().scattering(m));
+        let reach = match (scattering, self.policy) {
+            (Some(sc), Policy::Weighted | Policy::Roulette) => {
+                let pick = if sc.picks_channel() {
+                    lent.rng.gen()
+                } else {
+                    0.0
+                };
+                sc.free_flight((pick, lent.rng.gen()))
+            }
+            _ => f64::INFINITY,
+        };
+        let event = self.tracer.next_event_within(
+            at.origin,
+            at.dir,
+            at.medium,
+            reach,
+            lent.stats,
+            &mut |p| observer.point(p),
+        );
+        if let Some(sc) = scattering {
+            chain.weight *= match (self.policy, event) {
+                (Policy::Weighted | Policy::Roulette, Event::Reached { distance, .. }) => {
+                    sc.scattered_weight(distance)
+                }
+                (Policy::Weighted | Policy::Roulette, _) => sc.passed_weight(event.distance()),
+                // Light scattered out of a shadow-like ray is not followed: it is lost to it.
+                (Policy::Unscattered, _) => sc.transmittance(event.distance()),
+                // The principal ray is geometry: scattering does not change its way.
+                (Policy::Principal, _) => Rgb::ONE,
+            };
+        }
         let hit = match event {
             Event::Lost => return ControlFlow::Break(End::Lost),
             _ if self.absorbed(chain, event.transmittance(), lent.rng) => {
@@ -316,6 +345,22 @@ impl<'w> Walker<'w> {
                 observer.point(position);
                 chain.n_end = self.tracer.index(at.medium, position).unwrap_or(1.0);
                 return ControlFlow::Break(End::Escaped { direction });
+            }
+            Event::Reached {
+                position,
+                direction,
+                ..
+            } => {
+                observer.point(position);
+                let phase = scattering
+                    .expect("a free flight in a scattering medium")
+                    .phase;
+                return ControlFlow::Break(End::Scatter(Vertex::Medium(MediumVertex {
+                    position,
+                    wo: -direction,
+                    medium: at.medium,
+                    phase,
+                })));
             }
         };
         observer.point(hit.position);
@@ -352,7 +397,7 @@ impl<'w> Walker<'w> {
                 };
                 match vertex.lobes().is_specular() {
                     true => self.bounce(chain, at, &vertex, lent.rng, observer),
-                    false => ControlFlow::Break(End::Scatter(vertex)),
+                    false => ControlFlow::Break(End::Scatter(Vertex::Surface(vertex))),
                 }
             }
         }
@@ -376,7 +421,7 @@ impl<'w> Walker<'w> {
         &mut self,
         chain: &mut Chain,
         at: &mut Cursor,
-        vertex: &Vertex,
+        vertex: &SurfaceVertex,
         rng: &mut impl Rng,
         observer: &mut dyn ChainEvents,
     ) -> ControlFlow<End<'w>> {

@@ -345,7 +345,7 @@ fn unblocked(tracer: &Tracer, from: DVec3, medium: usize, link: &Link, stats: &m
                 travelled += distance;
                 (origin, dir) = (super::offset(position, direction), direction);
             }
-            Event::Escaped { .. } => return true,
+            Event::Escaped { .. } | Event::Reached { .. } => return true,
             Event::Lost => return false,
         }
     }

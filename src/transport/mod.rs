@@ -12,7 +12,7 @@ mod stats;
 mod vertex;
 pub mod visibility;
 
-pub use vertex::{Scattered, Vertex};
+pub use vertex::{MediumVertex, Scattered, SurfaceVertex, Vertex};
 
 use crate::bsdf::{Bsdf, Ggx, Reflectance};
 use crate::color::Rgb;
@@ -66,6 +66,18 @@ pub enum Event {
         /// Optical depth ∫ σa ds of absorption from the origin to the world sphere.
         optical_depth: f64,
     },
+    /// The ray went the arclength it was allowed ([`Tracer::next_event_within`]) before any
+    /// surface: where a free flight in a scattering medium ends.
+    Reached {
+        /// Where.
+        position: DVec3,
+        /// Unit direction of travel there.
+        direction: DVec3,
+        /// Path length from the origin (the allowed arclength).
+        distance: f64,
+        /// Optical depth ∫ σa ds of absorption from the origin.
+        optical_depth: f64,
+    },
     /// The ray ended without reaching a surface or escaping: captured, out of steps, trapped
     /// (a curved path 100 world radii long that never left the world), or lost inside an
     /// object it should have left; the reason is counted in the statistics.
@@ -98,12 +110,22 @@ impl Event {
         }
     }
 
+    /// The path length from the origin to the event (0 when lost).
+    pub fn distance(&self) -> f64 {
+        match *self {
+            Event::Surface { distance, .. }
+            | Event::Escaped { distance, .. }
+            | Event::Reached { distance, .. } => distance,
+            Event::Lost => 0.0,
+        }
+    }
+
     /// The fraction exp(−∫σa ds) of light kept on the way to the event (0 when lost).
     pub fn transmittance(&self) -> f64 {
         match *self {
-            Event::Surface { optical_depth, .. } | Event::Escaped { optical_depth, .. } => {
-                (-optical_depth).exp()
-            }
+            Event::Surface { optical_depth, .. }
+            | Event::Escaped { optical_depth, .. }
+            | Event::Reached { optical_depth, .. } => (-optical_depth).exp(),
             Event::Lost => 0.0,
         }
     }
@@ -389,7 +411,7 @@ impl<'a> Tracer<'a> {
         hit: SurfaceHit,
         surface: Surface,
         medium: Option<usize>,
-    ) -> Option<Vertex<'a>> {
+    ) -> Option<SurfaceVertex<'a>> {
         let scene = self.scene;
         let SurfaceHit {
             prim,
@@ -446,7 +468,7 @@ impl<'a> Tracer<'a> {
         } else {
             -normals.shading
         };
-        Some(Vertex {
+        Some(SurfaceVertex {
             prim,
             position,
             normal: side,
@@ -507,17 +529,28 @@ impl<'a> Tracer<'a> {
         stats: &mut Stats,
         path: &mut dyn FnMut(DVec3),
     ) -> Event {
+        self.next_event_within(origin, dir, medium, f64::INFINITY, stats, path)
+    }
+
+    /// [`Self::next_event_along`] for a ray allowed arclength `reach` (scene units; ∞: no
+    /// limit): [`Event::Reached`] where it goes that far before any surface or the world's
+    /// edge.
+    pub fn next_event_within(
+        &self,
+        origin: DVec3,
+        dir: DVec3,
+        medium: Option<usize>,
+        reach: f64,
+        stats: &mut Stats,
+        path: &mut dyn FnMut(DVec3),
+    ) -> Event {
         let m = medium.map(|i| self.medium(i));
         match m {
-            Some(m) if !m.is_uniform() => self.curved(m, origin, dir, stats, path),
+            Some(m) if !m.is_uniform() => self.curved(m, origin, dir, reach, stats, path),
             _ => {
                 stats.straight_rays += 1;
                 let depth = |length: f64| m.map_or(0.0, |m| m.optical_depth(origin, dir, length));
-                match self
-                    .scene
-                    .accel
-                    .intersect_ray(origin, dir, 0.0, f64::INFINITY)
-                {
+                match self.scene.accel.intersect_ray(origin, dir, 0.0, reach) {
                     Some((prim, h)) => Event::Surface {
                         prim,
                         position: origin + h.t * dir,
@@ -530,11 +563,19 @@ impl<'a> Tracer<'a> {
                     },
                     None => {
                         let distance = self.world.exit_distance(origin, dir);
-                        Event::Escaped {
-                            position: origin + distance * dir,
-                            direction: dir,
-                            distance,
-                            optical_depth: depth(distance),
+                        match reach < distance {
+                            true => Event::Reached {
+                                position: origin + reach * dir,
+                                direction: dir,
+                                distance: reach,
+                                optical_depth: depth(reach),
+                            },
+                            false => Event::Escaped {
+                                position: origin + distance * dir,
+                                direction: dir,
+                                distance,
+                                optical_depth: depth(distance),
+                            },
                         }
                     }
                 }
@@ -547,6 +588,7 @@ impl<'a> Tracer<'a> {
         medium: &dyn Medium,
         origin: DVec3,
         dir: DVec3,
+        reach: f64,
         stats: &mut Stats,
         path: &mut dyn FnMut(DVec3),
     ) -> Event {
@@ -561,7 +603,7 @@ impl<'a> Tracer<'a> {
             bounds: self.world,
         };
         let control = keyed_by_ray(settings.control, origin, dir);
-        let (hit, out) = self.march_to_surface(medium, control, start, &limits, path);
+        let (hit, out) = self.march_to_surface(medium, control, start, &limits, reach, path);
         stats.curved_marches += 1;
         stats.curved_steps += out.steps;
         stats.record_end(out.reason);
@@ -578,15 +620,16 @@ impl<'a> Tracer<'a> {
         }
     }
 
-    /// Marches from `start` until an accepted step's path meets a surface: the hit (its
-    /// distance and depth from `start`), with the march's outcome. `path` is shown each accepted point
-    /// before the hit.
+    /// Marches from `start` until an accepted step's path meets a surface or passes
+    /// arclength `reach`: the hit or the point at `reach` (its distance and depth from
+    /// `start`), with the march's outcome. `path` is shown each accepted point before it.
     fn march_to_surface(
         &self,
         medium: &dyn Medium,
         control: StepControl,
         start: RayState,
         limits: &MarchLimits,
+        reach: f64,
         path: &mut dyn FnMut(DVec3),
     ) -> (Option<Event>, MarchOutcome) {
         let mut prev = start;
@@ -608,7 +651,7 @@ impl<'a> Tracer<'a> {
                     Some(arcs) => self.crossing_on_arcs(arcs, &prev, st, len),
                     None => self.crossing_between(&prev, st, len),
                 };
-                if let Some(c) = found {
+                if let Some(c) = found.filter(|c| prev_s + c.along <= reach) {
                     hit = Some(Event::Surface {
                         prim: c.prim,
                         position: c.position,
@@ -619,6 +662,28 @@ impl<'a> Tracer<'a> {
                         distance: prev_s + c.along,
                         optical_depth: prev_depth
                             + step_optical_depth(medium, prev.position, c.position, c.along),
+                    });
+                    return ControlFlow::Break(());
+                }
+                if s >= reach {
+                    let along = reach - prev_s;
+                    let p = match &step.arcs {
+                        Some(arcs) => {
+                            let half = 0.5 * len;
+                            let [first, second] = arcs.arcs(&prev);
+                            match along <= half {
+                                true => first.at(along),
+                                false => second.at(along - half),
+                            }
+                        }
+                        None => HermitePath::new(&prev, st, len).at(along),
+                    };
+                    hit = Some(Event::Reached {
+                        position: p.position,
+                        direction: p.direction,
+                        distance: reach,
+                        optical_depth: prev_depth
+                            + step_optical_depth(medium, prev.position, p.position, along),
                     });
                     return ControlFlow::Break(());
                 }

@@ -1,7 +1,8 @@
-//! A surface point where a path scatters: the BSDF made there, the normals it is evaluated
-//! about, the direction the path arrived from and the media on both sides. The chain
-//! ([`super::chain`]) passes through vertices whose BSDF is purely specular and ends at any
-//! other (a scattering vertex), where the integrators estimate light and photons are stored.
+//! Where a path scatters: a [`Vertex`] is a surface point (the BSDF made there, the normals
+//! it is evaluated about, the direction the path arrived from and the media on both sides) or
+//! a point inside a scattering medium (its phase function). The chain ([`super::chain`])
+//! passes through surface vertices whose BSDF is purely specular and ends at any other
+//! vertex, where the integrators estimate light and photons are stored.
 //!
 //! **Normals.** Specular and glossy lobes work about the shading normal (turned to the
 //! arrival side), unless a sample about it would leave on the wrong side of the geometric
@@ -13,11 +14,157 @@ use super::chain::Ray;
 use super::offset;
 use crate::bsdf::{Bsdf, BsdfSample, Lobes};
 use crate::color::Rgb;
+use crate::volume::Phase;
 use glam::DVec3;
+
+/// A scattering vertex: where a path's chain ends and light is estimated.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Vertex<'s> {
+    /// On a surface whose BSDF is not purely specular.
+    Surface(SurfaceVertex<'s>),
+    /// Inside a scattering medium, where a free flight ended.
+    Medium(MediumVertex),
+}
+
+/// A point inside a scattering medium where a path scatters.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MediumVertex {
+    /// Where.
+    pub position: DVec3,
+    /// Unit direction back along the arrival (ωo).
+    pub wo: DVec3,
+    /// The medium.
+    pub medium: Option<usize>,
+    /// How it redirects light.
+    pub phase: Phase,
+}
+
+impl MediumVertex {
+    /// The phase function's density for light arriving from direction `wi` (travelling along
+    /// −`wi`) and leaving along ωo, per steradian; also the density a path arriving along −ωo
+    /// draws `wi` with ([`Phase::sample`] about −ωo: the cosine is the same).
+    fn density(&self, wi: DVec3) -> f64 {
+        self.phase.between(-wi, self.wo)
+    }
+}
+
+impl<'s> Vertex<'s> {
+    /// Where it is.
+    pub fn position(&self) -> DVec3 {
+        match self {
+            Vertex::Surface(v) => v.position,
+            Vertex::Medium(v) => v.position,
+        }
+    }
+
+    /// The medium a path leaving it toward ωo travels in (a surface's arrival side).
+    pub fn medium(&self) -> Option<usize> {
+        match self {
+            Vertex::Surface(v) => v.medium,
+            Vertex::Medium(v) => v.medium,
+        }
+    }
+
+    /// The surface point, if it is one.
+    pub fn surface(&self) -> Option<&SurfaceVertex<'s>> {
+        match self {
+            Vertex::Surface(v) => Some(v),
+            Vertex::Medium(_) => None,
+        }
+    }
+
+    /// The albedo a denoiser is given: the BSDF's; none (zero) in a medium.
+    pub fn albedo(&self) -> Rgb {
+        match self {
+            Vertex::Surface(v) => v.bsdf.albedo(),
+            Vertex::Medium(_) => Rgb::ZERO,
+        }
+    }
+
+    /// The normal a denoiser is given (as RGB): the geometric normal on the arrival side;
+    /// none (zero) in a medium.
+    pub fn normal(&self) -> Rgb {
+        match self {
+            Vertex::Surface(v) => Rgb(v.normal),
+            Vertex::Medium(_) => Rgb::ZERO,
+        }
+    }
+
+    /// Its lobes: the BSDF's, or [`Lobes::PHASE`] in a medium.
+    pub fn lobes(&self) -> Lobes {
+        match self {
+            Vertex::Surface(v) => v.lobes(),
+            Vertex::Medium(_) => Lobes::PHASE,
+        }
+    }
+
+    /// The scattering function for light arriving along −`wi` leaving toward ωo: the BSDF's f
+    /// (1/sr, times the cosine at `wi` where a light sample needs it: [`Vertex::cos`]) or the
+    /// phase function p (1/sr).
+    pub fn eval(&self, wi: DVec3) -> Rgb {
+        match self {
+            Vertex::Surface(v) => v.eval(wi),
+            Vertex::Medium(v) => Rgb::splat(v.density(wi)),
+        }
+    }
+
+    /// The foreshortening of light arriving from direction `wi`: |cos| at the surface's
+    /// normal, ≤ 0 where light from there cannot be sampled (the surface's far side, which
+    /// only a transmitted sample reaches); 1 in a medium.
+    pub fn cos(&self, wi: DVec3) -> f64 {
+        match self {
+            Vertex::Surface(v) => wi.dot(v.normal),
+            Vertex::Medium(_) => 1.0,
+        }
+    }
+
+    /// Where straight connections from it start: off a surface on its arrival side, or the
+    /// point itself in a medium.
+    pub fn origin(&self) -> DVec3 {
+        match self {
+            Vertex::Surface(v) => offset(v.position, v.normal),
+            Vertex::Medium(v) => v.position,
+        }
+    }
+
+    /// The pdf with which [`Vertex::scatter_with`] draws `wi` (1/sr).
+    pub fn pdf(&self, wi: DVec3) -> f64 {
+        match self {
+            Vertex::Surface(v) => v.pdf(wi),
+            Vertex::Medium(v) => v.density(wi),
+        }
+    }
+
+    /// A direction drawn from `rng` and the ray leaving along it (see
+    /// [`SurfaceVertex::scatter_with`]; a medium draws two numbers, and its sample's weight
+    /// p/pdf is 1).
+    pub fn scatter_with(&self, rng: &mut impl rand::Rng) -> Option<Scattered> {
+        match self {
+            Vertex::Surface(v) => v.scatter_with(rng),
+            Vertex::Medium(v) => {
+                let wi = v.phase.sample(-v.wo, (rng.gen(), rng.gen()));
+                Some(Scattered {
+                    sample: BsdfSample {
+                        wi,
+                        weight: Rgb::ONE,
+                        pdf: v.density(wi),
+                        lobe: Lobes::PHASE,
+                    },
+                    ray: Ray {
+                        origin: v.position,
+                        direction: wi,
+                        medium: v.medium,
+                    },
+                    radiance_scale: 1.0,
+                })
+            }
+        }
+    }
+}
 
 /// A surface point a path reached, with the BSDF it met there.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Vertex<'s> {
+pub struct SurfaceVertex<'s> {
     /// Primitive index.
     pub prim: usize,
     /// Where.
@@ -44,11 +191,11 @@ pub struct Scattered {
     /// The ray leaving: offset off the surface to the side it leaves on, in that side's medium.
     pub ray: Ray,
     /// What radiance arriving along the ray becomes toward ωo besides the sample's weight:
-    /// (n_ωo/n_ωi)² across a rough interface, 1 otherwise ([`Vertex::radiance_scale`]).
+    /// (n_ωo/n_ωi)² across a rough interface, 1 otherwise ([`SurfaceVertex::radiance_scale`]).
     pub radiance_scale: f64,
 }
 
-impl Vertex<'_> {
+impl SurfaceVertex<'_> {
     /// Its BSDF's lobes.
     pub fn lobes(&self) -> Lobes {
         self.bsdf.lobes()
@@ -80,7 +227,7 @@ impl Vertex<'_> {
         self.bsdf.eval(self.wo, wi, frame)
     }
 
-    /// The diffuse lobe's part of [`Vertex::eval`].
+    /// The diffuse lobe's part of [`SurfaceVertex::eval`].
     pub fn eval_diffuse(&self, wi: DVec3) -> Rgb {
         let frame = self.frame();
         if !self.lands_right(wi, wi.dot(frame) < 0.0) {
@@ -105,7 +252,7 @@ impl Vertex<'_> {
         }
     }
 
-    /// The pdf with which [`Vertex::scatter`] draws `wi` (per unit solid angle).
+    /// The pdf with which [`SurfaceVertex::scatter`] draws `wi` (per unit solid angle).
     pub fn pdf(&self, wi: DVec3) -> f64 {
         self.bsdf.pdf(self.wo, wi, self.frame())
     }
@@ -141,7 +288,7 @@ impl Vertex<'_> {
         })
     }
 
-    /// [`Vertex::scatter`] with its numbers drawn from `rng`: two for the direction and a
+    /// [`SurfaceVertex::scatter`] with its numbers drawn from `rng`: two for the direction and a
     /// third only where the BSDF makes a discrete choice (a Lambertian surface draws two).
     pub fn scatter_with(&self, rng: &mut impl rand::Rng) -> Option<Scattered> {
         let u = (rng.gen(), rng.gen());

@@ -1,15 +1,17 @@
 //! The visibility query: the one shadow ray. A straight connection from a point through a
 //! uniform medium is blocked by any surface but a receiver's detector (detectors are
-//! transparent to every query), and keeps exp(−∫σa ds) of the light.
+//! transparent to every query), and keeps exp(−∫(σa + σs) ds) of the light: what a
+//! scattering medium scatters out of it is lost to it.
 
 use super::{offset, Tracer};
+use crate::color::Rgb;
 use crate::material::Material;
 use glam::DVec3;
 use std::cell::OnceCell;
 
 /// The fraction of light kept along the straight segment from `from` along unit `dir` over
 /// `reach` (∞: to the world sphere) in `medium`: 0 if a surface other than a detector lies
-/// on it, else its transmittance.
+/// on it, else exp(−∫σa ds). (What a scattering medium scatters out of it: [`unscattered`].)
 pub fn transmittance(
     tracer: &Tracer,
     from: DVec3,
@@ -36,6 +38,21 @@ pub fn transmittance(
             (-m.optical_depth(from, dir, length)).exp()
         }
         _ => 1.0,
+    }
+}
+
+/// The fraction exp(−σs s) of light per channel that a scattering `medium` leaves unscattered
+/// along the straight segment of [`transmittance`] (1 in a medium that does not scatter).
+pub fn unscattered(
+    tracer: &Tracer,
+    from: DVec3,
+    medium: Option<usize>,
+    dir: DVec3,
+    reach: f64,
+) -> Rgb {
+    match medium.and_then(|m| tracer.scene.media().scattering(m)) {
+        Some(sc) => sc.transmittance(reach.min(tracer.world.exit_distance(from, dir))),
+        None => Rgb::ONE,
     }
 }
 
