@@ -99,10 +99,7 @@ impl Integrator for PathTracer<'_> {
 
     fn sample(&self, _: &(), _: &mut (), ray: CameraRay, s: &mut Sample) {
         let hero = hero(self.tracer, s.rng);
-        let carried = Carried {
-            tracer: self.tracer,
-            hero: hero.as_ref(),
-        };
+        let carried = Carried::starting(self.tracer, hero.as_ref());
         let c = camera_path(carried, ray.origin, ray.direction, s.rng, s.stats);
         s.add(EMITTED, c.emitted);
         let Some(vp) = c.visible else { return };

@@ -340,10 +340,7 @@ impl Integrator for PhotonMapper<'_> {
 
     fn sample(&self, maps: &Maps, r2: &mut Option<f64>, ray: CameraRay, s: &mut Sample) {
         let hero = hero(self.tracer, s.rng);
-        let carried = Carried {
-            tracer: self.tracer,
-            hero: hero.as_ref(),
-        };
+        let carried = Carried::starting(self.tracer, hero.as_ref());
         let c = camera_path(carried, ray.origin, ray.direction, s.rng, s.stats);
         s.add(EMITTED, c.emitted);
         let Some(first) = c.visible else { return };

@@ -622,10 +622,7 @@ fn trace_photon(
         direction: e.direction,
         medium: launch.medium,
     };
-    let carried = chain::Carried {
-        tracer,
-        hero: hero.as_ref(),
-    };
+    let carried = chain::Carried::starting(tracer, hero.as_ref());
     let mut walker = chain::Walker::carrying(carried, Policy::Roulette);
     // Whether a specular or glossy lobe, or a diffuse one, has scattered it since the light.
     let (mut bent, mut diffused) = (false, false);

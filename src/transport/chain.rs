@@ -15,6 +15,7 @@ use super::{Event, HeroTracer, MediumVertex, Stats, SurfaceVertex, Tracer, Verte
 use crate::bsdf::Bsdf;
 use crate::color::Rgb;
 use crate::material::Material;
+use crate::volume::Flights;
 use glam::DVec3;
 use rand::Rng;
 use std::ops::ControlFlow;
@@ -152,12 +153,23 @@ pub struct Carried<'w> {
     pub tracer: &'w Tracer<'w>,
     /// The wavelength it takes on where it meets dispersion.
     pub hero: Option<&'w HeroTracer<'w>>,
+    /// Its free flights in scattering media so far.
+    pub flights: Flights,
 }
 
 impl<'w> Carried<'w> {
     /// Paths on `tracer` that never change their wavelengths.
     pub fn on(tracer: &'w Tracer<'w>) -> Self {
-        Self { tracer, hero: None }
+        Self::starting(tracer, None)
+    }
+
+    /// A path starting on `tracer` that takes on `hero`'s wavelength where it meets dispersion.
+    pub fn starting(tracer: &'w Tracer<'w>, hero: Option<&'w HeroTracer<'w>>) -> Self {
+        Self {
+            tracer,
+            hero,
+            flights: Flights::default(),
+        }
     }
 }
 
@@ -174,6 +186,8 @@ pub struct Walker<'w> {
     pub policy: Policy,
     /// Surfaces it may still meet, detectors included.
     pub depth: u32,
+    /// Its free flights in scattering media so far.
+    flights: Flights,
 }
 
 /// A random stream and the statistics a walk adds to.
@@ -202,6 +216,7 @@ impl<'w> Walker<'w> {
             hero: carried.hero,
             policy,
             depth: carried.tracer.settings.max_depth,
+            flights: carried.flights,
         }
     }
 
@@ -210,6 +225,7 @@ impl<'w> Walker<'w> {
         Carried {
             tracer: self.tracer,
             hero: self.hero,
+            flights: self.flights,
         }
     }
 
@@ -301,14 +317,7 @@ impl<'w> Walker<'w> {
             .is_some_and(|m| !self.tracer.medium(m).is_uniform());
         let scattering = at.medium.and_then(|m| scene.media().scattering(m));
         let reach = match (scattering, self.policy) {
-            (Some(sc), Policy::Weighted | Policy::Roulette) => {
-                let pick = if sc.picks_channel() {
-                    lent.rng.gen()
-                } else {
-                    0.0
-                };
-                sc.free_flight((pick, lent.rng.gen()))
-            }
+            (Some(sc), Policy::Weighted | Policy::Roulette) => self.flights.draw(sc, lent.rng),
             _ => f64::INFINITY,
         };
         let event = self.tracer.next_event_within(
@@ -322,9 +331,11 @@ impl<'w> Walker<'w> {
         if let Some(sc) = scattering {
             chain.weight *= match (self.policy, event) {
                 (Policy::Weighted | Policy::Roulette, Event::Reached { distance, .. }) => {
-                    sc.scattered_weight(distance)
+                    self.flights.weigh(sc, distance, true)
                 }
-                (Policy::Weighted | Policy::Roulette, _) => sc.passed_weight(event.distance()),
+                (Policy::Weighted | Policy::Roulette, _) => {
+                    self.flights.weigh(sc, event.distance(), false)
+                }
                 // Light scattered out of a shadow-like ray is not followed: it is lost to it.
                 (Policy::Unscattered, _) => sc.transmittance(event.distance()),
                 // The principal ray is geometry: scattering does not change its way.

@@ -34,3 +34,47 @@ pub fn reflected_fraction(nt: usize, np: usize, wo: DVec3, f: impl Fn(DVec3) -> 
         }
     })
 }
+
+/// Gauss–Legendre nodes and weights on [0, 1] (`n` of them), the nodes found by Newton's
+/// method on Pₙ from Chebyshev guesses (to rounding).
+pub fn gauss_legendre_unit(n: usize) -> (Vec<f64>, Vec<f64>) {
+    let (mut nodes, mut weights) = (Vec::with_capacity(n), Vec::with_capacity(n));
+    for i in 0..n {
+        let mut x = (PI * (i as f64 + 0.75) / (n as f64 + 0.5)).cos();
+        let mut dp = 0.0;
+        for _ in 0..100 {
+            // P_n(x) and P_n'(x) by the three-term recurrence.
+            let (mut p0, mut p1) = (1.0, x);
+            for k in 2..=n {
+                let k = k as f64;
+                (p0, p1) = (p1, ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k);
+            }
+            dp = n as f64 * (x * p1 - p0) / (x * x - 1.0);
+            let step = p1 / dp;
+            x -= step;
+            if step.abs() < 1e-16 {
+                break;
+            }
+        }
+        nodes.push(0.5 * (1.0 - x));
+        weights.push(1.0 / ((1.0 - x * x) * dp * dp));
+    }
+    (nodes, weights)
+}
+
+/// ∫₋₁¹ f(μ) dμ of a pair of integrands, by 48-node Gauss–Legendre on panels that shrink
+/// toward μ = ±1 (where forward- or backward-peaked phase functions peak).
+pub fn integrate_mu(f: impl Fn(f64) -> (f64, f64)) -> (f64, f64) {
+    let edges = [-1.0, -0.999, -0.99, -0.9, 0.0, 0.9, 0.99, 0.999, 1.0];
+    let (nodes, weights) = gauss_legendre_unit(48);
+    let mut sum = (0.0, 0.0);
+    for pair in edges.windows(2) {
+        let (a, b) = (pair[0], pair[1]);
+        for (x, w) in nodes.iter().zip(&weights) {
+            let (p, q) = f(a + (b - a) * x);
+            sum.0 += w * (b - a) * p;
+            sum.1 += w * (b - a) * q;
+        }
+    }
+    sum
+}
