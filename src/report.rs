@@ -10,6 +10,8 @@ pub struct Stored {
     pub caustic: u64,
     /// In the global map.
     pub global: u64,
+    /// In the volume caustic map.
+    pub volume: u64,
 }
 
 /// Seconds a render spent, by stage.
@@ -67,8 +69,12 @@ impl Report {
             .as_ref()
             .map_or(String::new(), |p| format!("PARTIAL (interrupted): {p}\n"));
         let notes: String = self.notes.iter().map(|n| format!("{n}\n")).collect();
+        let volume = match self.stored.volume {
+            0 => String::new(),
+            n => format!(", volume caustic map {n} stored"),
+        };
         format!(
-            "{partial}{notes}{} pass(es); photons: {} emitted ({rate:.0}/s), caustic map {} stored, global map {} stored; \
+            "{partial}{notes}{} pass(es); photons: {} emitted ({rate:.0}/s), caustic map {} stored, global map {} stored{volume}; \
              photon tracing {trace:.2} s, map build {build:.3} s, camera pass {camera:.2} s\n{}",
             self.passes,
             self.stats.photons_emitted,

@@ -52,6 +52,12 @@ const BAD: &[(&str, usize, usize, &str)] = &[
     ("[[medium]]\nname = \"l\"\nprofile = \"luneburg\"\nradius = 0.0\n", 4, 1, "key `radius`"),
     // Negative absorption.
     ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = 1.5\nabsorption = -0.1\n", 5, 1, "key `absorption`: must be a finite number ≥ 0"),
+    // Scattering: σs negative or NaN, |g| ≥ 1, an unknown phase function.
+    ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = 1\nscattering = -1\n", 5, 1, "key `scattering`: must not be negative"),
+    ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = 1\nscattering = [1, nan, 1]\n", 5, 1, "key `scattering`"),
+    ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = 1\nscattering = 1\nphase = { hg = 1.0 }\n", 6, 1, "key `phase`: hg takes one mean cosine g with −1 < g < 1"),
+    ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = 1\nscattering = 1\nphase = { hg = -1.5 }\n", 6, 1, "key `phase`: hg takes one mean cosine g with −1 < g < 1"),
+    ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = 1\nscattering = 1\nphase = \"rayleigh\"\n", 6, 1, "key `phase`: expected \"isotropic\" or { hg = g }"),
     // Radial tables: r not from 0, lengths differing, n ≤ 0.
     ("[[medium]]\nname = \"t\"\nprofile = \"radial_table\"\nr = [0.1, 0.2]\nn = [1.5, 1.4]\n", 4, 1, "key `r`: must start at 0"),
     ("[[medium]]\nname = \"t\"\nprofile = \"radial_table\"\nr = [0.0, 0.2, 0.3]\nn = [1.5, 1.4]\n", 5, 1, "key `n`: `r` and `n` need the same number"),

@@ -25,13 +25,13 @@ use super::direct::{camera_path, direct, emission_seen, hero, VisiblePoint};
 use super::{CameraRay, Integrator, Sample, Slot};
 use crate::color::Rgb;
 use crate::film::Layer;
-use crate::photon::{shoot, Batch, PhotonMap, Photons, Sources};
+use crate::photon::{shoot, Batch, PhotonMap, Photons, Sources, VolumeMap};
 use crate::report::Report;
 use crate::scene::Scene;
 use crate::settings::{PhotonSettings, Settings};
 use crate::transport::chain::{Carried, End, Policy, Walker};
 use crate::transport::visibility::Occluders;
-use crate::transport::{Stats, SurfaceVertex, Tracer, Vertex};
+use crate::transport::{MediumVertex, Stats, SurfaceVertex, Tracer, Vertex};
 use std::f64::consts::FRAC_1_PI;
 use std::time::Instant;
 
@@ -48,6 +48,9 @@ pub struct Plan {
     pub caustic: bool,
     /// A global map: secondary light is on (`gather` > 0) and something scatters.
     pub global: bool,
+    /// A volume caustic map: a medium scatters and some light path can meet a specular or
+    /// glossy surface before it.
+    pub volume: bool,
 }
 
 impl Plan {
@@ -64,11 +67,13 @@ impl Plan {
         // scattered in a medium on its way to a surface is a caustic of that surface.
         let fog = scene.media().any_scatters();
         let scatters = fog || lobes().any(|l| !l.is_specular());
-        let bends = fog || lobes().any(|l| l != crate::bsdf::Lobes::DIFFUSE_REFLECTION);
+        let surfaces_bend = lobes().any(|l| l != crate::bsdf::Lobes::DIFFUSE_REFLECTION);
+        let bends = fog || surfaces_bend;
         let emits = !scene.lights.is_empty() || scene.environment.is_some();
         Self {
             caustic: scatters && emits && bends && photons.caustic > 0,
             global: scatters && emits && photons.gather > 0 && photons.global > 0,
+            volume: fog && surfaces_bend && emits && photons.caustic > 0,
         }
     }
 }
@@ -108,6 +113,15 @@ pub struct Maps {
     index: u32,
     caustic: Option<PhotonMap>,
     global: Option<PhotonMap>,
+    /// The caustic photons where they first scattered in a medium.
+    volume: Option<VolumeMap>,
+}
+
+/// What a batch of photons left: the map of those stored on surfaces, and of those stored in
+/// media (empty but for the caustic batch in a scene with scattering media).
+struct Traced {
+    surfaces: PhotonMap,
+    volume: VolumeMap,
 }
 
 impl<'a> PhotonMapper<'a> {
@@ -125,7 +139,7 @@ impl<'a> PhotonMapper<'a> {
         }
     }
 
-    /// Traces one batch of pass `index` into a map (the global one with its precomputed
+    /// Traces one batch of pass `index` into its maps (the global one with its precomputed
     /// irradiance); None when stopped.
     fn map(
         &self,
@@ -134,7 +148,7 @@ impl<'a> PhotonMapper<'a> {
         count: u64,
         report: &mut Report,
         stop: &(dyn Fn() -> bool + Sync),
-    ) -> Option<PhotonMap> {
+    ) -> Option<Traced> {
         let t0 = Instant::now();
         let photons = Photons::all(batch, self.seed, index as u64, count);
         let sources = match batch {
@@ -151,9 +165,13 @@ impl<'a> PhotonMapper<'a> {
         if batch == Batch::Global {
             map.precompute_irradiance(self.photons.knn as usize, self.max_r2);
         }
+        let volume = VolumeMap::new(sink.volume);
         report.seconds.photons += (t1 - t0).as_secs_f64();
         report.seconds.maps += t1.elapsed().as_secs_f64();
-        Some(map)
+        Some(Traced {
+            surfaces: map,
+            volume,
+        })
     }
 
     /// The squared caustic radius of pass `index` at a visible point: the k-nearest distance
@@ -254,6 +272,44 @@ impl<'a> PhotonMapper<'a> {
         })
     }
 
+    /// The volume caustic a camera path at the point `m` in a medium sees (its vertex `vp`):
+    /// the volume map's estimate of σs ∫ p L dω there over σs — the free flight that found the
+    /// point was drawn with density σs·T, so that is what the path's throughput carries — with
+    /// the ball of radius r_p: r₀ the k-nearest distance there, r_p³ = r₀³ times Knaus and
+    /// Zwicker's schedule at pass `index` (volume densities shrink their ball by volume).
+    fn in_scattered(
+        &self,
+        volume: &VolumeMap,
+        index: u32,
+        m: &MediumVertex,
+        vp: &VisiblePoint,
+        walker: &Walker,
+        s: &mut Sample,
+    ) -> Rgb {
+        let tracer = walker.tracer;
+        let Some(scattering) = m.medium.and_then(|i| tracer.scene.media().scattering(i)) else {
+            return Rgb::ZERO;
+        };
+        let k = self.photons.knn as usize;
+        let r2 = s
+            .stats
+            .time_query(|| volume.knn_radius2(m.position, k, self.max_r2))
+            * schedule(index).powf(2.0 / 3.0);
+        let sum = s.stats.time_query(|| {
+            volume.weighted(m.position, r2, |p| {
+                vp.vertex.eval(p.from_direction()) * p.flux()
+            })
+        });
+        let per_sigma = Rgb(glam::DVec3::from_array(
+            scattering
+                .sigma_s
+                .0
+                .to_array()
+                .map(|x| if x > 0.0 { 1.0 / x } else { 0.0 }),
+        ));
+        vp.throughput * tracer.photon_irradiance(sum) * per_sigma
+    }
+
     /// The camera path's visible point: past glossy-only vertices and points in scattering
     /// media by sampling their BSDF or phase function (adding their direct light to `direct`,
     /// and emission met after a specular bounce to `emitted`), to the first surface with a
@@ -261,6 +317,7 @@ impl<'a> PhotonMapper<'a> {
     /// spends its depth before one.
     fn visible_point<'w>(
         &self,
+        maps: &Maps,
         mut vp: VisiblePoint<'w>,
         carried: Carried<'w>,
         found: &mut Found,
@@ -277,10 +334,19 @@ impl<'a> PhotonMapper<'a> {
                 return None;
             }
             found.direct += direct(walker.carried(), &vp, s.rng, s.stats);
+            // In a medium with a volume caustic map, light through specular surfaces is the
+            // map's.
+            let volume = match (&maps.volume, vp.vertex) {
+                (Some(volume), Vertex::Medium(m)) => {
+                    found.caustic += self.in_scattered(volume, maps.index, &m, &vp, &walker, s);
+                    true
+                }
+                _ => false,
+            };
             let b = vp.vertex.scatter_with(s.rng)?;
             let chain = walker.follow(b.ray, s.rng, s.stats, &mut ());
             let throughput = vp.throughput * b.sample.weight * b.radiance_scale;
-            if chain.specular > 0 {
+            if chain.specular > 0 && !volume {
                 found.emitted += throughput * emission_seen(walker.tracer, &chain);
             }
             let End::Scatter(vertex) = chain.end else {
@@ -299,6 +365,8 @@ impl<'a> PhotonMapper<'a> {
 struct Found {
     direct: Rgb,
     emitted: Rgb,
+    /// Volume caustics in-scattered at points in media.
+    caustic: Rgb,
 }
 
 /// r_p²/r₀² of Knaus and Zwicker's schedule at pass `index`: Π_{j=1..index} (j + α)/(j + 1).
@@ -329,12 +397,19 @@ impl Integrator for PhotonMapper<'_> {
             true => Some(self.map(Batch::Global, index, self.photons.global, report, stop)?),
             false => None,
         };
+        let (caustic, volume) = match caustic {
+            Some(t) => (Some(t.surfaces), self.plan.volume.then_some(t.volume)),
+            None => (None, None),
+        };
+        let global = global.map(|t| t.surfaces);
         report.stored.caustic += caustic.as_ref().map_or(0, |m| m.len() as u64);
         report.stored.global += global.as_ref().map_or(0, |m| m.len() as u64);
+        report.stored.volume += volume.as_ref().map_or(0, |m| m.len() as u64);
         Some(Maps {
             index,
             caustic,
             global,
+            volume,
         })
     }
 
@@ -347,9 +422,10 @@ impl Integrator for PhotonMapper<'_> {
         s.add(ALBEDO, first.vertex.albedo());
         s.add(NORMAL, first.vertex.normal());
         let mut found = Found::default();
-        let visible = self.visible_point(first, c.carried, &mut found, s);
+        let visible = self.visible_point(maps, first, c.carried, &mut found, s);
         s.add(DIRECT, found.direct);
         s.add(EMITTED, found.emitted);
+        s.add(CAUSTIC, found.caustic);
         let Some((vp, v, carried)) = visible else {
             return;
         };

@@ -18,9 +18,11 @@
 
 mod budget;
 mod map;
+mod volume;
 
 pub use budget::{Budget, Fate, Ledger};
 pub use map::{Photon, PhotonMap};
+pub use volume::{VolumeMap, VolumePhoton};
 
 use crate::bsdf::Lobes;
 use crate::color::Rgb;
@@ -302,6 +304,8 @@ pub enum Batch {
 pub struct Sink {
     /// Photons stored at diffuse hits.
     pub photons: Vec<Photon>,
+    /// Caustic photons stored where they first scattered in a medium.
+    pub volume: Vec<VolumePhoton>,
     /// Receiver crossings.
     pub detections: Vec<Detection>,
     /// Where the photons' power went.
@@ -422,6 +426,7 @@ pub fn shoot(
     let mut stats = Stats::default();
     for (p, s) in chunks {
         sink.photons.extend(p.photons);
+        sink.volume.extend(p.volume);
         sink.detections.extend(p.detections);
         sink.budget.add(&p.budget);
         stats.add(&s);
@@ -624,8 +629,9 @@ fn trace_photon(
     };
     let carried = chain::Carried::starting(tracer, hero.as_ref());
     let mut walker = chain::Walker::carrying(carried, Policy::Roulette);
-    // Whether a specular or glossy lobe, or a diffuse one, has scattered it since the light.
-    let (mut bent, mut diffused) = (false, false);
+    // Whether a specular or glossy lobe or a medium, a diffuse lobe, a medium has scattered it
+    // since the light.
+    let (mut bent, mut diffused, mut fogged) = (false, false, false);
     let fate = loop {
         let chain = walker.follow(ray, rng, stats, &mut walk);
         match (chain.dispersed, launch.hero) {
@@ -671,6 +677,13 @@ fn trace_photon(
             if stores && v.lobes().has_diffuse() {
                 stored.photons.push(photon);
             }
+        } else if tag.batch == Batch::Caustic && bent && !fogged {
+            // L (S|G)+ V: a volume caustic, where it first scatters in a medium.
+            stored.volume.push(VolumePhoton {
+                position: vertex.position(),
+                power: (walk.power * seen_as).as_vec3().to_array(),
+                from: vertex.wo().as_vec3().to_array(),
+            });
         }
         if tag.batch == Batch::Caustic && vertex.lobes() == Lobes::DIFFUSE_REFLECTION {
             break Fate::Absorbed;
@@ -687,6 +700,7 @@ fn trace_photon(
             }
         } else {
             bent = true;
+            fogged |= matches!(vertex, Vertex::Medium(_));
             if let Vertex::Surface(v) = &vertex {
                 let to = b.scattered.ray.medium;
                 // What the budget tells of a glossy reflection or transmission, as of a smooth

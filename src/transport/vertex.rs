@@ -57,6 +57,14 @@ impl<'s> Vertex<'s> {
         }
     }
 
+    /// Unit direction back along the arrival (ωo).
+    pub fn wo(&self) -> DVec3 {
+        match self {
+            Vertex::Surface(v) => v.wo,
+            Vertex::Medium(v) => v.wo,
+        }
+    }
+
     /// The medium a path leaving it toward ωo travels in (a surface's arrival side).
     pub fn medium(&self) -> Option<usize> {
         match self {
