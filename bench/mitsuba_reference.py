@@ -113,9 +113,28 @@ def main():
     materials = {m["name"]: m for m in scene["material"]}
     tmp = tempfile.mkdtemp()
     cam = scene["camera"]
+    # An ambient uniform medium of index 1 that scatters (fog): Mitsuba's homogeneous medium,
+    # the sensor's and every shape's exterior, rendered by volpath.
+    fog = None
+    if "ambient" in scene:
+        m = next(m for m in scene["medium"] if m["name"] == scene["ambient"])
+        if m["profile"] != "uniform" or m.get("n", 1.0) != 1.0:
+            raise SystemExit("only an ambient uniform medium of n = 1 is converted")
+        sigma_s = rgb(m.get("scattering", 0.0))
+        sigma_a = m.get("absorption", 0.0)
+        sigma_t = [s_ + sigma_a for s_ in sigma_s]
+        phase = m.get("phase", "isotropic")
+        fog = {
+            "type": "homogeneous",
+            "sigma_t": {"type": "rgb", "value": sigma_t},
+            "albedo": {"type": "rgb", "value": [s_ / t if t > 0 else 0.0
+                                                for s_, t in zip(sigma_s, sigma_t)]},
+            "phase": ({"type": "hg", "g": phase["hg"]} if isinstance(phase, dict)
+                      else {"type": "isotropic"}),
+        }
     d = {
         "type": "scene",
-        "integrator": {"type": "path", "max_depth": 65},
+        "integrator": {"type": "volpath" if fog else "path", "max_depth": 65},
         "sensor": {
             "type": "perspective", "fov": cam["fov_y_deg"], "fov_axis": "y",
             "to_world": mi.ScalarTransform4f().look_at(
@@ -155,6 +174,11 @@ def main():
             "bsdf": {"type": "diffuse", "reflectance": {"type": "rgb", "value": [0, 0, 0]}},
             "emitter": {"type": "area", "radiance": {"type": "rgb", "value": rgb(l["radiance"])}},
         }
+    if fog:
+        d["sensor"]["medium"] = fog
+        for key, value in d.items():
+            if key.startswith(("shape", "light")) and value.get("type") != "constant":
+                value["exterior"] = fog
     loaded = mi.load_dict(d)
     # Passes of 64 samples with their own seeds, averaged: the same estimate as one render of
     # N samples, in bounded memory.

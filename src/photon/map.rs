@@ -8,12 +8,13 @@ use kiddo::immutable::float::kdtree::ImmutableKdTree;
 use kiddo::SquaredEuclidean;
 use std::num::NonZero;
 
-/// A photon at a scattering surface (diffuse or glossy).
+/// A stored photon: at a scattering surface (diffuse or glossy), or where it scattered in a
+/// medium ([`super::VolumeMap`]: no surface, a zero normal).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Photon {
     /// Where it hit.
     pub position: DVec3,
-    /// Unit normal of the side of the surface it arrived on.
+    /// Unit normal of the side of the surface it arrived on (zero in a medium).
     pub normal: DVec3,
     /// Flux it carries, W per channel (already divided by the photon count of its pass).
     pub power: [f32; 3],

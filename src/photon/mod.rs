@@ -22,7 +22,7 @@ mod volume;
 
 pub use budget::{Budget, Fate, Ledger};
 pub use map::{Photon, PhotonMap};
-pub use volume::{VolumeMap, VolumePhoton};
+pub use volume::VolumeMap;
 
 use crate::bsdf::Lobes;
 use crate::color::Rgb;
@@ -305,7 +305,7 @@ pub struct Sink {
     /// Photons stored at diffuse hits.
     pub photons: Vec<Photon>,
     /// Caustic photons stored where they first scattered in a medium.
-    pub volume: Vec<VolumePhoton>,
+    pub volume: Vec<Photon>,
     /// Receiver crossings.
     pub detections: Vec<Detection>,
     /// Where the photons' power went.
@@ -679,10 +679,12 @@ fn trace_photon(
             }
         } else if tag.batch == Batch::Caustic && bent && !fogged {
             // L (S|G)+ V: a volume caustic, where it first scatters in a medium.
-            stored.volume.push(VolumePhoton {
+            stored.volume.push(Photon {
                 position: vertex.position(),
+                normal: DVec3::ZERO,
                 power: (walk.power * seen_as).as_vec3().to_array(),
                 from: vertex.wo().as_vec3().to_array(),
+                diffused: false,
             });
         }
         if tag.batch == Batch::Caustic && vertex.lobes() == Lobes::DIFFUSE_REFLECTION {

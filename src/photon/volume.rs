@@ -1,53 +1,28 @@
 //! The volume caustic map: photons stored where they scatter in a medium (Jensen and
-//! Christensen 1998), in a kiddo kd-tree, and the in-scattered radiance they give.
+//! Christensen 1998; a [`Photon`] there has no surface: its normal is zero), in a kiddo
+//! kd-tree, and the in-scattered radiance they give.
 //!
 //! Photons are stored at scattering events, whose density per unit volume is σs times the
 //! fluence; so at a point x, Σ p(ωi → ωo) Φ K(|x − x_p|) over the photons near x — K a kernel
 //! normalised over the ball — estimates σs ∫ p L dω, the radiance the medium scatters into ωo
 //! per unit length.
 
+use super::Photon;
 use crate::color::Rgb;
 use glam::DVec3;
 use kiddo::immutable::float::kdtree::ImmutableKdTree;
 use kiddo::SquaredEuclidean;
 use std::num::NonZero;
 
-/// A photon where it scattered in a medium.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct VolumePhoton {
-    /// Where it scattered.
-    pub position: DVec3,
-    /// Flux it carries, W per channel (already divided by the photon count of its pass).
-    pub power: [f32; 3],
-    /// Unit direction back toward where it came from (ωi of the phase function there).
-    pub from: [f32; 3],
-}
-
-impl VolumePhoton {
-    /// [`VolumePhoton::from`] as f64.
-    pub fn from_direction(&self) -> DVec3 {
-        DVec3::from_array(self.from.map(f64::from))
-    }
-
-    /// The flux as f64 RGB.
-    pub fn flux(&self) -> Rgb {
-        Rgb::new(
-            self.power[0] as f64,
-            self.power[1] as f64,
-            self.power[2] as f64,
-        )
-    }
-}
-
 /// Volume photons with a kd-tree over their positions.
 pub struct VolumeMap {
-    photons: Vec<VolumePhoton>,
+    photons: Vec<Photon>,
     tree: Option<ImmutableKdTree<f64, u32, 3, 32>>,
 }
 
 impl VolumeMap {
     /// Builds the tree over `photons` (at most u32::MAX of them are indexed).
-    pub fn new(mut photons: Vec<VolumePhoton>) -> Self {
+    pub fn new(mut photons: Vec<Photon>) -> Self {
         photons.truncate(u32::MAX as usize);
         let tree = (!photons.is_empty()).then(|| {
             let points: Vec<[f64; 3]> = photons.iter().map(|p| p.position.to_array()).collect();
@@ -82,7 +57,7 @@ impl VolumeMap {
 
     /// Σ weight(photon)·K(d) over the photons within squared radius `r2` of `p`, with the
     /// Epanechnikov kernel of the ball, K(d) = 15 (1 − d²/r²) / (8π r³).
-    pub fn weighted(&self, p: DVec3, r2: f64, weight: impl Fn(&VolumePhoton) -> Rgb) -> Rgb {
+    pub fn weighted(&self, p: DVec3, r2: f64, weight: impl Fn(&Photon) -> Rgb) -> Rgb {
         let Some(tree) = &self.tree else {
             return Rgb::ZERO;
         };
