@@ -38,7 +38,7 @@ pub struct Settings {
 /// How rays travel through the scene: the curved-ray engine and the path's length.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TraceSettings {
-    /// Maximum number of surface interactions along a path.
+    /// Maximum number of surface interactions and scattering events in media along a path.
     pub max_depth: u32,
     /// Stepper in gradient media.
     pub stepper: StepperKind,
@@ -111,7 +111,7 @@ pub const PASSES: Count = Count {
     min: 1,
     max: u32::MAX as u64,
 };
-/// Surface interactions along a path.
+/// Surface interactions and scattering events in media along a path.
 pub const MAX_DEPTH: Count = Count {
     key: "max_depth",
     min: 1,

@@ -184,7 +184,7 @@ pub struct Walker<'w> {
     hero: Option<&'w HeroTracer<'w>>,
     /// How losses are carried.
     pub policy: Policy,
-    /// Surfaces it may still meet, detectors included.
+    /// Surfaces (detectors included) and scattering events in media it may still meet.
     pub depth: u32,
     /// Its free flights in scattering media so far.
     flights: Flights,
