@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Renders every shipped scene at its own settings, prints the time each takes (the table in
 # docs/scenes.md), and copies its picture here: the PNG preview, a receiver's heat map for the
-# fiber (the rod lens's picture is examples/chromatic_focus's), and the 1920 × 1080 views again
+# fibers (the rod lens's picture is examples/chromatic_focus's), and the 1920 × 1080 views again
 # at 480 × 270 for the page.
 #
 #   docs/images/render.sh            (from the repository's root, after `cargo build --release`)
@@ -27,4 +27,5 @@ for name in black_hole schwarzschild; do
     cp "$out/$name-small.png" "$here/$name.png"
 done
 cp "$out/fiber_led.exit.png" "$here/fiber_led.png"
+cp "$out/diffusing_fiber.side.png" "$here/diffusing_fiber.png"
 rm -rf "$out"
