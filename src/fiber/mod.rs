@@ -7,7 +7,7 @@
 pub mod figure;
 
 use crate::error::{Error, Result};
-use crate::media::{Medium, UniformMedium};
+use crate::media::{Absorbing, Medium, UniformMedium};
 use crate::scene::{Description, Shape, Surface};
 use crate::settings::TraceSettings;
 use crate::shapes::Primitive;
@@ -199,11 +199,22 @@ impl Description {
         // with the next layer (or the fiber's exterior) outside, and two annular end faces.
         let mut twin = Vec::with_capacity(layers.len());
         let first_medium = self.media.names().count();
+        // Each layer keeps the GRIN medium's radiometry: its absorption (at the layer's
+        // middle radius) and its scattering.
+        let scattering = self.media.scattering(fiber.medium).copied();
+        let side = axis.any_orthonormal_vector();
         for (i, l) in layers.iter().enumerate() {
-            let interior = Some(self.media.add(
-                format!("layer {i} (n {:.6})", l.n),
-                Box::new(UniformMedium { n: l.n }),
-            ));
+            let inside: Box<dyn Medium> = Box::new(UniformMedium { n: l.n });
+            let medium = self.media.at(fiber.medium);
+            let layer: Box<dyn Medium> = match medium.absorbs() {
+                true => Box::new(Absorbing {
+                    inner: inside,
+                    sigma_a: medium.absorption(base + side * (0.5 * (l.inner + l.outer))),
+                }),
+                false => inside,
+            };
+            let interior = Some(self.media.add(format!("layer {i} (n {:.6})", l.n), layer));
+            self.media.set_scattering(first_medium + i, scattering);
             let outside = if i + 1 < layers.len() {
                 Some(first_medium + i + 1)
             } else {
