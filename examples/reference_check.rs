@@ -1,7 +1,8 @@
 //! Compares a render of a scene with an independent reference image (linear RGB EXR of the
 //! same camera, e.g. `refs/cornell_diffuse.reference.exr` or one made by
-//! `bench/mitsuba_reference.py`) and prints the mean ratio over the image and the 16 × 16
-//! block ratios: their 5th and 95th percentiles, the worst, and the grid.
+//! `bench/mitsuba_reference.py`) and prints the render's time, its root-mean-square error per
+//! pixel and channel relative to the reference's mean, the mean ratio over the image and the
+//! 16 × 16 block ratios: their 5th and 95th percentiles, the worst, and the grid.
 //!
 //! `cargo run --release --example reference_check -- SCENE.toml REFERENCE.exr [WIDTH] [PASSES] [INTEGRATOR]`
 //!
@@ -46,8 +47,21 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     sorted.sort_by(f64::total_cmp);
     let at = |q: f64| sorted[((sorted.len() - 1) as f64 * q).round() as usize];
     let worst = blocks.iter().map(|r| (r - 1.0).abs()).fold(0.0, f64::max);
+    let channels = (3 * beauty.len()) as f64;
+    let pairs = || {
+        beauty
+            .iter()
+            .zip(&reference)
+            .flat_map(|(a, b)| (0..3).map(|c| (a[c], b[c])))
+    };
+    let mean = pairs().map(|(_, b)| b as f64).sum::<f64>() / channels;
+    let squares = pairs()
+        .map(|(a, b)| (a as f64 - b as f64).powi(2))
+        .sum::<f64>();
+    let rmse = (squares / channels).sqrt() / mean;
     println!(
-        "{width}×{height}, {} passes, {:?}, {seconds:.1} s: mean ratio {overall:.4}; 16×16 \
+        "{width}×{height}, {} passes, {:?}, {seconds:.1} s: relative RMSE {rmse:.4}; mean ratio \
+         {overall:.4}; 16×16 \
          blocks: 5th percentile {:.4}, 95th {:.4}, worst |ratio − 1| {worst:.4} over {}",
         settings.passes,
         settings.integrator,
