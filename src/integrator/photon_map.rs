@@ -283,10 +283,9 @@ impl<'a> PhotonMapper<'a> {
         index: u32,
         m: &MediumVertex,
         vp: &VisiblePoint,
-        walker: &Walker,
+        tracer: &Tracer,
         s: &mut Sample,
     ) -> Rgb {
-        let tracer = walker.tracer;
         let Some(scattering) = m.medium.and_then(|i| tracer.scene.media().scattering(i)) else {
             return Rgb::ZERO;
         };
@@ -338,7 +337,8 @@ impl<'a> PhotonMapper<'a> {
             // map's.
             let volume = match (&maps.volume, vp.vertex) {
                 (Some(volume), Vertex::Medium(m)) => {
-                    found.caustic += self.in_scattered(volume, maps.index, &m, &vp, &walker, s);
+                    let tracer = walker.tracer;
+                    found.caustic += self.in_scattered(volume, maps.index, &m, &vp, tracer, s);
                     true
                 }
                 _ => false,
