@@ -13,7 +13,7 @@ fn photon(position: DVec3, normal: DVec3, power: f32) -> Photon {
         normal,
         power: [power; 3],
         from: normal.as_vec3().to_array(),
-        diffused: false,
+        base: 1.0,
     }
 }
 

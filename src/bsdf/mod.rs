@@ -181,6 +181,15 @@ fn local(n: DVec3, v: DVec3) -> (Frame, DVec3) {
     (f, l)
 }
 
+/// A sample drawn in the local `frame` with its direction turned to world coordinates; None
+/// when its weight or pdf is not finite and positive.
+fn in_world(frame: &Frame, s: BsdfSample) -> Option<BsdfSample> {
+    (s.weight.0.is_finite() && s.pdf > 0.0 && s.pdf.is_finite()).then(|| BsdfSample {
+        wi: frame.to_world(s.wi).normalize(),
+        ..s
+    })
+}
+
 impl Bsdf<'_> {
     /// Its lobes.
     pub fn lobes(&self) -> Lobes {
@@ -303,10 +312,7 @@ impl Bsdf<'_> {
             }
             _ => unreachable!("smooth and Lambertian BSDFs are sampled above"),
         };
-        (s.weight.0.is_finite() && s.pdf > 0.0 && s.pdf.is_finite()).then(|| BsdfSample {
-            wi: frame.to_world(s.wi).normalize(),
-            ..s
-        })
+        in_world(&frame, s)
     }
 
     /// f(wo, wi) (1/sr) of the non-delta lobes: 0 for directions only a delta reaches.
@@ -355,20 +361,54 @@ impl Bsdf<'_> {
         }
     }
 
-    /// f(wo, wi) of the diffuse lobe alone (the base of a plastic, a Lambertian surface; 0
-    /// for conductors and dielectrics).
-    pub fn eval_diffuse(&self, wo: DVec3, wi: DVec3, n: DVec3) -> Rgb {
+    /// The diffuse lobe's factor for light arriving from `wi`: the diffuse lobe factorises,
+    /// f_d(wo, wi) = [`Bsdf::diffuse_exit`](wo)·`diffuse_entry`(wi), and this is the share of
+    /// the light that reaches the diffuse base — 1 at a Lambertian surface, the coat's
+    /// transmittance 1 − E(μi) under a plastic's coat; 0 without a diffuse lobe or from below
+    /// the surface. A photon map sums photons' flux times it into the irradiance that
+    /// reaches the base, which the exit factor turns into radiance toward any ωo.
+    pub fn diffuse_entry(&self, wi: DVec3, n: DVec3) -> f64 {
+        let cos = wi.dot(n);
         match *self {
-            Bsdf::Lambert { .. } => self.eval(wo, wi, n),
-            Bsdf::Plastic { albedo, coat } => {
-                let (frame, o) = local(n, wo);
-                let i = frame.to_local(wi);
-                match o.z > 0.0 && i.z > 0.0 {
-                    true => coat.f_diffuse(o, i, albedo),
-                    false => Rgb::ZERO,
-                }
-            }
+            Bsdf::Lambert { .. } if cos > 0.0 => 1.0,
+            Bsdf::Plastic { coat, .. } if cos > 0.0 => coat.entering(cos / n.length()),
+            _ => 0.0,
+        }
+    }
+
+    /// The diffuse lobe's factor toward `wo` (1/sr; see [`Bsdf::diffuse_entry`]): albedo/π at
+    /// a Lambertian surface, ρ(1 − E(μo))/(πη²(1 − ρF̄ᵢ)) at a plastic ([`Coat::leaving`]); 0
+    /// without a diffuse lobe or below the surface.
+    pub fn diffuse_exit(&self, wo: DVec3, n: DVec3) -> Rgb {
+        let cos = wo.dot(n);
+        match *self {
+            Bsdf::Lambert { albedo } if cos > 0.0 => albedo * FRAC_1_PI,
+            Bsdf::Plastic { albedo, coat } if cos > 0.0 => coat.leaving(cos / n.length(), albedo),
             _ => Rgb::ZERO,
+        }
+    }
+
+    /// A direction from the lobes other than the diffuse one, for uniform numbers `u` (as
+    /// [`Bsdf::sample`]): none at a Lambertian surface; a plastic's coat lobe played for
+    /// with the probability it reflects ([`Coat::sample_lobe`]); every lobe of a BSDF without
+    /// a diffuse one. Where a photon map gives the diffuse lobe's light, this estimates the
+    /// rest.
+    pub fn sample_beyond_diffuse(
+        &self,
+        wo: DVec3,
+        n: DVec3,
+        u: (f64, f64, f64),
+    ) -> Option<BsdfSample> {
+        match *self {
+            Bsdf::Lambert { .. } => None,
+            Bsdf::Plastic { coat, .. } => {
+                let (frame, o) = local(n, wo);
+                if o.z <= 0.0 {
+                    return None;
+                }
+                in_world(&frame, coat.sample_lobe(o, u)?)
+            }
+            _ => self.sample(wo, n, u),
         }
     }
 

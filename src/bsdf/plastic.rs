@@ -15,7 +15,7 @@
 
 use super::fresnel::dielectric;
 use super::microfacet::Ggx;
-use super::reflect;
+use super::{reflect, BsdfSample, Lobes};
 use crate::color::Rgb;
 use glam::DVec3;
 use std::f64::consts::FRAC_1_PI;
@@ -91,14 +91,46 @@ impl Coat {
         let m = (o + i).normalize();
         let specular = dielectric(o.dot(m), 1.0, self.eta).0 * self.ggx.d(m) * self.ggx.g2(i, o)
             / (4.0 * i.z * o.z);
-        self.f_diffuse(o, i, albedo) + Rgb::splat(specular)
+        self.leaving(o.z, albedo) * self.entering(i.z) + Rgb::splat(specular)
     }
 
-    /// The diffuse part of f(o, i): the light that entered the coat and left again.
-    pub(super) fn f_diffuse(&self, o: DVec3, i: DVec3, albedo: Rgb) -> Rgb {
-        let enter = (1.0 - self.coat_albedo(i.z)) * (1.0 - self.coat_albedo(o.z));
-        albedo * (enter * FRAC_1_PI / (self.eta * self.eta))
+    /// The diffuse part's factor of the light arriving at cos θi = `mu`: the share 1 − E(μ)
+    /// the coat lets in to the base.
+    pub fn entering(&self, mu: f64) -> f64 {
+        1.0 - self.coat_albedo(mu)
+    }
+
+    /// The diffuse part's factor toward cos θo = `mu` (1/sr): ρ (1 − E(μo)) / (π η² (1 − ρ
+    /// F̄ᵢ)), so that the diffuse part of f is `leaving(μo)·entering(μi)`.
+    pub fn leaving(&self, mu: f64, albedo: Rgb) -> Rgb {
+        albedo * (self.entering(mu) * FRAC_1_PI / (self.eta * self.eta))
             / (Rgb::ONE - albedo * self.inner_reflectance)
+    }
+
+    /// The coat's lobe alone sampled at `o` (local) for uniform numbers `u`, played for with
+    /// the probability E(μo) it reflects (u.2 decides): a direction (local) with weight
+    /// F·G₂/(G₁·E(μo)), whose mean over the lobe is 1, and pdf E(μo)·D_ωo(m)/(4 o·m) — an
+    /// unbiased estimate of the light the coat's lobe reflects that spends a ray only as
+    /// often as the coat reflects. None when the play is lost or the direction goes below
+    /// the surface.
+    pub(super) fn sample_lobe(&self, o: DVec3, u: (f64, f64, f64)) -> Option<BsdfSample> {
+        let e = self.coat_albedo(o.z);
+        if u.2 >= e {
+            return None;
+        }
+        let m = self.ggx.sample_visible(o, (u.0, u.1));
+        let i = reflect(-o, m);
+        if i.z <= 0.0 {
+            return None;
+        }
+        let weight = dielectric(o.dot(m), 1.0, self.eta).0 * self.ggx.g2(i, o) / self.ggx.g1(o);
+        let pdf = e * self.ggx.visible_d(o, m) / (4.0 * o.dot(m));
+        Some(BsdfSample {
+            wi: i,
+            weight: Rgb::splat(weight / e),
+            pdf,
+            lobe: Lobes::GLOSSY_REFLECTION,
+        })
     }
 
     /// The probability of sampling the coat's lobe at cos θo = `mu`: its share of the

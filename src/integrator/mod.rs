@@ -17,6 +17,7 @@
 
 mod deflection;
 pub mod direct;
+mod neighbourhood;
 mod path;
 mod photon_map;
 

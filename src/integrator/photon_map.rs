@@ -12,16 +12,18 @@
 //!   progressive schedule r_p² = r₀² Π_{j=1..p} (j + α)/(j + 1), α = 2/3: a function of the
 //!   pass index alone, so passes are independent and their films merge. A photon that a
 //!   surface hides from the visible point (a thin wall standing on the floor between them)
-//!   is not read ([`Occluders`]): it lit another place, and read through the wall it leaks
+//!   is not read ([`crate::transport::visibility::Occluders`]): it lit another place, and read through the wall it leaks
 //!   that light (a ring's bright caustic read outside the ring);
 //! - **secondary**: a final gather — BSDF-sampled rays followed through specular surfaces and
-//!   glossy-only vertices to a vertex with a diffuse lobe, where the global map gives the
-//!   radiance leaving it: a Lambertian surface's precomputed irradiance, or the k nearest
-//!   photons weighted by its BSDF (through a glossy lobe only photons a diffuse lobe scattered
-//!   before: the rest are caustics, the caustic map's);
+//!   glossy-only vertices to a vertex with a diffuse lobe, where the global map's precomputed
+//!   irradiance reaching the diffuse base gives the light its diffuse lobe sends back (the
+//!   diffuse lobe factorises into an entry and an exit factor; photons carry the entry); the
+//!   ray goes on through the vertex's other lobes (a plastic's coat), as SPPM passes glossy
+//!   lobes;
 //! - **emitted**: emitters and the environment seen along the camera's chains.
 
 use super::direct::{camera_path, direct, emission_seen, hero, VisiblePoint};
+use super::neighbourhood::Neighbourhood;
 use super::{CameraRay, Integrator, Sample, Slot};
 use crate::color::Rgb;
 use crate::film::Layer;
@@ -30,7 +32,6 @@ use crate::report::Report;
 use crate::scene::Scene;
 use crate::settings::{PhotonSettings, Settings};
 use crate::transport::chain::{Carried, End, Policy, Walker};
-use crate::transport::visibility::Occluders;
 use crate::transport::{MediumVertex, Stats, SurfaceVertex, Tracer, Vertex};
 use std::f64::consts::FRAC_1_PI;
 use std::time::Instant;
@@ -194,10 +195,15 @@ impl<'a> PhotonMapper<'a> {
 
     /// Secondary light at a visible point: `gather` BSDF-sampled rays, each followed through
     /// specular surfaces and glossy-only vertices (sampling their BSDF) to a vertex with a
-    /// diffuse lobe, where the global map gives the radiance leaving it: a Lambertian
-    /// surface's precomputed irradiance times albedo/π, or the k nearest photons weighted by
-    /// its BSDF ([`PhotonMapper::photon_radiance`]). Emission and environment met by gather
-    /// rays are not counted: that light is the direct or caustic part.
+    /// diffuse lobe, where the global map's precomputed irradiance reaching the diffuse base
+    /// times the lobe's exit factor gives the light the diffuse lobe sends back
+    /// ([`SurfaceVertex::diffuse_exit`]: albedo/π at a Lambertian surface). Where that vertex
+    /// has other lobes too (a plastic's coat), the ray goes on through them
+    /// ([`SurfaceVertex::scatter_beyond_diffuse_with`]) to the next such vertex, as SPPM passes
+    /// glossy lobes: the map is read through diffuse lobes only, so each light path is
+    /// counted once, and through a glossy lobe the photons would be a narrow, noisy estimate.
+    /// Emission and environment met by gather rays are not counted: that light is the direct
+    /// or caustic part.
     fn secondary(
         &self,
         global: &PhotonMap,
@@ -210,66 +216,30 @@ impl<'a> PhotonMapper<'a> {
         for _ in 0..gather {
             s.stats.gather_rays += 1;
             let mut walker = Walker::carrying(carried, Policy::Weighted);
-            let mut vertex = vp.vertex;
             let mut weight = Rgb::ONE;
-            let (y, scale) = loop {
-                let Some(b) = vertex.scatter_with(s.rng) else {
-                    break (None, 1.0);
-                };
+            let mut next = vp.vertex.scatter_with(s.rng);
+            while let Some(b) = next {
                 let chain = walker.follow(b.ray, s.rng, s.stats, &mut ());
                 weight = weight * b.sample.weight * chain.weight * b.radiance_scale;
-                match chain.end {
-                    End::Scatter(Vertex::Surface(y)) if y.lobes().has_diffuse() => {
-                        break (Some(y), chain.radiance_scale())
+                let End::Scatter(y) = chain.end else { break };
+                weight *= chain.radiance_scale();
+                next = match y {
+                    Vertex::Surface(y) if y.lobes().has_diffuse() => {
+                        let e = s
+                            .stats
+                            .time_query(|| global.nearest_irradiance(y.position, y.normal));
+                        sum += weight * y.diffuse_exit() * walker.tracer.photon_irradiance(e);
+                        match walker.depth > 0 {
+                            true => y.scatter_beyond_diffuse_with(s.rng),
+                            false => None,
+                        }
                     }
-                    End::Scatter(y) if walker.depth > 0 => {
-                        weight *= chain.radiance_scale();
-                        vertex = y;
-                    }
-                    _ => break (None, 1.0),
-                }
-            };
-            let Some(y) = y else { continue };
-            let tracer = walker.tracer;
-            sum += match y.bsdf.lambert_albedo() {
-                Some(albedo) => {
-                    let e = s
-                        .stats
-                        .time_query(|| global.nearest_irradiance(y.position, y.normal));
-                    weight * albedo * FRAC_1_PI * tracer.photon_irradiance(e)
-                }
-                None => {
-                    weight * tracer.photon_irradiance(self.photon_radiance(global, &y, s.stats))
-                }
-            } * scale;
+                    y if walker.depth > 0 => y.scatter_with(s.rng),
+                    _ => None,
+                };
+            }
         }
         vp.throughput * sum / gather.max(1) as f64
-    }
-
-    /// The radiance the global map says leaves the non-Lambertian vertex `y` toward ωo: the k
-    /// nearest photons, each weighted by the BSDF — through every lobe for a photon a diffuse
-    /// lobe scattered before, through the diffuse lobe alone for the others (through a glossy
-    /// lobe they are caustics of the visible point, the caustic map's). (At a Lambertian
-    /// surface the map's precomputed irradiance times albedo/π stands for it.)
-    fn photon_radiance(&self, global: &PhotonMap, y: &SurfaceVertex, stats: &mut Stats) -> Rgb {
-        let k = self.photons.knn as usize;
-        stats.time_query(|| {
-            global.knn_weighted(
-                y.position,
-                y.normal,
-                k,
-                self.max_r2,
-                |_| true,
-                |p| {
-                    let wi = p.from_direction();
-                    let f = match p.diffused {
-                        true => y.eval(wi),
-                        false => y.eval_diffuse(wi),
-                    };
-                    f * p.flux()
-                },
-            )
-        })
     }
 
     /// The volume caustic a camera path at the point `m` in a medium sees (its vertex `vp`):
@@ -374,10 +344,9 @@ pub fn schedule(index: u32) -> f64 {
     (1..=index).fold(1.0, |f, j| f * (j as f64 + ALPHA) / (j as f64 + 1.0))
 }
 
-impl Integrator for PhotonMapper<'_> {
+impl<'a> Integrator for PhotonMapper<'a> {
     type Pass = Maps;
-    /// The pass's squared caustic radius at this pixel, once its first visible point set it.
-    type Pixel = Option<f64>;
+    type Pixel = PixelCaustics<'a>;
 
     fn layers(&self) -> &'static [Layer] {
         LAYERS
@@ -413,7 +382,7 @@ impl Integrator for PhotonMapper<'_> {
         })
     }
 
-    fn sample(&self, maps: &Maps, r2: &mut Option<f64>, ray: CameraRay, s: &mut Sample) {
+    fn sample(&self, maps: &Maps, pixel: &mut PixelCaustics<'a>, ray: CameraRay, s: &mut Sample) {
         let hero = hero(self.tracer, s.rng);
         let carried = Carried::starting(self.tracer, hero.as_ref());
         let c = camera_path(carried, ray.origin, ray.direction, s.rng, s.stats);
@@ -436,19 +405,24 @@ impl Integrator for PhotonMapper<'_> {
             s.add(SECONDARY, secondary);
         }
         if let Some(caustic) = &maps.caustic {
-            let r2 = *r2.get_or_insert_with(|| self.caustic_r2(caustic, maps.index, &v, s.stats));
-            let hidden = Occluders::around(self.tracer, v.prim, v.position, v.normal, r2.sqrt());
+            let r2 = *pixel
+                .r2
+                .get_or_insert_with(|| self.caustic_r2(caustic, maps.index, &v, s.stats));
+            let near = match pixel.near.take() {
+                Some(near) if near.serves(&v, r2) => near,
+                _ => s
+                    .stats
+                    .time_query(|| Neighbourhood::around(self.tracer, caustic, &v, r2)),
+            };
             // Each photon through the BSDF; a Lambertian surface's albedo/π is applied once.
             let lambert = v.bsdf.lambert_albedo();
-            let (sum, _) = s.stats.time_query(|| {
-                caustic.weighted(v.position, v.normal, r2, |p| {
-                    match (hidden.hide(p.position, p.normal), lambert) {
-                        (true, _) => Rgb::ZERO,
-                        (false, Some(_)) => p.flux(),
-                        (false, None) => v.eval(p.from_direction()) * p.flux(),
-                    }
+            let sum = s.stats.time_query(|| {
+                near.estimate(caustic, &v, |p| match lambert {
+                    Some(_) => p.flux(),
+                    None => v.eval(p.from_direction()) * p.flux(),
                 })
             });
+            pixel.near = Some(near);
             let e = carried.tracer.photon_irradiance(sum);
             let caustic_light = match lambert {
                 Some(albedo) => vp.throughput * albedo * e * FRAC_1_PI,
@@ -457,6 +431,15 @@ impl Integrator for PhotonMapper<'_> {
             s.add(CAUSTIC, caustic_light);
         }
     }
+}
+
+/// What a pass keeps per pixel for its caustic estimates.
+#[derive(Default)]
+pub struct PixelCaustics<'a> {
+    /// The pass's squared caustic radius here, once the pixel's first visible point set it.
+    r2: Option<f64>,
+    /// The caustic photons around the latest visible point that asked the map.
+    near: Option<Neighbourhood<'a>>,
 }
 
 #[cfg(test)]

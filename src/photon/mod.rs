@@ -629,9 +629,9 @@ fn trace_photon(
     };
     let carried = chain::Carried::starting(tracer, hero.as_ref());
     let mut walker = chain::Walker::carrying(carried, Policy::Roulette);
-    // Whether a specular or glossy lobe or a medium, a diffuse lobe, a medium has scattered it
-    // since the light.
-    let (mut bent, mut diffused, mut fogged) = (false, false, false);
+    // Whether a specular or glossy lobe or a medium, a medium has scattered it since the
+    // light.
+    let (mut bent, mut fogged) = (false, false);
     let fate = loop {
         let chain = walker.follow(ray, rng, stats, &mut walk);
         match (chain.dispersed, launch.hero) {
@@ -664,7 +664,7 @@ fn trace_photon(
                 normal: v.normal,
                 power: (walk.power * seen_as).as_vec3().to_array(),
                 from: v.wo.as_vec3().to_array(),
-                diffused,
+                base: v.diffuse_entry() as f32,
             };
             let stores = match tag.batch {
                 // L (S|G|V)+ D: at least one specular or glossy lobe or scattering in a medium,
@@ -684,7 +684,7 @@ fn trace_photon(
                 normal: DVec3::ZERO,
                 power: (walk.power * seen_as).as_vec3().to_array(),
                 from: vertex.wo().as_vec3().to_array(),
-                diffused: false,
+                base: 1.0,
             });
         }
         if tag.batch == Batch::Caustic && vertex.lobes() == Lobes::DIFFUSE_REFLECTION {
@@ -696,7 +696,6 @@ fn trace_photon(
         walk.power *= b.weight;
         throughput *= b.weight;
         if b.scattered.sample.lobe.has_diffuse() {
-            diffused = true;
             if tag.batch == Batch::Caustic {
                 break Fate::Absorbed;
             }

@@ -14,18 +14,21 @@ pub struct Hit {
     /// Unit shading normal, on the same side as `normal`: a smooth mesh's interpolated
     /// vertex normal, else `normal` itself.
     pub shading: DVec3,
-    /// Surface coordinates (u, v) of the hit, for textures (see [`Primitive::uv_at`]).
-    pub uv: DVec2,
+    /// Surface coordinates (u, v) of a mesh's hit (its `vt`, or the weights of the corners);
+    /// None for an analytic primitive, whose come from [`super::Primitive::uv_at`] at the
+    /// point when a texture asks (most hits are never textured: candidates a nearer hit
+    /// replaces, shadow rays, untextured surfaces).
+    pub uv: Option<DVec2>,
 }
 
 impl Hit {
-    /// A hit whose shading normal is its geometric one; its (u, v) still to be set.
+    /// A hit whose shading normal is its geometric one, without (u, v).
     pub fn flat(t: f64, normal: DVec3) -> Self {
         Self {
             t,
             normal,
             shading: normal,
-            uv: DVec2::ZERO,
+            uv: None,
         }
     }
 }

@@ -225,7 +225,11 @@ impl TriangleMesh {
             s if s.dot(hit.normal) < 0.0 => -s,
             s => s,
         };
-        Hit { shading, uv, ..hit }
+        Hit {
+            shading,
+            uv: Some(uv),
+            ..hit
+        }
     }
 
     /// Nearest hit of the straight ray o + t d (d unit) with t ∈ (t_min, t_max).

@@ -165,14 +165,10 @@ impl Primitive {
         if let Primitive::Mesh(mesh) = self {
             return mesh.intersect_ray(o, d, t_min, t_max);
         }
-        let hit = self.flat_ray_hit(o, d, t_min, t_max)?;
-        Some(Hit {
-            uv: self.uv_at(o + hit.t * d),
-            ..hit
-        })
+        self.flat_ray_hit(o, d, t_min, t_max)
     }
 
-    /// [`Self::intersect_ray`] for the analytic primitives, (u, v) not yet set.
+    /// [`Self::intersect_ray`] for the analytic primitives.
     fn flat_ray_hit(&self, o: DVec3, d: DVec3, t_min: f64, t_max: f64) -> Option<Hit> {
         let valid = |t: f64| t > t_min && t < t_max;
         match *self {
@@ -316,10 +312,7 @@ impl Primitive {
             .filter(|&s| s > s_min)
             .find_map(|s| {
                 let x = seg.at(s).position;
-                self.accepts(x).then(|| Hit {
-                    uv: self.uv_at(x),
-                    ..Hit::flat(s, self.normal_at(x))
-                })
+                self.accepts(x).then(|| Hit::flat(s, self.normal_at(x)))
             })
     }
 }

@@ -46,8 +46,9 @@ pub enum Event {
         /// Shading normal, on the geometric normal's side: what a specular surface reflects
         /// and refracts about.
         shading: DVec3,
-        /// Surface coordinates (u, v) of the hit, for textures.
-        uv: DVec2,
+        /// A mesh's surface coordinates (u, v) of the hit, for textures
+        /// ([`crate::shapes::Hit::uv`]).
+        uv: Option<DVec2>,
         /// Unit direction of arrival.
         direction: DVec3,
         /// Path length from the origin to the hit (scene units).
@@ -153,8 +154,9 @@ pub struct SurfaceHit {
     pub position: DVec3,
     /// The surface's normals there.
     pub normals: Normals,
-    /// Surface coordinates (u, v), for textures.
-    pub uv: DVec2,
+    /// A mesh's surface coordinates (u, v) there ([`crate::shapes::Hit::uv`]; an analytic
+    /// primitive's are worked out where a texture asks).
+    pub uv: Option<DVec2>,
     /// Unit direction of arrival.
     pub incoming: DVec3,
 }
@@ -422,7 +424,8 @@ impl<'a> Tracer<'a> {
         } = hit;
         let side = facing(normals.geometric, incoming);
         let textured = |albedo: Rgb, texture: &Option<std::sync::Arc<crate::texture::Texture>>| {
-            self.reflectance(texture.as_ref().map_or(albedo, |t| albedo * t.at(uv)))
+            let uv = || uv.unwrap_or_else(|| scene.accel.primitives()[prim].uv_at(position));
+            self.reflectance(texture.as_ref().map_or(albedo, |t| albedo * t.at(uv())))
         };
         let index_at = |m: Option<usize>| self.index(m, position);
         let (bsdf, beyond) = match &scene.materials[surface.material] {

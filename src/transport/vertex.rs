@@ -235,13 +235,16 @@ impl SurfaceVertex<'_> {
         self.bsdf.eval(self.wo, wi, frame)
     }
 
-    /// The diffuse lobe's part of [`SurfaceVertex::eval`].
-    pub fn eval_diffuse(&self, wi: DVec3) -> Rgb {
-        let frame = self.frame();
-        if !self.lands_right(wi, wi.dot(frame) < 0.0) {
-            return Rgb::ZERO;
-        }
-        self.bsdf.eval_diffuse(self.wo, wi, frame)
+    /// The share of light arriving along ωo that reaches the BSDF's diffuse base
+    /// ([`Bsdf::diffuse_entry`]): what a photon arriving here brings to the diffuse lobe.
+    pub fn diffuse_entry(&self) -> f64 {
+        self.bsdf.diffuse_entry(self.wo, self.frame())
+    }
+
+    /// The diffuse lobe's factor toward ωo ([`Bsdf::diffuse_exit`], 1/sr): times the
+    /// irradiance that reaches the base, the radiance the diffuse lobe sends toward ωo.
+    pub fn diffuse_exit(&self) -> Rgb {
+        self.bsdf.diffuse_exit(self.wo, self.frame())
     }
 
     /// The change of radiance from light arriving along `wi` to light leaving toward ωo that
@@ -268,10 +271,16 @@ impl SurfaceVertex<'_> {
     /// A direction for uniform numbers `u` (see [`Bsdf::sample`]) and the ray leaving along
     /// it; None where the BSDF gives none.
     pub fn scatter(&self, u: (f64, f64, f64)) -> Option<Scattered> {
+        self.leave(|n| self.bsdf.sample(self.wo, n, u))
+    }
+
+    /// The ray leaving along a direction `sample` draws about a normal: about the shading
+    /// frame, or about the geometric normal where that sample would leave on the wrong side.
+    fn leave(&self, sample: impl Fn(DVec3) -> Option<BsdfSample>) -> Option<Scattered> {
         let frame = self.frame();
-        let s = match self.bsdf.sample(self.wo, frame, u) {
+        let s = match sample(frame) {
             Some(s) if frame == self.normal || self.lands_right(s.wi, s.transmitted()) => s,
-            _ => self.bsdf.sample(self.wo, self.normal, u)?,
+            _ => sample(self.normal)?,
         };
         let transmitted = s.transmitted();
         Some(Scattered {
@@ -305,5 +314,16 @@ impl SurfaceVertex<'_> {
             Bsdf::Dielectric { .. } | Bsdf::Plastic { .. } => rng.gen(),
         };
         self.scatter((u.0, u.1, choice))
+    }
+
+    /// A direction from the lobes beyond the diffuse one, drawn from `rng`
+    /// ([`Bsdf::sample_beyond_diffuse`]), and the ray leaving along it: None at once (drawing
+    /// nothing) where the diffuse lobe is all there is.
+    pub fn scatter_beyond_diffuse_with(&self, rng: &mut impl rand::Rng) -> Option<Scattered> {
+        if self.lobes() == Lobes::DIFFUSE_REFLECTION {
+            return None;
+        }
+        let u = (rng.gen(), rng.gen(), rng.gen());
+        self.leave(|n| self.bsdf.sample_beyond_diffuse(self.wo, n, u))
     }
 }

@@ -68,8 +68,6 @@ pub struct Occluders<'a> {
     /// The point's primitive.
     prim: usize,
     position: DVec3,
-    /// Where the straight connections start: the point, off its surface.
-    origin: DVec3,
     radius: f64,
     near: OnceCell<Near>,
 }
@@ -86,20 +84,13 @@ impl Near {
 }
 
 impl<'a> Occluders<'a> {
-    /// The surfaces that may hide from `position` (on primitive `prim`, unit normal `normal`
-    /// on the side read) photons within `radius` of it.
-    pub fn around(
-        tracer: &'a Tracer<'a>,
-        prim: usize,
-        position: DVec3,
-        normal: DVec3,
-        radius: f64,
-    ) -> Self {
+    /// The surfaces that may hide photons within `radius` of `position` (on primitive
+    /// `prim`) from points on that primitive within the ball.
+    pub fn around(tracer: &'a Tracer<'a>, prim: usize, position: DVec3, radius: f64) -> Self {
         Self {
             tracer,
             prim,
             position,
-            origin: offset(position, normal),
             radius,
             near: OnceCell::new(),
         }
@@ -130,14 +121,15 @@ impl<'a> Occluders<'a> {
         })
     }
 
-    /// Whether the straight segment from the point to `position` (a photon's, offset along
-    /// its unit `normal` as the point is) crosses a surface.
-    pub fn hide(&self, position: DVec3, normal: DVec3) -> bool {
+    /// Whether the straight segment from `origin` (a point on the primitive within the ball,
+    /// offset off its surface: [`offset`]) to `position` (a photon's, offset along its unit
+    /// `normal` as the point is) crosses a surface.
+    pub fn hide(&self, origin: DVec3, position: DVec3, normal: DVec3) -> bool {
         let near = self.near();
         if near.count == 0 {
             return false;
         }
-        let d = offset(position, normal) - self.origin;
+        let d = offset(position, normal) - origin;
         let length = d.length();
         if length <= 0.0 {
             return false;
@@ -147,10 +139,10 @@ impl<'a> Occluders<'a> {
         match near.count <= Near::KEPT {
             true => near.ids[..near.count].iter().any(|&id| {
                 primitives[id]
-                    .intersect_ray(self.origin, dir, 0.0, reach)
+                    .intersect_ray(origin, dir, 0.0, reach)
                     .is_some()
             }),
-            false => transmittance(self.tracer, self.origin, None, dir, reach) == 0.0,
+            false => transmittance(self.tracer, origin, None, dir, reach) == 0.0,
         }
     }
 }
