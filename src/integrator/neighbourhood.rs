@@ -63,7 +63,7 @@ impl<'a> Neighbourhood<'a> {
             true => Rgb::ZERO,
             false => weight(p),
         };
-        map.weighted_among(&self.photons, v.position, v.normal, self.r2, read)
+        map.weighted_among(v.position, v.normal, self.r2, &self.photons, read)
             .0
     }
 }

@@ -64,6 +64,17 @@ impl Epanechnikov {
         }
     }
 
+    /// The estimate of squared radius `r2` over the photons `gather` adds: (Σ weight·K, how
+    /// many); nothing for r² ≤ 0.
+    fn sum(r2: f64, gather: impl FnOnce(&mut Self)) -> (Rgb, usize) {
+        if r2 <= 0.0 {
+            return (Rgb::ZERO, 0);
+        }
+        let mut kernel = Self::new(r2);
+        gather(&mut kernel);
+        kernel.estimate()
+    }
+
     /// Adds a photon's weight at squared distance `d2` (≤ r²).
     fn add(&mut self, weight: Rgb, d2: f64) {
         self.sum += weight * (1.0 - d2 / self.r2);
@@ -353,12 +364,9 @@ impl PhotonMap {
         r2: f64,
         weight: impl Fn(&Photon) -> Rgb,
     ) -> (Rgb, usize) {
-        if r2 <= 0.0 {
-            return (Rgb::ZERO, 0);
-        }
-        let mut kernel = Epanechnikov::new(r2);
-        self.for_each_within(p, normal, r2, |ph, d2| kernel.add(weight(ph), d2));
-        kernel.estimate()
+        Epanechnikov::sum(r2, |kernel| {
+            self.for_each_within(p, normal, r2, |ph, d2| kernel.add(weight(ph), d2))
+        })
     }
 
     /// The indices of the photons within squared distance `r2` of `p` (inclusive), on any
@@ -379,24 +387,21 @@ impl PhotonMap {
     /// every photon within √`r2` of `p`.
     pub fn weighted_among(
         &self,
-        among: &[u32],
         p: DVec3,
         normal: DVec3,
         r2: f64,
+        among: &[u32],
         weight: impl Fn(&Photon) -> Rgb,
     ) -> (Rgb, usize) {
-        if r2 <= 0.0 {
-            return (Rgb::ZERO, 0);
-        }
-        let mut kernel = Epanechnikov::new(r2);
-        for &i in among {
-            let photon = &self.photons[i as usize];
-            let d2 = photon.position.distance_squared(p);
-            if d2 <= r2 && on_side(photon, normal) {
-                kernel.add(weight(photon), d2);
+        Epanechnikov::sum(r2, |kernel| {
+            for &i in among {
+                let photon = &self.photons[i as usize];
+                let d2 = photon.position.distance_squared(p);
+                if d2 <= r2 && on_side(photon, normal) {
+                    kernel.add(weight(photon), d2);
+                }
             }
-        }
-        kernel.estimate()
+        })
     }
 
     /// Irradiance at `p` from its k nearest photons on the surface side `normal` (the
