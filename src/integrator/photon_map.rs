@@ -12,8 +12,10 @@
 //!   progressive schedule r_p² = r₀² Π_{j=1..p} (j + α)/(j + 1), α = 2/3: a function of the
 //!   pass index alone, so passes are independent and their films merge. A photon that a
 //!   surface hides from the visible point (a thin wall standing on the floor between them)
-//!   is not read ([`crate::transport::visibility::Occluders`]): it lit another place, and read through the wall it leaks
-//!   that light (a ring's bright caustic read outside the ring);
+//!   is not read ([`crate::transport::visibility::Occluders`]): it lit another place, and
+//!   read through the wall it leaks that light (a ring's bright caustic read outside the
+//!   ring). One map query per pixel and pass serves the pixel's samples
+//!   ([`super::neighbourhood`]);
 //! - **secondary**: a final gather — BSDF-sampled rays followed through specular surfaces and
 //!   glossy-only vertices to a vertex with a diffuse lobe, where the global map's precomputed
 //!   irradiance reaching the diffuse base gives the light its diffuse lobe sends back (the

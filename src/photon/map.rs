@@ -165,13 +165,13 @@ impl PhotonMap {
     }
 
     /// Precomputes the irradiance that reaches the diffuse base ([`Photon::flux_to_base`]) at
-    /// sites — every [`SITE_STRIDE`]-th photon — from the other photons, so that a later lookup costs one nearest-site query
-    /// ([`PhotonMap::nearest_irradiance`]). The sites' estimates use only non-site photons,
-    /// scaled by stride/(stride − 1): they are then independent of where the sites lie. (An
-    /// estimate at every photon from all the others, Christensen's choice, is biased low
-    /// when looked up by nearest photon: a photon in a sparse spot owns a large Voronoi cell
-    /// and is found more often; measured −11 % on a uniform plane with k = 16.) Runs on the
-    /// current rayon pool.
+    /// sites — every [`SITE_STRIDE`]-th photon — from the other photons, so that a later
+    /// lookup costs one nearest-site query ([`PhotonMap::nearest_irradiance`]). The sites'
+    /// estimates use only non-site photons, scaled by stride/(stride − 1): they are then
+    /// independent of where the sites lie. (An estimate at every photon from all the others,
+    /// Christensen's choice, is biased low when looked up by nearest photon: a photon in a
+    /// sparse spot owns a large Voronoi cell and is found more often; measured −11 % on a
+    /// uniform plane with k = 16.) Runs on the current rayon pool.
     pub fn precompute_irradiance(&mut self, k: usize, max_r2: f64) {
         use rayon::prelude::*;
         let stride = SITE_STRIDE as u32;
@@ -203,11 +203,11 @@ impl PhotonMap {
 
     /// The precomputed irradiance reaching the diffuse base at the nearest site to `p` on the
     /// surface side `normal` (zero when none of the 16 nearest sites lies on that side, or
-    /// when [`PhotonMap::precompute_irradiance`] has not run). No distance limit: where photons are
-    /// sparse the nearest site may lie farther than the estimates' radius, and its irradiance
-    /// is still the estimate there. (A cut-off at that radius read zero instead: the Luneburg
-    /// scene with a quad light and `--radius 0.02` rendered its secondary light 28× too dark,
-    /// 0.0005 against 0.014 at the default radius; now 0.016.)
+    /// when [`PhotonMap::precompute_irradiance`] has not run). No distance limit: where
+    /// photons are sparse the nearest site may lie farther than the estimates' radius, and its
+    /// irradiance is still the estimate there. (A cut-off at that radius read zero instead:
+    /// the Luneburg scene with a quad light and `--radius 0.02` rendered its secondary light
+    /// 28× too dark, 0.0005 against 0.014 at the default radius; now 0.016.)
     pub fn nearest_irradiance(&self, p: DVec3, normal: DVec3) -> Rgb {
         let Some(sites) = &self.sites else {
             return Rgb::ZERO;
@@ -337,14 +337,12 @@ impl PhotonMap {
         } else {
             max_r2
         };
-        if r2 <= 0.0 {
-            return Rgb::ZERO;
-        }
-        let mut kernel = Epanechnikov::new(r2);
-        for &(i, d2) in &found {
-            kernel.add(weight(&self.photons[i as usize]), d2);
-        }
-        kernel.estimate().0
+        Epanechnikov::sum(r2, |kernel| {
+            for &(i, d2) in &found {
+                kernel.add(weight(&self.photons[i as usize]), d2);
+            }
+        })
+        .0
     }
 
     /// Irradiance at `p` (W/m² per channel) from the photons within squared radius `r2` on
