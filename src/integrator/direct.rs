@@ -10,7 +10,7 @@
 use crate::color::Rgb;
 use crate::lights::Light;
 use crate::spectrum::Hero;
-use crate::transport::chain::{Carried, Chain, End, Policy, Ray, Walker};
+use crate::transport::chain::{Carried, Chain, ChainEvents, End, Policy, Ray, Walker};
 use crate::transport::connect::connect;
 use crate::transport::{visibility, HeroTracer, Stats, Tracer, Vertex};
 use glam::DVec3;
@@ -63,13 +63,15 @@ pub fn emission_seen(tracer: &Tracer, chain: &Chain) -> Rgb {
     }
 }
 
-/// Follows a camera ray through mirrors, dielectrics and curved media to its visible point.
+/// Follows a camera ray through mirrors, dielectrics and curved media to its visible point,
+/// telling `observer` what it passes.
 pub fn camera_path<'w>(
     carried: Carried<'w>,
     origin: DVec3,
     dir: DVec3,
     rng: &mut impl Rng,
     stats: &mut Stats,
+    observer: &mut dyn ChainEvents,
 ) -> Components<'w> {
     let ray = Ray {
         origin,
@@ -77,7 +79,7 @@ pub fn camera_path<'w>(
         medium: carried.tracer.camera_medium,
     };
     let mut walker = Walker::carrying(carried, Policy::Weighted);
-    let chain = walker.follow(ray, rng, stats, &mut ());
+    let chain = walker.follow(ray, rng, stats, observer);
     let mut out = Components {
         emitted: emission_seen(walker.tracer, &chain),
         visible: None,

@@ -15,6 +15,7 @@
 //! films merged. To add an integrator: implement [`Integrator`], name it in
 //! [`crate::settings::IntegratorKind`] and in [`crate::render::render`].
 
+mod beam;
 mod deflection;
 pub mod direct;
 mod neighbourhood;

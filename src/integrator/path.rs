@@ -100,7 +100,7 @@ impl Integrator for PathTracer<'_> {
     fn sample(&self, _: &(), _: &mut (), ray: CameraRay, s: &mut Sample) {
         let hero = hero(self.tracer, s.rng);
         let carried = Carried::starting(self.tracer, hero.as_ref());
-        let c = camera_path(carried, ray.origin, ray.direction, s.rng, s.stats);
+        let c = camera_path(carried, ray.origin, ray.direction, s.rng, s.stats, &mut ());
         s.add(EMITTED, c.emitted);
         let Some(vp) = c.visible else { return };
         s.add(ALBEDO, vp.vertex.albedo());

@@ -22,8 +22,13 @@
 //!   diffuse lobe factorises into an entry and an exit factor; photons carry the entry); the
 //!   ray goes on through the vertex's other lobes (a plastic's coat), as SPPM passes glossy
 //!   lobes;
-//! - **emitted**: emitters and the environment seen along the camera's chains.
+//! - **emitted**: emitters and the environment seen along the camera's chains;
+//! - **volume caustic** (in the caustic layer): in scattering media, the volume caustic map's
+//!   photons read along every stretch of the camera path up to its visible point by the beam
+//!   radiance estimate ([`super::beam`]), each photon a ball of its k-nearest distance shrunk
+//!   by the same schedule (a beam reads a 2D kernel, as a surface does).
 
+use super::beam::Beams;
 use super::direct::{camera_path, direct, emission_seen, hero, VisiblePoint};
 use super::neighbourhood::Neighbourhood;
 use super::{CameraRay, Integrator, Sample, Slot};
@@ -33,8 +38,8 @@ use crate::photon::{shoot, Batch, PhotonMap, Photons, Sources, VolumeMap};
 use crate::report::Report;
 use crate::scene::Scene;
 use crate::settings::{PhotonSettings, Settings};
-use crate::transport::chain::{Carried, End, Policy, Walker};
-use crate::transport::{MediumVertex, Stats, SurfaceVertex, Tracer, Vertex};
+use crate::transport::chain::{Carried, ChainEvents, End, Policy, Walker};
+use crate::transport::{Stats, SurfaceVertex, Tracer, Vertex};
 use std::f64::consts::FRAC_1_PI;
 use std::time::Instant;
 
@@ -168,7 +173,10 @@ impl<'a> PhotonMapper<'a> {
         if batch == Batch::Global {
             map.precompute_irradiance(self.photons.knn as usize, self.max_r2);
         }
-        let volume = VolumeMap::new(sink.volume);
+        // Each volume photon's ball: its k-nearest distance, shrunk by the schedule (a beam
+        // reads a 2D kernel, so its area follows the surfaces' schedule).
+        let k = self.photons.knn as usize;
+        let volume = VolumeMap::new(sink.volume, k, self.max_r2, schedule(index));
         report.seconds.photons += (t1 - t0).as_secs_f64();
         report.seconds.maps += t1.elapsed().as_secs_f64();
         Some(Traced {
@@ -244,43 +252,6 @@ impl<'a> PhotonMapper<'a> {
         vp.throughput * sum / gather.max(1) as f64
     }
 
-    /// The volume caustic a camera path at the point `m` in a medium sees (its vertex `vp`):
-    /// the volume map's estimate of σs ∫ p L dω there over σs — the free flight that found the
-    /// point was drawn with density σs·T, so that is what the path's throughput carries — with
-    /// the ball of radius r_p: r₀ the k-nearest distance there, r_p³ = r₀³ times Knaus and
-    /// Zwicker's schedule at pass `index` (volume densities shrink their ball by volume).
-    fn in_scattered(
-        &self,
-        volume: &VolumeMap,
-        index: u32,
-        m: &MediumVertex,
-        vp: &VisiblePoint,
-        tracer: &Tracer,
-        s: &mut Sample,
-    ) -> Rgb {
-        let Some(scattering) = m.medium.and_then(|i| tracer.scene.media().scattering(i)) else {
-            return Rgb::ZERO;
-        };
-        let k = self.photons.knn as usize;
-        let r2 = s
-            .stats
-            .time_query(|| volume.knn_radius2(m.position, k, self.max_r2))
-            * schedule(index).powf(2.0 / 3.0);
-        let sum = s.stats.time_query(|| {
-            volume.weighted(m.position, r2, |p| {
-                vp.vertex.eval(p.from_direction()) * p.flux()
-            })
-        });
-        let per_sigma = Rgb(glam::DVec3::from_array(
-            scattering
-                .sigma_s
-                .0
-                .to_array()
-                .map(|x| if x > 0.0 { 1.0 / x } else { 0.0 }),
-        ));
-        vp.throughput * tracer.photon_irradiance(sum) * per_sigma
-    }
-
     /// The camera path's visible point: past glossy-only vertices and points in scattering
     /// media by sampling their BSDF or phase function (adding their direct light to `direct`,
     /// and emission met after a specular bounce to `emitted`), to the first surface with a
@@ -305,19 +276,17 @@ impl<'a> PhotonMapper<'a> {
                 return None;
             }
             found.direct += direct(walker.carried(), &vp, s.rng, s.stats);
-            // In a medium with a volume caustic map, light through specular surfaces is the
-            // map's.
-            let volume = match (&maps.volume, vp.vertex) {
-                (Some(volume), Vertex::Medium(m)) => {
-                    let tracer = walker.tracer;
-                    found.caustic += self.in_scattered(volume, maps.index, &m, &vp, tracer, s);
-                    true
-                }
-                _ => false,
-            };
+            // From a point in a medium with a volume caustic map, light through specular
+            // surfaces is the map's: the beams that reached the point counted it.
+            let volume = maps.volume.is_some() && matches!(vp.vertex, Vertex::Medium(_));
             let b = vp.vertex.scatter_with(s.rng)?;
-            let chain = walker.follow(b.ray, s.rng, s.stats, &mut ());
             let throughput = vp.throughput * b.sample.weight * b.radiance_scale;
+            let mut beams = Beams::default();
+            let chain = match maps.volume {
+                Some(_) => walker.follow(b.ray, s.rng, s.stats, &mut beams.record(walker.tracer)),
+                None => walker.follow(b.ray, s.rng, s.stats, &mut ()),
+            };
+            found.caustic += throughput * self.volume_caustic(maps, &beams, walker.tracer, s);
             if chain.specular > 0 && !volume {
                 found.emitted += throughput * emission_seen(walker.tracer, &chain);
             }
@@ -330,6 +299,15 @@ impl<'a> PhotonMapper<'a> {
             };
         }
     }
+
+    /// The volume caustic a camera chain recorded in `beams` collects on its way through media,
+    /// per unit of the path's throughput before it; `tracer`: the one it ended on.
+    fn volume_caustic(&self, maps: &Maps, beams: &Beams, tracer: &Tracer, s: &mut Sample) -> Rgb {
+        match &maps.volume {
+            Some(volume) => s.stats.time_query(|| beams.radiance(volume, tracer)),
+            None => Rgb::ZERO,
+        }
+    }
 }
 
 /// Light a camera path found on its way to its visible point.
@@ -337,7 +315,7 @@ impl<'a> PhotonMapper<'a> {
 struct Found {
     direct: Rgb,
     emitted: Rgb,
-    /// Volume caustics in-scattered at points in media.
+    /// Volume caustics scattered into the path along its way through media.
     caustic: Rgb,
 }
 
@@ -387,8 +365,16 @@ impl<'a> Integrator for PhotonMapper<'a> {
     fn sample(&self, maps: &Maps, pixel: &mut PixelCaustics<'a>, ray: CameraRay, s: &mut Sample) {
         let hero = hero(self.tracer, s.rng);
         let carried = Carried::starting(self.tracer, hero.as_ref());
-        let c = camera_path(carried, ray.origin, ray.direction, s.rng, s.stats);
+        let mut beams = Beams::default();
+        let (mut recording, mut unrecorded) = (beams.record(self.tracer), ());
+        let observer: &mut dyn ChainEvents = match maps.volume {
+            Some(_) => &mut recording,
+            None => &mut unrecorded,
+        };
+        let c = camera_path(carried, ray.origin, ray.direction, s.rng, s.stats, observer);
         s.add(EMITTED, c.emitted);
+        let caustic = self.volume_caustic(maps, &beams, c.carried.tracer, s);
+        s.add(CAUSTIC, caustic);
         let Some(first) = c.visible else { return };
         s.add(ALBEDO, first.vertex.albedo());
         s.add(NORMAL, first.vertex.normal());

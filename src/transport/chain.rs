@@ -118,10 +118,28 @@ impl Chain<'_> {
     }
 }
 
+/// Where a chain sets off on a stretch: from one event (its start, a specular surface, a
+/// detector) through one medium to the next. The stretch's points follow as
+/// [`ChainEvents::point`]s, up to and including its end.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Stretch {
+    /// Where it starts.
+    pub origin: DVec3,
+    /// The medium it travels in.
+    pub medium: Option<usize>,
+    /// The chain's weight at its start (its own absorption and free flight not yet in it).
+    pub weight: Rgb,
+    /// The path's free flights with this stretch's drawn (what [`Flights::weigh`] needs to
+    /// weigh a point on it).
+    pub flights: Flights,
+}
+
 /// Told of what a chain passes (all optional).
 pub trait ChainEvents {
+    /// It sets off on a stretch.
+    fn stretch(&mut self, _stretch: &Stretch) {}
     /// A point the path passes: each accepted point of a curved stretch, each surface met,
-    /// and where it leaves the world.
+    /// where a free flight ends, and where it leaves the world.
     fn point(&mut self, _p: DVec3) {}
     /// It crosses receiver `receiver`'s detector at `position` carrying `weight`; `Break`
     /// ends the chain ([`End::Stopped`]).
@@ -320,6 +338,12 @@ impl<'w> Walker<'w> {
             (Some(sc), Policy::Weighted | Policy::Roulette) => self.flights.draw(sc, lent.rng),
             _ => f64::INFINITY,
         };
+        observer.stretch(&Stretch {
+            origin: at.origin,
+            medium: at.medium,
+            weight: chain.weight,
+            flights: self.flights,
+        });
         let event = self.tracer.next_event_within(
             at.origin,
             at.dir,

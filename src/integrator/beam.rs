@@ -1,0 +1,176 @@
+//! The beam radiance estimate (Jarosz, Zwicker and Jensen 2008) along a camera path's way
+//! through scattering media, curved or straight: the volume caustic scattered toward the
+//! camera all along each stretch, read from every photon ball of the volume caustic map the
+//! stretch passes through (each photon's 3D kernel integrated along its chord,
+//! [`crate::photon::VolumeMap::along`]), rather than at the one point a free flight drew.
+//!
+//! **The estimator.** A stretch in a medium ends where its free flight ends (or at a
+//! surface); it reaches arclength t with probability P(t), the flight's survival. Light
+//! in-scattered at t reaches the stretch's start attenuated by the scattering transmittance
+//! T_s(t) and absorption T_a(t), and σs ∫ p L dω there is what the volume map estimates (Σ Φ p
+//! K); so Σ Φ p(ωi → ωo) T_a(t) (T_s(t)/P(t)) ∫K ds over the photons whose balls the stretch
+//! meets up to its end is an unbiased estimate of the light in-scattered along the whole
+//! stretch (over where it ends, each t is counted with probability P(t)). T_s/P is 1 for a
+//! grey σs and [`crate::volume::Flights::weigh`]'s factor for a coloured one; T_a, T_s/P and
+//! the index are taken at the middle of each photon's chord (within a ball of radius r they
+//! change by O(σ r)). A curved stretch is walked as the chords between its accepted points.
+//!
+//! **Radiance across indices.** Radiance in-scattered at a point of index n is seen at the
+//! chain's start as (n_start/n)² of it, as at any other event ([`crate::volume`]).
+
+use crate::color::Rgb;
+use crate::photon::VolumeMap;
+use crate::transport::chain::{ChainEvents, Stretch};
+use crate::transport::Tracer;
+use crate::volume::Scattering;
+use glam::DVec3;
+
+/// A chain's stretches in scattering media, recorded as it is followed.
+#[derive(Default)]
+pub struct Beams {
+    /// n at the chain's start.
+    n_start: Option<f64>,
+    stretches: Vec<Recorded>,
+    /// Every recorded stretch's points after its origin, in order.
+    points: Vec<DVec3>,
+    /// Whether the stretch under way is recorded.
+    recording: bool,
+}
+
+/// A stretch in a scattering medium and where its points start in [`Beams::points`].
+struct Recorded {
+    stretch: Stretch,
+    medium: usize,
+    scattering: Scattering,
+    first: usize,
+}
+
+/// A straight piece of a recorded stretch.
+struct Chord {
+    from: DVec3,
+    /// Unit.
+    dir: DVec3,
+    length: f64,
+    /// Arclength from the stretch's start to `from`.
+    travelled: f64,
+    /// Absorption's optical depth from the stretch's start to `from`.
+    depth: f64,
+}
+
+impl Beams {
+    /// A recorder for chains on `tracer`'s scene; what it recorded before is forgotten.
+    pub fn record<'b>(&'b mut self, tracer: &'b Tracer<'b>) -> Recording<'b> {
+        self.n_start = None;
+        self.stretches.clear();
+        self.points.clear();
+        self.recording = false;
+        Recording {
+            beams: self,
+            tracer,
+        }
+    }
+
+    /// The radiance `volume`'s photons scatter into the recorded chain along its stretches,
+    /// as seen at its start per unit of the path's throughput there; `tracer` is the one the
+    /// chain ended on (it reads indices and absorption).
+    pub fn radiance(&self, volume: &VolumeMap, tracer: &Tracer) -> Rgb {
+        let Some(n_start) = self.n_start else {
+            return Rgb::ZERO;
+        };
+        let mut sum = Rgb::ZERO;
+        for (r, points) in self.recorded() {
+            let medium = tracer.medium(r.medium);
+            let mut light = Rgb::ZERO;
+            for c in chords(tracer, r, points) {
+                volume.along(c.from, c.dir, c.length, |photon, along| {
+                    let x = c.from + c.dir * along.distance;
+                    let Some(n) = tracer.index(Some(r.medium), x) else {
+                        return;
+                    };
+                    let depth = c.depth + medium.optical_depth(c.from, c.dir, along.distance);
+                    let mut flights = r.stretch.flights;
+                    let kept = flights.weigh(&r.scattering, c.travelled + along.distance, false);
+                    // Light arrives travelling along −from and leaves toward the camera, −dir.
+                    let phase = r.scattering.phase.between(-photon.from_direction(), -c.dir);
+                    let scale = (n_start / n) * (n_start / n);
+                    light += kept * photon.flux() * (phase * (-depth).exp() * scale * along.kernel);
+                });
+            }
+            sum += r.stretch.weight * light;
+        }
+        tracer.photon_irradiance(sum)
+    }
+
+    /// The recorded stretches with their points after their origins.
+    fn recorded(&self) -> impl Iterator<Item = (&Recorded, &[DVec3])> {
+        self.stretches.iter().enumerate().map(|(k, r)| {
+            let end = self
+                .stretches
+                .get(k + 1)
+                .map_or(self.points.len(), |s| s.first);
+            (r, &self.points[r.first..end])
+        })
+    }
+}
+
+/// The chords of stretch `r` from its origin through `points`, with the arclength and
+/// absorption depth before each.
+fn chords<'a>(
+    tracer: &'a Tracer,
+    r: &'a Recorded,
+    points: &'a [DVec3],
+) -> impl Iterator<Item = Chord> + 'a {
+    let medium = tracer.medium(r.medium);
+    let (mut from, mut travelled, mut depth) = (r.stretch.origin, 0.0, 0.0);
+    points.iter().filter_map(move |&to| {
+        let length = (to - from).length();
+        if length.is_nan() || length <= 0.0 {
+            return None;
+        }
+        let dir = (to - from) / length;
+        let chord = Chord {
+            from,
+            dir,
+            length,
+            travelled,
+            depth,
+        };
+        depth += medium.optical_depth(from, dir, length);
+        travelled += length;
+        from = to;
+        Some(chord)
+    })
+}
+
+/// A chain being recorded into [`Beams`].
+pub struct Recording<'b> {
+    beams: &'b mut Beams,
+    tracer: &'b Tracer<'b>,
+}
+
+impl ChainEvents for Recording<'_> {
+    fn stretch(&mut self, stretch: &Stretch) {
+        let beams = &mut *self.beams;
+        if beams.n_start.is_none() {
+            beams.n_start = self.tracer.index(stretch.medium, stretch.origin);
+        }
+        let scattering = stretch
+            .medium
+            .and_then(|m| Some((m, *self.tracer.scene.media().scattering(m)?)));
+        beams.recording = scattering.is_some();
+        if let Some((medium, scattering)) = scattering {
+            beams.stretches.push(Recorded {
+                stretch: *stretch,
+                medium,
+                scattering,
+                first: beams.points.len(),
+            });
+        }
+    }
+
+    fn point(&mut self, p: DVec3) {
+        if self.beams.recording {
+            self.beams.points.push(p);
+        }
+    }
+}
