@@ -80,11 +80,16 @@ impl Beams {
         let mut sum = Rgb::ZERO;
         for (r, points) in self.recorded() {
             let medium = tracer.medium(r.medium);
+            // A uniform medium's index is looked up once, not at every photon.
+            let uniform_n = match medium.is_uniform() {
+                true => tracer.index(Some(r.medium), r.stretch.origin),
+                false => None,
+            };
             let mut light = Rgb::ZERO;
             for c in chords(tracer, r, points) {
                 volume.along(c.from, c.dir, c.length, |photon, along| {
                     let x = c.from + c.dir * along.distance;
-                    let Some(n) = tracer.index(Some(r.medium), x) else {
+                    let Some(n) = uniform_n.or_else(|| tracer.index(Some(r.medium), x)) else {
                         return;
                     };
                     let depth = c.depth + medium.optical_depth(c.from, c.dir, along.distance);
