@@ -58,6 +58,10 @@ const BAD: &[(&str, usize, usize, &str)] = &[
     ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = 1\nscattering = 1\nphase = { hg = 1.0 }\n", 6, 1, "key `phase`: hg takes one mean cosine g with −1 < g < 1"),
     ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = 1\nscattering = 1\nphase = { hg = -1.5 }\n", 6, 1, "key `phase`: hg takes one mean cosine g with −1 < g < 1"),
     ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = 1\nscattering = 1\nphase = \"rayleigh\"\n", 6, 1, "key `phase`: expected \"isotropic\" or { hg = g }"),
+    // Density: a negative value, a count that does not match `density_dims`, a missing key.
+    ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = 1\nscattering = 1\ndensity_bounds = [[0, 0, 0], [1, 1, 1]]\ndensity_dims = [2, 2, 2]\ndensity_values = [1, 1, 1, 1, 1, 1, -1, 1]\n", 8, 1, "key `density_values`: value #6 is -1: a density must be finite and ≥ 0"),
+    ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = 1\nscattering = 1\ndensity_bounds = [[0, 0, 0], [1, 1, 1]]\ndensity_dims = [2, 2, 3]\ndensity_values = [1, 1, 1, 1, 1, 1, 1, 1]\n", 8, 1, "key `density_values`: expected 12 values (dims product), got 8"),
+    ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = 1\nscattering = 1\ndensity_bounds = [[0, 0, 0], [1, 1, 1]]\ndensity_values = [1, 1, 1, 1, 1, 1, 1, 1]\n", 1, 1, "key `density_dims`: is missing"),
     // Radial tables: r not from 0, lengths differing, n ≤ 0.
     ("[[medium]]\nname = \"t\"\nprofile = \"radial_table\"\nr = [0.1, 0.2]\nn = [1.5, 1.4]\n", 4, 1, "key `r`: must start at 0"),
     ("[[medium]]\nname = \"t\"\nprofile = \"radial_table\"\nr = [0.0, 0.2, 0.3]\nn = [1.5, 1.4]\n", 5, 1, "key `n`: `r` and `n` need the same number"),
@@ -211,4 +215,20 @@ fn a_grid_file_is_read_relative_to_the_scene() {
     std::fs::remove_dir_all(&dir).unwrap();
     let missing = scene.medium("nope").err().expect("no such medium");
     assert!(missing.to_string().contains("no medium named 'nope'"));
+}
+
+/// A density on a medium that neither absorbs nor scatters would scale nothing: the scene
+/// loads with a warning at the key.
+#[test]
+fn a_density_that_scales_nothing_is_a_warning() {
+    let text = "[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = 1\n\
+                density_bounds = [[0, 0, 0], [1, 1, 1]]\ndensity_dims = [2, 2, 2]\n\
+                density_values = [1, 1, 1, 1, 1, 1, 1, 1]\n";
+    let (description, _) =
+        grinlight::scene::load::parse_description(Path::new("d.toml"), text.to_string()).unwrap();
+    let said = description.warnings.join("\n");
+    assert!(
+        said.starts_with("d.toml:7:1: ") && said.contains("and this medium has neither"),
+        "{said}"
+    );
 }

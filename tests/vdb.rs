@@ -102,6 +102,37 @@ fn a_vdb_temperature_grid_is_a_medium_of_air() {
     }
 }
 
+/// A heterogeneous medium's density from a VDB grid (`density_file`, `density_grid`): at every
+/// voxel it is the stored value, and it scales σa (absorption) and σs alike.
+#[test]
+fn a_vdb_density_grid_scales_the_medium_coefficients() {
+    let scene = format!(
+        "ambient = \"smoke\"\n[[medium]]\nname = \"smoke\"\nprofile = \"uniform\"\nn = 1\n\
+         scattering = 2\nabsorption = 0.5\ndensity_file = \"{}\"\ndensity_grid = \"density\"\n",
+        std::fs::canonicalize(PLUME).unwrap().display()
+    );
+    let (scene, settings) = parse_scene(Path::new("smoke.toml"), scene).unwrap();
+    let tracer = grinlight::transport::Tracer::new(&scene, &settings.trace);
+    let density = scene
+        .media()
+        .scattering(0)
+        .unwrap()
+        .density
+        .clone()
+        .unwrap();
+    for (i, j, k) in [(0, 4, 3), (2, 5, 1), (-3, 0, 0), (8, 9, 7)] {
+        let stored = (1.2 - 0.001 * (i + 2 * j + 3 * k) as f64) as f32 as f64;
+        let p = world(i, j, k);
+        // Trilinear interpolation reproduces the nodes to rounding.
+        assert!((density.at(p) - stored).abs() < 1e-12, "({i},{j},{k})");
+        let sigma_a = tracer.medium(0).absorption(p);
+        assert!(
+            (sigma_a - 0.5 * stored).abs() < 1e-12,
+            "({i},{j},{k}): σa {sigma_a}"
+        );
+    }
+}
+
 /// Wrong or damaged input ends in an error naming the scene file, line and key and the VDB
 /// file and what is wrong — never a panic.
 #[test]

@@ -105,12 +105,33 @@ fn furnace(text: &str) -> Vec<(IntegratorKind, [f64; 3], [f64; 3])> {
         .collect()
 }
 
+/// A density lattice over the furnace, 5 nodes a side, rough (every node its own value, a
+/// quarter of them 0: empty pockets, steep walls; drawn from a fixed seed): the
+/// `density_*` keys of a `[[medium]]` table.
+fn rough_density() -> String {
+    use rand::{Rng, SeedableRng};
+    let mut rng = rand_pcg::Pcg64Mcg::seed_from_u64(17);
+    let values: Vec<String> = (0..125)
+        .map(|_| match rng.gen::<f64>() {
+            u if u < 0.25 => "0".to_string(),
+            _ => format!("{:.3}", rng.gen::<f64>() * 2.0),
+        })
+        .collect();
+    format!(
+        "density_bounds = [[-1, -1, -1], [1, 1, 1]]\ndensity_dims = [5, 5, 5]\n\
+         density_values = [{}]",
+        values.join(", ")
+    )
+}
+
 /// A camera in a closed box of walls emitting radiance 1, filled with a conservative
 /// scattering medium (no absorption), sees radiance n² everywhere: 1 in a uniform medium of
 /// n = 1 — with forward Henyey–Greenstein scattering, and with σs coloured (each channel its
 /// own free flights: (0.3, 1, 3)) — and 2 at the centre of a Luneburg index field
-/// (n = √2 there), whose rays curve between scattering events. Both integrators; within four
-/// standard errors of the pixel mean (0.5–1 % at these sample counts).
+/// (n = √2 there), whose rays curve between scattering events. So too where a rough density
+/// scales σs (free flights by delta tracking, shadow rays by the density's column; grey in a
+/// uniform index, coloured in the Luneburg field). Both integrators; within four standard
+/// errors of the pixel mean (0.5–1 % at these sample counts).
 #[test]
 fn a_scattering_furnace_shows_the_walls_radiance_times_n_squared() {
     let camera = "[camera]\nposition = [0, 0, 0]\nlook_at = [0.2, 0.1, -1]\nfov_y_deg = 60\n\
@@ -125,6 +146,20 @@ fn a_scattering_furnace_shows_the_walls_radiance_times_n_squared() {
             1.0,
         ),
         ("profile = \"luneburg\"\nradius = 0.9\nscattering = 1", 2.0),
+        (
+            &format!(
+                "profile = \"uniform\"\nn = 1\nscattering = 3\n{}",
+                rough_density()
+            ),
+            1.0,
+        ),
+        (
+            &format!(
+                "profile = \"luneburg\"\nradius = 0.9\nscattering = [1, 2, 4]\n{}",
+                rough_density()
+            ),
+            2.0,
+        ),
     ];
     for (medium, expected) in cases {
         let text = format!(
@@ -132,11 +167,12 @@ fn a_scattering_furnace_shows_the_walls_radiance_times_n_squared() {
             emitting_box(1.0)
         );
         for (integrator, mean, error) in furnace(&text) {
-            println!("{medium:?} {integrator:?}: {mean:?} ± {error:?} against {expected}");
+            let label = medium.split("\ndensity_values").next().unwrap_or(medium);
+            println!("{label:?} {integrator:?}: {mean:?} ± {error:?} against {expected}");
             for (m, e) in mean.iter().zip(error) {
                 assert!(
                     (m - expected).abs() < 4.0 * e,
-                    "{medium} with {integrator:?}: {mean:?} ± {error:?} against {expected}"
+                    "{label} with {integrator:?}: {mean:?} ± {error:?} against {expected}"
                 );
             }
         }
@@ -321,7 +357,8 @@ fn the_photon_mapper_renders_a_volume_caustic_as_the_path_tracer_does() {
 /// narrow normal beam: the power out through the top (R) and the bottom (T) against an
 /// independent plane-parallel random walk written here (exponential free paths in optical
 /// depth, isotropic directions; 1.6·10⁷ walks) with 4·10⁶ photons, within four combined
-/// standard errors (0.2–0.6 % of R and T).
+/// standard errors (0.2–0.6 % of R and T); and the slab of the same optical depth whose
+/// density ramps across it (10⁶ photons, 0.3–1.1 %): R and T depend on optical depth alone.
 #[test]
 fn slabs_reflect_and_transmit_as_a_plane_parallel_random_walk() {
     use rand::{Rng, SeedableRng};
@@ -354,45 +391,58 @@ fn slabs_reflect_and_transmit_as_a_plane_parallel_random_walk() {
         // grinlight: σs = 1 and σa = (1 − ϖ)/ϖ, so σt = 1/ϖ and the thickness is ϖτ.
         let sigma_a = (1.0 - albedo) / albedo;
         let depth = albedo * tau;
-        let text = format!(
-            "[render]\nmax_depth = 100000000\n\
-             [[medium]]\nname = \"fog\"\nprofile = \"uniform\"\nn = 1\nscattering = 1\n\
-             absorption = {sigma_a}\n\
-             [[material]]\nname = \"skin\"\ntype = \"dielectric\"\ninterior = \"fog\"\n\
-             [[shape]]\ntype = \"box\"\nmin = [-1000, -{depth}, -1000]\nmax = [1000, 0, 1000]\n\
-             material = \"skin\"\ninterior = \"fog\"\n\
-             [[light]]\ntype = \"spot\"\nposition = [0, 1, 0]\ndirection = [0, -1, 0]\n\
-             intensity = 1\ncone_deg = 0.5\n"
+        // The same slab, homogeneous, and with a density falling linearly from 1.75 at the
+        // bottom to 0.25 at the top (mean 1): a plane-parallel medium's R and T depend on its
+        // optical depth alone, and the density scales σa with σs, so ϖ stays 0.9.
+        let ramp = format!(
+            "density_bounds = [[-1000, -{depth}, -1000], [1000, 0, 1000]]\n\
+             density_dims = [2, 2, 2]\n\
+             density_values = [1.75, 1.75, 0.25, 0.25, 1.75, 1.75, 0.25, 0.25]\n"
         );
-        let (scene, settings) = parse_scene(Path::new("slab.toml"), text).unwrap();
-        let tracer = Tracer::new(&scene, &settings.trace);
-        let count = 4_000_000;
-        let photons = Photons::all(Batch::Receivers, 5, 0, count);
-        let (sink, _) = shoot(&tracer, &Sources::new(&tracer), photons, &|| false);
-        let budget = sink.budget.statement(1.0);
-        let through = |face_y: f64| {
-            let prim = scene.accel.primitives().iter().position(|p| {
-                let (lo, hi) = p.bounds();
-                (lo.y - face_y).abs() < 1e-9 && (hi.y - face_y).abs() < 1e-9
-            });
-            prim.and_then(|p| budget.out_through.get(&p).copied())
-                .unwrap_or(0.0)
-                / budget.emitted
-        };
-        let (r_got, t_got) = (through(0.0), through(-depth));
-        for (name, got, reference) in [("R", r_got, r_ref), ("T", t_got, t_ref)] {
-            let se = (got * (1.0 - got) / count as f64
-                + reference * (1.0 - reference) / walks as f64)
-                .sqrt();
-            println!(
-                "τ = {tau}: {name} {got:.5} against {reference:.5} ({:+.2} %, 4σ = {:.2} %)",
-                100.0 * (got / reference - 1.0),
-                400.0 * se / reference
+        for (slab, density, count) in [
+            ("homogeneous", "", 4_000_000),
+            ("ramp", ramp.as_str(), 1_000_000),
+        ] {
+            let text = format!(
+                "[render]\nmax_depth = 100000000\n\
+                 [[medium]]\nname = \"fog\"\nprofile = \"uniform\"\nn = 1\nscattering = 1\n\
+                 absorption = {sigma_a}\n{density}\
+                 [[material]]\nname = \"skin\"\ntype = \"dielectric\"\ninterior = \"fog\"\n\
+                 [[shape]]\ntype = \"box\"\nmin = [-1000, -{depth}, -1000]\n\
+                 max = [1000, 0, 1000]\nmaterial = \"skin\"\ninterior = \"fog\"\n\
+                 [[light]]\ntype = \"spot\"\nposition = [0, 1, 0]\ndirection = [0, -1, 0]\n\
+                 intensity = 1\ncone_deg = 0.5\n"
             );
-            assert!(
-                (got - reference).abs() < 4.0 * se,
-                "τ = {tau}: {name} {got} against {reference} ± {se}"
-            );
+            let (scene, settings) = parse_scene(Path::new("slab.toml"), text).unwrap();
+            let tracer = Tracer::new(&scene, &settings.trace);
+            let photons = Photons::all(Batch::Receivers, 5, 0, count);
+            let (sink, _) = shoot(&tracer, &Sources::new(&tracer), photons, &|| false);
+            let budget = sink.budget.statement(1.0);
+            let through = |face_y: f64| {
+                let prim = scene.accel.primitives().iter().position(|p| {
+                    let (lo, hi) = p.bounds();
+                    (lo.y - face_y).abs() < 1e-9 && (hi.y - face_y).abs() < 1e-9
+                });
+                prim.and_then(|p| budget.out_through.get(&p).copied())
+                    .unwrap_or(0.0)
+                    / budget.emitted
+            };
+            let (r_got, t_got) = (through(0.0), through(-depth));
+            for (name, got, reference) in [("R", r_got, r_ref), ("T", t_got, t_ref)] {
+                let se = (got * (1.0 - got) / count as f64
+                    + reference * (1.0 - reference) / walks as f64)
+                    .sqrt();
+                println!(
+                    "τ = {tau}, {slab}: {name} {got:.5} against {reference:.5} \
+                     ({:+.2} %, 4σ = {:.2} %)",
+                    100.0 * (got / reference - 1.0),
+                    400.0 * se / reference
+                );
+                assert!(
+                    (got - reference).abs() < 4.0 * se,
+                    "τ = {tau}, {slab}: {name} {got} against {reference} ± {se}"
+                );
+            }
         }
     }
 }

@@ -343,8 +343,9 @@ fn accept<M: Medium + ?Sized, O: FnMut(f64, &Step) -> ControlFlow<()>>(
     observe(out.arclength, &step)
 }
 
-/// Optical depth ∫ σa ds of one step between points `a` and `b`, `len` apart along the path
-/// (trapezoid rule; 0 in a medium that does not absorb).
+/// Optical depth ∫ σa ds of one step between points `a` and `b`, `len` apart along the path:
+/// the medium's optical depth along the chord, scaled by the arclength over the chord's length
+/// (so a constant σa gives σa·len exactly; 0 in a medium that does not absorb).
 pub fn step_optical_depth<M: Medium + ?Sized>(
     medium: &M,
     a: glam::DVec3,
@@ -354,7 +355,11 @@ pub fn step_optical_depth<M: Medium + ?Sized>(
     if !medium.absorbs() {
         return 0.0;
     }
-    0.5 * (medium.absorption(a) + medium.absorption(b)) * len
+    let chord = (b - a).length();
+    match chord > 0.0 {
+        true => medium.optical_depth(a, (b - a) / chord, chord) * (len / chord),
+        false => medium.absorption(a) * len,
+    }
 }
 
 fn leaves(limits: &MarchLimits, p: glam::DVec3) -> bool {

@@ -200,8 +200,8 @@ impl Description {
         let mut twin = Vec::with_capacity(layers.len());
         let first_medium = self.media.names().count();
         // Each layer keeps the GRIN medium's radiometry: its absorption (at the layer's
-        // middle radius) and its scattering.
-        let scattering = self.media.scattering(fiber.medium).copied();
+        // middle radius, density included) and its scattering (a density field and all).
+        let scattering = self.media.scattering(fiber.medium).cloned();
         let side = axis.any_orthonormal_vector();
         for (i, l) in layers.iter().enumerate() {
             let inside: Box<dyn Medium> = Box::new(UniformMedium { n: l.n });
@@ -210,11 +210,13 @@ impl Description {
                 true => Box::new(Absorbing {
                     inner: inside,
                     sigma_a: medium.absorption(base + side * (0.5 * (l.inner + l.outer))),
+                    density: None,
                 }),
                 false => inside,
             };
             let interior = Some(self.media.add(format!("layer {i} (n {:.6})", l.n), layer));
-            self.media.set_scattering(first_medium + i, scattering);
+            self.media
+                .set_scattering(first_medium + i, scattering.clone());
             let outside = if i + 1 < layers.len() {
                 Some(first_medium + i + 1)
             } else {

@@ -41,7 +41,6 @@ pub struct Beams {
 struct Recorded {
     stretch: Stretch,
     medium: usize,
-    scattering: Scattering,
     first: usize,
 }
 
@@ -51,10 +50,11 @@ struct Chord {
     /// Unit.
     dir: DVec3,
     length: f64,
-    /// Arclength from the stretch's start to `from`.
-    travelled: f64,
     /// Absorption's optical depth from the stretch's start to `from`.
     depth: f64,
+    /// The scattering column ∫d ds from the stretch's start to `from` (`travelled` in a
+    /// homogeneous medium).
+    column: f64,
 }
 
 impl Beams {
@@ -80,13 +80,16 @@ impl Beams {
         let mut sum = Rgb::ZERO;
         for (r, points) in self.recorded() {
             let medium = tracer.medium(r.medium);
+            let Some(scattering) = tracer.scene.media().scattering(r.medium) else {
+                continue;
+            };
             // A uniform medium's index is looked up once, not at every photon.
             let uniform_n = match medium.is_uniform() {
                 true => tracer.index(Some(r.medium), r.stretch.origin),
                 false => None,
             };
             let mut light = Rgb::ZERO;
-            for c in chords(tracer, r, points) {
+            for c in chords(tracer, scattering, r, points) {
                 volume.along(c.from, c.dir, c.length, |photon, along| {
                     let x = c.from + c.dir * along.distance;
                     let Some(n) = uniform_n.or_else(|| tracer.index(Some(r.medium), x)) else {
@@ -94,9 +97,10 @@ impl Beams {
                     };
                     let depth = c.depth + medium.optical_depth(c.from, c.dir, along.distance);
                     let mut flights = r.stretch.flights;
-                    let kept = flights.weigh(&r.scattering, c.travelled + along.distance, false);
+                    let column = c.column + scattering.column(c.from, c.dir, along.distance);
+                    let kept = flights.weigh(scattering, column, false);
                     // Light arrives travelling along −from and leaves toward the camera, −dir.
-                    let phase = r.scattering.phase.between(-photon.from_direction(), -c.dir);
+                    let phase = scattering.phase.between(-photon.from_direction(), -c.dir);
                     let scale = (n_start / n) * (n_start / n);
                     light += kept * photon.flux() * (phase * (-depth).exp() * scale * along.kernel);
                 });
@@ -118,15 +122,16 @@ impl Beams {
     }
 }
 
-/// The chords of stretch `r` from its origin through `points`, with the arclength and
-/// absorption depth before each.
+/// The chords of stretch `r` (in a medium that scatters as `scattering`) from its origin
+/// through `points`, with the absorption depth and scattering column before each.
 fn chords<'a>(
     tracer: &'a Tracer,
+    scattering: &'a Scattering,
     r: &'a Recorded,
     points: &'a [DVec3],
 ) -> impl Iterator<Item = Chord> + 'a {
     let medium = tracer.medium(r.medium);
-    let (mut from, mut travelled, mut depth) = (r.stretch.origin, 0.0, 0.0);
+    let (mut from, mut depth, mut column) = (r.stretch.origin, 0.0, 0.0);
     points.iter().filter_map(move |&to| {
         let length = (to - from).length();
         if length.is_nan() || length <= 0.0 {
@@ -137,11 +142,11 @@ fn chords<'a>(
             from,
             dir,
             length,
-            travelled,
             depth,
+            column,
         };
         depth += medium.optical_depth(from, dir, length);
-        travelled += length;
+        column += scattering.column(from, dir, length);
         from = to;
         Some(chord)
     })
@@ -159,15 +164,14 @@ impl ChainEvents for Recording<'_> {
         if beams.n_start.is_none() {
             beams.n_start = self.tracer.index(stretch.medium, stretch.origin);
         }
-        let scattering = stretch
+        let scatters = stretch
             .medium
-            .and_then(|m| Some((m, *self.tracer.scene.media().scattering(m)?)));
-        beams.recording = scattering.is_some();
-        if let Some((medium, scattering)) = scattering {
+            .filter(|&m| self.tracer.scene.media().scattering(m).is_some());
+        beams.recording = scatters.is_some();
+        if let Some(medium) = scatters {
             beams.stretches.push(Recorded {
                 stretch: *stretch,
                 medium,
-                scattering,
                 first: beams.points.len(),
             });
         }

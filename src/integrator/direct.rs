@@ -147,7 +147,7 @@ fn curved_light(
         .scene
         .media()
         .scattering(m)
-        .map_or(Rgb::ONE, |sc| sc.transmittance(link.length));
+        .map_or(Rgb::ONE, |sc| sc.transmittance(link.column));
     vertex.eval(link.direction) * e * unscattered * cos
 }
 

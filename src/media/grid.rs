@@ -1,6 +1,7 @@
 //! A tabulated index on a regular grid over a box (a "3D texture"): trilinear, or tricubic
 //! (Catmull–Rom) so that ∇n is continuous across cells.
 
+use super::lattice::{GridError, Lattice, Located};
 use super::{IndexSample, Medium};
 use glam::DVec3;
 
@@ -10,12 +11,7 @@ use glam::DVec3;
 /// positions are clamped to it: n continues constant along the clamped axes.
 #[derive(Clone, Debug)]
 pub struct GridMedium {
-    min: DVec3,
-    max: DVec3,
-    dims: [usize; 3],
-    values: Vec<f64>,
-    /// Node spacing along each axis.
-    cell: DVec3,
+    lattice: Lattice,
     interpolation: Interpolation,
 }
 
@@ -52,36 +48,6 @@ fn catmull_rom(t: f64) -> ([f64; 4], [f64; 4]) {
     )
 }
 
-/// Why a grid cannot be built.
-#[derive(Debug, thiserror::Error, PartialEq)]
-pub enum GridError {
-    /// Each axis needs at least two nodes.
-    #[error("dims must be at least 2 along every axis, got {0:?}")]
-    TooFewNodes([usize; 3]),
-    /// The node count nx·ny·nz does not fit in memory's address space.
-    #[error("dims {0:?} hold more nodes than can be addressed")]
-    TooManyNodes([usize; 3]),
-    /// The value count does not match the node count.
-    #[error("expected {expected} values (dims product), got {got}")]
-    WrongCount {
-        /// nx·ny·nz
-        expected: usize,
-        /// values given
-        got: usize,
-    },
-    /// A value is not a finite positive index.
-    #[error("value #{index} is {value}: every index must be finite and > 0")]
-    BadValue {
-        /// Position in the list.
-        index: usize,
-        /// The value.
-        value: f64,
-    },
-    /// The box has no volume.
-    #[error("bounds must satisfy min < max on every axis")]
-    EmptyBox,
-}
-
 impl GridMedium {
     /// Builds and validates a grid.
     pub fn new(
@@ -91,47 +57,22 @@ impl GridMedium {
         values: Vec<f64>,
         interpolation: Interpolation,
     ) -> Result<Self, GridError> {
-        if dims.iter().any(|&d| d < 2) {
-            return Err(GridError::TooFewNodes(dims));
-        }
-        if !(min.cmplt(max).all()) {
-            return Err(GridError::EmptyBox);
-        }
-        let expected = dims[0]
-            .checked_mul(dims[1])
-            .and_then(|n| n.checked_mul(dims[2]))
-            .ok_or(GridError::TooManyNodes(dims))?;
-        if values.len() != expected {
-            return Err(GridError::WrongCount {
-                expected,
-                got: values.len(),
-            });
-        }
-        if let Some((index, &value)) = values
-            .iter()
-            .enumerate()
-            .find(|(_, v)| !(v.is_finite() && **v > 0.0))
-        {
-            return Err(GridError::BadValue { index, value });
-        }
-        let cell = (max - min)
-            / DVec3::new(
-                dims[0] as f64 - 1.0,
-                dims[1] as f64 - 1.0,
-                dims[2] as f64 - 1.0,
-            );
+        let positive = |v: f64| v.is_finite() && v > 0.0;
         Ok(Self {
-            min,
-            max,
-            dims,
-            values,
-            cell,
+            lattice: Lattice::new(
+                min,
+                max,
+                dims,
+                values,
+                positive,
+                "every index must be finite and > 0",
+            )?,
             interpolation,
         })
     }
 
     fn node(&self, i: usize, j: usize, k: usize) -> f64 {
-        self.values[i + self.dims[0] * (j + self.dims[1] * k)]
+        self.lattice.node(i, j, k)
     }
 
     /// n and ∂n/∂(cell fractions) by the tricubic Catmull–Rom interpolant of the cell `cell`
@@ -139,7 +80,8 @@ impl GridMedium {
     /// their axis (linearly on a two-node axis), which keeps the boundary cells third order
     /// (repeating the face's value would make ∂n/∂x wrong there by O(h)).
     fn cubic(&self, cell: [usize; 3], frac: [f64; 3]) -> (f64, DVec3) {
-        let clamp = |a: usize, o: usize| (cell[a] + o).saturating_sub(1).min(self.dims[a] - 1);
+        let dims = self.lattice.dims();
+        let clamp = |a: usize, o: usize| (cell[a] + o).saturating_sub(1).min(dims[a] - 1);
         let mut block = [[[0.0f64; 4]; 4]; 4];
         for (oz, plane) in block.iter_mut().enumerate() {
             for (oy, row) in plane.iter_mut().enumerate() {
@@ -152,11 +94,11 @@ impl GridMedium {
         // after the last (o = 3 when cell = dims − 2).
         for (a, &c) in cell.iter().enumerate() {
             let low = c == 0;
-            let high = c + 2 >= self.dims[a];
+            let high = c + 2 >= dims[a];
             if !(low || high) {
                 continue;
             }
-            let two_nodes = self.dims[a] == 2;
+            let two_nodes = dims[a] == 2;
             for u in 0..4 {
                 for v in 0..4 {
                     let at = |o: usize| match a {
@@ -217,34 +159,6 @@ impl GridMedium {
         }
         (n, d)
     }
-
-    /// n and ∂n/∂(cell fractions) by the trilinear interpolant.
-    fn linear(&self, cell: [usize; 3], frac: [f64; 3]) -> (f64, DVec3) {
-        let [i, j, k] = cell;
-        let [fx, fy, fz] = frac;
-        let c = |di, dj, dk| self.node(i + di, j + dj, k + dk);
-        let lerp = |a: f64, b: f64, t: f64| a + (b - a) * t;
-        // Edges along x, then faces, then the value and its partial derivatives.
-        let (c00, c10, c01, c11) = (
-            lerp(c(0, 0, 0), c(1, 0, 0), fx),
-            lerp(c(0, 1, 0), c(1, 1, 0), fx),
-            lerp(c(0, 0, 1), c(1, 0, 1), fx),
-            lerp(c(0, 1, 1), c(1, 1, 1), fx),
-        );
-        let (d00, d10, d01, d11) = (
-            c(1, 0, 0) - c(0, 0, 0),
-            c(1, 1, 0) - c(0, 1, 0),
-            c(1, 0, 1) - c(0, 0, 1),
-            c(1, 1, 1) - c(0, 1, 1),
-        );
-        let c0 = lerp(c00, c10, fy);
-        let c1 = lerp(c01, c11, fy);
-        let n = lerp(c0, c1, fz);
-        let dndx = lerp(lerp(d00, d10, fy), lerp(d01, d11, fy), fz);
-        let dndy = lerp(c10 - c00, c11 - c01, fz);
-        let dndz = c1 - c0;
-        (n, DVec3::new(dndx, dndy, dndz))
-    }
 }
 
 impl Medium for GridMedium {
@@ -253,25 +167,13 @@ impl Medium for GridMedium {
         false
     }
     fn sample(&self, p: DVec3) -> Option<IndexSample> {
-        let scale = DVec3::new(
-            (self.dims[0] - 1) as f64,
-            (self.dims[1] - 1) as f64,
-            (self.dims[2] - 1) as f64,
-        ) / (self.max - self.min);
-        let u = ((p.clamp(self.min, self.max) - self.min) * scale).to_array();
-        let mut cell = [0usize; 3];
-        let mut frac = [0.0f64; 3];
-        for a in 0..3 {
-            cell[a] = (u[a].floor() as usize).min(self.dims[a] - 2);
-            frac[a] = u[a] - cell[a] as f64;
-        }
-        let inside = p.cmpge(self.min) & p.cmple(self.max);
+        let Located { cell, frac, inside } = self.lattice.locate(p);
         let (n, d) = match self.interpolation {
-            Interpolation::Linear => self.linear(cell, frac),
+            Interpolation::Linear => self.lattice.linear(cell, frac),
             Interpolation::Cubic => self.cubic(cell, frac),
         };
         // Clamped axes: n is constant there.
-        let grad = DVec3::select(inside, d * scale, DVec3::ZERO);
+        let grad = DVec3::select(inside, d * self.lattice.scale(), DVec3::ZERO);
         // A cubic interpolant may overshoot between nodes; n stays the data's sign.
         (n > 0.0).then_some(IndexSample { n, grad })
     }
@@ -281,10 +183,11 @@ impl Medium for GridMedium {
     /// axis n is constant along it: that axis bounds a step only by the way back in plus one
     /// cell, and not at all while `p` moves away.
     fn step_hint(&self, p: DVec3, dir: DVec3) -> f64 {
-        let outside = (self.min - p).max(p - self.max).max(DVec3::ZERO);
-        let away = (p.cmplt(self.min) & dir.cmplt(DVec3::ZERO))
-            | (p.cmpgt(self.max) & dir.cmpgt(DVec3::ZERO));
-        let reach = (outside + self.cell) / dir.abs();
+        let (min, max) = self.lattice.bounds();
+        let outside = (min - p).max(p - max).max(DVec3::ZERO);
+        let away =
+            (p.cmplt(min) & dir.cmplt(DVec3::ZERO)) | (p.cmpgt(max) & dir.cmpgt(DVec3::ZERO));
+        let reach = (outside + self.lattice.cell_size()) / dir.abs();
         DVec3::select(away, DVec3::INFINITY, reach).min_element()
     }
 }

@@ -6,7 +6,9 @@
 
 mod absorbing;
 mod air;
+mod density;
 mod grid;
+mod lattice;
 mod planar;
 mod radial;
 mod spherical;
@@ -14,7 +16,9 @@ mod table;
 
 pub use absorbing::Absorbing;
 pub use air::{GridQuantity, GAS_CONSTANT, GLADSTONE_DALE_AIR, MOLAR_MASS_AIR, STANDARD_PRESSURE};
-pub use grid::{GridError, GridMedium, Interpolation};
+pub use density::Density;
+pub use grid::{GridMedium, Interpolation};
+pub use lattice::{GridError, Lattice};
 pub use planar::{ExponentialMedium, HeightTable, LinearMedium, UniformMedium};
 pub use radial::{Axis, ParabolicFiber, RadialTable, SechFiber};
 pub use spherical::{

@@ -2,8 +2,8 @@
 //! resolved, and the [`Settings`] of its `[render]` and `[output]` tables; every error located
 //! at file:line:col and naming the key.
 
-use super::media::{read_medium, read_scattering, uniform};
-use super::model::{Description, Media, Scene, Shape, Surface};
+use super::media::{read_density, read_medium, read_scattering, uniform};
+use super::model::{Description, Media, Profile, Scene, Shape, Surface};
 use super::read::{
     read_camera, read_environment, read_light_and_spectrum, read_material, read_output,
     read_receiver, read_render, read_shape, Interior,
@@ -18,7 +18,7 @@ use crate::lights::Light;
 use crate::material::Material;
 use crate::receiver::Receiver;
 use crate::settings::Settings;
-use crate::spectrum::{Dispersion, Spectrum};
+use crate::spectrum::{Dispersion, Spectrum, LAMBDA_D};
 use std::path::Path;
 use toml::Spanned;
 
@@ -68,8 +68,23 @@ fn read_media(source: &Source, tables: Vec<Spanned<SpannedTable>>) -> Result<Med
     for table in tables {
         let mut t = reader(source, table, "[[medium]]");
         let name = named(&mut t, media.names(), "medium")?;
-        let medium = read_medium(&mut t)?;
-        let scattering = read_scattering(&mut t)?;
+        let density = read_density(&mut t)?;
+        let medium = read_medium(&mut t, density.clone())?;
+        let scattering = read_scattering(&mut t, density.clone())?;
+        let absorbs = match &medium {
+            Profile::Fixed(m) => m.absorbs(),
+            Profile::Dispersive(at) => at(LAMBDA_D).absorbs(),
+        };
+        if density.is_some() && scattering.is_none() && !absorbs {
+            let key = match t.has("density_file") {
+                true => "density_file",
+                false => "density_values",
+            };
+            t.warn(
+                key,
+                "a density scales `absorption` and `scattering`, and this medium has neither",
+            );
+        }
         t.finish()?;
         let i = media.add_profile(name, medium);
         media.set_scattering(i, scattering);

@@ -6,13 +6,14 @@ use super::table::TableReader;
 use crate::color::Rgb;
 use crate::error::Result;
 use crate::media::{
-    Absorbing, Axis, BlackHole, ExactBlackHole, ExponentialMedium, FishEye, GridError, GridMedium,
-    GridQuantity, HeightTable, Interpolation, LinearMedium, Luneburg, Medium, ParabolicFiber,
-    RadialTable, SechFiber, UniformMedium, GLADSTONE_DALE_AIR, STANDARD_PRESSURE,
+    Absorbing, Axis, BlackHole, Density, ExactBlackHole, ExponentialMedium, FishEye, GridError,
+    GridMedium, GridQuantity, HeightTable, Interpolation, LinearMedium, Luneburg, Medium,
+    ParabolicFiber, RadialTable, SechFiber, UniformMedium, GLADSTONE_DALE_AIR, STANDARD_PRESSURE,
 };
 use crate::spectrum::{Dispersion, LAMBDA_D};
 use crate::volume::{Phase, Scattering};
 use glam::DVec3;
+use std::sync::Arc;
 use toml::Value;
 
 /// The profile names a `[[medium]]` table may give.
@@ -33,8 +34,8 @@ pub const PROFILES: &[&str] = &[
 ];
 
 /// Reads one `[[medium]]` table (its `name` already taken) and builds the medium, with its
-/// `absorption` coefficient if it has one.
-pub fn read_medium(t: &mut TableReader) -> Result<Profile> {
+/// `absorption` coefficient if it has one, scaled by `density` if it is heterogeneous.
+pub fn read_medium(t: &mut TableReader, density: Option<Arc<Density>>) -> Result<Profile> {
     let absorption = t.f64_or("absorption", 0.0)?;
     t.check(
         "absorption",
@@ -46,6 +47,7 @@ pub fn read_medium(t: &mut TableReader) -> Result<Profile> {
             Box::new(Absorbing {
                 inner,
                 sigma_a: absorption,
+                density: density.clone(),
             })
         } else {
             inner
@@ -59,8 +61,12 @@ pub fn read_medium(t: &mut TableReader) -> Result<Profile> {
 
 /// A `[[medium]]` table's scattering, if it scatters: `scattering` σs (a number or RGB,
 /// 1/length, ≥ 0; 0 or absent: it does not) and `phase` (`"isotropic"`, the default, or
-/// `{ hg = g }`, Henyey–Greenstein with −1 < g < 1).
-pub fn read_scattering(t: &mut TableReader) -> Result<Option<Scattering>> {
+/// `{ hg = g }`, Henyey–Greenstein with −1 < g < 1), scaled by `density` if it is
+/// heterogeneous.
+pub fn read_scattering(
+    t: &mut TableReader,
+    density: Option<Arc<Density>>,
+) -> Result<Option<Scattering>> {
     let sigma_s = t.rgb_or("scattering", Some(Rgb::ZERO))?;
     let phase = match t.value_opt("phase") {
         None => Phase::Isotropic,
@@ -81,7 +87,11 @@ pub fn read_scattering(t: &mut TableReader) -> Result<Option<Scattering>> {
             ))
         }
     };
-    Ok((sigma_s.max_element() > 0.0).then_some(Scattering { sigma_s, phase }))
+    Ok((sigma_s.max_element() > 0.0).then_some(Scattering {
+        sigma_s,
+        phase,
+        density,
+    }))
 }
 
 /// The index profile of a `[[medium]]` table. Every index-valued key (`n`, `n0`) and the
@@ -247,40 +257,118 @@ fn read_fixed(t: &mut TableReader, profile: &str) -> Result<Box<dyn Medium>> {
     })
 }
 
-fn read_grid(t: &mut TableReader) -> Result<GridMedium> {
-    let file = t.has("file").then(|| t.input_file("file")).transpose()?;
+/// A lattice's nodes as a `[[medium]]` table gives them, under keys named with `prefix`:
+/// `bounds`, `dims` and `values` or a text `file`, or a VDB `file` (with its `grid` name and
+/// `background`) that gives all three.
+struct Nodes {
+    min: DVec3,
+    max: DVec3,
+    dims: [usize; 3],
+    values: Vec<f64>,
+    /// The key the values came from (`values` or `file`, prefixed).
+    key: String,
+}
+
+fn read_nodes(t: &mut TableReader, prefix: &str) -> Result<Nodes> {
+    let key = |name: &str| format!("{prefix}{name}");
+    let file = t
+        .has(&key("file"))
+        .then(|| t.input_file(&key("file")))
+        .transpose()?;
     let vdb = file
         .as_ref()
         .filter(|f| f.extension().is_some_and(|e| e.eq_ignore_ascii_case("vdb")));
-    let (min, max, dims, values, key) = if let Some(path) = vdb {
-        for key in ["bounds", "dims", "values"] {
-            if t.has(key) {
+    if let Some(path) = vdb {
+        for name in ["bounds", "dims", "values"] {
+            if t.has(&key(name)) {
                 return Err(t.error(
-                    key,
+                    &key(name),
                     "a VDB file gives the grid's voxels, their place and their count: leave out \
                      `bounds`, `dims` and `values`",
                 ));
             }
         }
-        let name = t.string_opt("grid")?;
-        let background = t.f64_opt("background")?;
+        let name = t.string_opt(&key("grid"))?;
+        let background = t.f64_opt(&key("background"))?;
         let dense = super::vdb::read(path, name.as_deref(), background)
-            .map_err(|e| t.error("file", format!("{}: {e}", path.display())))?;
-        (dense.min, dense.max, dense.dims, dense.values, "file")
-    } else {
-        let bounds = t.vec3_list("bounds")?;
-        let [min, max] = bounds[..] else {
-            return Err(t.error("bounds", "expected [[min x, y, z], [max x, y, z]]"));
-        };
-        let dims: [usize; 3] = t.counts("dims")?;
-        let values = t.f64_list_opt("values")?;
-        let (values, key) = match (values, &file) {
-            (Some(v), None) => (v, "values"),
-            (None, Some(path)) => (read_grid_file(t, path)?, "file"),
-            _ => return Err(t.error("values", "give exactly one of `values` and `file`")),
-        };
-        (min, max, dims, values, key)
+            .map_err(|e| t.error(&key("file"), format!("{}: {e}", path.display())))?;
+        return Ok(Nodes {
+            min: dense.min,
+            max: dense.max,
+            dims: dense.dims,
+            values: dense.values,
+            key: key("file"),
+        });
+    }
+    let bounds = t.vec3_list(&key("bounds"))?;
+    let [min, max] = bounds[..] else {
+        return Err(t.error(&key("bounds"), "expected [[min x, y, z], [max x, y, z]]"));
     };
+    let dims: [usize; 3] = t.counts(&key("dims"))?;
+    let values = t.f64_list_opt(&key("values"))?;
+    let (values, from) = match (values, &file) {
+        (Some(v), None) => (v, key("values")),
+        (None, Some(path)) => (read_grid_file(t, &key("file"), path)?, key("file")),
+        _ => {
+            return Err(t.error(
+                &key("values"),
+                format!(
+                    "give exactly one of `{}` and `{}`",
+                    key("values"),
+                    key("file")
+                ),
+            ))
+        }
+    };
+    Ok(Nodes {
+        min,
+        max,
+        dims,
+        values,
+        key: from,
+    })
+}
+
+/// The key of a lattice's table that `e` is about.
+fn grid_error_key(e: &GridError, prefix: &str, values: &str) -> String {
+    match e {
+        GridError::TooFewNodes(_) | GridError::TooManyNodes(_) => format!("{prefix}dims"),
+        GridError::EmptyBox => format!("{prefix}bounds"),
+        _ => values.to_string(),
+    }
+}
+
+/// A `[[medium]]` table's `density` lattice, if it gives one (keys `density_bounds`,
+/// `density_dims`, `density_values` or `density_file`, and for a VDB file `density_grid` and
+/// `density_background`): a heterogeneous medium's scale of σa and σs.
+pub fn read_density(t: &mut TableReader) -> Result<Option<Arc<Density>>> {
+    const PREFIX: &str = "density_";
+    if !["file", "bounds", "dims", "values"]
+        .iter()
+        .any(|k| t.has(&format!("{PREFIX}{k}")))
+    {
+        return Ok(None);
+    }
+    let Nodes {
+        min,
+        max,
+        dims,
+        values,
+        key,
+    } = read_nodes(t, PREFIX)?;
+    let density = Density::new(min, max, dims, values)
+        .map_err(|e| t.error(&grid_error_key(&e, PREFIX, &key), e))?;
+    Ok(Some(Arc::new(density)))
+}
+
+fn read_grid(t: &mut TableReader) -> Result<GridMedium> {
+    let Nodes {
+        min,
+        max,
+        dims,
+        values,
+        key,
+    } = read_nodes(t, "")?;
     let quantity = read_grid_quantity(t)?;
     let values = values
         .into_iter()
@@ -288,7 +376,7 @@ fn read_grid(t: &mut TableReader) -> Result<GridMedium> {
         .map(|(i, v)| {
             quantity
                 .index(v)
-                .map_err(|e| t.error(key, format!("value #{i}: {e}")))
+                .map_err(|e| t.error(&key, format!("value #{i}: {e}")))
         })
         .collect::<Result<Vec<f64>>>()?;
     let interpolation = match t
@@ -305,14 +393,8 @@ fn read_grid(t: &mut TableReader) -> Result<GridMedium> {
             ))
         }
     };
-    GridMedium::new(min, max, dims, values, interpolation).map_err(|e| {
-        let key = match e {
-            GridError::TooFewNodes(_) | GridError::TooManyNodes(_) => "dims",
-            GridError::EmptyBox => "bounds",
-            _ => key,
-        };
-        t.error(key, e)
-    })
+    GridMedium::new(min, max, dims, values, interpolation)
+        .map_err(|e| t.error(&grid_error_key(&e, "", &key), e))
 }
 
 /// A grid's `quantity`: `index` (the default), `density` (kg/m³, with `gladstone_dale` in
@@ -338,9 +420,9 @@ fn read_grid_quantity(t: &mut TableReader) -> Result<GridQuantity> {
     })
 }
 
-fn read_grid_file(t: &TableReader, path: &std::path::Path) -> Result<Vec<f64>> {
+fn read_grid_file(t: &TableReader, key: &str, path: &std::path::Path) -> Result<Vec<f64>> {
     let text = std::fs::read_to_string(path)
-        .map_err(|e| t.error("file", format!("cannot read {}: {e}", path.display())))?;
+        .map_err(|e| t.error(key, format!("cannot read {}: {e}", path.display())))?;
     // `#` starts a comment that runs to the end of its line.
     text.lines()
         .flat_map(|line| line.split('#').next().unwrap_or("").split_whitespace())
@@ -348,7 +430,7 @@ fn read_grid_file(t: &TableReader, path: &std::path::Path) -> Result<Vec<f64>> {
         .map(|(i, w)| {
             w.parse::<f64>().map_err(|_| {
                 t.error(
-                    "file",
+                    key,
                     format!("{}: value #{i} '{w}' is not a number", path.display()),
                 )
             })

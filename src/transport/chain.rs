@@ -15,7 +15,7 @@ use super::{Event, HeroTracer, MediumVertex, Stats, SurfaceVertex, Tracer, Verte
 use crate::bsdf::Bsdf;
 use crate::color::Rgb;
 use crate::material::Material;
-use crate::volume::Flights;
+use crate::volume::{Flights, Scattering};
 use glam::DVec3;
 use rand::Rng;
 use std::ops::ControlFlow;
@@ -214,6 +214,32 @@ struct Lent<'a, R> {
     stats: &'a mut Stats,
 }
 
+/// The most null collisions one stretch may meet in a heterogeneous medium (a path in a near
+/// empty corner of a dense grid, or one orbiting in a void): bounded time, never a loop.
+pub const MAX_NULL_COLLISIONS: usize = 100_000;
+
+/// The scattering column ∫d ds summed along a stretch's chords, where it is wanted.
+struct Column<'s> {
+    /// The medium's scattering, when the column is summed.
+    scattering: Option<&'s Scattering>,
+    /// The last point reached.
+    last: DVec3,
+    total: f64,
+}
+
+impl Column<'_> {
+    /// Adds the chord from the last point to `p`.
+    fn to(&mut self, p: DVec3) {
+        if let Some(sc) = self.scattering {
+            let length = (p - self.last).length();
+            if length > 0.0 {
+                self.total += sc.column(self.last, (p - self.last) / length, length);
+            }
+        }
+        self.last = p;
+    }
+}
+
 /// Where a chain stands between two events.
 struct Cursor {
     origin: DVec3,
@@ -314,6 +340,88 @@ impl<'w> Walker<'w> {
         chain
     }
 
+    /// Follows the chain from `at` to the end of its stretch: the next surface, the world's
+    /// edge, or — where a chain that scatters (weighted or roulette) crosses a scattering
+    /// medium — the free flight's collision. In a heterogeneous medium tentative collisions
+    /// are drawn at the majorant and the chain goes on past each null one, straight on along
+    /// its (curved) way ([`crate::volume`]); a stretch that meets more than
+    /// [`MAX_NULL_COLLISIONS`] ends lost, as a march out of steps does. Returns the event
+    /// (distance and absorption from `at`) and the stretch's scattering column: the density
+    /// integrated along its chords where the weights need it (a coloured σs, or a chain that
+    /// does not scatter), else its arclength.
+    fn fly<R: Rng>(
+        &mut self,
+        scattering: Option<&Scattering>,
+        chain: &Chain<'w>,
+        at: &Cursor,
+        lent: &mut Lent<R>,
+        observer: &mut dyn ChainEvents,
+    ) -> (Event, f64) {
+        let tracks =
+            scattering.filter(|_| matches!(self.policy, Policy::Weighted | Policy::Roulette));
+        let mut reach = tracks.map_or(f64::INFINITY, |sc| self.flights.draw(sc, lent.rng));
+        observer.stretch(&Stretch {
+            origin: at.origin,
+            medium: at.medium,
+            weight: chain.weight,
+            flights: self.flights,
+        });
+        let integrates = scattering.filter(|sc| {
+            sc.is_heterogeneous() && (!sc.is_grey() || self.policy == Policy::Unscattered)
+        });
+        let mut column = Column {
+            scattering: integrates,
+            last: at.origin,
+            total: 0.0,
+        };
+        let (mut origin, mut dir) = (at.origin, at.dir);
+        let (mut travelled, mut depth) = (0.0, 0.0);
+        for _ in 0..=MAX_NULL_COLLISIONS {
+            let event = self.tracer.next_event_within(
+                origin,
+                dir,
+                at.medium,
+                reach,
+                lent.stats,
+                &mut |p| {
+                    column.to(p);
+                    observer.point(p)
+                },
+            );
+            match (event, tracks) {
+                (
+                    Event::Reached {
+                        position,
+                        direction,
+                        distance,
+                        optical_depth,
+                    },
+                    Some(sc),
+                ) if !sc.collides(position, lent.rng) => {
+                    column.to(position);
+                    observer.point(position);
+                    (origin, dir) = (position, direction);
+                    travelled += distance;
+                    depth += optical_depth;
+                    reach = self.flights.draw(sc, lent.rng);
+                }
+                _ => {
+                    if let Some(end) = event.position() {
+                        column.to(end);
+                    }
+                    let event = event.continuing(travelled, depth);
+                    let column = match column.scattering {
+                        Some(_) => column.total,
+                        None => event.distance(),
+                    };
+                    return (event, column);
+                }
+            }
+        }
+        lent.stats.record_end(crate::curve::Termination::MaxSteps);
+        (Event::Lost, 0.0)
+    }
+
     /// Moves the chain to its next event: `Break` with how it ends, or `Continue` past a
     /// detector or a specular surface.
     fn step<R: Rng>(
@@ -334,34 +442,15 @@ impl<'w> Walker<'w> {
             .medium
             .is_some_and(|m| !self.tracer.medium(m).is_uniform());
         let scattering = at.medium.and_then(|m| scene.media().scattering(m));
-        let reach = match (scattering, self.policy) {
-            (Some(sc), Policy::Weighted | Policy::Roulette) => self.flights.draw(sc, lent.rng),
-            _ => f64::INFINITY,
-        };
-        observer.stretch(&Stretch {
-            origin: at.origin,
-            medium: at.medium,
-            weight: chain.weight,
-            flights: self.flights,
-        });
-        let event = self.tracer.next_event_within(
-            at.origin,
-            at.dir,
-            at.medium,
-            reach,
-            lent.stats,
-            &mut |p| observer.point(p),
-        );
+        let (event, column) = self.fly(scattering, chain, at, lent, observer);
         if let Some(sc) = scattering {
             chain.weight *= match (self.policy, event) {
-                (Policy::Weighted | Policy::Roulette, Event::Reached { distance, .. }) => {
-                    self.flights.weigh(sc, distance, true)
+                (Policy::Weighted | Policy::Roulette, Event::Reached { .. }) => {
+                    self.flights.weigh(sc, column, true)
                 }
-                (Policy::Weighted | Policy::Roulette, _) => {
-                    self.flights.weigh(sc, event.distance(), false)
-                }
+                (Policy::Weighted | Policy::Roulette, _) => self.flights.weigh(sc, column, false),
                 // Light scattered out of a shadow-like ray is not followed: it is lost to it.
-                (Policy::Unscattered, _) => sc.transmittance(event.distance()),
+                (Policy::Unscattered, _) => sc.transmittance(column),
                 // The principal ray is geometry: scattering does not change its way.
                 (Policy::Principal, _) => Rgb::ONE,
             };

@@ -28,6 +28,7 @@ use crate::curve::{
 use crate::lights::Anchor;
 use crate::material::Material;
 use crate::media::Medium;
+use crate::volume::Scattering;
 use glam::{DVec2, DVec3};
 
 /// A solved connection.
@@ -46,6 +47,9 @@ pub struct Link {
     pub length: f64,
     /// Optical depth ∫ σa ds along it.
     pub optical_depth: f64,
+    /// The scattering column ∫d ds along its chords in a heterogeneous scattering medium
+    /// ([`crate::volume::Scattering::column`]); its arclength otherwise.
+    pub column: f64,
 }
 
 impl Link {
@@ -74,6 +78,8 @@ enum Goal {
 struct Problem<'a> {
     tracer: &'a Tracer<'a>,
     medium: &'a dyn Medium,
+    /// How the medium scatters, if it is heterogeneous (the link's column is summed).
+    scattering: Option<&'a Scattering>,
     from: DVec3,
     chord: DVec3,
     u: DVec3,
@@ -87,6 +93,7 @@ struct Shot {
     end: RayState,
     length: f64,
     optical_depth: f64,
+    column: f64,
     /// The lengths of the march's steps, for the Jacobian's replays.
     lengths: Vec<f64>,
 }
@@ -133,6 +140,7 @@ impl Problem<'_> {
         let settings = &self.tracer.settings;
         let start = RayState::new(self.medium, self.from, self.direction(ab))?;
         let mut lengths = Vec::new();
+        let (mut last, mut column) = (self.from, 0.0);
         let out = march_with(
             settings.stepper,
             self.medium,
@@ -142,6 +150,12 @@ impl Problem<'_> {
             |_, step| {
                 if step.length > 0.0 {
                     lengths.push(step.length);
+                    let to = step.state.position;
+                    let chord = (to - last).length();
+                    if let Some(sc) = self.scattering.filter(|_| chord > 0.0) {
+                        column += sc.column(last, (to - last) / chord, chord);
+                    }
+                    last = to;
                 }
                 std::ops::ControlFlow::Continue(())
             },
@@ -153,6 +167,10 @@ impl Problem<'_> {
             end: out.state,
             length: out.arclength,
             optical_depth: out.optical_depth,
+            column: match self.scattering {
+                Some(_) => column,
+                None => out.arclength,
+            },
             lengths,
         })
     }
@@ -269,6 +287,7 @@ impl Problem<'_> {
             index_ratio2: ratio * ratio,
             length: shot.length,
             optical_depth: shot.optical_depth,
+            column: shot.column,
         }
     }
 }
@@ -297,6 +316,11 @@ pub fn connect(
     let problem = Problem {
         tracer,
         medium: tracer.medium(medium),
+        scattering: tracer
+            .scene
+            .media()
+            .scattering(medium)
+            .filter(|sc| sc.is_heterogeneous()),
         from,
         chord,
         u,

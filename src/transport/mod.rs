@@ -121,6 +121,41 @@ impl Event {
         }
     }
 
+    /// Where the event happens (None when lost).
+    pub fn position(&self) -> Option<DVec3> {
+        match *self {
+            Event::Surface { position, .. }
+            | Event::Escaped { position, .. }
+            | Event::Reached { position, .. } => Some(position),
+            Event::Lost => None,
+        }
+    }
+
+    /// The event of a ray that had gone `distance` with absorption `depth` before the start
+    /// it was traced from: both added to its own.
+    pub fn continuing(mut self, before: f64, depth_before: f64) -> Event {
+        if let Event::Surface {
+            distance,
+            optical_depth,
+            ..
+        }
+        | Event::Escaped {
+            distance,
+            optical_depth,
+            ..
+        }
+        | Event::Reached {
+            distance,
+            optical_depth,
+            ..
+        } = &mut self
+        {
+            *distance += before;
+            *optical_depth += depth_before;
+        }
+        self
+    }
+
     /// The fraction exp(−∫σa ds) of light kept on the way to the event (0 when lost).
     pub fn transmittance(&self) -> f64 {
         match *self {

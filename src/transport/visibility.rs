@@ -41,8 +41,9 @@ pub fn transmittance(
     }
 }
 
-/// The fraction exp(−σs s) of light per channel that a scattering `medium` leaves unscattered
-/// along the straight segment of [`transmittance`] (1 in a medium that does not scatter).
+/// The fraction exp(−σs C) of light per channel that a scattering `medium` leaves unscattered
+/// along the straight segment of [`transmittance`], C its column (its length in a homogeneous
+/// medium; 1 in a medium that does not scatter).
 pub fn unscattered(
     tracer: &Tracer,
     from: DVec3,
@@ -51,7 +52,10 @@ pub fn unscattered(
     reach: f64,
 ) -> Rgb {
     match medium.and_then(|m| tracer.scene.media().scattering(m)) {
-        Some(sc) => sc.transmittance(reach.min(tracer.world.exit_distance(from, dir))),
+        Some(sc) => {
+            let length = reach.min(tracer.world.exit_distance(from, dir));
+            sc.transmittance(sc.column(from, dir, length))
+        }
         None => Rgb::ONE,
     }
 }

@@ -9,6 +9,13 @@
 //! Russian roulette on it for photons), as it always was. With σs the same in every channel
 //! the draw is exact and every weight is 1; with a coloured σs see [`Flights`].
 //!
+//! **Density.** A heterogeneous medium scales σs (and σa) by a [`Density`] d(x): light keeps
+//! exp(−σs C) over a path of *column* C = ∫d ds ([`Scattering::column`]), which stands where
+//! the arclength stood. A free flight is then drawn by delta tracking (Woodcock et al. 1965):
+//! tentative collisions at the majorant rate σs·max d, each a real one with probability
+//! d(x)/max d ([`Scattering::collides`]), else the path goes on unchanged — exact along the
+//! curved path, since each tentative collision lands on it.
+//!
 //! **Radiance.** Basic radiance L/n² is conserved between events (the refractive radiative
 //! transfer equation; Ament et al. 2014), so radiance in-scattered at a point of index n is
 //! seen at a path's start scaled by (n_start/n)², as radiance leaving a surface is: the chain
@@ -20,25 +27,44 @@ mod phase;
 pub use phase::Phase;
 
 use crate::color::Rgb;
+use crate::media::Density;
+use glam::DVec3;
+use std::sync::Arc;
 
-/// How a medium scatters: σs per channel (1/length, ≥ 0) and the phase function.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// How a medium scatters: σs per channel (1/length, ≥ 0), the phase function, and the density
+/// that scales σs where the medium is heterogeneous.
+#[derive(Clone, Debug)]
 pub struct Scattering {
-    /// The scattering coefficient σs per RGB channel (1/length).
+    /// The scattering coefficient σs per RGB channel (1/length), where the density is 1.
     pub sigma_s: Rgb,
     /// How a scattering event redirects light.
     pub phase: Phase,
+    /// The density d(x) scaling σs (None: 1 everywhere, a homogeneous medium).
+    pub density: Option<Arc<Density>>,
+}
+
+/// The same scattering: equal σs and phase, and the very same density field (or none).
+impl PartialEq for Scattering {
+    fn eq(&self, other: &Self) -> bool {
+        let same_density = match (&self.density, &other.density) {
+            (None, None) => true,
+            (Some(a), Some(b)) => Arc::ptr_eq(a, b),
+            _ => false,
+        };
+        self.sigma_s == other.sigma_s && self.phase == other.phase && same_density
+    }
 }
 
 impl Scattering {
     /// Whether σs is the same in every channel (then a free flight's weights are 1).
-    fn is_grey(&self) -> bool {
+    pub fn is_grey(&self) -> bool {
         let s = self.sigma_s;
         s.0.x == s.0.y && s.0.y == s.0.z
     }
 
-    /// ln of each channel's density of a free flight's outcome after arclength `s`: scattered
-    /// there (σs exp(−σs s)) or gone on past it (exp(−σs s)); −∞ for a channel that cannot.
+    /// ln of each channel's density of a free flight's outcome after column `s`: scattered
+    /// there (σs exp(−σs s), over the density there, which every channel shares) or gone on
+    /// past it (exp(−σs s)); −∞ for a channel that cannot.
     fn log_densities(&self, s: f64, scattered: bool) -> [f64; 3] {
         self.sigma_s
             .0
@@ -50,9 +76,39 @@ impl Scattering {
             })
     }
 
-    /// The fraction exp(−σs s) of light that goes arclength `s` unscattered, per channel.
-    pub fn transmittance(&self, s: f64) -> Rgb {
-        Rgb((-self.sigma_s.0 * s).exp())
+    /// The fraction exp(−σs C) of light that goes a column `C` unscattered, per channel (the
+    /// column of a homogeneous medium is the arclength).
+    pub fn transmittance(&self, column: f64) -> Rgb {
+        Rgb((-self.sigma_s.0 * column).exp())
+    }
+
+    /// The column ∫d ds along the straight piece from `from` along unit `dir` over `length`
+    /// (`length` itself in a homogeneous medium).
+    pub fn column(&self, from: DVec3, dir: DVec3, length: f64) -> f64 {
+        match &self.density {
+            None => length,
+            Some(d) => d.column(from, dir, length),
+        }
+    }
+
+    /// The largest density (1 in a homogeneous medium): free flights are drawn at σs times it.
+    fn majorant(&self) -> f64 {
+        self.density.as_ref().map_or(1.0, |d| d.max())
+    }
+
+    /// Whether a tentative collision at `p` is a real one: always in a homogeneous medium, with
+    /// probability d(p)/max d in a heterogeneous one (one number from `rng`).
+    pub fn collides(&self, p: DVec3, rng: &mut impl rand::Rng) -> bool {
+        match &self.density {
+            None => true,
+            Some(d) => rng.gen::<f64>() * d.max() < d.at(p),
+        }
+    }
+
+    /// Whether a free flight may end before a surface only at a tentative collision
+    /// ([`Scattering::collides`]): the medium is heterogeneous.
+    pub fn is_heterogeneous(&self) -> bool {
+        self.density.is_some()
     }
 }
 
@@ -83,15 +139,16 @@ impl Default for Flights {
 }
 
 impl Flights {
-    /// The arclength a path travels in `medium` before it scatters, drawn from `rng` (one
-    /// number; a second, once per path, picks the hero channel); ∞ where the hero does not
-    /// scatter.
+    /// The arclength a path travels in `medium` to its next tentative collision (its
+    /// scattering in a homogeneous medium), drawn from `rng` (one number; a second, once per
+    /// path, picks the hero channel); ∞ where the hero does not scatter.
     pub fn draw(&mut self, medium: &Scattering, rng: &mut impl rand::Rng) -> f64 {
         let s = medium.sigma_s.0;
-        let sigma = match medium.is_grey() {
-            true => s.x,
-            false => s[*self.hero.get_or_insert_with(|| rng.gen_range(0..3))],
-        };
+        let sigma = medium.majorant()
+            * match medium.is_grey() {
+                true => s.x,
+                false => s[*self.hero.get_or_insert_with(|| rng.gen_range(0..3))],
+            };
         let u: f64 = rng.gen();
         match sigma > 0.0 {
             // 1 − u ∈ (0, 1]: the distance is finite and ≥ 0.
@@ -100,8 +157,9 @@ impl Flights {
         }
     }
 
-    /// The weight a flight of arclength `s` in `medium` multiplies the path's throughput by:
-    /// it `scattered` there, or went on past it (to a surface or out of the world).
+    /// The weight a flight of column `s` (its arclength in a homogeneous medium) in `medium`
+    /// multiplies the path's throughput by: it `scattered` there, or went on past it (to a
+    /// surface or out of the world).
     pub fn weigh(&mut self, medium: &Scattering, s: f64, scattered: bool) -> Rgb {
         if medium.is_grey() {
             return Rgb::ONE;
