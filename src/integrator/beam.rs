@@ -22,7 +22,7 @@ use crate::color::Rgb;
 use crate::photon::VolumeMap;
 use crate::transport::chain::{ChainEvents, Stretch};
 use crate::transport::Tracer;
-use crate::volume::Scattering;
+use crate::volume::{Flights, Scattering};
 use glam::DVec3;
 
 /// A chain's stretches in scattering media, recorded as it is followed.
@@ -42,6 +42,26 @@ struct Recorded {
     stretch: Stretch,
     medium: usize,
     first: usize,
+}
+
+/// A recorded stretch through a medium of uniform index: one straight segment.
+pub struct Straight<'a> {
+    /// Where it starts.
+    pub origin: DVec3,
+    /// Unit.
+    pub dir: DVec3,
+    /// To where it ends (a surface, the world's edge or its free flight's end).
+    pub length: f64,
+    /// The medium.
+    pub medium: usize,
+    /// How the medium scatters.
+    pub scattering: &'a Scattering,
+    /// The chain's weight at its start.
+    pub weight: Rgb,
+    /// The path's free flights with this stretch's drawn.
+    pub flights: Flights,
+    /// (n at the chain's start / n here)²: radiance in-scattered here, seen at the start.
+    pub radiance_scale: f64,
 }
 
 /// A straight piece of a recorded stretch.
@@ -108,6 +128,34 @@ impl Beams {
             sum += r.stretch.weight * light;
         }
         tracer.photon_irradiance(sum)
+    }
+
+    /// The recorded stretches through media of uniform index (straight, whole: from their
+    /// origin to their last point), on `tracer`, the one the chain ended on.
+    pub fn straight<'a>(&'a self, tracer: &'a Tracer) -> impl Iterator<Item = Straight<'a>> + 'a {
+        let n_start = self.n_start.unwrap_or(1.0);
+        self.recorded().filter_map(move |(r, points)| {
+            let scattering = tracer.scene.media().scattering(r.medium)?;
+            if !tracer.medium(r.medium).is_uniform() {
+                return None;
+            }
+            let end = *points.last()?;
+            let length = (end - r.stretch.origin).length();
+            if length.is_nan() || length <= 0.0 {
+                return None;
+            }
+            let n = tracer.index(Some(r.medium), r.stretch.origin)?;
+            Some(Straight {
+                origin: r.stretch.origin,
+                dir: (end - r.stretch.origin) / length,
+                length,
+                medium: r.medium,
+                scattering,
+                weight: r.stretch.weight,
+                flights: r.stretch.flights,
+                radiance_scale: (n_start / n) * (n_start / n),
+            })
+        })
     }
 
     /// The recorded stretches with their points after their origins.

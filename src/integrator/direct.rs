@@ -161,6 +161,21 @@ fn power_heuristic(a: f64, b: f64) -> f64 {
     }
 }
 
+/// Direct light at the visible point `vp` ([`direct_at`]) — but none at a point in a scattering
+/// medium of uniform index: the direct light scattered along the whole straight stretch that
+/// ended there is [`super::single::single_scattering`]'s, which samples it where the lights are.
+pub fn direct(carried: Carried, vp: &VisiblePoint, rng: &mut impl Rng, stats: &mut Stats) -> Rgb {
+    match vp.vertex {
+        Vertex::Medium(v)
+            if v.medium
+                .is_some_and(|m| carried.tracer.medium(m).is_uniform()) =>
+        {
+            Rgb::ZERO
+        }
+        _ => direct_at(carried, vp, rng, stats),
+    }
+}
+
 /// Direct light at a scattering vertex: light that reaches it from an emitter or the
 /// environment with no specular interaction on the way, reflected toward ωo by its BSDF.
 /// - In a uniform medium, one light sample of every light through a straight shadow ray
@@ -176,7 +191,12 @@ fn power_heuristic(a: f64, b: f64) -> f64 {
 /// A BSDF ray that meets a purely specular surface first carries nothing: that light is the
 /// caustic map's. A BSDF ray into a dispersive medium takes on the hero wavelength there;
 /// connections are traced at the wavelength(s) the path carries.
-pub fn direct(carried: Carried, vp: &VisiblePoint, rng: &mut impl Rng, stats: &mut Stats) -> Rgb {
+pub fn direct_at(
+    carried: Carried,
+    vp: &VisiblePoint,
+    rng: &mut impl Rng,
+    stats: &mut Stats,
+) -> Rgb {
     let tracer = carried.tracer;
     let scene = tracer.scene;
     let vertex = &vp.vertex;

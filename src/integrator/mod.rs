@@ -21,6 +21,7 @@ pub mod direct;
 mod neighbourhood;
 mod path;
 mod photon_map;
+mod single;
 
 pub use deflection::{DeflectionTable, TableCheck};
 pub use path::PathTracer;

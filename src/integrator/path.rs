@@ -11,7 +11,9 @@
 //! a specular chain (their caustics) cannot be found by any direction sample: the path tracer
 //! misses it, the photon mapper does not.
 
+use super::beam::Beams;
 use super::direct::{camera_path, direct, emission_seen, hero, VisiblePoint};
+use super::single::single_scattering;
 use super::{CameraRay, Integrator, Sample, Slot};
 use crate::color::Rgb;
 use crate::film::Layer;
@@ -40,12 +42,18 @@ const SURE_BOUNCES: u32 = 3;
 /// The path tracer of a scene.
 pub struct PathTracer<'a> {
     tracer: &'a Tracer<'a>,
+    /// Whether a medium of the scene scatters (camera chains are then recorded for their
+    /// single scattering).
+    scatters: bool,
 }
 
 impl<'a> PathTracer<'a> {
     /// The path tracer of the tracer's scene.
     pub fn new(tracer: &'a Tracer<'a>) -> Self {
-        Self { tracer }
+        Self {
+            tracer,
+            scatters: tracer.scene.media().any_scatters(),
+        }
     }
 
     /// The light reaching the camera from bounces after the visible point `vp`: direct
@@ -65,8 +73,15 @@ impl<'a> PathTracer<'a> {
             let Some(b) = vp.vertex.scatter_with(s.rng) else {
                 break;
             };
-            let chain = walker.follow(b.ray, s.rng, s.stats, &mut ());
+            let mut beams = Beams::default();
+            let chain = match self.scatters {
+                true => walker.follow(b.ray, s.rng, s.stats, &mut beams.record(walker.tracer)),
+                false => walker.follow(b.ray, s.rng, s.stats, &mut ()),
+            };
             let weight = b.sample.weight * b.radiance_scale;
+            sum += vp.throughput
+                * weight
+                * single_scattering(&beams, walker.carried(), s.rng, s.stats);
             let throughput = vp.throughput * weight * chain.weight;
             // With no specular bounce, emission here is the direct estimate's (already counted).
             if chain.specular > 0 {
@@ -100,8 +115,24 @@ impl Integrator for PathTracer<'_> {
     fn sample(&self, _: &(), _: &mut (), ray: CameraRay, s: &mut Sample) {
         let hero = hero(self.tracer, s.rng);
         let carried = Carried::starting(self.tracer, hero.as_ref());
-        let c = camera_path(carried, ray.origin, ray.direction, s.rng, s.stats, &mut ());
+        let mut beams = Beams::default();
+        let c = match self.scatters {
+            true => {
+                let mut recording = beams.record(self.tracer);
+                camera_path(
+                    carried,
+                    ray.origin,
+                    ray.direction,
+                    s.rng,
+                    s.stats,
+                    &mut recording,
+                )
+            }
+            false => camera_path(carried, ray.origin, ray.direction, s.rng, s.stats, &mut ()),
+        };
         s.add(EMITTED, c.emitted);
+        let single = single_scattering(&beams, c.carried, s.rng, s.stats);
+        s.add(DIRECT, single);
         let Some(vp) = c.visible else { return };
         s.add(ALBEDO, vp.vertex.albedo());
         s.add(NORMAL, vp.vertex.normal());

@@ -31,6 +31,7 @@
 use super::beam::Beams;
 use super::direct::{camera_path, direct, emission_seen, hero, VisiblePoint};
 use super::neighbourhood::Neighbourhood;
+use super::single::single_scattering;
 use super::{CameraRay, Integrator, Sample, Slot};
 use crate::color::Rgb;
 use crate::film::Layer;
@@ -114,6 +115,9 @@ pub struct PhotonMapper<'a> {
     seed: u64,
     /// Largest squared radius of a k-nearest query.
     max_r2: f64,
+    /// Whether a medium of the scene scatters (camera chains are then recorded, for their
+    /// single scattering and volume caustics).
+    scatters: bool,
 }
 
 /// A pass's photon maps.
@@ -144,6 +148,7 @@ impl<'a> PhotonMapper<'a> {
             photons: settings.photons,
             seed: settings.seed,
             max_r2: max_radius * max_radius,
+            scatters: tracer.scene.media().any_scatters(),
         }
     }
 
@@ -282,11 +287,13 @@ impl<'a> PhotonMapper<'a> {
             let b = vp.vertex.scatter_with(s.rng)?;
             let throughput = vp.throughput * b.sample.weight * b.radiance_scale;
             let mut beams = Beams::default();
-            let chain = match maps.volume {
-                Some(_) => walker.follow(b.ray, s.rng, s.stats, &mut beams.record(walker.tracer)),
-                None => walker.follow(b.ray, s.rng, s.stats, &mut ()),
+            let chain = match self.scatters {
+                true => walker.follow(b.ray, s.rng, s.stats, &mut beams.record(walker.tracer)),
+                false => walker.follow(b.ray, s.rng, s.stats, &mut ()),
             };
             found.caustic += throughput * self.volume_caustic(maps, &beams, walker.tracer, s);
+            found.direct +=
+                throughput * single_scattering(&beams, walker.carried(), s.rng, s.stats);
             if chain.specular > 0 && !volume {
                 found.emitted += throughput * emission_seen(walker.tracer, &chain);
             }
@@ -367,12 +374,14 @@ impl<'a> Integrator for PhotonMapper<'a> {
         let carried = Carried::starting(self.tracer, hero.as_ref());
         let mut beams = Beams::default();
         let (mut recording, mut unrecorded) = (beams.record(self.tracer), ());
-        let observer: &mut dyn ChainEvents = match maps.volume {
-            Some(_) => &mut recording,
-            None => &mut unrecorded,
+        let observer: &mut dyn ChainEvents = match self.scatters {
+            true => &mut recording,
+            false => &mut unrecorded,
         };
         let c = camera_path(carried, ray.origin, ray.direction, s.rng, s.stats, observer);
         s.add(EMITTED, c.emitted);
+        let single = single_scattering(&beams, c.carried, s.rng, s.stats);
+        s.add(DIRECT, single);
         let caustic = self.volume_caustic(maps, &beams, c.carried.tracer, s);
         s.add(CAUSTIC, caustic);
         let Some(first) = c.visible else { return };

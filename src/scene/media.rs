@@ -349,15 +349,9 @@ pub fn read_density(t: &mut TableReader) -> Result<Option<Arc<Density>>> {
     {
         return Ok(None);
     }
-    let Nodes {
-        min,
-        max,
-        dims,
-        values,
-        key,
-    } = read_nodes(t, PREFIX)?;
-    let density = Density::new(min, max, dims, values)
-        .map_err(|e| t.error(&grid_error_key(&e, PREFIX, &key), e))?;
+    let nodes = read_nodes(t, PREFIX)?;
+    let density = Density::new(nodes.min, nodes.max, nodes.dims, nodes.values)
+        .map_err(|e| t.error(&grid_error_key(&e, PREFIX, &nodes.key), e))?;
     Ok(Some(Arc::new(density)))
 }
 
