@@ -446,3 +446,24 @@ fn slabs_reflect_and_transmit_as_a_plane_parallel_random_walk() {
         }
     }
 }
+
+/// A camera in an open conservative fog under a uniform sky of radiance 1 (no lights, the
+/// fog filling the world sphere) sees 1 everywhere: the sky's single scattering is found by
+/// the phase sample at each scattering point, multiple scattering by the paths that go on.
+/// Both integrators, within four standard errors of the pixel mean.
+#[test]
+fn a_fog_under_a_uniform_sky_shows_the_sky() {
+    let text = "ambient = \"fog\"\n[camera]\nposition = [0, 0, 0]\nlook_at = [0.2, 0.1, -1]\n\
+                fov_y_deg = 60\nwidth = 12\nheight = 12\n[render]\nspp = 256\nworld_radius = 2\n\
+                [[medium]]\nname = \"fog\"\nprofile = \"uniform\"\nn = 1\nscattering = 1\n\
+                [[light]]\ntype = \"environment\"\nsky = \"uniform\"\n";
+    for (integrator, mean, error) in furnace(text) {
+        println!("sky: {integrator:?}: {mean:?} ± {error:?}");
+        for (m, e) in mean.iter().zip(error) {
+            assert!(
+                (m - 1.0).abs() < 4.0 * e.max(1e-3),
+                "{integrator:?}: {mean:?} ± {error:?} against 1"
+            );
+        }
+    }
+}

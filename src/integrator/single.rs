@@ -8,8 +8,9 @@
 //! sample and a phase sample, weighed against each other). Drawing the free flight's end and
 //! lighting it estimates this integral with density ∝ σs T_s, which near a small bright light
 //! leaves most samples in the dark. Here t is drawn with density ∝ 1/|x(t) − y|² about a point
-//! y on one light (chosen uniformly; a light without a point — the environment, parallel light
-//! — draws t uniformly), and weighed by the mixture of every light's density (one-sample
+//! y on one light (chosen uniformly; a light without a point — parallel light, and the
+//! environment, one more strategy — draws t uniformly), and weighed by the mixture of every
+//! strategy's density (one-sample
 //! multiple importance sampling over the lights' strategies), so the samples crowd where the
 //! light is. The free flight's end then takes no direct light of its own
 //! ([`super::direct::direct`]). Curved stretches keep the point estimate: a stretch through a
@@ -33,14 +34,17 @@ pub fn single_scattering(
     stats: &mut Stats,
 ) -> Rgb {
     let tracer = carried.tracer;
-    let lights = &tracer.scene.lights;
-    if lights.is_empty() {
+    let scene = tracer.scene;
+    // The environment is found by the phase sample alone: uniform draws serve it.
+    let sky = scene.environment.is_some();
+    if scene.lights.is_empty() && !sky {
         return Rgb::ZERO;
     }
     let mut sum = Rgb::ZERO;
     for s in beams.straight(tracer) {
         let middle = s.origin + s.dir * (0.5 * s.length);
-        let strategies: Vec<Strategy> = lights
+        let mut strategies: Vec<Strategy> = scene
+            .lights
             .iter()
             .map(|light| {
                 let sample = light.sample_incident(middle, (rng.gen(), rng.gen()));
@@ -50,6 +54,9 @@ pub fn single_scattering(
                 }
             })
             .collect();
+        if sky {
+            strategies.push(Strategy::Uniform);
+        }
         let pick = rng.gen_range(0..strategies.len());
         let t = strategies[pick].sample(&s, rng.gen());
         let pdf = strategies.iter().map(|q| q.pdf(&s, t)).sum::<f64>() / strategies.len() as f64;
