@@ -28,7 +28,10 @@ use glam::DVec3;
 /// A chain's stretches in scattering media, recorded as it is followed.
 #[derive(Default)]
 pub struct Beams {
-    /// n at the chain's start.
+    /// The chain's first stretch (where it starts).
+    start: Option<Stretch>,
+    /// n at the chain's start, looked up at its first stretch in a scattering medium (a chain
+    /// through none costs no lookup).
     n_start: Option<f64>,
     stretches: Vec<Recorded>,
     /// Every recorded stretch's points after its origin, in order.
@@ -78,8 +81,10 @@ struct Chord {
 }
 
 impl Beams {
-    /// A recorder for chains on `tracer`'s scene; what it recorded before is forgotten.
+    /// A recorder for chains on `tracer`'s scene; what it recorded before is forgotten. It
+    /// keeps nothing of a chain through no scattering medium.
     pub fn record<'b>(&'b mut self, tracer: &'b Tracer<'b>) -> Recording<'b> {
+        self.start = None;
         self.n_start = None;
         self.stretches.clear();
         self.points.clear();
@@ -209,14 +214,15 @@ pub struct Recording<'b> {
 impl ChainEvents for Recording<'_> {
     fn stretch(&mut self, stretch: &Stretch) {
         let beams = &mut *self.beams;
-        if beams.n_start.is_none() {
-            beams.n_start = self.tracer.index(stretch.medium, stretch.origin);
-        }
+        let start = *beams.start.get_or_insert(*stretch);
         let scatters = stretch
             .medium
             .filter(|&m| self.tracer.scene.media().scattering(m).is_some());
         beams.recording = scatters.is_some();
         if let Some(medium) = scatters {
+            if beams.stretches.is_empty() {
+                beams.n_start = self.tracer.index(start.medium, start.origin);
+            }
             beams.stretches.push(Recorded {
                 stretch: *stretch,
                 medium,

@@ -7,13 +7,15 @@
 //! dispersion ([`Carried`]); colours are then read at it ([`Tracer::reflectance`],
 //! [`Tracer::radiance`]).
 
+use super::beam::Beams;
+use super::single::single_scattering;
+use super::CameraRay;
 use crate::color::Rgb;
 use crate::lights::Light;
 use crate::spectrum::Hero;
-use crate::transport::chain::{Carried, Chain, ChainEvents, End, Policy, Ray, Walker};
+use crate::transport::chain::{Carried, Chain, End, Policy, Ray, Walker};
 use crate::transport::connect::connect;
 use crate::transport::{visibility, HeroTracer, Stats, Tracer, Vertex};
-use glam::DVec3;
 use rand::Rng;
 
 /// A scattering vertex a camera path has reached, with what radiance leaving it becomes at
@@ -32,6 +34,9 @@ pub struct VisiblePoint<'w> {
 pub struct Components<'w> {
     /// Emission and environment radiance met along the specular chain.
     pub emitted: Rgb,
+    /// Direct light scattered toward the camera along the chain's straight stretches through
+    /// scattering media ([`super::single::single_scattering`]).
+    pub single: Rgb,
     /// Its first scattering vertex, if it reached one.
     pub visible: Option<VisiblePoint<'w>>,
     /// The wavelengths the path carries there.
@@ -64,24 +69,24 @@ pub fn emission_seen(tracer: &Tracer, chain: &Chain) -> Rgb {
 }
 
 /// Follows a camera ray through mirrors, dielectrics and curved media to its visible point,
-/// telling `observer` what it passes.
+/// recording its stretches through scattering media in `beams`.
 pub fn camera_path<'w>(
     carried: Carried<'w>,
-    origin: DVec3,
-    dir: DVec3,
+    camera: CameraRay,
+    beams: &mut Beams,
     rng: &mut impl Rng,
     stats: &mut Stats,
-    observer: &mut dyn ChainEvents,
 ) -> Components<'w> {
     let ray = Ray {
-        origin,
-        direction: dir,
+        origin: camera.origin,
+        direction: camera.direction,
         medium: carried.tracer.camera_medium,
     };
     let mut walker = Walker::carrying(carried, Policy::Weighted);
-    let chain = walker.follow(ray, rng, stats, observer);
+    let chain = walker.follow(ray, rng, stats, &mut beams.record(carried.tracer));
     let mut out = Components {
         emitted: emission_seen(walker.tracer, &chain),
+        single: single_scattering(beams, walker.carried(), rng, stats),
         visible: None,
         carried: walker.carried(),
     };

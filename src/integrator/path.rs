@@ -42,18 +42,12 @@ const SURE_BOUNCES: u32 = 3;
 /// The path tracer of a scene.
 pub struct PathTracer<'a> {
     tracer: &'a Tracer<'a>,
-    /// Whether a medium of the scene scatters (camera chains are then recorded for their
-    /// single scattering).
-    scatters: bool,
 }
 
 impl<'a> PathTracer<'a> {
     /// The path tracer of the tracer's scene.
     pub fn new(tracer: &'a Tracer<'a>) -> Self {
-        Self {
-            tracer,
-            scatters: tracer.scene.media().any_scatters(),
-        }
+        Self { tracer }
     }
 
     /// The light reaching the camera from bounces after the visible point `vp`: direct
@@ -74,10 +68,7 @@ impl<'a> PathTracer<'a> {
                 break;
             };
             let mut beams = Beams::default();
-            let chain = match self.scatters {
-                true => walker.follow(b.ray, s.rng, s.stats, &mut beams.record(walker.tracer)),
-                false => walker.follow(b.ray, s.rng, s.stats, &mut ()),
-            };
+            let chain = walker.follow(b.ray, s.rng, s.stats, &mut beams.record(walker.tracer));
             let weight = b.sample.weight * b.radiance_scale;
             sum += vp.throughput
                 * weight
@@ -116,23 +107,9 @@ impl Integrator for PathTracer<'_> {
         let hero = hero(self.tracer, s.rng);
         let carried = Carried::starting(self.tracer, hero.as_ref());
         let mut beams = Beams::default();
-        let c = match self.scatters {
-            true => {
-                let mut recording = beams.record(self.tracer);
-                camera_path(
-                    carried,
-                    ray.origin,
-                    ray.direction,
-                    s.rng,
-                    s.stats,
-                    &mut recording,
-                )
-            }
-            false => camera_path(carried, ray.origin, ray.direction, s.rng, s.stats, &mut ()),
-        };
+        let c = camera_path(carried, ray, &mut beams, s.rng, s.stats);
         s.add(EMITTED, c.emitted);
-        let single = single_scattering(&beams, c.carried, s.rng, s.stats);
-        s.add(DIRECT, single);
+        s.add(DIRECT, c.single);
         let Some(vp) = c.visible else { return };
         s.add(ALBEDO, vp.vertex.albedo());
         s.add(NORMAL, vp.vertex.normal());

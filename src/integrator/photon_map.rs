@@ -39,7 +39,7 @@ use crate::photon::{shoot, Batch, PhotonMap, Photons, Sources, VolumeMap};
 use crate::report::Report;
 use crate::scene::Scene;
 use crate::settings::{PhotonSettings, Settings};
-use crate::transport::chain::{Carried, ChainEvents, End, Policy, Walker};
+use crate::transport::chain::{Carried, End, Policy, Walker};
 use crate::transport::{Stats, SurfaceVertex, Tracer, Vertex};
 use std::f64::consts::FRAC_1_PI;
 use std::time::Instant;
@@ -115,9 +115,6 @@ pub struct PhotonMapper<'a> {
     seed: u64,
     /// Largest squared radius of a k-nearest query.
     max_r2: f64,
-    /// Whether a medium of the scene scatters (camera chains are then recorded, for their
-    /// single scattering and volume caustics).
-    scatters: bool,
 }
 
 /// A pass's photon maps.
@@ -148,7 +145,6 @@ impl<'a> PhotonMapper<'a> {
             photons: settings.photons,
             seed: settings.seed,
             max_r2: max_radius * max_radius,
-            scatters: tracer.scene.media().any_scatters(),
         }
     }
 
@@ -287,10 +283,7 @@ impl<'a> PhotonMapper<'a> {
             let b = vp.vertex.scatter_with(s.rng)?;
             let throughput = vp.throughput * b.sample.weight * b.radiance_scale;
             let mut beams = Beams::default();
-            let chain = match self.scatters {
-                true => walker.follow(b.ray, s.rng, s.stats, &mut beams.record(walker.tracer)),
-                false => walker.follow(b.ray, s.rng, s.stats, &mut ()),
-            };
+            let chain = walker.follow(b.ray, s.rng, s.stats, &mut beams.record(walker.tracer));
             found.caustic += throughput * self.volume_caustic(maps, &beams, walker.tracer, s);
             found.direct +=
                 throughput * single_scattering(&beams, walker.carried(), s.rng, s.stats);
@@ -373,15 +366,9 @@ impl<'a> Integrator for PhotonMapper<'a> {
         let hero = hero(self.tracer, s.rng);
         let carried = Carried::starting(self.tracer, hero.as_ref());
         let mut beams = Beams::default();
-        let (mut recording, mut unrecorded) = (beams.record(self.tracer), ());
-        let observer: &mut dyn ChainEvents = match self.scatters {
-            true => &mut recording,
-            false => &mut unrecorded,
-        };
-        let c = camera_path(carried, ray.origin, ray.direction, s.rng, s.stats, observer);
+        let c = camera_path(carried, ray, &mut beams, s.rng, s.stats);
         s.add(EMITTED, c.emitted);
-        let single = single_scattering(&beams, c.carried, s.rng, s.stats);
-        s.add(DIRECT, single);
+        s.add(DIRECT, c.single);
         let caustic = self.volume_caustic(maps, &beams, c.carried.tracer, s);
         s.add(CAUSTIC, caustic);
         let Some(first) = c.visible else { return };

@@ -10,9 +10,8 @@
 //! leaves most samples in the dark. Here t is drawn with density ∝ 1/|x(t) − y|² about a point
 //! y on one light (chosen uniformly; a light without a point — parallel light, and the
 //! environment, one more strategy — draws t uniformly), and weighed by the mixture of every
-//! strategy's density (one-sample
-//! multiple importance sampling over the lights' strategies), so the samples crowd where the
-//! light is. The free flight's end then takes no direct light of its own
+//! strategy's density (one-sample multiple importance sampling), so the samples crowd where
+//! the light is. The free flight's end then takes no direct light of its own
 //! ([`super::direct::direct`]). Curved stretches keep the point estimate: a stretch through a
 //! gradient medium is not a line to sample along.
 
