@@ -108,7 +108,7 @@ fn ambient_case(name: &'static str, medium: &str, expect: Expect) -> Case {
 }
 
 /// A partial file's magic line of this version.
-const PARTIAL: &[u8] = b"GRINLIGHT PARTIAL 2\n";
+const PARTIAL: &[u8] = b"GRINLIGHT PARTIAL 3\n";
 
 fn env_case(name: &'static str, image: Vec<u8>, expect: Expect) -> Case {
     Case {
@@ -559,7 +559,7 @@ fn pipes_and_huge_files_are_refused_as_inputs() {
     let file = std::fs::File::create(dir.join("big.partial")).unwrap();
     use std::io::Write;
     (&file)
-        .write_all(b"GRINLIGHT PARTIAL 2\n\x10\x00\x00\x00")
+        .write_all(b"GRINLIGHT PARTIAL 3\n\x10\x00\x00\x00")
         .unwrap();
     file.set_len(3 << 30).unwrap();
     let (code, _, stderr, took) = run(

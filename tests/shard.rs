@@ -9,13 +9,15 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
-/// A fresh directory holding copies of the Cornell box and the LED-lit fiber scenes.
+/// A fresh directory holding copies of the Cornell box and the LED-lit fiber scenes, clear
+/// and with scattering particles in its core.
 fn workspace(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("grinlight-shard-{}-{name}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::copy("scenes/cornell_caustic.toml", dir.join("cornell.toml")).unwrap();
     std::fs::copy("scenes/fiber_led.toml", dir.join("fiber.toml")).unwrap();
+    std::fs::copy("scenes/diffusing_fiber.toml", dir.join("diffusing.toml")).unwrap();
     dir
 }
 
@@ -40,8 +42,13 @@ fn cornell(dir: &Path) -> RenderJob {
 
 /// The fiber measured with 30 000 receiver photons.
 fn fiber(dir: &Path) -> RenderJob {
+    receivers(dir, "fiber.toml")
+}
+
+/// The receivers of scene `file` in `dir`, from 30 000 photons.
+fn receivers(dir: &Path, file: &str) -> RenderJob {
     RenderJob {
-        scene: dir.join("fiber.toml"),
+        scene: dir.join(file),
         overrides: Overrides {
             receiver_photons: Some(30_000),
             threads: Some(2),
@@ -94,9 +101,10 @@ fn whole_and_merged(
     (whole, merged)
 }
 
-/// N = 1, 2, 3, 7 shards of the fiber receiver and of a Cornell render merge
-/// into the single run's result: every film sum, every bin's irradiance and standard error,
-/// every energy-budget entry identical to the bit (`==` on f64 and on the fixed-point sums);
+/// N = 1, 2, 3, 7 shards of the fiber receiver, of the diffusing fiber's and of a Cornell render
+/// merge into the single run's result: every film sum, every bin's irradiance and standard
+/// error, every energy-budget entry (with the diffusing fiber's scattered part) identical to
+/// the bit (`==` on f64 and on the fixed-point sums);
 /// the EXR files byte for byte. The progressive caustic is included: its radius schedule is a
 /// function of the pass index alone, so a pass is the same pass in any shard.
 #[test]
@@ -125,6 +133,18 @@ fn shards_merge_into_the_single_run_bit_for_bit() {
         assert_eq!(
             std::fs::read(dir.join("fiber.exit.csv")).unwrap(),
             std::fs::read(dir.join(format!("fiber-{n}.exit.csv"))).unwrap()
+        );
+        let job = receivers(&dir, "diffusing.toml");
+        let (whole, merged) = whole_and_merged(&dir, &job, "diffusing", n);
+        assert_eq!(
+            whole.measurements, merged.measurements,
+            "diffusing, {n} shards"
+        );
+        let budget = whole.budget.as_ref().unwrap();
+        assert!(budget.scattered.is_some(), "the core scatters");
+        assert_eq!(
+            whole.budget, merged.budget,
+            "diffusing fiber budget, {n} shards"
         );
     }
     std::fs::remove_dir_all(&dir).unwrap();

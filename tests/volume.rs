@@ -418,16 +418,18 @@ fn slabs_reflect_and_transmit_as_a_plane_parallel_random_walk() {
             let photons = Photons::all(Batch::Receivers, 5, 0, count);
             let (sink, _) = shoot(&tracer, &Sources::new(&tracer), photons, &|| false);
             let budget = sink.budget.statement(1.0);
-            let through = |face_y: f64| {
+            // The share of the power emitted that left `part` of the budget through the face
+            // at height `face_y`.
+            let through = |part: &grinlight::photon::Budget, face_y: f64| {
                 let prim = scene.accel.primitives().iter().position(|p| {
                     let (lo, hi) = p.bounds();
                     (lo.y - face_y).abs() < 1e-9 && (hi.y - face_y).abs() < 1e-9
                 });
-                prim.and_then(|p| budget.out_through.get(&p).copied())
+                prim.and_then(|p| part.out_through.get(&p).copied())
                     .unwrap_or(0.0)
                     / budget.emitted
             };
-            let (r_got, t_got) = (through(0.0), through(-depth));
+            let (r_got, t_got) = (through(&budget, 0.0), through(&budget, -depth));
             for (name, got, reference) in [("R", r_got, r_ref), ("T", t_got, t_ref)] {
                 let se = (got * (1.0 - got) / count as f64
                     + reference * (1.0 - reference) / walks as f64)
@@ -441,6 +443,42 @@ fn slabs_reflect_and_transmit_as_a_plane_parallel_random_walk() {
                 assert!(
                     (got - reference).abs() < 4.0 * se,
                     "τ = {tau}, {slab}: {name} {got} against {reference} ± {se}"
+                );
+            }
+            // The energy budget: what neither face let out was absorbed in the fog (medium
+            // 0), against the walk's 1 − R − T; a photon scatters at least once with
+            // probability ϖ(1 − e^{−τ}) (its first collision within the slab is a scattering),
+            // and those that did not either went straight through (e^{−τ}) or were absorbed.
+            assert!((budget.booked() - budget.emitted).abs() < 1e-9 * budget.emitted);
+            assert_eq!((budget.absorbed, budget.lost), (0.0, 0.0));
+            let scattered = budget.scattered.as_deref().expect("the fog scattered");
+            assert!((scattered.booked() - scattered.emitted).abs() < 1e-9 * scattered.emitted);
+            let straight_through = t_got - through(scattered, -depth);
+            let unscattered = (-tau).exp();
+            for (name, got, want, walked) in [
+                (
+                    "absorbed",
+                    budget.absorbed_in[&0] / budget.emitted,
+                    1.0 - share(r) - share(t),
+                    true,
+                ),
+                (
+                    "scattered",
+                    scattered.emitted / budget.emitted,
+                    albedo * (1.0 - unscattered),
+                    false,
+                ),
+                ("straight through", straight_through, unscattered, false),
+            ] {
+                let mut var = got * (1.0 - got) / count as f64;
+                if walked {
+                    var += want * (1.0 - want) / walks as f64;
+                }
+                let se = var.sqrt();
+                println!("τ = {tau}, {slab}: {name} {got:.5} against {want:.5} ± {se:.5}");
+                assert!(
+                    (got - want).abs() < 4.0 * se,
+                    "τ = {tau}, {slab}: {name} {got} against {want} ± {se}"
                 );
             }
         }

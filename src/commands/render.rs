@@ -587,7 +587,8 @@ fn write_results(
                 ));
             }
         }
-        observer.line(&budget.table(scene.accel.primitives()));
+        let media: Vec<&str> = scene.medium_names().collect();
+        observer.line(&budget.table(scene.accel.primitives(), &media));
         outcome.measurements = measurements;
         outcome.budget = Some(budget);
     }

@@ -1,7 +1,9 @@
 //! The energy budget of a photon batch: where each photon's power went when its path ended.
 //! Every emitted photon is booked exactly once, so the entries add up to the power emitted;
-//! what they measure is how it divides (out through which face, reflected, absorbed, lost).
-//! Photons that carry a wavelength are also booked in every receiver band holding it.
+//! what they measure is how it divides (out through which face, reflected, absorbed by
+//! surfaces or in which medium, lost). The photons a medium scattered are also booked apart
+//! (where scattered light went), and photons that carry a wavelength in every receiver band
+//! holding it.
 
 use crate::exact::ExactSum;
 use serde::{Deserialize, Serialize};
@@ -20,9 +22,27 @@ pub enum Fate {
     Missed,
     /// It ended on a diffuse or emissive surface, or a lossy mirror's Russian roulette.
     Absorbed,
+    /// It was absorbed in this medium (by index): on the way through it, or where it
+    /// scattered in it.
+    AbsorbedIn(usize),
     /// It was captured by a singular medium, ran out of steps, was cut at `max_depth`, or left
     /// the world from inside a dielectric (the world sphere cuts the object).
     Lost,
+}
+
+/// One photon as its batch books it when its path ends.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Ended {
+    /// Its power when it left the light (W, the mean over the RGB channels).
+    pub emitted: f64,
+    /// Its power when its path ended (W, the mean over the RGB channels).
+    pub power: f64,
+    /// How its path ended.
+    pub fate: Fate,
+    /// Its vacuum wavelength, nm (None: it carries all).
+    pub nm: Option<f64>,
+    /// Whether a medium scattered it on the way.
+    pub scattered: bool,
 }
 
 /// Power per fate, in the lights' power unit (W), as the mean over the RGB channels; each
@@ -38,10 +58,15 @@ pub struct Budget<T = f64> {
     pub reflected: T,
     /// See [`Fate::Missed`].
     pub missed: T,
-    /// See [`Fate::Absorbed`].
+    /// See [`Fate::Absorbed`]: by surfaces.
     pub absorbed: T,
+    /// See [`Fate::AbsorbedIn`]: by media, by medium index.
+    pub absorbed_in: BTreeMap<usize, T>,
     /// See [`Fate::Lost`].
     pub lost: T,
+    /// The same for the photons a medium scattered on the way (None: none did): where the
+    /// light a scattering medium redirected went in the end.
+    pub scattered: Option<Box<Budget<T>>>,
     /// The same for the photons in each wavelength band [lo, hi) nm (in
     /// [`Ledger::with_bands`] order; empty: no bands).
     pub bands: Vec<((f64, f64), Budget<T>)>,
@@ -59,9 +84,25 @@ impl<T> Budget<T> {
             reflected: f(&self.reflected),
             missed: f(&self.missed),
             absorbed: f(&self.absorbed),
+            absorbed_in: self.absorbed_in.iter().map(|(&m, w)| (m, f(w))).collect(),
             lost: f(&self.lost),
+            scattered: self.scattered.as_ref().map(|b| Box::new(b.map(f))),
             bands: self.bands.iter().map(|(b, x)| (*b, x.map(f))).collect(),
         }
+    }
+
+    /// Every sum of its own (not its parts'): emitted, then each fate's.
+    fn sums(&self) -> impl Iterator<Item = &T> {
+        [
+            &self.emitted,
+            &self.reflected,
+            &self.missed,
+            &self.absorbed,
+            &self.lost,
+        ]
+        .into_iter()
+        .chain(self.out_through.values())
+        .chain(self.absorbed_in.values())
     }
 }
 
@@ -74,33 +115,36 @@ impl Ledger {
         }
     }
 
-    /// The ledgers of the bands holding wavelength `nm` (none without one).
-    fn bands_at(&mut self, nm: Option<f64>) -> impl Iterator<Item = &mut Ledger> {
-        self.bands
+    /// Books a photon: its emission and its fate, here, in the part of the photons a medium
+    /// scattered if one did, and in every band holding its wavelength.
+    pub fn book(&mut self, photon: &Ended) {
+        self.book_here(photon);
+        for (_, band) in self
+            .bands
             .iter_mut()
-            .filter(move |((lo, hi), _)| nm.is_some_and(|nm| (*lo..*hi).contains(&nm)))
-            .map(|(_, b)| b)
+            .filter(|((lo, hi), _)| photon.nm.is_some_and(|nm| (*lo..*hi).contains(&nm)))
+        {
+            band.book_here(photon);
+        }
     }
 
-    /// Books the emission of a photon of `power` at wavelength `nm` (None: it carries all).
-    pub fn emit(&mut self, power: f64, nm: Option<f64>) {
-        self.emitted.add(power);
-        self.bands_at(nm).for_each(|b| b.emitted.add(power));
-    }
-
-    /// Books a photon of `power` at wavelength `nm` that ended as `fate`.
-    pub fn book(&mut self, fate: Fate, power: f64, nm: Option<f64>) {
-        self.book_here(fate, power);
-        self.bands_at(nm).for_each(|b| b.book_here(fate, power));
-    }
-
-    fn book_here(&mut self, fate: Fate, power: f64) {
-        match fate {
+    fn book_here(&mut self, photon: &Ended) {
+        self.emitted.add(photon.emitted);
+        let power = photon.power;
+        match photon.fate {
             Fate::OutThrough(p) => self.out_through.entry(p).or_default().add(power),
             Fate::Reflected => self.reflected.add(power),
             Fate::Missed => self.missed.add(power),
             Fate::Absorbed => self.absorbed.add(power),
+            Fate::AbsorbedIn(m) => self.absorbed_in.entry(m).or_default().add(power),
             Fate::Lost => self.lost.add(power),
+        }
+        if photon.scattered {
+            let part = self.scattered.get_or_insert_with(Box::default);
+            part.book_here(&Ended {
+                scattered: false,
+                ..*photon
+            });
         }
     }
 
@@ -117,9 +161,15 @@ impl Ledger {
         for ((_, mine), (_, theirs)) in self.bands.iter_mut().zip(&other.bands) {
             mine.add(theirs);
         }
+        if let Some(theirs) = &other.scattered {
+            self.scattered.get_or_insert_with(Box::default).add(theirs);
+        }
         self.emitted.merge(&other.emitted);
         for (&p, w) in &other.out_through {
             self.out_through.entry(p).or_default().merge(w);
+        }
+        for (&m, w) in &other.absorbed_in {
+            self.absorbed_in.entry(m).or_default().merge(w);
         }
         self.reflected.merge(&other.reflected);
         self.missed.merge(&other.missed);
@@ -127,27 +177,21 @@ impl Ledger {
         self.lost.merge(&other.lost);
     }
 
-    /// Whether a ledger read from a file fits a scene of `primitives` primitives and `bands`
-    /// wavelength bands (every sum well formed, every primitive booked one of the scene's):
-    /// the reason when not.
-    pub fn fits(&self, primitives: usize, bands: usize) -> Result<(), String> {
-        let sums = [
-            &self.emitted,
-            &self.reflected,
-            &self.missed,
-            &self.absorbed,
-            &self.lost,
-        ];
-        if !sums
-            .into_iter()
-            .chain(self.out_through.values())
-            .all(ExactSum::is_well_formed)
-        {
+    /// Whether a ledger read from a file fits a scene of `primitives` primitives, `media`
+    /// media and `bands` wavelength bands (every sum well formed, every primitive and medium
+    /// booked one of the scene's): the reason when not.
+    pub fn fits(&self, primitives: usize, media: usize, bands: usize) -> Result<(), String> {
+        if !self.sums().all(ExactSum::is_well_formed) {
             return Err("a malformed sum in its energy budget".into());
         }
         if let Some(p) = self.out_through.keys().find(|&&p| p >= primitives) {
             return Err(format!(
                 "an energy budget through primitive {p} of a scene of {primitives}"
+            ));
+        }
+        if let Some(m) = self.absorbed_in.keys().find(|&&m| m >= media) {
+            return Err(format!(
+                "an energy budget absorbed in medium {m} of a scene of {media}"
             ));
         }
         if !self.bands.is_empty() && self.bands.len() != bands {
@@ -156,9 +200,15 @@ impl Ledger {
                 self.bands.len()
             ));
         }
+        if let Some(part) = &self.scattered {
+            if part.scattered.is_some() || !part.bands.is_empty() {
+                return Err("a malformed scattered part in its energy budget".into());
+            }
+            part.fits(primitives, media, 0)?;
+        }
         self.bands
             .iter()
-            .try_for_each(|(_, b)| b.fits(primitives, 0))
+            .try_for_each(|(_, b)| b.fits(primitives, media, 0))
     }
 
     /// The budget these books hold, every entry times `factor` (1, or a batch's share traced
@@ -171,59 +221,71 @@ impl Ledger {
 impl Budget {
     /// The sum of all fates (equal to `emitted` up to rounding).
     pub fn booked(&self) -> f64 {
-        self.out_through.values().sum::<f64>()
-            + self.reflected
-            + self.missed
-            + self.absorbed
-            + self.lost
+        self.sums().skip(1).sum()
+    }
+
+    /// Each fate with power, named: the faces of [`Fate::OutThrough`] by `primitives`, the
+    /// media of [`Fate::AbsorbedIn`] by `media` (names in index order).
+    fn fates(&self, primitives: &[crate::shapes::Primitive], media: &[&str]) -> Vec<(String, f64)> {
+        let through = self
+            .out_through
+            .iter()
+            .map(|(&p, &w)| (format!("left through {}", primitives[p]), w));
+        let named = [
+            ("reflected without entering a dielectric", self.reflected),
+            ("missed every specular surface", self.missed),
+            ("absorbed by surfaces", self.absorbed),
+        ]
+        .map(|(name, w)| (name.to_string(), w));
+        let media = self
+            .absorbed_in
+            .iter()
+            .map(|(&m, &w)| (format!("absorbed in medium '{}'", media[m]), w));
+        let lost = (
+            "lost (captured, out of steps or cut at max_depth)".to_string(),
+            self.lost,
+        );
+        through.chain(named).chain(media).chain([lost]).collect()
     }
 
     /// Where the power went, one line per fate with its share; `primitives` name the faces
-    /// of [`Fate::OutThrough`].
-    pub fn table(&self, primitives: &[crate::shapes::Primitive]) -> String {
-        let share = |w: f64| 100.0 * w / self.emitted.max(f64::MIN_POSITIVE);
+    /// of [`Fate::OutThrough`], `media` (names in index order) the media of
+    /// [`Fate::AbsorbedIn`].
+    pub fn table(&self, primitives: &[crate::shapes::Primitive], media: &[&str]) -> String {
+        let share = |w: f64, of: f64| 100.0 * w / of.max(f64::MIN_POSITIVE);
         let mut lines = vec![format!(
             "energy budget: emitted {:.6e} W, booked {:.6e} W",
             self.emitted,
             self.booked()
         )];
-        for (&p, &w) in &self.out_through {
+        for (name, w) in self.fates(primitives, media) {
             lines.push(format!(
-                "  {w:.6e} W ({:6.3} %) left through {}",
-                share(w),
-                primitives[p]
+                "  {w:.6e} W ({:6.3} %) {name}",
+                share(w, self.emitted)
             ));
         }
-        for (name, w) in [
-            ("reflected without entering a dielectric", self.reflected),
-            ("missed every specular surface", self.missed),
-            ("absorbed", self.absorbed),
-            (
-                "lost (captured, out of steps or cut at max_depth)",
-                self.lost,
-            ),
-        ] {
-            lines.push(format!("  {w:.6e} W ({:6.3} %) {name}", share(w)));
+        // A part's shares are of its own emitted power.
+        let part = |b: &Budget| {
+            b.fates(primitives, media)
+                .into_iter()
+                .filter(|(_, w)| *w > 0.0)
+                .map(|(name, w)| format!("{:.3} % {name}", share(w, b.emitted)))
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        if let Some(b) = &self.scattered {
+            lines.push(format!(
+                "  scattered in a medium: {:.6e} W ({:.3} %): {}",
+                b.emitted,
+                share(b.emitted, self.emitted),
+                part(b)
+            ));
         }
         for ((lo, hi), b) in &self.bands {
-            let share = |w: f64| 100.0 * w / b.emitted.max(f64::MIN_POSITIVE);
-            let mut fates: Vec<String> = b
-                .out_through
-                .iter()
-                .map(|(&p, &w)| format!("{:.3} % out through {}", share(w), primitives[p]))
-                .collect();
-            for (name, w) in [
-                ("reflected", b.reflected),
-                ("missed", b.missed),
-                ("absorbed", b.absorbed),
-                ("lost", b.lost),
-            ] {
-                fates.push(format!("{:.3} % {name}", share(w)));
-            }
             lines.push(format!(
                 "  band {lo}–{hi} nm: emitted {:.6e} W: {}",
                 b.emitted,
-                fates.join(", ")
+                part(b)
             ));
         }
         lines.join("\n")

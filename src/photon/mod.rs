@@ -20,7 +20,7 @@ mod budget;
 mod map;
 mod volume;
 
-pub use budget::{Budget, Fate, Ledger};
+pub use budget::{Budget, Ended, Fate, Ledger};
 pub use map::{Photon, PhotonMap};
 pub use volume::VolumeMap;
 
@@ -32,7 +32,7 @@ use crate::receiver::Detection;
 use crate::sampling::{stream, Purpose};
 use crate::spectrum::{colour, Spectrum};
 use crate::transport::chain::{self, End, Policy, Ray};
-use crate::transport::{HeroTracer, Scattered, Stats, Tracer, Vertex};
+use crate::transport::{HeroTracer, MediumVertex, Scattered, Stats, Tracer, Vertex};
 use glam::DVec3;
 use rand::Rng;
 use rand_pcg::Pcg64Mcg;
@@ -607,7 +607,6 @@ fn trace_photon(
     // What it has kept of its launch power while it carries every wavelength.
     let mut throughput = Rgb::ONE;
     let nm = launch.wavelength;
-    stored.budget.emit((e.power / tag.count as f64).mean(), nm);
     path(e.origin);
     let mut walk = PhotonWalk {
         tag,
@@ -650,7 +649,8 @@ fn trace_photon(
         let vertex = match chain.end {
             End::Scatter(vertex) => vertex,
             End::Escaped { .. } => break walk.escaped(chain.medium),
-            End::Emitter { .. } | End::Absorbed => break Fate::Absorbed,
+            End::Emitter { .. } | End::Absorbed { medium: None } => break Fate::Absorbed,
+            End::Absorbed { medium: Some(m) } => break Fate::AbsorbedIn(m),
             End::Lost | End::DepthLimit | End::Stopped => break Fate::Lost,
         };
         bent |= chain.specular > 0;
@@ -691,7 +691,12 @@ fn trace_photon(
             break Fate::Absorbed;
         }
         let Some(b) = scatter_photon(&vertex, rng) else {
-            break Fate::Absorbed;
+            break match vertex {
+                Vertex::Medium(MediumVertex {
+                    medium: Some(m), ..
+                }) => Fate::AbsorbedIn(m),
+                _ => Fate::Absorbed,
+            };
         };
         walk.power *= b.weight;
         throughput *= b.weight;
@@ -711,5 +716,11 @@ fn trace_photon(
         }
         ray = b.scattered.ray;
     };
-    stored.budget.book(fate, walk.power.mean(), nm);
+    stored.budget.book(&Ended {
+        emitted: (e.power / tag.count as f64).mean(),
+        power: walk.power.mean(),
+        fate,
+        nm,
+        scattered: fogged,
+    });
 }

@@ -59,12 +59,13 @@ impl Books {
     }
 
     /// Whether books read from a file fit `receivers` and a scene of `primitives` primitives
-    /// (a tally per receiver, of its bins and bands; a budget of its primitives): the reason
-    /// when not.
+    /// and `media` media (a tally per receiver, of its bins and bands; a budget of its
+    /// primitives and media): the reason when not.
     pub fn fits(
         &self,
         receivers: &[receiver::Receiver],
         primitives: usize,
+        media: usize,
     ) -> std::result::Result<(), String> {
         if !self.tallies.is_empty() && self.tallies.len() != receivers.len() {
             return Err(format!(
@@ -77,7 +78,7 @@ impl Books {
             t.fits(r)?;
         }
         self.ledger
-            .fits(primitives, receiver::distinct_bands(receivers).len())
+            .fits(primitives, media, receiver::distinct_bands(receivers).len())
     }
 
     /// Each receiver's measurement, every flux times `scale` (1 when the whole batch was

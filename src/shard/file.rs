@@ -23,7 +23,7 @@ use std::io::{Read, Seek, SeekFrom};
 use std::path::Path;
 
 /// The version of the partial file written (the magic line's last word).
-pub const VERSION: u32 = 2;
+pub const VERSION: u32 = 3;
 
 /// The magic line's words before the version.
 const MAGIC_WORDS: &[u8] = b"GRINLIGHT PARTIAL ";

@@ -293,10 +293,14 @@ impl Partial {
     }
 
     /// Refuses it, as a damaged file at `path`, unless its books fit `scene` (a tally per
-    /// receiver of its bins and bands, budget entries of its primitives).
+    /// receiver of its bins and bands, budget entries of its primitives and media).
     pub fn fits(&self, scene: &Scene, path: &Path) -> Result<()> {
         self.books
-            .fits(&scene.receivers, scene.accel.primitives().len())
+            .fits(
+                &scene.receivers,
+                scene.accel.primitives().len(),
+                scene.medium_names().count(),
+            )
             .map_err(|why| file::damaged(path, why))
     }
 

@@ -69,8 +69,11 @@ pub enum End<'s> {
         /// Unit direction when leaving.
         direction: DVec3,
     },
-    /// Russian roulette ended it (absorbed on the way or by a lossy mirror).
-    Absorbed,
+    /// Russian roulette ended it: absorbed on the way in a medium, or by a lossy mirror.
+    Absorbed {
+        /// The medium that absorbed it (None: a mirror, or on the way through vacuum).
+        medium: Option<usize>,
+    },
     /// Captured, out of steps, trapped, or at an index that cannot be evaluated.
     Lost,
     /// It met `max_depth` surfaces.
@@ -458,7 +461,7 @@ impl<'w> Walker<'w> {
         let hit = match event {
             Event::Lost => return ControlFlow::Break(End::Lost),
             _ if self.absorbed(chain, event.transmittance(), lent.rng) => {
-                return ControlFlow::Break(End::Absorbed)
+                return ControlFlow::Break(End::Absorbed { medium: at.medium })
             }
             Event::Surface { .. } => event.surface_hit().expect("a surface event"),
             Event::Escaped {
@@ -565,7 +568,7 @@ impl<'w> Walker<'w> {
             Policy::Roulette => {
                 let survive = weight.max_element();
                 if survive < 1.0 && rng.gen::<f64>() >= survive {
-                    return ControlFlow::Break(End::Absorbed);
+                    return ControlFlow::Break(End::Absorbed { medium: None });
                 }
                 chain.weight *= weight / survive.clamp(f64::MIN_POSITIVE, 1.0);
             }
