@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Render a grinlight scene with Mitsuba 3 as an independent reference.
 
-    python3 bench/mitsuba_reference.py SCENE.toml OUT.exr [--spp N] [--rgb-metals OUT.toml]
+    python3 bench/mitsuba_reference.py SCENE.toml OUT.exr [--spp N] [--seed S] [--rgb-metals OUT.toml]
 
 Reads the subset of grinlight's scene format that Cornell-box-like scenes use -- quads, boxes,
 spheres and open cylinders; diffuse, conductor, dielectric and plastic materials; quad lights
@@ -20,6 +20,7 @@ Needs `pip install mitsuba` (3.9.1 was used for the figures in docs/validation.m
 import argparse
 import os
 import tempfile
+import time
 import tomllib
 
 # RGB complex indices used for the comparison (the values common in RGB renderers for
@@ -97,6 +98,8 @@ def main():
     ap.add_argument("out")
     ap.add_argument("--spp", type=int, default=4096)
     ap.add_argument("--rgb-metals")
+    ap.add_argument("--seed", type=int, default=0,
+                    help="the first pass's seed (passes take seed, seed + 1, ...)")
     a = ap.parse_args()
     with open(a.scene, "rb") as f:
         scene = tomllib.load(f)
@@ -180,15 +183,20 @@ def main():
             if key.startswith(("shape", "light")) and value.get("type") != "constant":
                 value["exterior"] = fog
     loaded = mi.load_dict(d)
-    # Passes of 64 samples with their own seeds, averaged: the same estimate as one render of
-    # N samples, in bounded memory.
-    passes = max(1, a.spp // 64)
+    # Passes of 64 samples (fewer if fewer are asked) with their own seeds, averaged: the same
+    # estimate as one render of N samples, in bounded memory. The time printed is the
+    # rendering's alone (not Python's start or the scene's loading), for equal-time runs.
+    per_pass = min(64, a.spp)
+    passes = max(1, a.spp // per_pass)
     total = None
+    start = time.monotonic()
     for p in range(passes):
-        image = mi.TensorXf(mi.render(loaded, spp=64, seed=p))
+        image = mi.TensorXf(mi.render(loaded, spp=per_pass, seed=p + a.seed))
         total = image if total is None else total + image
+    seconds = time.monotonic() - start
     mi.util.write_bitmap(a.out, total / passes)
-    print("%s: %d spp in %d passes, variant %s" % (a.out, 64 * passes, passes, mi.variant()))
+    print("%s: %d spp in %d passes, variant %s, %.1f s rendering" % (
+        a.out, per_pass * passes, passes, mi.variant(), seconds))
 
 
 if __name__ == "__main__":

@@ -1,25 +1,69 @@
 #!/usr/bin/env bash
-# The volume caustic at equal time: grinlight's photon mapper against its path tracer, each
-# compared with a long path-tracer reference (relative RMSE per pixel and channel, and the
-# mean ratio), on bench/volume_caustic.toml. Prints the lines of examples/reference_check.
+# A volume caustic at equal time: grinlight's photon mapper, its path tracer and (if
+# `import mitsuba` works) Mitsuba 3's volpath, each given the same seconds, against a long
+# path-tracer reference made of two halves of different seeds (examples/image_error: relative
+# RMSE per pixel and channel with the reference's own noise taken out, and mean ratios, over
+# the image and over rectangles).
 #
-#   bench/volume_caustic_equal_time.sh [REFERENCE_PASSES] [PHOTON_MAP_PASSES]   (defaults 3072, 16)
+#   bench/volume_caustic_equal_time.sh [SECONDS] [REFERENCE_PASSES] [SCENE] [X0 Y0 X1 Y1]...
+#
+# Defaults: 30 s, 1024 passes per half, bench/volume_caustic_small_light.toml (64 × 64; a
+# small area light in a snoot: the cone is found by a path tracer only through the ball, from
+# the few phase samples that hit the light), its room below the lamp [0, 64) × [16, 64) and its
+# cone [26, 38) × [48, 64) (another scene: the whole image and the rectangles given). The
+# lamp's own pixels, a few of radiance 300 partly covered, weigh on every image's RMSE alike.
+# The references are
+# kept in bench/data/ref-<scene>-<passes>-{9,10}.exr (not in git) and reused.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-ref_passes=${1:-3072}
-pm_passes=${2:-16}
-scene=bench/volume_caustic.toml
-out=$(mktemp -d)
-cargo build --release --quiet --bin grinlight --example reference_check
+seconds=${1:-30}
+ref_passes=${2:-1024}
+scene=${3:-bench/volume_caustic_small_light.toml}
+region=("${@:4}")
+if [ $# -lt 3 ]; then region=(0 16 64 64 26 48 38 64); fi
+cargo build --release --quiet --bin grinlight --example image_error
 bin=target/release/grinlight
-check=target/release/examples/reference_check
-"$bin" render "$scene" --integrator path --passes "$ref_passes" --seed 9 -o "$out/reference.exr" > /dev/null 2>&1
-pm=$("$check" "$scene" "$out/reference.exr" 16 "$pm_passes" photon_map | head -1)
-echo "photon map:  $pm"
-seconds=$(sed -E 's/.*, ([0-9.]+) s:.*/\1/' <<< "$pm")
-# The path tracer's passes in the photon mapper's time, from a 64-pass run's rate.
-probe=$("$check" "$scene" "$out/reference.exr" 16 64 path | head -1)
-probe_seconds=$(sed -E 's/.*, ([0-9.]+) s:.*/\1/' <<< "$probe")
-passes=$(awk "BEGIN { p = int(64 * $seconds / $probe_seconds + 0.5); print (p < 1 ? 1 : p) }")
-echo "path tracer: $("$check" "$scene" "$out/reference.exr" 16 "$passes" path | head -1)"
-rm -rf "$out"
+error=target/release/examples/image_error
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+name=$(basename "$scene" .toml)
+halves=()
+for seed in 9 10; do
+    ref=bench/data/ref-$name-$ref_passes-$seed.exr
+    if [ ! -f "$ref" ]; then
+        "$bin" render "$scene" --integrator path --passes "$ref_passes" --seed "$seed" \
+            -o "$out/ref-$seed.exr" > /dev/null 2>&1
+        cp "$out/ref-$seed.exr" "$ref"
+    fi
+    halves+=("$ref")
+done
+# Wall seconds of a command, its output discarded.
+wall() {
+    local t0 t1
+    t0=$(date +%s.%N)
+    "$@" > "$out/log" 2>&1
+    t1=$(date +%s.%N)
+    awk "BEGIN { printf \"%.1f\", $t1 - $t0 }"
+}
+report() {
+    echo "$1 ($2 s):"
+    "$error" "$3" "${halves[@]}" "${region[@]}" | sed 's/^/  /'
+}
+for integrator in photon_map path; do
+    t=$(wall "$bin" render "$scene" --integrator "$integrator" --time-budget "$seconds" \
+        --seed 1 -o "$out/$integrator.exr")
+    report "grinlight $integrator, $(grep -o '[0-9]* pass(es)' "$out/log" | head -1)" "$t" \
+        "$out/$integrator.exr"
+done
+if python3 -c 'import mitsuba' 2> /dev/null; then
+    # Mitsuba's samples in the same seconds, from a 64-sample run's rendering rate.
+    python3 bench/mitsuba_reference.py "$scene" "$out/probe.exr" --spp 64 > "$out/probe.log"
+    probe=$(sed -E 's/.*, ([0-9.]+) s rendering.*/\1/' "$out/probe.log")
+    spp=$(awk "BEGIN { s = 64 * int($seconds / $probe + 0.5); print (s < 64 ? 64 : s) }")
+    python3 bench/mitsuba_reference.py "$scene" "$out/mitsuba.exr" --spp "$spp" --seed 1000 \
+        > "$out/mitsuba.log"
+    t=$(sed -E 's/.*, ([0-9.]+) s rendering.*/\1/' "$out/mitsuba.log")
+    report "Mitsuba 3 volpath, $spp spp" "$t" "$out/mitsuba.exr"
+else
+    echo "Mitsuba 3 not installed (pip install mitsuba): its run skipped"
+fi

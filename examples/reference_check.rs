@@ -9,7 +9,7 @@
 //! WIDTH (default: the scene's) must divide the reference's width; PASSES defaults to the
 //! scene's; INTEGRATOR is `photon_map` (default) or `path`.
 
-use grinlight::film::{downsample, mean_ratios, read_exr_layer};
+use grinlight::film::{downsample, mean_ratios, read_exr_layer, relative_rmse};
 use std::path::Path;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -47,18 +47,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     sorted.sort_by(f64::total_cmp);
     let at = |q: f64| sorted[((sorted.len() - 1) as f64 * q).round() as usize];
     let worst = blocks.iter().map(|r| (r - 1.0).abs()).fold(0.0, f64::max);
-    let channels = (3 * beauty.len()) as f64;
-    let pairs = || {
-        beauty
-            .iter()
-            .zip(&reference)
-            .flat_map(|(a, b)| (0..3).map(|c| (a[c], b[c])))
-    };
-    let mean = pairs().map(|(_, b)| b as f64).sum::<f64>() / channels;
-    let squares = pairs()
-        .map(|(a, b)| (a as f64 - b as f64).powi(2))
-        .sum::<f64>();
-    let rmse = (squares / channels).sqrt() / mean;
+    let rmse = relative_rmse(&beauty, &reference);
     println!(
         "{width}×{height}, {} passes, {:?}, {seconds:.1} s: relative RMSE {rmse:.4}; mean ratio \
          {overall:.4}; 16×16 \

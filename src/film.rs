@@ -304,6 +304,21 @@ pub fn downsample(plane: &[[f32; 3]], width: usize, height: usize, factor: usize
     out
 }
 
+/// The root-mean-square difference of a render from a reference of the same size, per pixel
+/// and channel, relative to the reference's mean.
+pub fn relative_rmse(render: &[[f32; 3]], reference: &[[f32; 3]]) -> f64 {
+    let pairs = || {
+        render
+            .iter()
+            .zip(reference)
+            .flat_map(|(a, b)| (0..3).map(|c| (a[c] as f64, b[c] as f64)))
+    };
+    let channels = (3 * reference.len()) as f64;
+    let mean = pairs().map(|(_, b)| b).sum::<f64>() / channels;
+    let squares = pairs().map(|(a, b)| (a - b).powi(2)).sum::<f64>();
+    (squares / channels).sqrt() / mean
+}
+
 /// How a render compares with a reference of the same size: the ratio of their means over the
 /// whole image (all channels) and the ratios over `block` × `block` pixel blocks, row by row.
 /// Blocks whose reference mean is zero are left out.
