@@ -291,3 +291,66 @@ impl Budget {
         lines.join("\n")
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn ended(fate: Fate, scattered: bool) -> Ended {
+        Ended {
+            emitted: 1.0,
+            power: 0.5,
+            fate,
+            nm: Some(550.0),
+            scattered,
+        }
+    }
+
+    /// A photon is booked once in the whole, once more in the scattered part if a medium
+    /// scattered it, and in each band holding its wavelength; ledgers booked apart add up to
+    /// the ledger booked at once, exactly.
+    #[test]
+    fn photons_are_booked_in_their_parts_and_ledgers_add() {
+        let photons = [
+            ended(Fate::AbsorbedIn(1), true),
+            ended(Fate::OutThrough(3), false),
+            ended(Fate::Absorbed, true),
+            ended(Fate::Lost, false),
+        ];
+        let mut whole = Ledger::with_bands(&[(500.0, 600.0), (600.0, 700.0)]);
+        let (mut a, mut b) = (whole.clone(), whole.clone());
+        for (i, p) in photons.iter().enumerate() {
+            whole.book(p);
+            if i % 2 == 0 { &mut a } else { &mut b }.book(p);
+        }
+        a.add(&b);
+        assert_eq!(a, whole);
+        let s = whole.statement(1.0);
+        assert_eq!((s.emitted, s.booked()), (4.0, 2.0));
+        assert_eq!(s.absorbed_in[&1], 0.5);
+        let part = s.scattered.as_deref().unwrap();
+        assert_eq!(
+            (part.emitted, part.absorbed_in[&1], part.absorbed),
+            (2.0, 0.5, 0.5)
+        );
+        assert_eq!(s.bands[0].1.emitted, 4.0);
+        assert_eq!(s.bands[1].1.emitted, 0.0);
+        assert!(whole.fits(4, 2, 2).is_ok());
+    }
+
+    /// Books read from a file are refused when they name a medium or a face the scene does not
+    /// have, or hold a scattered part that is not a plain budget.
+    #[test]
+    fn books_that_do_not_fit_the_scene_are_refused() {
+        let mut ledger = Ledger::default();
+        ledger.book(&ended(Fate::AbsorbedIn(2), true));
+        assert!(ledger.fits(1, 3, 0).is_ok());
+        let why = ledger.fits(1, 2, 0).unwrap_err();
+        assert!(why.contains("medium 2 of a scene of 2"), "{why}");
+        let mut nested = ledger.clone();
+        nested.scattered.as_mut().unwrap().scattered = Some(Box::default());
+        assert!(nested.fits(1, 3, 0).unwrap_err().contains("scattered part"));
+        ledger.book(&ended(Fate::OutThrough(5), false));
+        assert!(ledger.fits(5, 3, 0).unwrap_err().contains("primitive 5"));
+    }
+}
