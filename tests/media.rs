@@ -95,6 +95,14 @@ fn media() -> Vec<(&'static str, Box<dyn Medium>)> {
             }),
         ),
         (
+            "hyperbolic",
+            Box::new(HyperbolicMedium {
+                n0: 1.3,
+                center: DVec3::new(0.1, 0.0, -0.1),
+                radius: 1.4,
+            }),
+        ),
+        (
             "black_hole",
             Box::new(BlackHole {
                 center: DVec3::ZERO,

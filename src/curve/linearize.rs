@@ -2,44 +2,85 @@
 //!
 //! A ray is a geodesic of the optical metric n(x)²|dx|², and a change of coordinates maps every
 //! geodesic of a metric to a straight line exactly when the metric has constant curvature
-//! (Beltrami's theorem). Maxwell's fish-eye n = n0 / (1 + r²/R²) is such a metric: with
-//! u = (x − c)/R, stereographic projection
+//! (Beltrami's theorem). Two isotropic index fields about a centre c, with u = (x − c)/R, are
+//! such metrics, both (n0·R/2)² times a model of constant curvature k:
 //!
-//! X = (2u, |u|² − 1) / (1 + |u|²),   u = X_xyz / (1 − X_w)
+//! - **Maxwell's fish-eye** n = n0 / (1 + |u|²), k = +1: stereographic projection makes it the
+//!   unit 3-sphere |X|² = 1 of R⁴ (metric 4|du|²/(1 + |u|²)²); rays are great circles
+//!   X(θ) = P cos θ + Q sin θ. θ = π is the antipode: every ray from x reaches its image
+//!   c − R²(x − c)/|x − c|², perfect imaging (Maxwell 1854; Luneburg 1964, *Mathematical
+//!   Theory of Optics*, §28).
+//! - **The hyperbolic medium** n = n0 / (1 − |u|²) inside r < R, k = −1: the Poincaré ball,
+//!   made the hyperboloid −X_w² + |X_xyz|² = −1 (metric 4|du|²/(1 − |u|²)²); rays are
+//!   X(θ) = P cosh θ + Q sinh θ, reaching the rim r = R only as θ → ∞ (infinite optical path).
 //!
-//! carries it to the round unit 3-sphere in R⁴, scaled by n0·R/2 (the sphere's metric is
-//! 4|du|²/(1 + |u|²)²). Its rays are therefore great circles X(θ) = P cos θ + Q sin θ, with
-//! optical path n0·R·θ/2 — advanced in closed form, with no steps — and every plane and every
-//! sphere of x-space is the section of the 3-sphere by a hyperplane a·X = b, so a ray meets it
-//! where A cos θ + B sin θ = b: a closed-form hit. θ = π is the antipode −X, the point
-//! c − R² (x − c)/|x − c|²: the fish-eye images every point perfectly (Maxwell 1854;
-//! Luneburg 1964, *Mathematical Theory of Optics*, §28). Lengths are scene units.
+//! Both: X = (2u, 1 − k|u|²) / (1 + k|u|²), u = X_xyz / (1 + X_w); optical path n0·R·θ/2.
+//! So a ray is advanced to any optical path in closed form, with no steps. Every plane and
+//! every sphere of x-space is the section of the model by a hyperplane a·X = b, so a ray meets
+//! it where A C(θ) + B S(θ) = b (C, S = cos, sin or cosh, sinh): a closed-form hit. Lengths are
+//! scene units.
+//!
+//! **Precision.** The model's coordinates grow as 1/(1 + k|u|²): far outside the fish-eye's R
+//! (|u| ≫ 1) a position carries a relative error of about ε|u|², and within 1 − |u|² = w of the
+//! hyperbolic medium's rim a direction one of about ε/w. Rays from the start to a few R, and to
+//! w ≈ 10⁻², keep 1e-13.
 
-use crate::media::FishEye;
+use crate::media::{FishEye, HyperbolicMedium};
 use glam::{DVec3, DVec4};
 use std::f64::consts::TAU;
 
-/// How far from the centre, in units of R, x-space ends for [`FishEyeRay`]: points farther out
-/// are the pole, infinity.
+/// How far from the centre, in units of R, x-space ends for the fish-eye: farther points are
+/// the sphere's pole X = (0, 0, 0, −1), infinity.
 pub const FAR: f64 = 1e6;
 
-/// A ray of a Maxwell fish-eye as the great circle it is on the 3-sphere.
+/// The sign of a model's curvature.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Curvature {
+    /// The 3-sphere (the fish-eye).
+    Positive,
+    /// The hyperboloid (the hyperbolic medium).
+    Negative,
+}
+
+impl Curvature {
+    /// k = ±1.
+    fn k(self) -> f64 {
+        match self {
+            Curvature::Positive => 1.0,
+            Curvature::Negative => -1.0,
+        }
+    }
+
+    /// (C(θ), S(θ)): (cos, sin) or (cosh, sinh).
+    fn cs(self, theta: f64) -> (f64, f64) {
+        match self {
+            Curvature::Positive => {
+                let (s, c) = theta.sin_cos();
+                (c, s)
+            }
+            Curvature::Negative => (theta.cosh(), theta.sinh()),
+        }
+    }
+}
+
+/// A ray of a constant-curvature index field as the geodesic it is on its model.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct FishEyeRay {
+pub struct GeodesicRay {
+    curvature: Curvature,
     /// The medium's centre c.
     center: DVec3,
     /// Its radius scale R.
     radius: f64,
-    /// Optical path per radian of the great circle, n0·R/2.
+    /// Optical path per unit of θ, n0·R/2.
     scale: f64,
-    /// The ray's start on the unit 3-sphere.
+    /// The ray's start on the model.
     p: DVec4,
-    /// The unit tangent there, toward the ray's direction (orthogonal to `p`).
+    /// The unit tangent there, toward the ray's direction.
     q: DVec4,
 }
 
-/// A hyperplane a·X = b of R⁴ whose section of the 3-sphere is a plane or a sphere of x-space
-/// (see [`FishEyeRay::plane`], [`FishEyeRay::sphere`]).
+/// A hyperplane a·X = b of R⁴ whose section of the model is a plane or a sphere of x-space
+/// (see [`GeodesicRay::plane`], [`GeodesicRay::sphere`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Hyperplane {
     /// a.
@@ -48,109 +89,112 @@ pub struct Hyperplane {
     pub offset: f64,
 }
 
-/// Where a fish-eye ray is at some angle along its great circle.
+/// Where a ray is at some θ along its geodesic.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct FishEyePoint {
+pub struct GeodesicPoint {
     /// Position (scene units).
     pub position: DVec3,
     /// Unit direction of propagation.
     pub direction: DVec3,
 }
 
-impl FishEyeRay {
-    /// The ray of `eye` from `position` along `direction` (any length); None if either is not
-    /// finite or the direction is zero.
-    pub fn new(eye: &FishEye, position: DVec3, direction: DVec3) -> Option<Self> {
-        let u = (position - eye.center) / eye.radius;
+impl GeodesicRay {
+    /// The ray of the fish-eye `eye` from `position` along `direction` (any length); None if
+    /// either is not finite or the direction is zero.
+    pub fn fish_eye(eye: &FishEye, position: DVec3, direction: DVec3) -> Option<Self> {
+        let parts = (eye.center, eye.radius, eye.n0);
+        Self::new(Curvature::Positive, parts, position, direction)
+    }
+
+    /// The ray of the hyperbolic medium `m` from `position` (inside its rim) along
+    /// `direction`; None outside the rim, or if either is not finite or the direction zero.
+    pub fn hyperbolic(m: &HyperbolicMedium, position: DVec3, direction: DVec3) -> Option<Self> {
+        Self::new(
+            Curvature::Negative,
+            (m.center, m.radius, m.n0),
+            position,
+            direction,
+        )
+    }
+
+    fn new(
+        curvature: Curvature,
+        (center, radius, n0): (DVec3, f64, f64),
+        position: DVec3,
+        direction: DVec3,
+    ) -> Option<Self> {
+        let k = curvature.k();
+        let u = (position - center) / radius;
         let d = direction.normalize_or_zero();
-        if !u.is_finite() || d == DVec3::ZERO || !(eye.radius > 0.0 && eye.n0 > 0.0) {
+        let s = 1.0 + k * u.length_squared();
+        if !u.is_finite() || d == DVec3::ZERO || s <= 0.0 || radius <= 0.0 || n0 <= 0.0 {
             return None;
         }
-        let s = 1.0 + u.length_squared();
-        let p = (2.0 * u / s).extend((u.length_squared() - 1.0) / s);
-        // The differential of the projection along d: conformal, so only its direction counts.
+        let p = (2.0 * u / s).extend((1.0 - k * u.length_squared()) / s);
+        // The differential of the projection along d times s/2, the inverse of its conformal
+        // factor: the unit tangent, orthogonal to p, exactly (normalising numerically would
+        // cancel catastrophically where P is large: near the hyperbolic medium's rim).
         let ud = u.dot(d);
-        let q = (2.0 * d / s - 4.0 * ud * u / (s * s)).extend(4.0 * ud / (s * s));
-        // Gram–Schmidt once more against rounding: p and q orthonormal to the last bit.
-        let p = p.normalize();
-        let q = (q - q.dot(p) * p).normalize();
-        q.is_finite().then_some(FishEyeRay {
-            center: eye.center,
-            radius: eye.radius,
-            scale: 0.5 * eye.n0 * eye.radius,
+        let q = (d - 2.0 * k * ud * u / s).extend(-2.0 * k * ud / s);
+        (p.is_finite() && q.is_finite()).then_some(GeodesicRay {
+            curvature,
+            center,
+            radius,
+            scale: 0.5 * n0 * radius,
             p,
             q,
         })
     }
 
-    /// The optical path ∫ n ds from the start to angle `theta` (radians) along the circle.
+    /// The optical path ∫ n ds from the start to `theta` along the geodesic.
     pub fn optical_path(&self, theta: f64) -> f64 {
         self.scale * theta
     }
 
-    /// The angle along the circle at which the optical path from the start is `opl`.
+    /// The θ at which the optical path from the start is `opl`.
     pub fn angle(&self, opl: f64) -> f64 {
         opl / self.scale
     }
 
-    /// The point of the circle at angle `theta` and its tangent there.
+    /// The geodesic's point at `theta` and its tangent there.
     fn lifted(&self, theta: f64) -> (DVec4, DVec4) {
-        let (sin, cos) = theta.sin_cos();
-        (self.p * cos + self.q * sin, self.q * cos - self.p * sin)
+        let (c, s) = self.curvature.cs(theta);
+        let x = self.p * c + self.q * s;
+        (x, self.q * c - self.curvature.k() * self.p * s)
     }
 
-    /// Whether the circle's point `x` is the projection's pole to rounding: x-space's infinity,
-    /// taken to be every point beyond [`FAR`] R from the centre (there 1 − X_w < 2/FAR², and a
-    /// position carries a relative error of about ε |x − c|²/R²).
+    /// Whether the model's point `x` is x-space's infinity to rounding (the fish-eye's pole:
+    /// every point beyond [`FAR`] R, where a position carries a relative error of about
+    /// ε |x − c|²/R² anyway).
     fn at_infinity(x: DVec4) -> bool {
-        1.0 - x.w < 2.0 / (FAR * FAR)
+        1.0 + x.w < 2.0 / (FAR * FAR)
     }
 
-    /// The ray at angle `theta` along its circle; None at the projection's pole, where the ray
-    /// passes through infinity (beyond [`FAR`] R from the centre).
-    pub fn at(&self, theta: f64) -> Option<FishEyePoint> {
+    /// The ray at `theta` along its geodesic; None at infinity (the fish-eye's pole: beyond
+    /// [`FAR`] R from the centre) or where the hyperbolic medium's rim is reached to rounding.
+    pub fn at(&self, theta: f64) -> Option<GeodesicPoint> {
         let (x, v) = self.lifted(theta);
         if Self::at_infinity(x) {
             return None;
         }
-        let w = 1.0 - x.w;
+        let w = 1.0 + x.w;
         let position = self.center + self.radius * x.truncate() / w;
-        let du = v.truncate() / w + x.truncate() * (v.w / (w * w));
+        let du = v.truncate() / w - x.truncate() * (v.w / (w * w));
         let direction = du.normalize();
-        (position.is_finite() && direction.is_finite()).then_some(FishEyePoint {
+        (position.is_finite() && direction.is_finite()).then_some(GeodesicPoint {
             position,
             direction,
         })
     }
 
-    /// The hyperplane whose section of the 3-sphere is the plane through `point` with normal
-    /// `normal`: (m, k)·X = k with m the normal and k = m·(point − c)/R.
-    pub fn plane(&self, point: DVec3, normal: DVec3) -> Hyperplane {
-        let k = normal.dot(point - self.center) / self.radius;
-        Hyperplane {
-            normal: normal.extend(k),
-            offset: k,
-        }
-    }
-
-    /// The hyperplane whose section of the 3-sphere is the sphere of `center` and `radius`:
-    /// with m = (center − c)/R and K = |m|² − (radius/R)², (−2m, 1 − K)·X = −(1 + K).
-    pub fn sphere(&self, center: DVec3, radius: f64) -> Hyperplane {
-        let m = (center - self.center) / self.radius;
-        let k = m.length_squared() - (radius / self.radius).powi(2);
-        Hyperplane {
-            normal: (-2.0 * m).extend(1.0 - k),
-            offset: -(1.0 + k),
-        }
-    }
-
-    /// The angle in (0, 2π] at which the ray reaches infinity, if its circle passes through
+    /// The θ in (0, 2π] at which a fish-eye ray reaches infinity, if its circle passes through
     /// the pole (the rays through the centre, radially): there n → 0 and the arclength
-    /// diverges, so the ray ends — nothing beyond it is reached.
+    /// diverges, so the ray ends — nothing beyond is reached. None for every other ray and in
+    /// the hyperbolic medium (whose rays reach its rim only as θ → ∞).
     pub fn escape(&self) -> Option<f64> {
         let (a, b) = (self.p.w, self.q.w);
-        (1.0 - a.hypot(b) < 2.0 / (FAR * FAR)).then(|| {
-            let t = b.atan2(a);
+        (self.curvature == Curvature::Positive && 1.0 - a.hypot(b) < 2.0 / (FAR * FAR)).then(|| {
+            let t = (-b).atan2(-a);
             if t > 0.0 {
                 t
             } else {
@@ -159,24 +203,60 @@ impl FishEyeRay {
         })
     }
 
-    /// The first angle beyond `after` (radians) at which the ray crosses `h`, within one turn
-    /// of the circle: A cos θ + B sin θ = b with A = a·P, B = a·Q. None if the circle never
-    /// meets it (a miss) or only touches it, or if the ray reaches infinity first
-    /// ([`FishEyeRay::escape`]; every plane's hyperplane holds the pole, which a ray from the
-    /// centre reaches at θ = π, and a root there is not a crossing either).
-    pub fn crossing(&self, h: &Hyperplane, after: f64) -> Option<f64> {
-        let (a, b) = (h.normal.dot(self.p), h.normal.dot(self.q));
-        let rho = a.hypot(b);
-        let c = h.offset / rho;
-        if c.is_nan() || c.abs() >= 1.0 {
-            return None;
+    /// The hyperplane whose section of the model is the plane through `point` with normal
+    /// `normal`: with m the normal and k₀ = m·(point − c)/R, (m, −k₀)·X = k₀.
+    pub fn plane(&self, point: DVec3, normal: DVec3) -> Hyperplane {
+        let k0 = normal.dot(point - self.center) / self.radius;
+        Hyperplane {
+            normal: normal.extend(-k0),
+            offset: k0,
         }
-        let (phi, delta) = (b.atan2(a), c.acos());
-        // The roots φ ± δ, each moved to the first turn beyond `after`.
-        [phi - delta, phi + delta]
-            .map(|t| t + TAU * (((after - t) / TAU).floor() + 1.0))
+    }
+
+    /// The hyperplane whose section of the model is the sphere of `center` and `radius`: with
+    /// m = (center − c)/R and K = |m|² − (radius/R)², (−2m, K − k)·X = −(K + k).
+    pub fn sphere(&self, center: DVec3, radius: f64) -> Hyperplane {
+        let m = (center - self.center) / self.radius;
+        let big_k = m.length_squared() - (radius / self.radius).powi(2);
+        let k = self.curvature.k();
+        Hyperplane {
+            normal: (-2.0 * m).extend(big_k - k),
+            offset: -(big_k + k),
+        }
+    }
+
+    /// The first θ beyond `after` at which the ray crosses `h` (within one turn of a circle):
+    /// A C(θ) + B S(θ) = b with A = a·P, B = a·Q. None if the geodesic never meets it (a miss)
+    /// or only touches it, or if the ray reaches infinity first ([`GeodesicRay::escape`];
+    /// every plane's hyperplane holds the fish-eye's pole, which a ray from the centre reaches
+    /// at θ = π, and a root there is not a crossing either).
+    pub fn crossing(&self, h: &Hyperplane, after: f64) -> Option<f64> {
+        let (a, b, c) = (h.normal.dot(self.p), h.normal.dot(self.q), h.offset);
+        let roots: [f64; 2] = match self.curvature {
+            Curvature::Positive => {
+                let cos = c / a.hypot(b);
+                if cos.is_nan() || cos.abs() >= 1.0 {
+                    return None;
+                }
+                let (phi, delta) = (b.atan2(a), cos.acos());
+                // φ ± δ, each moved to the first turn beyond `after`.
+                [phi - delta, phi + delta].map(|t| t + TAU * (((after - t) / TAU).floor() + 1.0))
+            }
+            Curvature::Negative => {
+                // With e = e^θ: (A + B) e² − 2b e + (A − B) = 0.
+                let disc = c * c - a * a + b * b;
+                if disc.is_nan() || disc <= 0.0 {
+                    return None;
+                }
+                let root = disc.sqrt();
+                // The product of the roots is (A − B)/(A + B): each from the stable side.
+                let big = if c >= 0.0 { c + root } else { c - root };
+                [big / (a + b), (a - b) / big].map(f64::ln)
+            }
+        };
+        roots
             .into_iter()
-            .filter(|&t| !Self::at_infinity(self.lifted(t).0))
+            .filter(|&t| t > after && t.is_finite() && !Self::at_infinity(self.lifted(t).0))
             .min_by(f64::total_cmp)
             .filter(|&t| self.escape().is_none_or(|end| t < end))
     }

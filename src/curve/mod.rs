@@ -1,7 +1,7 @@
 //! The curved-segment engine shared by every pass: the exact arc
 //! ([`CurvedSegment`]), the steppers, step control and the march with its termination reasons;
-//! and the rays of the fish-eye in closed form ([`FishEyeRay`]: the transformation method where
-//! it is exact).
+//! and the rays of the constant-curvature media in closed form ([`GeodesicRay`]: the
+//! transformation method where it is exact).
 
 mod bounds;
 mod hermite;
@@ -12,7 +12,7 @@ mod stepper;
 
 pub use bounds::Bounds;
 pub use hermite::{HermitePath, Path};
-pub use linearize::{FishEyePoint, FishEyeRay, Hyperplane};
+pub use linearize::{Curvature, GeodesicPoint, GeodesicRay, Hyperplane, FAR};
 pub use march::{
     march, march_replay, march_replay_with, march_with, round_off_floor, step_optical_depth,
     MarchLimits, MarchOutcome, StepControl, Termination,

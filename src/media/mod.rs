@@ -23,7 +23,7 @@ pub use planar::{ExponentialMedium, HeightTable, LinearMedium, UniformMedium};
 pub use radial::{Axis, ParabolicFiber, RadialTable, SechFiber};
 pub use spherical::{
     black_hole_deflection, schwarzschild_deflection_series, BlackHole, ExactBlackHole, FishEye,
-    Luneburg,
+    HyperbolicMedium, Luneburg,
 };
 pub use table::MonotoneCubic;
 

@@ -78,6 +78,53 @@ impl Medium for FishEye {
     }
 }
 
+/// The hyperbolic medium n = n0 / (1 − (r/R)²) inside the ball r < R: the Poincaré ball, a
+/// space of constant negative curvature whose rays are straightened in closed form
+/// ([`crate::curve::GeodesicRay`]) and reach the rim only after an infinite optical path. A
+/// ray is captured within a relative [`HyperbolicMedium::RIM_MARGIN`] of the rim (where n
+/// exceeds 10⁸ n0) and outside it.
+#[derive(Clone, Debug)]
+pub struct HyperbolicMedium {
+    /// Index at the centre.
+    pub n0: f64,
+    /// Centre.
+    pub center: DVec3,
+    /// Radius R of the rim.
+    pub radius: f64,
+}
+
+impl HyperbolicMedium {
+    /// 1 − (r/R)² below which a ray counts as captured at the rim.
+    pub const RIM_MARGIN: f64 = 1e-8;
+}
+
+impl Medium for HyperbolicMedium {
+    /// Transparent.
+    fn absorbs(&self) -> bool {
+        false
+    }
+    fn symmetry_center(&self) -> Option<DVec3> {
+        Some(self.center)
+    }
+    fn sample(&self, p: DVec3) -> Option<IndexSample> {
+        let u = (p - self.center) / self.radius;
+        let w = 1.0 - u.length_squared();
+        if w.is_nan() || w < Self::RIM_MARGIN {
+            return None;
+        }
+        let n = self.n0 / w;
+        Some(IndexSample {
+            n,
+            grad: 2.0 * n / (w * self.radius) * u,
+        })
+    }
+    /// ∇ln n = 2u/(wR) varies on the scale w R: a quarter of it.
+    fn step_hint(&self, p: DVec3, _dir: DVec3) -> f64 {
+        let w = 1.0 - ((p - self.center) / self.radius).length_squared();
+        0.25 * self.radius * w.max(Self::RIM_MARGIN)
+    }
+}
+
 /// Weak-field index of a Reissner–Nordström black hole, n = ρ²/(ρ² − ρ + q²) with
 /// ρ = |x − center|/rs (Tessendorf (2022) eq. 25). A ray is captured at and inside the horizon
 /// ρ+ = (1 + √(1 − 4q²))/2, where the index diverges, and at the centre.

@@ -7,8 +7,9 @@ use crate::color::Rgb;
 use crate::error::Result;
 use crate::media::{
     Absorbing, Axis, BlackHole, Density, ExactBlackHole, ExponentialMedium, FishEye, GridError,
-    GridMedium, GridQuantity, HeightTable, Interpolation, LinearMedium, Luneburg, Medium,
-    ParabolicFiber, RadialTable, SechFiber, UniformMedium, GLADSTONE_DALE_AIR, STANDARD_PRESSURE,
+    GridMedium, GridQuantity, HeightTable, HyperbolicMedium, Interpolation, LinearMedium, Luneburg,
+    Medium, ParabolicFiber, RadialTable, SechFiber, UniformMedium, GLADSTONE_DALE_AIR,
+    STANDARD_PRESSURE,
 };
 use crate::spectrum::{Dispersion, LAMBDA_D};
 use crate::volume::{Phase, Scattering};
@@ -27,6 +28,7 @@ pub const PROFILES: &[&str] = &[
     "height_table",
     "luneburg",
     "fisheye",
+    "hyperbolic",
     "black_hole",
     "schwarzschild",
     "reissner_nordstrom",
@@ -149,16 +151,19 @@ fn read_profile(t: &mut TableReader) -> Result<Profile> {
                 })
             })
         }
-        "fisheye" => {
+        // The two constant-curvature media: n0 / (1 ± (r/R)²).
+        "fisheye" | "hyperbolic" => {
             let n0 = t.dispersion("n0")?;
             let center = t.vec3_or("center", DVec3::ZERO)?;
             let radius = t.positive("radius")?;
-            by_wavelength(vec![n0], move |v| {
-                Box::new(FishEye {
-                    n0: v[0],
-                    center,
-                    radius,
-                })
+            let hyperbolic = profile == "hyperbolic";
+            by_wavelength(vec![n0], move |v| -> Box<dyn Medium> {
+                let n0 = v[0];
+                if hyperbolic {
+                    Box::new(HyperbolicMedium { n0, center, radius })
+                } else {
+                    Box::new(FishEye { n0, center, radius })
+                }
             })
         }
         other => {
