@@ -35,7 +35,7 @@ pub const FAR: f64 = 1e6;
 
 /// The sign of a model's curvature.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Curvature {
+enum Curvature {
     /// The 3-sphere (the fish-eye).
     Positive,
     /// The hyperboloid (the hyperbolic medium).
@@ -102,8 +102,14 @@ impl GeodesicRay {
     /// The ray of the fish-eye `eye` from `position` along `direction` (any length); None if
     /// either is not finite or the direction is zero.
     pub fn fish_eye(eye: &FishEye, position: DVec3, direction: DVec3) -> Option<Self> {
-        let parts = (eye.center, eye.radius, eye.n0);
-        Self::new(Curvature::Positive, parts, position, direction)
+        Self::new(
+            Curvature::Positive,
+            eye.center,
+            eye.radius,
+            eye.n0,
+            position,
+            direction,
+        )
     }
 
     /// The ray of the hyperbolic medium `m` from `position` (inside its rim) along
@@ -111,15 +117,21 @@ impl GeodesicRay {
     pub fn hyperbolic(m: &HyperbolicMedium, position: DVec3, direction: DVec3) -> Option<Self> {
         Self::new(
             Curvature::Negative,
-            (m.center, m.radius, m.n0),
+            m.center,
+            m.radius,
+            m.n0,
             position,
             direction,
         )
     }
 
+    /// The ray from `position` along `direction` of the medium of `curvature` about `center`,
+    /// of radius scale `radius` and central index `n0`.
     fn new(
         curvature: Curvature,
-        (center, radius, n0): (DVec3, f64, f64),
+        center: DVec3,
+        radius: f64,
+        n0: f64,
         position: DVec3,
         direction: DVec3,
     ) -> Option<Self> {

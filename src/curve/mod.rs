@@ -12,7 +12,7 @@ mod stepper;
 
 pub use bounds::Bounds;
 pub use hermite::{HermitePath, Path};
-pub use linearize::{Curvature, GeodesicPoint, GeodesicRay, Hyperplane, FAR};
+pub use linearize::{GeodesicPoint, GeodesicRay, Hyperplane, FAR};
 pub use march::{
     march, march_replay, march_replay_with, march_with, round_off_floor, step_optical_depth,
     MarchLimits, MarchOutcome, StepControl, Termination,
