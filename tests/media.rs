@@ -638,3 +638,27 @@ fn a_tabulated_fibers_step_follows_its_local_spacing() {
         "the fine interval where it is"
     );
 }
+
+/// A shape filled with the hyperbolic medium up to its rim (where n → ∞ and rays are captured)
+/// loses the paths that meet it, and the render's statistics say how many; inside the rim
+/// (radius 0.95 R) no path is lost so.
+#[test]
+fn paths_lost_to_an_undefined_index_are_counted() {
+    for (radius, lost) in [(1.0, true), (0.95, false)] {
+        let text = format!(
+            "[[medium]]\nname = \"ball\"\nprofile = \"hyperbolic\"\nn0 = 1.2\nradius = 1.0\n\
+             [[material]]\nname = \"glass\"\ntype = \"dielectric\"\ninterior = \"ball\"\n\
+             [[shape]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = {radius}\n\
+             material = \"glass\"\n\
+             [[light]]\ntype = \"environment\"\nsky = \"uniform\"\n\
+             [camera]\nposition = [0, 0, 4]\nlook_at = [0, 0, 0]\nfov_y_deg = 40\n\
+             width = 16\nheight = 16\n[render]\nspp = 1\nintegrator = \"path\"\n"
+        );
+        let (scene, settings) =
+            grinlight::scene::load::parse_scene(std::path::Path::new("rim.toml"), text).unwrap();
+        let (_, report) = grinlight::render::render(&scene, &settings, &()).unwrap();
+        let n = report.stats.undefined_index;
+        println!("ball of radius {radius} R: {n} paths lost to an undefined index");
+        assert_eq!(n > 0, lost, "{}", report.stats.summary());
+    }
+}

@@ -520,6 +520,8 @@ impl<'w> Walker<'w> {
                     self.meet_dispersion(self.tracer.disperses_at(surface), chain);
                 }
                 let Some(vertex) = self.tracer.vertex(hit, surface, at.medium) else {
+                    // Detectors and emitters are met above: the index is undefined here.
+                    lent.stats.undefined_index += 1;
                     return ControlFlow::Break(End::Lost);
                 };
                 match vertex.lobes().is_specular() {

@@ -17,6 +17,9 @@ pub struct Stats {
     pub ends: [u64; 6],
     /// Paths that ended at the depth limit.
     pub depth_limited: u64,
+    /// Paths lost at a surface because a medium's index is undefined there (inside a medium's
+    /// capture region: a black hole's horizon, the hyperbolic medium's rim).
+    pub undefined_index: u64,
     /// Photons emitted.
     pub photons_emitted: u64,
     /// Gather rays of the final gather.
@@ -63,6 +66,7 @@ impl Stats {
         self.curved_marches += o.curved_marches;
         self.curved_steps += o.curved_steps;
         self.depth_limited += o.depth_limited;
+        self.undefined_index += o.undefined_index;
         self.photons_emitted += o.photons_emitted;
         self.gather_rays += o.gather_rays;
         self.photon_queries += o.photon_queries;
@@ -91,12 +95,19 @@ impl Stats {
                 )
             })
             .collect();
+        let undefined = match self.undefined_index {
+            0 => String::new(),
+            n => format!(
+                ", paths lost at a surface where a medium's index is undefined {n} (a shape \
+                 reaching into a medium's capture region)"
+            ),
+        };
         let connections = match self.connections {
             (0, 0) => String::new(),
             (ok, failed) => format!(", curved light connections {ok} ({failed} unsolved)"),
         };
         format!(
-            "camera rays {}, photons {}, gather rays {}, photon queries {} ({:.2} µs each), straight traversals {}, curved marches {} ({} steps; ends: {}), paths cut at max_depth {}{connections}",
+            "camera rays {}, photons {}, gather rays {}, photon queries {} ({:.2} µs each), straight traversals {}, curved marches {} ({} steps; ends: {}), paths cut at max_depth {}{undefined}{connections}",
             self.camera_rays,
             self.photons_emitted,
             self.gather_rays,
