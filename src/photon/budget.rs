@@ -91,18 +91,17 @@ impl<T> Budget<T> {
         }
     }
 
-    /// Every sum of its own (not its parts'): emitted, then each fate's.
+    /// Each fate's sum (its own, not its parts').
+    fn fate_sums(&self) -> impl Iterator<Item = &T> {
+        [&self.reflected, &self.missed, &self.absorbed, &self.lost]
+            .into_iter()
+            .chain(self.out_through.values())
+            .chain(self.absorbed_in.values())
+    }
+
+    /// Every sum of its own: emitted and each fate's.
     fn sums(&self) -> impl Iterator<Item = &T> {
-        [
-            &self.emitted,
-            &self.reflected,
-            &self.missed,
-            &self.absorbed,
-            &self.lost,
-        ]
-        .into_iter()
-        .chain(self.out_through.values())
-        .chain(self.absorbed_in.values())
+        std::iter::once(&self.emitted).chain(self.fate_sums())
     }
 }
 
@@ -221,7 +220,7 @@ impl Ledger {
 impl Budget {
     /// The sum of all fates (equal to `emitted` up to rounding).
     pub fn booked(&self) -> f64 {
-        self.sums().skip(1).sum()
+        self.fate_sums().sum()
     }
 
     /// Each fate with power, named: the faces of [`Fate::OutThrough`] by `primitives`, the
