@@ -55,6 +55,11 @@ const BAD: &[(&str, usize, usize, &str)] = &[
     // Scattering: σs negative or NaN, |g| ≥ 1, an unknown phase function.
     ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = 1\nscattering = -1\n", 5, 1, "key `scattering`: must not be negative"),
     ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = 1\nscattering = [1, nan, 1]\n", 5, 1, "key `scattering`"),
+    // σs over wavelength: negative somewhere in the visible, overflowing there, a bad law.
+    ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = 1\nscattering = { cauchy = [-1, 0.3] }\n", 5, 1, "key `scattering`: must be ≥ 0 and finite from 360 to 830 nm"),
+    ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = 1\nscattering = { angstrom = [1, 550, 3000] }\n", 5, 1, "key `scattering`: must be ≥ 0 and finite from 360 to 830 nm"),
+    ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = 1\nscattering = { angstrom = [-1, 550, 4] }\n", 5, 1, "key `scattering`: angstrom takes [value ≥ 0 at nm, nm > 0, exponent]"),
+    ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = 1\nscattering = { rayleigh = 1 }\n", 5, 1, "key `scattering`: unknown dispersion model 'rayleigh'"),
     ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = 1\nscattering = 1\nphase = { hg = 1.0 }\n", 6, 1, "key `phase`: hg takes one mean cosine g with −1 < g < 1"),
     ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = 1\nscattering = 1\nphase = { hg = -1.5 }\n", 6, 1, "key `phase`: hg takes one mean cosine g with −1 < g < 1"),
     ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = 1\nscattering = 1\nphase = \"rayleigh\"\n", 6, 1, "key `phase`: expected \"isotropic\" or { hg = g }"),

@@ -105,7 +105,7 @@ impl Beams {
         let mut sum = Rgb::ZERO;
         for (r, points) in self.recorded() {
             let medium = tracer.medium(r.medium);
-            let Some(scattering) = tracer.scene.media().scattering(r.medium) else {
+            let Some(scattering) = tracer.scattering(r.medium) else {
                 continue;
             };
             // A uniform medium's index is looked up once, not at every photon.
@@ -140,7 +140,7 @@ impl Beams {
     pub fn straight<'a>(&'a self, tracer: &'a Tracer) -> impl Iterator<Item = Straight<'a>> + 'a {
         let n_start = self.n_start.unwrap_or(1.0);
         self.recorded().filter_map(move |(r, points)| {
-            let scattering = tracer.scene.media().scattering(r.medium)?;
+            let scattering = tracer.scattering(r.medium)?;
             if !tracer.medium(r.medium).is_uniform() {
                 return None;
             }
@@ -217,7 +217,7 @@ impl ChainEvents for Recording<'_> {
         let start = *beams.start.get_or_insert(*stretch);
         let scatters = stretch
             .medium
-            .filter(|&m| self.tracer.scene.media().scattering(m).is_some());
+            .filter(|&m| self.tracer.scattering(m).is_some());
         beams.recording = scatters.is_some();
         if let Some(medium) = scatters {
             if beams.stretches.is_empty() {

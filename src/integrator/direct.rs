@@ -149,8 +149,6 @@ fn curved_light(
     }
     let e = link.irradiance(&anchor, tracer.radiance(light.intensity(-link.arrival)));
     let unscattered = tracer
-        .scene
-        .media()
         .scattering(m)
         .map_or(Rgb::ONE, |sc| sc.transmittance(link.column));
     vertex.eval(link.direction) * e * unscattered * cos

@@ -158,6 +158,7 @@ mod tests {
             medium: 0,
             scattering: &crate::volume::Scattering {
                 sigma_s: Rgb::ONE,
+                spectrum: None,
                 phase: crate::volume::Phase::Isotropic,
                 density: None,
             },

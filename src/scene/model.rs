@@ -35,7 +35,7 @@ struct Entry {
     name: String,
     medium: Box<dyn Medium>,
     dispersion: Option<AtWavelength>,
-    /// How it scatters (None: it does not); the same at every wavelength.
+    /// How it scatters (None: it does not).
     scattering: Option<Scattering>,
 }
 
@@ -97,9 +97,11 @@ impl Media {
         self.0.iter().any(|e| e.scattering.is_some())
     }
 
-    /// Whether medium `i`'s index depends on wavelength.
+    /// Whether a path through medium `i` depends on its wavelength: its index does, or its
+    /// scattering coefficient.
     pub fn is_dispersive(&self, i: usize) -> bool {
-        self.0[i].dispersion.is_some()
+        let e = &self.0[i];
+        e.dispersion.is_some() || e.scattering.as_ref().is_some_and(Scattering::is_spectral)
     }
 
     /// Medium `i` at vacuum wavelength `nm`, when it is dispersive (None: it is

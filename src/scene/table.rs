@@ -380,7 +380,8 @@ impl<'a> TableReader<'a> {
     /// An optional quantity over wavelength: a number (the same at every
     /// wavelength), a named material (`"BK7"`, see [`Dispersion::names`]), or a table of one
     /// model: `{ sellmeier = [B1, B2, B3, C1, C2, C3] }` (λ in µm), `{ cauchy = [A, B, ...] }`
-    /// (λ in µm), `{ abbe = [n_d, V_d] }` or `{ table = [[nm, value], ...] }`.
+    /// (λ in µm), `{ abbe = [n_d, V_d] }`, `{ table = [[nm, value], ...] }` or
+    /// `{ angstrom = [value, nm, exponent] }` (value at nm, times (nm/λ)^exponent).
     pub fn over_wavelength_opt(&mut self, key: &str) -> Result<Option<Dispersion>> {
         let Some(v) = self.take(key) else {
             return Ok(None);
@@ -398,7 +399,7 @@ impl<'a> TableReader<'a> {
             other => {
                 return Err(self.error(
                     key,
-                    format!("expected a number, a material name or a table {{ sellmeier | cauchy | abbe | table = [...] }}, got {}", other.type_str()),
+                    format!("expected a number, a material name or a table {{ sellmeier | cauchy | abbe | table | angstrom = [...] }}, got {}", other.type_str()),
                 ))
             }
         }))
@@ -464,10 +465,25 @@ impl<'a> TableReader<'a> {
                     .map_err(|(_, e)| self.error(key, format!("table: {e}")))?;
                 Dispersion::Table(curve)
             }
+            "angstrom" => match coefficients()?[..] {
+                [value, nm, exponent] if value >= 0.0 && nm > 0.0 && exponent.is_finite() => {
+                    Dispersion::PowerLaw {
+                        value,
+                        nm,
+                        exponent,
+                    }
+                }
+                _ => {
+                    return Err(self.error(
+                        key,
+                        "angstrom takes [value ≥ 0 at nm, nm > 0, exponent] (value · (nm/λ)^exponent)",
+                    ))
+                }
+            },
             other => {
                 return Err(self.error(
                     key,
-                    format!("unknown dispersion model '{other}' (expected sellmeier, cauchy, abbe or table)"),
+                    format!("unknown dispersion model '{other}' (expected sellmeier, cauchy, abbe, table or angstrom)"),
                 ))
             }
         })

@@ -1,5 +1,6 @@
-//! A refractive index as a function of vacuum wavelength: the dispersion models of optical
-//! catalogues and a few named materials with their published coefficients.
+//! A quantity as a function of vacuum wavelength — a refractive index (the dispersion models of
+//! optical catalogues and a few named materials with their published coefficients) or a
+//! scattering coefficient (Ångström's power law, a table).
 //!
 //! Conventions: λ is given in nm and converted to µm where a model is written in µm
 //! (Sellmeier, Cauchy). Glass catalogue models (Schott, Malitson) give the index relative to
@@ -9,7 +10,8 @@
 use super::{LAMBDA_C, LAMBDA_D, LAMBDA_F};
 use crate::media::MonotoneCubic;
 
-/// n(λ). `Constant` does not depend on wavelength: every wavelength shares one path through it.
+/// A quantity over wavelength: an index n(λ), or a scattering coefficient σs(λ) (1/length).
+/// `Constant` does not depend on wavelength: every wavelength shares one path through it.
 #[derive(Clone, Debug)]
 pub enum Dispersion {
     /// The same index at every wavelength.
@@ -18,8 +20,18 @@ pub enum Dispersion {
     Sellmeier(Vec<(f64, f64)>),
     /// Cauchy: n = Σ Aₖ / λ^(2k), λ in µm (A, B, C, ...: n = A + B/λ² + C/λ⁴ + ...).
     Cauchy(Vec<f64>),
-    /// A table of (λ nm, n), monotone cubic between the nodes, constant beyond the ends.
+    /// A table of (λ nm, value), monotone cubic between the nodes, constant beyond the ends.
     Table(MonotoneCubic),
+    /// Ångström's power law v = v_ref (λ_ref/λ)^α: aerosol scattering (α ≈ 0.5–2.5 for haze),
+    /// Rayleigh scattering by molecules (α = 4).
+    PowerLaw {
+        /// v at `nm`.
+        value: f64,
+        /// The reference wavelength λ_ref, nm.
+        nm: f64,
+        /// The exponent α.
+        exponent: f64,
+    },
 }
 
 /// Named materials: the name a scene gives, and its Sellmeier terms (Bᵢ, Cᵢ µm²).
@@ -97,6 +109,11 @@ impl Dispersion {
             // Horner's rule in 1/λ²: no power of λ to overflow or vanish.
             Dispersion::Cauchy(a) => a.iter().rev().fold(0.0, |acc, ak| ak + acc / um2),
             Dispersion::Table(t) => t.at(nm).0,
+            Dispersion::PowerLaw {
+                value,
+                nm: reference,
+                exponent,
+            } => value * (reference / nm).powf(*exponent),
         }
     }
 
@@ -105,15 +122,22 @@ impl Dispersion {
         !matches!(self, Dispersion::Constant(_))
     }
 
-    /// The smallest index over the visible range (sampled every nm): a model that is not
-    /// positive somewhere there cannot be used.
+    /// The smallest value over the visible range (sampled every nm; NaN if it is NaN
+    /// anywhere): an index that is not positive somewhere there cannot be used.
     pub fn min_visible(&self) -> f64 {
+        self.fold_visible(f64::INFINITY, f64::min)
+    }
+
+    /// The largest value over the visible range likewise (NaN if it is NaN anywhere).
+    pub fn max_visible(&self) -> f64 {
+        self.fold_visible(f64::NEG_INFINITY, f64::max)
+    }
+
+    /// `pick` over the values every nm of the visible range, NaN winning.
+    fn fold_visible(&self, start: f64, pick: fn(f64, f64) -> f64) -> f64 {
         (super::LAMBDA_MIN as u32..=super::LAMBDA_MAX as u32)
             .map(|nm| self.at(nm as f64))
-            .fold(
-                f64::INFINITY,
-                |a, b| if b.is_nan() { f64::NAN } else { a.min(b) },
-            )
+            .fold(start, |a, b| if b.is_nan() { f64::NAN } else { pick(a, b) })
     }
 }
 

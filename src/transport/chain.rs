@@ -444,7 +444,7 @@ impl<'w> Walker<'w> {
         chain.curved |= at
             .medium
             .is_some_and(|m| !self.tracer.medium(m).is_uniform());
-        let scattering = at.medium.and_then(|m| scene.media().scattering(m));
+        let scattering = at.medium.and_then(|m| self.tracer.scattering(m));
         let (event, column) = self.fly(scattering, chain, at, lent, observer);
         if let Some(sc) = scattering {
             chain.weight *= match (self.policy, event) {

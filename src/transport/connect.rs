@@ -316,11 +316,7 @@ pub fn connect(
     let problem = Problem {
         tracer,
         medium: tracer.medium(medium),
-        scattering: tracer
-            .scene
-            .media()
-            .scattering(medium)
-            .filter(|sc| sc.is_heterogeneous()),
+        scattering: tracer.scattering(medium).filter(|sc| sc.is_heterogeneous()),
         from,
         chord,
         u,

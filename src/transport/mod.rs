@@ -27,6 +27,7 @@ use crate::scene::{Scene, Surface};
 use crate::settings::TraceSettings;
 use crate::shapes::Hit;
 use crate::spectrum::{colour, Hero, LAMBDA_D};
+use crate::volume::Scattering;
 use glam::{DVec2, DVec3};
 pub use stats::Stats;
 use std::ops::ControlFlow;
@@ -219,6 +220,8 @@ pub struct Tracer<'a> {
 struct Wavelength {
     nm: f64,
     media: Vec<Option<Box<dyn Medium>>>,
+    /// Each medium's scattering at `nm`, where σs depends on wavelength.
+    scattering: Vec<Option<Scattering>>,
 }
 
 /// A hero wavelength ready for the paths of one camera sample or one photon to take on where
@@ -320,7 +323,7 @@ impl<'a> Tracer<'a> {
     }
 
     /// The same tracer with rays at vacuum wavelength `nm`: each dispersive medium is the
-    /// one at that wavelength. Rays of a tracer from [`Tracer::new`] see every medium at
+    /// one at that wavelength, and so is each scattering coefficient over wavelength. Rays of a tracer from [`Tracer::new`] see every medium at
     /// [`LAMBDA_D`].
     pub fn at_wavelength(&self, nm: f64) -> Self {
         let media = self.scene.media();
@@ -334,6 +337,14 @@ impl<'a> Tracer<'a> {
                 nm,
                 media: (0..media.len())
                     .map(|i| media.at_wavelength(i, nm))
+                    .collect(),
+                scattering: (0..media.len())
+                    .map(|i| {
+                        media
+                            .scattering(i)
+                            .filter(|s| s.is_spectral())
+                            .map(|s| s.at_wavelength(nm))
+                    })
                     .collect(),
             }),
         }
@@ -394,6 +405,18 @@ impl<'a> Tracer<'a> {
         match self.wavelength.as_ref().and_then(|w| w.media[i].as_deref()) {
             Some(m) => m,
             None => self.scene.medium_at(i),
+        }
+    }
+
+    /// How medium `i` scatters at the tracer's wavelength (None: it does not).
+    pub fn scattering(&self, i: usize) -> Option<&Scattering> {
+        match self
+            .wavelength
+            .as_ref()
+            .and_then(|w| w.scattering[i].as_ref())
+        {
+            Some(s) => Some(s),
+            None => self.scene.media().scattering(i),
         }
     }
 

@@ -51,7 +51,7 @@ pub fn unscattered(
     dir: DVec3,
     reach: f64,
 ) -> Rgb {
-    match medium.and_then(|m| tracer.scene.media().scattering(m)) {
+    match medium.and_then(|m| tracer.scattering(m)) {
         Some(sc) => {
             let length = reach.min(tracer.world.exit_distance(from, dir));
             sc.transmittance(sc.column(from, dir, length))

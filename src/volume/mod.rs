@@ -1,6 +1,7 @@
 //! Scattering in media: a medium's radiometry beside its index field ([`crate::media`]).
-//! A medium may scatter light with coefficient σs (1/length, per RGB channel) and a
-//! [`Phase`] function; it may absorb with σa (the index profile's `absorption`).
+//! A medium may scatter light with coefficient σs (1/length, per RGB channel, or a form over
+//! wavelength) and a [`Phase`] function; it may absorb with σa (the index profile's
+//! `absorption`).
 //!
 //! **Free flights.** Light travelling a path of arclength s in the medium keeps exp(−σs s)
 //! unscattered — along a curved path exactly as along a straight one, since σs is constant
@@ -16,6 +17,12 @@
 //! d(x)/max d ([`Scattering::collides`]), else the path goes on unchanged — exact along the
 //! curved path, since each tentative collision lands on it.
 //!
+//! **Wavelength.** A σs that depends on wavelength (Rayleigh's λ⁻⁴, a measured table) makes
+//! the medium's transport depend on it as a dispersive index does: a path takes on a hero
+//! wavelength where it meets the medium and sees σs(λ) there, the same in every channel
+//! ([`Scattering::at_wavelength`]) — exact per wavelength, where an RGB σs would be the
+//! attenuation of three channels standing for a band each.
+//!
 //! **Radiance.** Basic radiance L/n² is conserved between events (the refractive radiative
 //! transfer equation; Ament et al. 2014), so radiance in-scattered at a point of index n is
 //! seen at a path's start scaled by (n_start/n)², as radiance leaving a surface is: the chain
@@ -28,6 +35,7 @@ pub use phase::Phase;
 
 use crate::color::Rgb;
 use crate::media::Density;
+use crate::spectrum::{Dispersion, LAMBDA_D};
 use glam::DVec3;
 use std::sync::Arc;
 
@@ -35,8 +43,12 @@ use std::sync::Arc;
 /// that scales σs where the medium is heterogeneous.
 #[derive(Clone, Debug)]
 pub struct Scattering {
-    /// The scattering coefficient σs per RGB channel (1/length), where the density is 1.
+    /// The scattering coefficient σs per RGB channel (1/length), where the density is 1, as
+    /// paths carrying every wavelength see it: σs(λ_d) in every channel when σs is a form over
+    /// wavelength.
     pub sigma_s: Rgb,
+    /// σs over vacuum wavelength (1/length), when it depends on it.
+    pub spectrum: Option<Arc<Dispersion>>,
     /// How a scattering event redirects light.
     pub phase: Phase,
     /// The density d(x) scaling σs (None: 1 everywhere, a homogeneous medium).
@@ -46,16 +58,56 @@ pub struct Scattering {
 /// The same scattering: equal σs and phase, and the very same density field (or none).
 impl PartialEq for Scattering {
     fn eq(&self, other: &Self) -> bool {
-        let same_density = match (&self.density, &other.density) {
-            (None, None) => true,
-            (Some(a), Some(b)) => Arc::ptr_eq(a, b),
-            _ => false,
-        };
-        self.sigma_s == other.sigma_s && self.phase == other.phase && same_density
+        fn same<T>(a: &Option<Arc<T>>, b: &Option<Arc<T>>) -> bool {
+            match (a, b) {
+                (None, None) => true,
+                (Some(a), Some(b)) => Arc::ptr_eq(a, b),
+                _ => false,
+            }
+        }
+        self.sigma_s == other.sigma_s
+            && self.phase == other.phase
+            && same(&self.density, &other.density)
+            && same(&self.spectrum, &other.spectrum)
     }
 }
 
 impl Scattering {
+    /// A medium scattering with σs over wavelength `spectrum` (a [`Dispersion::Constant`] is
+    /// an RGB grey), `phase` and `density`.
+    pub fn over_wavelength(
+        spectrum: Dispersion,
+        phase: Phase,
+        density: Option<Arc<Density>>,
+    ) -> Self {
+        let spectral = spectrum.is_dispersive();
+        Self {
+            sigma_s: Rgb::splat(spectrum.at(LAMBDA_D)),
+            spectrum: spectral.then(|| Arc::new(spectrum)),
+            phase,
+            density,
+        }
+    }
+
+    /// Whether σs depends on wavelength (a path through the medium is one wavelength's).
+    pub fn is_spectral(&self) -> bool {
+        self.spectrum.is_some()
+    }
+
+    /// The same scattering as paths at vacuum wavelength `nm` see it: σs(λ) in every channel,
+    /// no longer over wavelength (itself when σs does not depend on wavelength).
+    pub fn at_wavelength(&self, nm: f64) -> Self {
+        match &self.spectrum {
+            None => self.clone(),
+            Some(s) => Self {
+                sigma_s: Rgb::splat(s.at(nm)),
+                spectrum: None,
+                phase: self.phase,
+                density: self.density.clone(),
+            },
+        }
+    }
+
     /// Whether σs is the same in every channel (then a free flight's weights are 1).
     pub fn is_grey(&self) -> bool {
         let s = self.sigma_s;
