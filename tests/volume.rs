@@ -105,20 +105,21 @@ fn furnace(text: &str) -> Vec<(IntegratorKind, [f64; 3], [f64; 3])> {
         .collect()
 }
 
-/// A density lattice over the furnace, 5 nodes a side, rough (every node its own value, a
-/// quarter of them 0: empty pockets, steep walls; drawn from a fixed seed): the
-/// `density_*` keys of a `[[medium]]` table.
+/// A density lattice over the furnace, 21 nodes a side, rough (every node its own value, a
+/// quarter of them 0: empty pockets, steep walls; drawn from a fixed seed; 20 cells a side,
+/// so free flights are drawn under local majorants of 3³ blocks): the `density_*` keys of a
+/// `[[medium]]` table.
 fn rough_density() -> String {
     use rand::{Rng, SeedableRng};
     let mut rng = rand_pcg::Pcg64Mcg::seed_from_u64(17);
-    let values: Vec<String> = (0..125)
+    let values: Vec<String> = (0..21 * 21 * 21)
         .map(|_| match rng.gen::<f64>() {
             u if u < 0.25 => "0".to_string(),
             _ => format!("{:.3}", rng.gen::<f64>() * 2.0),
         })
         .collect();
     format!(
-        "density_bounds = [[-1, -1, -1], [1, 1, 1]]\ndensity_dims = [5, 5, 5]\n\
+        "density_bounds = [[-1, -1, -1], [1, 1, 1]]\ndensity_dims = [21, 21, 21]\n\
          density_values = [{}]",
         values.join(", ")
     )
@@ -398,11 +399,16 @@ fn slabs_reflect_and_transmit_as_a_plane_parallel_random_walk() {
         let depth = albedo * tau;
         // The same slab, homogeneous, and with a density falling linearly from 1.75 at the
         // bottom to 0.25 at the top (mean 1): a plane-parallel medium's R and T depend on its
-        // optical depth alone, and the density scales σa with σs, so ϖ stays 0.9.
+        // optical depth alone, and the density scales σa with σs, so ϖ stays 0.9. The ramp
+        // has 41 nodes in depth (5 blocks of cells): free flights under local majorants.
+        let values: Vec<String> = (0..2 * 41 * 2)
+            .map(|i| format!("{}", 1.75 - 1.5 * ((i / 2) % 41) as f64 / 40.0))
+            .collect();
         let ramp = format!(
             "density_bounds = [[-1000, -{depth}, -1000], [1000, 0, 1000]]\n\
-             density_dims = [2, 2, 2]\n\
-             density_values = [1.75, 1.75, 0.25, 0.25, 1.75, 1.75, 0.25, 0.25]\n"
+             density_dims = [2, 41, 2]\n\
+             density_values = [{}]\n",
+            values.join(", ")
         );
         for (slab, density, count) in [
             ("homogeneous", "", 4_000_000),

@@ -25,6 +25,8 @@
 //! hyperbolic medium's rim a direction one of about ε/w. Rays from the start to a few R, and to
 //! w ≈ 10⁻², keep 1e-13.
 
+use super::hermite::Path;
+use super::segment::{deviation_bound, ArcHull, ArcPoint};
 use crate::media::{FishEye, HyperbolicMedium};
 use glam::{DVec3, DVec4};
 use std::f64::consts::TAU;
@@ -199,6 +201,25 @@ impl GeodesicRay {
         })
     }
 
+    /// The θ of `position`, a point of this ray's geodesic (to rounding), nearest `estimate`:
+    /// the fish-eye's great circle knows θ modulo 2π, the hyperbolic medium's geodesic
+    /// exactly (θ < 0 behind the start).
+    pub fn theta_of(&self, position: DVec3, estimate: f64) -> f64 {
+        let k = self.curvature.k();
+        let u = (position - self.center) / self.radius;
+        let s = 1.0 + k * u.length_squared();
+        let x = (2.0 * u / s).extend((1.0 - k * u.length_squared()) / s);
+        match self.curvature {
+            // X = P cos θ + Q sin θ, P and Q orthonormal.
+            Curvature::Positive => {
+                let t = x.dot(self.q).atan2(x.dot(self.p));
+                t - TAU * ((t - estimate) / TAU).round()
+            }
+            // X = P cosh θ + Q sinh θ, Q a unit spacelike vector Lorentz-orthogonal to P.
+            Curvature::Negative => (x.truncate().dot(self.q.truncate()) - x.w * self.q.w).asinh(),
+        }
+    }
+
     /// The θ in (0, 2π] at which a fish-eye ray reaches infinity, if its circle passes through
     /// the pole (the rays through the centre, radially): there n → 0 and the arclength
     /// diverges, so the ray ends — nothing beyond is reached. None for every other ray and in
@@ -271,5 +292,68 @@ impl GeodesicRay {
             .filter(|&t| t > after && t.is_finite() && !Self::at_infinity(self.lifted(t).0))
             .min_by(f64::total_cmp)
             .filter(|&t| self.escape().is_none_or(|end| t < end))
+    }
+}
+
+/// A ray of a constant-curvature index field in x-space: a circle (Maxwell 1854 for the
+/// fish-eye; the Poincaré ball's geodesics for the hyperbolic medium), or a line through the
+/// centre — the path of constant curvature vector κ = ∇ln n − t̂(t̂·∇ln n) (1/length, ⊥ t̂) from
+/// its start. Exact at every arclength, in a form that stays accurate as |κ|s → 0:
+/// x(s) = x0 + t̂0 s sinc(|κ|s) + κ s² sinc²(|κ|s/2)/2, t̂(s) = t̂0 cos(|κ|s) + κ s sinc(|κ|s).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CircleArc {
+    /// The start.
+    pub origin: DVec3,
+    /// The unit direction there.
+    pub direction: DVec3,
+    /// The curvature vector κ (1/length), orthogonal to `direction`.
+    pub curvature: DVec3,
+}
+
+/// sin x / x, to rounding near 0.
+fn sinc(x: f64) -> f64 {
+    if x.abs() < 1e-4 {
+        1.0 - x * x / 6.0
+    } else {
+        x.sin() / x
+    }
+}
+
+impl CircleArc {
+    /// The arc from `origin` along unit `direction` where ∇ln n is `force` (its curvature
+    /// vector is `force`'s part across `direction`).
+    pub fn new(origin: DVec3, direction: DVec3, force: DVec3) -> Self {
+        Self {
+            origin,
+            direction,
+            curvature: force - direction * direction.dot(force),
+        }
+    }
+
+    /// A capsule holding the arc's first `length`.
+    pub fn hull(&self, length: f64) -> ArcHull {
+        ArcHull {
+            a: self.origin,
+            b: self.at(length).position,
+            deviation: deviation_bound(self.curvature.length(), length),
+        }
+    }
+}
+
+impl Path for CircleArc {
+    fn at(&self, s: f64) -> ArcPoint {
+        let phi = self.curvature.length() * s;
+        let half = sinc(0.5 * phi);
+        let along = s * sinc(phi);
+        ArcPoint {
+            position: self.origin
+                + self.direction * along
+                + self.curvature * (0.5 * s * s * half * half),
+            direction: (self.direction * phi.cos() + self.curvature * along).normalize(),
+        }
+    }
+
+    fn curvature(&self) -> f64 {
+        self.curvature.length()
     }
 }

@@ -2,7 +2,7 @@
 
 use super::bounds::Bounds;
 use super::stepper::{
-    ArcChain, RayState, Rk4Sharma, Rkn64, SnellSteps, Step, Stepper, StepperKind,
+    ArcChain, Linearize, RayState, Rk4Sharma, Rkn64, SnellSteps, Step, Stepper, StepperKind,
 };
 use crate::media::Medium;
 use rand::Rng;
@@ -154,7 +154,7 @@ where
         state: start,
         length: 0.0,
         optical_path: 0.0,
-        arcs: None,
+        path: None,
     };
     if observe(0.0, &at_start).is_break() {
         out.reason = Termination::Stopped;
@@ -403,7 +403,7 @@ where
         state: *state,
         length: 0.0,
         optical_path: 0.0,
-        arcs: None,
+        path: None,
     };
     let Some((mut fb, mut best)) = sd(h) else {
         return at_start;
@@ -499,6 +499,7 @@ pub fn march_replay_with<M: Medium + ?Sized>(
         StepperKind::Rk4 => march_replay(&Rk4Sharma, medium, start, lengths, limits),
         StepperKind::Rkn => march_replay(&Rkn64, medium, start, lengths, limits),
         StepperKind::Snell => march_replay(&SnellSteps, medium, start, lengths, limits),
+        StepperKind::Linearize => march_replay(&Linearize, medium, start, lengths, limits),
     }
 }
 
@@ -520,5 +521,6 @@ where
         StepperKind::Rk4 => march(&Rk4Sharma, medium, control, start, limits, observe),
         StepperKind::Rkn => march(&Rkn64, medium, control, start, limits, observe),
         StepperKind::Snell => march(&SnellSteps, medium, control, start, limits, observe),
+        StepperKind::Linearize => march(&Linearize, medium, control, start, limits, observe),
     }
 }

@@ -12,13 +12,13 @@ mod stepper;
 
 pub use bounds::Bounds;
 pub use hermite::{HermitePath, Path};
-pub use linearize::{GeodesicPoint, GeodesicRay, Hyperplane, FAR};
+pub use linearize::{CircleArc, GeodesicPoint, GeodesicRay, Hyperplane, FAR};
 pub use march::{
     march, march_replay, march_replay_with, march_with, round_off_floor, step_optical_depth,
     MarchLimits, MarchOutcome, StepControl, Termination,
 };
 pub use segment::{accurate_cross, ArcHull, ArcPoint, CurvedSegment};
 pub use stepper::{
-    ArcChain, ArcPath, EstimatedStep, RayState, Rk4Sharma, Rkn64, RknTableau, SnellSteps, Step,
-    Stepper, StepperKind, RKN64,
+    ArcChain, ArcPath, EstimatedStep, ExactPath, Linearize, RayState, Rk4Sharma, Rkn64, RknTableau,
+    SnellSteps, Step, Stepper, StepperKind, RKN64,
 };

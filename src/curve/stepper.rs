@@ -1,5 +1,7 @@
 //! Steppers: one step of a ray through a medium, behind one small interface.
 
+use super::hermite::Path;
+use super::linearize::CircleArc;
 use super::segment::{deviation_bound, ArcHull, ArcPoint, CurvedSegment};
 use crate::media::{IndexSample, Medium};
 use glam::DVec3;
@@ -48,9 +50,47 @@ pub struct Step {
     pub length: f64,
     /// Optical path ∫ n ds of the step, to the stepper's order.
     pub optical_path: f64,
-    /// The path between the ends where the stepper's path is a chain of exact arcs
-    /// ([`ArcChain`]); `None` where only the ends are known.
-    pub arcs: Option<ArcPath>,
+    /// The path between the ends where the stepper knows it exactly (a chain of exact arcs,
+    /// a constant-curvature medium's circle); `None` where only the ends are known.
+    pub path: Option<ExactPath>,
+}
+
+/// A step's path between its ends, known exactly: surfaces are met on it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ExactPath {
+    /// The arc chain's two arcs ([`ArcChain`]).
+    Arcs(ArcPath),
+    /// The ray's own circle ([`Linearize`]).
+    Circle(CircleArc),
+}
+
+impl ExactPath {
+    /// A capsule holding the whole path of a step from `start` to `end`, `length` long.
+    pub fn hull(&self, start: &RayState, end: &RayState, length: f64) -> ArcHull {
+        match self {
+            ExactPath::Arcs(arcs) => arcs.hull(start, end, length),
+            ExactPath::Circle(circle) => ArcHull {
+                a: start.position,
+                b: end.position,
+                deviation: deviation_bound(circle.curvature.length(), length),
+            },
+        }
+    }
+
+    /// The point at arclength `along` of a step from `start` of `length`.
+    pub fn at(&self, start: &RayState, length: f64, along: f64) -> ArcPoint {
+        match self {
+            ExactPath::Arcs(arcs) => {
+                let half = 0.5 * length;
+                let [first, second] = arcs.arcs(start);
+                match along <= half {
+                    true => first.at(along),
+                    false => second.at(along - half),
+                }
+            }
+            ExactPath::Circle(circle) => circle.at(along),
+        }
+    }
 }
 
 /// A step's path as two exact arcs of half its length each: from the step's start under
@@ -184,10 +224,77 @@ pub fn step_doubling(
             state: second.state,
             length: half.length + second.length,
             optical_path: half.optical_path + second.optical_path,
-            arcs: None,
+            path: None,
         },
         error: step_discrepancy(&second.state, &full, h) / f64::from((1u32 << order) - 1),
     })
+}
+
+/// The transformation method where it is exact: in a medium whose rays have a closed form
+/// ([`Medium::geodesic`]: the fish-eye, the hyperbolic medium) a step follows the ray's circle
+/// ([`CircleArc`], from the curvature vector at its start) to the requested arclength and takes
+/// its optical path from the angle the geodesic turns ([`crate::curve::GeodesicRay`]): no
+/// error, so adaptive control lengthens its steps to the medium's step hint, and surfaces are
+/// met on the circle itself ([`ExactPath::Circle`]). In any other medium it is [`Rkn64`].
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Linearize;
+
+impl Linearize {
+    /// The exact step, in a medium with a closed form (None: it has none; Some(None): the
+    /// step reached a point where the medium captures rays).
+    fn exact<M: Medium + ?Sized>(medium: &M, state: &RayState, h: f64) -> Option<Option<Step>> {
+        let ray = medium.geodesic(state.position, state.direction)?;
+        let circle = CircleArc::new(state.position, state.direction, state.index.log_gradient());
+        let end = circle.at(h);
+        let Some(index) = medium.sample(end.position) else {
+            return Some(None);
+        };
+        // The angle turned, on the branch nearest the trapezoid estimate ∫n ds / (n0 R/2)
+        // (the fish-eye's angle is known modulo 2π; a step turns far less than π from it).
+        let per_angle = ray.optical_path(1.0);
+        let estimate = 0.5 * h * (state.index.n + index.n) / per_angle;
+        let theta = ray.theta_of(end.position, estimate);
+        Some(Some(Step {
+            state: RayState {
+                position: end.position,
+                direction: end.direction,
+                index,
+            },
+            length: h,
+            optical_path: ray.optical_path(theta),
+            path: Some(ExactPath::Circle(circle)),
+        }))
+    }
+}
+
+impl Stepper for Linearize {
+    fn step<M: Medium + ?Sized>(&self, medium: &M, state: &RayState, h: f64) -> Option<Step> {
+        match Self::exact(medium, state, h) {
+            Some(step) => step,
+            None => Rkn64.step(medium, state, h),
+        }
+    }
+
+    fn order(&self) -> u32 {
+        Rkn64.order()
+    }
+
+    fn estimate_order(&self) -> u32 {
+        Rkn64.estimate_order()
+    }
+
+    /// The exact step with an error of 0, or [`Rkn64`]'s estimated step.
+    fn estimated_step<M: Medium + ?Sized>(
+        &self,
+        medium: &M,
+        state: &RayState,
+        h: f64,
+    ) -> Option<EstimatedStep> {
+        match Self::exact(medium, state, h) {
+            Some(step) => step.map(|step| EstimatedStep { step, error: 0.0 }),
+            None => Rkn64.estimated_step(medium, state, h),
+        }
+    }
 }
 
 /// Tessendorf's exact arcs (Tessendorf 2022, §2–3) chained into a fourth-order method: the
@@ -196,7 +303,7 @@ pub fn step_doubling(
 /// three points reached by arcs and takes two arcs of h/2 under two weighted means of the four
 /// F's (in that order: swapped, the method is second order). The path is a chain of exact
 /// arcs — C¹ at the joints, |t̂| = 1 exactly, exact where ∇ln n is constant (the exponential
-/// medium) — so surfaces are tested on the arcs themselves ([`Step::arcs`]).
+/// medium) — so surfaces are tested on the arcs themselves ([`Step::path`]).
 ///
 /// Along a frozen arc ln n grows by L(s) = F·(x(s) − x0) and n = n0 e^L, so the optical path
 /// is in closed form on each arc ([`CurvedSegment::relative_optical_path`]); the chain is the
@@ -245,10 +352,10 @@ impl ArcChain {
             },
             length: h,
             optical_path,
-            arcs: Some(ArcPath {
+            path: Some(ExactPath::Arcs(ArcPath {
                 joint: pm,
                 forces: [fb, fa],
-            }),
+            })),
         };
         Some((step, midpoint_arc))
     }
@@ -308,7 +415,7 @@ impl Rk4Sharma {
             },
             length,
             optical_path,
-            arcs: None,
+            path: None,
         })
     }
 
@@ -530,7 +637,7 @@ impl Rkn64 {
             },
             length,
             optical_path,
-            arcs: None,
+            path: None,
         };
         Some(EstimatedStep {
             step,
@@ -614,7 +721,7 @@ impl Stepper for SnellSteps {
                 index,
             },
             length: h,
-            arcs: None,
+            path: None,
         })
     }
 
@@ -634,15 +741,18 @@ pub enum StepperKind {
     Rkn,
     /// [`SnellSteps`].
     Snell,
+    /// [`Linearize`].
+    Linearize,
 }
 
 impl StepperKind {
     /// All steppers.
-    pub const ALL: [StepperKind; 4] = [
+    pub const ALL: [StepperKind; 5] = [
         StepperKind::Arc,
         StepperKind::Rk4,
         StepperKind::Rkn,
         StepperKind::Snell,
+        StepperKind::Linearize,
     ];
 
     /// The stepper used when none is given: the one that wins `examples/stepper_study`'s
@@ -659,7 +769,7 @@ impl StepperKind {
         match self {
             StepperKind::Arc => 1e-6,
             StepperKind::Rk4 => 1e-9,
-            StepperKind::Rkn => 1e-6,
+            StepperKind::Rkn | StepperKind::Linearize => 1e-6,
             StepperKind::Snell => 1e-5,
         }
     }
@@ -671,6 +781,7 @@ impl StepperKind {
             StepperKind::Rk4 => "rk4",
             StepperKind::Rkn => "rkn",
             StepperKind::Snell => "snell",
+            StepperKind::Linearize => "linearize",
         }
     }
 }
@@ -681,6 +792,8 @@ impl std::str::FromStr for StepperKind {
         Self::ALL
             .into_iter()
             .find(|k| k.name() == s)
-            .ok_or_else(|| format!("unknown stepper '{s}' (expected arc, rk4, rkn or snell)"))
+            .ok_or_else(|| {
+                format!("unknown stepper '{s}' (expected arc, rk4, rkn, snell or linearize)")
+            })
     }
 }

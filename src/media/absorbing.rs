@@ -1,6 +1,7 @@
 //! Absorption: a coefficient σa around any index profile, constant or scaled by a density.
 
 use super::{Density, IndexSample, Medium};
+use crate::curve::GeodesicRay;
 use glam::DVec3;
 use std::sync::Arc;
 
@@ -38,5 +39,8 @@ impl Medium for Absorbing {
     }
     fn is_uniform(&self) -> bool {
         self.inner.is_uniform()
+    }
+    fn geodesic(&self, position: DVec3, direction: DVec3) -> Option<GeodesicRay> {
+        self.inner.geodesic(position, direction)
     }
 }

@@ -8,11 +8,79 @@ use glam::DVec3;
 
 /// d(x): trilinear between the nodes of a [`Lattice`] (clamped outside its box), with its
 /// largest value, which bounds it everywhere (a trilinear interpolant lies between its
-/// nodes) and so is the majorant of free-flight tracking.
+/// nodes), and the largest over blocks of cells, which bound it near a point: the majorants
+/// of free-flight tracking ([`Density::bound_near`]).
 #[derive(Clone, Debug)]
 pub struct Density {
     lattice: Lattice,
     max: f64,
+    blocks: Blocks,
+}
+
+/// Cells per axis of a block of [`Blocks`].
+const BLOCK: usize = 8;
+
+/// The largest node value over each block of BLOCK³ cells (the nodes on its faces included),
+/// which bounds the trilinear interpolant in the block.
+#[derive(Clone, Debug)]
+struct Blocks {
+    /// Blocks per axis.
+    counts: [usize; 3],
+    /// Each block's largest value, x fastest.
+    max: Vec<f64>,
+}
+
+impl Blocks {
+    fn new(lattice: &Lattice) -> Self {
+        let dims = lattice.dims();
+        // d − 1 cells per axis, in ⌈(d − 1)/BLOCK⌉ blocks.
+        let counts = dims.map(|d| (d - 2) / BLOCK + 1);
+        let mut max = vec![0.0f64; counts.iter().product()];
+        // Node i lies on the cells i − 1 and i, so in their blocks.
+        let blocks_of = |i: usize, a: usize| {
+            let last = dims[a] - 2;
+            [i.saturating_sub(1).min(last) / BLOCK, i.min(last) / BLOCK]
+        };
+        for k in 0..dims[2] {
+            for j in 0..dims[1] {
+                for i in 0..dims[0] {
+                    let v = lattice.node(i, j, k);
+                    for bz in blocks_of(k, 2) {
+                        for by in blocks_of(j, 1) {
+                            for bx in blocks_of(i, 0) {
+                                let m = &mut max[bx + counts[0] * (by + counts[1] * bz)];
+                                *m = m.max(v);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        Self { counts, max }
+    }
+
+    /// The largest value over the blocks `lo..=hi` (block indices per axis).
+    fn max_over(&self, lo: [usize; 3], hi: [usize; 3]) -> f64 {
+        let mut m = 0.0f64;
+        for bz in lo[2]..=hi[2] {
+            for by in lo[1]..=hi[1] {
+                for bx in lo[0]..=hi[0] {
+                    m = m.max(self.max[bx + self.counts[0] * (by + self.counts[1] * bz)]);
+                }
+            }
+        }
+        m
+    }
+}
+
+/// A bound on the density along any path from a point, as far as it holds: the density is at
+/// most `density` within arclength `reach` of it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LocalMajorant {
+    /// The bound (≥ every d(x) the path can reach).
+    pub density: f64,
+    /// The arclength it holds over (∞: everywhere).
+    pub reach: f64,
 }
 
 impl Density {
@@ -34,7 +102,12 @@ impl Density {
             "a density must be finite and ≥ 0",
         )?;
         let max = lattice.values().iter().copied().fold(0.0, f64::max);
-        Ok(Self { lattice, max })
+        let blocks = Blocks::new(&lattice);
+        Ok(Self {
+            lattice,
+            max,
+            blocks,
+        })
     }
 
     /// d at `p`.
@@ -45,6 +118,35 @@ impl Density {
     /// The largest d anywhere.
     pub fn max(&self) -> f64 {
         self.max
+    }
+
+    /// A bound on d along any path from `p`: a path of arclength h stays within the box
+    /// p ± h, so the largest value over the blocks that box meets bounds d on it. h is a
+    /// block's width along its shortest axis that has more than one block (a lattice of one
+    /// block: the global maximum, everywhere), or — from a point outside the lattice — its
+    /// distance to it plus that, so that paths leaving the lattice take few hops to the
+    /// world's edge.
+    pub fn bound_near(&self, p: DVec3) -> LocalMajorant {
+        let cell = self.lattice.cell_size().to_array();
+        let block = (0..3)
+            .filter(|&a| self.blocks.counts[a] > 1)
+            .map(|a| BLOCK as f64 * cell[a])
+            .fold(f64::INFINITY, f64::min);
+        if block.is_infinite() {
+            return LocalMajorant {
+                density: self.max,
+                reach: f64::INFINITY,
+            };
+        }
+        let (min, max) = self.lattice.bounds();
+        let h = block + (p - p.clamp(min, max)).length();
+        let corner = |q: DVec3| self.lattice.locate(q).cell.map(|c| c / BLOCK);
+        LocalMajorant {
+            density: self
+                .blocks
+                .max_over(corner(p - DVec3::splat(h)), corner(p + DVec3::splat(h))),
+            reach: h,
+        }
     }
 
     /// The column ∫d ds along the straight segment from `from` along unit `dir` over `length`,
@@ -110,6 +212,56 @@ mod tests {
                 "{column} vs {exact} from {a} along {dir} over {length}"
             );
         }
+    }
+
+    /// The local bound holds: every point within the bound's reach of `p` (in the box p ± h,
+    /// which holds every path of that arclength), inside the lattice and beyond it, has d at
+    /// most the bound; and the bound is tighter than the global maximum where the field is
+    /// low (a dense blob in a thin field).
+    #[test]
+    fn a_local_majorant_bounds_the_density_within_its_reach() {
+        let dims = [40, 33, 25];
+        let mut rng = rand_pcg::Pcg64::seed_from_u64(5);
+        let centre = DVec3::new(1.0, 0.5, 0.5);
+        let mut values = Vec::new();
+        for k in 0..dims[2] {
+            for j in 0..dims[1] {
+                for i in 0..dims[0] {
+                    let q = DVec3::new(2.0 * i as f64 / 39.0, j as f64 / 32.0, k as f64 / 24.0);
+                    let blob = if (q - centre).length() < 0.2 {
+                        20.0
+                    } else {
+                        0.0
+                    };
+                    values.push(blob + 0.1 * rng.gen::<f64>());
+                }
+            }
+        }
+        let density = Density::new(DVec3::ZERO, DVec3::new(2.0, 1.0, 1.0), dims, values).unwrap();
+        let mut looser = 0;
+        for _ in 0..2000 {
+            let p = DVec3::new(
+                rng.gen_range(-1.0..3.0),
+                rng.gen_range(-1.0..2.0),
+                rng.gen_range(-0.5..1.5),
+            );
+            let bound = density.bound_near(p);
+            assert!(bound.reach.is_finite() && bound.reach > 0.0);
+            for _ in 0..50 {
+                let q = p + bound.reach
+                    * DVec3::new(
+                        rng.gen_range(-1.0..1.0),
+                        rng.gen_range(-1.0..1.0),
+                        rng.gen_range(-1.0..1.0),
+                    );
+                assert!(density.at(q) <= bound.density, "{q} from {p}: {bound:?}");
+            }
+            looser += usize::from(bound.density < 1.0);
+        }
+        assert!(
+            looser > 1000,
+            "the bound is below 1 at {looser} of 2000 points"
+        );
     }
 
     #[test]

@@ -16,7 +16,7 @@ mod table;
 
 pub use absorbing::Absorbing;
 pub use air::{GridQuantity, GAS_CONSTANT, GLADSTONE_DALE_AIR, MOLAR_MASS_AIR, STANDARD_PRESSURE};
-pub use density::Density;
+pub use density::{Density, LocalMajorant};
 pub use grid::{GridMedium, Interpolation};
 pub use lattice::{GridError, Lattice};
 pub use planar::{ExponentialMedium, HeightTable, LinearMedium, UniformMedium};
@@ -27,6 +27,7 @@ pub use spherical::{
 };
 pub use table::MonotoneCubic;
 
+use crate::curve::GeodesicRay;
 use glam::DVec3;
 
 /// The refractive index and its gradient at one point.
@@ -98,6 +99,14 @@ pub trait Medium: Send + Sync {
     /// True when n is constant everywhere: rays are straight and need no marching.
     fn is_uniform(&self) -> bool {
         false
+    }
+
+    /// The ray from `position` along `direction` in closed form, where the index field has
+    /// constant curvature (the fish-eye, the hyperbolic medium: [`GeodesicRay`]) — its rays
+    /// are then circles ([`crate::curve::CircleArc`]) and `stepper = "linearize"` follows them
+    /// without error. Default: None, no closed form.
+    fn geodesic(&self, _position: DVec3, _direction: DVec3) -> Option<GeodesicRay> {
+        None
     }
 
     /// The centre when n depends only on the distance from it (every ray then stays in the

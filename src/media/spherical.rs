@@ -2,6 +2,7 @@
 //! holes (Tessendorf's (2022) weak-field index and the exact Schwarzschild / Reissner–Nordström one).
 
 use super::{IndexSample, Medium};
+use crate::curve::GeodesicRay;
 use glam::DVec3;
 
 /// Luneburg lens n = √(2 − (r/R)²) inside the sphere of radius R, 1 outside: parallel rays
@@ -76,6 +77,9 @@ impl Medium for FishEye {
     fn step_hint(&self, p: DVec3, _dir: DVec3) -> f64 {
         0.25 * self.radius.max((p - self.center).length())
     }
+    fn geodesic(&self, position: DVec3, direction: DVec3) -> Option<GeodesicRay> {
+        GeodesicRay::fish_eye(self, position, direction)
+    }
 }
 
 /// The hyperbolic medium n = n0 / (1 − (r/R)²) inside the ball r < R: the Poincaré ball, a
@@ -122,6 +126,9 @@ impl Medium for HyperbolicMedium {
     fn step_hint(&self, p: DVec3, _dir: DVec3) -> f64 {
         let w = 1.0 - ((p - self.center) / self.radius).length_squared();
         0.25 * self.radius * w.max(Self::RIM_MARGIN)
+    }
+    fn geodesic(&self, position: DVec3, direction: DVec3) -> Option<GeodesicRay> {
+        GeodesicRay::hyperbolic(self, position, direction)
     }
 }
 

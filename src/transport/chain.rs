@@ -243,6 +243,31 @@ impl Column<'_> {
     }
 }
 
+/// One free flight of a path in a scattering medium: how far it goes before it stops to look.
+#[derive(Clone, Copy)]
+struct Flight {
+    /// The arclength it goes.
+    reach: f64,
+    /// The density bound it was drawn under.
+    majorant: f64,
+    /// Whether it ends at a tentative collision (else at the bound's reach, where the path
+    /// draws anew).
+    tentative: bool,
+}
+
+impl Flight {
+    /// The path's next flight from `p` in `medium`.
+    fn from(p: DVec3, medium: &Scattering, flights: &mut Flights, rng: &mut impl Rng) -> Self {
+        let bound = medium.majorant_near(p);
+        let drawn = flights.draw(medium, bound.density, rng);
+        Self {
+            reach: drawn.min(bound.reach),
+            majorant: bound.density,
+            tentative: drawn <= bound.reach,
+        }
+    }
+}
+
 /// Where a chain stands between two events.
 struct Cursor {
     origin: DVec3,
@@ -362,7 +387,7 @@ impl<'w> Walker<'w> {
     ) -> (Event, f64) {
         let tracks =
             scattering.filter(|_| matches!(self.policy, Policy::Weighted | Policy::Roulette));
-        let mut reach = tracks.map_or(f64::INFINITY, |sc| self.flights.draw(sc, lent.rng));
+        let mut flight = tracks.map(|sc| Flight::from(at.origin, sc, &mut self.flights, lent.rng));
         observer.stretch(&Stretch {
             origin: at.origin,
             medium: at.medium,
@@ -384,7 +409,7 @@ impl<'w> Walker<'w> {
                 origin,
                 dir,
                 at.medium,
-                reach,
+                flight.map_or(f64::INFINITY, |f| f.reach),
                 lent.stats,
                 &mut |p| {
                     column.to(p);
@@ -400,13 +425,16 @@ impl<'w> Walker<'w> {
                         optical_depth,
                     },
                     Some(sc),
-                ) if !sc.collides(position, lent.rng) => {
+                ) if flight.is_some_and(|f| {
+                    !f.tentative || !sc.collides(position, f.majorant, lent.rng)
+                }) =>
+                {
                     column.to(position);
                     observer.point(position);
                     (origin, dir) = (position, direction);
                     travelled += distance;
                     depth += optical_depth;
-                    reach = self.flights.draw(sc, lent.rng);
+                    flight = Some(Flight::from(position, sc, &mut self.flights, lent.rng));
                 }
                 _ => {
                     if let Some(end) = event.position() {

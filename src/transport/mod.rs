@@ -17,8 +17,8 @@ pub use vertex::{MediumVertex, Scattered, SurfaceVertex, Vertex};
 use crate::bsdf::{Bsdf, Ggx, Reflectance};
 use crate::color::Rgb;
 use crate::curve::{
-    march_with, step_optical_depth, ArcPath, Bounds, HermitePath, MarchLimits, MarchOutcome, Path,
-    RayState, StepControl, Termination,
+    march_with, step_optical_depth, Bounds, ExactPath, HermitePath, MarchLimits, MarchOutcome,
+    Path, RayState, StepControl, Termination,
 };
 use crate::lights::SceneBall;
 use crate::material::{ConductorIndex, Material};
@@ -708,8 +708,8 @@ impl<'a> Tracer<'a> {
                 }
                 let len = s - prev_s;
                 let st = &step.state;
-                let found = match &step.arcs {
-                    Some(arcs) => self.crossing_on_arcs(arcs, &prev, st, len),
+                let found = match &step.path {
+                    Some(exact) => self.crossing_on_path(exact, &prev, st, len),
                     None => self.crossing_between(&prev, st, len),
                 };
                 if let Some(c) = found.filter(|c| prev_s + c.along <= reach) {
@@ -728,15 +728,8 @@ impl<'a> Tracer<'a> {
                 }
                 if s >= reach {
                     let along = reach - prev_s;
-                    let p = match &step.arcs {
-                        Some(arcs) => {
-                            let half = 0.5 * len;
-                            let [first, second] = arcs.arcs(&prev);
-                            match along <= half {
-                                true => first.at(along),
-                                false => second.at(along - half),
-                            }
-                        }
+                    let p = match &step.path {
+                        Some(exact) => exact.at(&prev, len, along),
                         None => HermitePath::new(&prev, st, len).at(along),
                     };
                     hit = Some(Event::Reached {
@@ -758,25 +751,33 @@ impl<'a> Tracer<'a> {
         (hit, out)
     }
 
-    /// The first surface on a step from `prev` to `st` that is a chain of two exact arcs of
-    /// `len`/2 each (the path itself, so the hit is exact); skipped when no surface can meet
-    /// the capsule that holds the chain.
-    fn crossing_on_arcs(
+    /// The first surface on a step from `prev` to `st` whose path is known exactly — a chain
+    /// of two exact arcs of `len`/2 each, or the ray's circle — met on the path itself, so the
+    /// hit is exact; skipped when no surface can meet the capsule that holds the path.
+    fn crossing_on_path(
         &self,
-        path: &ArcPath,
+        path: &ExactPath,
         prev: &RayState,
         st: &RayState,
         len: f64,
     ) -> Option<Crossing> {
-        if !self.scene.accel.may_hit(&path.hull(prev, st, len)) {
-            return None;
+        let accel = &self.scene.accel;
+        match path {
+            ExactPath::Arcs(arcs) => {
+                if !accel.may_hit(&arcs.hull(prev, st, len)) {
+                    return None;
+                }
+                let half = 0.5 * len;
+                arcs.arcs(prev).iter().enumerate().find_map(|(k, arc)| {
+                    let hull = arc.hull(half);
+                    let found = accel.intersect_segment(arc, &hull, 0.0, half)?;
+                    Some(Crossing::on(arc, k as f64 * half, found))
+                })
+            }
+            ExactPath::Circle(circle) => accel
+                .intersect_segment(circle, &path.hull(prev, st, len), 0.0, len)
+                .map(|found| Crossing::on(circle, 0.0, found)),
         }
-        let half = 0.5 * len;
-        path.arcs(prev).iter().enumerate().find_map(|(k, arc)| {
-            let hull = arc.hull(half);
-            let found = self.scene.accel.intersect_segment(arc, &hull, 0.0, half)?;
-            Some(Crossing::on(arc, k as f64 * half, found))
-        })
     }
 
     /// The first surface between two accepted states `len` apart whose stepper knows only the

@@ -13,9 +13,13 @@
 //! **Density.** A heterogeneous medium scales σs (and σa) by a [`Density`] d(x): light keeps
 //! exp(−σs C) over a path of *column* C = ∫d ds ([`Scattering::column`]), which stands where
 //! the arclength stood. A free flight is then drawn by delta tracking (Woodcock et al. 1965):
-//! tentative collisions at the majorant rate σs·max d, each a real one with probability
-//! d(x)/max d ([`Scattering::collides`]), else the path goes on unchanged — exact along the
-//! curved path, since each tentative collision lands on it.
+//! tentative collisions at the majorant rate σs·d̄, each a real one with probability d(x)/d̄
+//! ([`Scattering::collides`]), else the path goes on unchanged — exact along the curved path,
+//! since each tentative collision lands on it. The majorant d̄ is local: the largest density
+//! within an arclength of the point ([`Scattering::majorant_near`]; a path that goes that far
+//! without a tentative collision draws anew there under the bound there — a Poisson process
+//! of piecewise constant rate), so a thin haze around a dense plume is not crossed at the
+//! plume's rate.
 //!
 //! **Wavelength.** A σs that depends on wavelength (Rayleigh's λ⁻⁴, a measured table) makes
 //! the medium's transport depend on it as a dispersive index does: a path takes on a hero
@@ -34,7 +38,7 @@ mod phase;
 pub use phase::Phase;
 
 use crate::color::Rgb;
-use crate::media::Density;
+use crate::media::{Density, LocalMajorant};
 use crate::spectrum::{Dispersion, LAMBDA_D};
 use glam::DVec3;
 use std::sync::Arc;
@@ -143,17 +147,25 @@ impl Scattering {
         }
     }
 
-    /// The largest density (1 in a homogeneous medium): free flights are drawn at σs times it.
-    fn majorant(&self) -> f64 {
-        self.density.as_ref().map_or(1.0, |d| d.max())
+    /// A bound on the density along any path from `p` and how far it holds (1 everywhere in
+    /// a homogeneous medium): free flights from `p` are drawn at σs times it, up to its reach.
+    pub fn majorant_near(&self, p: DVec3) -> LocalMajorant {
+        match &self.density {
+            None => LocalMajorant {
+                density: 1.0,
+                reach: f64::INFINITY,
+            },
+            Some(d) => d.bound_near(p),
+        }
     }
 
-    /// Whether a tentative collision at `p` is a real one: always in a homogeneous medium, with
-    /// probability d(p)/max d in a heterogeneous one (one number from `rng`).
-    pub fn collides(&self, p: DVec3, rng: &mut impl rand::Rng) -> bool {
+    /// Whether a tentative collision at `p`, drawn under `majorant`, is a real one: always in
+    /// a homogeneous medium, with probability d(p)/majorant in a heterogeneous one (one number
+    /// from `rng`).
+    pub fn collides(&self, p: DVec3, majorant: f64, rng: &mut impl rand::Rng) -> bool {
         match &self.density {
             None => true,
-            Some(d) => rng.gen::<f64>() * d.max() < d.at(p),
+            Some(d) => rng.gen::<f64>() * majorant < d.at(p),
         }
     }
 
@@ -192,11 +204,12 @@ impl Default for Flights {
 
 impl Flights {
     /// The arclength a path travels in `medium` to its next tentative collision (its
-    /// scattering in a homogeneous medium), drawn from `rng` (one number; a second, once per
-    /// path, picks the hero channel); ∞ where the hero does not scatter.
-    pub fn draw(&mut self, medium: &Scattering, rng: &mut impl rand::Rng) -> f64 {
+    /// scattering in a homogeneous medium) at the rate σs times the density bound `majorant`,
+    /// drawn from `rng` (one number; a second, once per path, picks the hero channel); ∞ where
+    /// the hero does not scatter.
+    pub fn draw(&mut self, medium: &Scattering, majorant: f64, rng: &mut impl rand::Rng) -> f64 {
         let s = medium.sigma_s.0;
-        let sigma = medium.majorant()
+        let sigma = majorant
             * match medium.is_grey() {
                 true => s.x,
                 false => s[*self.hero.get_or_insert_with(|| rng.gen_range(0..3))],
