@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Free flights under local majorants against the global one, in one run: the smoke plume
-# (bench/smoke_plume.toml) rendered by this build and by an earlier one (a git revision whose
+# (bench/smoke_plume.toml) rendered by the checked-out build and by an earlier one (a git revision whose
 # free flights are drawn at the density's global maximum), each integrator RUNS times with
 # the same seed; prints each one's median wall time, their ratio, and the ratio of the two
 # images' means (1 within noise: both draws are exact).
@@ -9,7 +9,7 @@
 #
 # Defaults: e13bf03 (version 0.4.4), 3 runs. The earlier build is made in a temporary git
 # worktree into target/earlier (kept: only the first run takes minutes). The last column is
-# this build's own noise: its image at another seed against the one at seed 3.
+# the checked-out build's own noise: its image at another seed against the one at seed 3.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 rev=${1:-e13bf03}
@@ -45,8 +45,8 @@ wall() {
     t1=$(date +%s.%N)
     awk "BEGIN { printf \"%.2f\", $t1 - $t0 }"
 }
-printf "%-11s %12s %12s %7s   %-30s %s\n" integrator "$rev s" "this s" ratio \
-    "this image against the earlier" "this, seed 4 against seed 3"
+printf "%-11s %12s %12s %7s   %-30s %s\n" integrator "$rev s" "now s" ratio \
+    "now against the earlier" "now, seed 4 against seed 3"
 for integrator in path photon_map; do
     times_old=() times_new=()
     for _ in $(seq "$runs"); do

@@ -65,7 +65,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         // minutes per 10⁴ photons).
         let tolerances: &[f64] = match stepper {
             StepperKind::Rk4 => &[1e-4, 1e-6, 1e-8],
-            StepperKind::Rkn => &[1e-4, 1e-5, 1e-6],
+            StepperKind::Rkn | StepperKind::Linearize => &[1e-4, 1e-5, 1e-6],
             StepperKind::Arc => &[1e-4, 1e-5],
             StepperKind::Snell => &[1e-3, 1e-4],
         };

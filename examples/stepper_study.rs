@@ -218,7 +218,7 @@ fn step_costs() {
         gradient: DVec3::new(0.0, 0.3, 0.1),
         origin: DVec3::ZERO,
     };
-    for kind in StepperKind::ALL {
+    for kind in StepperKind::ITERATIVE {
         let start = RayState::new(&medium, DVec3::ZERO, DVec3::new(1.0, -0.5, 0.2)).unwrap();
         let steps = 1_000_000u64;
         let limits = MarchLimits {
@@ -260,7 +260,7 @@ fn main() -> std::io::Result<()> {
         println!("|---|---|---|---|---|---|---|");
         let mut series: Vec<(usize, Vec<(f64, f64)>)> = Vec::new();
         let mut points = Vec::new();
-        for (ki, kind) in StepperKind::ALL.into_iter().enumerate() {
+        for (ki, kind) in StepperKind::ITERATIVE.into_iter().enumerate() {
             for (label, control) in controls(case) {
                 let (out, t) = run(case, kind, control);
                 let err = (case.error)(&out);
@@ -319,10 +319,10 @@ fn main() -> std::io::Result<()> {
             x: "time per ray (s)",
             y: "final-position error (scene units)",
         });
-        let labels: Vec<String> = (0..2 * StepperKind::ALL.len())
+        let labels: Vec<String> = (0..2 * StepperKind::ITERATIVE.len())
             .map(|f| {
                 let control = if f % 2 == 0 { "adaptive" } else { "fixed" };
-                format!("{} {control}", StepperKind::ALL[f / 2].name())
+                format!("{} {control}", StepperKind::ITERATIVE[f / 2].name())
             })
             .collect();
         let legend: Vec<(plot::Color, &str)> = labels

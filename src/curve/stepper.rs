@@ -755,6 +755,15 @@ impl StepperKind {
         StepperKind::Linearize,
     ];
 
+    /// The iterative steppers, which work in every medium (`linearize` is one of them where
+    /// a medium has no closed form).
+    pub const ITERATIVE: [StepperKind; 4] = [
+        StepperKind::Arc,
+        StepperKind::Rk4,
+        StepperKind::Rkn,
+        StepperKind::Snell,
+    ];
+
     /// The stepper used when none is given: the one that wins `examples/stepper_study`'s
     /// error-against-time comparison.
     pub const DEFAULT: StepperKind = StepperKind::Rkn;

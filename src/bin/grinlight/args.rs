@@ -118,7 +118,8 @@ pub struct TraceArgs {
     wavelength: Option<f64>,
     /// Stepper: rk4 (Sharma's RK4, step doubling), rkn (the RKN6(4) pair: sixth order, the
     /// most accurate per unit time), arc (a fourth-order chain of exact constant-gradient
-    /// arcs), snell (iterative Snell steps).
+    /// arcs), snell (iterative Snell steps), linearize (the fish-eye's and the hyperbolic
+    /// medium's rays on their exact circles; rkn in other media).
     #[arg(long, default_value = "rkn")]
     stepper: StepperKind,
     /// Step control.
@@ -128,7 +129,7 @@ pub struct TraceArgs {
     #[arg(long)]
     step: Option<f64>,
     /// Tolerance of `adaptive`: the step's error estimate per unit arclength [default: 1e-6
-    /// rkn, 1e-9 rk4, 1e-6 arc, 1e-5 snell].
+    /// rkn, 1e-9 rk4, 1e-6 arc, 1e-5 snell, 1e-6 linearize].
     #[arg(long)]
     tol: Option<f64>,
     /// T_max of `tessendorf`.
