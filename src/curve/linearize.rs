@@ -201,6 +201,17 @@ impl GeodesicRay {
         })
     }
 
+    /// An arclength the ray may go in one step of [`crate::curve::Linearize`] whose optical
+    /// path is found without ambiguity: on the fish-eye (n ≤ n0) πR/4 turns at most a quarter
+    /// of the great circle; on the hyperbolic medium θ is unique but the rim is near, so
+    /// nothing beyond the medium's own hint (0).
+    pub fn exact_reach(&self) -> f64 {
+        match self.curvature {
+            Curvature::Positive => 0.25 * std::f64::consts::PI * self.radius,
+            Curvature::Negative => 0.0,
+        }
+    }
+
     /// The θ of `position`, a point of this ray's geodesic (to rounding), nearest `estimate`:
     /// the fish-eye's great circle knows θ modulo 2π, the hyperbolic medium's geodesic
     /// exactly (θ < 0 behind the start).

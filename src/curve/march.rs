@@ -34,7 +34,8 @@ pub enum StepControl {
     /// Deterministic error control: a step is accepted when the stepper's local position-error
     /// estimate is ≤ `tolerance`·h, so the position error per unit arclength stays ≤ `tolerance`
     /// (dimensionless), or is below the rounding of the position (16 ε |x|∞). The next step is
-    /// h·clamp(0.9 (allowed/error)^(1/p), 0.2, 5), never longer than the medium's step hint.
+    /// h·clamp(0.9 (allowed/error)^(1/p), 0.2, 5), never longer than the step hint
+    /// ([`Stepper::step_hint`]: the medium's, for every stepper that errs).
     Adaptive {
         /// Position error per unit arclength.
         tolerance: f64,
@@ -169,8 +170,8 @@ where
     let mut h = match control {
         StepControl::Fixed { step } => step,
         StepControl::Tessendorf { initial_step, .. } => initial_step,
-        StepControl::Adaptive { .. } => medium
-            .step_hint(start.position, start.direction)
+        StepControl::Adaptive { .. } => stepper
+            .step_hint(medium, start.position, start.direction)
             .min(limits.length),
     };
     let done_within = 1e-12 * limits.length;
@@ -235,7 +236,7 @@ where
                 }
             }
             StepControl::Adaptive { tolerance } => {
-                let h_try = h_try.min(medium.step_hint(state.position, state.direction));
+                let h_try = h_try.min(stepper.step_hint(medium, state.position, state.direction));
                 let floor = round_off_floor(state.position);
                 if h_try <= floor || h_try.is_nan() {
                     out.reason = Termination::StepUnderflow;

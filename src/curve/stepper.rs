@@ -191,6 +191,12 @@ pub trait Stepper: Sync {
         self.order()
     }
 
+    /// The longest step adaptive control takes from `p` along `dir`: the medium's own hint
+    /// ([`Medium::step_hint`]), so that no feature of the profile is stepped over.
+    fn step_hint<M: Medium + ?Sized>(&self, medium: &M, p: DVec3, dir: DVec3) -> f64 {
+        medium.step_hint(p, dir)
+    }
+
     /// A step with a local error estimate. The default is [`step_doubling`] in arclength.
     fn estimated_step<M: Medium + ?Sized>(
         &self,
@@ -277,6 +283,16 @@ impl Stepper for Linearize {
 
     fn order(&self) -> u32 {
         Rkn64.order()
+    }
+
+    /// Where the ray has a closed form its steps have no error, so they are as long as the
+    /// geodesic allows ([`crate::curve::GeodesicRay::exact_reach`]: a fish-eye ray turns a quarter of its
+    /// great circle) or the medium's hint, whichever is longer.
+    fn step_hint<M: Medium + ?Sized>(&self, medium: &M, p: DVec3, dir: DVec3) -> f64 {
+        let hint = medium.step_hint(p, dir);
+        medium
+            .geodesic(p, dir)
+            .map_or(hint, |ray| hint.max(ray.exact_reach()))
     }
 
     fn estimate_order(&self) -> u32 {
@@ -764,9 +780,11 @@ impl StepperKind {
         StepperKind::Snell,
     ];
 
-    /// The stepper used when none is given: the one that wins `examples/stepper_study`'s
-    /// error-against-time comparison.
-    pub const DEFAULT: StepperKind = StepperKind::Rkn;
+    /// The stepper used when none is given: the exact circles where a medium has them (they
+    /// win `examples/linearize_study`: no error, a third of RKN's time per ray), and
+    /// elsewhere RKN6(4), the one that wins `examples/stepper_study`'s error-against-time
+    /// comparison.
+    pub const DEFAULT: StepperKind = StepperKind::Linearize;
 
     /// The adaptive tolerance used when none is given: where `examples/stepper_study`
     /// measured final-position errors of ~1e-8 or better on the fiber (10 periods), the

@@ -120,7 +120,7 @@ pub struct TraceArgs {
     /// most accurate per unit time), arc (a fourth-order chain of exact constant-gradient
     /// arcs), snell (iterative Snell steps), linearize (the fish-eye's and the hyperbolic
     /// medium's rays on their exact circles; rkn in other media).
-    #[arg(long, default_value = "rkn")]
+    #[arg(long, default_value = "linearize")]
     stepper: StepperKind,
     /// Step control.
     #[arg(long, value_enum, default_value = "adaptive")]
