@@ -23,6 +23,23 @@ fn unit(rng: &mut impl Rng) -> DVec3 {
     DVec3::new(r * phi.cos(), r * phi.sin(), z)
 }
 
+/// A fish-eye (n0 = 2, R = 0.8) and a hyperbolic medium (n0 = 1.5, R = 1.2), both off the
+/// origin.
+fn off_centre_media() -> (FishEye, HyperbolicMedium) {
+    (
+        FishEye {
+            n0: 2.0,
+            center: DVec3::new(0.1, -0.2, 0.3),
+            radius: 0.8,
+        },
+        HyperbolicMedium {
+            n0: 1.5,
+            center: DVec3::new(-0.3, 0.2, 0.1),
+            radius: 1.2,
+        },
+    )
+}
+
 /// The worst differences between rays marched by RKN6(4) at tolerance 1e-12 and their closed
 /// forms (`ray_of`), over random directions from centre distances `starts` (units of R) and
 /// `length` R of arclength each (or until they leave the ball of radius `reach` R): position
@@ -85,16 +102,7 @@ fn against_engine(
 /// closed form reversed at the end retraces it to the start (1e-12 R).
 #[test]
 fn closed_form_rays_are_the_iterative_engines_rays() {
-    let eye = FishEye {
-        n0: 2.0,
-        center: DVec3::new(0.1, -0.2, 0.3),
-        radius: 0.8,
-    };
-    let hyperbolic = HyperbolicMedium {
-        n0: 1.5,
-        center: DVec3::new(-0.3, 0.2, 0.1),
-        radius: 1.2,
-    };
+    let (eye, hyperbolic) = off_centre_media();
     let cases = [
         (
             "fish-eye",
@@ -357,16 +365,7 @@ struct Case<'a> {
 /// than RKN takes at its default tolerance.
 #[test]
 fn the_linearize_stepper_is_the_engine_without_error() {
-    let eye = FishEye {
-        n0: 2.0,
-        center: DVec3::new(0.1, -0.2, 0.3),
-        radius: 0.8,
-    };
-    let hyperbolic = HyperbolicMedium {
-        n0: 1.5,
-        center: DVec3::new(-0.3, 0.2, 0.1),
-        radius: 1.2,
-    };
+    let (eye, hyperbolic) = off_centre_media();
     let mut rng = rand_pcg::Pcg64Mcg::seed_from_u64(29);
     let cases = [
         Case {
