@@ -217,8 +217,9 @@ struct Lent<'a, R> {
     stats: &'a mut Stats,
 }
 
-/// The most null collisions one stretch may meet in a heterogeneous medium (a path in a near
-/// empty corner of a dense grid, or one orbiting in a void): bounded time, never a loop.
+/// The most null collisions (and redraws at a local majorant's reach) one stretch may meet in
+/// a heterogeneous medium (a path in a near empty corner of a dense grid, or one orbiting in a
+/// void): bounded time, never a loop.
 pub const MAX_NULL_COLLISIONS: usize = 100_000;
 
 /// The scattering column ∫d ds summed along a stretch's chords, where it is wanted.
