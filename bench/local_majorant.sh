@@ -38,13 +38,7 @@ earlier=$PWD/target/earlier/release/grinlight
 (cd "$worktree" && CARGO_TARGET_DIR="$(dirname "$(dirname "$earlier")")" cargo build --release --quiet --bin grinlight)
 out=$(mktemp -d)
 median() { sort -n | awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }'; }
-wall() {
-    local t0 t1
-    t0=$(date +%s.%N)
-    "$@" > "$out/log" 2>&1
-    t1=$(date +%s.%N)
-    awk "BEGIN { printf \"%.2f\", $t1 - $t0 }"
-}
+source bench/wall.sh
 printf "%-11s %12s %12s %7s   %-30s %s\n" integrator "$rev s" "now s" ratio \
     "now against the earlier" "now, seed 4 against seed 3"
 for integrator in path photon_map; do

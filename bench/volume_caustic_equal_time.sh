@@ -37,14 +37,7 @@ for seed in 9 10; do
     fi
     halves+=("$ref")
 done
-# Wall seconds of a command, its output discarded.
-wall() {
-    local t0 t1
-    t0=$(date +%s.%N)
-    "$@" > "$out/log" 2>&1
-    t1=$(date +%s.%N)
-    awk "BEGIN { printf \"%.1f\", $t1 - $t0 }"
-}
+source bench/wall.sh
 report() {
     echo "$1 ($2 s):"
     "$error" "$3" "${halves[@]}" "${region[@]}" | sed 's/^/  /'
