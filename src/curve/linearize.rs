@@ -26,7 +26,7 @@
 //! w ≈ 10⁻², keep 1e-13.
 
 use super::hermite::Path;
-use super::segment::{deviation_bound, ArcHull, ArcPoint};
+use super::segment::ArcPoint;
 use crate::media::{FishEye, HyperbolicMedium};
 use glam::{DVec3, DVec4};
 use std::f64::consts::TAU;
@@ -338,15 +338,6 @@ impl CircleArc {
             origin,
             direction,
             curvature: force - direction * direction.dot(force),
-        }
-    }
-
-    /// A capsule holding the arc's first `length`.
-    pub fn hull(&self, length: f64) -> ArcHull {
-        ArcHull {
-            a: self.origin,
-            b: self.at(length).position,
-            deviation: deviation_bound(self.curvature.length(), length),
         }
     }
 }

@@ -240,8 +240,9 @@ pub fn step_doubling(
 /// ([`Medium::geodesic`]: the fish-eye, the hyperbolic medium) a step follows the ray's circle
 /// ([`CircleArc`], from the curvature vector at its start) to the requested arclength and takes
 /// its optical path from the angle the geodesic turns ([`crate::curve::GeodesicRay`]): no
-/// error, so adaptive control lengthens its steps to the medium's step hint, and surfaces are
-/// met on the circle itself ([`ExactPath::Circle`]). In any other medium it is [`Rkn64`].
+/// error, so adaptive control lengthens its steps to their longest ([`Stepper::step_hint`]),
+/// and surfaces are met on the circle itself ([`ExactPath::Circle`]). In any other medium it
+/// is [`Rkn64`].
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Linearize;
 
@@ -286,8 +287,8 @@ impl Stepper for Linearize {
     }
 
     /// Where the ray has a closed form its steps have no error, so they are as long as the
-    /// geodesic allows ([`crate::curve::GeodesicRay::exact_reach`]: a fish-eye ray turns a quarter of its
-    /// great circle) or the medium's hint, whichever is longer.
+    /// geodesic allows ([`crate::curve::GeodesicRay::exact_reach`]: a fish-eye ray turns a
+    /// quarter of its great circle) or the medium's hint, whichever is longer.
     fn step_hint<M: Medium + ?Sized>(&self, medium: &M, p: DVec3, dir: DVec3) -> f64 {
         let hint = medium.step_hint(p, dir);
         medium
@@ -781,7 +782,7 @@ impl StepperKind {
     ];
 
     /// The stepper used when none is given: the exact circles where a medium has them (they
-    /// win `examples/linearize_study`: no error, a third of RKN's time per ray), and
+    /// win `examples/linearize_study`: no error, a fifth of RKN's time per ray), and
     /// elsewhere RKN6(4), the one that wins `examples/stepper_study`'s error-against-time
     /// comparison.
     pub const DEFAULT: StepperKind = StepperKind::Linearize;

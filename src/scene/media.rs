@@ -63,30 +63,13 @@ pub fn read_medium(t: &mut TableReader, density: Option<Arc<Density>>) -> Result
 
 /// A `[[medium]]` table's scattering, if it scatters: `scattering` σs (1/length, ≥ 0: a
 /// number, RGB, or a form over wavelength such as `{ angstrom = [σs, nm, 4] }` or
-/// `{ table = [[nm, σs], ...] }`; 0 or absent: it does not) and `phase` (`"isotropic"`, the default, or
-/// `{ hg = g }`, Henyey–Greenstein with −1 < g < 1), scaled by `density` if it is
+/// `{ table = [[nm, σs], ...] }`; 0 or absent: it does not) and `phase` (`"isotropic"`, the
+/// default, or `{ hg = g }`, Henyey–Greenstein with −1 < g < 1), scaled by `density` if it is
 /// heterogeneous.
 pub fn read_scattering(
     t: &mut TableReader,
     density: Option<Arc<Density>>,
 ) -> Result<Option<Scattering>> {
-    let spectrum = match t.is_over_wavelength("scattering") {
-        true => {
-            let s = t.over_wavelength("scattering")?;
-            let (least, most) = (s.min_visible(), s.max_visible());
-            t.check(
-                "scattering",
-                least >= 0.0 && most.is_finite(),
-                format!("must be ≥ 0 and finite from 360 to 830 nm, got {least:?} to {most:?}"),
-            )?;
-            Some(s)
-        }
-        false => None,
-    };
-    let sigma_s = match spectrum {
-        Some(_) => Rgb::ZERO,
-        None => t.rgb_or("scattering", Some(Rgb::ZERO))?,
-    };
     let phase = match t.value_opt("phase") {
         None => Phase::Isotropic,
         Some(Value::String(name)) if name == "isotropic" => Phase::Isotropic,
@@ -106,15 +89,23 @@ pub fn read_scattering(
             ))
         }
     };
-    Ok(match spectrum {
-        Some(s) => (s.max_visible() > 0.0).then(|| Scattering::over_wavelength(s, phase, density)),
-        None => (sigma_s.max_element() > 0.0).then_some(Scattering {
+    if !t.is_over_wavelength("scattering") {
+        let sigma_s = t.rgb_or("scattering", Some(Rgb::ZERO))?;
+        return Ok((sigma_s.max_element() > 0.0).then_some(Scattering {
             sigma_s,
             spectrum: None,
             phase,
             density,
-        }),
-    })
+        }));
+    }
+    let spectrum = t.over_wavelength("scattering")?;
+    let (least, most) = (spectrum.min_visible(), spectrum.max_visible());
+    t.check(
+        "scattering",
+        least >= 0.0 && most.is_finite(),
+        format!("must be ≥ 0 and finite from 360 to 830 nm, got {least:?} to {most:?}"),
+    )?;
+    Ok((most > 0.0).then(|| Scattering::over_wavelength(spectrum, phase, density)))
 }
 
 /// The index profile of a `[[medium]]` table. Every index-valued key (`n`, `n0`) and the

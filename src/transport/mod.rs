@@ -323,8 +323,8 @@ impl<'a> Tracer<'a> {
     }
 
     /// The same tracer with rays at vacuum wavelength `nm`: each dispersive medium is the
-    /// one at that wavelength, and so is each scattering coefficient over wavelength. Rays of a tracer from [`Tracer::new`] see every medium at
-    /// [`LAMBDA_D`].
+    /// one at that wavelength, and so is each scattering coefficient over wavelength. Rays of
+    /// a tracer from [`Tracer::new`] see every medium at [`LAMBDA_D`].
     pub fn at_wavelength(&self, nm: f64) -> Self {
         let media = self.scene.media();
         Self {
@@ -410,14 +410,10 @@ impl<'a> Tracer<'a> {
 
     /// How medium `i` scatters at the tracer's wavelength (None: it does not).
     pub fn scattering(&self, i: usize) -> Option<&Scattering> {
-        match self
-            .wavelength
+        self.wavelength
             .as_ref()
             .and_then(|w| w.scattering[i].as_ref())
-        {
-            Some(s) => Some(s),
-            None => self.scene.media().scattering(i),
-        }
+            .or_else(|| self.scene.media().scattering(i))
     }
 
     /// The refractive index at `p` in `medium` (None: vacuum, n = 1); None where the medium
