@@ -400,6 +400,17 @@ where
     };
     let tol = 1e-12 * limits.bounds.scale();
     let (mut a, mut fa) = (0.0, limits.bounds.signed_distance(state.position).min(0.0));
+    // A step from a point of the boundary to rounding (a ray started on a face, going in):
+    // the crossing out is beyond some point of the step well inside; bracket from the first
+    // one halving finds (none: the ray leaves at its start). Else the search would stop at
+    // the start, where the boundary's distance is already within its tolerance.
+    let mut inner = 0.5 * h;
+    while fa >= -tol && inner > 1e-15 * h {
+        match sd(inner) {
+            Some((f, _)) if f < -tol => (a, fa) = (inner, f),
+            _ => inner *= 0.5,
+        }
+    }
     let at_start = Step {
         state: *state,
         length: 0.0,
