@@ -236,4 +236,8 @@ impl ChainEvents for Recording<'_> {
             self.beams.points.push(p);
         }
     }
+
+    fn wants_points(&self) -> bool {
+        self.beams.recording
+    }
 }

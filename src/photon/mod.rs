@@ -408,15 +408,7 @@ pub fn shoot(
                         count,
                         batch,
                     };
-                    trace_photon(
-                        tracer,
-                        e,
-                        photon,
-                        &mut rng,
-                        &mut stats,
-                        &mut stored,
-                        &mut |_| {},
-                    );
+                    trace_photon(tracer, e, photon, &mut rng, &mut stats, &mut stored, None);
                 }
             }
             (stored, stats)
@@ -470,9 +462,16 @@ pub fn photon_paths(
             };
             let mut path = Vec::new();
             let (mut sink, mut stats) = (Sink::default(), Stats::default());
-            trace_photon(tracer, e, tag, &mut rng, &mut stats, &mut sink, &mut |p| {
-                path.push(p)
-            });
+            let mut show = |p| path.push(p);
+            trace_photon(
+                tracer,
+                e,
+                tag,
+                &mut rng,
+                &mut stats,
+                &mut sink,
+                Some(&mut show),
+            );
             paths.push(path);
         }
     }
@@ -492,7 +491,7 @@ struct PhotonWalk<'a, 'p> {
     receivers: &'a [crate::receiver::Receiver],
     reflected: bool,
     left_through: Option<usize>,
-    path: &'p mut dyn FnMut(DVec3),
+    path: Option<&'p mut dyn FnMut(DVec3)>,
     /// The last point shown, and how far a point may lie from it (escapes are drawn only
     /// that far, so a figure's lines stay short).
     last: DVec3,
@@ -521,8 +520,14 @@ impl chain::ChainEvents for PhotonWalk<'_, '_> {
         } else {
             p
         };
-        (self.path)(p);
+        if let Some(path) = self.path.as_mut() {
+            path(p);
+        }
         self.last = p;
+    }
+
+    fn wants_points(&self) -> bool {
+        self.path.is_some()
     }
 
     fn detector(&mut self, receiver: usize, position: DVec3, weight: Rgb) -> ControlFlow<()> {
@@ -584,7 +589,7 @@ struct PhotonBounce {
 
 /// Follows one photon from its launch, drawing from `rng` and adding to `stats`, storing it
 /// into `stored` as its batch says and booking its power in `stored.budget` when it ends;
-/// `path` is shown every point it passes.
+/// `path`, if any, is shown every point it passes.
 fn trace_photon(
     tracer: &Tracer,
     launch: Launch,
@@ -592,7 +597,7 @@ fn trace_photon(
     rng: &mut impl Rng,
     stats: &mut Stats,
     stored: &mut Sink,
-    path: &mut dyn FnMut(DVec3),
+    mut path: Option<&mut dyn FnMut(DVec3)>,
 ) {
     // A photon with a wavelength of its own sees the dispersive media at it; one with a hero
     // takes it on where it meets dispersion.
@@ -607,7 +612,9 @@ fn trace_photon(
     // What it has kept of its launch power while it carries every wavelength.
     let mut throughput = Rgb::ONE;
     let nm = launch.wavelength;
-    path(e.origin);
+    if let Some(path) = path.as_mut() {
+        path(e.origin);
+    }
     let mut walk = PhotonWalk {
         tag,
         wavelength: tracer.wavelength(),

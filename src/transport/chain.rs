@@ -144,6 +144,11 @@ pub trait ChainEvents {
     /// A point the path passes: each accepted point of a curved stretch, each surface met,
     /// where a free flight ends, and where it leaves the world.
     fn point(&mut self, _p: DVec3) {}
+    /// Whether [`ChainEvents::point`] reads the points of curved stretches (false: it ignores
+    /// them, and they are not computed).
+    fn wants_points(&self) -> bool {
+        true
+    }
     /// It crosses receiver `receiver`'s detector at `position` carrying `weight`; `Break`
     /// ends the chain ([`End::Stopped`]).
     fn detector(&mut self, _receiver: usize, _position: DVec3, _weight: Rgb) -> ControlFlow<()> {
@@ -161,7 +166,11 @@ pub trait ChainEvents {
     }
 }
 
-impl ChainEvents for () {}
+impl ChainEvents for () {
+    fn wants_points(&self) -> bool {
+        false
+    }
+}
 
 /// The wavelengths a path carries (Zhdanov et al.'s (2020) "subset of wavelengths that share a path"):
 /// every one, seeing each medium at [`crate::spectrum::LAMBDA_D`] and every colour as RGB,
@@ -405,17 +414,21 @@ impl<'w> Walker<'w> {
         };
         let (mut origin, mut dir) = (at.origin, at.dir);
         let (mut travelled, mut depth) = (0.0, 0.0);
+        // Points between a step's ends cost a circle's worth of evaluations: computed only
+        // for a column or an observer that reads them.
+        let shown = column.scattering.is_some() || observer.wants_points();
         for _ in 0..=MAX_NULL_COLLISIONS {
+            let mut show = |p| {
+                column.to(p);
+                observer.point(p)
+            };
             let event = self.tracer.next_event_within(
                 origin,
                 dir,
                 at.medium,
                 flight.map_or(f64::INFINITY, |f| f.reach),
                 lent.stats,
-                &mut |p| {
-                    column.to(p);
-                    observer.point(p)
-                },
+                shown.then_some(&mut show as &mut dyn FnMut(DVec3)),
             );
             match (event, tracks) {
                 (

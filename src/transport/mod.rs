@@ -573,7 +573,7 @@ impl<'a> Tracer<'a> {
         medium: Option<usize>,
         stats: &mut Stats,
     ) -> Event {
-        self.next_event_along(origin, dir, medium, stats, &mut |_| {})
+        self.next_event_within(origin, dir, medium, f64::INFINITY, stats, None)
     }
 
     /// [`Self::next_event`], showing `path` every accepted point of a curved path between
@@ -587,12 +587,12 @@ impl<'a> Tracer<'a> {
         stats: &mut Stats,
         path: &mut dyn FnMut(DVec3),
     ) -> Event {
-        self.next_event_within(origin, dir, medium, f64::INFINITY, stats, path)
+        self.next_event_within(origin, dir, medium, f64::INFINITY, stats, Some(path))
     }
 
     /// [`Self::next_event_along`] for a ray allowed arclength `reach` (scene units; ∞: no
     /// limit): [`Event::Reached`] where it goes that far before any surface or the world's
-    /// edge.
+    /// edge. Without `path` no points between a step's ends are computed.
     pub fn next_event_within(
         &self,
         origin: DVec3,
@@ -600,7 +600,7 @@ impl<'a> Tracer<'a> {
         medium: Option<usize>,
         reach: f64,
         stats: &mut Stats,
-        path: &mut dyn FnMut(DVec3),
+        path: Option<&mut dyn FnMut(DVec3)>,
     ) -> Event {
         let m = medium.map(|i| self.medium(i));
         match m {
@@ -648,7 +648,7 @@ impl<'a> Tracer<'a> {
         dir: DVec3,
         reach: f64,
         stats: &mut Stats,
-        path: &mut dyn FnMut(DVec3),
+        path: Option<&mut dyn FnMut(DVec3)>,
     ) -> Event {
         let settings = &self.settings;
         let Some(start) = RayState::new(medium, origin, dir) else {
@@ -688,7 +688,7 @@ impl<'a> Tracer<'a> {
         start: RayState,
         limits: &MarchLimits,
         reach: f64,
-        path: &mut dyn FnMut(DVec3),
+        mut path: Option<&mut dyn FnMut(DVec3)>,
     ) -> (Option<Event>, MarchOutcome) {
         let mut prev = start;
         let (mut prev_s, mut prev_depth) = (0.0, 0.0);
@@ -710,7 +710,7 @@ impl<'a> Tracer<'a> {
                     None => self.crossing_between(&prev, st, len),
                 };
                 if let Some(c) = found.filter(|c| prev_s + c.along <= reach) {
-                    show_circle(step.path.as_ref(), c.along, path);
+                    show_circle(step.path.as_ref(), c.along, &mut path);
                     hit = Some(Event::Surface {
                         prim: c.prim,
                         position: c.position,
@@ -730,7 +730,7 @@ impl<'a> Tracer<'a> {
                         Some(exact) => exact.at(&prev, len, along),
                         None => HermitePath::new(&prev, st, len).at(along),
                     };
-                    show_circle(step.path.as_ref(), along, path);
+                    show_circle(step.path.as_ref(), along, &mut path);
                     hit = Some(Event::Reached {
                         position: p.position,
                         direction: p.direction,
@@ -740,8 +740,10 @@ impl<'a> Tracer<'a> {
                     });
                     return ControlFlow::Break(());
                 }
-                show_circle(step.path.as_ref(), len, path);
-                path(st.position);
+                show_circle(step.path.as_ref(), len, &mut path);
+                if let Some(path) = path.as_mut() {
+                    path(st.position);
+                }
                 prev_depth += step_optical_depth(medium, prev.position, st.position, len);
                 prev = *st;
                 prev_s = s;
@@ -808,8 +810,8 @@ const SHOWN_TURN: f64 = 0.03;
 /// `upto` along it, at most [`SHOWN_TURN`] apart, neither end included: a step of the exact
 /// stepper may turn a quarter of a circle, and what follows a path by its chords (the beams
 /// of the volume caustic estimate, the columns of a density) needs them close to it.
-fn show_circle(exact: Option<&ExactPath>, upto: f64, path: &mut dyn FnMut(DVec3)) {
-    if let Some(ExactPath::Circle(circle)) = exact {
+fn show_circle(exact: Option<&ExactPath>, upto: f64, path: &mut Option<&mut dyn FnMut(DVec3)>) {
+    if let (Some(ExactPath::Circle(circle)), Some(path)) = (exact, path) {
         let pieces = (upto * circle.curvature.length() / SHOWN_TURN).ceil();
         if pieces > 1.0 && pieces.is_finite() {
             let pieces = pieces as usize;
