@@ -13,6 +13,11 @@ pub trait Path {
     /// A bound on the path's curvature (1/scene units): how finely a root search must sample
     /// it so that each piece turns little.
     fn curvature(&self) -> f64;
+    /// The path as an exact circle, if it is one: planes and spheres then meet it in closed
+    /// form ([`super::CircleArc::crossings`]).
+    fn circle(&self) -> Option<&super::CircleArc> {
+        None
+    }
 }
 
 impl Path for CurvedSegment {

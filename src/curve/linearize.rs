@@ -202,12 +202,14 @@ impl GeodesicRay {
     }
 
     /// An arclength the ray may go in one step of [`crate::curve::Linearize`] whose optical
-    /// path is found without ambiguity: on the fish-eye (n ≤ n0) πR/4 turns at most a quarter
-    /// of the great circle; on the hyperbolic medium θ is unique but the rim is near, so
-    /// nothing beyond the medium's own hint (0).
+    /// path is found without ambiguity: on the fish-eye (n ≤ n0, so dθ/ds = 2n/(n0 R) ≤ 2/R)
+    /// πR/2 turns at most half the great circle, and the x-space circle (of radius ≥ R: it
+    /// holds a point and its antipodal image) at most a right angle, where surfaces still meet
+    /// it in closed form ([`CircleArc::crossings`]); on the hyperbolic medium θ is unique but
+    /// the rim is near, so nothing beyond the medium's own hint (0).
     pub fn exact_reach(&self) -> f64 {
         match self.curvature {
-            Curvature::Positive => 0.25 * std::f64::consts::PI * self.radius,
+            Curvature::Positive => 0.5 * std::f64::consts::PI * self.radius,
             Curvature::Negative => 0.0,
         }
     }
@@ -340,6 +342,115 @@ impl CircleArc {
             curvature: force - direction * direction.dot(force),
         }
     }
+
+    /// Where the arc crosses `surface` at arclengths in (0, `length`], ascending, in closed
+    /// form; None when the arc turns by a right angle or more over `length` (search it).
+    ///
+    /// With k = |κ|, S = sin(ks)/k and C = (1 − cos ks)/k², x(s) − x0 = t̂0 S + κ C and
+    /// |x(s) − x0|² = S² + k²C² = 2C, so g(x(s)) = w + (v·t̂0) S + (2α + v·κ) C, where
+    /// v = ∇g(x0) and w = g(x0). With σ = tan(ks/2)/k, S = 2σ/(1 + k²σ²) and C = 2σ²/(1 + k²σ²),
+    /// and g = 0 is the quadratic [w k² + 2(2α + v·κ)] σ² + 2 (v·t̂0) σ + w = 0, regular as
+    /// k → 0 (σ → s/2: a line's, and a parabola's to first order); s = 2 atan(kσ)/k.
+    pub fn crossings(&self, surface: &RoundSurface, length: f64) -> Option<CircleCrossings> {
+        let k = self.curvature.length();
+        let turn = k * length;
+        if turn.is_nan() || turn >= 0.5 * std::f64::consts::PI {
+            return None;
+        }
+        let (w, v) = surface.implicit(self.origin);
+        let a = w * k * k + 2.0 * (2.0 * surface.alpha + v.dot(self.curvature));
+        let b = v.dot(self.direction);
+        let c = w;
+        // a σ² + 2 b σ + c = 0, each root from its stable side.
+        let mut sigma = [f64::NAN; 2];
+        let disc = b * b - a * c;
+        if disc > 0.0 {
+            let q = -(b + disc.sqrt().copysign(b));
+            sigma = [q / a, c / q];
+        } else if a == 0.0 && b != 0.0 {
+            sigma[0] = -0.5 * c / b;
+        }
+        let arclength = |sigma: f64| {
+            let x = k * sigma;
+            if x.abs() < 1e-6 {
+                2.0 * sigma * (1.0 - x * x / 3.0)
+            } else {
+                2.0 * x.atan() / k
+            }
+        };
+        let mut found = CircleCrossings {
+            s: [0.0; 2],
+            count: 0,
+        };
+        for s in sigma.map(arclength) {
+            if s > 0.0 && s <= length {
+                found.s[found.count] = s;
+                found.count += 1;
+            }
+        }
+        if found.count == 2 && found.s[1] < found.s[0] {
+            found.s.swap(0, 1);
+        }
+        Some(found)
+    }
+}
+
+/// A plane or a sphere as the level set g(x) = α|x − c|² + m·(x − c) − d = 0: the plane through
+/// c of normal m (α = 0, d = 0) or the sphere about c (α = 1, m = 0, d = r²) — the surfaces a
+/// ray's circle meets in closed form ([`CircleArc::crossings`]). g is signed: positive on the
+/// normal's side of a plane and outside a sphere.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RoundSurface {
+    alpha: f64,
+    center: DVec3,
+    normal: DVec3,
+    offset: f64,
+}
+
+impl RoundSurface {
+    /// The plane through `point` with normal `normal` (g is the distance to it along a unit
+    /// normal).
+    pub fn plane(point: DVec3, normal: DVec3) -> Self {
+        Self {
+            alpha: 0.0,
+            center: point,
+            normal,
+            offset: 0.0,
+        }
+    }
+
+    /// The sphere of `center` and `radius`.
+    pub fn sphere(center: DVec3, radius: f64) -> Self {
+        Self {
+            alpha: 1.0,
+            center,
+            normal: DVec3::ZERO,
+            offset: radius * radius,
+        }
+    }
+
+    /// g(x) and ∇g(x).
+    pub fn implicit(&self, x: DVec3) -> (f64, DVec3) {
+        let d = x - self.center;
+        (
+            self.alpha * d.length_squared() + self.normal.dot(d) - self.offset,
+            2.0 * self.alpha * d + self.normal,
+        )
+    }
+}
+
+/// Up to two arclengths along a circle where it crosses a surface, ascending.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CircleCrossings {
+    s: [f64; 2],
+    count: usize,
+}
+
+impl CircleCrossings {
+    /// The arclengths, ascending.
+    pub fn iter(&self) -> impl Iterator<Item = f64> + '_ {
+        self.s[..self.count].iter().copied()
+    }
 }
 
 impl Path for CircleArc {
@@ -357,5 +468,9 @@ impl Path for CircleArc {
 
     fn curvature(&self) -> f64 {
         self.curvature.length()
+    }
+
+    fn circle(&self) -> Option<&CircleArc> {
+        Some(self)
     }
 }

@@ -12,7 +12,9 @@ mod stepper;
 
 pub use bounds::Bounds;
 pub use hermite::{HermitePath, Path};
-pub use linearize::{CircleArc, GeodesicPoint, GeodesicRay, Hyperplane, FAR};
+pub use linearize::{
+    CircleArc, CircleCrossings, GeodesicPoint, GeodesicRay, Hyperplane, RoundSurface, FAR,
+};
 pub use march::{
     march, march_replay, march_replay_with, march_with, round_off_floor, step_optical_depth,
     MarchLimits, MarchOutcome, StepControl, Termination,

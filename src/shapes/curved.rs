@@ -1,8 +1,18 @@
 //! Where a curved path (an exact arc, a step's Hermite path) crosses an implicit surface
 //! g(x) = 0.
 
-use crate::curve::Path;
+use crate::curve::{Path, RoundSurface};
 use glam::DVec3;
+
+/// All arclengths s ∈ (0, length] where the path crosses the plane or sphere `surface`, in
+/// order: in closed form on a ray's exact circle ([`crate::curve::CircleArc::crossings`]),
+/// else by [`segment_roots`].
+pub fn round_roots<P: Path + ?Sized>(seg: &P, length: f64, surface: &RoundSurface) -> Vec<f64> {
+    match seg.circle().and_then(|c| c.crossings(surface, length)) {
+        Some(found) => found.iter().collect(),
+        None => segment_roots(seg, length, |x| surface.implicit(x)),
+    }
+}
 
 /// All arclengths s ∈ [0, length] where g(x(s)) = 0 along the segment, in order, each refined
 /// to ~1e-13 relative.

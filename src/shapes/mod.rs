@@ -8,7 +8,7 @@ mod mesh;
 mod primitive;
 mod triangle;
 
-pub use curved::segment_roots;
+pub use curved::{round_roots, segment_roots};
 pub(crate) use hit::padded_box;
 pub use hit::Hit;
 pub use mesh::TriangleMesh;

@@ -4,7 +4,7 @@
 use super::hit::Hit;
 use super::mesh::TriangleMesh;
 use super::triangle::{plane_coordinates, Plane, Triangle};
-use crate::curve::{ArcHull, Path};
+use crate::curve::{ArcHull, Path, RoundSurface};
 use glam::{DVec2, DVec3};
 use std::sync::Arc;
 
@@ -228,22 +228,20 @@ impl Primitive {
         }
     }
 
-    /// The primitive's implicit function g(x) (zero on the surface) and its gradient, used to
-    /// find where a curved segment crosses it.
-    pub(crate) fn implicit(&self, x: DVec3) -> (f64, DVec3) {
+    /// The primitive's surface as a plane or a sphere, if it is one (a ray's circle meets it
+    /// in closed form).
+    fn round_surface(&self) -> Option<RoundSurface> {
         match *self {
-            Primitive::Sphere { center, radius } => {
-                let d = x - center;
-                (d.length_squared() - radius * radius, 2.0 * d)
-            }
-            Primitive::Tube {
-                base, axis, radius, ..
-            } => {
-                let p = across_axis(x - base, axis);
-                (p.length_squared() - radius * radius, 2.0 * p)
-            }
-            _ => self.plane().expect("planar").implicit(x),
+            Primitive::Sphere { center, radius } => Some(RoundSurface::sphere(center, radius)),
+            Primitive::Tube { .. } | Primitive::Mesh(_) => None,
+            _ => self.plane().map(|p| p.surface()),
         }
+    }
+
+    /// The cylinder's implicit function g(x) (zero on its infinite side) and its gradient.
+    fn tube_implicit(x: DVec3, base: DVec3, axis: DVec3, radius: f64) -> (f64, DVec3) {
+        let p = across_axis(x - base, axis);
+        (p.length_squared() - radius * radius, 2.0 * p)
     }
 
     /// Whether a point where the implicit function vanishes is on the primitive proper.
@@ -307,13 +305,20 @@ impl Primitive {
         if let Primitive::Mesh(mesh) = self {
             return mesh.intersect_segment(seg, hull, s_min, length);
         }
-        super::segment_roots(seg, length, |x| self.implicit(x))
-            .into_iter()
-            .filter(|&s| s > s_min)
-            .find_map(|s| {
-                let x = seg.at(s).position;
-                self.accepts(x).then(|| Hit::flat(s, self.normal_at(x)))
-            })
+        let roots = match (self.round_surface(), self) {
+            (Some(surface), _) => super::round_roots(seg, length, &surface),
+            (
+                None,
+                &Primitive::Tube {
+                    base, axis, radius, ..
+                },
+            ) => super::segment_roots(seg, length, |x| Self::tube_implicit(x, base, axis, radius)),
+            (None, _) => unreachable!("a mesh is searched above; every other primitive is round"),
+        };
+        roots.into_iter().filter(|&s| s > s_min).find_map(|s| {
+            let x = seg.at(s).position;
+            self.accepts(x).then(|| Hit::flat(s, self.normal_at(x)))
+        })
     }
 }
 

@@ -2,9 +2,9 @@
 //! triangles share — where a straight ray or a curved path meets a plane, and whether a point
 //! of the plane lies in a triangle.
 
-use super::curved::segment_roots;
+use super::curved::round_roots;
 use super::hit::Hit;
-use crate::curve::{ArcHull, Path};
+use crate::curve::{ArcHull, Path, RoundSurface};
 use glam::DVec3;
 
 /// The plane through `point` with unit `normal`.
@@ -28,10 +28,15 @@ impl Plane {
         (t > t_min && t < t_max).then_some(t)
     }
 
-    /// The signed distance from the plane, g(x), and its gradient: the implicit function whose
-    /// roots along a curved path are its crossings.
-    pub fn implicit(&self, x: DVec3) -> (f64, DVec3) {
-        ((x - self.point).dot(self.normal), self.normal)
+    /// The plane as a level set: g(x) its signed distance, whose roots along a curved path
+    /// are its crossings.
+    pub fn surface(&self) -> RoundSurface {
+        RoundSurface::plane(self.point, self.normal)
+    }
+
+    /// The signed distance of `x` from the plane.
+    pub fn distance(&self, x: DVec3) -> f64 {
+        (x - self.point).dot(self.normal)
     }
 
     /// Whether a curved path held by `hull` may cross the plane: false when the capsule lies
@@ -39,7 +44,7 @@ impl Plane {
     /// ends).
     pub fn may_cross(&self, hull: &ArcHull) -> bool {
         let dev = hull.deviation;
-        let (oa, ob) = (self.implicit(hull.a).0, self.implicit(hull.b).0);
+        let (oa, ob) = (self.distance(hull.a), self.distance(hull.b));
         oa.min(ob) <= dev && oa.max(ob) >= -dev
     }
 }
@@ -104,7 +109,7 @@ impl Triangle {
         length: f64,
     ) -> Option<Hit> {
         let plane = self.plane();
-        segment_roots(seg, length, |x| plane.implicit(x))
+        round_roots(seg, length, &plane.surface())
             .into_iter()
             .filter(|&s| s > s_min)
             .find_map(|s| {
