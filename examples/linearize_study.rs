@@ -8,6 +8,12 @@
 //! form (the exit on the exact circle, `linearize`; the worst are rays leaving the rim at
 //! grazing incidence, where an error across the ray moves the exit far along the rim).
 //!
+//! **In the renderer**: the same starts and directions inside a fish-eye ball that is a scene's
+//! sphere (a dielectric holding the medium), each ray followed by the tracer
+//! (`Tracer::next_event`, as camera paths and photons are) to where it meets the sphere — the
+//! step, the search for the surface on the step's path and the bookkeeping of a path. Per ray
+//! and the hit's distance from the closed-form exit, with each stepper as the scene's.
+//!
 //! **The paraxial map of the CS 184 nonlinear path tracer** on its own test cube, n = 4 − depth
 //! over a unit depth (`scenes/grin_cube.toml`): for n = n0 + b ξ along the gradient, the map
 //! ξ → ξ' = (n0/b) ln(1 + b ξ/n0) (the report's x → ln(1 + x) for n0 = b = 1) leaves the
@@ -21,15 +27,35 @@
 //! (a³/b)[ln(n/n0)/(2n0²) + (1/n² − 1/n0²)/4] + O(a⁵): the map's error grows as the cube of
 //! the ray's transverse momentum, and the table gives it beside the error measured.
 //!
+//! **The cube's view through both** (`scenes/grin_cube.toml`'s camera, one ray through each
+//! pixel's centre): each ray refracts into the cube's front face, is carried to its back face by
+//! the map or marched by RKN6(4) at a tolerance, refracts out and meets the back wall, whose
+//! 9×9 grid of black lines (0.02 wide) is the picture. Against RKN at 1e-12: the RMS and largest
+//! displacement of the wall point, and the share of pixels whose grid value (line or wall)
+//! differs — the image difference — with the time per ray of the carry across the cube. The
+//! rays that leave through a side face or are reflected totally at the back face (the same
+//! ones for every method here) are left out.
+//!
 //! `cargo run --release --example linearize_study [RAYS]` (default 2000 rays).
 
 use glam::DVec3;
 use grinlight::curve::{march_with, Bounds, MarchLimits, RayState, StepControl, StepperKind};
 use grinlight::media::{FishEye, LinearMedium};
+use grinlight::transport::{Event, Stats, Tracer};
 use rand::{Rng, SeedableRng};
 use std::f64::consts::PI;
 use std::ops::ControlFlow;
 use std::time::Instant;
+
+/// A ray: where it is and its unit direction.
+#[derive(Clone, Copy)]
+struct Ray {
+    at: DVec3,
+    direction: DVec3,
+}
+
+/// A way of carrying the cube's entering rays to where they leave it.
+type Carry<'a> = Box<dyn Fn() -> Vec<Ray> + 'a>;
 
 /// A unit vector uniform on the sphere.
 fn unit(rng: &mut impl Rng) -> DVec3 {
@@ -40,12 +66,7 @@ fn unit(rng: &mut impl Rng) -> DVec3 {
 }
 
 /// Where each ray leaves the ball, and the steps taken, marched by `kind` at `tolerance`.
-fn exits(
-    eye: &FishEye,
-    rays: &[(DVec3, DVec3)],
-    kind: StepperKind,
-    tolerance: f64,
-) -> (Vec<DVec3>, u64) {
+fn exits(eye: &FishEye, rays: &[Ray], kind: StepperKind, tolerance: f64) -> (Vec<DVec3>, u64) {
     let limits = MarchLimits {
         length: 100.0,
         max_steps: 1_000_000,
@@ -57,12 +78,12 @@ fn exits(
     let mut steps = 0;
     let ends = rays
         .iter()
-        .map(|&(x, d)| {
+        .map(|ray| {
             let out = march_with(
                 kind,
                 eye,
                 StepControl::Adaptive { tolerance },
-                RayState::new(eye, x, d).expect("inside the fish-eye"),
+                RayState::new(eye, ray.at, ray.direction).expect("inside the fish-eye"),
                 &limits,
                 |_, _| ControlFlow::Continue(()),
             );
@@ -73,9 +94,22 @@ fn exits(
     (ends, steps)
 }
 
+/// `count` rays from points uniform in the ball of radius 0.999 (R = 1) in uniform directions.
+fn starts(count: usize) -> Vec<Ray> {
+    let mut rng = rand_pcg::Pcg64Mcg::seed_from_u64(1);
+    (0..count)
+        .map(|_| Ray {
+            at: unit(&mut rng) * rng.gen::<f64>().cbrt() * 0.999,
+            direction: unit(&mut rng),
+        })
+        .collect()
+}
+
 fn main() {
     fish_eye();
+    through_the_renderer();
     paraxial_cube();
+    paraxial_view();
 }
 
 /// The paraxial map's exit at the back face of the cube against the engine's.
@@ -169,15 +203,7 @@ fn fish_eye() {
         center: DVec3::ZERO,
         radius: 1.0,
     };
-    let mut rng = rand_pcg::Pcg64Mcg::seed_from_u64(1);
-    let rays: Vec<(DVec3, DVec3)> = (0..count)
-        .map(|_| {
-            (
-                unit(&mut rng) * rng.gen::<f64>().cbrt() * 0.999,
-                unit(&mut rng),
-            )
-        })
-        .collect();
+    let rays = starts(count);
     let (exact, _) = exits(&eye, &rays, StepperKind::Linearize, 1e-6);
     println!("Maxwell's fish-eye, {count} rays from inside the ball to its rim, one thread");
     println!(
@@ -224,6 +250,262 @@ fn fish_eye() {
             error[0],
             error[1],
             per_ray / fastest_exact
+        );
+    }
+}
+
+/// A fish-eye ball (n0 = 2, R = 1) as a scene's sphere: glass holding the medium.
+const BALL: &str = r#"
+[[medium]]
+name = "eye"
+profile = "fisheye"
+n0 = 2.0
+center = [0.0, 0.0, 0.0]
+radius = 1.0
+
+[[material]]
+name = "lens"
+type = "dielectric"
+interior = "eye"
+
+[[shape]]
+type = "sphere"
+center = [0.0, 0.0, 0.0]
+radius = 1.0
+material = "lens"
+"#;
+
+/// Where the tracer finds each ray of `rays` (starts inside the ball) meet the sphere.
+fn hits(tracer: &Tracer, medium: usize, rays: &[Ray]) -> Vec<DVec3> {
+    let mut stats = Stats::default();
+    rays.iter()
+        .map(
+            |ray| match tracer.next_event(ray.at, ray.direction, Some(medium), &mut stats) {
+                Event::Surface { position, .. } => position,
+                other => panic!("a ray inside the ball ended {other:?}"),
+            },
+        )
+        .collect()
+}
+
+fn through_the_renderer() {
+    let (scene, settings) =
+        grinlight::scene::load::parse_scene(std::path::Path::new("ball.toml"), BALL.into())
+            .expect("the ball scene");
+    let medium = scene.media().index("eye").expect("the ball's medium");
+    let rays = starts(2000);
+    let eye = FishEye {
+        n0: 2.0,
+        center: DVec3::ZERO,
+        radius: 1.0,
+    };
+    let (exact, _) = exits(&eye, &rays, StepperKind::Linearize, 1e-6);
+    println!();
+    println!("The same rays followed by the renderer's tracer to the ball's sphere, one thread");
+    println!(
+        "{:<10} {:>9} {:>12} {:>24} {:>8}",
+        "stepper", "tolerance", "µs per ray", "hit error R: median, max", "× time"
+    );
+    let mut first = None;
+    for (kind, tolerance) in [
+        (StepperKind::Linearize, 1e-6),
+        (StepperKind::Rkn, 1e-6),
+        (StepperKind::Rkn, 1e-9),
+    ] {
+        let mut trace = settings.trace;
+        trace.stepper = kind;
+        trace.control = StepControl::Adaptive { tolerance };
+        let tracer = Tracer::new(&scene, &trace);
+        let mut times: Vec<f64> = (0..5)
+            .map(|_| {
+                let t0 = Instant::now();
+                std::hint::black_box(hits(&tracer, medium, &rays));
+                t0.elapsed().as_secs_f64()
+            })
+            .collect();
+        times.sort_by(f64::total_cmp);
+        let per_ray = times[2] / rays.len() as f64;
+        let mut errors: Vec<f64> = hits(&tracer, medium, &rays)
+            .iter()
+            .zip(&exact)
+            .map(|(a, b)| (*a - *b).length())
+            .collect();
+        errors.sort_by(f64::total_cmp);
+        let base = *first.get_or_insert(per_ray);
+        println!(
+            "{:<10} {:>9.0e} {:>12.2} {:>15.1e} {:>8.1e} {:>8.1}",
+            kind.name(),
+            tolerance,
+            per_ray * 1e6,
+            errors[errors.len() / 2],
+            errors[errors.len() - 1],
+            per_ray / base
+        );
+    }
+}
+
+/// Snell's law at a plane of unit `normal` (facing the incoming ray) from index `from` into
+/// `to`: None on total internal reflection.
+fn refract(dir: DVec3, normal: DVec3, from: f64, to: f64) -> Option<DVec3> {
+    let cos_in = -dir.dot(normal);
+    let across = (dir + normal * cos_in) * (from / to);
+    let sin2 = across.length_squared();
+    (sin2 < 1.0).then(|| across - normal * (1.0 - sin2).sqrt())
+}
+
+/// Whether the point (x, y) of the back wall is on one of its grid's black lines (at ±0.1,
+/// ±0.3, …, ±0.9, 0.02 wide, spanning ±0.91).
+fn on_grid(x: f64, y: f64) -> bool {
+    let line = |u: f64| ((u + 0.9) / 0.2 - ((u + 0.9) / 0.2).round()).abs() * 0.2 <= 0.01;
+    let within = |u: f64| u.abs() <= 0.91;
+    within(x) && within(y) && (line(x) || line(y))
+}
+
+/// The cube's view ray by ray through the paraxial map and the marched engine.
+fn paraxial_view() {
+    let (scene, _) = grinlight::scene::load_scene(std::path::Path::new("scenes/grin_cube.toml"))
+        .expect("the CS 184 cube scene");
+    let camera = scene.camera.as_ref().expect("a camera");
+    let cube = LinearMedium {
+        n0: 4.0,
+        gradient: DVec3::Z,
+        origin: DVec3::new(0.0, 0.0, 0.4),
+    };
+    let (front, back, wall) = (0.4, -0.6, -0.995);
+    let (n_front, n_back) = (4.0, 3.0);
+    // Entry points and refracted directions of the rays that meet the front face.
+    let mut entries = Vec::new();
+    for py in 0..camera.height {
+        for px in 0..camera.width {
+            let (o, d) = camera.ray(px, py, 0.5, 0.5, (0.5, 0.5));
+            let p = o + d * ((front - o.z) / d.z);
+            if p.x.abs() <= 0.5 && p.y.abs() <= 0.5 {
+                let inside = refract(d, DVec3::Z, 1.0, n_front).expect("into denser glass");
+                entries.push(Ray {
+                    at: p,
+                    direction: inside,
+                });
+            }
+        }
+    }
+    let limits = MarchLimits {
+        length: 100.0,
+        max_steps: 1_000_000,
+        bounds: Bounds::Box {
+            min: DVec3::new(-0.5, -0.5, back),
+            max: DVec3::new(0.5, 0.5, front),
+        },
+    };
+    let marched = |tolerance: f64| -> Vec<Ray> {
+        entries
+            .iter()
+            .map(|ray| {
+                let out = march_with(
+                    StepperKind::Rkn,
+                    &cube,
+                    StepControl::Adaptive { tolerance },
+                    RayState::new(&cube, ray.at, ray.direction).expect("inside the cube"),
+                    &limits,
+                    |_, _| ControlFlow::Continue(()),
+                );
+                Ray {
+                    at: out.state.position,
+                    direction: out.state.direction,
+                }
+            })
+            .collect()
+    };
+    // The map: ξ' = (n0/b) ln(1 + bξ/n0), straight in (x, y, ξ') with the entry direction; at
+    // the back face dx/dξ is dx/dξ' times n0/n, so the exit direction's transverse part grows by
+    // n_front/n_back against its depth part.
+    let mapped_back = n_front * (n_back / n_front).ln();
+    let mapped = || -> Vec<Ray> {
+        entries
+            .iter()
+            .map(
+                |&Ray {
+                     at: p,
+                     direction: d,
+                 }| {
+                    let run = mapped_back / d.z;
+                    let position = DVec3::new(p.x + d.x * run, p.y + d.y * run, back);
+                    let k = n_front / n_back;
+                    Ray {
+                        at: position,
+                        direction: DVec3::new(d.x * k, d.y * k, d.z).normalize(),
+                    }
+                },
+            )
+            .collect()
+    };
+    // Where each exit meets the back wall (None: it left through a side or reflected).
+    let on_wall = |exits: &[Ray]| -> Vec<Option<DVec3>> {
+        exits
+            .iter()
+            .map(
+                |&Ray {
+                     at: p,
+                     direction: d,
+                 }| {
+                    if (p.z - back).abs() > 1e-9 {
+                        return None;
+                    }
+                    let out = refract(d, -DVec3::Z, n_back, 1.0)?;
+                    Some(p + out * ((wall - p.z) / out.z))
+                },
+            )
+            .collect()
+    };
+    let timed = |run: &dyn Fn() -> Vec<Ray>| {
+        let mut times: Vec<f64> = (0..3)
+            .map(|_| {
+                let t0 = Instant::now();
+                std::hint::black_box(run());
+                t0.elapsed().as_secs_f64()
+            })
+            .collect();
+        times.sort_by(f64::total_cmp);
+        (run(), times[1] / entries.len() as f64)
+    };
+    let (reference, _) = timed(&|| marched(1e-12));
+    let reference = on_wall(&reference);
+    let kept = reference.iter().flatten().count();
+    println!(
+        "\nThe CS 184 cube's view ({}×{}, {} rays through the cube, {kept} reaching the back \
+         wall), against RKN at 1e-12",
+        camera.width,
+        camera.height,
+        entries.len()
+    );
+    println!(
+        "{:<14} {:>10} {:>14} {:>14} {:>16}",
+        "method", "µs per ray", "RMS shift", "largest shift", "pixels differing"
+    );
+    let methods: [(&str, Carry); 4] = [
+        ("paraxial map", Box::new(mapped)),
+        ("rkn 1e-3", Box::new(|| marched(1e-3))),
+        ("rkn 1e-6", Box::new(|| marched(1e-6))),
+        ("rkn 1e-9", Box::new(|| marched(1e-9))),
+    ];
+    for (name, run) in methods {
+        let (exits, per_ray) = timed(run.as_ref());
+        let (mut sum2, mut largest, mut differ, mut count) = (0.0, 0.0f64, 0, 0);
+        for (a, b) in on_wall(&exits).iter().zip(&reference) {
+            if let (Some(a), Some(b)) = (a, b) {
+                let shift = (*a - *b).length();
+                sum2 += shift * shift;
+                largest = largest.max(shift);
+                differ += usize::from(on_grid(a.x, a.y) != on_grid(b.x, b.y));
+                count += 1;
+            }
+        }
+        println!(
+            "{:<14} {:>10.3} {:>14.2e} {:>14.2e} {:>15.2}%",
+            name,
+            per_ray * 1e6,
+            (sum2 / count as f64).sqrt(),
+            largest,
+            100.0 * differ as f64 / count as f64
         );
     }
 }
