@@ -509,9 +509,9 @@ fn beauty(text: &str) -> Vec<[f32; 3]> {
 /// RKN6(4) from the same seed: the two pictures differ by noise only — each channel's mean
 /// pixel difference within four standard errors of it (the two share most of their random
 /// numbers, so this is tight: 0.1 % of the mean). The exact stepper's steps turn up to a
-/// quarter circle; what follows a path by its chords (the beams) sees points 0.03 rad apart
-/// (0.1 rad apart, the difference is +0.22 % at 4.9 standard errors; a step's ends alone,
-/// +4 % in the ball).
+/// right angle of their circle; what follows a path by its chords (the beams) sees points
+/// 0.03 rad apart (0.1 rad apart, the difference is +0.22 % at 4.9 standard errors; a step's
+/// ends alone, +4 % in the ball).
 #[test]
 fn the_fish_eye_renders_alike_on_exact_circles_and_marched() {
     let text = std::fs::read_to_string("scenes/fish_eye.toml")
@@ -536,5 +536,67 @@ fn the_fish_eye_renders_alike_on_exact_circles_and_marched() {
             mean.abs() < 4.0 * se.max(1e-6 * level),
             "channel {c}: {mean} ± {se}"
         );
+    }
+}
+
+/// A fish-eye ball that is a scene's sphere (n0 = 2, radius R) followed by the renderer's
+/// tracer with `linearize`: each ray from inside is advanced on its circle and meets the sphere
+/// in closed form. At R = 1e-6, 1 and 1e6 the same rays (scaled) end at the same point of the
+/// sphere (units of R) within 1e-12 (4e-15 measured) — the closed form is scale-free — and
+/// every hit lies on the sphere within 1e-12 R; rays from the centre (straight), and rays that start on the rim
+/// heading along it (tangent: they follow the rim's great circle, the sphere's own) end finite.
+#[test]
+fn the_tracer_follows_fish_eye_rays_to_the_sphere_at_every_scale() {
+    use grinlight::transport::{Event, Stats, Tracer};
+    let mut rng = rand_pcg::Pcg64Mcg::seed_from_u64(33);
+    let rays: Vec<(DVec3, DVec3)> = (0..200)
+        .map(|i| {
+            let from = match i % 10 {
+                0 => DVec3::ZERO,
+                _ => rng.gen::<f64>().cbrt() * 0.99 * unit(&mut rng),
+            };
+            (from, unit(&mut rng))
+        })
+        .collect();
+    let mut ends: Vec<Vec<DVec3>> = Vec::new();
+    for radius in [1e-6, 1.0, 1e6] {
+        let text = format!(
+            "[[medium]]\nname = \"eye\"\nprofile = \"fisheye\"\nn0 = 2.0\ncenter = [0.0, 0.0, \
+             0.0]\nradius = {radius:e}\n\n[[material]]\nname = \"lens\"\ntype = \
+             \"dielectric\"\ninterior = \"eye\"\n\n[[shape]]\ntype = \"sphere\"\ncenter = [0.0, \
+             0.0, 0.0]\nradius = {radius:e}\nmaterial = \"lens\"\n"
+        );
+        let (scene, settings) =
+            grinlight::scene::load::parse_scene(std::path::Path::new("ball.toml"), text).unwrap();
+        assert_eq!(settings.trace.stepper, StepperKind::Linearize);
+        let tracer = Tracer::new(&scene, &settings.trace);
+        let medium = scene.media().index("eye").unwrap();
+        let mut stats = Stats::default();
+        let mut hit = |from: DVec3, dir: DVec3| match tracer.next_event(
+            from * radius,
+            dir,
+            Some(medium),
+            &mut stats,
+        ) {
+            Event::Surface { position, .. } => position / radius,
+            other => panic!("R {radius}: a ray inside the ball ended {other:?}"),
+        };
+        let here: Vec<DVec3> = rays.iter().map(|&(x, d)| hit(x, d)).collect();
+        for p in &here {
+            assert!((p.length() - 1.0).abs() < 1e-12, "R {radius}: off the sphere {p}");
+        }
+        // Tangent at the rim, just inside it: finite, on the sphere.
+        let graze = hit(DVec3::X * (1.0 - 1e-12), DVec3::Y);
+        assert!(graze.is_finite() && (graze.length() - 1.0).abs() < 1e-9, "{graze}");
+        ends.push(here);
+    }
+    for other in &ends[1..] {
+        let worst = ends[0]
+            .iter()
+            .zip(other)
+            .map(|(a, b)| (*a - *b).length())
+            .fold(0.0, f64::max);
+        println!("largest difference between scales: {worst:e} R");
+        assert!(worst < 1e-12, "{worst}");
     }
 }
