@@ -6,6 +6,7 @@ pub mod load;
 pub mod media;
 pub mod mesh;
 pub mod model;
+pub mod ply;
 pub mod read;
 pub mod source;
 pub mod table;

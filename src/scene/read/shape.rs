@@ -161,7 +161,14 @@ fn read_mesh(t: &mut TableReader) -> Result<Vec<Primitive>> {
     let m = DMat3::from_rotation_z(rot.z.to_radians())
         * DMat3::from_rotation_y(rot.y.to_radians())
         * DMat3::from_rotation_x(rot.x.to_radians());
-    let obj = crate::scene::mesh::load_triangles(&path).map_err(|e| t.error("file", e))?;
+    let is_ply = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("ply"));
+    let obj = match is_ply {
+        true => crate::scene::ply::load_ply(&path),
+        false => crate::scene::mesh::load_triangles(&path),
+    }
+    .map_err(|e| t.error("file", e))?;
     let smooth = t.bool_or("smooth", obj.normals.is_some())?;
     // Placed in f64, stored in f32: the stored vertices are the geometry.
     let mut vertices = obj.positions;

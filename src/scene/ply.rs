@@ -1,0 +1,314 @@
+//! Stanford PLY meshes (Turk 1994), the format scanned meshes ship in: ASCII and binary (little
+//! and big endian). The `vertex` element's `x`, `y`, `z` (and `nx`, `ny`, `nz` normals and `s`,
+//! `t` or `u`, `v` texture coordinates when it has them) and the `face` element's index list
+//! (`vertex_indices` or `vertex_index`; faces fanned from their first corner) are kept; every
+//! other element and property is read past. Scalars of any PLY type are read as f64 and stored
+//! as the OBJ reader's are: positions in f32, indices in u32.
+
+use super::mesh::ObjTriangles;
+use std::path::Path;
+
+/// The triangles of a PLY file. The error names the file and what is wrong: the header line,
+/// or the element and record (1-based) where the data is not what the header says.
+pub fn load_ply(path: &Path) -> Result<ObjTriangles, String> {
+    let bytes = std::fs::read(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    parse(&bytes).map_err(|why| format!("{}: {why}", path.display()))
+}
+
+/// How the records are stored.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Format {
+    Ascii,
+    Little,
+    Big,
+}
+
+/// A PLY scalar type.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Scalar {
+    I8,
+    U8,
+    I16,
+    U16,
+    I32,
+    U32,
+    F32,
+    F64,
+}
+
+impl Scalar {
+    fn parse(name: &str) -> Option<Self> {
+        Some(match name {
+            "char" | "int8" => Scalar::I8,
+            "uchar" | "uint8" => Scalar::U8,
+            "short" | "int16" => Scalar::I16,
+            "ushort" | "uint16" => Scalar::U16,
+            "int" | "int32" => Scalar::I32,
+            "uint" | "uint32" => Scalar::U32,
+            "float" | "float32" => Scalar::F32,
+            "double" | "float64" => Scalar::F64,
+            _ => return None,
+        })
+    }
+
+    /// Bytes in binary.
+    fn size(self) -> usize {
+        match self {
+            Scalar::I8 | Scalar::U8 => 1,
+            Scalar::I16 | Scalar::U16 => 2,
+            Scalar::I32 | Scalar::U32 | Scalar::F32 => 4,
+            Scalar::F64 => 8,
+        }
+    }
+}
+
+/// A property of an element: one scalar, or a list (its count's type and its items').
+#[derive(Clone, Debug, PartialEq)]
+struct Property {
+    name: String,
+    count: Option<Scalar>,
+    item: Scalar,
+}
+
+/// An element of the header: its name, how many records, and their properties.
+#[derive(Clone, Debug, PartialEq)]
+struct Element {
+    name: String,
+    records: usize,
+    properties: Vec<Property>,
+}
+
+/// The header: the format, the elements in order, and where the data starts.
+struct Header {
+    format: Format,
+    elements: Vec<Element>,
+    data: usize,
+}
+
+fn header(bytes: &[u8]) -> Result<Header, String> {
+    let end = find(bytes, b"end_header").ok_or("not a PLY file: no `end_header`")?;
+    let text = std::str::from_utf8(&bytes[..end]).map_err(|_| "a header that is not text")?;
+    let mut data = end + b"end_header".len();
+    // The header's last line ends with \n (or \r\n).
+    if bytes.get(data) == Some(&b'\r') {
+        data += 1;
+    }
+    if bytes.get(data) == Some(&b'\n') {
+        data += 1;
+    }
+    let mut lines = text.lines().enumerate();
+    if lines.next().map(|(_, l)| l.trim()) != Some("ply") {
+        return Err("not a PLY file: the first line is not `ply`".into());
+    }
+    let mut format = None;
+    let mut elements: Vec<Element> = Vec::new();
+    for (i, line) in lines {
+        let at = |why: &str| format!("header line {}: {why} (`{}`)", i + 1, line.trim());
+        let words: Vec<&str> = line.split_whitespace().collect();
+        match words.as_slice() {
+            [] | ["comment", ..] | ["obj_info", ..] => {}
+            ["format", kind, _version] => {
+                format = Some(match *kind {
+                    "ascii" => Format::Ascii,
+                    "binary_little_endian" => Format::Little,
+                    "binary_big_endian" => Format::Big,
+                    _ => return Err(at("an unknown format")),
+                })
+            }
+            ["element", name, count] => elements.push(Element {
+                name: name.to_string(),
+                records: count.parse().map_err(|_| at("a count that is not a number"))?,
+                properties: Vec::new(),
+            }),
+            ["property", "list", count, item, name] => {
+                let element = elements.last_mut().ok_or_else(|| at("a property of no element"))?;
+                let scalar = |w: &str| Scalar::parse(w).ok_or_else(|| at("an unknown type"));
+                element.properties.push(Property {
+                    name: name.to_string(),
+                    count: Some(scalar(count)?),
+                    item: scalar(item)?,
+                });
+            }
+            ["property", item, name] => {
+                let element = elements.last_mut().ok_or_else(|| at("a property of no element"))?;
+                element.properties.push(Property {
+                    name: name.to_string(),
+                    count: None,
+                    item: Scalar::parse(item).ok_or_else(|| at("an unknown type"))?,
+                });
+            }
+            _ => return Err(at("a line that is not PLY")),
+        }
+    }
+    Ok(Header {
+        format: format.ok_or("no `format` line")?,
+        elements,
+        data,
+    })
+}
+
+fn find(haystack: &[u8], needle: &[u8]) -> Option<usize> {
+    haystack.windows(needle.len()).position(|w| w == needle)
+}
+
+/// Reads the scalars of the records, in order, from binary or ASCII data.
+struct Reader<'a> {
+    bytes: &'a [u8],
+    at: usize,
+    format: Format,
+}
+
+impl Reader<'_> {
+    /// The next scalar of type `kind`, as f64; None at the data's end or, in ASCII, at a word
+    /// that is not a number.
+    fn next(&mut self, kind: Scalar) -> Option<f64> {
+        if self.format == Format::Ascii {
+            let rest = &self.bytes[self.at..];
+            let start = rest.iter().position(|b| !b.is_ascii_whitespace())?;
+            let len = rest[start..]
+                .iter()
+                .position(|b| b.is_ascii_whitespace())
+                .unwrap_or(rest.len() - start);
+            self.at += start + len;
+            return std::str::from_utf8(&rest[start..start + len]).ok()?.parse().ok();
+        }
+        let size = kind.size();
+        let raw = self.bytes.get(self.at..self.at + size)?;
+        self.at += size;
+        let mut b = [0u8; 8];
+        b[..size].copy_from_slice(raw);
+        if self.format == Format::Big {
+            b[..size].reverse();
+        }
+        Some(match kind {
+            Scalar::I8 => f64::from(b[0] as i8),
+            Scalar::U8 => f64::from(b[0]),
+            Scalar::I16 => f64::from(i16::from_le_bytes([b[0], b[1]])),
+            Scalar::U16 => f64::from(u16::from_le_bytes([b[0], b[1]])),
+            Scalar::I32 => f64::from(i32::from_le_bytes([b[0], b[1], b[2], b[3]])),
+            Scalar::U32 => f64::from(u32::from_le_bytes([b[0], b[1], b[2], b[3]])),
+            Scalar::F32 => f64::from(f32::from_le_bytes([b[0], b[1], b[2], b[3]])),
+            Scalar::F64 => f64::from_le_bytes(b),
+        })
+    }
+}
+
+/// Where the vertex element's kept properties are among its properties.
+struct VertexLayout {
+    position: [usize; 3],
+    normal: Option<[usize; 3]>,
+    texcoord: Option<[usize; 2]>,
+}
+
+impl VertexLayout {
+    fn of(element: &Element) -> Result<Self, String> {
+        let find = |names: &[&str]| {
+            element
+                .properties
+                .iter()
+                .position(|p| p.count.is_none() && names.contains(&p.name.as_str()))
+        };
+        let all = |names: [&[&str]; 3]| -> Option<[usize; 3]> {
+            Some([find(names[0])?, find(names[1])?, find(names[2])?])
+        };
+        Ok(Self {
+            position: all([&["x"], &["y"], &["z"]])
+                .ok_or("the vertex element has no `x`, `y` and `z`")?,
+            normal: all([&["nx"], &["ny"], &["nz"]]),
+            texcoord: find(&["s", "u", "texture_u"]).zip(find(&["t", "v", "texture_v"])).map(
+                |(s, t)| [s, t],
+            ),
+        })
+    }
+}
+
+fn parse(bytes: &[u8]) -> Result<ObjTriangles, String> {
+    let header = header(bytes)?;
+    let vertex = header
+        .elements
+        .iter()
+        .position(|e| e.name == "vertex")
+        .ok_or("no `vertex` element")?;
+    let face = header
+        .elements
+        .iter()
+        .position(|e| e.name == "face")
+        .ok_or("no `face` element")?;
+    let layout = VertexLayout::of(&header.elements[vertex])?;
+    let indices = header.elements[face]
+        .properties
+        .iter()
+        .position(|p| p.count.is_some() && (p.name == "vertex_indices" || p.name == "vertex_index"))
+        .ok_or("the face element has no `vertex_indices` list")?;
+    let vertices = header.elements[vertex].records;
+    let mut out = ObjTriangles {
+        positions: Vec::with_capacity(vertices),
+        triangles: Vec::with_capacity(2 * header.elements[face].records),
+        normals: layout.normal.map(|_| Vec::with_capacity(vertices)),
+        texcoords: layout.texcoord.map(|_| Vec::with_capacity(vertices)),
+    };
+    let mut reader = Reader {
+        bytes,
+        at: header.data,
+        format: header.format,
+    };
+    let mut values: Vec<f64> = Vec::new();
+    let mut corners: Vec<u32> = Vec::new();
+    for (e, element) in header.elements.iter().enumerate() {
+        for r in 0..element.records {
+            let at = |why: &str| format!("{} {}: {why}", element.name, r + 1);
+            values.clear();
+            corners.clear();
+            for (k, property) in element.properties.iter().enumerate() {
+                let mut read = |kind| {
+                    reader
+                        .next(kind)
+                        .ok_or_else(|| at("the data ends early or is not a number"))
+                };
+                match property.count {
+                    None => values.push(read(property.item)?),
+                    Some(count) => {
+                        let n = read(count)?;
+                        for _ in 0..n as usize {
+                            let index = read(property.item)?;
+                            if e == face && k == indices {
+                                if !(0.0..vertices as f64).contains(&index) {
+                                    return Err(at(&format!(
+                                        "corner {index} names no vertex (the file has {vertices})"
+                                    )));
+                                }
+                                corners.push(index as u32);
+                            }
+                        }
+                        values.push(n);
+                    }
+                }
+            }
+            if e == vertex {
+                let pick = |i: usize| values[i] as f32;
+                let p = layout.position.map(pick);
+                if !p.iter().all(|c| c.is_finite()) {
+                    return Err(at("a position that is not three finite numbers"));
+                }
+                out.positions.push(p);
+                if let (Some(n), Some(i)) = (&mut out.normals, layout.normal) {
+                    n.push(i.map(pick));
+                }
+                if let (Some(t), Some(i)) = (&mut out.texcoords, layout.texcoord) {
+                    t.push(i.map(pick));
+                }
+            } else if e == face {
+                if corners.len() < 3 {
+                    return Err(at("a face of fewer than three corners"));
+                }
+                for k in 1..corners.len() - 1 {
+                    out.triangles.push([corners[0], corners[k], corners[k + 1]]);
+                }
+            }
+        }
+    }
+    if out.triangles.is_empty() {
+        return Err("has no faces".into());
+    }
+    Ok(out)
+}

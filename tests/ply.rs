@@ -1,0 +1,210 @@
+//! PLY meshes: the same mesh written as OBJ and as PLY (ASCII, binary little and big endian,
+//! with properties and elements the reader must read past) gives the same triangles, and a
+//! damaged PLY file is an error naming the element and record.
+
+use grinlight::scene::mesh::load_triangles;
+use grinlight::scene::ply::load_ply;
+use std::path::{Path, PathBuf};
+
+/// An octahedron whose top half is triangles and whose bottom is one square and four
+/// triangles (a square face is fanned), with normals.
+const VERTICES: [[f32; 3]; 6] = [
+    [1.0, 0.0, 0.0],
+    [0.0, 1.0, 0.0],
+    [-1.0, 0.0, 0.0],
+    [0.0, -1.0, 0.0],
+    [0.0, 0.0, 1.5],
+    [0.25, -0.5, -1.0],
+];
+const FACES: [&[u32]; 6] = [
+    &[0, 1, 4],
+    &[1, 2, 4],
+    &[2, 3, 4],
+    &[3, 0, 4],
+    &[0, 3, 2, 1],
+    &[0, 5, 3],
+];
+
+fn normal(v: [f32; 3]) -> [f32; 3] {
+    let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    v.map(|c| c / l)
+}
+
+fn obj_text() -> String {
+    let mut s = String::new();
+    for v in VERTICES {
+        s += &format!("v {} {} {}\n", v[0], v[1], v[2]);
+    }
+    for f in FACES {
+        let corners: Vec<String> = f.iter().map(|i| (i + 1).to_string()).collect();
+        s += &format!("f {}\n", corners.join(" "));
+    }
+    s
+}
+
+/// The PLY header of the mesh in `format`: vertices with a colour between position and
+/// normal, faces with a flag before their index list, and an `edge` element after them.
+fn ply_header(format: &str) -> String {
+    format!(
+        "ply\nformat {format} 1.0\ncomment written by the test\nelement vertex 6\nproperty float \
+         x\nproperty float y\nproperty float z\nproperty uchar red\nproperty uchar green\n\
+         property uchar blue\nproperty double nx\nproperty double ny\nproperty double nz\n\
+         element face 6\nproperty int flags\nproperty list uchar int vertex_indices\nelement \
+         edge 2\nproperty int vertex1\nproperty int vertex2\nend_header\n"
+    )
+}
+
+fn ply_ascii() -> Vec<u8> {
+    let mut s = ply_header("ascii");
+    for v in VERTICES {
+        let n = normal(v);
+        s += &format!("{} {} {} 200 100 50 {} {} {}\n", v[0], v[1], v[2], n[0], n[1], n[2]);
+    }
+    for f in FACES {
+        let corners: Vec<String> = f.iter().map(|i| i.to_string()).collect();
+        s += &format!("7 {} {}\n", f.len(), corners.join(" "));
+    }
+    s += "0 1\n1 2\n";
+    s.into_bytes()
+}
+
+fn ply_binary(big: bool) -> Vec<u8> {
+    let format = if big {
+        "binary_big_endian"
+    } else {
+        "binary_little_endian"
+    };
+    let mut out = ply_header(format).into_bytes();
+    let mut put = |bytes: &[u8]| {
+        let mut b = bytes.to_vec();
+        if big {
+            b.reverse();
+        }
+        out.extend_from_slice(&b);
+    };
+    for v in VERTICES {
+        for c in v {
+            put(&c.to_le_bytes());
+        }
+        for c in [200u8, 100, 50] {
+            put(&[c]);
+        }
+        for c in normal(v) {
+            put(&f64::from(c).to_le_bytes());
+        }
+    }
+    for f in FACES {
+        put(&7i32.to_le_bytes());
+        put(&[f.len() as u8]);
+        for &i in f {
+            put(&(i as i32).to_le_bytes());
+        }
+    }
+    for (a, b) in [(0i32, 1i32), (1, 2)] {
+        put(&a.to_le_bytes());
+        put(&b.to_le_bytes());
+    }
+    out
+}
+
+/// A file of `bytes` in the test's own directory.
+fn file(name: &str, bytes: &[u8]) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("grinlight-ply-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(name);
+    std::fs::write(&path, bytes).unwrap();
+    path
+}
+
+/// Every PLY form gives the OBJ's positions and triangles (the square fanned from its first
+/// corner, as the OBJ reader does), and the normals the file gives; the colours, the face
+/// flags and the edges are read past.
+#[test]
+fn ply_in_every_format_reads_as_the_same_obj() {
+    let obj = load_triangles(&file("octahedron.obj", obj_text().as_bytes())).unwrap();
+    assert_eq!(obj.triangles.len(), 7);
+    for (name, bytes) in [
+        ("ascii.ply", ply_ascii()),
+        ("little.ply", ply_binary(false)),
+        ("big.ply", ply_binary(true)),
+    ] {
+        let ply = load_ply(&file(name, &bytes)).unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert_eq!(ply.positions, obj.positions, "{name}");
+        assert_eq!(ply.triangles, obj.triangles, "{name}");
+        let normals = ply.normals.expect("the file gives normals");
+        for (n, v) in normals.iter().zip(VERTICES) {
+            let want = normal(v);
+            assert!((0..3).all(|k| (n[k] - want[k]).abs() < 1e-7), "{name}: {n:?}");
+        }
+        assert!(ply.texcoords.is_none());
+    }
+}
+
+/// A scene's mesh may be a PLY file: it loads as the OBJ does.
+#[test]
+fn a_scene_mesh_may_be_a_ply_file() {
+    let ply = file("scene_mesh.ply", &ply_binary(false));
+    let text = format!(
+        "[[material]]\nname = \"m\"\ntype = \"diffuse\"\nalbedo = [0.5, 0.5, 0.5]\n\n[[shape]]\ntype = \"mesh\"\nfile = \
+         \"{}\"\nmaterial = \"m\"\n",
+        ply.display()
+    );
+    let (scene, _) =
+        grinlight::scene::load::parse_scene(Path::new("mesh.toml"), text).expect("loads");
+    let mesh = scene
+        .accel
+        .primitives()
+        .iter()
+        .find_map(|p| match p {
+            grinlight::shapes::Primitive::Mesh(m) => Some(m.len()),
+            _ => None,
+        })
+        .expect("a mesh");
+    assert_eq!(mesh, 7);
+}
+
+/// Damaged files are errors that name the file and where: data that ends early (the record
+/// it ends in), a corner that names no vertex, a vertex that is not finite, a face of two
+/// corners, a header without `end_header` or with an unknown type.
+#[test]
+fn a_damaged_ply_file_is_an_error_naming_where() {
+    let good = ply_binary(false);
+    let cut = good.len() - 20;
+    let ascii = String::from_utf8(ply_ascii()).unwrap();
+    let cases: [(&str, Vec<u8>, &str); 6] = [
+        ("cut.ply", good[..cut].to_vec(), "face 6: the data ends early"),
+        (
+            "index.ply",
+            ascii.replace("7 3 0 5 3", "7 3 0 9 3").into_bytes(),
+            "face 6: corner 9 names no vertex (the file has 6)",
+        ),
+        (
+            "nan.ply",
+            ascii.replacen("1 0 0 200", "nan 0 0 200", 1).into_bytes(),
+            "vertex 1: a position that is not three finite numbers",
+        ),
+        (
+            "two.ply",
+            ascii.replace("7 3 0 5 3", "7 2 0 5").into_bytes(),
+            "face 6: a face of fewer than three corners",
+        ),
+        (
+            "header.ply",
+            ascii.replace("end_header", "end").into_bytes(),
+            "not a PLY file: no `end_header`",
+        ),
+        (
+            "type.ply",
+            ascii.replace("property uchar red", "property colour red").into_bytes(),
+            "header line 8: an unknown type (`property colour red`)",
+        ),
+    ];
+    for (name, bytes, want) in cases {
+        let path = file(name, &bytes);
+        let err = load_ply(&path).err().unwrap_or_else(|| panic!("{name} loaded"));
+        assert!(
+            err.contains(want) && err.contains(&path.display().to_string()),
+            "{name}: {err}"
+        );
+    }
+}
