@@ -583,11 +583,17 @@ fn the_tracer_follows_fish_eye_rays_to_the_sphere_at_every_scale() {
         };
         let here: Vec<DVec3> = rays.iter().map(|&(x, d)| hit(x, d)).collect();
         for p in &here {
-            assert!((p.length() - 1.0).abs() < 1e-12, "R {radius}: off the sphere {p}");
+            assert!(
+                (p.length() - 1.0).abs() < 1e-12,
+                "R {radius}: off the sphere {p}"
+            );
         }
         // Tangent at the rim, just inside it: finite, on the sphere.
         let graze = hit(DVec3::X * (1.0 - 1e-12), DVec3::Y);
-        assert!(graze.is_finite() && (graze.length() - 1.0).abs() < 1e-9, "{graze}");
+        assert!(
+            graze.is_finite() && (graze.length() - 1.0).abs() < 1e-9,
+            "{graze}"
+        );
         ends.push(here);
     }
     for other in &ends[1..] {

@@ -201,19 +201,6 @@ impl GeodesicRay {
         })
     }
 
-    /// An arclength the ray may go in one step of [`crate::curve::Linearize`] whose optical
-    /// path is found without ambiguity: on the fish-eye (n ≤ n0, so dθ/ds = 2n/(n0 R) ≤ 2/R)
-    /// πR/2 turns at most half the great circle, and the x-space circle (of radius ≥ R: it
-    /// holds a point and its antipodal image) at most a right angle, where surfaces still meet
-    /// it in closed form ([`CircleArc::crossings`]); on the hyperbolic medium θ is unique but
-    /// the rim is near, so nothing beyond the medium's own hint (0).
-    pub fn exact_reach(&self) -> f64 {
-        match self.curvature {
-            Curvature::Positive => 0.5 * std::f64::consts::PI * self.radius,
-            Curvature::Negative => 0.0,
-        }
-    }
-
     /// The θ of `position`, a point of this ray's geodesic (to rounding), nearest `estimate`:
     /// the fish-eye's great circle knows θ modulo 2π, the hyperbolic medium's geodesic
     /// exactly (θ < 0 behind the start).

@@ -287,13 +287,11 @@ impl Stepper for Linearize {
     }
 
     /// Where the ray has a closed form its steps have no error, so they are as long as the
-    /// geodesic allows ([`crate::curve::GeodesicRay::exact_reach`]: a fish-eye ray turns a
-    /// quarter of its great circle) or the medium's hint, whichever is longer.
+    /// closed form allows ([`Medium::exact_reach`]: a fish-eye ray turns half its great circle,
+    /// its x-space circle up to a right angle) or the medium's hint, whichever is longer.
     fn step_hint<M: Medium + ?Sized>(&self, medium: &M, p: DVec3, dir: DVec3) -> f64 {
         let hint = medium.step_hint(p, dir);
-        medium
-            .geodesic(p, dir)
-            .map_or(hint, |ray| hint.max(ray.exact_reach()))
+        medium.exact_reach().map_or(hint, |reach| hint.max(reach))
     }
 
     fn estimate_order(&self) -> u32 {

@@ -43,4 +43,7 @@ impl Medium for Absorbing {
     fn geodesic(&self, position: DVec3, direction: DVec3) -> Option<GeodesicRay> {
         self.inner.geodesic(position, direction)
     }
+    fn exact_reach(&self) -> Option<f64> {
+        self.inner.exact_reach()
+    }
 }

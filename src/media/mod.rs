@@ -109,6 +109,13 @@ pub trait Medium: Send + Sync {
         None
     }
 
+    /// Where the medium has a closed form ([`Medium::geodesic`]): an arclength a ray may go in
+    /// one step of `stepper = "linearize"` whose optical path the closed form finds without
+    /// ambiguity (scene units). Default: None.
+    fn exact_reach(&self) -> Option<f64> {
+        None
+    }
+
     /// The centre when n depends only on the distance from it (every ray then stays in the
     /// plane of its direction and the centre: the deflection table applies). Default:
     /// None, not spherically symmetric.

@@ -80,6 +80,13 @@ impl Medium for FishEye {
     fn geodesic(&self, position: DVec3, direction: DVec3) -> Option<GeodesicRay> {
         GeodesicRay::fish_eye(self, position, direction)
     }
+    /// πR/2: n ≤ n0, so the geodesic's angle grows as dθ/ds = 2n/(n0 R) ≤ 2/R and turns at most
+    /// half the great circle, and the x-space circle (of radius ≥ R: it holds a point and its
+    /// antipodal image) at most a right angle, where surfaces still meet it in closed form
+    /// ([`crate::curve::CircleArc::crossings`]).
+    fn exact_reach(&self) -> Option<f64> {
+        Some(0.5 * std::f64::consts::PI * self.radius)
+    }
 }
 
 /// The hyperbolic medium n = n0 / (1 − (r/R)²) inside the ball r < R: the Poincaré ball, a
@@ -129,6 +136,11 @@ impl Medium for HyperbolicMedium {
     }
     fn geodesic(&self, position: DVec3, direction: DVec3) -> Option<GeodesicRay> {
         GeodesicRay::hyperbolic(self, position, direction)
+    }
+    /// θ is unique along the hyperbolic medium's geodesics, but the rim is near: nothing beyond
+    /// the medium's own hint.
+    fn exact_reach(&self) -> Option<f64> {
+        Some(0.0)
     }
 }
 

@@ -808,8 +808,8 @@ const SHOWN_TURN: f64 = 0.03;
 
 /// Shows `path` the points of a step's exact circle (if it is one) between its start and
 /// `upto` along it, at most [`SHOWN_TURN`] apart, neither end included: a step of the exact
-/// stepper may turn a quarter of a circle, and what follows a path by its chords (the beams
-/// of the volume caustic estimate, the columns of a density) needs them close to it.
+/// stepper may turn a right angle of its circle, and what follows a path by its chords (the
+/// beams of the volume caustic estimate, the columns of a density) needs them close to it.
 fn show_circle(exact: Option<&ExactPath>, upto: f64, path: &mut Option<&mut dyn FnMut(DVec3)>) {
     if let (Some(ExactPath::Circle(circle)), Some(path)) = (exact, path) {
         let pieces = (upto * circle.curvature.length() / SHOWN_TURN).ceil();
