@@ -58,7 +58,10 @@ fn ply_ascii() -> Vec<u8> {
     let mut s = ply_header("ascii");
     for v in VERTICES {
         let n = normal(v);
-        s += &format!("{} {} {} 200 100 50 {} {} {}\n", v[0], v[1], v[2], n[0], n[1], n[2]);
+        s += &format!(
+            "{} {} {} 200 100 50 {} {} {}\n",
+            v[0], v[1], v[2], n[0], n[1], n[2]
+        );
     }
     for f in FACES {
         let corners: Vec<String> = f.iter().map(|i| i.to_string()).collect();
@@ -134,7 +137,10 @@ fn ply_in_every_format_reads_as_the_same_obj() {
         let normals = ply.normals.expect("the file gives normals");
         for (n, v) in normals.iter().zip(VERTICES) {
             let want = normal(v);
-            assert!((0..3).all(|k| (n[k] - want[k]).abs() < 1e-7), "{name}: {n:?}");
+            assert!(
+                (0..3).all(|k| (n[k] - want[k]).abs() < 1e-7),
+                "{name}: {n:?}"
+            );
         }
         assert!(ply.texcoords.is_none());
     }
@@ -164,15 +170,20 @@ fn a_scene_mesh_may_be_a_ply_file() {
 }
 
 /// Damaged files are errors that name the file and where: data that ends early (the record
-/// it ends in), a corner that names no vertex, a vertex that is not finite, a face of two
-/// corners, a header without `end_header` or with an unknown type.
+/// it ends in), a corner that names no vertex or is not a whole number, a vertex, normal or
+/// texture coordinate that is not finite, a face of two corners, a header without
+/// `end_header` or with an unknown type, a count of records the file cannot hold.
 #[test]
 fn a_damaged_ply_file_is_an_error_naming_where() {
     let good = ply_binary(false);
     let cut = good.len() - 20;
     let ascii = String::from_utf8(ply_ascii()).unwrap();
-    let cases: [(&str, Vec<u8>, &str); 6] = [
-        ("cut.ply", good[..cut].to_vec(), "face 6: the data ends early"),
+    let cases: [(&str, Vec<u8>, &str); 9] = [
+        (
+            "cut.ply",
+            good[..cut].to_vec(),
+            "face 6: the data ends early",
+        ),
         (
             "index.ply",
             ascii.replace("7 3 0 5 3", "7 3 0 9 3").into_bytes(),
@@ -189,19 +200,43 @@ fn a_damaged_ply_file_is_an_error_naming_where() {
             "face 6: a face of fewer than three corners",
         ),
         (
+            "fraction.ply",
+            ascii.replace("7 3 0 5 3", "7 3 0 4.5 3").into_bytes(),
+            "face 6: corner 4.5 names no vertex",
+        ),
+        (
+            "normal.ply",
+            ascii.replacen("200 100 50 1 0 0", "200 100 50 inf 0 0", 1).into_bytes(),
+            "a normal or texture coordinate that is not finite",
+        ),
+        (
+            // A count no file could hold is not trusted with memory.
+            "huge.ply",
+            ply_header("binary_little_endian")
+                .replace("element vertex 6", "element vertex 999999999999999")
+                .bytes()
+                .chain(good[ply_header("binary_little_endian").len()..].iter().copied())
+                .collect(),
+            "the data ends early",
+        ),
+        (
             "header.ply",
             ascii.replace("end_header", "end").into_bytes(),
             "not a PLY file: no `end_header`",
         ),
         (
             "type.ply",
-            ascii.replace("property uchar red", "property colour red").into_bytes(),
+            ascii
+                .replace("property uchar red", "property colour red")
+                .into_bytes(),
             "header line 8: an unknown type (`property colour red`)",
         ),
     ];
     for (name, bytes, want) in cases {
         let path = file(name, &bytes);
-        let err = load_ply(&path).err().unwrap_or_else(|| panic!("{name} loaded"));
+        let err = load_ply(&path)
+            .err()
+            .unwrap_or_else(|| panic!("{name} loaded"));
         assert!(
             err.contains(want) && err.contains(&path.display().to_string()),
             "{name}: {err}"

@@ -117,11 +117,15 @@ fn header(bytes: &[u8]) -> Result<Header, String> {
             }
             ["element", name, count] => elements.push(Element {
                 name: name.to_string(),
-                records: count.parse().map_err(|_| at("a count that is not a number"))?,
+                records: count
+                    .parse()
+                    .map_err(|_| at("a count that is not a number"))?,
                 properties: Vec::new(),
             }),
             ["property", "list", count, item, name] => {
-                let element = elements.last_mut().ok_or_else(|| at("a property of no element"))?;
+                let element = elements
+                    .last_mut()
+                    .ok_or_else(|| at("a property of no element"))?;
                 let scalar = |w: &str| Scalar::parse(w).ok_or_else(|| at("an unknown type"));
                 element.properties.push(Property {
                     name: name.to_string(),
@@ -130,7 +134,9 @@ fn header(bytes: &[u8]) -> Result<Header, String> {
                 });
             }
             ["property", item, name] => {
-                let element = elements.last_mut().ok_or_else(|| at("a property of no element"))?;
+                let element = elements
+                    .last_mut()
+                    .ok_or_else(|| at("a property of no element"))?;
                 element.properties.push(Property {
                     name: name.to_string(),
                     count: None,
@@ -170,7 +176,10 @@ impl Reader<'_> {
                 .position(|b| b.is_ascii_whitespace())
                 .unwrap_or(rest.len() - start);
             self.at += start + len;
-            return std::str::from_utf8(&rest[start..start + len]).ok()?.parse().ok();
+            return std::str::from_utf8(&rest[start..start + len])
+                .ok()?
+                .parse()
+                .ok();
         }
         let size = kind.size();
         let raw = self.bytes.get(self.at..self.at + size)?;
@@ -215,9 +224,9 @@ impl VertexLayout {
             position: all([&["x"], &["y"], &["z"]])
                 .ok_or("the vertex element has no `x`, `y` and `z`")?,
             normal: all([&["nx"], &["ny"], &["nz"]]),
-            texcoord: find(&["s", "u", "texture_u"]).zip(find(&["t", "v", "texture_v"])).map(
-                |(s, t)| [s, t],
-            ),
+            texcoord: find(&["s", "u", "texture_u"])
+                .zip(find(&["t", "v", "texture_v"]))
+                .map(|(s, t)| [s, t]),
         })
     }
 }
@@ -241,11 +250,14 @@ fn parse(bytes: &[u8]) -> Result<ObjTriangles, String> {
         .position(|p| p.count.is_some() && (p.name == "vertex_indices" || p.name == "vertex_index"))
         .ok_or("the face element has no `vertex_indices` list")?;
     let vertices = header.elements[vertex].records;
+    // Room for what the header promises, but never for more records than the file has bytes:
+    // a header's count is not trusted with memory.
+    let room = vertices.min(bytes.len());
     let mut out = ObjTriangles {
-        positions: Vec::with_capacity(vertices),
-        triangles: Vec::with_capacity(2 * header.elements[face].records),
-        normals: layout.normal.map(|_| Vec::with_capacity(vertices)),
-        texcoords: layout.texcoord.map(|_| Vec::with_capacity(vertices)),
+        positions: Vec::with_capacity(room),
+        triangles: Vec::with_capacity(header.elements[face].records.min(bytes.len())),
+        normals: layout.normal.map(|_| Vec::with_capacity(room)),
+        texcoords: layout.texcoord.map(|_| Vec::with_capacity(room)),
     };
     let mut reader = Reader {
         bytes,
@@ -272,7 +284,8 @@ fn parse(bytes: &[u8]) -> Result<ObjTriangles, String> {
                         for _ in 0..n as usize {
                             let index = read(property.item)?;
                             if e == face && k == indices {
-                                if !(0.0..vertices as f64).contains(&index) {
+                                if !(0.0..vertices as f64).contains(&index) || index.fract() != 0.0
+                                {
                                     return Err(at(&format!(
                                         "corner {index} names no vertex (the file has {vertices})"
                                     )));
@@ -286,16 +299,22 @@ fn parse(bytes: &[u8]) -> Result<ObjTriangles, String> {
             }
             if e == vertex {
                 let pick = |i: usize| values[i] as f32;
+                let finite = |v: &[f32]| v.iter().all(|c| c.is_finite());
                 let p = layout.position.map(pick);
-                if !p.iter().all(|c| c.is_finite()) {
+                if !finite(&p) {
                     return Err(at("a position that is not three finite numbers"));
                 }
-                out.positions.push(p);
-                if let (Some(n), Some(i)) = (&mut out.normals, layout.normal) {
-                    n.push(i.map(pick));
+                let normal = layout.normal.map(|i| i.map(pick));
+                let uv = layout.texcoord.map(|i| i.map(pick));
+                if normal.is_some_and(|n| !finite(&n)) || uv.is_some_and(|t| !finite(&t)) {
+                    return Err(at("a normal or texture coordinate that is not finite"));
                 }
-                if let (Some(t), Some(i)) = (&mut out.texcoords, layout.texcoord) {
-                    t.push(i.map(pick));
+                out.positions.push(p);
+                if let (Some(all), Some(n)) = (&mut out.normals, normal) {
+                    all.push(n);
+                }
+                if let (Some(all), Some(t)) = (&mut out.texcoords, uv) {
+                    all.push(t);
                 }
             } else if e == face {
                 if corners.len() < 3 {
