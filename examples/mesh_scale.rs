@@ -5,19 +5,22 @@
 //! memory per triangle after the scene is built and at its peak (each size runs in a process
 //! of its own, so peaks do not carry over), and the render time against the analytic lens's.
 //!
+//! First, the time to read the same meshes from an OBJ and from a binary PLY file.
+//!
 //! `cargo run --release --example mesh_scale` (sizes 1.2·10⁴, 1.3·10⁵, 1.3·10⁶ and 10⁷
 //! triangles; the OBJ files go to out/, 10⁷ triangles ≈ 0.4 GB) or `-- --sizes 30,330`.
 
 use grinlight::scene::load::parse_scene;
+use grinlight::scene::mesh::{load_triangles, ObjTriangles};
+use grinlight::scene::ply::load_ply;
 use grinlight::shapes::Primitive;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-/// Writes the cube sphere of radius `radius` with `n` × `n` cells a face to `path`; its
-/// triangles wind counter-clockwise seen from outside (outward normals).
-fn write_cube_sphere(path: &Path, n: usize, radius: f64) -> std::io::Result<usize> {
-    let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);
+/// The cube sphere of radius `radius` with `n` × `n` cells a face: vertices, and triangles
+/// (0-based) winding counter-clockwise seen from outside (outward normals).
+fn cube_sphere(n: usize, radius: f64) -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
     let faces: [([f64; 3], [f64; 3], [f64; 3]); 6] = [
         ([1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]),
         ([-1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, 1.0, 0.0]),
@@ -26,7 +29,7 @@ fn write_cube_sphere(path: &Path, n: usize, radius: f64) -> std::io::Result<usiz
         ([0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]),
         ([0.0, 0.0, -1.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0]),
     ];
-    let mut triangles = 0;
+    let (mut vertices, mut triangles) = (Vec::new(), Vec::new());
     for (f, (c, u, v)) in faces.iter().enumerate() {
         for j in 0..=n {
             for i in 0..=n {
@@ -36,24 +39,91 @@ fn write_cube_sphere(path: &Path, n: usize, radius: f64) -> std::io::Result<usiz
                 );
                 let p: Vec<f64> = (0..3).map(|k| c[k] + a * u[k] + b * v[k]).collect();
                 let len = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
-                let q: Vec<f32> = p.iter().map(|x| (radius * x / len) as f32).collect();
-                writeln!(out, "v {} {} {}", q[0], q[1], q[2])?;
+                vertices.push([0, 1, 2].map(|k| (radius * p[k] / len) as f32));
             }
         }
         // u × v = c on every face above, so (i, j) → (i + 1, j) → (i + 1, j + 1) turns
         // counter-clockwise seen from outside.
-        let base = f * (n + 1) * (n + 1) + 1;
-        let at = |i: usize, j: usize| base + j * (n + 1) + i;
+        let base = f * (n + 1) * (n + 1);
+        let at = |i: usize, j: usize| (base + j * (n + 1) + i) as u32;
         for j in 0..n {
             for i in 0..n {
                 let (a, b, c, d) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
-                writeln!(out, "f {a} {b} {c}\nf {a} {c} {d}")?;
-                triangles += 2;
+                triangles.push([a, b, c]);
+                triangles.push([a, c, d]);
             }
         }
     }
+    (vertices, triangles)
+}
+
+/// Writes the cube sphere of radius `radius` with `n` × `n` cells a face to `path` as an OBJ
+/// (or, for a path ending in .ply, a binary little-endian PLY); returns its triangles.
+fn write_cube_sphere(path: &Path, n: usize, radius: f64) -> std::io::Result<usize> {
+    let (vertices, triangles) = cube_sphere(n, radius);
+    let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);
+    if path.extension().is_some_and(|e| e == "ply") {
+        write!(
+            out,
+            "ply\nformat binary_little_endian 1.0\nelement vertex {}\nproperty float x\n\
+             property float y\nproperty float z\nelement face {}\n\
+             property list uchar int vertex_indices\nend_header\n",
+            vertices.len(),
+            triangles.len()
+        )?;
+        for v in &vertices {
+            for c in v {
+                out.write_all(&c.to_le_bytes())?;
+            }
+        }
+        for t in &triangles {
+            out.write_all(&[3])?;
+            for i in t {
+                out.write_all(&(*i as i32).to_le_bytes())?;
+            }
+        }
+    } else {
+        for v in &vertices {
+            writeln!(out, "v {} {} {}", v[0], v[1], v[2])?;
+        }
+        for t in &triangles {
+            writeln!(out, "f {} {} {}", t[0] + 1, t[1] + 1, t[2] + 1)?;
+        }
+    }
     out.flush()?;
-    Ok(triangles)
+    Ok(triangles.len())
+}
+
+/// The time to read the cube sphere of `n` cells a face from an OBJ and from a binary PLY
+/// (the readers alone, median of 3), as a table row.
+fn read_times(n: usize) -> String {
+    std::fs::create_dir_all("out").unwrap();
+    let time = |path: &Path, read: &dyn Fn(&Path) -> Result<ObjTriangles, String>| {
+        median(
+            (0..3)
+                .map(|_| {
+                    let t = Instant::now();
+                    std::hint::black_box(read(path).expect("reads"));
+                    t.elapsed().as_secs_f64()
+                })
+                .collect(),
+        )
+    };
+    let (obj, ply) = (
+        PathBuf::from(format!("out/mesh_read_{n}.obj")),
+        PathBuf::from(format!("out/mesh_read_{n}.ply")),
+    );
+    let triangles = write_cube_sphere(&obj, n, 0.5).expect("write the OBJ");
+    write_cube_sphere(&ply, n, 0.5).expect("write the PLY");
+    let row = format!(
+        "| {:.3e} | {:.3} | {:.3} |",
+        triangles as f64,
+        time(&obj, &|p| load_triangles(p)),
+        time(&ply, &|p| load_ply(p))
+    );
+    std::fs::remove_file(&obj).ok();
+    std::fs::remove_file(&ply).ok();
+    row
 }
 
 /// A field of /proc/self/status in bytes (VmRSS, VmHWM).
@@ -155,7 +225,12 @@ fn main() {
             })
             .collect(),
     );
-    println!("analytic sphere: render {analytic:.2} s (200 × 150, median of 3)\n");
+    println!("Reading the cube sphere's file (the reader alone, median of 3):\n");
+    println!("| triangles | OBJ (s) | binary PLY (s) |\n|---|---|---|");
+    for &n in &sizes {
+        println!("{}", read_times(n));
+    }
+    println!("\nanalytic sphere: render {analytic:.2} s (200 × 150, median of 3)\n");
     println!("| triangles | OBJ load + BVH (s) | mesh bytes/triangle | RSS after build, bytes/triangle | peak RSS, bytes/triangle | render (s) | render / analytic |");
     println!("|---|---|---|---|---|---|---|");
     let exe = std::env::current_exe().unwrap();
