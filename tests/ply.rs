@@ -206,7 +206,9 @@ fn a_damaged_ply_file_is_an_error_naming_where() {
         ),
         (
             "normal.ply",
-            ascii.replacen("200 100 50 1 0 0", "200 100 50 inf 0 0", 1).into_bytes(),
+            ascii
+                .replacen("200 100 50 1 0 0", "200 100 50 inf 0 0", 1)
+                .into_bytes(),
             "a normal or texture coordinate that is not finite",
         ),
         (
@@ -215,7 +217,11 @@ fn a_damaged_ply_file_is_an_error_naming_where() {
             ply_header("binary_little_endian")
                 .replace("element vertex 6", "element vertex 999999999999999")
                 .bytes()
-                .chain(good[ply_header("binary_little_endian").len()..].iter().copied())
+                .chain(
+                    good[ply_header("binary_little_endian").len()..]
+                        .iter()
+                        .copied(),
+                )
                 .collect(),
             "the data ends early",
         ),
