@@ -174,10 +174,11 @@ fn read_mesh(t: &mut TableReader) -> Result<Vec<Primitive>> {
     let mut vertices = obj.positions;
     for (i, v) in vertices.iter_mut().enumerate() {
         let given = DVec3::from(v.map(f64::from));
+        // The messages are formatted only if a check fails (a million vertices each).
         t.check(
             "file",
             given.abs().max_element() <= MAX_MAGNITUDE,
-            format!(
+            format_args!(
                 "{}: vertex {} lies at {:?}, beyond ±{MAX_MAGNITUDE:e}",
                 path.display(),
                 i + 1,
@@ -188,7 +189,7 @@ fn read_mesh(t: &mut TableReader) -> Result<Vec<Primitive>> {
         t.check(
             "scale",
             p.abs().max_element() <= MAX_MAGNITUDE,
-            format!(
+            format_args!(
                 "{}: scaled and moved, a vertex lies beyond ±{MAX_MAGNITUDE:e}",
                 path.display()
             ),
