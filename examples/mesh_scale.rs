@@ -1,6 +1,6 @@
 //! Meshes at scale: a Luneburg lens bounded by a triangulated sphere (a cube sphere: six
-//! faces of N × N cells, two triangles a cell, written as an OBJ) against the analytic
-//! sphere of `scenes/luneburg.toml`, rendered at 200 × 150. For each size: OBJ load and BVH
+//! faces of N × N cells, two triangles a cell, written as a binary PLY) against the analytic
+//! sphere of `scenes/luneburg.toml`, rendered at 200 × 150. For each size: PLY load and BVH
 //! build time, the mesh's bytes per triangle (vertices, indices, BVH), the process's resident
 //! memory per triangle after the scene is built and at its peak (each size runs in a process
 //! of its own, so peaks do not carry over), and the render time against the analytic lens's.
@@ -8,7 +8,7 @@
 //! First, the time to read the same meshes from an OBJ and from a binary PLY file.
 //!
 //! `cargo run --release --example mesh_scale` (sizes 1.2·10⁴, 1.3·10⁵, 1.3·10⁶ and 10⁷
-//! triangles; the OBJ files go to out/, 10⁷ triangles ≈ 0.4 GB) or `-- --sizes 30,330`.
+//! triangles; the PLY files go to out/, 10⁷ triangles ≈ 0.2 GB) or `-- --sizes 30,330`.
 
 use grinlight::scene::load::parse_scene;
 use grinlight::scene::mesh::{load_triangles, ObjTriangles};
@@ -155,17 +155,17 @@ fn scene_text(mesh: Option<&Path>) -> String {
 /// One size, in this process: prints a table row's fields as `key=value` lines.
 fn one(n: usize) {
     std::fs::create_dir_all("out").unwrap();
-    let obj = PathBuf::from(format!("out/mesh_scale_{n}.obj"))
+    let file = PathBuf::from(format!("out/mesh_scale_{n}.ply"))
         .canonicalize()
         .unwrap_or_else(|_| {
             std::env::current_dir()
                 .unwrap()
-                .join(format!("out/mesh_scale_{n}.obj"))
+                .join(format!("out/mesh_scale_{n}.ply"))
         });
-    let triangles = write_cube_sphere(&obj, n, 0.5).expect("write the OBJ");
+    let triangles = write_cube_sphere(&file, n, 0.5).expect("write the PLY");
     let rss0 = status_bytes("VmRSS:");
     let t = Instant::now();
-    let (scene, settings) = parse_scene(Path::new("scenes/luneburg.toml"), scene_text(Some(&obj)))
+    let (scene, settings) = parse_scene(Path::new("scenes/luneburg.toml"), scene_text(Some(&file)))
         .expect("the mesh scene parses");
     let load = t.elapsed().as_secs_f64();
     let rss1 = status_bytes("VmRSS:");
@@ -189,7 +189,7 @@ fn one(n: usize) {
     println!("rss={}", (rss1 - rss0) / tri);
     println!("peak={}", peak / tri);
     println!("render={render}");
-    std::fs::remove_file(&obj).ok();
+    std::fs::remove_file(&file).ok();
 }
 
 fn median(mut v: Vec<f64>) -> f64 {
@@ -231,7 +231,7 @@ fn main() {
         println!("{}", read_times(n));
     }
     println!("\nanalytic sphere: render {analytic:.2} s (200 × 150, median of 3)\n");
-    println!("| triangles | OBJ load + BVH (s) | mesh bytes/triangle | RSS after build, bytes/triangle | peak RSS, bytes/triangle | render (s) | render / analytic |");
+    println!("| triangles | PLY load + BVH (s) | mesh bytes/triangle | RSS after build, bytes/triangle | peak RSS, bytes/triangle | render (s) | render / analytic |");
     println!("|---|---|---|---|---|---|---|");
     let exe = std::env::current_exe().unwrap();
     for n in sizes {
