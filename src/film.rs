@@ -11,6 +11,7 @@ use crate::color::{preview_byte, Rgb};
 use crate::error::{Error, Result};
 use crate::exact::Fixed;
 use exr::prelude::*;
+use rayon::prelude::*;
 use std::path::Path;
 
 /// What a layer holds.
@@ -143,6 +144,15 @@ impl Film {
         Ok(())
     }
 
+    /// Empties it: every sum and count 0, nothing rejected (its buffers kept for reuse).
+    pub fn clear(&mut self) {
+        for plane in &mut self.sums {
+            plane.fill([Fixed::ZERO; 3]);
+        }
+        self.counts.fill(0);
+        self.rejected = 0;
+    }
+
     /// Adds `tile`, a film of a rectangle of this one, with its top-left corner at (x0, y0).
     pub fn paste(&mut self, tile: &Film, x0: usize, y0: usize) {
         for y in 0..tile.height {
@@ -170,7 +180,8 @@ impl Film {
     }
 
     /// The developed layer `name` (`beauty`: the sum of the radiance layers), row-major, linear
-    /// RGB in f32; None for a layer the film does not hold.
+    /// RGB in f32; None for a layer the film does not hold. Developed in parallel, straight to
+    /// f32 (an HD frame's layer is 2·10⁶ pixels of exact sums).
     pub fn layer(&self, name: &str) -> Option<Vec<[f32; 3]>> {
         let mean = |plane: &[[Fixed; 3]], i: usize| {
             Rgb::new(
@@ -179,23 +190,25 @@ impl Film {
                 plane[i][2].to_f64(),
             ) / self.counts[i].max(1) as f64
         };
-        let pixels = self.width * self.height;
-        let plane: Vec<Rgb> = if name == "beauty" {
-            (0..pixels)
+        let pixels = (0..self.width * self.height).into_par_iter();
+        let f32s = |v: Rgb| v.as_vec3().to_array();
+        Some(if name == "beauty" {
+            pixels
                 .map(|i| {
-                    self.layers
-                        .iter()
-                        .zip(&self.sums)
-                        .filter(|(l, _)| l.kind == LayerKind::Radiance)
-                        .map(|(_, p)| mean(p, i))
-                        .fold(Rgb::ZERO, |a, b| a + b)
+                    f32s(
+                        self.layers
+                            .iter()
+                            .zip(&self.sums)
+                            .filter(|(l, _)| l.kind == LayerKind::Radiance)
+                            .map(|(_, p)| mean(p, i))
+                            .fold(Rgb::ZERO, |a, b| a + b),
+                    )
                 })
                 .collect()
         } else {
             let k = self.layers.iter().position(|l| l.name == name)?;
-            (0..pixels).map(|i| mean(&self.sums[k], i)).collect()
-        };
-        Some(plane.iter().map(|v| v.as_vec3().to_array()).collect())
+            pixels.map(|i| f32s(mean(&self.sums[k], i))).collect()
+        })
     }
 
     /// Every developed layer, in [`Film::names`] order.

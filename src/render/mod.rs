@@ -170,7 +170,7 @@ pub fn render_with<I: Integrator>(
             break;
         }
         report.passes = k + 1;
-        whole = assemble(&tiles, w, h, layers);
+        assemble(&tiles, &mut whole);
         observer.pass_done(report.passes, &whole)?;
     }
     if report.partial.is_none() && stop() && report.passes < passes.count {
@@ -232,13 +232,14 @@ fn camera_pass<I: Integrator>(
         .collect()
 }
 
-/// The whole film of the tiles' films.
-fn assemble(tiles: &[Tile], w: usize, h: usize, layers: &[crate::film::Layer]) -> Film {
-    let mut film = Film::new(w, h, layers);
+/// The whole film of the tiles' films, assembled into `film` (cleared first): one film
+/// reused from pass to pass, not a new one beside the old (a 1920 × 1080 film of seven layers
+/// is 0.7 GB).
+fn assemble(tiles: &[Tile], film: &mut Film) {
+    film.clear();
     for tile in tiles {
         film.paste(&tile.film, tile.x0, tile.y0);
     }
-    film
 }
 
 /// Which camera samples a pass takes.
