@@ -170,15 +170,15 @@ fn a_scene_mesh_may_be_a_ply_file() {
 }
 
 /// Damaged files are errors that name the file and where: data that ends early (the record
-/// it ends in), a corner that names no vertex or is not a whole number, a vertex, normal or
-/// texture coordinate that is not finite, a face of two corners, a header without
+/// it ends in), a list count or a corner that is negative or not a whole number, a vertex,
+/// normal or texture coordinate that is not finite, a face of two corners, a header without
 /// `end_header` or with an unknown type, a count of records the file cannot hold.
 #[test]
 fn a_damaged_ply_file_is_an_error_naming_where() {
     let good = ply_binary(false);
     let cut = good.len() - 20;
     let ascii = String::from_utf8(ply_ascii()).unwrap();
-    let cases: [(&str, Vec<u8>, &str); 9] = [
+    let cases: [(&str, Vec<u8>, &str); 10] = [
         (
             "cut.ply",
             good[..cut].to_vec(),
@@ -198,6 +198,11 @@ fn a_damaged_ply_file_is_an_error_naming_where() {
             "two.ply",
             ascii.replace("7 3 0 5 3", "7 2 0 5").into_bytes(),
             "face 6: a face of fewer than three corners",
+        ),
+        (
+            "count.ply",
+            ascii.replace("7 3 0 5 3", "7 -3 0 5 3").into_bytes(),
+            "face 6: a list of -3 items",
         ),
         (
             "fraction.ply",

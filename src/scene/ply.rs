@@ -281,6 +281,9 @@ fn parse(bytes: &[u8]) -> Result<ObjTriangles, String> {
                     None => values.push(read(property.item)?),
                     Some(count) => {
                         let n = read(count)?;
+                        if n < 0.0 || n.fract() != 0.0 {
+                            return Err(at(&format!("a list of {n} items")));
+                        }
                         for _ in 0..n as usize {
                             let index = read(property.item)?;
                             if e == face && k == indices {

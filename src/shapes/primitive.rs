@@ -229,19 +229,13 @@ impl Primitive {
     }
 
     /// The primitive's surface as a plane or a sphere, if it is one (a ray's circle meets it
-    /// in closed form).
+    /// in closed form); None for a cylinder's side and a mesh.
     fn round_surface(&self) -> Option<RoundSurface> {
         match *self {
             Primitive::Sphere { center, radius } => Some(RoundSurface::sphere(center, radius)),
             Primitive::Tube { .. } | Primitive::Mesh(_) => None,
             _ => self.plane().map(|p| p.surface()),
         }
-    }
-
-    /// The cylinder's implicit function g(x) (zero on its infinite side) and its gradient.
-    fn tube_implicit(x: DVec3, base: DVec3, axis: DVec3, radius: f64) -> (f64, DVec3) {
-        let p = across_axis(x - base, axis);
-        (p.length_squared() - radius * radius, 2.0 * p)
     }
 
     /// Whether a point where the implicit function vanishes is on the primitive proper.
@@ -305,15 +299,14 @@ impl Primitive {
         if let Primitive::Mesh(mesh) = self {
             return mesh.intersect_segment(seg, hull, s_min, length);
         }
-        let roots = match (self.round_surface(), self) {
-            (Some(surface), _) => super::round_roots(seg, length, &surface),
-            (
-                None,
-                &Primitive::Tube {
-                    base, axis, radius, ..
-                },
-            ) => super::segment_roots(seg, length, |x| Self::tube_implicit(x, base, axis, radius)),
-            (None, _) => unreachable!("a mesh is searched above; every other primitive is round"),
+        let roots = match *self {
+            Primitive::Tube {
+                base, axis, radius, ..
+            } => super::segment_roots(seg, length, |x| {
+                let p = across_axis(x - base, axis);
+                (p.length_squared() - radius * radius, 2.0 * p)
+            }),
+            _ => super::round_roots(seg, length, &self.round_surface()?),
         };
         roots.into_iter().filter(|&s| s > s_min).find_map(|s| {
             let x = seg.at(s).position;
