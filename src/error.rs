@@ -26,6 +26,15 @@ pub enum Error {
         /// What is wrong, naming the key.
         message: String,
     },
+    /// A scene given as data (see [`crate::scene::data`]) is malformed or inconsistent at
+    /// `key`.
+    #[error("{key}: {message}")]
+    Key {
+        /// The key's path from the top (`medium[0].radius`).
+        key: String,
+        /// What is wrong, naming the key.
+        message: String,
+    },
     /// A command-line argument is invalid.
     #[error("{0}")]
     Usage(String),

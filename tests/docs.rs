@@ -116,7 +116,7 @@ fn sources(dir: &Path, out: &mut Vec<PathBuf>) {
 fn the_repository_speaks_of_the_product() {
     let mut files = vec![PathBuf::from("README.md"), PathBuf::from("Cargo.toml")];
     for dir in [
-        "src", "tests", "examples", "scenes", "docs", "cluster", "bench",
+        "src", "tests", "examples", "scenes", "docs", "cluster", "bench", "python",
     ] {
         if Path::new(dir).is_dir() {
             sources(Path::new(dir), &mut files);

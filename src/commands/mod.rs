@@ -1,5 +1,5 @@
 //! The commands of the `grinlight` program as library calls: what a user can do from the
-//! command line, a library user does with one call ([`render()`], [`merge()`], [`validate()`], [`trace()`]). Each takes a job (the scene file and the command line's choices) and an
+//! command line, a library user does with one call ([`render()`], [`merge()`], [`validate()`], [`trace()`]; [`render_in_memory()`] renders without files). Each takes a job (the scene file and the command line's choices) and an
 //! [`Observer`] that is told of progress, shown the report line by line and asked whether to
 //! stop; each checks every file it will write before any work (see [`crate::output`]) and
 //! what it asks of the machine (see [`crate::resources`]).
@@ -10,8 +10,8 @@ mod trace;
 mod validate;
 
 pub use merge::{merge, MergeJob};
-pub use render::{render, Overrides, RenderJob, RenderOutcome};
-pub use trace::{trace, TraceControl, TraceJob};
+pub use render::{render, render_in_memory, Overrides, RenderJob, RenderOutcome};
+pub use trace::{trace, trace_ray, PathPoint, RayTrace, TraceControl, TraceJob, Traced};
 pub use validate::{validate, ValidateJob};
 
 pub use crate::render::{Observer, Progress};

@@ -242,24 +242,7 @@ pub fn render(job: &RenderJob, observer: &dyn Observer) -> Result<RenderOutcome>
     }
     job.overrides.apply(&mut description, &mut settings)?;
     let fiber = fiber_to_draw(job, &description)?;
-    let scene = description.build();
-    if scene.camera.is_none() && scene.receivers.is_empty() {
-        return Err(Error::Usage(format!(
-            "{}: the scene has no [camera] and no [[receiver]]: nothing to render",
-            job.scene.display()
-        )));
-    }
-    if let Some(c) = &scene.camera {
-        let tracer = crate::transport::Tracer::new(&scene, &settings.trace);
-        if tracer.index(tracer.camera_medium, c.position).is_none() {
-            observer.warning(&format!(
-                "the camera at {:?} is where its medium captures light (inside a black hole's \
-                 horizon, or where the index is not positive): every camera ray ends there and \
-                 the image is black",
-                c.position.to_array()
-            ));
-        }
-    }
+    let scene = build_checked(description, &settings, observer)?;
     let shard = job.shard.unwrap_or(Shard::WHOLE);
     if job.shard.is_some() && (settings.time_budget.is_some() || job.paths > 0) {
         return Err(Error::Usage(
@@ -389,6 +372,72 @@ pub fn render(job: &RenderJob, observer: &dyn Observer) -> Result<RenderOutcome>
         remove_own_checkpoint(&state, &header)?;
     }
     Ok(outcome)
+}
+
+/// Renders a scene given as its description and settings (a file's, or data's) in memory,
+/// with `overrides` applied: its receivers measured, then its camera view rendered, and the
+/// results returned — no file written, none saved to resume. The same scene, settings and
+/// overrides give the film and measurements [`render`] writes, bit for bit. When the
+/// observer asks to stop, the outcome holds the work done and is marked interrupted.
+pub fn render_in_memory(
+    mut description: Description,
+    mut settings: Settings,
+    overrides: &Overrides,
+    observer: &dyn Observer,
+) -> Result<RenderOutcome> {
+    for w in &description.warnings {
+        observer.warning(w);
+    }
+    overrides.apply(&mut description, &mut settings)?;
+    let scene = build_checked(description, &settings, observer)?;
+    crate::resources::check_memory(
+        crate::render::memory_needed(&scene, &settings),
+        &format!("rendering {}", scene.path().display()),
+    )?;
+    let header = Header::new(&scene, &settings, Shard::WHOLE, Role::Checkpoint)?;
+    let saving = Saving {
+        every: 0,
+        interval: Duration::MAX,
+        save: &|_| Ok(()),
+    };
+    let ran = crate::shard::run(&scene, &settings, Partial::empty(header), observer, &saving)?;
+    let interrupted = ran.interrupted();
+    let work = Work {
+        receivers: ran.receivers.as_ref(),
+        camera: ran.camera.as_ref(),
+    };
+    let mut outcome = results(&scene, &settings, ran.partial, work, observer);
+    outcome.interrupted = interrupted;
+    outcome.incomplete = interrupted;
+    Ok(outcome)
+}
+
+/// Builds a scene to render, refusing one with nothing to render and warning of a camera
+/// where its medium captures light.
+fn build_checked(
+    description: Description,
+    settings: &Settings,
+    observer: &dyn Observer,
+) -> Result<Scene> {
+    let scene = description.build();
+    if scene.camera.is_none() && scene.receivers.is_empty() {
+        return Err(Error::Usage(format!(
+            "{}: the scene has no [camera] and no [[receiver]]: nothing to render",
+            scene.path().display()
+        )));
+    }
+    if let Some(c) = &scene.camera {
+        let tracer = crate::transport::Tracer::new(&scene, &settings.trace);
+        if tracer.index(tracer.camera_medium, c.position).is_none() {
+            observer.warning(&format!(
+                "the camera at {:?} is where its medium captures light (inside a black hole's \
+                 horizon, or where the index is not positive): every camera ray ends there and \
+                 the image is black",
+                c.position.to_array()
+            ));
+        }
+    }
+    Ok(scene)
 }
 
 /// The GRIN fiber whose photon paths `--paths` asks to draw, if it does (checked: at most
@@ -535,10 +584,53 @@ fn write_results(
     scene: &Scene,
     settings: &Settings,
     partial: Partial,
-    Work { receivers, camera }: Work,
+    work: Work,
     files: &Files,
     observer: &dyn Observer,
 ) -> Result<RenderOutcome> {
+    let outcome = results(scene, settings, partial, work, observer);
+    for ((r, m), [csv, png, radial_csv, radial_png]) in scene
+        .receivers
+        .iter()
+        .zip(&outcome.measurements)
+        .zip(&files.receivers)
+    {
+        let profile = receiver::radial_profile(r, m);
+        receiver::write_csv(r, m, csv)?;
+        receiver::write_png(r, m, png)?;
+        receiver::write_radial_csv(&profile, radial_csv)?;
+        receiver::write_radial_png(&r.name, &[("measured", &profile)], radial_png)?;
+        observer.line(&format!(
+            "receiver '{}': wrote {} (.png, .radial.csv, .radial.png)",
+            r.name,
+            csv.display()
+        ));
+    }
+    if let Some((film, _)) = &outcome.film {
+        files.write_film(film, settings.output.exposure)?;
+        observer.line(&format!(
+            "wrote {} (layers: {})",
+            files.exr.display(),
+            film.names().join(", ")
+        ));
+        if let Some(png) = &files.png {
+            observer.line(&format!("wrote {}", png.display()));
+        }
+    }
+    Ok(outcome)
+}
+
+/// A render's results from its partial (a whole render's, or shards merged): each receiver's
+/// measurement, the energy budget, and the film, each reported to the observer; the reports
+/// of the `work` are shown when given. A partial lacking photons gives an estimate scaled to
+/// the whole batch; the report says so.
+fn results(
+    scene: &Scene,
+    settings: &Settings,
+    partial: Partial,
+    Work { receivers, camera }: Work,
+    observer: &dyn Observer,
+) -> RenderOutcome {
     let mut outcome = RenderOutcome::default();
     if !scene.receivers.is_empty() {
         let books = &partial.books;
@@ -562,23 +654,10 @@ fn write_results(
             ));
             observer.line(&report.stats.summary());
         }
-        for ((r, m), [csv, png, radial_csv, radial_png]) in scene
-            .receivers
-            .iter()
-            .zip(&measurements)
-            .zip(&files.receivers)
-        {
-            let profile = receiver::radial_profile(r, m);
-            receiver::write_csv(r, m, csv)?;
-            receiver::write_png(r, m, png)?;
-            receiver::write_radial_csv(&profile, radial_csv)?;
-            receiver::write_radial_png(&r.name, &[("measured", &profile)], radial_png)?;
+        for (r, m) in scene.receivers.iter().zip(&measurements) {
             observer.line(&format!(
-                "receiver '{}': flux {:.6e} ± {:.1e} W; wrote {} (.png, .radial.csv, .radial.png)",
-                r.name,
-                m.flux.0,
-                m.flux.1,
-                csv.display()
+                "receiver '{}': flux {:.6e} ± {:.1e} W",
+                r.name, m.flux.0, m.flux.1
             ));
             for ((lo, hi), b) in r.bands.iter().zip(&m.bands) {
                 observer.line(&format!(
@@ -594,9 +673,8 @@ fn write_results(
     }
     let missing = partial.remaining().0;
     let Some(film) = partial.film else {
-        return Ok(outcome);
+        return outcome;
     };
-    files.write_film(&film, settings.output.exposure)?;
     let what = format!(
         "{} ({}×{}, {} spp × {} passes{})",
         scene.path().display(),
@@ -624,16 +702,8 @@ fn write_results(
     if camera.is_some() {
         observer.line(&report.summary());
     }
-    observer.line(&format!(
-        "wrote {} (layers: {})",
-        files.exr.display(),
-        film.names().join(", ")
-    ));
-    if let Some(png) = &files.png {
-        observer.line(&format!("wrote {}", png.display()));
-    }
     outcome.film = Some((film, report));
-    Ok(outcome)
+    outcome
 }
 
 /// Which photon paths Zhdanov et al. (2020) fig. 5 draws: the first `count` of the receiver batch.

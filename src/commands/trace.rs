@@ -8,6 +8,7 @@ use crate::error::{Error, Result};
 use crate::media::Medium;
 use crate::output::{Kind, Outputs};
 use crate::plot::{self, Labels, Panel};
+use crate::scene::Scene;
 use crate::spectrum::{LAMBDA_MAX, LAMBDA_MIN};
 use glam::DVec3;
 use std::io::Write;
@@ -45,7 +46,18 @@ pub enum TraceControl {
 pub struct TraceJob {
     /// The scene file.
     pub scene: PathBuf,
-    /// The name of one of its media (traced unbounded, with no surfaces).
+    /// The ray.
+    pub ray: RayTrace,
+    /// Write every accepted step here as CSV.
+    pub csv: Option<PathBuf>,
+    /// Draw the path here as PNG.
+    pub plot: Option<PathBuf>,
+}
+
+/// One ray to follow through a medium of a scene.
+#[derive(Clone, Debug)]
+pub struct RayTrace {
+    /// The name of one of the scene's media (traced unbounded, with no surfaces).
     pub medium: String,
     /// Start point.
     pub from: DVec3,
@@ -62,10 +74,15 @@ pub struct TraceJob {
     pub control: TraceControl,
     /// Maximum number of step attempts (N_max).
     pub max_steps: u64,
-    /// Write every accepted step here as CSV.
-    pub csv: Option<PathBuf>,
-    /// Draw the path here as PNG.
-    pub plot: Option<PathBuf>,
+}
+
+/// A followed ray: how its march ended, and every accepted point (the start first).
+#[derive(Clone, Debug)]
+pub struct Traced {
+    /// How the march ended.
+    pub outcome: MarchOutcome,
+    /// Every accepted point.
+    pub points: Vec<PathPoint>,
 }
 
 impl TraceControl {
@@ -117,6 +134,35 @@ impl TraceControl {
 /// atomically after checking that neither can overwrite an input or another output.
 pub fn trace(job: &TraceJob, observer: &dyn Observer) -> Result<MarchOutcome> {
     let (scene, _) = crate::scene::load_scene(&job.scene)?;
+    let mut outputs = Outputs::new(&scene.inputs);
+    if let Some(csv) = &job.csv {
+        outputs.add(csv, Kind::Csv)?;
+    }
+    if let Some(plot) = &job.plot {
+        outputs.add(plot, Kind::Png)?;
+    }
+    let Traced { outcome, points } = trace_ray(&scene, &job.ray, observer)?;
+    if let Some(path) = &job.csv {
+        write_csv(&points, path)?;
+    }
+    let medium = scene.medium(&job.ray.medium)?;
+    let legend = match &job.plot {
+        Some(path) => Some(plot_path(medium, &points, path)?),
+        None => None,
+    };
+    observer.line(&summary(&outcome));
+    if let Some(path) = &job.csv {
+        observer.line(&format!("wrote {} ({} rows)", path.display(), points.len()));
+    }
+    if let (Some(path), Some(legend)) = (&job.plot, legend) {
+        observer.line(&format!("wrote {}: {legend}", path.display()));
+    }
+    Ok(outcome)
+}
+
+/// Follows one ray through a medium of a loaded scene, after checking every value of the
+/// request (each error names its command-line flag); warns where the stepper cannot bend it.
+pub fn trace_ray(scene: &Scene, job: &RayTrace, observer: &dyn Observer) -> Result<Traced> {
     let reference = scene.medium(&job.medium)?;
     let dispersed = match job.wavelength {
         None => None,
@@ -147,13 +193,6 @@ pub fn trace(job: &TraceJob, observer: &dyn Observer) -> Result<MarchOutcome> {
     if job.dir == DVec3::ZERO {
         return Err(Error::Usage("--dir must be a non-zero vector".into()));
     }
-    let mut outputs = Outputs::new(&scene.inputs);
-    if let Some(csv) = &job.csv {
-        outputs.add(csv, Kind::Csv)?;
-    }
-    if let Some(plot) = &job.plot {
-        outputs.add(plot, Kind::Png)?;
-    }
     let start = RayState::new(medium, job.from, job.dir).ok_or_else(|| {
         Error::Usage(format!(
             "--from {}: the medium captures rays there (singular or non-positive index)",
@@ -175,22 +214,8 @@ pub fn trace(job: &TraceJob, observer: &dyn Observer) -> Result<MarchOutcome> {
             .map_err(|why| Error::Usage(format!("--max-steps {why}")))?,
         bounds: Bounds::Unbounded,
     };
-    let (out, points) = trace_path(medium, job.stepper, control, start, &limits);
-    if let Some(path) = &job.csv {
-        write_csv(&points, path)?;
-    }
-    let legend = match &job.plot {
-        Some(path) => Some(plot_path(medium, &points, path)?),
-        None => None,
-    };
-    observer.line(&summary(&out));
-    if let Some(path) = &job.csv {
-        observer.line(&format!("wrote {} ({} rows)", path.display(), points.len()));
-    }
-    if let (Some(path), Some(legend)) = (&job.plot, legend) {
-        observer.line(&format!("wrote {}: {legend}", path.display()));
-    }
-    Ok(out)
+    let (outcome, points) = trace_path(medium, job.stepper, control, start, &limits);
+    Ok(Traced { outcome, points })
 }
 
 /// One accepted point of a traced path.
@@ -198,6 +223,9 @@ pub fn trace(job: &TraceJob, observer: &dyn Observer) -> Result<MarchOutcome> {
 pub struct PathPoint {
     /// Arclength from the start.
     pub s: f64,
+    /// Optical path length ∫ n ds from the start (the sum of the steps' own, as
+    /// [`MarchOutcome::optical_path`]).
+    pub opl: f64,
     /// The state there.
     pub state: RayState,
 }
@@ -211,8 +239,14 @@ pub fn trace_path(
     limits: &MarchLimits,
 ) -> (MarchOutcome, Vec<PathPoint>) {
     let mut points = Vec::new();
+    let mut opl = 0.0;
     let out = march_with(kind, medium, control, start, limits, |s, st| {
-        points.push(PathPoint { s, state: st.state });
+        opl += st.optical_path;
+        points.push(PathPoint {
+            s,
+            opl,
+            state: st.state,
+        });
         std::ops::ControlFlow::Continue(())
     });
     (out, points)

@@ -2,6 +2,7 @@
 //! resolved, and the [`Settings`] of its `[render]` and `[output]` tables; every error located
 //! at file:line:col and naming the key.
 
+use super::data::SceneText;
 use super::media::{read_density, read_medium, read_scattering, uniform};
 use super::model::{Description, Media, Profile, Scene, Shape, Surface};
 use super::read::{
@@ -259,12 +260,16 @@ fn read_settings(
 /// Parses scene text (already read from `path`): the scene's description and the settings of
 /// its `[render]` and `[output]` tables.
 pub fn parse_description(path: &Path, text: String) -> Result<(Description, Settings)> {
-    let source = Source {
-        path: path.to_path_buf(),
-        text,
-        inputs: Default::default(),
-        warnings: Default::default(),
-    };
+    parse(Source::file(path.to_path_buf(), text))
+}
+
+/// Parses a scene given as data (the scene file's schema as a table), its relative paths
+/// resolved in `dir`: errors name the key's path (`medium[0].radius`).
+pub fn parse_data(table: &toml::Table, dir: &Path) -> Result<(Description, Settings)> {
+    parse(Source::data(SceneText::write(table), dir))
+}
+
+fn parse(source: Source) -> Result<(Description, Settings)> {
     let file: SceneFile = toml::from_str(&source.text).map_err(|e| {
         let offset = e.span().map_or(0, |s| s.start);
         let message = e.message().trim().replace('\n', " ");
@@ -305,7 +310,9 @@ pub fn parse_description(path: &Path, text: String) -> Result<(Description, Sett
         environment,
         receivers,
         camera,
-        inputs: std::iter::once(source.path.clone())
+        inputs: (source.data.is_none())
+            .then(|| source.path.clone())
+            .into_iter()
             .chain(source.inputs.take())
             .collect(),
         warnings: source.warnings.take(),

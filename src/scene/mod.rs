@@ -2,6 +2,7 @@
 //! tables ([`media`], [`read`], [`mesh`]) read into a [`Description`] ([`load`]), and the
 //! description built into the render-ready [`Scene`] ([`model`]).
 
+pub mod data;
 pub mod load;
 pub mod media;
 pub mod mesh;
@@ -12,5 +13,5 @@ pub mod source;
 pub mod table;
 pub mod vdb;
 
-pub use load::{load_description, load_scene};
+pub use load::{load_description, load_scene, parse_data};
 pub use model::{Description, Media, Scene, Shape, Surface};

@@ -2,7 +2,9 @@
 
 use clap::{Parser, Subcommand, ValueEnum};
 use glam::DVec3;
-use grinlight::commands::{MergeJob, Overrides, RenderJob, TraceControl, TraceJob, ValidateJob};
+use grinlight::commands::{
+    MergeJob, Overrides, RayTrace, RenderJob, TraceControl, TraceJob, ValidateJob,
+};
 use grinlight::curve::StepperKind;
 use grinlight::shard::Shard;
 use std::path::PathBuf;
@@ -293,14 +295,16 @@ impl From<TraceArgs> for TraceJob {
         };
         TraceJob {
             scene: a.scene,
-            medium: a.medium,
-            from: a.from,
-            dir: a.dir,
-            length: a.length,
-            wavelength: a.wavelength,
-            stepper: a.stepper,
-            control,
-            max_steps: a.max_steps,
+            ray: RayTrace {
+                medium: a.medium,
+                from: a.from,
+                dir: a.dir,
+                length: a.length,
+                wavelength: a.wavelength,
+                stepper: a.stepper,
+                control,
+                max_steps: a.max_steps,
+            },
             csv: a.csv,
             plot: a.plot,
         }
