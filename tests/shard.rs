@@ -113,8 +113,8 @@ fn shards_merge_into_the_single_run_bit_for_bit() {
     for n in [1, 2, 3, 7] {
         let (whole, merged) = whole_and_merged(&dir, &cornell(&dir), "cornell", n);
         let (a, b) = (
-            &whole.film.as_ref().unwrap().0,
-            &merged.film.as_ref().unwrap().0,
+            &whole.film.as_ref().unwrap().film,
+            &merged.film.as_ref().unwrap().film,
         );
         assert_eq!(a, b, "Cornell film, {n} shards");
         assert!(
@@ -458,9 +458,14 @@ fn a_time_budget_ends_a_whole_render() {
     job.output = Some(dir.join("b.exr"));
     let outcome = commands::render(&job, &()).unwrap();
     assert!(!outcome.interrupted);
-    let (film, report) = outcome.film.unwrap();
-    assert!(report.passes >= 1);
-    assert!(film.counts().iter().all(|&c| c == report.passes as u64));
+    let rendered = outcome.film.unwrap();
+    assert!(rendered.report.passes >= 1);
+    assert_eq!(rendered.passes, rendered.report.passes);
+    assert!(rendered
+        .film
+        .counts()
+        .iter()
+        .all(|&c| c == rendered.passes as u64));
     assert!(!dir.join("b.partial").exists());
     std::fs::remove_dir_all(&dir).unwrap();
 }

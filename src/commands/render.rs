@@ -136,9 +136,9 @@ impl Overrides {
 /// What a render produced (its files are written; its report was shown line by line).
 #[derive(Default)]
 pub struct RenderOutcome {
-    /// The camera render's film and report, if the scene has a camera (and, with a shard,
-    /// its film holds passes).
-    pub film: Option<(Film, Report)>,
+    /// The camera render's film, if the scene has a camera (and, with a shard, its film
+    /// holds passes).
+    pub film: Option<Rendered>,
     /// Each receiver's measurement, in scene order (none for a shard: its partial holds the
     /// tallies).
     pub measurements: Vec<Measurement>,
@@ -150,6 +150,16 @@ pub struct RenderOutcome {
     /// Whether its results hold less than the whole render's work (interrupted, or a merge
     /// of some of the shards with `--allow-missing`); the report says so.
     pub incomplete: bool,
+}
+
+/// A camera render's result.
+pub struct Rendered {
+    /// The film.
+    pub film: Film,
+    /// The passes it holds (all the render's, a resumed render's earlier ones included).
+    pub passes: u32,
+    /// The report of the work that made it (empty for a merge).
+    pub report: Report,
 }
 
 /// How often a running render saves its partial when no `--checkpoint` asks for more.
@@ -340,7 +350,15 @@ pub fn render(job: &RenderJob, observer: &dyn Observer) -> Result<RenderOutcome>
         return Ok(RenderOutcome {
             interrupted,
             incomplete: interrupted,
-            film: ran.partial.film.zip(ran.camera),
+            film: ran
+                .partial
+                .film
+                .zip(ran.camera)
+                .map(|(film, report)| Rendered {
+                    film,
+                    passes: ran.partial.passes.len() as u32,
+                    report,
+                }),
             ..RenderOutcome::default()
         });
     };
@@ -606,7 +624,7 @@ fn write_results(
             csv.display()
         ));
     }
-    if let Some((film, _)) = &outcome.film {
+    if let Some(Rendered { film, .. }) = &outcome.film {
         files.write_film(film, settings.output.exposure)?;
         observer.line(&format!(
             "wrote {} (layers: {})",
@@ -702,7 +720,11 @@ fn results(
     if camera.is_some() {
         observer.line(&report.summary());
     }
-    outcome.film = Some((film, report));
+    outcome.film = Some(Rendered {
+        film,
+        passes: partial.passes.len() as u32,
+        report,
+    });
     outcome
 }
 

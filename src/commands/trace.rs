@@ -76,6 +76,13 @@ pub struct RayTrace {
     pub max_steps: u64,
 }
 
+impl RayTrace {
+    /// The stepper when none is given.
+    pub const STEPPER: StepperKind = StepperKind::Linearize;
+    /// Step attempts (N_max) when none is given.
+    pub const MAX_STEPS: u64 = 1_000_000;
+}
+
 /// A followed ray: how its march ended, and every accepted point (the start first).
 #[derive(Clone, Debug)]
 pub struct Traced {
@@ -86,6 +93,13 @@ pub struct Traced {
 }
 
 impl TraceControl {
+    /// Tessendorf's T_max when none is given.
+    pub const T_MAX: f64 = 1e-2;
+    /// Tessendorf's T_min when none is given.
+    pub const T_MIN: f64 = 1e-4;
+    /// The seed of Tessendorf's random ξ when none is given.
+    pub const SEED: u64 = 1;
+
     /// The step control, checked, for a ray from `from` in `medium` over `length`.
     fn resolve(
         self,

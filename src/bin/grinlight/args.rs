@@ -135,16 +135,16 @@ pub struct TraceArgs {
     #[arg(long)]
     tol: Option<f64>,
     /// T_max of `tessendorf`.
-    #[arg(long, default_value_t = 1e-2)]
+    #[arg(long, default_value_t = TraceControl::T_MAX)]
     tmax: f64,
     /// T_min of `tessendorf`.
-    #[arg(long, default_value_t = 1e-4)]
+    #[arg(long, default_value_t = TraceControl::T_MIN)]
     tmin: f64,
     /// Seed of the random ξ of `tessendorf`.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = TraceControl::SEED)]
     seed: u64,
     /// Maximum number of step attempts (N_max, ≥ 1).
-    #[arg(long, default_value_t = 1_000_000)]
+    #[arg(long, default_value_t = RayTrace::MAX_STEPS)]
     max_steps: u64,
     /// Write every accepted step as CSV (step,s,x,y,z,dx,dy,dz,n).
     #[arg(long)]

@@ -1,0 +1,133 @@
+//! The library's results as numpy arrays and dicts: image layers, receiver measurements, the
+//! energy budget, traced rays.
+
+use grinlight::commands::Traced;
+use grinlight::photon::Budget;
+use grinlight::receiver::{Measurement, Receiver};
+use numpy::ndarray::{Array1, Array2, Array3};
+use numpy::IntoPyArray;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+/// Row-major RGB pixels as a float32 array of shape (height, width, 3).
+pub fn rgb_image<'py>(
+    py: Python<'py>,
+    pixels: Vec<[f32; 3]>,
+    width: usize,
+    height: usize,
+) -> PyResult<Bound<'py, PyAny>> {
+    let flat: Vec<f32> = pixels.into_iter().flatten().collect();
+    let array = Array3::from_shape_vec((height, width, 3), flat)
+        .expect("a film's layer holds width × height pixels");
+    Ok(array.into_pyarray(py).into_any())
+}
+
+/// A receiver's bins (k = j·nx + i) as an array of shape (ny, nx).
+fn bins(values: &[f64], r: &Receiver) -> Array2<f64> {
+    Array2::from_shape_vec((r.bins.1, r.bins.0), values.to_vec())
+        .expect("a measurement holds one value per bin")
+}
+
+/// One receiver's measurement: `irradiance` and `stderr` (W per scene unit², shape
+/// (ny, nx)), the bins' centres `x` (nx) and `y` (ny) in the receiver's plane, `flux` and
+/// `flux_stderr` (W), and `bands`, one such dict per wavelength band with its `nm` range.
+pub fn measurement<'py>(
+    py: Python<'py>,
+    r: &Receiver,
+    m: &Measurement,
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("irradiance", bins(&m.irradiance, r).into_pyarray(py))?;
+    d.set_item("stderr", bins(&m.stderr, r).into_pyarray(py))?;
+    let (nx, ny) = r.bins;
+    let x: Array1<f64> = (0..nx).map(|i| r.bin_center(i).0).collect();
+    let y: Array1<f64> = (0..ny).map(|j| r.bin_center(j * nx).1).collect();
+    d.set_item("x", x.into_pyarray(py))?;
+    d.set_item("y", y.into_pyarray(py))?;
+    d.set_item("flux", m.flux.0)?;
+    d.set_item("flux_stderr", m.flux.1)?;
+    let bands = r
+        .bands
+        .iter()
+        .zip(&m.bands)
+        .map(|(nm, b)| {
+            let band = measurement(py, r, b)?;
+            band.del_item("bands")?;
+            band.set_item("nm", *nm)?;
+            Ok(band)
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    d.set_item("bands", bands)?;
+    Ok(d)
+}
+
+/// Where the receiver photons' power went (W): `emitted`, `reflected`, `missed`,
+/// `absorbed` (by surfaces), `lost`, `out_through` (by primitive index), `absorbed_in` (by
+/// medium name), `scattered` (the same for light a medium scattered, or None), `bands`.
+pub fn budget<'py>(py: Python<'py>, b: &Budget, media: &[String]) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("emitted", b.emitted)?;
+    d.set_item("reflected", b.reflected)?;
+    d.set_item("missed", b.missed)?;
+    d.set_item("absorbed", b.absorbed)?;
+    d.set_item("lost", b.lost)?;
+    d.set_item("out_through", b.out_through.clone())?;
+    let absorbed_in = PyDict::new(py);
+    for (i, w) in &b.absorbed_in {
+        let name = media
+            .get(*i)
+            .cloned()
+            .unwrap_or_else(|| format!("medium {i}"));
+        absorbed_in.set_item(name, w)?;
+    }
+    d.set_item("absorbed_in", absorbed_in)?;
+    let scattered = match &b.scattered {
+        Some(s) => Some(budget(py, s, media)?),
+        None => None,
+    };
+    d.set_item("scattered", scattered)?;
+    let bands = b
+        .bands
+        .iter()
+        .map(|(nm, band)| {
+            let band_dict = budget(py, band, media)?;
+            band_dict.set_item("nm", *nm)?;
+            Ok(band_dict)
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    d.set_item("bands", bands)?;
+    Ok(d)
+}
+
+/// A traced ray: per accepted point (the start first) `s` (arclength), `opl` (optical path
+/// ∫ n ds), `points` and `directions` (N × 3) and `n`; then how it ended: `reason`,
+/// `steps`, `attempts`, `arclength`, `optical_path`, `optical_depth`.
+pub fn traced<'py>(py: Python<'py>, t: &Traced) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    let column = |f: &dyn Fn(&grinlight::commands::PathPoint) -> f64| -> Array1<f64> {
+        t.points.iter().map(f).collect()
+    };
+    let vectors = |f: &dyn Fn(&grinlight::commands::PathPoint) -> [f64; 3]| -> Array2<f64> {
+        let flat: Vec<f64> = t.points.iter().flat_map(f).collect();
+        Array2::from_shape_vec((t.points.len(), 3), flat).expect("three per point")
+    };
+    d.set_item("s", column(&|p| p.s).into_pyarray(py))?;
+    d.set_item("opl", column(&|p| p.opl).into_pyarray(py))?;
+    d.set_item(
+        "points",
+        vectors(&|p| p.state.position.to_array()).into_pyarray(py),
+    )?;
+    d.set_item(
+        "directions",
+        vectors(&|p| p.state.direction.to_array()).into_pyarray(py),
+    )?;
+    d.set_item("n", column(&|p| p.state.index.n).into_pyarray(py))?;
+    let o = &t.outcome;
+    d.set_item("reason", o.reason.name())?;
+    d.set_item("steps", o.steps)?;
+    d.set_item("attempts", o.attempts)?;
+    d.set_item("arclength", o.arclength)?;
+    d.set_item("optical_path", o.optical_path)?;
+    d.set_item("optical_depth", o.optical_depth)?;
+    Ok(d)
+}

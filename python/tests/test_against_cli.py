@@ -1,0 +1,122 @@
+"""The package gives what the command line gives for the same scene and settings: the
+render's EXR bit for bit, a traced ray's CSV, a receiver's CSV, shards merged."""
+
+import csv
+
+import numpy as np
+import OpenEXR
+import pytest
+
+import grinlight
+from conftest import run
+
+# A small, quick render of the default scene: a few passes so the progressive caustic radius
+# shrinks, with every layer (direct, caustic, secondary by final gathering).
+SMALL = dict(width=48, height=36, spp=1, passes=2, photons=20000, caustic_photons=20000, seed=7)
+
+
+def cli_flags(values):
+    return [f"--{k.replace('_', '-')}={v}" for k, v in values.items()]
+
+
+def read_exr(path):
+    """Every layer of an EXR (one part each) as (height, width, 3) float32 arrays, by layer
+    name: OpenEXR's own reader, independent of the package's writer."""
+    with OpenEXR.File(str(path), separate_channels=True) as f:
+        return {
+            part.name(): np.stack([part.channels[c].pixels for c in "RGB"], axis=-1)
+            for part in f.parts
+        }
+
+
+def test_render_writes_the_command_lines_exr_bit_for_bit(cli, scenes, tmp_path):
+    run(cli, "render", scenes / "cornell_caustic.toml", "-o", tmp_path / "cli.exr", *cli_flags(SMALL), cwd=tmp_path)
+    image = grinlight.load(scenes / "cornell_caustic.toml").render(progress=False, **SMALL)
+    image.write(tmp_path / "py.exr")
+    assert (tmp_path / "py.exr").read_bytes() == (tmp_path / "cli.exr").read_bytes()
+    from_cli = read_exr(tmp_path / "cli.exr")
+    assert sorted(from_cli) == sorted(image.names)
+    for name in image.names:
+        layer = image[name]
+        assert layer.dtype == np.float32 and layer.shape == (36, 48, 3)
+        np.testing.assert_array_equal(layer, from_cli[name])
+    assert image["caustic"].max() > 0, "the ball's caustic reaches the floor"
+
+
+def test_load_overrides_are_the_command_lines(cli, scenes, tmp_path):
+    """Settings given to load() and to render() act as the command line's options."""
+    scene = grinlight.load(scenes / "cornell_caustic.toml", width=48, height=36, seed=7)
+    rest = {k: v for k, v in SMALL.items() if k not in ("width", "height", "seed")}
+    a = scene.render(progress=False, **rest)
+    b = grinlight.load(scenes / "cornell_caustic.toml").render(progress=False, **SMALL)
+    np.testing.assert_array_equal(a["beauty"], b["beauty"])
+    c = scene.render(progress=False, **dict(rest, seed=8))
+    assert not np.array_equal(a["beauty"], c["beauty"]), "a render-time seed replaces the load-time one"
+
+
+def test_a_dict_scene_renders_as_its_file(scenes):
+    tomllib = pytest.importorskip("tomllib")
+    path = scenes / "cornell_caustic.toml"
+    data = tomllib.loads(path.read_text())
+    from_file = grinlight.load(path).render(progress=False, **SMALL)
+    from_dict = grinlight.load_dict(data, base_dir=scenes).render(progress=False, **SMALL)
+    for name in from_file.names:
+        np.testing.assert_array_equal(from_file[name], from_dict[name])
+
+
+def test_trace_gives_the_command_lines_csv(cli, scenes, tmp_path):
+    scene = scenes / "grin_lens_chromatic.toml"
+    ray = dict(origin=[0.3, 0.1, 0.0], direction=[0.0, 0.05, 1.0], length=9.0)
+    run(
+        cli, "trace", scene, "--medium", "rod", "--from", "0.3,0.1,0", "--dir", "0,0.05,1",
+        "--length", "9", "--stepper", "rkn", "--wavelength", "486.1", "--csv", tmp_path / "ray.csv",
+        cwd=tmp_path,
+    )
+    with open(tmp_path / "ray.csv") as f:
+        rows = [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
+    traced = grinlight.trace(scene, medium="rod", stepper="rkn", wavelength=486.1, **ray)
+    assert traced.reason == "length reached"
+    assert len(rows) == len(traced.s) == traced.steps + 1
+    # The CSV prints each number's shortest exact representation: equal, not close.
+    np.testing.assert_array_equal([r["s"] for r in rows], traced.s)
+    np.testing.assert_array_equal([[r["x"], r["y"], r["z"]] for r in rows], traced.points)
+    np.testing.assert_array_equal([[r["dx"], r["dy"], r["dz"]] for r in rows], traced.directions)
+    np.testing.assert_array_equal([r["n"] for r in rows], traced.n)
+    assert traced.opl[-1] == traced.optical_path
+    assert np.all(np.diff(traced.opl) > 0)
+
+
+def test_measure_gives_the_receivers_csv(cli, scenes, tmp_path):
+    settings = dict(receiver_photons=30000, seed=3)
+    run(cli, "render", scenes / "fiber_led.toml", "-o", tmp_path / "fiber.exr", *cli_flags(settings), cwd=tmp_path)
+    with open(tmp_path / "fiber.exit.csv") as f:
+        rows = list(csv.DictReader(f))
+    m = grinlight.load(scenes / "fiber_led.toml").measure(photons=30000, seed=3, progress=False)
+    exit_ = m.receivers["exit"]
+    assert exit_["irradiance"].shape == (64, 64)
+    # The CSV rounds to 7 significant digits: the arrays rounded the same way are equal.
+    rounded = lambda a: np.array([float(f"{v:.6e}") for v in a.ravel()])
+    np.testing.assert_array_equal(rounded(exit_["irradiance"]), [float(r["irradiance"]) for r in rows])
+    np.testing.assert_array_equal(rounded(exit_["stderr"]), [float(r["stderr"]) for r in rows])
+    xs, ys = np.meshgrid(exit_["x"], exit_["y"])
+    np.testing.assert_array_equal(rounded(xs), [float(r["x"]) for r in rows])
+    np.testing.assert_array_equal(rounded(ys), [float(r["y"]) for r in rows])
+    flux = exit_["irradiance"].sum() * (1.6 / 64) ** 2
+    assert flux == pytest.approx(exit_["flux"], rel=1e-12)
+    budget = m.budget
+    booked = budget["reflected"] + budget["missed"] + budget["absorbed"] + budget["lost"]
+    booked += sum(budget["out_through"].values()) + sum(budget["absorbed_in"].values())
+    assert booked == pytest.approx(budget["emitted"], rel=1e-9), "every photon's power is booked"
+
+
+def test_shards_merge_to_the_whole_render(scenes, tmp_path):
+    scene = grinlight.load(scenes / "cornell_caustic.toml")
+    settings = dict(SMALL, passes=3)
+    whole = scene.render(progress=False, **settings)
+    parts = [scene.render(progress=False, shard=(k, 2), output=tmp_path / f"part{k}.partial", **settings) for k in (1, 2)]
+    assert all(p.exists() for p in parts)
+    merged = grinlight.merge(parts, output=tmp_path / "merged.exr")
+    assert merged.passes == whole.passes == 3
+    for name in whole.names:
+        np.testing.assert_array_equal(merged[name], whole[name])
+    assert (tmp_path / "merged.exr").exists()

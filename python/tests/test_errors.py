@@ -1,0 +1,142 @@
+"""Bad input raises ValueError naming the key; nothing panics; an interrupt returns at once
+with the finished passes."""
+
+import math
+import os
+import signal
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import grinlight
+
+ROD = {"name": "rod", "profile": "linear", "n0": 1.5, "gradient": [0.0, 0.1, 0.0]}
+
+
+@pytest.mark.parametrize(
+    "data, key",
+    [
+        ({"medium": [dict(ROD, n0=math.nan)]}, "medium[0].n0"),
+        ({"medium": [dict(ROD, n0=math.inf)]}, "medium[0].n0"),
+        ({"medium": [dict(ROD, gradient=[0.0, math.nan, 0.0])]}, "medium[0].gradient"),
+        ({"medium": [dict(ROD, n0="high")]}, "medium[0].n0"),
+        ({"medium": [dict(ROD, n0=None)]}, "medium[0].n0"),
+        ({"medium": [dict(ROD, colour=1)]}, "medium[0]"),
+        ({"medium": [ROD, dict(ROD, name="b", profile="luneburg", radius=-1.0)]}, "medium[1].radius"),
+        ({"mediums": [ROD]}, "mediums"),
+        ({"medium": [ROD], "camera": {"position": [0, 0, 1], "look_at": [0, 0, 0], "fov_y_deg": "wide"}}, "camera.fov_y_deg"),
+        ({"medium": [ROD], "render": {"spp": -3}}, "render.spp"),
+        ({"medium": [ROD], "render": {"spp": 2**70}}, "render.spp"),
+        ({"medium": [{"name": object()}]}, "medium[0].name"),
+        ({"medium": [{1: "rod"}]}, "medium[0]"),
+    ],
+)
+def test_a_bad_dict_names_its_key(data, key):
+    with pytest.raises(ValueError) as e:
+        grinlight.load_dict(data)
+    assert str(e.value).startswith(key), str(e.value)
+
+
+def test_numpy_values_are_accepted():
+    scene = grinlight.load_dict({"medium": [dict(ROD, gradient=np.array([0.0, 0.1, 0.0]), n0=np.float32(1.5))]})
+    assert scene.media == ["rod"]
+
+
+@pytest.mark.parametrize(
+    "overrides, key",
+    [
+        (dict(spp=0), "--spp"),
+        (dict(spp=-1), "spp"),
+        (dict(spp=1.5), "spp"),
+        (dict(radius=math.nan), "radius"),
+        (dict(time_budget=math.inf), "time_budget"),
+        (dict(integrator="bidirectional"), "integrator"),
+        (dict(threads=10**6), "threads"),
+        (dict(sppp=4), "sppp"),
+    ],
+)
+def test_bad_settings_name_their_key(scenes, overrides, key):
+    with pytest.raises(ValueError) as e:
+        grinlight.load(scenes / "cornell_caustic.toml", **overrides)
+    assert key in str(e.value), str(e.value)
+
+
+def test_a_scene_files_error_names_file_line_and_key(tmp_path):
+    path = tmp_path / "bad.toml"
+    path.write_text('[[medium]]\nname = "rod"\nprofile = "luneburg"\nradius = -1\n')
+    with pytest.raises(ValueError, match=r"bad.toml:4:1: .*key `radius`"):
+        grinlight.load(path)
+    with pytest.raises(OSError):
+        grinlight.load(tmp_path / "missing.toml")
+
+
+@pytest.mark.parametrize(
+    "ray, key",
+    [
+        (dict(origin=[0, math.nan, 0]), "origin"),
+        (dict(origin=[0, 0]), "origin"),
+        (dict(direction=[0, 0, 0]), "--dir"),
+        (dict(length=math.nan), "length"),
+        (dict(length=-1.0), "length"),
+        (dict(stepper="euler"), "stepper"),
+        (dict(tolerance=0.0), "tol"),
+        (dict(wavelength=100.0), "wavelength"),
+        (dict(bogus=1), "bogus"),
+    ],
+)
+def test_bad_rays_name_their_key(ray, key):
+    args = dict(origin=[0, 0, 0], direction=[1, 0, 0], length=1.0)
+    args.update(ray)
+    with pytest.raises(ValueError) as e:
+        grinlight.trace({"medium": [ROD]}, **args)
+    assert key in str(e.value), str(e.value)
+
+
+def test_writes_never_replace_what_is_not_theirs(scenes, tmp_path):
+    image = grinlight.load(scenes / "cornell_caustic.toml").render(progress=False, width=16, height=12, spp=1, passes=1, photons=1000, caustic_photons=1000)
+    precious = tmp_path / "notes.exr"
+    precious.write_text("not an image")
+    with pytest.raises(ValueError, match="refusing"):
+        image.write(precious)
+    assert precious.read_text() == "not an image"
+    with pytest.raises(ValueError, match=".exr"):
+        image.write(tmp_path / "image.tiff")
+    image.write(tmp_path / "image.exr")
+    image.write(tmp_path / "image.exr")  # its own kind of file is replaced
+    image.write_png(tmp_path / "image.png", exposure=2.0)
+    with pytest.raises(ValueError, match="exposure"):
+        image.write_png(tmp_path / "image.png", exposure=math.nan)
+
+
+def test_ctrl_c_returns_within_a_second_with_the_passes_done(scenes):
+    scene = grinlight.load(scenes / "cornell_caustic.toml")
+    sent = {}
+
+    def interrupt():
+        sent["at"] = time.monotonic()
+        os.kill(os.getpid(), signal.SIGINT)
+
+    timer = threading.Timer(2.0, interrupt)
+    timer.start()
+    with pytest.raises(KeyboardInterrupt) as e:
+        scene.render(progress=False, width=96, height=72, passes=100000, photons=20000, caustic_photons=20000)
+    returned = time.monotonic() - sent["at"]
+    timer.join()
+    assert returned < 1.0, f"returned {returned:.2f} s after the interrupt"
+    image = e.value.image
+    assert image is not None and image.interrupted and image.passes >= 1
+    assert any("PARTIAL" in line or "interrupted" in line for line in image.report), image.report
+    assert np.isfinite(image["beauty"]).all() and image["beauty"].mean() > 0
+
+
+def test_progress_is_reported(scenes):
+    seen = []
+    grinlight.load(scenes / "cornell_caustic.toml").render(
+        progress=lambda done, total, stage: seen.append((done, total, stage)),
+        width=96, height=72, spp=2, passes=3, photons=200000, caustic_photons=200000,
+    )
+    assert seen, "a render of several tenths of a second reports progress"
+    assert all(stage in ("rendering", "measuring", "") for _, _, stage in seen)
+    assert all(0 <= done <= total for done, total, stage in seen if stage == "rendering")
