@@ -2,10 +2,17 @@
 //! writes and the number of samples summed — raw sums, never means, so films of the same view
 //! rendered apart (other passes, other machines) merge by adding ([`Film::merge`]). The sums
 //! are fixed-point ([`Fixed`]): adding is exact, so a film merged from parts is bit for bit
-//! the film of one run, in whatever order the parts come. Developed,
-//! each layer is its sum over its count, and `beauty` the sum of the radiance layers; written
-//! as a multi-layer EXR (one RGB layer each, readable by standard OpenEXR tools) and a
-//! tone-mapped sRGB PNG preview of `beauty`.
+//! the film of one run, in whatever order the parts come. A layer holds a plane of sums only
+//! once a sample gives it a value other than zero: a layer nothing writes (the surfaces'
+//! layers of a view of the sky) costs no memory and is not written. Developed, each layer is
+//! its sum over its count, and `beauty` the sum of the radiance layers; written as a
+//! multi-layer EXR (one RGB layer each, readable by standard OpenEXR tools) and a tone-mapped
+//! sRGB PNG preview of `beauty`.
+//!
+//! Beside the layers the film sums, per pixel, the squares of each pass's `beauty` sum over
+//! its samples (Σ_p S_p²/n_p): with the passes' count that gives the spread of the passes'
+//! estimates, and so each pixel's standard error and the whole image's expected relative
+//! error ([`Film::error`]; the EXR's `error` layer).
 
 use crate::color::{preview_byte, Rgb};
 use crate::error::{Error, Result};
@@ -59,8 +66,13 @@ pub struct Film {
     pub height: usize,
     /// The layers summed (`beauty` is developed from them).
     pub layers: Vec<Layer>,
-    /// Per layer, per pixel (row-major from the top): the sum of the samples' values, RGB.
+    /// Per layer, per pixel (row-major from the top): the sum of the samples' values, RGB;
+    /// empty for a layer no sample has written (its sums are all zero). One plane more than
+    /// `layers`, last: the sum over passes of each pass's `beauty` sum squared over its
+    /// sample count.
     sums: Vec<Vec<[Fixed; 3]>>,
+    /// The passes summed (each adds every pixel once).
+    pub passes: u32,
     /// Per pixel: the number of samples summed.
     counts: Vec<u64>,
     /// Pixel values left out because a fixed-point sum cannot hold them (not finite, or of
@@ -75,7 +87,8 @@ impl Film {
             width,
             height,
             layers: layers.to_vec(),
-            sums: vec![vec![[Fixed::ZERO; 3]; width * height]; layers.len()],
+            sums: vec![Vec::new(); layers.len() + 1],
+            passes: 0,
             counts: vec![0; width * height],
             rejected: 0,
         }
@@ -85,8 +98,22 @@ impl Film {
     /// each rounded to the nearest 2⁻⁶⁴; a value a fixed-point sum cannot hold adds nothing
     /// and is counted in [`Film::rejected`].
     pub fn add(&mut self, x: usize, y: usize, values: &[Rgb], samples: u64) {
-        let i = y * self.width + x;
+        let (i, pixels) = (y * self.width + x, self.width * self.height);
+        let beauty = self
+            .layers
+            .iter()
+            .zip(values)
+            .filter(|(l, _)| l.kind == LayerKind::Radiance)
+            .fold(Rgb::ZERO, |a, (_, v)| a + *v);
+        let square = beauty * beauty / samples.max(1) as f64;
+        let values = values.iter().chain(std::iter::once(&square));
         for (plane, v) in self.sums.iter_mut().zip(values) {
+            if plane.is_empty() {
+                if *v == Rgb::ZERO {
+                    continue;
+                }
+                *plane = vec![[Fixed::ZERO; 3]; pixels];
+            }
             for (sum, c) in plane[i].iter_mut().zip(v.to_array()) {
                 match Fixed::from_f64(c) {
                     Some(f) => *sum += f,
@@ -101,8 +128,9 @@ impl Film {
     /// when not.
     pub fn check(&self) -> std::result::Result<(), String> {
         let pixels = self.width.checked_mul(self.height);
-        if pixels.is_none_or(|p| self.counts.len() != p || self.sums.iter().any(|s| s.len() != p))
-            || self.sums.len() != self.layers.len()
+        if pixels.is_none_or(|p| {
+            self.counts.len() != p || self.sums.iter().any(|s| !s.is_empty() && s.len() != p)
+        }) || self.sums.len() != self.layers.len() + 1
         {
             return Err(format!(
                 "a {}×{} film of {} layers whose buffers do not match",
@@ -133,6 +161,10 @@ impl Film {
             )));
         }
         for (a, b) in self.sums.iter_mut().zip(&other.sums) {
+            if a.is_empty() {
+                a.clone_from(b);
+                continue;
+            }
             for (x, y) in a.iter_mut().zip(b) {
                 add_rgb(x, y);
             }
@@ -141,6 +173,7 @@ impl Film {
             *a += b;
         }
         self.rejected += other.rejected;
+        self.passes += other.passes;
         Ok(())
     }
 
@@ -151,26 +184,46 @@ impl Film {
         }
         self.counts.fill(0);
         self.rejected = 0;
+        self.passes = 0;
     }
 
     /// Adds `tile`, a film of a rectangle of this one, with its top-left corner at (x0, y0).
     pub fn paste(&mut self, tile: &Film, x0: usize, y0: usize) {
-        for y in 0..tile.height {
-            for x in 0..tile.width {
-                let (i, j) = (y * tile.width + x, (y0 + y) * self.width + x0 + x);
-                for (a, b) in self.sums.iter_mut().zip(&tile.sums) {
+        let pixels = self.width * self.height;
+        for (a, b) in self.sums.iter_mut().zip(&tile.sums) {
+            if b.is_empty() {
+                continue;
+            }
+            if a.is_empty() {
+                *a = vec![[Fixed::ZERO; 3]; pixels];
+            }
+            for y in 0..tile.height {
+                for x in 0..tile.width {
+                    let (i, j) = (y * tile.width + x, (y0 + y) * self.width + x0 + x);
                     add_rgb(&mut a[j], &b[i]);
                 }
-                self.counts[j] += tile.counts[i];
+            }
+        }
+        for y in 0..tile.height {
+            for x in 0..tile.width {
+                self.counts[(y0 + y) * self.width + x0 + x] += tile.counts[y * tile.width + x];
             }
         }
         self.rejected += tile.rejected;
     }
 
-    /// The layers' names, `beauty` first.
+    /// The names of the layers written — `beauty` first, then every layer a sample gave a
+    /// value other than zero: the EXR's layers.
     pub fn names(&self) -> Vec<&str> {
         std::iter::once("beauty")
-            .chain(self.layers.iter().map(|l| &*l.name))
+            .chain(
+                self.layers
+                    .iter()
+                    .zip(&self.sums)
+                    .filter(|(_, plane)| !plane.is_empty())
+                    .map(|(l, _)| &*l.name),
+            )
+            .chain(self.error().is_some().then_some(ERROR))
             .collect()
     }
 
@@ -179,39 +232,72 @@ impl Film {
         &self.counts
     }
 
-    /// The developed layer `name` (`beauty`: the sum of the radiance layers), row-major, linear
-    /// RGB in f32; None for a layer the film does not hold. Developed in parallel, straight to
-    /// f32 (an HD frame's layer is 2·10⁶ pixels of exact sums).
-    pub fn layer(&self, name: &str) -> Option<Vec<[f32; 3]>> {
-        let mean = |plane: &[[Fixed; 3]], i: usize| {
-            Rgb::new(
-                plane[i][0].to_f64(),
-                plane[i][1].to_f64(),
-                plane[i][2].to_f64(),
-            ) / self.counts[i].max(1) as f64
-        };
-        let pixels = (0..self.width * self.height).into_par_iter();
-        let f32s = |v: Rgb| v.as_vec3().to_array();
-        Some(if name == "beauty" {
-            pixels
-                .map(|i| {
-                    f32s(
-                        self.layers
-                            .iter()
-                            .zip(&self.sums)
-                            .filter(|(l, _)| l.kind == LayerKind::Radiance)
-                            .map(|(_, p)| mean(p, i))
-                            .fold(Rgb::ZERO, |a, b| a + b),
-                    )
-                })
+    /// The developed pixel `i` of layer `name`: the sum over the count (`beauty`: of the
+    /// radiance layers'), zero in a layer nothing wrote; None for a layer the film does not
+    /// have.
+    fn developer(&self, name: &str) -> Option<Box<dyn Fn(usize) -> [f32; 3] + Send + Sync + '_>> {
+        if name == ERROR {
+            let error = self.error()?;
+            return Some(Box::new(move |i| {
+                error.variance(i).map(|v| v.sqrt() as f32)
+            }));
+        }
+        let planes: Vec<&[[Fixed; 3]]> = if name == "beauty" {
+            self.layers
+                .iter()
+                .zip(&self.sums)
+                .filter(|(l, _)| l.kind == LayerKind::Radiance)
+                .map(|(_, p)| p.as_slice())
                 .collect()
         } else {
             let k = self.layers.iter().position(|l| l.name == name)?;
-            pixels.map(|i| f32s(mean(&self.sums[k], i))).collect()
+            vec![self.sums[k].as_slice()]
+        };
+        let planes: Vec<&[[Fixed; 3]]> = planes.into_iter().filter(|p| !p.is_empty()).collect();
+        Some(Box::new(move |i: usize| {
+            let sum = planes.iter().fold(Rgb::ZERO, |a, p| a + rgb(&p[i]));
+            (sum / self.counts[i].max(1) as f64).as_vec3().to_array()
+        }))
+    }
+
+    /// How far the developed `beauty` may be from what infinitely many passes would give,
+    /// judged by the spread of the passes' own estimates (so: the noise; a bias common to
+    /// every pass is not seen); None before two passes, or for a black image (whose passes
+    /// agree exactly).
+    pub fn error(&self) -> Option<FilmError<'_>> {
+        let squares = self.sums.last().filter(|p| !p.is_empty())?;
+        if self.passes < 2 {
+            return None;
+        }
+        let beauty: Vec<&[[Fixed; 3]]> = self
+            .layers
+            .iter()
+            .zip(&self.sums)
+            .filter(|(l, p)| l.kind == LayerKind::Radiance && !p.is_empty())
+            .map(|(_, p)| p.as_slice())
+            .collect();
+        Some(FilmError {
+            film: self,
+            beauty,
+            squares,
         })
     }
 
-    /// Every developed layer, in [`Film::names`] order.
+    /// The developed layer `name` (`beauty`: the sum of the radiance layers), row-major, linear
+    /// RGB in f32 (zeros for a layer nothing wrote); None for a layer the film does not have.
+    /// Developed in parallel, straight to f32 (an HD frame's layer is 2·10⁶ pixels of exact
+    /// sums).
+    pub fn layer(&self, name: &str) -> Option<Vec<[f32; 3]>> {
+        let develop = self.developer(name)?;
+        Some(
+            (0..self.width * self.height)
+                .into_par_iter()
+                .map(develop)
+                .collect(),
+        )
+    }
+
+    /// Every written layer developed, in [`Film::names`] order.
     pub fn planes(&self) -> Vec<Vec<[f32; 3]>> {
         self.names()
             .iter()
@@ -219,23 +305,23 @@ impl Film {
             .collect()
     }
 
-    /// Writes every developed layer into one EXR file (32-bit float, channels R, G, B per
-    /// layer), atomically (see [`crate::output::write_atomic`]).
+    /// Writes every written layer into one EXR file (32-bit float, channels R, G, B per
+    /// layer), atomically (see [`crate::output::write_atomic`]); each pixel is developed as
+    /// the encoder asks for it, so no developed copy of the film is held.
     pub fn write_exr(&self, path: &Path) -> Result<()> {
         let size = Vec2(self.width, self.height);
-        let names = self.names();
-        let planes = self.planes();
-        let layers: Vec<_> = names
-            .iter()
-            .zip(&planes)
-            .map(|(name, plane)| {
+        let layers: Vec<_> = self
+            .names()
+            .into_iter()
+            .map(|name| {
+                let develop = self.developer(name).expect("a layer of the film");
                 let width = self.width;
                 exr::prelude::Layer::new(
                     size,
-                    LayerAttributes::named(*name),
+                    LayerAttributes::named(name),
                     Encoding::SMALL_LOSSLESS,
                     SpecificChannels::rgb(move |pos: Vec2<usize>| {
-                        let p = plane[pos.y() * width + pos.x()];
+                        let p = develop(pos.y() * width + pos.x());
                         (p[0], p[1], p[2])
                     }),
                 )
@@ -263,6 +349,59 @@ impl Film {
         });
         crate::plot::save(&img, path)
     }
+}
+
+/// The name of the EXR layer of each pixel's standard error.
+pub const ERROR: &str = "error";
+
+/// A film's estimate of its own error: the spread of its passes' `beauty` estimates.
+///
+/// Pass p's estimate of a pixel is L_p = S_p/n_p (its samples' sum over their count); the film
+/// holds S = Σ S_p, n = Σ n_p and Q = Σ S_p²/n_p. With N passes of equal n_p the samples'
+/// variance is estimated without bias by σ² = (Q − S²/n)/(N − 1), and the developed mean
+/// M = S/n has variance σ²/n. Over the image, the expected relative RMSE (the measure
+/// [`relative_rmse`] takes against a reference) is √(mean of σ²/n) / (mean of M), over
+/// pixels and channels.
+pub struct FilmError<'a> {
+    film: &'a Film,
+    beauty: Vec<&'a [[Fixed; 3]]>,
+    squares: &'a [[Fixed; 3]],
+}
+
+impl FilmError<'_> {
+    /// The expected relative RMSE of the developed `beauty` (see above).
+    pub fn relative_rmse(&self) -> f64 {
+        let pixels = self.film.width * self.film.height;
+        let (mean, variance) = (0..pixels)
+            .into_par_iter()
+            .map(|i| {
+                let (m, v) = (self.mean(i), self.variance(i));
+                (m.iter().sum::<f64>(), v.iter().sum::<f64>())
+            })
+            .reduce(|| (0.0, 0.0), |a, b| (a.0 + b.0, a.1 + b.1));
+        (variance / mean.powi(2) * (3 * pixels) as f64).sqrt()
+    }
+
+    /// Pixel `i`'s developed `beauty`, RGB.
+    pub fn mean(&self, i: usize) -> [f64; 3] {
+        let sum = self.beauty.iter().fold(Rgb::ZERO, |a, p| a + rgb(&p[i]));
+        (sum / self.film.counts[i].max(1) as f64).to_array()
+    }
+
+    /// The variance of pixel `i`'s developed `beauty`, RGB (its standard error squared).
+    pub fn variance(&self, i: usize) -> [f64; 3] {
+        let n = self.film.counts[i].max(1) as f64;
+        let sum = self.beauty.iter().fold(Rgb::ZERO, |a, p| a + rgb(&p[i]));
+        let q = rgb(&self.squares[i]);
+        let dof = (self.film.passes - 1) as f64;
+        let v = (q - sum * sum / n) / (dof * n);
+        v.to_array().map(|c| c.max(0.0))
+    }
+}
+
+/// Fixed-point RGB as floating point.
+fn rgb(c: &[Fixed; 3]) -> Rgb {
+    Rgb::new(c[0].to_f64(), c[1].to_f64(), c[2].to_f64())
 }
 
 /// Adds fixed-point RGB `b` to `a`.

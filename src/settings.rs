@@ -20,6 +20,10 @@ pub struct Settings {
     pub passes: u32,
     /// Stop starting new passes after this many seconds (None: run all `passes`).
     pub time_budget: Option<f64>,
+    /// Stop starting new passes once the film's estimate of its relative RMSE
+    /// ([`crate::film::FilmError`]) is at most this, after at least
+    /// [`crate::render::MIN_PASSES_FOR_ERROR`] passes (None: run all `passes`).
+    pub target_error: Option<f64>,
     /// How the camera's view is estimated.
     pub integrator: IntegratorKind,
     /// Let the photon mapper's place be taken by a deflection table where one applies
@@ -216,6 +220,7 @@ impl Default for Settings {
             spp: 16,
             passes: 1,
             time_budget: None,
+            target_error: None,
             integrator: IntegratorKind::PhotonMap,
             deflection_table: true,
             trace: TraceSettings::default(),

@@ -74,8 +74,16 @@ class Image:
         return self._film.passes
 
     @property
+    def error(self) -> Optional[float]:
+        """The image's expected relative RMSE, estimated from the spread of its passes (the
+        noise; None before two passes); the ``error`` layer holds each pixel's standard
+        error."""
+        return self._film.error
+
+    @property
     def names(self) -> List[str]:
-        """The layers' names, ``beauty`` first."""
+        """The layers written, ``beauty`` first (a layer nothing wrote is left out; reading
+        it gives zeros)."""
         return self._film.names
 
     def layer(self, name: str) -> np.ndarray:

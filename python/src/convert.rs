@@ -114,7 +114,7 @@ fn number(v: &Bound<'_, PyAny>, key: &str) -> PyResult<f64> {
 }
 
 /// The keyword arguments a render takes that replace `[render]` and `[camera]` keys.
-pub const OVERRIDES: [&str; 15] = [
+pub const OVERRIDES: [&str; 16] = [
     "spp",
     "seed",
     "threads",
@@ -129,6 +129,7 @@ pub const OVERRIDES: [&str; 15] = [
     "knn",
     "passes",
     "time_budget",
+    "target_error",
     "receiver_photons",
 ];
 
@@ -165,6 +166,7 @@ pub fn overrides(d: &Bound<'_, PyDict>) -> PyResult<Overrides> {
             "knn" => o.knn = Some(count(v, &key)?),
             "passes" => o.passes = Some(count(v, &key)?),
             "time_budget" => o.time_budget = Some(number(v, &key)?),
+            "target_error" => o.target_error = Some(number(v, &key)?),
             "receiver_photons" => o.receiver_photons = Some(count(v, &key)?),
             other => {
                 return Err(bad(

@@ -282,6 +282,13 @@ impl RenderedFilm {
         self.film.height
     }
 
+    /// The film's estimate of its relative RMSE, from the spread of its passes (None before
+    /// two passes).
+    #[getter]
+    fn error(&self, py: Python<'_>) -> Option<f64> {
+        py.detach(|| self.film.error().map(|e| e.relative_rmse()))
+    }
+
     /// The layers' names, `beauty` (the sum of the radiance layers) first.
     #[getter]
     fn names(&self) -> Vec<String> {

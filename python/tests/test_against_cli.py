@@ -120,3 +120,11 @@ def test_shards_merge_to_the_whole_render(scenes, tmp_path):
     for name in whole.names:
         np.testing.assert_array_equal(merged[name], whole[name])
     assert (tmp_path / "merged.exr").exists()
+
+
+def test_a_target_error_ends_the_render(scenes):
+    scene = grinlight.load(scenes / "cornell_diffuse.toml", width=32, height=32, spp=4, integrator="path")
+    image = scene.render(target_error=0.15, seed=3, progress=False)
+    assert image.passes >= 4 and image.error <= 0.15
+    assert image["error"].shape == (32, 32, 3) and (image["error"] >= 0).all()
+    assert any(line.startswith("estimated error") for line in image.report)

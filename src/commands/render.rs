@@ -74,6 +74,9 @@ pub struct Overrides {
     pub passes: Option<u32>,
     /// Start no new pass after this many seconds (with no `passes`: as many as fit).
     pub time_budget: Option<f64>,
+    /// Start no new pass once the film's estimated relative RMSE is at most this (with no
+    /// `passes`: as many as it takes).
+    pub target_error: Option<f64>,
     /// Photons traced for the receivers (≥ 1).
     pub receiver_photons: Option<u64>,
 }
@@ -111,6 +114,12 @@ impl Overrides {
         }
         if let Some(b) = self.time_budget {
             s.time_budget = Some(positive("time-budget", b)?);
+            if self.passes.is_none() {
+                s.passes = u32::MAX;
+            }
+        }
+        if let Some(e) = self.target_error {
+            s.target_error = Some(positive("target-error", e)?);
             if self.passes.is_none() {
                 s.passes = u32::MAX;
             }
@@ -254,10 +263,11 @@ pub fn render(job: &RenderJob, observer: &dyn Observer) -> Result<RenderOutcome>
     let fiber = fiber_to_draw(job, &description)?;
     let scene = build_checked(description, &settings, observer)?;
     let shard = job.shard.unwrap_or(Shard::WHOLE);
-    if job.shard.is_some() && (settings.time_budget.is_some() || job.paths > 0) {
+    let open_ended = settings.time_budget.is_some() || settings.target_error.is_some();
+    if job.shard.is_some() && (open_ended || job.paths > 0) {
         return Err(Error::Usage(
-            "--shard renders a fixed share of the work: give --passes, not --time-budget, \
-             and draw --paths from a whole render"
+            "--shard renders a fixed share of the work: give --passes, not --time-budget or \
+             --target-error, and draw --paths from a whole render"
                 .into(),
         ));
     }
@@ -719,6 +729,15 @@ fn results(
     let report = camera.cloned().unwrap_or_default();
     if camera.is_some() {
         observer.line(&report.summary());
+    }
+    if let Some(error) = film.error() {
+        observer.line(&format!(
+            "estimated error: relative RMSE {:.4} (from the spread of its {} passes; the \
+             `{}` layer holds each pixel's standard error)",
+            error.relative_rmse(),
+            film.passes,
+            crate::film::ERROR
+        ));
     }
     outcome.film = Some(Rendered {
         film,

@@ -31,6 +31,11 @@ pub use progress::{Observer, Progress};
 /// Tile edge in pixels.
 const TILE: usize = 16;
 
+/// The fewest passes after which a target error may end a render: the image's error is
+/// estimated from the spread of its passes, and with fewer than four the estimate (from
+/// three degrees of freedom a pixel) is too rough to stop on.
+pub const MIN_PASSES_FOR_ERROR: u32 = 4;
+
 /// A tile: its top-left pixel and its film.
 struct Tile {
     x0: usize,
@@ -171,7 +176,19 @@ pub fn render_with<I: Integrator>(
         }
         report.passes = k + 1;
         assemble(&tiles, &mut whole);
+        whole.passes = report.passes;
         observer.pass_done(report.passes, &whole)?;
+        if let Some(target) = settings.target_error {
+            if let Some(error) = whole.error().map(|e| e.relative_rmse()) {
+                observer.line(&format!(
+                    "pass {}: estimated error {error:.4} (relative RMSE; target {target})",
+                    report.passes
+                ));
+                if error <= target && report.passes >= MIN_PASSES_FOR_ERROR {
+                    break;
+                }
+            }
+        }
     }
     if report.partial.is_none() && stop() && report.passes < passes.count {
         report.partial = Some(format!("{} of {} passes", report.passes, passes.count));
@@ -312,7 +329,7 @@ fn camera_tile<I: Integrator>(
 }
 
 /// Bytes a render of `scene` needs at its peak, estimated from above for typical scenes: the
-/// camera pass's accumulators and two developed films (one being written), one pass's photon
+/// camera pass's accumulators and the films of the passes done, one pass's photon
 /// maps (as traced in chunks and merged; global photons stored ≈ 4 times each, the mean path
 /// of Russian roulette at albedo 0.75; kd-tree entries), and the receivers' detections (one
 /// crossing per photon and receiver, traced and merged). Meshes are already in memory when it
@@ -325,10 +342,11 @@ pub fn memory_needed(scene: &Scene, settings: &Settings) -> u64 {
         .as_ref()
         .map_or(0, |c| c.width as u64 * c.height as u64);
     // The tiles' films, the whole film of the passes done and the partial's (fixed-point RGB
-    // sums per layer, a count), a developed copy (f32 RGB per layer) being written.
-    let layers = 7;
-    let sums = layers * size_of::<[crate::exact::Fixed; 3]>() + 8;
-    let film = pixels * (3 * sums + layers * 12) as u64;
+    // sums per layer written, at most seven, and of the passes' squares; a count), and the
+    // preview's developed beauty (f32 RGB; the EXR is developed pixel by pixel as written).
+    let planes = 7 + 1;
+    let sums = planes * size_of::<[crate::exact::Fixed; 3]>() + 8;
+    let film = pixels * (3 * sums + 12) as u64;
     let per_photon = 2 * size_of::<crate::photon::Photon>() as u64 + 32;
     let caustic = if plan.caustic {
         settings.photons.caustic

@@ -110,8 +110,10 @@ pub fn run(
             break;
         }
     }
-    if settings.time_budget.is_some() && !ran.interrupted() {
-        // The budget, not a pass count, ended the render: it is whole with the passes done.
+    let open_ended = settings.time_budget.is_some() || settings.target_error.is_some();
+    if open_ended && !ran.interrupted() {
+        // The budget or the error reached, not a pass count, ended the render: it is whole
+        // with the passes done.
         ran.partial.header.passes = ran.partial.passes.len() as u32;
     }
     Ok(ran)

@@ -216,6 +216,10 @@ pub struct RenderArgs {
     /// Start no new pass after this many seconds (with no --passes: as many as fit).
     #[arg(long)]
     time_budget: Option<f64>,
+    /// Start no new pass once the image's estimated relative RMSE (from the spread of its
+    /// passes) is at most E, after at least 4 passes (with no --passes: as many as it takes).
+    #[arg(long, value_name = "E")]
+    target_error: Option<f64>,
     /// Save the partial and write the EXR (and PNG) every N passes and after every block of
     /// receiver photons (default: every minute and at the end).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
@@ -268,6 +272,7 @@ impl From<RenderArgs> for RenderJob {
                 knn: a.knn,
                 passes: a.passes,
                 time_budget: a.time_budget,
+                target_error: a.target_error,
                 receiver_photons: a.receiver_photons,
                 threads: a.threads,
                 integrator: a.integrator,

@@ -45,6 +45,12 @@ pub fn read_render(t: &mut TableReader) -> Result<Settings> {
     let world_radius = optional_positive(t, "world_radius")?;
     let radius = optional_positive(t, "radius")?;
     let time_budget = optional_positive(t, "time_budget")?;
+    let target_error = optional_positive(t, "target_error")?;
+    // A target error with no count of passes renders as many as it takes.
+    let passes = match (target_error, t.has("passes")) {
+        (Some(_), false) => u32::MAX,
+        _ => t.setting(settings::PASSES, Settings::default().passes as u64)? as u32,
+    };
     let d = Settings::default();
     let integrator = t.string_opt("integrator")?.map_or(Ok(d.integrator), |s| {
         s.parse().map_err(|e: String| t.error("integrator", e))
@@ -69,8 +75,9 @@ pub fn read_render(t: &mut TableReader) -> Result<Settings> {
             radius,
             knn: t.setting(settings::KNN, d.photons.knn as u64)? as u32,
         },
-        passes: t.setting(settings::PASSES, d.passes as u64)? as u32,
+        passes,
         time_budget,
+        target_error,
         receiver_photons: t.setting(settings::RECEIVER_PHOTONS, d.receiver_photons)?,
         output: d.output,
     })
