@@ -7,7 +7,8 @@
 #
 #   bench/frame.sh [REVISION] [RUNS]
 #
-# Defaults: ac81a4a (version 0.4.6 before the film was reused), 3 runs. The earlier build is
+# Defaults: ac81a4a (version 0.4.6 before the film was reused), 3 runs; 7987c62 is the
+# first build (which knows no deflection table and always traces). The earlier build is
 # made in a temporary git worktree into target/earlier.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -27,8 +28,11 @@ for ((i = 0; i < runs; i++)); do
             current) bin=target/release/grinlight ;;
             earlier) bin=target/earlier/release/grinlight ;;
         esac
+        # Builds from before the deflection table always trace: they have no --no-table.
+        flags=(--spp 1)
+        if "$bin" render --help | grep -q -- --no-table; then flags+=(--no-table); fi
         /usr/bin/time -f "%e %M" -o "$out/time" "$bin" render scenes/black_hole.toml \
-            --no-table --spp 1 -o "$out/frame.exr" > "$out/log" 2>&1
+            "${flags[@]}" -o "$out/frame.exr" > "$out/log" 2>&1
         read -r wall kb < "$out/time"
         rendered=$(sed -nE 's/^rendered .* in ([0-9.]+) s$/\1/p' "$out/log")
         echo "$wall" >> "$out/$build.wall"

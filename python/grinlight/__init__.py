@@ -48,17 +48,30 @@ class GrinlightWarning(UserWarning):
 
 
 @dataclass
-class Image:
-    """A rendered image: every layer of the film (``beauty`` is the sum of the radiance
-    layers) as a float32 array of shape (height, width, 3), linear RGB, row 0 at the top;
-    with the render's report and, when the scene has receivers, their measurements."""
+class Measurement:
+    """The receivers' measurements, by receiver name — each a dict with ``irradiance`` and
+    ``stderr`` (W per scene unit², shape (ny, nx)), bin centres ``x`` and ``y``, ``flux``
+    and ``flux_stderr`` (W) and ``bands`` — and the energy ``budget`` (W by fate); with the
+    report of the work that made them."""
 
-    _film: Any = field(repr=False)
     receivers: Dict[str, Dict[str, Any]]
     budget: Optional[Dict[str, Any]]
     report: List[str] = field(repr=False)
     warnings: List[str] = field(repr=False)
     interrupted: bool = False
+
+    @classmethod
+    def _of(cls, result: Dict[str, Any], **more: Any) -> Any:
+        return cls(result["receivers"], result["budget"], result["report"], result["warnings"], result["interrupted"], **more)
+
+
+@dataclass
+class Image(Measurement):
+    """A rendered image: every layer of the film (``beauty`` is the sum of the radiance
+    layers) as a float32 array of shape (height, width, 3), linear RGB, row 0 at the top;
+    with the render's report and, when the scene has receivers, their measurements."""
+
+    _film: Any = field(default=None, repr=False)
 
     @property
     def width(self) -> int:
@@ -107,19 +120,6 @@ class Image:
         """Writes the beauty layer as an 8-bit sRGB PNG, scaled by ``exposure`` (default:
         the scene's ``[output] exposure``)."""
         self._film.write_png(Path(path), exposure)
-
-
-@dataclass
-class Measurement:
-    """The receivers' measurements, by receiver name — each a dict with ``irradiance`` and
-    ``stderr`` (W per scene unit², shape (ny, nx)), bin centres ``x`` and ``y``, ``flux``
-    and ``flux_stderr`` (W) and ``bands`` — and the energy ``budget`` (W by fate)."""
-
-    receivers: Dict[str, Dict[str, Any]]
-    budget: Optional[Dict[str, Any]]
-    report: List[str] = field(repr=False)
-    warnings: List[str] = field(repr=False)
-    interrupted: bool = False
 
 
 @dataclass
@@ -267,7 +267,7 @@ class Scene:
             raise ValueError(f"{self.path}: the scene has no [camera]: use measure() for its receivers")
         result = self._run(values, progress, camera=True)
         film = result["film"]
-        image = None if film is None or film.passes == 0 else Image(film, result["receivers"], result["budget"], result["report"], result["warnings"], result["interrupted"])
+        image = None if film is None or film.passes == 0 else Image._of(result, _film=film)
         if result["interrupted"]:
             stop = KeyboardInterrupt("render interrupted: the finished passes are in this exception's .image (None before the first)")
             stop.image = image  # type: ignore[attr-defined]
@@ -288,7 +288,7 @@ class Scene:
         if not self.receivers:
             raise ValueError(f"{self.path}: the scene has no [[receiver]] to measure")
         result = self._run(dict(receiver_photons=photons, seed=seed, threads=threads), progress, camera=False)
-        m = Measurement(result["receivers"], result["budget"], result["report"], result["warnings"], result["interrupted"])
+        m = Measurement._of(result)
         if m.interrupted:
             stop = KeyboardInterrupt("measurement interrupted: the estimate so far is in this exception's .measurement")
             stop.measurement = m  # type: ignore[attr-defined]
@@ -352,4 +352,4 @@ def merge(partials: Sequence[PathLike], output: Optional[PathLike] = None, allow
     the render's EXR, PNG and receiver files (at ``output``, default the scene's) — and
     returns the merged image (None for a scene without a camera)."""
     film = _grinlight.merge([Path(p) for p in partials], None if output is None else Path(output), allow_missing)
-    return None if film is None else Image(film, {}, None, [], [])
+    return None if film is None else Image({}, None, [], [], _film=film)
