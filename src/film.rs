@@ -173,7 +173,7 @@ impl Film {
             *a += b;
         }
         self.rejected += other.rejected;
-        self.passes += other.passes;
+        self.passes = self.passes.saturating_add(other.passes);
         Ok(())
     }
 

@@ -213,12 +213,7 @@ impl Scene {
         if watched.uninterrupted()?.map_err(py_err)?.interrupted {
             return Err(PyKeyboardInterrupt::new_err(lines));
         }
-        Ok(output.unwrap_or_else(|| {
-            PathBuf::from(format!(
-                "{}.shard-{index}-of-{count}.partial",
-                path.file_stem().unwrap_or_default().to_string_lossy()
-            ))
-        }))
+        Ok(output.unwrap_or_else(|| commands::shard_partial(path, shard)))
     }
 
     /// Follows one ray through the medium `medium`, unbounded, as `grinlight trace` does;

@@ -10,7 +10,9 @@ mod trace;
 mod validate;
 
 pub use merge::{merge, MergeJob};
-pub use render::{render, render_in_memory, Overrides, RenderJob, RenderOutcome, Rendered};
+pub use render::{
+    render, render_in_memory, shard_partial, Overrides, RenderJob, RenderOutcome, Rendered,
+};
 pub use trace::{trace, trace_ray, PathPoint, RayTrace, TraceControl, TraceJob, Traced};
 pub use validate::{validate, ValidateJob};
 

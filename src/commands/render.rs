@@ -274,14 +274,10 @@ pub fn render(job: &RenderJob, observer: &dyn Observer) -> Result<RenderOutcome>
     let mut outputs = Outputs::new(&scene.inputs);
     let (files, state) = match job.shard {
         Some(s) => {
-            let state = job.output.clone().unwrap_or_else(|| {
-                PathBuf::from(format!(
-                    "{}.shard-{}-of-{}.partial",
-                    job.scene.file_stem().unwrap_or_default().to_string_lossy(),
-                    s.index,
-                    s.count
-                ))
-            });
+            let state = job
+                .output
+                .clone()
+                .unwrap_or_else(|| shard_partial(&job.scene, s));
             if state.extension().is_none_or(|e| e != "partial") {
                 return Err(Error::Usage(format!(
                     "{}: a shard writes a partial result, whose name ends in .partial",
@@ -466,6 +462,17 @@ fn build_checked(
         }
     }
     Ok(scene)
+}
+
+/// Where a shard's partial result goes when no output is named:
+/// `<scene stem>.shard-K-of-N.partial` in the working directory.
+pub fn shard_partial(scene: &Path, shard: Shard) -> PathBuf {
+    PathBuf::from(format!(
+        "{}.shard-{}-of-{}.partial",
+        scene.file_stem().unwrap_or_default().to_string_lossy(),
+        shard.index,
+        shard.count
+    ))
 }
 
 /// The GRIN fiber whose photon paths `--paths` asks to draw, if it does (checked: at most
