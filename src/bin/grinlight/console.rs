@@ -156,7 +156,8 @@ impl Observer for Console {
 
 impl Bar {
     /// Shows the pass and, after a tile, one more tile done (or, against a time budget, the
-    /// time spent and left).
+    /// time spent and left; with as many passes as a target error takes, the current pass's
+    /// tiles).
     fn update(&mut self, tile: bool) {
         let pass = self.pass + 1;
         match (self.budget, self.passes) {
@@ -168,12 +169,21 @@ impl Bar {
                     (budget - spent).max(0.0)
                 ));
             }
-            (None, passes) => {
+            (None, Some(passes)) => {
                 if tile {
                     self.bar.inc(1);
                 }
-                self.bar
-                    .set_message(format!("pass {pass}/{}", passes.unwrap_or(1)));
+                self.bar.set_message(format!("pass {pass}/{passes}"));
+            }
+            // As many passes as a target error takes: the bar is the current pass's tiles.
+            (None, None) => {
+                match tile {
+                    true => self.bar.inc(1),
+                    false => self.bar.set_position(0),
+                }
+                self.bar.set_message(format!(
+                    "pass {pass}, until the estimated error reaches the target"
+                ));
             }
         }
     }
