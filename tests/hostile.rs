@@ -158,6 +158,8 @@ fn cases() -> Vec<Case> {
         scene_case("fixed step 0", "", Error("")).with_scene_replace("spp = 1", "spp = 1\ncontrol = \"fixed\"\nstep = 0", "must be > 0"),
         scene_case("world radius -1", "", Error("")).with_scene_replace("spp = 1", "spp = 1\nworld_radius = -1", "must be > 0"),
         scene_case("time budget 0", "", Error("")).with_scene_replace("spp = 1", "spp = 1\ntime_budget = 0", "must be > 0"),
+        scene_case("target error -0.1", "", Error("")).with_scene_replace("spp = 1", "spp = 1\ntarget_error = -0.1", "must be > 0"),
+        scene_case("target error nan", "", Error("")).with_scene_replace("spp = 1", "spp = 1\ntarget_error = nan", "must be finite"),
         scene_case("dangling material", &format!("{LIGHT}[[shape]]\ntype = \"sphere\"\ncenter = [0,0,0]\nradius = 1\nmaterial = \"nope\"\n"), Error("no material named 'nope'")),
         scene_case("unknown table", "[lens]\nf = 3\n", Error("unknown field `lens`")),
         scene_case("two cameras", "[camera]\nposition = [0,0,1]\n", Error("duplicate key")),
