@@ -57,6 +57,17 @@ impl Layer {
     }
 }
 
+/// A film of a rectangle of a larger one, with the rectangle's top-left pixel there.
+#[derive(Clone, Debug)]
+pub struct Tile {
+    /// Column of the top-left pixel.
+    pub x0: usize,
+    /// Row of the top-left pixel.
+    pub y0: usize,
+    /// The rectangle's film.
+    pub film: Film,
+}
+
 /// Sums of samples per layer and pixel, and the samples per pixel.
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Film {
@@ -98,6 +109,16 @@ impl Film {
     /// each rounded to the nearest 2⁻⁶⁴; a value a fixed-point sum cannot hold adds nothing
     /// and is counted in [`Film::rejected`].
     pub fn add(&mut self, x: usize, y: usize, values: &[Rgb], samples: u64) {
+        self.accumulate(x, y, values, samples, false);
+    }
+
+    /// Takes back exactly what [`Film::add`] with the same arguments added (a plane the add
+    /// allocated stays, holding zeros: see [`Film::keep_planes`]).
+    pub fn remove(&mut self, x: usize, y: usize, values: &[Rgb], samples: u64) {
+        self.accumulate(x, y, values, samples, true);
+    }
+
+    fn accumulate(&mut self, x: usize, y: usize, values: &[Rgb], samples: u64, remove: bool) {
         let (i, pixels) = (y * self.width + x, self.width * self.height);
         let beauty = self
             .layers
@@ -109,19 +130,82 @@ impl Film {
         let values = values.iter().chain(std::iter::once(&square));
         for (plane, v) in self.sums.iter_mut().zip(values) {
             if plane.is_empty() {
-                if *v == Rgb::ZERO {
+                if *v == Rgb::ZERO || remove {
                     continue;
                 }
                 *plane = vec![[Fixed::ZERO; 3]; pixels];
             }
             for (sum, c) in plane[i].iter_mut().zip(v.to_array()) {
-                match Fixed::from_f64(c) {
-                    Some(f) => *sum += f,
-                    None => self.rejected += 1,
+                match (Fixed::from_f64(c), remove) {
+                    (Some(f), false) => *sum += f,
+                    (Some(f), true) => *sum += Fixed(-f.0),
+                    (None, false) => self.rejected += 1,
+                    (None, true) => self.rejected -= 1,
                 }
             }
         }
-        self.counts[i] += samples;
+        match remove {
+            false => self.counts[i] += samples,
+            true => self.counts[i] -= samples,
+        }
+    }
+
+    /// Which of its planes hold sums (the layers', then the squares'), for
+    /// [`Film::keep_planes`].
+    pub fn planes_held(&self) -> Vec<bool> {
+        self.sums.iter().map(|p| !p.is_empty()).collect()
+    }
+
+    /// Frees the planes not `held` (as [`Film::planes_held`] said before samples were added
+    /// and then removed): they hold only zeros, and a film that never held them has none.
+    pub fn keep_planes(&mut self, held: &[bool]) {
+        for (plane, &keep) in self.sums.iter_mut().zip(held) {
+            if !keep {
+                debug_assert!(plane.iter().all(|s| *s == [Fixed::ZERO; 3]));
+                *plane = Vec::new();
+            }
+        }
+    }
+
+    /// The whole `width` × `height` film of `passes` passes of `layers` from `tiles`,
+    /// assembled plane by plane, each tile's plane freed once copied: at most one plane more
+    /// than the tiles is held.
+    pub fn from_tiles(
+        width: usize,
+        height: usize,
+        layers: &[Layer],
+        passes: u32,
+        tiles: impl IntoIterator<Item = Tile>,
+    ) -> Film {
+        let mut whole = Film::new(width, height, layers);
+        whole.passes = passes;
+        let mut tiles: Vec<Tile> = tiles.into_iter().collect();
+        for k in 0..whole.sums.len() {
+            for t in &mut tiles {
+                let plane = std::mem::take(&mut t.film.sums[k]);
+                whole.paste_plane(k, &plane, t.film.width, t.film.height, t.x0, t.y0);
+            }
+        }
+        for t in &tiles {
+            whole.paste_counts(&t.film, t.x0, t.y0);
+        }
+        whole
+    }
+
+    /// The whole film of `passes` passes from `tiles`, copied (the tiles go on).
+    pub fn assembled<'a>(
+        width: usize,
+        height: usize,
+        layers: &[Layer],
+        passes: u32,
+        tiles: impl IntoIterator<Item = &'a Tile>,
+    ) -> Film {
+        let mut whole = Film::new(width, height, layers);
+        whole.passes = passes;
+        for t in tiles {
+            whole.paste(&t.film, t.x0, t.y0);
+        }
+        whole
     }
 
     /// Whether its buffers match its size and layers (a film read from a file): the reason
@@ -177,33 +261,44 @@ impl Film {
         Ok(())
     }
 
-    /// Empties it: every sum and count 0, nothing rejected (its buffers kept for reuse).
-    pub fn clear(&mut self) {
-        for plane in &mut self.sums {
-            plane.fill([Fixed::ZERO; 3]);
-        }
-        self.counts.fill(0);
-        self.rejected = 0;
-        self.passes = 0;
-    }
-
     /// Adds `tile`, a film of a rectangle of this one, with its top-left corner at (x0, y0).
     pub fn paste(&mut self, tile: &Film, x0: usize, y0: usize) {
+        for (k, plane) in tile.sums.iter().enumerate() {
+            self.paste_plane(k, plane, tile.width, tile.height, x0, y0);
+        }
+        self.paste_counts(tile, x0, y0);
+    }
+
+    /// Adds plane `k` of a `w` × `h` tile at (x0, y0) (nothing for an empty plane).
+    fn paste_plane(
+        &mut self,
+        k: usize,
+        plane: &[[Fixed; 3]],
+        w: usize,
+        h: usize,
+        x0: usize,
+        y0: usize,
+    ) {
+        if plane.is_empty() {
+            return;
+        }
         let pixels = self.width * self.height;
-        for (a, b) in self.sums.iter_mut().zip(&tile.sums) {
-            if b.is_empty() {
-                continue;
-            }
-            if a.is_empty() {
-                *a = vec![[Fixed::ZERO; 3]; pixels];
-            }
-            for y in 0..tile.height {
-                for x in 0..tile.width {
-                    let (i, j) = (y * tile.width + x, (y0 + y) * self.width + x0 + x);
-                    add_rgb(&mut a[j], &b[i]);
-                }
+        let whole = &mut self.sums[k];
+        if whole.is_empty() {
+            *whole = vec![[Fixed::ZERO; 3]; pixels];
+        }
+        for y in 0..h {
+            for x in 0..w {
+                add_rgb(
+                    &mut whole[(y0 + y) * self.width + x0 + x],
+                    &plane[y * w + x],
+                );
             }
         }
+    }
+
+    /// Adds a tile's sample counts and rejected values.
+    fn paste_counts(&mut self, tile: &Film, x0: usize, y0: usize) {
         for y in 0..tile.height {
             for x in 0..tile.width {
                 self.counts[(y0 + y) * self.width + x0 + x] += tile.counts[y * tile.width + x];
@@ -371,6 +466,11 @@ pub struct FilmError<'a> {
 impl FilmError<'_> {
     /// The expected relative RMSE of the developed `beauty` (see above).
     pub fn relative_rmse(&self) -> f64 {
+        self.totals().relative_rmse()
+    }
+
+    /// The sums over its pixels behind [`FilmError::relative_rmse`].
+    pub fn totals(&self) -> ErrorTotals {
         let pixels = self.film.width * self.film.height;
         let (mean, variance) = (0..pixels)
             .into_par_iter()
@@ -379,7 +479,11 @@ impl FilmError<'_> {
                 (m.iter().sum::<f64>(), v.iter().sum::<f64>())
             })
             .reduce(|| (0.0, 0.0), |a, b| (a.0 + b.0, a.1 + b.1));
-        (variance / mean.powi(2) * (3 * pixels) as f64).sqrt()
+        ErrorTotals {
+            mean,
+            variance,
+            values: 3 * pixels,
+        }
     }
 
     /// Pixel `i`'s developed `beauty`, RGB.
@@ -396,6 +500,37 @@ impl FilmError<'_> {
         let dof = (self.film.passes - 1) as f64;
         let v = (q - sum * sum / n) / (dof * n);
         v.to_array().map(|c| c.max(0.0))
+    }
+}
+
+/// Over a set of pixel-channels: the sums of the developed values and of their variances, and
+/// how many there are — what the image's relative RMSE is made of, summed over the films of
+/// its parts (tiles) as over pixels.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ErrorTotals {
+    /// Σ developed value.
+    pub mean: f64,
+    /// Σ variance of the developed value.
+    pub variance: f64,
+    /// How many pixel-channels.
+    pub values: usize,
+}
+
+impl ErrorTotals {
+    /// √(mean variance) / (mean value).
+    pub fn relative_rmse(&self) -> f64 {
+        (self.variance / self.mean.powi(2) * self.values as f64).sqrt()
+    }
+}
+
+impl std::ops::Add for ErrorTotals {
+    type Output = ErrorTotals;
+    fn add(self, o: ErrorTotals) -> ErrorTotals {
+        ErrorTotals {
+            mean: self.mean + o.mean,
+            variance: self.variance + o.variance,
+            values: self.values + o.values,
+        }
     }
 }
 
@@ -500,4 +635,38 @@ pub fn mean_ratios(
         }
     }
     (overall, blocks)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A pass added and taken back leaves the film exactly as it was — sums, squares, counts,
+    /// rejected values, and no plane the pass alone allocated.
+    #[test]
+    fn a_pass_taken_back_leaves_the_film_as_it_was() {
+        let layers = [Layer::radiance("direct"), Layer::radiance("caustic")];
+        let mut film = Film::new(3, 2, &layers);
+        let before_values = [Rgb::new(0.25, 1.0 / 3.0, 7.0), Rgb::ZERO];
+        for i in 0..6 {
+            film.add(i % 3, i / 3, &before_values, 4);
+        }
+        film.passes = 1;
+        let before = film.clone();
+        let held = film.planes_held();
+        let pass = [
+            [Rgb::new(0.1, 0.2, 1e-30), Rgb::new(0.5, 0.0, 3.0)],
+            [Rgb::new(f64::NAN, 1.0, 2.0), Rgb::new(1e300, 0.0, 0.0)],
+        ];
+        for i in 0..6 {
+            film.add(i % 3, i / 3, &pass[i % 2], 4);
+        }
+        assert_ne!(film, before);
+        assert!(film.rejected() > 0 && film.planes_held() != held);
+        for i in 0..6 {
+            film.remove(i % 3, i / 3, &pass[i % 2], 4);
+        }
+        film.keep_planes(&held);
+        assert_eq!(film, before);
+    }
 }

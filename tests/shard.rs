@@ -516,7 +516,11 @@ fn a_whole_render_leaves_a_finished_shard_result_alone() {
 struct StopAfterFirstPass(std::sync::atomic::AtomicBool);
 
 impl Observer for StopAfterFirstPass {
-    fn pass_done(&self, _: u32, _: &grinlight::film::Film) -> grinlight::error::Result<()> {
+    fn pass_done(
+        &self,
+        _: u32,
+        _: &dyn Fn() -> grinlight::film::Film,
+    ) -> grinlight::error::Result<()> {
         self.0.store(true, std::sync::atomic::Ordering::SeqCst);
         Ok(())
     }

@@ -8,6 +8,7 @@
 //! Also here: the receivers' measurement ([`measure`], [`Books`]: `render/measurement.rs`) and what a render will need of the
 //! machine ([`memory_needed`]).
 
+use crate::color::Rgb;
 use crate::error::{Error, Result};
 use crate::film::Film;
 use crate::integrator::{
@@ -36,11 +37,75 @@ const TILE: usize = 16;
 /// three degrees of freedom a pixel) is too rough to stop on.
 pub const MIN_PASSES_FOR_ERROR: u32 = 4;
 
-/// A tile: its top-left pixel and its film.
+/// A tile of the render: its film of the passes finished, and while a pass runs, what the
+/// pass added to it.
 struct Tile {
-    x0: usize,
-    y0: usize,
-    film: Film,
+    film: crate::film::Tile,
+    /// The current pass's additions, so that a pass cut short can be taken back exactly.
+    pass: Option<PassRecord>,
+}
+
+/// What one pass added to a tile's film: per layer and pixel (row-major), the RGB sum of its
+/// samples as added (rounded to f32, so a layer's record is a quarter of its sums; none for a
+/// layer the pass left at zero), the samples, and which planes the film held before (a plane
+/// the pass allocated goes again).
+struct PassRecord {
+    layers: Vec<Vec<[f32; 3]>>,
+    samples: u64,
+    held: Vec<bool>,
+}
+
+impl PassRecord {
+    /// An empty record of a pass adding `samples` samples a pixel to `layers` layers.
+    fn new(layers: usize, samples: u64, held: Vec<bool>) -> Self {
+        PassRecord {
+            layers: vec![Vec::new(); layers],
+            samples,
+            held,
+        }
+    }
+
+    /// Records pixel `i`'s `values`, each rounded to f32 in place (as the film is given
+    /// them); a layer's record is allocated at its first value other than zero.
+    fn record(&mut self, i: usize, pixels: usize, values: &mut [Rgb]) {
+        for (record, v) in self.layers.iter_mut().zip(values) {
+            let rounded = v.as_vec3().to_array();
+            *v = Rgb::new(rounded[0] as f64, rounded[1] as f64, rounded[2] as f64);
+            if record.is_empty() {
+                if *v == Rgb::ZERO {
+                    continue;
+                }
+                *record = vec![[0.0; 3]; pixels];
+            }
+            record[i] = rounded;
+        }
+    }
+
+    /// Pixel `i`'s recorded values.
+    fn values(&self, i: usize, out: &mut [Rgb]) {
+        for (o, record) in out.iter_mut().zip(&self.layers) {
+            *o = record.get(i).map_or(Rgb::ZERO, |p| {
+                Rgb::new(p[0] as f64, p[1] as f64, p[2] as f64)
+            });
+        }
+    }
+}
+
+impl Tile {
+    /// Takes back the current pass's additions, if any: the film is then exactly the film of
+    /// the passes before.
+    fn take_back(&mut self, layers: usize) {
+        let Some(record) = self.pass.take() else {
+            return;
+        };
+        let film = &mut self.film.film;
+        let mut values = vec![Rgb::ZERO; layers];
+        for i in 0..film.width * film.height {
+            record.values(i, &mut values);
+            film.remove(i % film.width, i / film.width, &values, record.samples);
+        }
+        film.keep_planes(&record.held);
+    }
 }
 
 /// Renders the scene's camera view as `settings` say, with the integrator they name, telling
@@ -119,6 +184,9 @@ pub fn render_with<I: Integrator>(
     let (w, h) = film_size(tracer)?;
     let layers = integrator.layers();
     let mut tiles = tiles(w, h, layers);
+    let assemble = |tiles: &[Tile], passes: u32| {
+        Film::assembled(w, h, layers, passes, tiles.iter().map(|t| &t.film))
+    };
     let pool = thread_pool(settings.threads)?;
     let start = Instant::now();
     let mut report = Report::default();
@@ -128,8 +196,6 @@ pub fn render_with<I: Integrator>(
         time_budget: settings.time_budget,
     });
     let stop = || observer.stop_requested();
-    // The film of the whole passes done.
-    let mut whole = Film::new(w, h, layers);
     for k in 0..passes.count {
         let pass = passes.first.saturating_add(k);
         let over_budget = settings
@@ -166,6 +232,8 @@ pub fn render_with<I: Integrator>(
         }
         let finished = done.iter().filter(|(_, run)| *run).count();
         if finished < tiles.len() {
+            // The film is exactly the passes finished: this one's tiles are taken back.
+            tiles.par_iter_mut().for_each(|t| t.take_back(layers.len()));
             report.partial = Some(format!(
                 "{k} of {} passes, and pass {} on {finished} of {} tiles of 16 × 16 pixels",
                 passes.count,
@@ -175,11 +243,28 @@ pub fn render_with<I: Integrator>(
             break;
         }
         report.passes = k + 1;
-        assemble(&tiles, &mut whole);
-        whole.passes = report.passes;
-        observer.pass_done(report.passes, &whole)?;
+        for t in &mut tiles {
+            t.pass = None;
+            t.film.film.passes = report.passes;
+        }
+        observer.pass_done(report.passes, &|| assemble(&tiles, report.passes))?;
         if let Some(target) = settings.target_error {
-            if let Some(error) = whole.error().map(|e| e.relative_rmse()) {
+            let totals = tiles
+                .par_iter()
+                .map(|t| {
+                    let f = &t.film.film;
+                    // A tile all black holds no squares: its pixels count, with no error.
+                    f.error().map_or(
+                        crate::film::ErrorTotals {
+                            values: 3 * f.width * f.height,
+                            ..Default::default()
+                        },
+                        |e| e.totals(),
+                    )
+                })
+                .reduce(Default::default, |a, b| a + b);
+            if totals.mean > 0.0 {
+                let error = totals.relative_rmse();
                 observer.line(&format!(
                     "pass {}: estimated error {error:.4} (relative RMSE; target {target})",
                     report.passes
@@ -194,7 +279,14 @@ pub fn render_with<I: Integrator>(
         report.partial = Some(format!("{} of {} passes", report.passes, passes.count));
     }
     observer.progress(Progress::Done);
-    Ok((whole, report))
+    let film = Film::from_tiles(
+        w,
+        h,
+        layers,
+        report.passes,
+        tiles.into_iter().map(|t| t.film),
+    );
+    Ok((film, report))
 }
 
 /// The camera's film size in pixels, or an error naming the scene that has no camera.
@@ -216,9 +308,12 @@ fn tiles(w: usize, h: usize, layers: &[crate::film::Layer]) -> Vec<Tile> {
             let (x0, y0) = (tx * TILE, ty * TILE);
             let (x1, y1) = ((x0 + TILE).min(w), (y0 + TILE).min(h));
             tiles.push(Tile {
-                x0,
-                y0,
-                film: Film::new(x1 - x0, y1 - y0, layers),
+                film: crate::film::Tile {
+                    x0,
+                    y0,
+                    film: Film::new(x1 - x0, y1 - y0, layers),
+                },
+                pass: None,
             });
         }
     }
@@ -249,16 +344,6 @@ fn camera_pass<I: Integrator>(
         .collect()
 }
 
-/// The whole film of the tiles' films, assembled into `film` (cleared first): one film
-/// reused from pass to pass, not a new one beside the old (a 1920 × 1080 film of seven layers
-/// is 0.7 GB).
-fn assemble(tiles: &[Tile], film: &mut Film) {
-    film.clear();
-    for tile in tiles {
-        film.paste(&tile.film, tile.x0, tile.y0);
-    }
-}
-
 /// Which camera samples a pass takes.
 #[derive(Clone, Copy)]
 struct Sampling {
@@ -286,14 +371,17 @@ fn camera_tile<I: Integrator>(
     let spp = spp.max(1);
     let strata = spp.isqrt();
     let layers = integrator.layers().len();
-    let mut sum = vec![crate::color::Rgb::ZERO; layers];
-    let mut values = vec![crate::color::Rgb::ZERO; layers];
-    for ty in 0..tile.film.height {
-        for tx in 0..tile.film.width {
-            let (x, y) = (tile.x0 + tx, tile.y0 + ty);
+    let mut sum = vec![Rgb::ZERO; layers];
+    let (tile, film) = (&mut tile.pass, &mut tile.film);
+    let pixels = film.film.width * film.film.height;
+    let mut record = PassRecord::new(layers, spp as u64, film.film.planes_held());
+    let mut values = vec![Rgb::ZERO; layers];
+    for ty in 0..film.film.height {
+        for tx in 0..film.film.width {
+            let (x, y) = (film.x0 + tx, film.y0 + ty);
             let pixel = y as u64 * w + x as u64;
             let mut state = I::Pixel::default();
-            sum.fill(crate::color::Rgb::ZERO);
+            sum.fill(Rgb::ZERO);
             for s in 0..spp {
                 let mut rng = stream(seed, Purpose::Camera, pass as u64 * w * h + pixel, s as u64);
                 // Stratified over the pixel: sample s of the first n² lies in cell (s mod n,
@@ -307,7 +395,7 @@ fn camera_tile<I: Integrator>(
                 let (origin, direction) =
                     camera.ray(x as u32, y as u32, u, v, (rng.gen(), rng.gen()));
                 stats.camera_rays += 1;
-                values.fill(crate::color::Rgb::ZERO);
+                values.fill(Rgb::ZERO);
                 let mut sample = Sample {
                     rng: &mut rng,
                     stats,
@@ -323,9 +411,12 @@ fn camera_tile<I: Integrator>(
                     *a += *b;
                 }
             }
-            tile.film.add(tx, ty, &sum, spp as u64);
+            // Rounded to f32 as recorded, so that taking the pass back is exact.
+            record.record(ty * film.film.width + tx, pixels, &mut sum);
+            film.film.add(tx, ty, &sum, spp as u64);
         }
     }
+    *tile = Some(record);
 }
 
 /// Bytes a render of `scene` needs at its peak, estimated from above for typical scenes: the

@@ -42,9 +42,9 @@ pub trait Observer: Sync {
     fn line(&self, _text: &str) {}
     /// A warning: the command goes on, but its user should know.
     fn warning(&self, _text: &str) {}
-    /// The film after `passes` finished passes (e.g. to write a checkpoint); an error stops
-    /// the render with it.
-    fn pass_done(&self, _passes: u32, _film: &Film) -> Result<()> {
+    /// `passes` passes are finished; `film()` assembles their film (a whole film's copy:
+    /// only when needed, e.g. to write a checkpoint). An error stops the render with it.
+    fn pass_done(&self, _passes: u32, _film: &dyn Fn() -> Film) -> Result<()> {
         Ok(())
     }
     /// Whether to stop as soon as possible (an interrupt): a render abandons its current pass

@@ -169,11 +169,11 @@ impl Observer for Watcher<'_> {
     fn stop_requested(&self) -> bool {
         self.outer.stop_requested()
     }
-    fn pass_done(&self, passes: u32, film: &Film) -> Result<()> {
+    fn pass_done(&self, passes: u32, film: &dyn Fn() -> Film) -> Result<()> {
         let every = self.saver.saving.every;
         if self.saver.due(every > 0 && passes.is_multiple_of(every)) {
             let mut p = self.partial.clone();
-            p.add_passes(self.first..self.first + passes as u64, film.clone())?;
+            p.add_passes(self.first..self.first + passes as u64, film())?;
             self.saver.save(&p)?;
         }
         self.outer.pass_done(passes, film)
