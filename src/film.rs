@@ -355,6 +355,20 @@ impl Film {
         }))
     }
 
+    /// The sums behind the image's relative RMSE over this film's pixels (see [`FilmError`]),
+    /// to be added over the films of an image's parts: a black film's pixels count, with no
+    /// error; none count before two passes.
+    pub fn error_totals(&self) -> ErrorTotals {
+        match self.error() {
+            Some(e) => e.totals(),
+            None if self.passes >= 2 => ErrorTotals {
+                values: 3 * self.width * self.height,
+                ..Default::default()
+            },
+            None => ErrorTotals::default(),
+        }
+    }
+
     /// How far the developed `beauty` may be from what infinitely many passes would give,
     /// judged by the spread of the passes' own estimates (so: the noise; a bias common to
     /// every pass is not seen); None before two passes, or for a black image (whose passes
@@ -470,12 +484,12 @@ impl FilmError<'_> {
     }
 
     /// The sums over its pixels behind [`FilmError::relative_rmse`].
-    pub fn totals(&self) -> ErrorTotals {
+    fn totals(&self) -> ErrorTotals {
         let pixels = self.film.width * self.film.height;
         let (mean, variance) = (0..pixels)
             .into_par_iter()
             .map(|i| {
-                let (m, v) = (self.mean(i), self.variance(i));
+                let (m, v) = self.moments(i);
                 (m.iter().sum::<f64>(), v.iter().sum::<f64>())
             })
             .reduce(|| (0.0, 0.0), |a, b| (a.0 + b.0, a.1 + b.1));
@@ -488,18 +502,22 @@ impl FilmError<'_> {
 
     /// Pixel `i`'s developed `beauty`, RGB.
     pub fn mean(&self, i: usize) -> [f64; 3] {
-        let sum = self.beauty.iter().fold(Rgb::ZERO, |a, p| a + rgb(&p[i]));
-        (sum / self.film.counts[i].max(1) as f64).to_array()
+        self.moments(i).0
     }
 
     /// The variance of pixel `i`'s developed `beauty`, RGB (its standard error squared).
     pub fn variance(&self, i: usize) -> [f64; 3] {
+        self.moments(i).1
+    }
+
+    /// Pixel `i`'s developed `beauty` and its variance (see above), RGB.
+    fn moments(&self, i: usize) -> ([f64; 3], [f64; 3]) {
         let n = self.film.counts[i].max(1) as f64;
         let sum = self.beauty.iter().fold(Rgb::ZERO, |a, p| a + rgb(&p[i]));
         let q = rgb(&self.squares[i]);
         let dof = (self.film.passes - 1) as f64;
         let v = (q - sum * sum / n) / (dof * n);
-        v.to_array().map(|c| c.max(0.0))
+        ((sum / n).to_array(), v.to_array().map(|c| c.max(0.0)))
     }
 }
 

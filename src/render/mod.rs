@@ -251,17 +251,7 @@ pub fn render_with<I: Integrator>(
         if let Some(target) = settings.target_error {
             let totals = tiles
                 .par_iter()
-                .map(|t| {
-                    let f = &t.film.film;
-                    // A tile all black holds no squares: its pixels count, with no error.
-                    f.error().map_or(
-                        crate::film::ErrorTotals {
-                            values: 3 * f.width * f.height,
-                            ..Default::default()
-                        },
-                        |e| e.totals(),
-                    )
-                })
+                .map(|t| t.film.film.error_totals())
                 .reduce(Default::default, |a, b| a + b);
             if totals.mean > 0.0 {
                 let error = totals.relative_rmse();
