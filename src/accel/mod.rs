@@ -2,27 +2,18 @@
 //! coaxial tubes ([`coaxial`]), which a BVH cannot prune. The BVH knows nothing of primitives:
 //! f32 boxes are padded outward, and the closures do the exact f64 test.
 
+mod build;
 mod coaxial;
+
+pub(crate) use build::build_bvh;
 
 use coaxial::CoaxialStack;
 
 use crate::curve::{ArcHull, Path};
 use crate::shapes::{padded_box as padded, Hit, Primitive};
 use glam::{DVec3, Vec3A};
-use obvhs::aabb::Aabb;
-use obvhs::bvh2::builder::build_bvh2;
 use obvhs::bvh2::Bvh2;
 use obvhs::ray::{Ray, RayHit};
-use obvhs::{Boundable, BvhBuildParams};
-
-/// A primitive's f32 box, rounded outward so it contains the f64 primitive.
-struct Bounds(Aabb);
-
-impl Boundable for Bounds {
-    fn aabb(&self) -> Aabb {
-        self.0
-    }
-}
 
 /// Primitives with a BVH over them; a hit reports the primitive's index in `primitives`.
 pub struct Accel {
@@ -39,22 +30,10 @@ impl Accel {
         let mut taken = vec![false; primitives.len()];
         let stacks = CoaxialStack::gather(&primitives, &mut taken);
         let in_bvh: Vec<usize> = (0..primitives.len()).filter(|&i| !taken[i]).collect();
-        let bounds: Vec<Bounds> = in_bvh
-            .iter()
-            .map(|&i| {
-                let (lo, hi) = primitives[i].bounds();
-                Bounds(padded(lo, hi))
-            })
-            .collect();
-        let bvh = if bounds.is_empty() {
-            Bvh2::default()
-        } else {
-            build_bvh2(
-                &bounds,
-                BvhBuildParams::medium_build(),
-                &mut Default::default(),
-            )
-        };
+        let bvh = build_bvh(in_bvh.iter().map(|&i| {
+            let (lo, hi) = primitives[i].bounds();
+            padded(lo, hi)
+        }));
         Self {
             primitives,
             bvh,

@@ -11,15 +11,13 @@
 //! in-scattered along the whole stretch, with no distance drawn.
 
 use super::Photon;
+use crate::accel::build_bvh;
 use crate::shapes::padded_box;
 use glam::{DVec3, Vec3A};
 use kiddo::immutable::float::kdtree::ImmutableKdTree;
 use kiddo::SquaredEuclidean;
-use obvhs::aabb::Aabb;
-use obvhs::bvh2::builder::build_bvh2;
 use obvhs::bvh2::Bvh2;
 use obvhs::ray::{Ray, RayHit};
-use obvhs::{Boundable, BvhBuildParams};
 use rayon::prelude::*;
 use std::f64::consts::PI;
 use std::num::NonZero;
@@ -43,15 +41,6 @@ pub struct Along {
     /// A stretch through the whole ball at distance d from its centre gets the 2D kernel
     /// 5 (r² − d²)^{3/2} / (2π r⁵), normalised over the disk.
     pub kernel: f64,
-}
-
-/// A ball's f32 box, rounded outward.
-struct Ball(Aabb);
-
-impl Boundable for Ball {
-    fn aabb(&self) -> Aabb {
-        self.0
-    }
 }
 
 impl VolumeMap {
@@ -82,19 +71,10 @@ impl VolumeMap {
                 kth * shrink
             })
             .collect();
-        let balls: Vec<Ball> = photons
-            .iter()
-            .zip(&r2)
-            .map(|(p, &r2)| {
-                let r = DVec3::splat(r2.sqrt());
-                Ball(padded_box(p.position - r, p.position + r))
-            })
-            .collect();
-        let bvh = build_bvh2(
-            &balls,
-            BvhBuildParams::fast_build(),
-            &mut Default::default(),
-        );
+        let bvh = build_bvh(photons.iter().zip(&r2).map(|(p, &r2)| {
+            let r = DVec3::splat(r2.sqrt());
+            padded_box(p.position - r, p.position + r)
+        }));
         let order = &bvh.primitive_indices;
         Self {
             photons: order.iter().map(|&i| photons[i as usize]).collect(),

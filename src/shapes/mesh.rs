@@ -5,13 +5,11 @@
 
 use super::hit::{padded_box, Hit};
 use super::triangle::Triangle;
+use crate::accel::build_bvh;
 use crate::curve::{ArcHull, Path};
 use glam::{DVec2, DVec3, Vec3A};
-use obvhs::aabb::Aabb;
-use obvhs::bvh2::builder::build_bvh2;
 use obvhs::bvh2::Bvh2;
 use obvhs::ray::{Ray, RayHit};
-use obvhs::{Boundable, BvhBuildParams};
 
 /// Triangles over shared vertices, with a BVH over the triangles; with vertex normals, a
 /// smooth mesh (its hits' shading normals interpolated across each triangle).
@@ -29,15 +27,6 @@ pub struct TriangleMesh {
     /// through the centre): a lens's or a ball's empty core, where a curved step's capsule
     /// needs no search at all.
     core: (DVec3, f64),
-}
-
-/// A triangle's padded f32 box, for the BVH build.
-struct TriangleBox(Aabb);
-
-impl Boundable for TriangleBox {
-    fn aabb(&self) -> Aabb {
-        self.0
-    }
 }
 
 impl TriangleMesh {
@@ -92,29 +81,14 @@ impl TriangleMesh {
             return Err("a vertex is not finite".into());
         }
         let vertex = |i: u32| DVec3::from(vertices[i as usize].map(f64::from));
-        let boxes: Vec<TriangleBox> = triangles
-            .iter()
-            .map(|t| {
-                let (lo, hi) = t
-                    .iter()
-                    .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &i| {
-                        (lo.min(vertex(i)), hi.max(vertex(i)))
-                    });
-                TriangleBox(padded_box(lo, hi))
-            })
-            .collect();
-        let mut bvh = build_bvh2(
-            &boxes,
-            BvhBuildParams::medium_build(),
-            &mut Default::default(),
-        );
-        drop(boxes);
-        // Only the nodes and the leaf order are traversed: the build's bookkeeping goes.
-        bvh.parents = Vec::new();
-        bvh.primitives_to_nodes = Vec::new();
-        bvh.primitive_indices_freelist = Vec::new();
-        bvh.nodes.shrink_to_fit();
-        bvh.primitive_indices.shrink_to_fit();
+        let bvh = build_bvh(triangles.iter().map(|t| {
+            let (lo, hi) = t
+                .iter()
+                .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &i| {
+                    (lo.min(vertex(i)), hi.max(vertex(i)))
+                });
+            padded_box(lo, hi)
+        }));
         let bounds = vertices
             .iter()
             .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), v| {
