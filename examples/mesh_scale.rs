@@ -7,13 +7,18 @@
 //!
 //! First, the time to read the same meshes from an OBJ and from a binary PLY file.
 //!
+//! `-- --build N` times the mesh's construction alone (its checks, BVH and core; median of
+//! 7). `-- --one N` runs one size (N cells a face) and prints its fields; `-- --analytic` renders
+//! the analytic lens once and prints its time (`bench/mesh_build.sh` alternates builds with
+//! these).
+//!
 //! `cargo run --release --example mesh_scale` (sizes 1.2·10⁴, 1.3·10⁵, 1.3·10⁶ and 10⁷
 //! triangles; the PLY files go to out/, 10⁷ triangles ≈ 0.2 GB) or `-- --sizes 30,330`.
 
 use grinlight::scene::load::parse_scene;
 use grinlight::scene::mesh::{load_triangles, ObjTriangles};
 use grinlight::scene::ply::load_ply;
-use grinlight::shapes::Primitive;
+use grinlight::shapes::{Primitive, TriangleMesh};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -192,6 +197,15 @@ fn one(n: usize) {
     std::fs::remove_file(&file).ok();
 }
 
+/// The analytic lens's render time (s).
+fn analytic_render() -> f64 {
+    let (scene, settings) =
+        parse_scene(Path::new("scenes/luneburg.toml"), scene_text(None)).unwrap();
+    let t = Instant::now();
+    grinlight::render::render(&scene, &settings, &()).unwrap();
+    t.elapsed().as_secs_f64()
+}
+
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);
     v[v.len() / 2]
@@ -201,6 +215,24 @@ fn main() {
     let args: Vec<String> = std::env::args().collect();
     if let Some(i) = args.iter().position(|a| a == "--one") {
         one(args[i + 1].parse().expect("--one N"));
+        return;
+    }
+    if let Some(i) = args.iter().position(|a| a == "--build") {
+        let n = args[i + 1].parse().expect("--build N");
+        let (vertices, triangles) = cube_sphere(n, 0.5);
+        let times = (0..7)
+            .map(|_| {
+                let (v, t) = (vertices.clone(), triangles.clone());
+                let start = Instant::now();
+                std::hint::black_box(TriangleMesh::new(v, t, None, None).expect("a mesh"));
+                start.elapsed().as_secs_f64()
+            })
+            .collect();
+        println!("build={}", median(times));
+        return;
+    }
+    if args.iter().any(|a| a == "--analytic") {
+        println!("render={}", analytic_render());
         return;
     }
     let sizes: Vec<usize> = args
@@ -213,18 +245,7 @@ fn main() {
                 .collect()
         })
         .unwrap_or_else(|| vec![32, 104, 330, 913]);
-    // The analytic lens, median of 3.
-    let analytic = median(
-        (0..3)
-            .map(|_| {
-                let (scene, settings) =
-                    parse_scene(Path::new("scenes/luneburg.toml"), scene_text(None)).unwrap();
-                let t = Instant::now();
-                grinlight::render::render(&scene, &settings, &()).unwrap();
-                t.elapsed().as_secs_f64()
-            })
-            .collect(),
-    );
+    let analytic = median((0..3).map(|_| analytic_render()).collect());
     println!("Reading the cube sphere's file (the reader alone, median of 3):\n");
     println!("| triangles | OBJ (s) | binary PLY (s) |\n|---|---|---|");
     for &n in &sizes {

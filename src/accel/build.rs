@@ -2,13 +2,13 @@
 //! construction of SAH-based bounding volume hierarchies"), in place over compact boxes.
 //!
 //! Working memory is the primitives' f32 boxes (24 bytes each), their order (4 bytes each,
-//! which becomes the BVH's leaf order) and the nodes themselves (32 or 48 bytes each, at
-//! most 2 n − 1, written as the build goes): nothing else grows with n. The result is an
+//! which becomes the BVH's leaf order) and the nodes themselves (32 bytes each, at most
+//! 2 n − 1, written as the build goes): nothing else grows with n. The result is an
 //! obvhs [`Bvh2`] — root at index 0, an inner node's children at `first_index` and
 //! `first_index + 1`, a leaf's primitives at `primitive_indices[first_index..][..prim_count]`
 //! — so every traversal in obvhs and grinlight reads it as before.
 
-use glam::{Vec3, Vec3A};
+use glam::{IVec3, Vec3, Vec3A};
 use obvhs::aabb::Aabb;
 use obvhs::bvh2::node::Bvh2Node;
 use obvhs::bvh2::Bvh2;
@@ -21,21 +21,17 @@ const BINS: usize = 16;
 const TRAVERSAL_COST: f32 = 1.5;
 /// The most primitives a leaf holds; more are always split.
 const MAX_LEAF: usize = 8;
+/// Nodes of more primitives than this are binned in parallel, in chunks of this many.
+const PARALLEL_BINNING: usize = 1 << 16;
 
-/// An f32 box, 24 bytes (obvhs's [`Aabb`] is 32).
+/// A primitive's box as the build keeps it: f32 corners, 24 bytes (obvhs's [`Aabb`] is 32).
 #[derive(Clone, Copy, Debug)]
-struct Bounds {
+struct Packed {
     lo: Vec3,
     hi: Vec3,
 }
 
-impl Bounds {
-    /// The empty box: growing it by a box gives that box.
-    const EMPTY: Self = Self {
-        lo: Vec3::INFINITY,
-        hi: Vec3::NEG_INFINITY,
-    };
-
+impl Packed {
     fn of(aabb: &Aabb) -> Self {
         Self {
             lo: aabb.min.into(),
@@ -43,8 +39,30 @@ impl Bounds {
         }
     }
 
+    fn unpack(self) -> Bounds {
+        Bounds {
+            lo: self.lo.into(),
+            hi: self.hi.into(),
+        }
+    }
+}
+
+/// An f32 box in SIMD lanes, for the build's sums.
+#[derive(Clone, Copy, Debug)]
+struct Bounds {
+    lo: Vec3A,
+    hi: Vec3A,
+}
+
+impl Bounds {
+    /// The empty box: growing it by a box gives that box.
+    const EMPTY: Self = Self {
+        lo: Vec3A::INFINITY,
+        hi: Vec3A::NEG_INFINITY,
+    };
+
     fn aabb(self) -> Aabb {
-        Aabb::new(Vec3A::from(self.lo), Vec3A::from(self.hi))
+        Aabb::new(self.lo, self.hi)
     }
 
     fn grow(self, other: Self) -> Self {
@@ -54,7 +72,7 @@ impl Bounds {
         }
     }
 
-    fn grow_point(self, p: Vec3) -> Self {
+    fn grow_point(self, p: Vec3A) -> Self {
         Self {
             lo: self.lo.min(p),
             hi: self.hi.max(p),
@@ -63,13 +81,53 @@ impl Bounds {
 
     /// Half the surface area (0 for the empty box).
     fn half_area(self) -> f32 {
-        let d = (self.hi - self.lo).max(Vec3::ZERO);
+        let d = (self.hi - self.lo).max(Vec3A::ZERO);
         d.x * d.y + d.y * d.z + d.z * d.x
     }
 
     /// Twice the centre (a primitive's binning key; the factor 2 cancels).
-    fn centre2(self) -> Vec3 {
+    fn centre2(self) -> Vec3A {
         self.lo + self.hi
+    }
+}
+
+/// What a set of primitives spans: the box of their boxes, and the box of their (doubled)
+/// centres, by which they are binned.
+#[derive(Clone, Copy, Debug)]
+struct Hull {
+    bounds: Bounds,
+    centres: Bounds,
+}
+
+impl Hull {
+    const EMPTY: Self = Self {
+        bounds: Bounds::EMPTY,
+        centres: Bounds::EMPTY,
+    };
+
+    fn add(self, b: Bounds) -> Self {
+        Self {
+            bounds: self.bounds.grow(b),
+            centres: self.centres.grow_point(b.centre2()),
+        }
+    }
+
+    fn merge(self, other: Self) -> Self {
+        Self {
+            bounds: self.bounds.grow(other.bounds),
+            centres: self.centres.grow(other.centres),
+        }
+    }
+
+    /// The hull of `refs`.
+    fn of(refs: &[Packed]) -> Self {
+        let fold = |refs: &[Packed]| refs.iter().fold(Self::EMPTY, |h, r| h.add(r.unpack()));
+        if refs.len() <= PARALLEL_BINNING {
+            return fold(refs);
+        }
+        refs.par_chunks(PARALLEL_BINNING)
+            .map(fold)
+            .reduce(|| Self::EMPTY, Self::merge)
     }
 }
 
@@ -85,45 +143,82 @@ impl Bin {
         bounds: Bounds::EMPTY,
         count: 0,
     };
+
+    fn merge(self, other: Self) -> Self {
+        Self {
+            bounds: self.bounds.grow(other.bounds),
+            count: self.count + other.count,
+        }
+    }
 }
 
-/// Where the primitives of a node go into bins along one axis: bin ⌊(c − lo)·scale⌋ of
-/// their boxes' doubled centres c, clamped to the last of `count`.
+/// Where a node's primitives go into bins, along each axis at once: bin ⌊(c − lo)·scale⌋ of
+/// their boxes' doubled centres c, clamped to the last of `count` (scale 0 along an axis
+/// where the centres coincide: every primitive in bin 0 there).
 #[derive(Clone, Copy)]
 struct Binning {
-    axis: usize,
-    lo: f32,
-    scale: f32,
+    lo: Vec3A,
+    scale: Vec3A,
     count: usize,
 }
 
 impl Binning {
-    /// The binning along `axis` of centres spanning `centres`, or None where they coincide.
-    fn new(axis: usize, centres: Bounds, count: usize) -> Option<Self> {
-        let extent = centres.hi[axis] - centres.lo[axis];
-        (extent > 0.0).then(|| Self {
-            axis,
-            lo: centres.lo[axis],
-            scale: count as f32 * (1.0 - 1e-6) / extent,
+    fn new(centres: Bounds, count: usize) -> Self {
+        let extent = centres.hi - centres.lo;
+        let scale = Vec3A::select(
+            extent.cmpgt(Vec3A::ZERO),
+            Vec3A::splat(count as f32 * (1.0 - 1e-6)) / extent,
+            Vec3A::ZERO,
+        );
+        Self {
+            lo: centres.lo,
+            scale,
             count,
-        })
+        }
     }
 
-    fn bin_of_centre(self, c: Vec3) -> usize {
-        (((c[self.axis] - self.lo) * self.scale) as usize).min(self.count - 1)
+    /// The bins of `b` along x, y and z.
+    fn bins(self, b: Bounds) -> IVec3 {
+        ((b.centre2() - self.lo) * self.scale)
+            .as_ivec3()
+            .min(IVec3::splat(self.count as i32 - 1))
     }
 
-    fn bin(self, b: &Bounds) -> usize {
-        self.bin_of_centre(b.centre2())
+    /// The primitives of `refs` binned along each axis (`B` ≥ `self.count` bins).
+    fn fill<const B: usize>(self, refs: &[Packed]) -> [[Bin; B]; 3] {
+        let fill = |refs: &[Packed]| {
+            let mut bins = [[Bin::EMPTY; B]; 3];
+            for r in refs {
+                let b = r.unpack();
+                let k = self.bins(b);
+                for (axis, bins) in bins.iter_mut().enumerate() {
+                    let bin = &mut bins[k[axis] as usize];
+                    bin.bounds = bin.bounds.grow(b);
+                    bin.count += 1;
+                }
+            }
+            bins
+        };
+        if refs.len() <= PARALLEL_BINNING {
+            return fill(refs);
+        }
+        refs.par_chunks(PARALLEL_BINNING).map(fill).reduce(
+            || [[Bin::EMPTY; B]; 3],
+            |a, b| {
+                std::array::from_fn(|axis| std::array::from_fn(|k| a[axis][k].merge(b[axis][k])))
+            },
+        )
     }
 }
 
 /// How a node ends.
 enum Choice {
     Leaf,
-    /// Split at bin `first_right` of `binning`, into two children with these boxes.
+    /// Split along `axis` at bin `first_right` of `binning`, into two children with these
+    /// boxes.
     Split {
         binning: Binning,
+        axis: usize,
         first_right: usize,
         left: Bounds,
         right: Bounds,
@@ -132,46 +227,39 @@ enum Choice {
     Halves,
 }
 
-/// The SAH's choice for the primitives `refs` inside `bounds`: all three axes binned in one
+/// The SAH's choice for the primitives `refs` within `hull`: all three axes binned in one
 /// pass, into as many bins as there are primitives up to [`BINS`].
-fn choose(refs: &[Bounds], bounds: Bounds) -> Choice {
+fn choose(refs: &[Packed], hull: Hull) -> Choice {
+    // The bins' arrays as small as the node: most nodes are near the leaves.
+    match refs.len() {
+        1 => Choice::Leaf,
+        2..=4 => choose_in::<4>(refs, hull),
+        5..=8 => choose_in::<8>(refs, hull),
+        _ => choose_in::<BINS>(refs, hull),
+    }
+}
+
+/// [`choose`] with arrays of `B` bins.
+fn choose_in<const B: usize>(refs: &[Packed], hull: Hull) -> Choice {
     let n = refs.len();
-    if n == 1 {
-        return Choice::Leaf;
-    }
-    let centres = refs
-        .iter()
-        .fold(Bounds::EMPTY, |c, r| c.grow_point(r.centre2()));
-    let count = n.min(BINS);
-    let binnings = [0, 1, 2].map(|axis| Binning::new(axis, centres, count));
-    let mut bins = [[Bin::EMPTY; BINS]; 3];
-    for r in refs {
-        let c = r.centre2();
-        for (binning, bins) in binnings.iter().zip(&mut bins) {
-            if let Some(binning) = binning {
-                let bin = &mut bins[binning.bin_of_centre(c)];
-                bin.bounds = bin.bounds.grow(*r);
-                bin.count += 1;
-            }
-        }
-    }
-    let area = bounds.half_area().max(f32::MIN_POSITIVE);
+    let count = n.min(B);
+    let binning = Binning::new(hull.centres, count);
+    let bins = binning.fill::<B>(refs);
+    let area = hull.bounds.half_area().max(f32::MIN_POSITIVE);
     let mut best: Option<(f32, Choice)> = None;
-    for (binning, bins) in binnings.iter().zip(&bins) {
-        let Some(binning) = *binning else { continue };
+    for (axis, bins) in bins.iter().enumerate() {
+        if binning.scale[axis] == 0.0 {
+            continue;
+        }
         let bins = &bins[..count];
         // Right sides swept from the last bin: right[k] holds bins k..count.
-        let mut right = [Bin::EMPTY; BINS];
-        let mut acc = Bin::EMPTY;
+        let mut right = [Bin::EMPTY; B];
         for k in (1..count).rev() {
-            acc.bounds = acc.bounds.grow(bins[k].bounds);
-            acc.count += bins[k].count;
-            right[k] = acc;
+            right[k] = bins[k].merge(right.get(k + 1).copied().unwrap_or(Bin::EMPTY));
         }
         let mut left = Bin::EMPTY;
         for k in 1..count {
-            left.bounds = left.bounds.grow(bins[k - 1].bounds);
-            left.count += bins[k - 1].count;
+            left = left.merge(bins[k - 1]);
             if left.count == 0 || right[k].count == 0 {
                 continue;
             }
@@ -182,6 +270,7 @@ fn choose(refs: &[Bounds], bounds: Bounds) -> Choice {
             if best.as_ref().is_none_or(|(c, _)| cost < *c) {
                 let choice = Choice::Split {
                     binning,
+                    axis,
                     first_right: k,
                     left: left.bounds,
                     right: right[k].bounds,
@@ -198,34 +287,40 @@ fn choose(refs: &[Bounds], bounds: Bounds) -> Choice {
     }
 }
 
-/// Moves the primitives of bins below `first_right` to the front of `refs` (and their indices
-/// in `order` with them); returns how many there are.
+/// Moves the primitives of bins below `first_right` along `axis` to the front of `refs`
+/// (and their indices in `order` with them); returns how many there are and the centres'
+/// boxes of the two sides.
 fn partition(
-    refs: &mut [Bounds],
+    refs: &mut [Packed],
     order: &mut [u32],
     binning: Binning,
+    axis: usize,
     first_right: usize,
-) -> usize {
+) -> (usize, Bounds, Bounds) {
     let (mut i, mut j) = (0, refs.len());
+    let (mut left, mut right) = (Bounds::EMPTY, Bounds::EMPTY);
     while i < j {
-        if binning.bin(&refs[i]) < first_right {
+        let b = refs[i].unpack();
+        if (binning.bins(b)[axis] as usize) < first_right {
+            left = left.grow_point(b.centre2());
             i += 1;
         } else {
+            right = right.grow_point(b.centre2());
             j -= 1;
             refs.swap(i, j);
             order.swap(i, j);
         }
     }
-    i
+    (i, left, right)
 }
 
-/// A node still to be decided: its index, its primitives' range and box, its depth.
+/// A node still to be decided: its index, its primitives' range and hull, its depth.
 #[derive(Clone, Copy)]
 struct Task {
     node: usize,
     start: usize,
     end: usize,
-    bounds: Bounds,
+    hull: Hull,
     depth: usize,
 }
 
@@ -257,7 +352,7 @@ impl Slots<'_> {
 /// sit at `offset + start` of the whole leaf order. Returns the deepest depth reached.
 fn grow(
     nodes: &mut Slots,
-    refs: &mut [Bounds],
+    refs: &mut [Packed],
     order: &mut [u32],
     offset: usize,
     root: Task,
@@ -273,50 +368,54 @@ fn grow(
             continue;
         }
         max_depth = max_depth.max(task.depth);
-        let (mid, left, right) = match choose(&refs[range.clone()], task.bounds) {
+        let (mid, left, right) = match choose(&refs[range.clone()], task.hull) {
             Choice::Leaf => {
                 let (count, first) = (range.len() as u32, (offset + task.start) as u32);
-                nodes.set(task.node, Bvh2Node::new(task.bounds.aabb(), count, first));
+                nodes.set(
+                    task.node,
+                    Bvh2Node::new(task.hull.bounds.aabb(), count, first),
+                );
                 continue;
             }
             Choice::Split {
                 binning,
+                axis,
                 first_right,
                 left,
                 right,
             } => {
                 let (refs, order) = (&mut refs[range.clone()], &mut order[range.clone()]);
-                let mid = task.start + partition(refs, order, binning, first_right);
-                (mid, left, right)
+                let (count, left_centres, right_centres) =
+                    partition(refs, order, binning, axis, first_right);
+                let hull = |bounds, centres| Hull { bounds, centres };
+                (
+                    task.start + count,
+                    hull(left, left_centres),
+                    hull(right, right_centres),
+                )
             }
             Choice::Halves => {
                 let mid = task.start + range.len() / 2;
-                let hull = |r: &[Bounds]| r.iter().fold(Bounds::EMPTY, |b, r| b.grow(*r));
-                (
-                    mid,
-                    hull(&refs[task.start..mid]),
-                    hull(&refs[mid..task.end]),
-                )
+                let (left, right) = (&refs[task.start..mid], &refs[mid..task.end]);
+                (mid, Hull::of(left), Hull::of(right))
             }
         };
-        let first = nodes.pair(left, right);
-        nodes.set(
-            task.node,
-            Bvh2Node::new(task.bounds.aabb(), 0, first as u32),
-        );
+        let first = nodes.pair(left.bounds, right.bounds);
+        let inner = Bvh2Node::new(task.hull.bounds.aabb(), 0, first as u32);
+        nodes.set(task.node, inner);
         let depth = task.depth + 1;
         tasks.push(Task {
             node: first + 1,
             start: mid,
             end: task.end,
-            bounds: right,
+            hull: right,
             depth,
         });
         tasks.push(Task {
             node: first,
             start: task.start,
             end: mid,
-            bounds: left,
+            hull: left,
             depth,
         });
     }
@@ -336,13 +435,13 @@ pub fn build_bvh(boxes: impl ExactSizeIterator<Item = Aabb>) -> Bvh2 {
     if n == 0 {
         return Bvh2::default();
     }
-    let mut refs: Vec<Bounds> = boxes.map(|b| Bounds::of(&b)).collect();
+    let mut refs: Vec<Packed> = boxes.map(|b| Packed::of(&b)).collect();
     let mut order: Vec<u32> = (0..n as u32).collect();
     let root = Task {
         node: 0,
         start: 0,
         end: n,
-        bounds: refs.iter().fold(Bounds::EMPTY, |b, r| b.grow(*r)),
+        hull: Hull::of(&refs),
         depth: 1,
     };
     // The top takes at most 2n − 1 nodes and the regions 2n in all.
