@@ -8,7 +8,8 @@
 //! First, the time to read the same meshes from an OBJ and from a binary PLY file.
 //!
 //! `-- --build N` times the mesh's construction alone (its checks, BVH and core; median of
-//! 7). `-- --one N` runs one size (N cells a face) and prints its fields; `-- --analytic` renders
+//! 7). `-- --one N` runs one size (`--ico`: an icosphere split N times instead; `--obj`: read
+//! from an OBJ instead of a binary PLY) (N cells a face) and prints its fields; `-- --analytic` renders
 //! the analytic lens once and prints its time (`bench/mesh_build.sh` alternates builds with
 //! these).
 //!
@@ -62,10 +63,94 @@ fn cube_sphere(n: usize, radius: f64) -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
     (vertices, triangles)
 }
 
+/// The icosphere of radius `radius`: an icosahedron's faces split `k` times into four
+/// (20·4ᵏ triangles), every vertex pushed out to the sphere; counter-clockwise seen from
+/// outside.
+fn icosphere(k: usize, radius: f64) -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
+    let t = (1.0 + 5f64.sqrt()) / 2.0;
+    let mut points: Vec<[f64; 3]> = vec![
+        [-1.0, t, 0.0],
+        [1.0, t, 0.0],
+        [-1.0, -t, 0.0],
+        [1.0, -t, 0.0],
+        [0.0, -1.0, t],
+        [0.0, 1.0, t],
+        [0.0, -1.0, -t],
+        [0.0, 1.0, -t],
+        [t, 0.0, -1.0],
+        [t, 0.0, 1.0],
+        [-t, 0.0, -1.0],
+        [-t, 0.0, 1.0],
+    ];
+    let mut triangles: Vec<[u32; 3]> = vec![
+        [0, 11, 5],
+        [0, 5, 1],
+        [0, 1, 7],
+        [0, 7, 10],
+        [0, 10, 11],
+        [1, 5, 9],
+        [5, 11, 4],
+        [11, 10, 2],
+        [10, 7, 6],
+        [7, 1, 8],
+        [3, 9, 4],
+        [3, 4, 2],
+        [3, 2, 6],
+        [3, 6, 8],
+        [3, 8, 9],
+        [4, 9, 5],
+        [2, 4, 11],
+        [6, 2, 10],
+        [8, 6, 7],
+        [9, 8, 1],
+    ];
+    let unit = |p: [f64; 3]| {
+        let l = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
+        p.map(|c| c / l)
+    };
+    for p in &mut points {
+        *p = unit(*p);
+    }
+    for _ in 0..k {
+        let mut middle = std::collections::HashMap::new();
+        let mut split = |a: u32, b: u32, points: &mut Vec<[f64; 3]>| {
+            *middle.entry((a.min(b), a.max(b))).or_insert_with(|| {
+                let (p, q) = (points[a as usize], points[b as usize]);
+                points.push(unit([0, 1, 2].map(|i| p[i] + q[i])));
+                points.len() as u32 - 1
+            })
+        };
+        triangles = triangles
+            .iter()
+            .flat_map(|&[a, b, c]| {
+                let (ab, bc, ca) = (
+                    split(a, b, &mut points),
+                    split(b, c, &mut points),
+                    split(c, a, &mut points),
+                );
+                [[a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]]
+            })
+            .collect();
+    }
+    let vertices = points
+        .iter()
+        .map(|p| p.map(|c| (radius * c) as f32))
+        .collect();
+    (vertices, triangles)
+}
+
 /// Writes the cube sphere of radius `radius` with `n` × `n` cells a face to `path` as an OBJ
 /// (or, for a path ending in .ply, a binary little-endian PLY); returns its triangles.
 fn write_cube_sphere(path: &Path, n: usize, radius: f64) -> std::io::Result<usize> {
-    let (vertices, triangles) = cube_sphere(n, radius);
+    write_mesh(path, cube_sphere(n, radius))
+}
+
+/// Writes `mesh` (vertices, triangles) to `path` as an OBJ (or, for a path ending in .ply,
+/// a binary little-endian PLY); returns its triangles.
+fn write_mesh(
+    path: &Path,
+    (vertices, triangles): (Vec<[f32; 3]>, Vec<[u32; 3]>),
+) -> std::io::Result<usize> {
     let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);
     if path.extension().is_some_and(|e| e == "ply") {
         write!(
@@ -157,17 +242,64 @@ fn scene_text(mesh: Option<&Path>) -> String {
     }
 }
 
-/// One size, in this process: prints a table row's fields as `key=value` lines.
-fn one(n: usize) {
+/// Which sphere bounds the lens.
+#[derive(Clone, Copy)]
+enum Sphere {
+    /// A cube sphere of N × N cells a face (12 N² triangles).
+    Cube(usize),
+    /// An icosphere split N times (20·4ᴺ triangles).
+    Ico(usize),
+}
+
+impl Sphere {
+    /// From the command line: `N`, or `N --ico`.
+    fn from_args(args: &[String], n: usize) -> Self {
+        match args.iter().any(|a| a == "--ico") {
+            true => Sphere::Ico(n),
+            false => Sphere::Cube(n),
+        }
+    }
+
+    fn mesh(self, radius: f64) -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
+        match self {
+            Sphere::Cube(n) => cube_sphere(n, radius),
+            Sphere::Ico(k) => icosphere(k, radius),
+        }
+    }
+
+    fn name(self) -> String {
+        match self {
+            Sphere::Cube(n) => format!("cube{n}"),
+            Sphere::Ico(k) => format!("ico{k}"),
+        }
+    }
+}
+
+/// One size, in this process: prints a table row's fields as `key=value` lines. The file
+/// (binary PLY, or OBJ with `obj`) is written by a process of its own first, so that this
+/// one's peak memory is the load's and the render's.
+fn one(sphere: Sphere, obj: bool) {
     std::fs::create_dir_all("out").unwrap();
-    let file = PathBuf::from(format!("out/mesh_scale_{n}.ply"))
-        .canonicalize()
-        .unwrap_or_else(|_| {
-            std::env::current_dir()
-                .unwrap()
-                .join(format!("out/mesh_scale_{n}.ply"))
-        });
-    let triangles = write_cube_sphere(&file, n, 0.5).expect("write the PLY");
+    let name = format!(
+        "out/mesh_scale_{}.{}",
+        sphere.name(),
+        if obj { "obj" } else { "ply" }
+    );
+    let file = std::env::current_dir().unwrap().join(name);
+    let mut write = std::process::Command::new(std::env::current_exe().unwrap());
+    write.args(["--write", &file.display().to_string()]);
+    match sphere {
+        Sphere::Cube(n) => write.arg(n.to_string()),
+        Sphere::Ico(k) => write.args([k.to_string(), "--ico".into()]),
+    };
+    assert!(
+        write.status().expect("run the writer").success(),
+        "write the mesh"
+    );
+    let triangles = match sphere {
+        Sphere::Cube(n) => 12 * n * n,
+        Sphere::Ico(k) => 20 << (2 * k),
+    };
     let rss0 = status_bytes("VmRSS:");
     let t = Instant::now();
     let (scene, settings) = parse_scene(Path::new("scenes/luneburg.toml"), scene_text(Some(&file)))
@@ -214,7 +346,20 @@ fn median(mut v: Vec<f64>) -> f64 {
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     if let Some(i) = args.iter().position(|a| a == "--one") {
-        one(args[i + 1].parse().expect("--one N"));
+        let n = args[i + 1].parse().expect("--one N");
+        one(
+            Sphere::from_args(&args, n),
+            args.iter().any(|a| a == "--obj"),
+        );
+        return;
+    }
+    if let Some(i) = args.iter().position(|a| a == "--write") {
+        let n = args[i + 2].parse().expect("--write PATH N");
+        write_mesh(
+            Path::new(&args[i + 1]),
+            Sphere::from_args(&args, n).mesh(0.5),
+        )
+        .expect("write the mesh");
         return;
     }
     if let Some(i) = args.iter().position(|a| a == "--build") {

@@ -1,0 +1,55 @@
+#!/usr/bin/env bash
+# Every shipped scene's render time, the checked-out build against an earlier one (a git
+# revision), alternately RUNS times: both builds render the checked-out scenes/*.toml as
+# shipped except for the passes (PASSES each), to a scratch EXR. Prints each scene's median
+# wall time for both builds and their ratio; a scene the earlier build cannot read (a key it
+# does not know) is marked "—".
+#
+#   bench/every_scene.sh [REVISION] [RUNS] [PASSES]
+#
+# Defaults: c7488ea (version 0.4.5, the build whose performance docs/performance.md's frame
+# and mesh figures start from), 3 runs, 1 pass. The earlier build is made in a temporary git
+# worktree into target/earlier.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+rev=${1:-c7488ea}
+runs=${2:-3}
+passes=${3:-1}
+cargo build --release --quiet --bin grinlight
+worktree=$(mktemp -d)
+out=$(mktemp -d)
+trap 'git worktree remove --force "$worktree"; rm -rf "$worktree" "$out"' EXIT
+git worktree add --quiet --detach "$worktree" "$rev"
+(cd "$worktree" && CARGO_TARGET_DIR="$OLDPWD/target/earlier" cargo build --release --quiet \
+    --bin grinlight)
+source bench/wall.sh
+median() { sort -g | awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }'; }
+scenes=(scenes/*.toml)
+for ((i = 0; i < runs; i++)); do
+    for scene in "${scenes[@]}"; do
+        name=$(basename "$scene" .toml)
+        for build in earlier current; do
+            case $build in
+                current) bin=target/release/grinlight ;;
+                earlier) bin=target/earlier/release/grinlight ;;
+            esac
+            if t=$(wall "$bin" render "$scene" --passes "$passes" -o "$out/frame.exr"); then
+                echo "$t" >> "$out/$name.$build"
+            else
+                echo "$build failed on $name: $(tail -1 "$out/log")" >&2
+            fi
+        done
+    done
+done
+echo "every scene, $passes pass(es), medians of $runs alternating runs (s):"
+printf "%-24s %10s %10s %8s\n" scene earlier current ratio
+for scene in "${scenes[@]}"; do
+    name=$(basename "$scene" .toml)
+    now=$(median < "$out/$name.current")
+    if [[ -s "$out/$name.earlier" ]]; then
+        then=$(median < "$out/$name.earlier")
+        printf "%-24s %10.2f %10.2f %8.3f\n" "$name" "$then" "$now" "$(awk "BEGIN { print $now / $then }")"
+    else
+        printf "%-24s %10s %10.2f %8s\n" "$name" "—" "$now" "—"
+    fi
+done
