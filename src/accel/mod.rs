@@ -146,7 +146,7 @@ impl Accel {
     /// Nearest crossing of a curved path (an exact arc, a step's Hermite path) with any
     /// primitive at arclength s ∈ (s_min, length]. `hull` holds the path over [0, length]
     /// (which a caller has usually built already); candidates are the primitives whose boxes meet its box and
-    /// that [`Primitive::may_cross`] it.
+    /// that [`Primitive::may_cross`] it (a mesh culls its own triangles in its search).
     pub fn intersect_segment<P: Path + ?Sized>(
         &self,
         seg: &P,
@@ -175,7 +175,10 @@ impl Accel {
             for i in node.first_index..node.first_index + node.prim_count {
                 let id = self.in_bvh[bvh.primitive_indices[i as usize] as usize];
                 let prim = &self.primitives[id];
-                if !prim.may_cross(hull) {
+                // A mesh's search culls by the hull as it goes: asking first would descend
+                // its BVH twice.
+                let searches_itself = matches!(prim, Primitive::Mesh(_));
+                if !searches_itself && !prim.may_cross(hull) {
                     continue;
                 }
                 let limit = best.map_or(length, |(_, h)| h.t);
