@@ -8,7 +8,7 @@
 //! `first_index + 1`, a leaf's primitives at `primitive_indices[first_index..][..prim_count]`
 //! — so every traversal in obvhs and grinlight reads it as before.
 
-use glam::{IVec3, Vec3, Vec3A};
+use glam::{Vec3, Vec3A};
 use obvhs::aabb::Aabb;
 use obvhs::bvh2::node::Bvh2Node;
 use obvhs::bvh2::Bvh2;
@@ -153,14 +153,20 @@ impl Bin {
 }
 
 /// Where a node's primitives go into bins, along each axis at once: bin ⌊(c − lo)·scale⌋ of
-/// their boxes' doubled centres c, clamped to the last of `count` (scale 0 along an axis
-/// where the centres coincide: every primitive in bin 0 there).
+/// their boxes' doubled centres c (to within a rounding at the bins' edges), clamped to the
+/// last of `count` (scale 0 along an axis where the centres coincide: every primitive in bin
+/// 0 there).
 #[derive(Clone, Copy)]
 struct Binning {
     lo: Vec3A,
     scale: Vec3A,
     count: usize,
 }
+
+/// 2²³: added to a float x in [0, 2²²], it leaves round(x) in the low bits of the sum's
+/// mantissa — a float-to-integer conversion without `as`'s checks for NaN and overflow, which
+/// cost more than the rest of binning a primitive.
+const ROUNDING: f32 = 8_388_608.0;
 
 impl Binning {
     fn new(centres: Bounds, count: usize) -> Self {
@@ -178,10 +184,12 @@ impl Binning {
     }
 
     /// The bins of `b` along x, y and z.
-    fn bins(self, b: Bounds) -> IVec3 {
-        ((b.centre2() - self.lo) * self.scale)
-            .as_ivec3()
-            .min(IVec3::splat(self.count as i32 - 1))
+    fn bins(self, b: Bounds) -> [usize; 3] {
+        let x = ((b.centre2() - self.lo) * self.scale - Vec3A::splat(0.5))
+            .max(Vec3A::ZERO)
+            .min(Vec3A::splat(self.count as f32 - 1.0))
+            + Vec3A::splat(ROUNDING);
+        x.to_array().map(|v| (v.to_bits() & 0x7f_ffff) as usize)
     }
 
     /// The primitives of `refs` binned along each axis (`B` ≥ `self.count` bins).
@@ -192,7 +200,7 @@ impl Binning {
                 let b = r.unpack();
                 let k = self.bins(b);
                 for (axis, bins) in bins.iter_mut().enumerate() {
-                    let bin = &mut bins[k[axis] as usize];
+                    let bin = &mut bins[k[axis]];
                     bin.bounds = bin.bounds.grow(b);
                     bin.count += 1;
                 }
@@ -301,7 +309,7 @@ fn partition(
     let (mut left, mut right) = (Bounds::EMPTY, Bounds::EMPTY);
     while i < j {
         let b = refs[i].unpack();
-        if (binning.bins(b)[axis] as usize) < first_right {
+        if binning.bins(b)[axis] < first_right {
             left = left.grow_point(b.centre2());
             i += 1;
         } else {
