@@ -438,7 +438,7 @@ fn grow(
 /// big enough for any tree over its primitives (2m − 1 nodes for m), and the regions'
 /// nodes are then moved down to close the gaps. The array is allocated zeroed and only
 /// the nodes written take memory.
-pub fn build_bvh(boxes: impl ExactSizeIterator<Item = Aabb>) -> Bvh2 {
+pub fn build_bvh(boxes: impl IndexedParallelIterator<Item = Aabb>) -> Bvh2 {
     let n = boxes.len();
     if n == 0 {
         return Bvh2::default();
@@ -624,16 +624,18 @@ mod tests {
     fn every_primitive_in_one_leaf_and_every_box_holds_what_is_below() {
         for n in [1, 2, 3, 8, 9, 100, 4095, 4096, 20_000, 100_000] {
             let boxes = random_boxes(n, 0.02, n as u64);
-            let bvh = build_bvh(boxes.iter().copied());
+            let bvh = build_bvh(boxes.par_iter().copied());
             let (leaves, depth) = check(&bvh, &boxes);
             assert!(depth <= 64, "n = {n}: depth {depth}");
             assert!(leaves * MAX_LEAF >= n);
-            let again = build_bvh(boxes.iter().copied());
+            let again = build_bvh(boxes.par_iter().copied());
             assert_eq!(bvh.primitive_indices, again.primitive_indices, "n = {n}");
             let bytes = |b: &Bvh2| bytemuck::cast_slice::<Bvh2Node, u8>(&b.nodes).to_vec();
             assert!(bytes(&bvh) == bytes(&again), "n = {n}");
         }
-        assert!(build_bvh(std::iter::empty()).nodes.is_empty());
+        assert!(build_bvh(Vec::<Aabb>::new().into_par_iter())
+            .nodes
+            .is_empty());
     }
 
     /// Boxes whose centres all coincide cannot be binned: they are halved by order into
@@ -642,7 +644,7 @@ mod tests {
     #[test]
     fn coincident_and_flat_boxes_make_balanced_trees() {
         let same = vec![Aabb::new(Vec3A::ZERO, Vec3A::ONE); 10_000];
-        let (leaves, depth) = check(&build_bvh(same.iter().copied()), &same);
+        let (leaves, depth) = check(&build_bvh(same.par_iter().copied()), &same);
         assert_eq!(leaves, 2048, "10 000 halved down to leaves of 4 or 5");
         assert_eq!(depth, 12);
         let flat: Vec<Aabb> = random_boxes(10_000, 0.01, 5)
@@ -654,7 +656,7 @@ mod tests {
                 )
             })
             .collect();
-        let (leaves, depth) = check(&build_bvh(flat.iter().copied()), &flat);
+        let (leaves, depth) = check(&build_bvh(flat.par_iter().copied()), &flat);
         assert!(
             leaves > 10_000 / MAX_LEAF && depth < 40,
             "{leaves} leaves, depth {depth}"
@@ -695,7 +697,10 @@ mod tests {
                 obvhs::BvhBuildParams::medium_build(),
                 &mut Default::default(),
             );
-            let (ours, theirs) = (sah_cost(&build_bvh(boxes.iter().copied())), sah_cost(&ploc));
+            let (ours, theirs) = (
+                sah_cost(&build_bvh(boxes.par_iter().copied())),
+                sah_cost(&ploc),
+            );
             println!("{name}: binned SAH {ours:.2}, PLOC {theirs:.2}");
             assert!(ours <= 1.05 * theirs, "{name}: {ours} against {theirs}");
         }

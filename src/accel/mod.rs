@@ -14,6 +14,7 @@ use crate::shapes::{padded_box as padded, Hit, Primitive};
 use glam::{DVec3, Vec3A};
 use obvhs::bvh2::Bvh2;
 use obvhs::ray::{Ray, RayHit};
+use rayon::prelude::*;
 
 /// Primitives with a BVH over them; a hit reports the primitive's index in `primitives`.
 pub struct Accel {
@@ -30,7 +31,7 @@ impl Accel {
         let mut taken = vec![false; primitives.len()];
         let stacks = CoaxialStack::gather(&primitives, &mut taken);
         let in_bvh: Vec<usize> = (0..primitives.len()).filter(|&i| !taken[i]).collect();
-        let bvh = build_bvh(in_bvh.iter().map(|&i| {
+        let bvh = build_bvh(in_bvh.par_iter().map(|&i| {
             let (lo, hi) = primitives[i].bounds();
             padded(lo, hi)
         }));

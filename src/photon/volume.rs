@@ -71,7 +71,7 @@ impl VolumeMap {
                 kth * shrink
             })
             .collect();
-        let bvh = build_bvh(photons.iter().zip(&r2).map(|(p, &r2)| {
+        let bvh = build_bvh(photons.par_iter().zip(&r2).map(|(p, &r2)| {
             let r = DVec3::splat(r2.sqrt());
             padded_box(p.position - r, p.position + r)
         }));

@@ -1,6 +1,7 @@
 //! Wavefront OBJ meshes: the triangles of a file, read line by line (its `v`, `vt`, `vn` and
 //! `f` lines; faces fanned), and a line-precise diagnosis of files that cannot be used.
 
+use rayon::prelude::*;
 use std::collections::HashMap;
 use std::fs::File;
 use std::io::{BufRead, BufReader};
@@ -320,11 +321,11 @@ pub fn drop_duplicate_triangles(vertices: &[[f32; 3]], triangles: &mut Vec<[u32;
         })
     };
     let mut order: Vec<(u64, u32)> = triangles
-        .iter()
+        .par_iter()
         .enumerate()
         .map(|(i, t)| (hash(corners(t)), i as u32))
         .collect();
-    order.sort_unstable();
+    order.par_sort_unstable();
     let mut keep = vec![true; triangles.len()];
     for run in order
         .chunk_by(|a, b| a.0 == b.0)

@@ -10,6 +10,7 @@ use crate::curve::{ArcHull, Path};
 use glam::{DVec2, DVec3, Vec3A};
 use obvhs::bvh2::Bvh2;
 use obvhs::ray::{Ray, RayHit};
+use rayon::prelude::*;
 
 /// Triangles over shared vertices, with a BVH over the triangles; with vertex normals, a
 /// smooth mesh (its hits' shading normals interpolated across each triangle).
@@ -69,19 +70,19 @@ impl TriangleMesh {
             return Err("a mesh needs at least one triangle".into());
         }
         if let Some(t) = triangles
-            .iter()
-            .find(|t| t.iter().any(|&i| i as usize >= vertices.len()))
+            .par_iter()
+            .find_first(|t| t.iter().any(|&i| i as usize >= vertices.len()))
         {
             return Err(format!(
                 "triangle {t:?} names a vertex beyond the {} given",
                 vertices.len()
             ));
         }
-        if vertices.iter().flatten().any(|c| !c.is_finite()) {
+        if vertices.par_iter().flatten().any(|c| !c.is_finite()) {
             return Err("a vertex is not finite".into());
         }
         let vertex = |i: u32| DVec3::from(vertices[i as usize].map(f64::from));
-        let bvh = build_bvh(triangles.iter().map(|t| {
+        let bvh = build_bvh(triangles.par_iter().map(|t| {
             let (lo, hi) = t
                 .iter()
                 .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &i| {
@@ -99,7 +100,7 @@ impl TriangleMesh {
         // A lower bound on each triangle's distance from the centre: the larger of the
         // distances to its box and to its plane (shrunk by 1e-9 against rounding).
         let core = triangles
-            .iter()
+            .par_iter()
             .map(|t| {
                 let [a, b, c] = t.map(vertex);
                 let to_box = (a.min(b).min(c) - centre)
@@ -113,7 +114,7 @@ impl TriangleMesh {
                 };
                 to_box.max(to_plane)
             })
-            .fold(f64::INFINITY, f64::min);
+            .reduce(|| f64::INFINITY, f64::min);
         Ok(Self {
             vertices,
             triangles,
