@@ -1,20 +1,22 @@
 #!/usr/bin/env bash
 # Every shipped scene's render time, the checked-out build against an earlier one (a git
 # revision), alternately RUNS times: both builds render the checked-out scenes/*.toml as
-# shipped except for the passes (PASSES each), to a scratch EXR. Prints each scene's median
+# shipped except for the passes and samples (PASSES passes of SPP samples a pixel), to a
+# scratch EXR. Prints each scene's median
 # wall time for both builds and their ratio; a scene the earlier build cannot read (a key it
 # does not know) is marked "—".
 #
-#   bench/every_scene.sh [REVISION] [RUNS] [PASSES]
+#   bench/every_scene.sh [REVISION] [RUNS] [PASSES] [SPP]
 #
 # Defaults: c7488ea (version 0.4.5, the build whose performance docs/performance.md's frame
-# and mesh figures start from), 3 runs, 1 pass. The earlier build is made in a temporary git
+# and mesh figures start from), 3 runs, 1 pass of 1 sample. The earlier build is made in a temporary git
 # worktree into target/earlier.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 rev=${1:-c7488ea}
 runs=${2:-3}
 passes=${3:-1}
+spp=${4:-1}
 cargo build --release --quiet --bin grinlight
 worktree=$(mktemp -d)
 out=$(mktemp -d)
@@ -33,7 +35,7 @@ for ((i = 0; i < runs; i++)); do
                 current) bin=target/release/grinlight ;;
                 earlier) bin=target/earlier/release/grinlight ;;
             esac
-            if t=$(wall "$bin" render "$scene" --passes "$passes" -o "$out/frame.exr"); then
+            if t=$(wall "$bin" render "$scene" --passes "$passes" --spp "$spp" -o "$out/frame.exr"); then
                 echo "$t" >> "$out/$name.$build"
             else
                 echo "$build failed on $name: $(tail -1 "$out/log")" >&2
@@ -41,7 +43,7 @@ for ((i = 0; i < runs; i++)); do
         done
     done
 done
-echo "every scene, $passes pass(es), medians of $runs alternating runs (s):"
+echo "every scene, $passes pass(es) of $spp sample(s), medians of $runs alternating runs (s):"
 printf "%-24s %10s %10s %8s\n" scene earlier current ratio
 for scene in "${scenes[@]}"; do
     name=$(basename "$scene" .toml)
