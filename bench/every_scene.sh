@@ -4,12 +4,12 @@
 # shipped except for the passes and samples (PASSES passes of SPP samples a pixel), to a
 # scratch EXR. Prints each scene's median
 # wall time for both builds and their ratio; a scene the earlier build cannot read (a key it
-# does not know) is marked "—".
+# does not know) is marked "—", and a file that is not a scene to render (scenes/media.toml,
+# media for `grinlight trace`) is left out.
 #
-#   bench/every_scene.sh [REVISION] [RUNS] [PASSES] [SPP]
+#   bench/every_scene.sh [REVISION] [RUNS] [PASSES] [SPP] [SCENE,SCENE,…]
 #
-# Defaults: c7488ea (version 0.4.5, the build whose performance docs/performance.md's frame
-# and mesh figures start from), 3 runs, 1 pass of 1 sample. The earlier build is made in a temporary git
+# Defaults: c7488ea (version 0.4.5), 3 runs, 1 pass of 1 sample. The earlier build is made in a temporary git
 # worktree into target/earlier.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -17,6 +17,7 @@ rev=${1:-c7488ea}
 runs=${2:-3}
 passes=${3:-1}
 spp=${4:-1}
+only=${5:-}
 cargo build --release --quiet --bin grinlight
 worktree=$(mktemp -d)
 out=$(mktemp -d)
@@ -26,7 +27,13 @@ git worktree add --quiet --detach "$worktree" "$rev"
     --bin grinlight)
 source bench/wall.sh
 median() { sort -g | awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }'; }
-scenes=(scenes/*.toml)
+scenes=()
+for scene in scenes/*.toml; do
+    name=$(basename "$scene" .toml)
+    if [[ -n "$only" && ",$only," != *",$name,"* ]]; then continue; fi
+    if ! grep -q -e '^\[camera\]' -e '^\[\[receiver\]\]' "$scene"; then continue; fi
+    scenes+=("$scene")
+done
 for ((i = 0; i < runs; i++)); do
     for scene in "${scenes[@]}"; do
         name=$(basename "$scene" .toml)
@@ -47,6 +54,10 @@ echo "every scene, $passes pass(es) of $spp sample(s), medians of $runs alternat
 printf "%-24s %10s %10s %8s\n" scene earlier current ratio
 for scene in "${scenes[@]}"; do
     name=$(basename "$scene" .toml)
+    if [[ ! -s "$out/$name.current" ]]; then
+        printf "%-24s %10s %10s %8s\n" "$name" "" "failed" ""
+        continue
+    fi
     now=$(median < "$out/$name.current")
     if [[ -s "$out/$name.earlier" ]]; then
         then=$(median < "$out/$name.earlier")
