@@ -19,14 +19,10 @@ passes=${3:-1}
 spp=${4:-1}
 only=${5:-}
 cargo build --release --quiet --bin grinlight
-worktree=$(mktemp -d)
-out=$(mktemp -d)
-trap 'git worktree remove --force "$worktree"; rm -rf "$worktree" "$out"' EXIT
-git worktree add --quiet --detach "$worktree" "$rev"
-(cd "$worktree" && CARGO_TARGET_DIR="$OLDPWD/target/earlier" cargo build --release --quiet \
-    --bin grinlight)
+source bench/earlier.sh
 source bench/wall.sh
-median() { sort -g | awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }'; }
+earlier_worktree "$rev"
+earlier_build --bin grinlight
 scenes=()
 for scene in scenes/*.toml; do
     name=$(basename "$scene" .toml)

@@ -15,13 +15,9 @@ cd "$(dirname "$0")/.."
 rev=${1:-ac81a4a}
 runs=${2:-3}
 cargo build --release --quiet --bin grinlight
-worktree=$(mktemp -d)
-out=$(mktemp -d)
-trap 'git worktree remove --force "$worktree"; rm -rf "$worktree" "$out"' EXIT
-git worktree add --quiet --detach "$worktree" "$rev"
-(cd "$worktree" && CARGO_TARGET_DIR="$OLDPWD/target/earlier" cargo build --release --quiet \
-    --bin grinlight)
-median() { sort -n | awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }'; }
+source bench/earlier.sh
+earlier_worktree "$rev"
+earlier_build --bin grinlight
 for ((i = 0; i < runs; i++)); do
     for build in earlier current; do
         case $build in

@@ -14,14 +14,10 @@ cd "$(dirname "$0")/.."
 rev=${1:-6dc3d47}
 runs=${2:-3}
 cargo build --release --quiet --example linearize_study
-worktree=$(mktemp -d)
-trap 'git worktree remove --force "$worktree"; rm -rf "$worktree"' EXIT
-git worktree add --quiet --detach "$worktree" "$rev"
+source bench/earlier.sh
+earlier_worktree "$rev"
 cp examples/linearize_study.rs "$worktree/examples/"
-(cd "$worktree" && CARGO_TARGET_DIR="$OLDPWD/target/earlier" cargo build --release --quiet \
-    --example linearize_study)
-median() { sort -n | awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }'; }
-out=$(mktemp -d)
+earlier_build --example linearize_study
 for ((i = 0; i < runs; i++)); do
     for build in current earlier; do
         case $build in

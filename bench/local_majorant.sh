@@ -31,13 +31,10 @@ for k in range(nz):
             for i in range(nx)))
 PY
 cargo build --release --quiet --bin grinlight --example image_error
-worktree=$(mktemp -d)
-trap 'git worktree remove --force "$worktree"; rm -rf "$worktree"' EXIT
-git worktree add --quiet --detach "$worktree" "$rev"
+source bench/earlier.sh
+earlier_worktree "$rev"
+earlier_build --bin grinlight
 earlier=$PWD/target/earlier/release/grinlight
-(cd "$worktree" && CARGO_TARGET_DIR="$(dirname "$(dirname "$earlier")")" cargo build --release --quiet --bin grinlight)
-out=$(mktemp -d)
-median() { sort -n | awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }'; }
 source bench/wall.sh
 printf "%-11s %12s %12s %7s   %-30s %s\n" integrator "$rev s" "now s" ratio \
     "now against the earlier" "now, seed 4 against seed 3"

@@ -20,15 +20,11 @@ rev=${1:-4f0b3ae}
 runs=${2:-3}
 sizes=${3:-330,913}
 cargo build --release --quiet --example mesh_scale
-worktree=$(mktemp -d)
-out=$(mktemp -d)
-trap 'git worktree remove --force "$worktree"; rm -rf "$worktree" "$out"' EXIT
-git worktree add --quiet --detach "$worktree" "$rev"
-(cd "$worktree" && CARGO_TARGET_DIR="$OLDPWD/target/earlier" cargo build --release --quiet \
-    --example mesh_scale)
+source bench/earlier.sh
+earlier_worktree "$rev"
+earlier_build --example mesh_scale
 current=target/release/examples/mesh_scale
 earlier=target/earlier/release/examples/mesh_scale
-median() { sort -g | awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }'; }
 field() { sed -nE "s/^$1=(.*)$/\1/p" "$2"; }
 # measure LABEL BINARY ARGS…: one run, its fields appended to $out/LABEL.*
 measure() {
