@@ -183,7 +183,7 @@ impl CoaxialStack {
         length: f64,
     ) -> Option<(usize, Hit)> {
         let mut best: Option<(usize, Hit)> = None;
-        for id in self.members().filter(|&id| primitives[id].may_cross(hull)) {
+        for id in self.members() {
             let limit = best.map_or(length, |(_, h)| h.t);
             if let Some(h) = primitives[id].intersect_segment(seg, hull, s_min, limit) {
                 best = Some((id, h));

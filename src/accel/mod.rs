@@ -147,7 +147,7 @@ impl Accel {
     /// Nearest crossing of a curved path (an exact arc, a step's Hermite path) with any
     /// primitive at arclength s ∈ (s_min, length]. `hull` holds the path over [0, length]
     /// (which a caller has usually built already); candidates are the primitives whose boxes meet its box and
-    /// that [`Primitive::may_cross`] it (a mesh culls its own triangles in its search).
+    /// that [`Primitive::may_cross`] it (each primitive's own search asks).
     pub fn intersect_segment<P: Path + ?Sized>(
         &self,
         seg: &P,
@@ -175,15 +175,8 @@ impl Accel {
             let node = &bvh.nodes[node_index as usize];
             for i in node.first_index..node.first_index + node.prim_count {
                 let id = self.in_bvh[bvh.primitive_indices[i as usize] as usize];
-                let prim = &self.primitives[id];
-                // A mesh's search culls by the hull as it goes: asking first would descend
-                // its BVH twice.
-                let searches_itself = matches!(prim, Primitive::Mesh(_));
-                if !searches_itself && !prim.may_cross(hull) {
-                    continue;
-                }
                 let limit = best.map_or(length, |(_, h)| h.t);
-                if let Some(h) = prim.intersect_segment(seg, hull, s_min, limit) {
+                if let Some(h) = self.primitives[id].intersect_segment(seg, hull, s_min, limit) {
                     best = Some((id, h));
                 }
             }

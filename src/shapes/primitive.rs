@@ -288,7 +288,7 @@ impl Primitive {
     }
 
     /// Nearest crossing of a curved path held by `hull` with the primitive at arclength
-    /// s ∈ (s_min, length].
+    /// s ∈ (s_min, length] (None at once where the hull cannot meet it: [`Self::may_cross`]).
     pub fn intersect_segment<P: Path + ?Sized>(
         &self,
         seg: &P,
@@ -296,8 +296,13 @@ impl Primitive {
         s_min: f64,
         length: f64,
     ) -> Option<Hit> {
+        // A mesh culls its triangles by the hull as it searches; any other primitive first asks
+        // whether the hull can meet it at all (a cheap test before a root search).
         if let Primitive::Mesh(mesh) = self {
             return mesh.intersect_segment(seg, hull, s_min, length);
+        }
+        if !self.may_cross(hull) {
+            return None;
         }
         let roots = match *self {
             Primitive::Tube {
