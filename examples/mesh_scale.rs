@@ -7,11 +7,11 @@
 //!
 //! First, the time to read the same meshes from an OBJ and from a binary PLY file.
 //!
-//! `-- --build N` times the mesh's construction alone (its checks, BVH and core; median of
-//! 7). `-- --one N` runs one size (`--ico`: an icosphere split N times instead; `--obj`: read
-//! from an OBJ instead of a binary PLY) (N cells a face) and prints its fields; `-- --analytic` renders
-//! the analytic lens once and prints its time (`bench/mesh_build.sh` alternates builds with
-//! these).
+//! `-- --one N` runs one size (the cube sphere of N cells a face; with `--ico`, the icosphere
+//! split N times; with `--obj`, read from an OBJ instead of a binary PLY) and prints its
+//! fields; `-- --build N` times the cube sphere's construction alone (its checks, BVH and
+//! empty core; median of 7); `-- --analytic` renders the analytic lens once and prints its
+//! time. `bench/mesh_build.sh` alternates builds with these.
 //!
 //! `cargo run --release --example mesh_scale` (sizes 1.2·10⁴, 1.3·10⁵, 1.3·10⁶ and 10⁷
 //! triangles; the PLY files go to out/, 10⁷ triangles ≈ 0.2 GB) or `-- --sizes 30,330`.
