@@ -47,6 +47,49 @@ impl Aim {
             target: scene,
         }
     }
+
+    /// The directions from `from` that meet the target ball; None when the aim is the whole
+    /// scene or `from` is inside the target (every direction may meet it).
+    pub fn cone(&self, from: DVec3) -> Option<Cone> {
+        (self.target != self.scene)
+            .then(|| Cone::toward(self.target, from))
+            .flatten()
+    }
+}
+
+/// The cone of directions from a point that meet a ball: its unit axis and 1 − the cosine of
+/// its half-angle (computed from the sine, so that a far, small ball's solid angle is not lost
+/// to rounding).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Cone {
+    /// Unit axis, from the point to the ball's centre.
+    pub axis: DVec3,
+    /// 1 − cos of the half-angle.
+    one_minus_cos: f64,
+}
+
+impl Cone {
+    /// The directions from `from` that meet `ball`; None when `from` is inside it.
+    pub fn toward((center, radius): SceneBall, from: DVec3) -> Option<Cone> {
+        let v = center - from;
+        let d2 = v.length_squared();
+        let sin2 = radius * radius / d2;
+        (sin2 < 1.0).then(|| Cone {
+            axis: v / d2.sqrt(),
+            one_minus_cos: sin2 / (1.0 + (1.0 - sin2).sqrt()),
+        })
+    }
+
+    /// Its solid angle, sr.
+    pub fn solid_angle(&self) -> f64 {
+        TAU * self.one_minus_cos
+    }
+
+    /// A direction uniformly distributed over the cone (density 1/solid angle) for `uv`
+    /// uniform in [0,1)².
+    pub fn sample(&self, uv: (f64, f64)) -> DVec3 {
+        Frame::new(self.axis).to_world(uniform_cone(1.0 - self.one_minus_cos, uv))
+    }
 }
 
 /// A disk of the target's radius perpendicular to unit `direction` around the line through
@@ -84,6 +127,14 @@ pub enum Emitter {
 }
 
 impl Emitter {
+    /// The largest distance of a point of the surface from its centre (length).
+    pub fn extent(&self) -> f64 {
+        match *self {
+            Emitter::Quad { e1, e2, .. } => 0.5 * (e1 + e2).length().max((e1 - e2).length()),
+            Emitter::Disk { radius, .. } => radius,
+        }
+    }
+
     /// Area (length²).
     pub fn area(&self) -> f64 {
         match *self {
@@ -346,9 +397,41 @@ impl Light {
         matches!(self, Light::Area { .. })
     }
 
+    /// The solid angle over which the light spreads its power: its power over its peak
+    /// intensity (sr) — 4π for a point, π for a Lambertian surface, 2π/(m + 1) for an LED,
+    /// about 2π(1 − (cos θ_inner + cos θ_outer)/2) for a spot (as [`Light::selection_power`]
+    /// takes its falloff); 0 for parallel light. A cone of solid angle Ω receives at most
+    /// Ω/spread of the power.
+    fn spread(&self) -> f64 {
+        match self {
+            Light::Point { .. } => 4.0 * PI,
+            Light::Spot {
+                cos_inner,
+                cos_outer,
+                ..
+            } => TAU * (1.0 - 0.5 * (cos_inner + cos_outer)),
+            Light::Area { .. } => PI,
+            Light::Led { m, .. } => TAU / (m + 1.0),
+            Light::Directional { .. } => 0.0,
+        }
+    }
+
+    /// The cone from `origin` toward `aim`'s target when it is narrower than the light's
+    /// [`Light::spread`] (sampling it then wastes fewer photons than the light's own
+    /// distribution does).
+    fn narrowing_cone(&self, origin: DVec3, aim: Aim) -> Option<Cone> {
+        aim.cone(origin)
+            .filter(|cone| cone.solid_angle() < self.spread())
+    }
+
     /// A photon from this light for four uniform numbers `u` (see [`Emission`]); `None` when
-    /// this sample emits nothing (a spot's falloff edge). Directional light is sent as `aim`
-    /// says.
+    /// this sample emits nothing (a spot's falloff edge, a direction behind an emitting
+    /// surface). Photons are sent as `aim` says: parallel light through its target ball from
+    /// upstream of the scene; light from a point or surface, where the target's cone seen from
+    /// the photon's start is narrower than the light's spread, uniformly over that cone — the
+    /// photon then carries the light's intensity (or radiance × area × cos θ) along its
+    /// direction times the cone's solid angle, and the light's power outside the cone is not
+    /// traced (Jensen's projection maps).
     pub fn emit(&self, u: [f64; 4], aim: Aim) -> Option<Emission> {
         let emission = |origin, direction, power| {
             Some(Emission {
@@ -357,6 +440,38 @@ impl Light {
                 power,
             })
         };
+        let aimed = |origin: DVec3, cone: Cone, power: &dyn Fn(DVec3) -> Rgb| {
+            let direction = cone.sample((u[2], u[3]));
+            let power = power(direction) * cone.solid_angle();
+            (power != Rgb::ZERO).then_some(Emission {
+                origin,
+                direction,
+                power,
+            })
+        };
+        match self {
+            Light::Point { position, .. } | Light::Spot { position, .. } => {
+                if let Some(cone) = self.narrowing_cone(*position, aim) {
+                    return aimed(*position, cone, &|d| self.intensity(d));
+                }
+            }
+            Light::Area { emitter, radiance } => {
+                let origin = crate::math::offset(emitter.sample((u[0], u[1])), emitter.normal());
+                if let Some(cone) = self.narrowing_cone(origin, aim) {
+                    let area = emitter.area();
+                    return aimed(origin, cone, &|d| {
+                        *radiance * (d.dot(emitter.normal()).max(0.0) * area)
+                    });
+                }
+            }
+            Light::Led { emitter, .. } => {
+                let origin = emitter.sample((u[0], u[1]));
+                if let Some(cone) = self.narrowing_cone(origin, aim) {
+                    return aimed(origin, cone, &|d| self.intensity(d));
+                }
+            }
+            Light::Directional { .. } => {}
+        }
         match self {
             Light::Point {
                 position,
@@ -410,10 +525,37 @@ impl Light {
         }
     }
 
-    /// A weight for choosing among lights, proportional to the light's power (W, mean over
-    /// channels) as sent by `aim`; exact except for a spot, where the falloff is taken as
-    /// linear in cos θ.
+    /// A weight for choosing among lights: the light's power (W, mean over channels) as sent
+    /// by `aim` — exact for the whole scene except for a spot, where the falloff is taken as
+    /// linear in cos θ; toward a target, at most the power the target's cone can receive
+    /// from the light's nearest possible point (an upper bound, so that no light that can
+    /// reach the target goes unchosen).
     pub fn selection_power(&self, aim: Aim) -> f64 {
+        self.power(aim) * self.reach(aim)
+    }
+
+    /// An upper bound on the fraction of the light's power that reaches `aim`'s target (1 for
+    /// the whole scene and for parallel light, already sent through the target): the solid
+    /// angle of the target seen from the light's point nearest to it over the light's
+    /// [`Light::spread`].
+    fn reach(&self, aim: Aim) -> f64 {
+        let (from, extent) = match self {
+            Light::Point { position, .. } | Light::Spot { position, .. } => (*position, 0.0),
+            Light::Area { emitter, .. } | Light::Led { emitter, .. } => {
+                (emitter.center(), emitter.extent())
+            }
+            Light::Directional { .. } => return 1.0,
+        };
+        // The point of the light nearest the target, in the direction of its centre.
+        let toward = aim.target.0 - from;
+        let d = toward.length();
+        let nearest = from + toward * (extent / d).min(1.0);
+        aim.cone(nearest)
+            .map_or(1.0, |cone| (cone.solid_angle() / self.spread()).min(1.0))
+    }
+
+    /// The light's power (W, mean over channels) as sent by `aim`.
+    fn power(&self, aim: Aim) -> f64 {
         let p = match self {
             Light::Point { intensity, .. } => *intensity * (4.0 * PI),
             Light::Spot {

@@ -95,6 +95,20 @@ impl Primitive {
         }
     }
 
+    /// A ball holding the primitive (centre, radius): a sphere's or a disk's own, otherwise
+    /// the ball through its bounds' corners.
+    pub fn bounding_ball(&self) -> (DVec3, f64) {
+        match *self {
+            Primitive::Sphere { center, radius } | Primitive::Disk { center, radius, .. } => {
+                (center, radius)
+            }
+            _ => {
+                let (lo, hi) = self.bounds();
+                (0.5 * (lo + hi), 0.5 * (hi - lo).length())
+            }
+        }
+    }
+
     /// The plane of a planar primitive.
     fn plane(&self) -> Option<Plane> {
         let plane = |point, normal| Some(Plane { point, normal });
