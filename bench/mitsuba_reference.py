@@ -2,6 +2,7 @@
 """Render a grinlight scene with Mitsuba 3 as an independent reference.
 
     python3 bench/mitsuba_reference.py SCENE.toml OUT.exr [--spp N] [--seed S] [--rgb-metals OUT.toml]
+                                        [--crop X0 Y0 X1 Y1]
 
 Reads the subset of grinlight's scene format that Cornell-box-like scenes use -- quads, boxes,
 spheres and open cylinders; diffuse, conductor, dielectric and plastic materials; quad lights
@@ -14,6 +15,9 @@ side, ρ/(1 − ρ F̄ᵢ), as grinlight's plastic has it).
 A measured metal (`metal = "Au"`) is colour-converted differently by the two renderers; to
 compare the BSDFs themselves, --rgb-metals writes a copy of the scene whose metals are given
 by the RGB eta and k below, which both renderers then use as they are.
+
+--crop renders only the pixels [X0, X1) × [Y0, Y1) (from the top left) of the camera's image,
+into an EXR of that size.
 
 Needs `pip install mitsuba` (3.9.1 was used for the figures in docs/validation.md).
 """
@@ -98,6 +102,7 @@ def main():
     ap.add_argument("out")
     ap.add_argument("--spp", type=int, default=4096)
     ap.add_argument("--rgb-metals")
+    ap.add_argument("--crop", type=int, nargs=4, metavar=("X0", "Y0", "X1", "Y1"))
     ap.add_argument("--seed", type=int, default=0,
                     help="the first pass's seed (passes take seed, seed + 1, ...)")
     a = ap.parse_args()
@@ -147,6 +152,10 @@ def main():
             "sampler": {"type": "independent", "sample_count": a.spp},
         },
     }
+    if a.crop:
+        x0, y0, x1, y1 = a.crop
+        d["sensor"]["film"].update(crop_offset_x=x0, crop_offset_y=y0,
+                                   crop_width=x1 - x0, crop_height=y1 - y0)
     for i, s in enumerate(scene["shape"]):
         b = bsdf(materials[s["material"]])
         if s["type"] == "sphere":

@@ -41,6 +41,7 @@ use crate::scene::Scene;
 use crate::settings::{PhotonSettings, Settings};
 use crate::transport::chain::{Carried, End, Policy, Walker};
 use crate::transport::{Stats, SurfaceVertex, Tracer, Vertex};
+use glam::DVec3;
 use std::f64::consts::FRAC_1_PI;
 use std::time::Instant;
 
@@ -115,6 +116,9 @@ pub struct PhotonMapper<'a> {
     seed: u64,
     /// Largest squared radius of a k-nearest query.
     max_r2: f64,
+    /// Where the camera sits and the angle a pixel spans (rad), for the caustic radius's
+    /// floor ([`PhotonMapper::footprint_r2`]); None without a camera.
+    pixel: Option<(DVec3, f64)>,
 }
 
 /// A pass's photon maps.
@@ -145,6 +149,11 @@ impl<'a> PhotonMapper<'a> {
             photons: settings.photons,
             seed: settings.seed,
             max_r2: max_radius * max_radius,
+            pixel: tracer
+                .scene
+                .camera
+                .as_ref()
+                .map(|c| (c.position, c.pixel_angle())),
         }
     }
 
@@ -187,7 +196,8 @@ impl<'a> PhotonMapper<'a> {
     }
 
     /// The squared caustic radius of pass `index` at a visible point: the k-nearest distance
-    /// there (or the scene's radius), times Knaus and Zwicker's schedule.
+    /// there, but no less than the pixel's footprint ([`PhotonMapper::footprint_r2`]) — or
+    /// the scene's radius —, times Knaus and Zwicker's schedule.
     fn caustic_r2(
         &self,
         caustic: &PhotonMap,
@@ -197,11 +207,29 @@ impl<'a> PhotonMapper<'a> {
     ) -> f64 {
         let r0 = match self.photons.radius {
             Some(r) => r * r,
-            None => stats.time_query(|| {
-                caustic.knn_radius2(v.position, v.normal, self.photons.knn as usize, self.max_r2)
-            }),
+            None => {
+                let knn = stats.time_query(|| {
+                    let k = self.photons.knn as usize;
+                    caustic.knn_radius2(v.position, v.normal, k, self.max_r2)
+                });
+                knn.max(self.footprint_r2(v.position).min(self.max_r2))
+            }
         };
         r0 * schedule(index)
+    }
+
+    /// The square of half the width a pixel spans at distance |x − camera| from the camera
+    /// (its footprint on a surface facing it; 0 without a camera). A pixel averages the
+    /// radiance over its footprint, so a kernel narrower than that only adds noise: in a
+    /// bright caustic the k nearest photons lie within a small part of a pixel, and the
+    /// pixel's samples, each reading its own few photons, would leave most of the photons
+    /// in the pixel unread. The distance is the straight one: seen through a lens or a
+    /// curved medium the footprint is larger or smaller by the view's magnification.
+    fn footprint_r2(&self, x: DVec3) -> f64 {
+        self.pixel.map_or(0.0, |(eye, angle)| {
+            let half = 0.5 * angle * eye.distance(x);
+            half * half
+        })
     }
 
     /// Secondary light at a visible point: `gather` BSDF-sampled rays, each followed through
