@@ -196,13 +196,17 @@ impl<'a> PhotonMapper<'a> {
     }
 
     /// The squared caustic radius of pass `index` at a visible point: the k-nearest distance
-    /// there, but no less than the pixel's footprint ([`PhotonMapper::footprint_r2`]) — or
-    /// the scene's radius —, times Knaus and Zwicker's schedule.
+    /// there — no less than the pixel's footprint ([`PhotonMapper::footprint_r2`]) where the
+    /// camera sees the point straight on (`footprint`: the point then) —, or the scene's
+    /// radius; times Knaus and Zwicker's schedule. (Seen through a lens or a curved medium,
+    /// the footprint is the straight one times the view's magnification, which is not known
+    /// here.)
     fn caustic_r2(
         &self,
         caustic: &PhotonMap,
         index: u32,
         v: &SurfaceVertex,
+        footprint: Option<DVec3>,
         stats: &mut Stats,
     ) -> f64 {
         let r0 = match self.photons.radius {
@@ -212,7 +216,8 @@ impl<'a> PhotonMapper<'a> {
                     let k = self.photons.knn as usize;
                     caustic.knn_radius2(v.position, v.normal, k, self.max_r2)
                 });
-                knn.max(self.footprint_r2(v.position).min(self.max_r2))
+                let floor = footprint.map_or(0.0, |x| self.footprint_r2(x));
+                knn.max(floor.min(self.max_r2))
             }
         };
         r0 * schedule(index)
@@ -223,8 +228,7 @@ impl<'a> PhotonMapper<'a> {
     /// radiance over its footprint, so a kernel narrower than that only adds noise: in a
     /// bright caustic the k nearest photons lie within a small part of a pixel, and the
     /// pixel's samples, each reading its own few photons, would leave most of the photons
-    /// in the pixel unread. The distance is the straight one: seen through a lens or a
-    /// curved medium the footprint is larger or smaller by the view's magnification.
+    /// in the pixel unread.
     fn footprint_r2(&self, x: DVec3) -> f64 {
         self.pixel.map_or(0.0, |(eye, angle)| {
             let half = 0.5 * angle * eye.distance(x);
@@ -400,6 +404,11 @@ impl<'a> Integrator for PhotonMapper<'a> {
         let caustic = self.volume_caustic(maps, &beams, c.carried.tracer, s);
         s.add(CAUSTIC, caustic);
         let Some(first) = c.visible else { return };
+        // The pixel's footprint is known where it sees its visible point straight on.
+        let footprint = match first.vertex {
+            Vertex::Surface(v) if c.straight && v.lobes().has_diffuse() => Some(v.position),
+            _ => None,
+        };
         s.add(ALBEDO, first.vertex.albedo());
         s.add(NORMAL, first.vertex.normal());
         let mut found = Found::default();
@@ -417,9 +426,9 @@ impl<'a> Integrator for PhotonMapper<'a> {
             s.add(SECONDARY, secondary);
         }
         if let Some(caustic) = &maps.caustic {
-            let r2 = *pixel
-                .r2
-                .get_or_insert_with(|| self.caustic_r2(caustic, maps.index, &v, s.stats));
+            let r2 = *pixel.r2.get_or_insert_with(|| {
+                self.caustic_r2(caustic, maps.index, &v, footprint, s.stats)
+            });
             let near = match pixel.near.take() {
                 Some(near) if near.serves(&v, r2) => near,
                 _ => s
