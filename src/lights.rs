@@ -26,11 +26,12 @@ pub struct Emission {
 /// emitted from a disk of this radius that covers it.
 pub type SceneBall = (DVec3, f64);
 
-/// Where parallel and environment light's photons are sent: through the `target` ball, from a
-/// plane upstream of the whole `scene` ball (so that nothing in the scene is skipped). The
-/// target is the scene ball itself, or a ball holding what a batch of photons must meet (the
-/// specular surfaces, for caustic photons): light missing it is not traced, and the photons
-/// through it carry its power only.
+/// Where photons are sent: parallel and environment light through the `target` ball, from a
+/// plane upstream of the whole `scene` ball (so that nothing in the scene is skipped); light
+/// from points and surfaces over the target's cone ([`Light::emit`]). The target is the scene
+/// ball itself (every photon as the light emits it), or a ball holding what a batch of photons
+/// must meet (the specular surfaces, for caustic photons): light missing it is not traced, and
+/// the photons toward it carry its power only.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Aim {
     /// The ball holding the scene.
