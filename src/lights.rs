@@ -400,9 +400,9 @@ impl Light {
 
     /// The solid angle over which the light spreads its power: its power over its peak
     /// intensity (sr) — 4π for a point, π for a Lambertian surface, 2π/(m + 1) for an LED,
-    /// about 2π(1 − (cos θ_inner + cos θ_outer)/2) for a spot (as [`Light::selection_power`]
-    /// takes its falloff); 0 for parallel light. A cone of solid angle Ω receives at most
-    /// Ω/spread of the power.
+    /// about 2π(1 − (cos θ_inner + cos θ_outer)/2) for a spot (its falloff taken as linear
+    /// in cos θ); 0 for parallel light. A cone of solid angle Ω receives at most Ω/spread of
+    /// the power.
     fn spread(&self) -> f64 {
         match self {
             Light::Point { .. } => 4.0 * PI,
@@ -555,25 +555,27 @@ impl Light {
             .map_or(1.0, |cone| (cone.solid_angle() / self.spread()).min(1.0))
     }
 
-    /// The light's power (W, mean over channels) as sent by `aim`.
+    /// The light's power (W, mean over channels) as sent by `aim`: parallel light's through
+    /// the target's disk, any other's its peak intensity times its [`Light::spread`].
     fn power(&self, aim: Aim) -> f64 {
         let p = match self {
-            Light::Point { intensity, .. } => *intensity * (4.0 * PI),
-            Light::Spot {
-                intensity,
-                cos_inner,
-                cos_outer,
-                ..
-            } => *intensity * (TAU * (1.0 - 0.5 * (cos_inner + cos_outer))),
-            Light::Area { emitter, radiance } => *radiance * (PI * emitter.area()),
-            Light::Led {
-                peak_intensity, m, ..
-            } => *peak_intensity * (TAU / (m + 1.0)),
             Light::Directional { irradiance, .. } => {
                 *irradiance * (PI * aim.target.1 * aim.target.1)
             }
+            _ => self.peak_intensity() * self.spread(),
         };
         p.element_sum() / 3.0
+    }
+
+    /// The largest intensity it sends along any direction (W/sr; a surface's radiance times
+    /// its area); zero for parallel light.
+    fn peak_intensity(&self) -> Rgb {
+        match self {
+            Light::Point { intensity, .. } | Light::Spot { intensity, .. } => *intensity,
+            Light::Area { emitter, radiance } => *radiance * emitter.area(),
+            Light::Led { peak_intensity, .. } => *peak_intensity,
+            Light::Directional { .. } => Rgb::ZERO,
+        }
     }
 }
 

@@ -201,9 +201,9 @@ fn caustic_photons_aimed_at_specular_surfaces_carry_the_same_power() {
                  [[light]]\ntype = \"spot\"\nposition = [-1,3,0.5]\nintensity = 2\ncone_deg = 40\nfalloff_deg = 20\n\
                  [[light]]\ntype = \"quad\"\nvertices = [[-0.3,3.5,-0.3],[0.3,3.5,-0.3],[0.3,3.5,0.3],[-0.3,3.5,0.3]]\nradiance = 2\n\
                  [[light]]\ntype = \"led\"\ncenter = [0,2.5,-1.5]\nnormal = [0,-0.8,0.6]\nradius = 0.05\npower = 3\nm = 4\n";
-    for (lights, whole, gain) in [
-        (format!("{sun}{sky}"), 2_000_000, 10.0),
-        (local.to_string(), 1_000_000, 10.0),
+    for (lights, whole) in [
+        (format!("{sun}{sky}"), 2_000_000),
+        (local.to_string(), 1_000_000),
     ] {
         let (all_a, near_a, rate_a) = measure(scene(&lights), true, 200_000);
         let (all_w, near_w, rate_w) = measure(scene(&lights), false, whole);
@@ -222,7 +222,7 @@ fn caustic_photons_aimed_at_specular_surfaces_carry_the_same_power() {
                 "too noisy to compare: {a:?} {w:?}"
             );
         }
-        assert!(rate_a > gain * rate_w, "{rate_a} vs {rate_w}");
+        assert!(rate_a > 10.0 * rate_w, "{rate_a} vs {rate_w}");
     }
     // A roof over the scene: no sun photon reaches the ball, aimed or not.
     let roof = "[[shape]]\ntype = \"quad\"\nvertices = [[-9,5,-9],[-9,5,9],[9,5,9],[9,5,-9]]\nmaterial = \"floor\"\n";
