@@ -5,6 +5,8 @@
 //! angle, 1/sr); each is checked by a χ² test against its pdf.
 
 use glam::DVec3;
+use rand::seq::SliceRandom;
+use rand::Rng;
 use rand_pcg::Pcg64Mcg;
 use std::f64::consts::{PI, TAU};
 
@@ -19,6 +21,8 @@ pub enum Purpose {
     GlobalPhotons = 3,
     /// Photons measured by receivers.
     ReceiverPhotons = 4,
+    /// A pixel's [`Strata`] in a pass.
+    PixelStrata = 5,
 }
 
 /// A 64-bit hash of `z` (splitmix64: an increment, then its finaliser), for keying streams.
@@ -34,6 +38,30 @@ pub fn stream(seed: u64, purpose: Purpose, a: u64, b: u64) -> Pcg64Mcg {
     let h = mix(seed ^ mix(purpose as u64 ^ mix(a ^ mix(b))));
     let l = mix(h ^ 0x5851_f42d_4c95_7f2d);
     Pcg64Mcg::new(((h as u128) << 64) | l as u128)
+}
+
+/// One dimension of a pixel's n samples, stratified: one number in each of the n equal
+/// intervals of [0, 1) (uniform within it), handed to the samples in a random order — so
+/// each sample's number is uniform, the pixel's numbers are spread evenly, and the order is
+/// independent of the pixel's other stratified dimensions (its image-plane cells).
+#[derive(Default)]
+pub struct Strata {
+    numbers: Vec<f64>,
+}
+
+impl Strata {
+    /// Draws the numbers of `n` samples from `rng` (reusing its storage).
+    pub fn draw(&mut self, n: u32, rng: &mut impl Rng) {
+        self.numbers.clear();
+        self.numbers
+            .extend((0..n).map(|i| (i as f64 + rng.gen::<f64>()) / n as f64));
+        self.numbers.shuffle(rng);
+    }
+
+    /// Sample `s`'s number.
+    pub fn get(&self, s: u32) -> f64 {
+        self.numbers[s as usize]
+    }
 }
 
 /// An orthonormal frame (t, b, n) around a unit vector n.

@@ -317,3 +317,50 @@ fn textures_put_their_texels_where_the_surface_coordinates_say() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// A pixel's samples split at a dielectric in proportion to its reflectance: a glass slab
+/// (n = 1.5, 1 thick) seen at 70° incidence under a uniform sky of radiance 1, a black floor
+/// below it. A path leaves upward after 0, 2, 4, … internal reflections, so a pixel sees the
+/// slab's reflectance 2F/(1 + F) with F the unpolarised Fresnel reflectance at 70° (each
+/// reflection within the slab meets the same F). With each sample choosing its branches
+/// independently a 16-sample pixel would scatter about it by √(R(1 − R)/16) ≈ 0.11; the
+/// first choices are stratified over the pixel, so the first split is exact and the later
+/// ones (each stratified alone, not jointly) scatter less. Bars: the 64 × 64 pixels' RMS
+/// deviation below 0.6 of the independent one (measured 0.48; independent choices would give
+/// 1 ± 0.02 of it), and their mean within three standard errors (RMS / 64) of 2F/(1 + F).
+#[test]
+fn a_pixel_splits_at_a_dielectric_in_proportion_to_its_reflectance() {
+    let theta = 70f64.to_radians();
+    let (x, y) = (theta.sin(), -theta.cos());
+    let text = format!(
+        "[camera]\nposition = [{px}, 1, 0]\nlook_at = [0, 0, 0]\nfov_y_deg = 1\nwidth = 64\nheight = 64\n\
+         [render]\nspp = 16\ngather = 0\nphotons = 1000\n\
+         [[light]]\ntype = \"environment\"\nsky = \"uniform\"\n\
+         [[material]]\nname = \"glass\"\ntype = \"dielectric\"\nior = 1.5\n\
+         [[material]]\nname = \"black\"\ntype = \"diffuse\"\nalbedo = [0, 0, 0]\n\
+         [[shape]]\ntype = \"box\"\nmin = [-50, -1, -50]\nmax = [50, 0, 50]\nmaterial = \"glass\"\n\
+         [[shape]]\ntype = \"quad\"\nvertices = [[-500, -2, -500], [-500, -2, 500], [500, -2, 500], [500, -2, -500]]\nmaterial = \"black\"\n",
+        px = -x / -y,
+    );
+    let scene = parse_scene(Path::new("slab.toml"), text).unwrap();
+    let film = render(&scene, 0);
+    let (ci, n) = (theta.cos(), 1.5f64);
+    let ct = (1.0 - (theta.sin() / n).powi(2)).sqrt();
+    let rs = ((ci - n * ct) / (ci + n * ct)).powi(2);
+    let rp = ((n * ci - ct) / (n * ci + ct)).powi(2);
+    let f = 0.5 * (rs + rp);
+    let want = 2.0 * f / (1.0 + f);
+    let values: Vec<f64> = film
+        .layer("beauty")
+        .unwrap()
+        .iter()
+        .map(|p| p[1] as f64)
+        .collect();
+    let mean = values.iter().sum::<f64>() / values.len() as f64;
+    let rms = (values.iter().map(|v| (v - want).powi(2)).sum::<f64>() / values.len() as f64).sqrt();
+    let independent = (want * (1.0 - want) / 16.0).sqrt();
+    println!("F {f:.4}, slab {want:.4}: mean {mean:.4}, pixels' RMS deviation {rms:.4} (independent choices: {independent:.4})");
+    assert!(rms < 0.6 * independent, "{rms} vs {independent}");
+    let standard_error = rms / (values.len() as f64).sqrt();
+    assert!((mean - want).abs() < 3.0 * standard_error, "{mean} vs {want}");
+}

@@ -10,7 +10,7 @@ use grinlight::color::Rgb;
 use grinlight::lights::{Emitter, Light};
 use grinlight::sampling::{
     cosine_hemisphere, power_cosine_hemisphere, power_cosine_pdf, uniform_cone, uniform_sphere,
-    UNIFORM_SPHERE_PDF,
+    Strata, UNIFORM_SPHERE_PDF,
 };
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
@@ -136,4 +136,33 @@ fn spot_emission_carries_its_power() {
         "{} vs {exact}",
         sum / n as f64
     );
+}
+
+/// A pixel's stratified numbers: each of the n intervals [i/n, (i+1)/n) holds exactly one of
+/// its n samples' numbers, and each sample's number is uniform on [0, 1) — sample 0's of
+/// 10⁵ draws of n = 4 binned into 40 bins (its stratum and its place within it) passes a χ²
+/// test at significance 1e-4 (critical value of 39 degrees of freedom: 77.6).
+#[test]
+fn strata_hold_one_number_each_and_every_sample_is_uniform() {
+    let mut rng = Pcg64Mcg::seed_from_u64(3);
+    let mut strata = Strata::default();
+    for n in [1u32, 7, 32] {
+        strata.draw(n, &mut rng);
+        let mut held = vec![0; n as usize];
+        for s in 0..n {
+            let u = strata.get(s);
+            assert!((0.0..1.0).contains(&u), "{u}");
+            held[(u * n as f64) as usize] += 1;
+        }
+        assert!(held.iter().all(|&h| h == 1), "n = {n}: {held:?}");
+    }
+    let (draws, bins) = (100_000, 40);
+    let mut counts = vec![0.0; bins];
+    for _ in 0..draws {
+        strata.draw(4, &mut rng);
+        counts[(strata.get(0) * bins as f64) as usize] += 1.0;
+    }
+    let expected = draws as f64 / bins as f64;
+    let chi2: f64 = counts.iter().map(|c| (c - expected).powi(2) / expected).sum();
+    assert!(chi2 < 77.6, "χ² = {chi2}");
 }

@@ -86,7 +86,7 @@ pub fn camera_path<'w>(
         direction: camera.direction,
         medium: carried.tracer.camera_medium,
     };
-    let mut walker = Walker::carrying(carried, Policy::Weighted);
+    let mut walker = Walker::carrying(carried, Policy::Weighted).choosing(camera.choices);
     let chain = walker.follow(ray, rng, stats, &mut beams.record(carried.tracer));
     let mut out = Components {
         emitted: emission_seen(walker.tracer, &chain),

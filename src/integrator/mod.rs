@@ -30,6 +30,7 @@ pub use photon_map::{PhotonMapper, Plan};
 use crate::color::Rgb;
 use crate::film::Layer;
 use crate::report::Report;
+use crate::transport::chain::Choices;
 use crate::transport::Stats;
 use glam::DVec3;
 use rand_pcg::Pcg64Mcg;
@@ -64,13 +65,16 @@ impl Slot {
     }
 }
 
-/// A camera ray: origin and unit direction.
+/// A camera ray: origin and unit direction, and the numbers its path's first choices between
+/// reflection and refraction take.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CameraRay {
     /// Origin (on the camera's lens).
     pub origin: DVec3,
     /// Unit direction.
     pub direction: DVec3,
+    /// Each stratified over the pixel's samples ([`crate::sampling::Strata`]).
+    pub choices: Choices,
 }
 
 /// A way of estimating what the camera sees.

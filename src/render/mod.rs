@@ -15,10 +15,11 @@ use crate::integrator::{
     CameraRay, DeflectionTable, Integrator, PathTracer, PhotonMapper, Plan, Sample,
 };
 pub use crate::report::Report;
-use crate::sampling::{stream, Purpose};
+use crate::sampling::{stream, Purpose, Strata};
 use crate::scene::Scene;
 use crate::settings::IntegratorKind as Kind;
 use crate::settings::Settings;
+use crate::transport::chain::Choices;
 use crate::transport::{Stats, Tracer};
 use rand::Rng;
 use rayon::prelude::*;
@@ -366,14 +367,20 @@ fn camera_tile<I: Integrator>(
     let pixels = film.film.width * film.film.height;
     let mut record = PassRecord::new(layers, spp as u64, film.film.planes_held());
     let mut values = vec![Rgb::ZERO; layers];
+    let mut choices: [Strata; Choices::COUNT] = Default::default();
     for ty in 0..film.film.height {
         for tx in 0..film.film.width {
             let (x, y) = (film.x0 + tx, film.y0 + ty);
             let pixel = y as u64 * w + x as u64;
             let mut state = I::Pixel::default();
             sum.fill(Rgb::ZERO);
+            let key = pass as u64 * w * h + pixel;
+            let mut strata_rng = stream(seed, Purpose::PixelStrata, key, 0);
+            for dimension in &mut choices {
+                dimension.draw(spp, &mut strata_rng);
+            }
             for s in 0..spp {
-                let mut rng = stream(seed, Purpose::Camera, pass as u64 * w * h + pixel, s as u64);
+                let mut rng = stream(seed, Purpose::Camera, key, s as u64);
                 // Stratified over the pixel: sample s of the first n² lies in cell (s mod n,
                 // s div n) of an n × n grid, n = ⌊√spp⌋ (sharp edges such as an emitter's
                 // converge much faster); any further samples are uniform.
@@ -394,7 +401,11 @@ fn camera_tile<I: Integrator>(
                 integrator.sample(
                     prepared,
                     &mut state,
-                    CameraRay { origin, direction },
+                    CameraRay {
+                        origin,
+                        direction,
+                        choices: Choices::new(choices.each_ref().map(|d| d.get(s))),
+                    },
                     &mut sample,
                 );
                 for (a, b) in sum.iter_mut().zip(&values) {

@@ -218,6 +218,40 @@ pub struct Walker<'w> {
     pub depth: u32,
     /// Its free flights in scattering media so far.
     flights: Flights,
+    /// Numbers its first choices between reflection and refraction take instead of numbers
+    /// from the stream ([`Walker::choosing`]).
+    choices: Choices,
+}
+
+/// Numbers in [0, 1) that a path's first choices between reflection and refraction take, in
+/// order, in place of numbers from its stream: a camera sample's, each stratified over the
+/// pixel's samples, so that a pixel's samples split between the branches of the first
+/// dielectrics they meet nearly in proportion to the Fresnel reflectances.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Choices {
+    numbers: [f64; Choices::COUNT],
+    /// How many are left (the last ones of `numbers`).
+    left: usize,
+}
+
+impl Choices {
+    /// How many choices a camera sample makes with given numbers.
+    pub const COUNT: usize = 3;
+
+    /// The choices `numbers` (each uniform in [0, 1)).
+    pub fn new(numbers: [f64; Choices::COUNT]) -> Self {
+        Self {
+            numbers,
+            left: Self::COUNT,
+        }
+    }
+
+    /// The next number, if one is left.
+    fn next(&mut self) -> Option<f64> {
+        let u = self.numbers.get(Self::COUNT - self.left).copied();
+        self.left = self.left.saturating_sub(1);
+        u
+    }
 }
 
 /// A random stream and the statistics a walk adds to.
@@ -299,7 +333,14 @@ impl<'w> Walker<'w> {
             policy,
             depth: carried.tracer.settings.max_depth,
             flights: carried.flights,
+            choices: Choices::default(),
         }
+    }
+
+    /// The walker that makes its first choices between reflection and refraction with
+    /// `choices`.
+    pub fn choosing(self, choices: Choices) -> Self {
+        Self { choices, ..self }
     }
 
     /// What the path carries now (after the chains it followed).
@@ -601,7 +642,7 @@ impl<'w> Walker<'w> {
             // A mirror makes no choice and draws no number.
             _ if matches!(vertex.bsdf, Bsdf::Conductor { .. }) => 0.0,
             Policy::Principal => 0.5,
-            _ => rng.gen(),
+            _ => self.choices.next().unwrap_or_else(|| rng.gen()),
         };
         let Some(b) = vertex.scatter((0.0, 0.0, u)) else {
             return ControlFlow::Break(End::Lost);
