@@ -362,5 +362,8 @@ fn a_pixel_splits_at_a_dielectric_in_proportion_to_its_reflectance() {
     println!("F {f:.4}, slab {want:.4}: mean {mean:.4}, pixels' RMS deviation {rms:.4} (independent choices: {independent:.4})");
     assert!(rms < 0.6 * independent, "{rms} vs {independent}");
     let standard_error = rms / (values.len() as f64).sqrt();
-    assert!((mean - want).abs() < 3.0 * standard_error, "{mean} vs {want}");
+    assert!(
+        (mean - want).abs() < 3.0 * standard_error,
+        "{mean} vs {want}"
+    );
 }

@@ -163,6 +163,9 @@ fn strata_hold_one_number_each_and_every_sample_is_uniform() {
         counts[(strata.get(0) * bins as f64) as usize] += 1.0;
     }
     let expected = draws as f64 / bins as f64;
-    let chi2: f64 = counts.iter().map(|c| (c - expected).powi(2) / expected).sum();
+    let chi2: f64 = counts
+        .iter()
+        .map(|c| (c - expected).powi(2) / expected)
+        .sum();
     assert!(chi2 < 77.6, "χ² = {chi2}");
 }

@@ -3,7 +3,7 @@
 
 use super::hit::Hit;
 use super::mesh::TriangleMesh;
-use super::triangle::{plane_coordinates, Plane, Triangle};
+use super::triangle::{edge_coordinates_hit, plane_coordinates, Plane, Triangle};
 use crate::curve::{ArcHull, Path, RoundSurface};
 use glam::{DVec2, DVec3};
 use std::sync::Arc;
@@ -107,6 +107,22 @@ impl Primitive {
                 (0.5 * (lo + hi), 0.5 * (hi - lo).length())
             }
         }
+    }
+
+    /// Whether the primitive's surface may come within `radius` of `point` — false only where
+    /// it certainly does not: a sphere's surface by its distance, a planar primitive's by its
+    /// plane's, any other's by its bounding ball.
+    pub fn may_meet_ball(&self, point: DVec3, radius: f64) -> bool {
+        if let Primitive::Sphere { center, radius: r } = *self {
+            return ((point - center).length() - r).abs() <= radius;
+        }
+        if let Some(plane) = self.plane() {
+            if (point - plane.point).dot(plane.normal).abs() > radius {
+                return false;
+            }
+        }
+        let (center, r) = self.bounding_ball();
+        point.distance(center) <= r + radius
     }
 
     /// The plane of a planar primitive.
@@ -233,6 +249,12 @@ impl Primitive {
                     })
                 })
             }
+            Primitive::Quad { origin, e1, e2 } => {
+                let (t, uv) = edge_coordinates_hit(origin, e1, e2, o, d, t_min, t_max)?;
+                let inside = (0.0..=1.0).contains(&uv.x) && (0.0..=1.0).contains(&uv.y);
+                inside.then(|| Hit::flat(t, e1.cross(e2).normalize()))
+            }
+            Primitive::Triangle(t) => t.intersect_ray(o, d, t_min, t_max),
             _ => {
                 let plane = self.plane()?;
                 let t = plane.ray_hit(o, d, t_min, t_max)?;

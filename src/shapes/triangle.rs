@@ -5,7 +5,7 @@
 use super::curved::round_roots;
 use super::hit::Hit;
 use crate::curve::{ArcHull, Path, RoundSurface};
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 
 /// The plane through `point` with unit `normal`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -57,6 +57,31 @@ pub fn plane_coordinates(r: DVec3, e1: DVec3, e2: DVec3) -> (f64, f64) {
     ((c * p - b * q) / det, (a * q - b * p) / det)
 }
 
+/// Where the straight ray o + t d meets the plane spanned by `e1` and `e2` through `origin`,
+/// t ∈ (t_min, t_max): t and the point's coordinates (u, v), origin + u e1 + v e2 — Möller and
+/// Trumbore's determinants, which need neither the plane's unit normal nor a division per
+/// coordinate (None: parallel to the plane, or out of range).
+pub fn edge_coordinates_hit(
+    origin: DVec3,
+    e1: DVec3,
+    e2: DVec3,
+    o: DVec3,
+    d: DVec3,
+    t_min: f64,
+    t_max: f64,
+) -> Option<(f64, DVec2)> {
+    let p = d.cross(e2);
+    let det = e1.dot(p);
+    if det == 0.0 {
+        return None;
+    }
+    let inv = 1.0 / det;
+    let s = o - origin;
+    let q = s.cross(e1);
+    let t = e2.dot(q) * inv;
+    (t > t_min && t < t_max).then(|| (t, DVec2::new(s.dot(p) * inv, d.dot(q) * inv)))
+}
+
 /// The triangle v0, v0 + e1, v0 + e2; its normal e1 × e2 normalised.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Triangle {
@@ -94,10 +119,9 @@ impl Triangle {
 
     /// Nearest hit of the straight ray o + t d with t ∈ (t_min, t_max) (its (u, v) not set).
     pub fn intersect_ray(&self, o: DVec3, d: DVec3, t_min: f64, t_max: f64) -> Option<Hit> {
-        let plane = self.plane();
-        let t = plane.ray_hit(o, d, t_min, t_max)?;
-        self.contains(o + t * d)
-            .then_some(Hit::flat(t, plane.normal))
+        let (t, uv) = edge_coordinates_hit(self.v0, self.e1, self.e2, o, d, t_min, t_max)?;
+        (uv.x >= 0.0 && uv.y >= 0.0 && uv.x + uv.y <= 1.0)
+            .then(|| Hit::flat(t, self.plane().normal))
     }
 
     /// Nearest crossing of a curved path at arclength s ∈ (s_min, length] (its (u, v) not

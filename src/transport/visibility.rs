@@ -61,8 +61,9 @@ pub fn unscattered(
 }
 
 /// The surfaces that may stand between a point on a surface and the photons a density
-/// estimate reads around it: every primitive but the point's own whose box meets the
-/// estimate's ball. A photon behind one of them — on the far side of a thin wall standing on
+/// estimate reads around it: every primitive but the point's own whose surface may meet the
+/// estimate's ball (its box meets the ball's, and [`crate::shapes::Primitive::may_meet_ball`]: a glass ball
+/// resting on the floor stands in the way only of estimates near where it touches). A photon behind one of them — on the far side of a thin wall standing on
 /// the floor — lit another place than this one, and a disc estimate that read it would leak
 /// that light through the wall (a bright caustic inside a ring read outside it). Detectors
 /// hide nothing. They are looked up at the first photon asked about (most estimates find
@@ -109,12 +110,16 @@ impl<'a> Occluders<'a> {
             };
             let reach = DVec3::splat(self.radius);
             let (lo, hi) = (self.position - reach, self.position + reach);
+            // Room for the points' offsets off their surfaces (math::offset) and rounding.
+            let radius = self.radius + 1e-6 * (self.radius + self.position.abs().max_element());
+            let primitives = scene.accel.primitives();
             scene.accel.boxes_meeting(lo, hi, |id| {
                 let detector = matches!(
                     scene.materials[scene.surfaces[id].material],
                     Material::Detector { .. }
                 );
-                if id != self.prim && !detector {
+                let meets = primitives[id].may_meet_ball(self.position, radius);
+                if id != self.prim && !detector && meets {
                     if near.count < Near::KEPT {
                         near.ids[near.count] = id;
                     }
