@@ -9,7 +9,8 @@
 #
 #   bench/every_scene.sh [REVISION] [RUNS] [PASSES] [SPP] [SCENE,SCENE,…]
 #
-# Defaults: c7488ea (version 0.4.5), 3 runs, 1 pass of 1 sample. The earlier build is made in a temporary git
+# Defaults: c7488ea (version 0.4.5), 3 runs, 1 pass of 1 sample; PASSES `own` renders each
+# scene at its own passes and samples. The earlier build is made in a temporary git
 # worktree into target/earlier.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -38,7 +39,8 @@ for ((i = 0; i < runs; i++)); do
                 current) bin=target/release/grinlight ;;
                 earlier) bin=target/earlier/release/grinlight ;;
             esac
-            if t=$(wall "$bin" render "$scene" --passes "$passes" --spp "$spp" -o "$out/frame.exr"); then
+            if [[ $passes == own ]]; then flags=(); else flags=(--passes "$passes" --spp "$spp"); fi
+            if t=$(wall "$bin" render "$scene" "${flags[@]}" -o "$out/frame.exr"); then
                 echo "$t" >> "$out/$name.$build"
             else
                 echo "$build failed on $name: $(tail -1 "$out/log")" >&2
