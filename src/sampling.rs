@@ -43,24 +43,30 @@ pub fn stream(seed: u64, purpose: Purpose, a: u64, b: u64) -> Pcg64Mcg {
 /// One dimension of a pixel's n samples, stratified: one number in each of the n equal
 /// intervals of [0, 1) (uniform within it), handed to the samples in a random order — so
 /// each sample's number is uniform, the pixel's numbers are spread evenly, and the order is
-/// independent of the pixel's other stratified dimensions (its image-plane cells).
+/// independent of the pixel's other stratified dimensions (its image-plane cells). Only a
+/// pixel's first [`Strata::MOST`] samples are stratified (over that many intervals), so its
+/// memory stays bounded for any `spp`; later samples draw their own numbers.
 #[derive(Default)]
 pub struct Strata {
     numbers: Vec<f64>,
 }
 
 impl Strata {
+    /// The most samples a pixel's strata hold (0.5 MB a dimension).
+    pub const MOST: u32 = 1 << 16;
+
     /// Draws the numbers of `n` samples from `rng` (reusing its storage).
     pub fn draw(&mut self, n: u32, rng: &mut impl Rng) {
+        let n = n.min(Self::MOST);
         self.numbers.clear();
         self.numbers
             .extend((0..n).map(|i| (i as f64 + rng.gen::<f64>()) / n as f64));
         self.numbers.shuffle(rng);
     }
 
-    /// Sample `s`'s number.
-    pub fn get(&self, s: u32) -> f64 {
-        self.numbers[s as usize]
+    /// Sample `s`'s number; None beyond the first [`Strata::MOST`].
+    pub fn get(&self, s: u32) -> Option<f64> {
+        self.numbers.get(s as usize).copied()
     }
 }
 

@@ -141,7 +141,8 @@ fn spot_emission_carries_its_power() {
 /// A pixel's stratified numbers: each of the n intervals [i/n, (i+1)/n) holds exactly one of
 /// its n samples' numbers, and each sample's number is uniform on [0, 1) — sample 0's of
 /// 10⁵ draws of n = 4 binned into 40 bins (its stratum and its place within it) passes a χ²
-/// test at significance 1e-4 (critical value of 39 degrees of freedom: 77.6).
+/// test at significance 1e-4 (critical value of 39 degrees of freedom: 77.6). Memory is
+/// bounded for any n.
 #[test]
 fn strata_hold_one_number_each_and_every_sample_is_uniform() {
     let mut rng = Pcg64Mcg::seed_from_u64(3);
@@ -150,7 +151,7 @@ fn strata_hold_one_number_each_and_every_sample_is_uniform() {
         strata.draw(n, &mut rng);
         let mut held = vec![0; n as usize];
         for s in 0..n {
-            let u = strata.get(s);
+            let u = strata.get(s).unwrap();
             assert!((0.0..1.0).contains(&u), "{u}");
             held[(u * n as f64) as usize] += 1;
         }
@@ -160,7 +161,7 @@ fn strata_hold_one_number_each_and_every_sample_is_uniform() {
     let mut counts = vec![0.0; bins];
     for _ in 0..draws {
         strata.draw(4, &mut rng);
-        counts[(strata.get(0) * bins as f64) as usize] += 1.0;
+        counts[(strata.get(0).unwrap() * bins as f64) as usize] += 1.0;
     }
     let expected = draws as f64 / bins as f64;
     let chi2: f64 = counts
@@ -168,4 +169,7 @@ fn strata_hold_one_number_each_and_every_sample_is_uniform() {
         .map(|c| (c - expected).powi(2) / expected)
         .sum();
     assert!(chi2 < 77.6, "χ² = {chi2}");
+    // Any spp: the strata hold at most Strata::MOST samples, the rest draw their own.
+    strata.draw(u32::MAX, &mut rng);
+    assert!(strata.get(Strata::MOST - 1).is_some() && strata.get(Strata::MOST).is_none());
 }

@@ -391,6 +391,11 @@ fn camera_tile<I: Integrator>(
                 }
                 let (origin, direction) =
                     camera.ray(x as u32, y as u32, u, v, (rng.gen(), rng.gen()));
+                let picks = Choices::new(
+                    choices
+                        .each_ref()
+                        .map(|d| d.get(s).unwrap_or_else(|| rng.gen())),
+                );
                 stats.camera_rays += 1;
                 values.fill(Rgb::ZERO);
                 let mut sample = Sample {
@@ -404,7 +409,7 @@ fn camera_tile<I: Integrator>(
                     CameraRay {
                         origin,
                         direction,
-                        choices: Choices::new(choices.each_ref().map(|d| d.get(s))),
+                        choices: picks,
                     },
                     &mut sample,
                 );
