@@ -6,6 +6,34 @@
 
 use glam::DVec3;
 
+/// The point of the film and of the lens a camera ray is drawn through.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FilmPoint {
+    /// Pixel column, from the left.
+    pub px: u32,
+    /// Pixel row, from the top.
+    pub py: u32,
+    /// Sub-pixel position across, in pixels from the pixel's left edge (outside [0, 1): a
+    /// point of a neighbouring pixel).
+    pub u: f64,
+    /// Sub-pixel position down, in pixels from the pixel's top edge.
+    pub v: f64,
+    /// The point of the lens, in [0, 1)² ([`Camera::ray`]).
+    pub lens: (f64, f64),
+}
+
+impl FilmPoint {
+    /// The point `du` pixels to the right and `dv` pixels down, through the same point of the
+    /// lens.
+    pub fn moved(self, du: f64, dv: f64) -> Self {
+        Self {
+            u: self.u + du,
+            v: self.v + dv,
+            ..self
+        }
+    }
+}
+
 /// A camera producing primary rays.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Camera {
@@ -82,6 +110,11 @@ impl Camera {
                 (origin, (focal_point - origin).normalize())
             }
         }
+    }
+
+    /// Origin and unit direction of the primary ray through `film`.
+    pub fn ray_through(&self, film: FilmPoint) -> (DVec3, DVec3) {
+        self.ray(film.px, film.py, film.u, film.v, film.lens)
     }
 
     /// The angle (rad) between the pinhole rays through the centre pixel and its right-hand

@@ -39,10 +39,10 @@ pub struct Components<'w> {
     pub single: Rgb,
     /// Its first scattering vertex, if it reached one.
     pub visible: Option<VisiblePoint<'w>>,
-    /// Whether it reached that vertex along one straight stretch (no specular surface, no
-    /// gradient medium on the way), so that a pixel's footprint there is its width times the
-    /// distance.
-    pub straight: bool,
+    /// The specular bounces on its way there.
+    pub bounces: u32,
+    /// Whether it crossed a gradient medium (a curved stretch) on its way there.
+    pub curved: bool,
     /// The wavelengths the path carries there.
     pub carried: Carried<'w>,
 }
@@ -92,7 +92,8 @@ pub fn camera_path<'w>(
         emitted: emission_seen(walker.tracer, &chain),
         single: single_scattering(beams, walker.carried(), rng, stats),
         visible: None,
-        straight: chain.specular == 0 && !chain.curved,
+        bounces: chain.specular,
+        curved: chain.curved,
         carried: walker.carried(),
     };
     if let End::Scatter(vertex) = chain.end {

@@ -18,6 +18,7 @@
 mod beam;
 mod deflection;
 pub mod direct;
+pub mod footprint;
 mod neighbourhood;
 mod path;
 mod photon_map;
@@ -27,6 +28,7 @@ pub use deflection::{DeflectionTable, TableCheck};
 pub use path::PathTracer;
 pub use photon_map::{PhotonMapper, Plan};
 
+use crate::camera::FilmPoint;
 use crate::color::Rgb;
 use crate::film::Layer;
 use crate::report::Report;
@@ -65,8 +67,8 @@ impl Slot {
     }
 }
 
-/// A camera ray: origin and unit direction, and the numbers its path's first choices between
-/// reflection and refraction take.
+/// A camera ray: origin and unit direction, the numbers its path's first choices between
+/// reflection and refraction take, and the film point it was drawn through.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CameraRay {
     /// Origin (on the camera's lens).
@@ -75,6 +77,9 @@ pub struct CameraRay {
     pub direction: DVec3,
     /// Each stratified over the pixel's samples ([`crate::sampling::Strata`]).
     pub choices: Choices,
+    /// Where on the film and the lens it was drawn (its neighbours' rays are drawn beside it:
+    /// [`footprint`]).
+    pub film: FilmPoint,
 }
 
 /// A way of estimating what the camera sees.

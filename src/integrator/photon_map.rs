@@ -30,6 +30,7 @@
 
 use super::beam::Beams;
 use super::direct::{camera_path, direct, emission_seen, hero, VisiblePoint};
+use super::footprint::{self, Way};
 use super::neighbourhood::Neighbourhood;
 use super::single::single_scattering;
 use super::{CameraRay, Integrator, Sample, Slot};
@@ -41,7 +42,6 @@ use crate::scene::Scene;
 use crate::settings::{PhotonSettings, Settings};
 use crate::transport::chain::{Carried, End, Policy, Walker};
 use crate::transport::{Stats, SurfaceVertex, Tracer, Vertex};
-use glam::DVec3;
 use std::f64::consts::FRAC_1_PI;
 use std::time::Instant;
 
@@ -116,9 +116,6 @@ pub struct PhotonMapper<'a> {
     seed: u64,
     /// Largest squared radius of a k-nearest query.
     max_r2: f64,
-    /// Where the camera sits and the angle a pixel spans (rad), for the caustic radius's
-    /// floor ([`PhotonMapper::footprint_r2`]); None without a camera.
-    pixel: Option<(DVec3, f64)>,
 }
 
 /// A pass's photon maps.
@@ -149,11 +146,6 @@ impl<'a> PhotonMapper<'a> {
             photons: settings.photons,
             seed: settings.seed,
             max_r2: max_radius * max_radius,
-            pixel: tracer
-                .scene
-                .camera
-                .as_ref()
-                .map(|c| (c.position, c.pixel_angle())),
         }
     }
 
@@ -195,18 +187,20 @@ impl<'a> PhotonMapper<'a> {
         })
     }
 
-    /// The squared caustic radius of pass `index` at a visible point: the k-nearest distance
-    /// there — no less than the pixel's footprint ([`PhotonMapper::footprint_r2`]) where the
-    /// camera sees the point straight on (`footprint`: the point then) —, or the scene's
-    /// radius; times Knaus and Zwicker's schedule. (Seen through a lens or a curved medium,
-    /// the footprint is the straight one times the view's magnification, which is not known
-    /// here.)
+    /// The squared caustic radius of pass `index` at a visible point `v`: the k-nearest
+    /// distance there, no less than `floor` — half the smallest width of the pixel's
+    /// footprint there, where it is known ([`footprint::half_width`]; asked only where the
+    /// k-nearest distance is below the largest radius) —, or the scene's radius; times Knaus
+    /// and Zwicker's schedule. A pixel averages the radiance over its
+    /// footprint, so a kernel narrower than that only adds noise: in a bright caustic the k
+    /// nearest photons lie within a small part of a pixel, and the pixel's samples, each
+    /// reading its own few photons, would leave most of the photons in it unread.
     fn caustic_r2(
         &self,
         caustic: &PhotonMap,
         index: u32,
         v: &SurfaceVertex,
-        footprint: Option<DVec3>,
+        floor: impl FnOnce(&mut Stats) -> Option<f64>,
         stats: &mut Stats,
     ) -> f64 {
         let r0 = match self.photons.radius {
@@ -216,24 +210,13 @@ impl<'a> PhotonMapper<'a> {
                     let k = self.photons.knn as usize;
                     caustic.knn_radius2(v.position, v.normal, k, self.max_r2)
                 });
-                let floor = footprint.map_or(0.0, |x| self.footprint_r2(x));
-                knn.max(floor.min(self.max_r2))
+                match knn < self.max_r2 {
+                    true => knn.max(floor(stats).map_or(0.0, |h| (h * h).min(self.max_r2))),
+                    false => knn,
+                }
             }
         };
         r0 * schedule(index)
-    }
-
-    /// The square of half the width a pixel spans at distance |x − camera| from the camera
-    /// (its footprint on a surface facing it; 0 without a camera). A pixel averages the
-    /// radiance over its footprint, so a kernel narrower than that only adds noise: in a
-    /// bright caustic the k nearest photons lie within a small part of a pixel, and the
-    /// pixel's samples, each reading its own few photons, would leave most of the photons
-    /// in the pixel unread.
-    fn footprint_r2(&self, x: DVec3) -> f64 {
-        self.pixel.map_or(0.0, |(eye, angle)| {
-            let half = 0.5 * angle * eye.distance(x);
-            half * half
-        })
     }
 
     /// Secondary light at a visible point: `gather` BSDF-sampled rays, each followed through
@@ -397,6 +380,8 @@ impl<'a> Integrator for PhotonMapper<'a> {
     fn sample(&self, maps: &Maps, pixel: &mut PixelCaustics<'a>, ray: CameraRay, s: &mut Sample) {
         let hero = hero(self.tracer, s.rng);
         let carried = Carried::starting(self.tracer, hero.as_ref());
+        // The stream as the path starts, for the footprint's neighbouring paths.
+        let start = s.rng.clone();
         let mut beams = Beams::default();
         let c = camera_path(carried, ray, &mut beams, s.rng, s.stats);
         s.add(EMITTED, c.emitted);
@@ -404,9 +389,14 @@ impl<'a> Integrator for PhotonMapper<'a> {
         let caustic = self.volume_caustic(maps, &beams, c.carried.tracer, s);
         s.add(CAUSTIC, caustic);
         let Some(first) = c.visible else { return };
-        // The pixel's footprint is known where it sees its visible point straight on.
-        let footprint = match first.vertex {
-            Vertex::Surface(v) if c.straight && v.lobes().has_diffuse() => Some(v.position),
+        // The way the path took to its visible point, where that is its first vertex (the
+        // pixel's footprint is measured there).
+        let way = match first.vertex {
+            Vertex::Surface(v) if v.lobes().has_diffuse() => Some(Way {
+                prim: v.prim,
+                bounces: c.bounces,
+                curved: c.curved,
+            }),
             _ => None,
         };
         s.add(ALBEDO, first.vertex.albedo());
@@ -426,9 +416,20 @@ impl<'a> Integrator for PhotonMapper<'a> {
             s.add(SECONDARY, secondary);
         }
         if let Some(caustic) = &maps.caustic {
-            let r2 = *pixel.r2.get_or_insert_with(|| {
-                self.caustic_r2(caustic, maps.index, &v, footprint, s.stats)
-            });
+            let r2 = match pixel.radii.iter().find(|r| Some(r.way) == way) {
+                Some(known) => known.r2,
+                None => {
+                    let floor = |stats: &mut Stats| {
+                        let camera = self.tracer.scene.camera.as_ref()?;
+                        footprint::half_width(camera, &ray, carried, &start, &v, way?, stats)
+                    };
+                    let r2 = self.caustic_r2(caustic, maps.index, &v, floor, s.stats);
+                    if let Some(way) = way {
+                        pixel.radii.push(Radius { way, r2 });
+                    }
+                    r2
+                }
+            };
             let near = match pixel.near.take() {
                 Some(near) if near.serves(&v, r2) => near,
                 _ => s
@@ -457,10 +458,18 @@ impl<'a> Integrator for PhotonMapper<'a> {
 /// What a pass keeps per pixel for its caustic estimates.
 #[derive(Default)]
 pub struct PixelCaustics<'a> {
-    /// The pass's squared caustic radius here, once the pixel's first visible point set it.
-    r2: Option<f64>,
+    /// The pass's squared caustic radius for each way the pixel's paths took to their
+    /// visible points (straight to the floor, through the glass to it, reflected in it to a
+    /// wall: each its own footprint), set by the first path that took it.
+    radii: Vec<Radius>,
     /// The caustic photons around the latest visible point that asked the map.
     near: Option<Neighbourhood<'a>>,
+}
+
+/// The squared caustic radius of a pass for paths that took one way.
+struct Radius {
+    way: Way,
+    r2: f64,
 }
 
 #[cfg(test)]

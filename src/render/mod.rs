@@ -8,6 +8,7 @@
 //! Also here: the receivers' measurement ([`measure`], [`Books`]: `render/measurement.rs`) and what a render will need of the
 //! machine ([`memory_needed`]).
 
+use crate::camera::FilmPoint;
 use crate::color::Rgb;
 use crate::error::{Error, Result};
 use crate::film::Film;
@@ -389,8 +390,14 @@ fn camera_tile<I: Integrator>(
                     u = ((s % strata) as f64 + u) / strata as f64;
                     v = ((s / strata) as f64 + v) / strata as f64;
                 }
-                let (origin, direction) =
-                    camera.ray(x as u32, y as u32, u, v, (rng.gen(), rng.gen()));
+                let film = FilmPoint {
+                    px: x as u32,
+                    py: y as u32,
+                    u,
+                    v,
+                    lens: (rng.gen(), rng.gen()),
+                };
+                let (origin, direction) = camera.ray_through(film);
                 let picks = Choices::new(
                     choices
                         .each_ref()
@@ -410,6 +417,7 @@ fn camera_tile<I: Integrator>(
                         origin,
                         direction,
                         choices: picks,
+                        film,
                     },
                     &mut sample,
                 );
