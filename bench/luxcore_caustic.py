@@ -2,11 +2,13 @@
 """The Cornell caustic's error against run time: grinlight against LuxCoreRender's PhotonGI.
 
     python3 bench/luxcore_caustic.py [--budgets 20 40 120] [--seeds 1 2] [--out DIR]
-                                     [--grinlight PATH [PATH ...]] [--reference-spp N]
+                                     [--grinlight PATH[,OPTION,...] ...] [--reference-spp N]
                                      [--luxcore "PROPERTY = VALUE" ...]
 
 Each grinlight build given (by default `target/release/grinlight`; give an earlier build's
-binary too to compare versions in the same run) and LuxCore render `scenes/cornell_caustic.toml`
+binary too to compare versions in the same run, and after a build's path, separated by
+commas, options that replace the settings below for it, e.g.
+`/tmp/gl_053,--caustic-photons,200000`) and LuxCore render `scenes/cornell_caustic.toml`
 (256 × 256) for the same budget of wall time, one after another: grinlight with
 `render --time-budget`, which starts no pass after the budget (so a run ends up to a pass
 later: the table prints every run's measured seconds, process start to image written);
@@ -32,7 +34,9 @@ of index 1.5 — a 256 × 512 UV sphere with smooth normals, as LuxCore has no a
 —, a box pixel filter of one pixel.
 
 grinlight: the scene as shipped, with the per-pass settings in GRINLIGHT_SETTINGS (32 samples
-a pixel, one gather ray, 200 000 caustic photons a pass), as many passes as the budget starts.
+a pixel, one gather ray, 10⁶ caustic photons a pass: tracing them takes a sixth of a pass, and
+at 120 s 2 × 10⁵ or 2 × 10⁶ gave more error, 16 samples a pixel too), as many passes as the
+budget starts.
 
 Needs `pip install mitsuba pyluxcore openexr numpy` (mitsuba 3.9.1 and pyluxcore 2.11.2 were
 used for the figures in docs/performance.md) and a release build of grinlight.
@@ -49,7 +53,7 @@ import numpy as np
 
 SCENE = "scenes/cornell_caustic.toml"
 CROP = (144, 212, 196, 240)
-GRINLIGHT_SETTINGS = ["--spp", "32", "--gather", "1", "--caustic-photons", "200000"]
+GRINLIGHT_SETTINGS = ["--spp", "32", "--gather", "1", "--caustic-photons", "1000000"]
 
 
 def read_exr(path):
@@ -82,10 +86,20 @@ def rmse(a, b):
     return math.sqrt(float(np.mean((a - b) ** 2)))
 
 
-def run_grinlight(binary, budget, seed, path):
+def settings(build):
+    """A build's binary and its options: GRINLIGHT_SETTINGS with those given after its path
+    in place of theirs."""
+    binary, *given = build.split(",")
+    options = dict(zip(GRINLIGHT_SETTINGS[::2], GRINLIGHT_SETTINGS[1::2]))
+    options.update(zip(given[::2], given[1::2]))
+    return binary, [x for pair in options.items() for x in pair]
+
+
+def run_grinlight(build, budget, seed, path):
+    binary, options = settings(build)
     start = time.monotonic()
     subprocess.run([binary, "render", SCENE, "-o", path, "--seed", str(seed),
-                    "--time-budget", str(budget), *GRINLIGHT_SETTINGS],
+                    "--time-budget", str(budget), *options],
                    check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     return time.monotonic() - start, crop(read_exr(path))
 
@@ -286,15 +300,15 @@ def main():
             row = "%7g %4d  %-32s %8.1f %9.5f %7.4f %8s"
             print(row % (budget, seed, "LuxCore 2.11 PhotonGI", l_s, le,
                          lux.mean() / truth.mean(), ""), flush=True)
-            for k, binary in enumerate(a.grinlight):
-                g_s, g = run_grinlight(binary, budget, seed, os.path.join(
+            for k, build in enumerate(a.grinlight):
+                g_s, g = run_grinlight(build, budget, seed, os.path.join(
                     a.out, "grinlight%d-%g-%d.exr" % (k, budget, seed)))
                 ge = error(g)
-                ratios.setdefault((binary, budget), []).append(ge / le)
-                print(row % (budget, seed, binary[-32:], g_s, ge, g.mean() / truth.mean(),
+                ratios.setdefault((build, budget), []).append(ge / le)
+                print(row % (budget, seed, build[-32:], g_s, ge, g.mean() / truth.mean(),
                              "%.3f" % (ge / le)), flush=True)
-    for (binary, budget), r in ratios.items():
-        print("%s, %g s: median RMSE / LuxCore's %.3f" % (binary, budget, statistics.median(r)))
+    for (build, budget), r in ratios.items():
+        print("%s, %g s: median RMSE / LuxCore's %.3f" % (build, budget, statistics.median(r)))
 
 if __name__ == "__main__":
     main()

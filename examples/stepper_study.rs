@@ -61,11 +61,7 @@ fn run(case: &Case, kind: StepperKind, control: StepControl) -> (MarchOutcome, f
 }
 
 fn black_hole_case(name: &'static str, b_rs: f64, reference: Option<DVec3>) -> (Case, DVec3) {
-    let hole = BlackHole {
-        center: DVec3::ZERO,
-        rs: 0.01,
-        q: 0.1,
-    };
+    let hole = BlackHole::new(DVec3::ZERO, 0.01, 0.1);
     let start = (DVec3::new(-5.0, b_rs * 0.01, 0.0), DVec3::X);
     let limits = MarchLimits {
         length: 10.0,

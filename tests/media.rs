@@ -104,11 +104,7 @@ fn media() -> Vec<(&'static str, Box<dyn Medium>)> {
         ),
         (
             "black_hole",
-            Box::new(BlackHole {
-                center: DVec3::ZERO,
-                rs: 0.1,
-                q: 0.3,
-            }),
+            Box::new(BlackHole::new(DVec3::ZERO, 0.1, 0.3)),
         ),
         (
             "schwarzschild",
@@ -343,11 +339,7 @@ fn profiles_have_their_defining_values() {
     };
     assert_eq!(eye.sample(DVec3::X).unwrap().n, 1.0);
     // Black hole: n = ρ²/(ρ² − ρ + q²); captured at and inside the horizon and at the centre.
-    let hole = BlackHole {
-        center: DVec3::ZERO,
-        rs: 0.5,
-        q: 0.1,
-    };
+    let hole = BlackHole::new(DVec3::ZERO, 0.5, 0.1);
     let s = hole.sample(DVec3::new(1.0, 0.0, 0.0)).unwrap(); // ρ = 2
     assert!((s.n - 4.0 / (4.0 - 2.0 + 0.01)).abs() < 1e-15);
     let horizon = hole.horizon() * 0.5;
@@ -357,11 +349,7 @@ fn profiles_have_their_defining_values() {
         .is_some());
     assert!(hole.sample(DVec3::ZERO).is_none());
     // q > 1/2: no horizon; only the centre captures.
-    let naked = BlackHole {
-        center: DVec3::ZERO,
-        rs: 1.0,
-        q: 0.6,
-    };
+    let naked = BlackHole::new(DVec3::ZERO, 1.0, 0.6);
     assert_eq!(naked.horizon(), 0.0);
     assert!(naked.sample(DVec3::new(0.3, 0.0, 0.0)).is_some());
     // Parabolic fiber: n ≤ 0 beyond r = √(2/a) captures.
@@ -585,11 +573,7 @@ fn grids_of_temperature_and_density_are_air_indices() {
 fn the_weak_field_black_hole_holds_for_any_rs() {
     let p = DVec3::new(0.6, 0.0, 0.8);
     for rs in [1e-300, 1e-160, 1e-150] {
-        let hole = BlackHole {
-            center: DVec3::ZERO,
-            rs,
-            q: 0.0,
-        };
+        let hole = BlackHole::new(DVec3::ZERO, rs, 0.0);
         let s = hole.sample(p).expect("far outside the horizon");
         assert_eq!(s.n, 1.0, "rs {rs}");
         // |∇n| = rs/r² to first order in rs.
@@ -600,11 +584,7 @@ fn the_weak_field_black_hole_holds_for_any_rs() {
         );
     }
     for (rs, q) in [(0.01, 0.0), (0.3, 0.2), (0.5, 0.45)] {
-        let hole = BlackHole {
-            center: DVec3::ZERO,
-            rs,
-            q,
-        };
+        let hole = BlackHole::new(DVec3::ZERO, rs, q);
         let rho = 1.0 / rs;
         let direct = rho * rho / (rho * rho - rho + q * q);
         let s = hole.sample(p).unwrap();

@@ -136,11 +136,7 @@ fn exponential_medium_single_arc_step_is_exact() {
 /// 6 ± 0.5 (5.62, 5.88; at h = 0.2 its error, 7e-12, meets the reference's rounding).
 #[test]
 fn orders_on_a_black_hole_ray() {
-    let hole = BlackHole {
-        center: DVec3::ZERO,
-        rs: 1.0,
-        q: 0.1,
-    };
+    let hole = BlackHole::new(DVec3::ZERO, 1.0, 0.1);
     let run = |kind, h| {
         trace(
             &hole,
@@ -476,11 +472,7 @@ fn deflection(out: &MarchOutcome, incoming: DVec3) -> f64 {
 fn black_hole_deflection_matches_quadrature_and_weak_field() {
     let rs = 0.01;
     let q = 0.1;
-    let hole = BlackHole {
-        center: DVec3::ZERO,
-        rs,
-        q,
-    };
+    let hole = BlackHole::new(DVec3::ZERO, rs, q);
     let mut weak = Vec::new();
     for b in [6.0, 20.0, 100.0, 1000.0] {
         // Start 1e4·b away. There n = 1 + rs/D + …, so the launched ray's Bouguer invariant
@@ -531,11 +523,7 @@ fn black_hole_deflection_matches_quadrature_and_weak_field() {
 /// every stepper and control, never NaN and never running away.
 #[test]
 fn black_hole_captures_rays_aimed_at_it() {
-    let hole = BlackHole {
-        center: DVec3::ZERO,
-        rs: 0.01,
-        q: 0.1,
-    };
+    let hole = BlackHole::new(DVec3::ZERO, 0.01, 0.1);
     for kind in StepperKind::ALL {
         for control in [
             StepControl::default_for(kind),
@@ -587,11 +575,7 @@ fn black_hole_captures_rays_aimed_at_it() {
 /// sizes its steps for the second-order estimate where F ~ 1/(distance to the horizon)).
 #[test]
 fn tessendorf_control_reproduces_the_seed_while_adaptive_ends_quickly() {
-    let hole = BlackHole {
-        center: DVec3::ZERO,
-        rs: 0.01,
-        q: 0.1,
-    };
+    let hole = BlackHole::new(DVec3::ZERO, 0.01, 0.1);
     let from = DVec3::new(-5.0, 0.001, 0.0);
     let start = RayState::new(&hole, from, DVec3::X).unwrap();
     let limits = MarchLimits {
@@ -652,11 +636,7 @@ fn tessendorf_control_reproduces_the_seed_while_adaptive_ends_quickly() {
 #[test]
 fn black_hole_deflection_from_a_finite_start_matches_quadrature() {
     let (rs, q) = (0.01, 0.1);
-    let hole = BlackHole {
-        center: DVec3::ZERO,
-        rs,
-        q,
-    };
+    let hole = BlackHole::new(DVec3::ZERO, rs, q);
     for b in [6.0, 20.0] {
         let d = 30.0 * b * rs;
         let from = DVec3::new(-d, b * rs, 0.0);

@@ -149,18 +149,36 @@ impl Medium for HyperbolicMedium {
 /// ρ+ = (1 + √(1 − 4q²))/2, where the index diverges, and at the centre.
 #[derive(Clone, Debug)]
 pub struct BlackHole {
-    /// Centre.
-    pub center: DVec3,
-    /// Schwarzschild radius rs (length).
-    pub rs: f64,
-    /// Dimensionless charge q.
-    pub q: f64,
+    center: DVec3,
+    rs: f64,
+    q: f64,
+    /// q², and the u = rs/r at which a ray is captured (∞ without a horizon): what every
+    /// evaluation of the index asks, worked out once.
+    q2: f64,
+    capture_u: f64,
 }
 
 impl BlackHole {
     /// Relative distance above the horizon at which a ray counts as captured: there n is
     /// ~1e9 and no step can resolve the path any further in f64.
     const CAPTURE_MARGIN: f64 = 1e-9;
+
+    /// The black hole at `center` of Schwarzschild radius `rs` (length) and dimensionless
+    /// charge `q`.
+    pub fn new(center: DVec3, rs: f64, q: f64) -> Self {
+        let mut hole = Self {
+            center,
+            rs,
+            q,
+            q2: q * q,
+            capture_u: f64::INFINITY,
+        };
+        let horizon = hole.horizon();
+        if horizon > 0.0 {
+            hole.capture_u = 1.0 / (horizon * (1.0 + Self::CAPTURE_MARGIN));
+        }
+        hole
+    }
 
     /// Outer root of ρ² − ρ + q² in units of rs (0 when 4q² > 1: no horizon).
     pub fn horizon(&self) -> f64 {
@@ -183,21 +201,21 @@ impl Medium for BlackHole {
     }
     fn sample(&self, p: DVec3) -> Option<IndexSample> {
         let d = p - self.center;
-        let r = d.length();
+        let inv_r = d.length().recip();
         // In u = 1/ρ = rs/r, which neither overflows for the smallest rs nor loses ρ² to
-        // infinity: n = 1/D with D = 1 − u + q²u².
-        let u = self.rs / r;
-        if r == 0.0 || u * self.horizon() * (1.0 + Self::CAPTURE_MARGIN) >= 1.0 {
+        // infinity: n = 1/D with D = 1 − u + q²u². Captured at the horizon, and at the
+        // centre (u = ∞); a NaN position is no index either.
+        let u = self.rs * inv_r;
+        if u.is_nan() || u >= self.capture_u {
             return None;
         }
-        let q2 = self.q * self.q;
-        let den = 1.0 - u + q2 * u * u;
+        let den = 1.0 - u + self.q2 * u * u;
         if den <= 0.0 {
             return None;
         }
-        let n = 1.0 / den;
+        let n = den.recip();
         // dn/du = (1 − 2q²u)/D², and ∇u = −u d/r².
-        let grad = d * (-(1.0 - 2.0 * q2 * u) * n * n * u / (r * r));
+        let grad = d * (-(1.0 - 2.0 * self.q2 * u) * n * n * u * inv_r * inv_r);
         (n.is_finite() && grad.is_finite()).then_some(IndexSample { n, grad })
     }
     /// A quarter of the distance to the horizon (far away, a quarter of the distance to the

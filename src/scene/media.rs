@@ -257,7 +257,7 @@ fn read_fixed(t: &mut TableReader, profile: &str) -> Result<Box<dyn Medium>> {
             let rs = t.positive("rs")?;
             let q = t.f64_or("q", 0.0)?;
             t.check("q", q >= 0.0, format!("must be ≥ 0, got {q:?}"))?;
-            Box::new(BlackHole { center, rs, q })
+            Box::new(BlackHole::new(center, rs, q))
         }
         "schwarzschild" | "reissner_nordstrom" => {
             let center = t.vec3_or("center", DVec3::ZERO)?;
