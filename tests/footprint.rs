@@ -3,7 +3,7 @@
 
 use grinlight::camera::FilmPoint;
 use grinlight::integrator::direct::camera_path;
-use grinlight::integrator::footprint::{half_width, Way};
+use grinlight::integrator::footprint::{Eye, Way};
 use grinlight::integrator::CameraRay;
 use grinlight::scene::load::parse_scene;
 use grinlight::transport::chain::{Carried, Choices};
@@ -60,7 +60,9 @@ fn measure(text: &str, film: FilmPoint) -> Option<(f64, Way)> {
         bounces: c.bounces,
         curved: c.curved,
     };
-    half_width(camera, &ray, carried, &rng, &v, way, &mut stats).map(|h| (h, way))
+    Eye::new(camera)
+        .half_width(&ray, carried, &rng, &v, way, &mut stats)
+        .map(|h| (h, way))
 }
 
 fn centre(u: f64, v: f64) -> FilmPoint {

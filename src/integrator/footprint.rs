@@ -17,6 +17,13 @@ use crate::transport::{Stats, SurfaceVertex, Vertex};
 use glam::DVec3;
 use rand_pcg::Pcg64Mcg;
 
+/// How many times wider than seen straight on at the same distance a footprint is looked for
+/// ([`Eye::may_exceed`]): only a lens or a mirror that widens the view more than this would
+/// have a floor above a radius it does not look under. (Through the Cornell box's glass ball
+/// the footprint is narrower than straight on; a convex mirror widens it by its
+/// magnification.)
+const WIDENING: f64 = 4.0;
+
 /// How far (in pixels) a neighbouring film point lies from the sample's: near enough that the
 /// view changes smoothly between them, far enough that the offset of their points is not
 /// lost in the rounding of the hits.
@@ -41,60 +48,87 @@ impl Way {
     }
 }
 
-/// Half the smallest width of a pixel's footprint at `v`, the visible point a camera sample
-/// reached along `way` (the smaller semi-axis of the ellipse that the pixel's square, mapped
-/// onto the surface to first order, holds): the largest radius a density estimate there can
-/// have without blurring what the pixel sees by more than the pixel does. `ray` is the
-/// sample's camera ray, `carried` and `rng` what its path started with (a copy of its random
-/// stream before the path drew from it, so the neighbours make the same choices). None where
-/// no neighbour along one of the film's axes took the same way (a silhouette on both sides,
-/// a choice that went the other way).
-pub fn half_width(
-    camera: &Camera,
-    ray: &CameraRay,
-    carried: Carried,
-    rng: &Pcg64Mcg,
-    v: &SurfaceVertex,
-    way: Way,
-    stats: &mut Stats,
-) -> Option<f64> {
-    let offset = |du: f64, dv: f64, stats: &mut Stats| -> Option<DVec3> {
-        let film = ray.film.moved(du, dv);
-        let (origin, direction) = camera.ray_through(film);
-        let step = du.abs().max(dv.abs());
-        if way.is_straight() {
-            // Where the neighbouring ray meets the tangent plane at `v`.
-            let t = (v.position - origin).dot(v.normal) / direction.dot(v.normal);
-            return t
-                .is_finite()
-                .then(|| (origin + t * direction - v.position) / step);
+/// The camera, as footprints are measured from it.
+pub struct Eye<'a> {
+    camera: &'a Camera,
+    /// The angle a pixel spans at the film's centre (rad).
+    pixel_angle: f64,
+}
+
+impl<'a> Eye<'a> {
+    /// The eye of `camera`.
+    pub fn new(camera: &'a Camera) -> Self {
+        Self {
+            camera,
+            pixel_angle: camera.pixel_angle(),
         }
-        let neighbour = CameraRay {
-            origin,
-            direction,
-            film,
-            ..*ray
-        };
-        let c = camera_path(
-            carried,
-            neighbour,
-            &mut Beams::default(),
-            &mut rng.clone(),
-            stats,
-        );
-        match c.visible.map(|vp| vp.vertex) {
-            Some(Vertex::Surface(w)) if w.prim == way.prim && c.bounces == way.bounces => {
-                Some((w.position - v.position) / step)
+    }
+
+    /// Whether half the smallest width of the footprint at `x` may exceed √`r2`: whether it
+    /// does seen straight on from [`WIDENING`] times the distance. Where it may not, a radius
+    /// of √`r2` needs no floor, and a footprint seen through a lens or a GRIN medium (whose
+    /// neighbouring rays are traced) is not measured: in a dim part of a caustic, where the
+    /// k-nearest radius is wide, that would be the cost of a camera path or two for nothing.
+    pub fn may_exceed(&self, x: DVec3, r2: f64) -> bool {
+        let half = 0.5 * WIDENING * self.pixel_angle * self.camera.position.distance(x);
+        r2 < half * half
+    }
+
+    /// Half the smallest width of a pixel's footprint at `v`, the visible point a camera
+    /// sample reached along `way` (the smaller semi-axis of the ellipse that the pixel's
+    /// square, mapped onto the surface to first order, holds): the largest radius a density
+    /// estimate there can have without blurring what the pixel sees by more than the pixel
+    /// does. `ray` is the sample's camera ray, `carried` and `rng` what its path started with
+    /// (a copy of its random stream before the path drew from it, so the neighbours make the
+    /// same choices). None where no neighbour along one of the film's axes took the same way
+    /// (a silhouette on both sides, a choice that went the other way).
+    pub fn half_width(
+        &self,
+        ray: &CameraRay,
+        carried: Carried,
+        rng: &Pcg64Mcg,
+        v: &SurfaceVertex,
+        way: Way,
+        stats: &mut Stats,
+    ) -> Option<f64> {
+        let offset = |du: f64, dv: f64, stats: &mut Stats| -> Option<DVec3> {
+            let film = ray.film.moved(du, dv);
+            let (origin, direction) = self.camera.ray_through(film);
+            let step = du.abs().max(dv.abs());
+            if way.is_straight() {
+                // Where the neighbouring ray meets the tangent plane at `v`.
+                let t = (v.position - origin).dot(v.normal) / direction.dot(v.normal);
+                return t
+                    .is_finite()
+                    .then(|| (origin + t * direction - v.position) / step);
             }
-            _ => None,
-        }
-    };
-    // Each axis's derivative from the neighbour ahead, else from the one behind (its sign
-    // does not change the footprint).
-    let dx = offset(STEP, 0.0, stats).or_else(|| offset(-STEP, 0.0, stats))?;
-    let dy = offset(0.0, STEP, stats).or_else(|| offset(0.0, -STEP, stats))?;
-    let smallest = smallest_singular_value(tangential(dx, v.normal), tangential(dy, v.normal));
-    Some(0.5 * smallest)
+            let neighbour = CameraRay {
+                origin,
+                direction,
+                film,
+                ..*ray
+            };
+            let c = camera_path(
+                carried,
+                neighbour,
+                &mut Beams::default(),
+                &mut rng.clone(),
+                stats,
+            );
+            match c.visible.map(|vp| vp.vertex) {
+                Some(Vertex::Surface(w)) if w.prim == way.prim && c.bounces == way.bounces => {
+                    Some((w.position - v.position) / step)
+                }
+                _ => None,
+            }
+        };
+        // Each axis's derivative from the neighbour ahead, else from the one behind (its sign
+        // does not change the footprint).
+        let dx = offset(STEP, 0.0, stats).or_else(|| offset(-STEP, 0.0, stats))?;
+        let dy = offset(0.0, STEP, stats).or_else(|| offset(0.0, -STEP, stats))?;
+        let smallest = smallest_singular_value(tangential(dx, v.normal), tangential(dy, v.normal));
+        Some(0.5 * smallest)
+    }
 }
 
 /// `d` without its component along the unit `normal`.

@@ -30,7 +30,7 @@
 
 use super::beam::Beams;
 use super::direct::{camera_path, direct, emission_seen, hero, VisiblePoint};
-use super::footprint::{self, Way};
+use super::footprint::{Eye, Way};
 use super::neighbourhood::Neighbourhood;
 use super::single::single_scattering;
 use super::{CameraRay, Integrator, Sample, Slot};
@@ -116,6 +116,8 @@ pub struct PhotonMapper<'a> {
     seed: u64,
     /// Largest squared radius of a k-nearest query.
     max_r2: f64,
+    /// The camera, for the caustic radius's floor (None without one).
+    eye: Option<Eye<'a>>,
 }
 
 /// A pass's photon maps.
@@ -146,6 +148,7 @@ impl<'a> PhotonMapper<'a> {
             photons: settings.photons,
             seed: settings.seed,
             max_r2: max_radius * max_radius,
+            eye: tracer.scene.camera.as_ref().map(Eye::new),
         }
     }
 
@@ -189,9 +192,9 @@ impl<'a> PhotonMapper<'a> {
 
     /// The squared caustic radius of pass `index` at a visible point `v`: the k-nearest
     /// distance there, no less than `floor` — half the smallest width of the pixel's
-    /// footprint there, where it is known ([`footprint::half_width`]; asked only where the
-    /// k-nearest distance is below the largest radius) —, or the scene's radius; times Knaus
-    /// and Zwicker's schedule. A pixel averages the radiance over its
+    /// footprint there, where it is known ([`Eye::half_width`]; asked only where the
+    /// k-nearest distance is below the largest radius and it may be wider:
+    /// [`Eye::may_exceed`]) —, or the scene's radius; times Knaus and Zwicker's schedule. A pixel averages the radiance over its
     /// footprint, so a kernel narrower than that only adds noise: in a bright caustic the k
     /// nearest photons lie within a small part of a pixel, and the pixel's samples, each
     /// reading its own few photons, would leave most of the photons in it unread.
@@ -210,7 +213,11 @@ impl<'a> PhotonMapper<'a> {
                     let k = self.photons.knn as usize;
                     caustic.knn_radius2(v.position, v.normal, k, self.max_r2)
                 });
-                match knn < self.max_r2 {
+                let may_bind = self
+                    .eye
+                    .as_ref()
+                    .is_some_and(|e| e.may_exceed(v.position, knn));
+                match knn < self.max_r2 && may_bind {
                     true => knn.max(floor(stats).map_or(0.0, |h| (h * h).min(self.max_r2))),
                     false => knn,
                 }
@@ -420,8 +427,8 @@ impl<'a> Integrator for PhotonMapper<'a> {
                 Some(known) => known.r2,
                 None => {
                     let floor = |stats: &mut Stats| {
-                        let camera = self.tracer.scene.camera.as_ref()?;
-                        footprint::half_width(camera, &ray, carried, &start, &v, way?, stats)
+                        let eye = self.eye.as_ref()?;
+                        eye.half_width(&ray, carried, &start, &v, way?, stats)
                     };
                     let r2 = self.caustic_r2(caustic, maps.index, &v, floor, s.stats);
                     if let Some(way) = way {
