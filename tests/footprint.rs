@@ -34,9 +34,10 @@ fn pixel_width() -> f64 {
     2.0 * 20f64.to_radians().tan() / RES as f64
 }
 
-/// The footprint's half width at the visible point of the camera ray through `film` (every
+/// The footprint's half width at the visible point of the centre pixel's ray (every
 /// dielectric choice refracting), with the way the path took there.
-fn measure(text: &str, film: FilmPoint) -> Option<(f64, Way)> {
+fn measure(text: &str) -> Option<(f64, Way)> {
+    let film = centre();
     let (scene, settings) = parse_scene(Path::new("footprint.toml"), text.to_string()).unwrap();
     let tracer = Tracer::new(&scene, &settings.trace);
     let camera = scene.camera.as_ref().unwrap();
@@ -65,12 +66,23 @@ fn measure(text: &str, film: FilmPoint) -> Option<(f64, Way)> {
         .map(|h| (h, way))
 }
 
-fn centre(u: f64, v: f64) -> FilmPoint {
+/// Asserts that the footprint at the end of the centre pixel's ray in scene `text`, reached after
+/// `bounces` specular bounces, is that of a wall seen straight on at `distance` — half the
+/// pixel width times it — within the relative `tolerance`.
+fn assert_footprint(text: &str, bounces: u32, distance: f64, tolerance: f64) {
+    let (h, way) = measure(text).expect("a footprint");
+    assert_eq!(way.bounces, bounces);
+    let want = 0.5 * distance * pixel_width();
+    assert!((h / want - 1.0).abs() < tolerance, "{h} vs {want}");
+}
+
+/// The centre of the centre pixel: its ray runs along the axis.
+fn centre() -> FilmPoint {
     FilmPoint {
         px: RES / 2,
         py: RES / 2,
-        u,
-        v,
+        u: 0.5,
+        v: 0.5,
         lens: (0.5, 0.5),
     }
 }
@@ -80,10 +92,7 @@ fn centre(u: f64, v: f64) -> FilmPoint {
 /// pixel are its derivatives to ~1e-7 relative; tolerance 1e-6).
 #[test]
 fn a_wall_seen_straight_on_spans_the_pixel_width_times_the_distance() {
-    let (h, way) = measure(&scene(""), centre(0.5, 0.5)).unwrap();
-    assert_eq!(way.bounces, 0);
-    let want = 0.5 * 5.0 * pixel_width();
-    assert!((h / want - 1.0).abs() < 1e-6, "{h} vs {want}");
+    assert_footprint(&scene(""), 0, 5.0, 1e-6);
 }
 
 /// Through a plane glass plate of thickness t and index n the wall looks nearer by
@@ -93,10 +102,8 @@ fn a_wall_seen_straight_on_spans_the_pixel_width_times_the_distance() {
 fn through_a_glass_plate_the_wall_is_nearer_by_the_plates_apparent_thinning() {
     let plate =
         "[[shape]]\ntype = \"box\"\nmin = [-9, -9, 1]\nmax = [9, 9, 3]\nmaterial = \"glass\"\n";
-    let (h, way) = measure(&scene(plate), centre(0.5, 0.5)).unwrap();
-    assert_eq!(way.bounces, 2, "refracted into and out of the plate");
-    let want = 0.5 * (5.0 - 2.0 * (1.0 - 1.0 / 1.5)) * pixel_width();
-    assert!((h / want - 1.0).abs() < 1e-5, "{h} vs {want}");
+    // Refracted into and out of the plate.
+    assert_footprint(&scene(plate), 2, 5.0 - 2.0 * (1.0 - 1.0 / 1.5), 1e-5);
 }
 
 /// Through a glass ball the wall is seen through a thick lens: a ball's principal planes both
@@ -109,12 +116,8 @@ fn through_a_glass_plate_the_wall_is_nearer_by_the_plates_apparent_thinning() {
 fn through_a_glass_ball_the_wall_is_magnified_by_the_thick_lens() {
     let ball =
         "[[shape]]\ntype = \"sphere\"\ncenter = [0, 0, 2.5]\nradius = 1\nmaterial = \"glass\"\n";
-    let (h, way) = measure(&scene(ball), centre(0.5, 0.5)).unwrap();
-    assert_eq!(way.bounces, 2);
     let f = 1.5 * 1.0 / (2.0 * 0.5);
-    let x = 2.5 + 2.5 - 2.5 * 2.5 / f;
-    let want = 0.5 * x * pixel_width();
-    assert!((h / want - 1.0).abs() < 1e-5, "{h} vs {want}");
+    assert_footprint(&scene(ball), 2, 2.5 + 2.5 - 2.5 * 2.5 / f, 1e-5);
 }
 
 /// In a plane mirror the wall is seen at the unfolded distance: the camera at z = 5 looks down
@@ -131,10 +134,7 @@ fn in_a_plane_mirror_the_footprint_is_the_unfolded_distance_times_the_pixel() {
          [[shape]]\ntype = \"quad\"\nvertices = [[-1, -1, -1], [1, -1, 1], [1, 1, 1], [-1, 1, -1]]\nmaterial = \"mirror\"\n\
          [[shape]]\ntype = \"quad\"\nvertices = [[-3, -9, -9], [-3, 9, -9], [-3, 9, 9], [-3, -9, 9]]\nmaterial = \"wall\"\n\
          [[light]]\ntype = \"point\"\nposition = [-2, 0, 0]\nintensity = [1, 1, 1]\n";
-    let (h, way) = measure(&(camera + text), centre(0.5, 0.5)).unwrap();
-    assert_eq!(way.bounces, 1);
-    let want = 0.5 * 8.0 * pixel_width();
-    assert!((h / want - 1.0).abs() < 1e-6, "{h} vs {want}");
+    assert_footprint(&(camera + text), 1, 8.0, 1e-6);
 }
 
 /// A sample beside an edge: where a neighbour does not take the sample's way (it misses the
@@ -151,12 +151,9 @@ fn the_footprint_is_measured_from_the_side_that_took_the_same_way() {
         "[[shape]]\ntype = \"box\"\nmin = [-9, -9, 1]\nmax = [{}, 9, 3]\nmaterial = \"glass\"\n",
         0.5 * pixel_width()
     );
-    let (h, way) = measure(&scene(&edge), centre(0.5, 0.5)).unwrap();
-    assert_eq!(way.bounces, 2);
-    let want = 0.5 * (5.0 - 2.0 * (1.0 - 1.0 / 1.5)) * pixel_width();
-    assert!((h / want - 1.0).abs() < 1e-5, "{h} vs {want}");
+    assert_footprint(&scene(&edge), 2, 5.0 - 2.0 * (1.0 - 1.0 / 1.5), 1e-5);
     // A ball on the axis a hundredth of a pixel across at distance 2.5.
     let tiny =
         "[[shape]]\ntype = \"sphere\"\ncenter = [0, 0, 2.5]\nradius = 4e-6\nmaterial = \"glass\"\n";
-    assert!(measure(&scene(tiny), centre(0.5, 0.5)).is_none());
+    assert!(measure(&scene(tiny)).is_none());
 }

@@ -193,11 +193,12 @@ impl<'a> PhotonMapper<'a> {
     /// The squared caustic radius of pass `index` at a visible point `v`: the k-nearest
     /// distance there, no less than `floor` — half the smallest width of the pixel's
     /// footprint there, where it is known ([`Eye::half_width`]; asked only where the
-    /// k-nearest distance is below the largest radius and it may be wider:
-    /// [`Eye::may_exceed`]) —, or the scene's radius; times Knaus and Zwicker's schedule. A pixel averages the radiance over its
-    /// footprint, so a kernel narrower than that only adds noise: in a bright caustic the k
-    /// nearest photons lie within a small part of a pixel, and the pixel's samples, each
-    /// reading its own few photons, would leave most of the photons in it unread.
+    /// k-nearest distance is below the largest radius and the footprint may be wider,
+    /// [`Eye::may_exceed`]) —, or the scene's radius; times Knaus and Zwicker's schedule. A
+    /// pixel averages the radiance over its footprint, so a kernel narrower than that only
+    /// adds noise: in a bright caustic the k nearest photons lie within a small part of a
+    /// pixel, and the pixel's samples, each reading its own few photons, would leave most of
+    /// the photons in it unread.
     fn caustic_r2(
         &self,
         caustic: &PhotonMap,
@@ -387,8 +388,8 @@ impl<'a> Integrator for PhotonMapper<'a> {
     fn sample(&self, maps: &Maps, pixel: &mut PixelCaustics<'a>, ray: CameraRay, s: &mut Sample) {
         let hero = hero(self.tracer, s.rng);
         let carried = Carried::starting(self.tracer, hero.as_ref());
-        // The stream as the path starts, for the footprint's neighbouring paths.
-        let start = s.rng.clone();
+        // What the path starts with, for the footprint's neighbouring paths.
+        let (start, start_rng) = (carried, s.rng.clone());
         let mut beams = Beams::default();
         let c = camera_path(carried, ray, &mut beams, s.rng, s.stats);
         s.add(EMITTED, c.emitted);
@@ -423,17 +424,15 @@ impl<'a> Integrator for PhotonMapper<'a> {
             s.add(SECONDARY, secondary);
         }
         if let Some(caustic) = &maps.caustic {
-            let r2 = match pixel.radii.iter().find(|r| Some(r.way) == way) {
+            let r2 = match pixel.radii.iter().find(|r| r.way == way) {
                 Some(known) => known.r2,
                 None => {
                     let floor = |stats: &mut Stats| {
                         let eye = self.eye.as_ref()?;
-                        eye.half_width(&ray, carried, &start, &v, way?, stats)
+                        eye.half_width(&ray, start, &start_rng, &v, way?, stats)
                     };
                     let r2 = self.caustic_r2(caustic, maps.index, &v, floor, s.stats);
-                    if let Some(way) = way {
-                        pixel.radii.push(Radius { way, r2 });
-                    }
+                    pixel.radii.push(Radius { way, r2 });
                     r2
                 }
             };
@@ -467,15 +466,17 @@ impl<'a> Integrator for PhotonMapper<'a> {
 pub struct PixelCaustics<'a> {
     /// The pass's squared caustic radius for each way the pixel's paths took to their
     /// visible points (straight to the floor, through the glass to it, reflected in it to a
-    /// wall: each its own footprint), set by the first path that took it.
+    /// wall: each its own footprint; one for every path whose visible point is not its first
+    /// vertex), set by the first path that took it.
     radii: Vec<Radius>,
     /// The caustic photons around the latest visible point that asked the map.
     near: Option<Neighbourhood<'a>>,
 }
 
-/// The squared caustic radius of a pass for paths that took one way.
+/// The squared caustic radius of a pass for paths that took one way (None: past a glossy
+/// surface or a point in a medium, where no footprint is measured).
 struct Radius {
-    way: Way,
+    way: Option<Way>,
     r2: f64,
 }
 
