@@ -17,11 +17,11 @@ use crate::transport::{Stats, SurfaceVertex, Vertex};
 use glam::DVec3;
 use rand_pcg::Pcg64Mcg;
 
-/// How many times wider than seen straight on at the same distance a footprint is looked for
-/// ([`Eye::may_exceed`]): only a lens or a mirror that widens the view more than this would
-/// have a floor above a radius it does not look under. (Through the Cornell box's glass ball
-/// the footprint is narrower than straight on; a convex mirror widens it by its
-/// magnification.)
+/// How many times wider than seen straight on at the same distance a footprint may be for it
+/// to be looked for ([`Eye::may_exceed`]): behind a lens or a convex mirror that widens the
+/// view more than this, a footprint wider than the k-nearest radius may go unmeasured, and
+/// the radius stays the k-nearest one. (Through the Cornell box's glass ball the footprint is
+/// narrower than straight on.)
 const WIDENING: f64 = 4.0;
 
 /// How far (in pixels) a neighbouring film point lies from the sample's: near enough that the
