@@ -2,7 +2,7 @@
 //! through scattering media, curved or straight: the volume caustic scattered toward the
 //! camera all along each stretch, read from every photon ball of the volume caustic map the
 //! stretch passes through (each photon's 3D kernel integrated along its chord,
-//! [`crate::photon::VolumeMap::along`]), rather than at the one point a free flight drew.
+//! [`crate::photon::VolumeMap::along_path`]), rather than at the one point a free flight drew.
 //!
 //! **The estimator.** A stretch in a medium ends where its free flight ends (or at a
 //! surface); it reaches arclength t with probability P(t), the flight's survival. Light
@@ -19,7 +19,7 @@
 //! chain's start as (n_start/n)² of it, as at any other event ([`crate::volume`]).
 
 use crate::color::Rgb;
-use crate::photon::VolumeMap;
+use crate::photon::{Segment, VolumeMap};
 use crate::transport::chain::{ChainEvents, Stretch};
 use crate::transport::Tracer;
 use crate::volume::{Flights, Scattering};
@@ -67,19 +67,22 @@ pub struct Straight<'a> {
     pub radiance_scale: f64,
 }
 
-/// A straight piece of a recorded stretch.
+/// A straight piece of a recorded stretch where the index is defined.
 struct Chord {
-    from: DVec3,
-    /// Unit.
-    dir: DVec3,
-    length: f64,
-    /// Absorption's optical depth from the stretch's start to `from`.
+    segment: Segment,
+    /// Absorption's optical depth from the stretch's start to the segment's origin.
     depth: f64,
-    /// The scattering column ∫d ds from the stretch's start to `from` (`travelled` in a
-    /// homogeneous medium).
+    /// The scattering column ∫d ds from the stretch's start to the segment's origin
+    /// (`travelled` in a homogeneous medium).
     column: f64,
-    /// The index along it (None where it is not defined at its ends or middle).
-    index: Option<IndexAlong>,
+    /// The index along it.
+    index: IndexAlong,
+}
+
+impl AsRef<Segment> for Chord {
+    fn as_ref(&self) -> &Segment {
+        &self.segment
+    }
 }
 
 /// The index along a chord, looked up at its start, middle and end (once for a chord in a
@@ -131,31 +134,36 @@ impl Beams {
     /// as seen at its start per unit of the path's throughput there; `tracer` is the one the
     /// chain ended on (it reads indices and absorption).
     pub fn radiance(&self, volume: &VolumeMap, tracer: &Tracer) -> Rgb {
-        let Some(n_start) = self.n_start else {
+        let Some(n_start) = self.n_start.filter(|_| !volume.is_empty()) else {
             return Rgb::ZERO;
         };
         let mut sum = Rgb::ZERO;
+        let mut read = Vec::new();
         for (r, points) in self.recorded() {
             let medium = tracer.medium(r.medium);
             let Some(scattering) = tracer.scattering(r.medium) else {
                 continue;
             };
             let mut light = Rgb::ZERO;
-            for c in chords(tracer, scattering, r, points) {
-                // A chord where the index is not defined reads no light.
-                let Some(index) = c.index else { continue };
-                volume.along(c.from, c.dir, c.length, |photon, along| {
-                    let n = index.at(along.distance / c.length);
-                    let depth = c.depth + medium.optical_depth(c.from, c.dir, along.distance);
-                    let mut flights = r.stretch.flights;
-                    let column = c.column + scattering.column(c.from, c.dir, along.distance);
-                    let kept = flights.weigh(scattering, column, false);
-                    // Light arrives travelling along −from and leaves toward the camera, −dir.
-                    let phase = scattering.phase.between(-photon.from_direction(), -c.dir);
-                    let scale = (n_start / n) * (n_start / n);
-                    light += kept * photon.flux() * (phase * (-depth).exp() * scale * along.kernel);
-                });
-            }
+            read.clear();
+            read.extend(chords(tracer, scattering, r, points));
+            volume.along_path(&read, |k, photon, along| {
+                let c: &Chord = &read[k];
+                let Segment {
+                    origin,
+                    dir,
+                    length,
+                } = c.segment;
+                let n = c.index.at(along.distance / length);
+                let depth = c.depth + medium.optical_depth(origin, dir, along.distance);
+                let mut flights = r.stretch.flights;
+                let column = c.column + scattering.column(origin, dir, along.distance);
+                let kept = flights.weigh(scattering, column, false);
+                // Light arrives travelling along −from and leaves toward the camera, −dir.
+                let phase = scattering.phase.between(-photon.from_direction(), -dir);
+                let scale = (n_start / n) * (n_start / n);
+                light += kept * photon.flux() * (phase * (-depth).exp() * scale * along.kernel);
+            });
             sum += r.stretch.weight * light;
         }
         tracer.photon_irradiance(sum)
@@ -202,7 +210,8 @@ impl Beams {
 }
 
 /// The chords of stretch `r` (in a medium that scatters as `scattering`) from its origin
-/// through `points`, with the absorption depth and scattering column before each.
+/// through `points`, with the absorption depth and scattering column before each; a chord
+/// where the index is not defined (at its ends or middle) is left out: it reads no light.
 fn chords<'a>(
     tracer: &'a Tracer,
     scattering: &'a Scattering,
@@ -233,18 +242,20 @@ fn chords<'a>(
                 along
             }
         };
-        let chord = Chord {
-            from,
-            dir,
-            length,
+        let chord = index.map(|index| Chord {
+            segment: Segment {
+                origin: from,
+                dir,
+                length,
+            },
             depth,
             column,
             index,
-        };
+        });
         depth += medium.optical_depth(from, dir, length);
         column += scattering.column(from, dir, length);
         from = to;
-        Some(chord)
+        chord
     })
 }
 

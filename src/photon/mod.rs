@@ -22,7 +22,7 @@ mod volume;
 
 pub use budget::{Budget, Ended, Fate, Ledger};
 pub use map::{Photon, PhotonMap};
-pub use volume::VolumeMap;
+pub use volume::{Segment, VolumeMap};
 
 use crate::bsdf::Lobes;
 use crate::color::Rgb;
