@@ -34,9 +34,9 @@ of index 1.5 — a 256 × 512 UV sphere with smooth normals, as LuxCore has no a
 —, a box pixel filter of one pixel.
 
 grinlight: the scene as shipped, with the per-pass settings in GRINLIGHT_SETTINGS (32 samples
-a pixel, one gather ray, 10⁶ caustic photons a pass: tracing them takes a sixth of a pass, and
-at 120 s 2 × 10⁵ or 2 × 10⁶ gave more error, 16 samples a pixel too), as many passes as the
-budget starts.
+a pixel, one gather ray, 10⁶ caustic photons a pass: tracing them and building the maps take
+about a fifth of a render, and at 120 s 2 × 10⁵ or 2 × 10⁶ gave more error, 16 samples a pixel
+too), as many passes as the budget starts.
 
 Needs `pip install mitsuba pyluxcore openexr numpy` (mitsuba 3.9.1 and pyluxcore 2.11.2 were
 used for the figures in docs/performance.md) and a release build of grinlight.

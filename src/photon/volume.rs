@@ -44,6 +44,13 @@ pub struct Segment {
     pub length: f64,
 }
 
+impl Segment {
+    /// Where it ends.
+    pub fn end(&self) -> DVec3 {
+        self.origin + self.dir * self.length
+    }
+}
+
 impl AsRef<Segment> for Segment {
     fn as_ref(&self) -> &Segment {
         self
@@ -158,9 +165,7 @@ impl VolumeMap {
             f32::INFINITY
         });
     }
-}
 
-impl VolumeMap {
     /// Shows `visit` every photon whose ball one of `path`'s segments passes through, with
     /// the segment's index in `path`, where and how much of its kernel it meets (as
     /// [`VolumeMap::along`] for each). Runs of up to [`GROUP`] consecutive short segments —
@@ -218,9 +223,6 @@ impl VolumeMap {
         segments: &[S],
         mut visit: impl FnMut(usize, &Photon, Along),
     ) {
-        if self.photons.is_empty() || !(run.lo.is_finite() && run.hi.is_finite()) {
-            return;
-        }
         self.bvh
             .aabb_traverse(padded_box(run.lo, run.hi), |bvh, node| {
                 let node = &bvh.nodes[node as usize];
@@ -264,7 +266,7 @@ struct Run {
 impl Run {
     /// Segment `s`, the path's `first`, alone.
     fn of(first: usize, s: &Segment, radius: f64) -> Self {
-        let end = s.origin + s.dir * s.length;
+        let end = s.end();
         Self {
             lo: s.origin.min(end),
             hi: s.origin.max(end),
@@ -277,7 +279,7 @@ impl Run {
 
     /// The run with `s` after it, where it stays tight.
     fn with(&self, s: &Segment) -> Option<Self> {
-        let end = s.origin + s.dir * s.length;
+        let end = s.end();
         let longer = Self {
             lo: self.lo.min(s.origin).min(end),
             hi: self.hi.max(s.origin).max(end),
@@ -290,12 +292,13 @@ impl Run {
     }
 
     /// Whether the box, widened by the radius, holds at most [`LOOSENESS`] times the tube's
-    /// volume (a NaN is not tight).
+    /// volume (a box with a NaN or an infinite side is not tight: such a segment is followed
+    /// as a ray, alone).
     fn is_tight(&self) -> bool {
         let w = 2.0 * self.radius;
         let box_volume = (self.hi - self.lo + DVec3::splat(w)).element_product();
         let tube = (self.length + w) * w * w;
-        box_volume <= LOOSENESS * tube
+        box_volume.is_finite() && box_volume <= LOOSENESS * tube
     }
 }
 
@@ -446,7 +449,7 @@ mod tests {
                     }
                 })
                 .collect();
-            let path: Vec<Segment> = points
+            let mut path: Vec<Segment> = points
                 .windows(2)
                 .map(|w| Segment {
                     origin: w[0],
@@ -454,6 +457,21 @@ mod tests {
                     length: (w[1] - w[0]).length(),
                 })
                 .collect();
+            // A segment without end from the cube's middle and one of NaN, after a circle's
+            // chords: each alone, as a ray (all the balls along the first, none on the
+            // second).
+            if path_index % 4 == 1 {
+                let last = path[path.len() - 1];
+                path.push(Segment {
+                    origin: DVec3::splat(0.5),
+                    length: f64::INFINITY,
+                    ..last
+                });
+                path.push(Segment {
+                    origin: DVec3::NAN,
+                    ..last
+                });
+            }
             let mut found = vec![0.0; path.len()];
             map.along_path(&path, |k, _, a| found[k] += a.kernel);
             for (s, found) in path.iter().zip(&found) {
@@ -461,6 +479,14 @@ mod tests {
                 assert!(
                     (found - brute).abs() <= 1e-9 * brute.max(1.0),
                     "{found} vs {brute}"
+                );
+            }
+            if path_index % 4 == 1 {
+                let n = found.len();
+                assert!(
+                    found[n - 2] > 0.0 && found[n - 1] == 0.0,
+                    "{:?}",
+                    &found[n - 2..]
                 );
             }
             // Both ways of serving a run are taken.
