@@ -74,6 +74,19 @@ impl Ggx {
         1.0 / (1.0 + self.lambda(wi) + self.lambda(wo))
     }
 
+    /// G₂ of a transmission, light arriving from `wo` above the surface and leaving along
+    /// `wi` below it: with correlated heights (uniform in [−1, 1]), the ray refracted at
+    /// height h leaves downward unstopped with probability (1 − C₁(h))^Λ(ωi) while ωo saw h
+    /// with C₁(h)^Λ(ωo), so G₂ = ∫₀¹ c^Λo (1 − c)^Λi dc = B(1 + Λo, 1 + Λi) (Euler's beta
+    /// function; Heitz 2014 §6). At most 1/(1 + Λo + Λi), the reflection's.
+    pub fn g2_transmission(&self, wi: DVec3, wo: DVec3) -> f64 {
+        let (a, b) = (self.lambda(wo), self.lambda(wi));
+        if !(a.is_finite() && b.is_finite()) {
+            return 0.0;
+        }
+        (libm::lgamma(1.0 + a) + libm::lgamma(1.0 + b) - libm::lgamma(2.0 + a + b)).exp()
+    }
+
     /// The density of visible normals D_ωo(m) seen from `wo` (wo.z > 0), 1/sr.
     pub fn visible_d(&self, wo: DVec3, m: DVec3) -> f64 {
         let cos = wo.dot(m);
@@ -83,8 +96,10 @@ impl Ggx {
         self.g1(wo) * cos * self.d(m) / wo.z
     }
 
-    /// A microfacet normal drawn from D_ωo for `wo` (wo.z > 0) and uniform `u` in [0, 1)²
-    /// (Heitz 2018).
+    /// A microfacet normal drawn from the normals visible from `wo`, density ∝ max(0, wo·m)
+    /// D(m), for uniform `u` in [0, 1)² (Heitz 2018). Any unit `wo` — also below the
+    /// horizon, where a ray going up meets the microsurface ([`super::walk`]; χ² against the
+    /// density in `tests/bsdf.rs`).
     pub fn sample_visible(&self, wo: DVec3, u: (f64, f64)) -> DVec3 {
         let v = DVec3::new(self.alpha_x * wo.x, self.alpha_y * wo.y, wo.z).normalize();
         let len2 = v.x * v.x + v.y * v.y;

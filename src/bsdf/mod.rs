@@ -21,6 +21,7 @@ mod fresnel;
 mod metals;
 mod microfacet;
 mod plastic;
+pub mod walk;
 
 pub use fresnel::{
     conductor, conductor_rgb, dielectric, dielectric_transmittance, reflect, refract,
@@ -184,7 +185,7 @@ fn local(n: DVec3, v: DVec3) -> (Frame, DVec3) {
 /// A sample drawn in the local `frame` with its direction turned to world coordinates; None
 /// when its weight or pdf is not finite and positive.
 fn in_world(frame: &Frame, s: BsdfSample) -> Option<BsdfSample> {
-    (s.weight.0.is_finite() && s.pdf > 0.0 && s.pdf.is_finite()).then(|| BsdfSample {
+    (s.weight.0.is_finite() && s.pdf > 0.0).then(|| BsdfSample {
         wi: frame.to_world(s.wi).normalize(),
         ..s
     })
@@ -274,20 +275,24 @@ impl Bsdf<'_> {
                 n2,
                 ggx: Some(g),
             } => {
-                let m = g.sample_visible(o, (u.0, u.1));
-                let (r, cos_t) = dielectric(o.dot(m), n1, n2);
-                let (i, lobe) = if u.2 < r {
-                    (reflect(-o, m), Lobes::GLOSSY_REFLECTION)
-                } else {
-                    (refract(-o, m, n1, n2, cos_t), Lobes::GLOSSY_TRANSMISSION)
+                let exit = walk::dielectric(&g, n1, n2, o, u)?;
+                let i = exit.wi;
+                let lobe = match i.z > 0.0 {
+                    true => Lobes::GLOSSY_REFLECTION,
+                    false => Lobes::GLOSSY_TRANSMISSION,
                 };
-                if (i.z > 0.0) != (lobe == Lobes::GLOSSY_REFLECTION) || i.z == 0.0 {
-                    return None;
-                }
+                // Single scattering is what [`Bsdf::eval`] gives, with this density; light
+                // sampled at a vertex finds nothing of the later orders (nor of the delta a
+                // walk between equal indices leaves by), so they stand alone (∞).
+                let single = rough_dielectric_pdf(&g, n1, n2, o, i);
+                let pdf = match exit.order == 1 && single > 0.0 && single.is_finite() {
+                    true => single,
+                    false => f64::INFINITY,
+                };
                 BsdfSample {
                     wi: i,
-                    weight: Rgb::splat(g.g2(i, o) / g.g1(o)),
-                    pdf: rough_dielectric_pdf(&g, n1, n2, o, i),
+                    weight: Rgb::ONE,
+                    pdf,
                     lobe,
                 }
             }
@@ -458,37 +463,27 @@ fn transmittance(n1: f64, n2: f64, om: f64, im: f64) -> f64 {
     }
 }
 
-/// Walter et al.'s (2007) rough dielectric f for basic radiance (see the module's notes).
+/// Walter et al.'s (2007) rough dielectric f for basic radiance (see the module's notes): the
+/// single scattering of [`walk::dielectric`], with the Smith G₂ of correlated heights, a
+/// reflection's or a transmission's ([`Ggx::g2_transmission`]).
 fn rough_dielectric_f(g: &Ggx, n1: f64, n2: f64, o: DVec3, i: DVec3) -> f64 {
     let Some(m) = half_vector(n1, n2, o, i) else {
         return 0.0;
     };
     let (om, im) = (o.dot(m), i.dot(m));
-    let dg = g.d(m) * g.g2(i, o);
     if i.z > 0.0 {
         let (r, _) = dielectric(om, n1, n2);
-        r * dg / (4.0 * i.z * o.z)
+        r * g.d(m) * g.g2(i, o) / (4.0 * i.z * o.z)
     } else {
         let t = transmittance(n1, n2, om, im);
         let denom = n1 * om + n2 * im;
+        let dg = g.d(m) * g.g2_transmission(i, o);
         t * dg * (im.abs() * om * n2 * n2) / (i.z.abs() * o.z * denom * denom)
     }
 }
 
-/// The pdf of [`Bsdf::sample`] for a rough dielectric: the visible normal's density, times
-/// the Fresnel choice, times the Jacobian of the reflection or refraction.
+/// The density with which [`Bsdf::sample`]'s walk leaves along `i` after a single scattering:
+/// f·|cos θi| (a walk's weight is 1).
 fn rough_dielectric_pdf(g: &Ggx, n1: f64, n2: f64, o: DVec3, i: DVec3) -> f64 {
-    let Some(m) = half_vector(n1, n2, o, i) else {
-        return 0.0;
-    };
-    let (om, im) = (o.dot(m), i.dot(m));
-    let dm = g.visible_d(o, m);
-    if i.z > 0.0 {
-        let (r, _) = dielectric(om, n1, n2);
-        r * dm / (4.0 * om)
-    } else {
-        let t = transmittance(n1, n2, om, im);
-        let denom = n1 * om + n2 * im;
-        t * dm * n2 * n2 * im.abs() / (denom * denom)
-    }
+    rough_dielectric_f(g, n1, n2, o, i) * i.z.abs()
 }
