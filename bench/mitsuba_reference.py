@@ -7,7 +7,9 @@
 Reads the subset of grinlight's scene format that Cornell-box-like scenes use -- quads, boxes,
 spheres and open cylinders; diffuse, conductor, dielectric and plastic materials; quad lights
 and a uniform sky -- and builds
-the same scene for Mitsuba's path tracer (box pixel filter, 64 path segments; variant scalar_rgb), with the conventions of refs/README.md: two-sided Lambertian quads, a one-sided
+the same scene for Mitsuba's path tracer (box pixel filter, 64 path segments; the fast
+`llvm_ad_rgb` variant, or `--variant scalar_rgb`), with the conventions of refs/README.md:
+two-sided Lambertian quads, a one-sided
 emitter that reflects nothing, exact Fresnel, GGX with visible-normal sampling; plastic as
 `roughplastic` with `nonlinear = true` (light scattered among the base and the coat's inner
 side, ρ/(1 − ρ F̄ᵢ), as grinlight's plastic has it).
@@ -19,7 +21,10 @@ by the RGB eta and k below, which both renderers then use as they are.
 --crop renders only the pixels [X0, X1) × [Y0, Y1) (from the top left) of the camera's image,
 into an EXR of that size.
 
-Needs `pip install mitsuba` (3.9.1 was used for the figures in docs/validation.md).
+Needs `pip install mitsuba` (3.9.1 was used for the figures in docs/validation.md); the LLVM
+variants need LLVM's shared library: `apt-get install libllvm19` and DRJIT_LIBLLVM_PATH set to
+the `libLLVM-19.so` it installs (`dpkg -L libllvm19`; LLVM 14 and 15 abort with "Cannot select:
+fminimum").
 """
 import argparse
 import os
@@ -103,6 +108,7 @@ def main():
     ap.add_argument("--spp", type=int, default=4096)
     ap.add_argument("--rgb-metals")
     ap.add_argument("--crop", type=int, nargs=4, metavar=("X0", "Y0", "X1", "Y1"))
+    ap.add_argument("--variant", default="llvm_ad_rgb")
     ap.add_argument("--seed", type=int, default=0,
                     help="the first pass's seed (passes take seed, seed + 1, ...)")
     a = ap.parse_args()
@@ -115,9 +121,7 @@ def main():
         with open(a.rgb_metals, "w") as f:
             f.write(text)
     import mitsuba as mi
-    # scalar_rgb: the LLVM variants of drjit 1.5 abort on the LLVM 14 and 15 libraries
-    # Debian ships ("Cannot select: fminimum").
-    mi.set_variant("scalar_rgb")
+    mi.set_variant(a.variant)
     materials = {m["name"]: m for m in scene["material"]}
     tmp = tempfile.mkdtemp()
     cam = scene["camera"]

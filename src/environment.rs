@@ -88,17 +88,17 @@ impl Environment {
 
 impl Environment {
     /// A photon of environment light for four uniform numbers: its direction of arrival is
-    /// uniform over the sphere and it starts on a disk covering `aim`'s target, so the power
-    /// estimate is L(ω)·area/pdf(ω) (see [`Emission`]).
-    pub fn emit(&self, u: [f64; 4], aim: Aim) -> Emission {
+    /// uniform over the sphere and it sets off where [`covering_disk`] says, so the power
+    /// estimate is L(ω)·area/pdf(ω) (see [`Emission`]); None where its line misses the world.
+    pub fn emit(&self, u: [f64; 4], aim: Aim) -> Option<Emission> {
         let from = uniform_sphere((u[0], u[1]));
         let direction = -from;
-        let (origin, area) = covering_disk(aim, direction, (u[2], u[3]));
-        Emission {
+        let (origin, area) = covering_disk(aim, direction, (u[2], u[3]))?;
+        Some(Emission {
             origin,
             direction,
             power: self.radiance(from) * (area / UNIFORM_SPHERE_PDF),
-        }
+        })
     }
 
     /// A weight for choosing the environment among the lights: its power through the

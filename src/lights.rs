@@ -26,26 +26,50 @@ pub struct Emission {
 /// emitted from a disk of this radius that covers it.
 pub type SceneBall = (DVec3, f64);
 
-/// Where photons are sent: parallel and environment light through the `target` ball, from a
-/// plane upstream of the whole `scene` ball (so that nothing in the scene is skipped); light
-/// from points and surfaces over the target's cone ([`Light::emit`]). The target is the scene
-/// ball itself (every photon as the light emits it), or a ball holding what a batch of photons
-/// must meet (the specular surfaces, for caustic photons): light missing it is not traced, and
-/// the photons toward it carry its power only.
+/// Where photons are sent: parallel and environment light through the `target` ball, from
+/// where it enters the scene ([`Entry`]); light from points and surfaces over the target's cone
+/// ([`Light::emit`]). The target is the scene ball itself (every photon as the light emits
+/// it), or a ball holding what a batch of photons must meet (the specular surfaces, for
+/// caustic photons): light missing it is not traced, and the photons toward it carry its power
+/// only.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Aim {
     /// The ball holding the scene.
     pub scene: SceneBall,
     /// The ball the photons are sent through.
     pub target: SceneBall,
+    /// Where parallel and environment light sets off.
+    pub entry: Entry,
+}
+
+/// Where parallel and environment light sets off toward the scene.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Entry {
+    /// From a plane upstream of the scene ball, as it arrives from beyond the world: nothing
+    /// outside the scene ball changes it on its way in (the ambient medium neither absorbs
+    /// nor scatters).
+    Upstream,
+    /// From the world sphere, where light from the environment enters an ambient medium that
+    /// absorbs or scatters (what it loses and scatters between the world sphere and the
+    /// scene is what the camera's direct estimate, attenuated to the world sphere, leaves
+    /// out). Where the medium `scatters`, light along lines that miss the target also
+    /// reaches the scene, scattered: half the photons set off through the target, half over
+    /// the whole world's disk, each weighed by the mixture of both densities.
+    World {
+        /// The world sphere.
+        ball: SceneBall,
+        /// Whether the ambient medium scatters.
+        scatters: bool,
+    },
 }
 
 impl Aim {
-    /// At the whole scene.
-    pub fn whole(scene: SceneBall) -> Aim {
+    /// At the whole scene, light entering it as `entry` says.
+    pub fn whole(scene: SceneBall, entry: Entry) -> Aim {
         Aim {
             scene,
             target: scene,
+            entry,
         }
     }
 
@@ -86,6 +110,15 @@ impl Cone {
         TAU * self.one_minus_cos
     }
 
+    /// The density of [`Cone::sample`] at unit `dir` (1/sr): 1/solid angle inside the cone, 0
+    /// outside.
+    pub fn density(&self, dir: DVec3) -> f64 {
+        match 1.0 - dir.dot(self.axis) <= self.one_minus_cos {
+            true => 1.0 / self.solid_angle(),
+            false => 0.0,
+        }
+    }
+
     /// A direction uniformly distributed over the cone (density 1/solid angle) for `uv`
     /// uniform in [0,1)².
     pub fn sample(&self, uv: (f64, f64)) -> DVec3 {
@@ -93,17 +126,49 @@ impl Cone {
     }
 }
 
-/// A disk of the target's radius perpendicular to unit `direction` around the line through
-/// the target's centre, in the plane 2 scene radii upstream of the scene's centre, sampled
-/// uniformly: the start of a parallel-light photon, and the disk's area.
-pub fn covering_disk(aim: Aim, direction: DVec3, uv: (f64, f64)) -> (DVec3, f64) {
+/// Where a photon of parallel light travelling along unit `direction` sets off, for `uv`
+/// uniform in [0,1)², and the reciprocal of the density of its line across the beam (an area,
+/// length²: the photon carries the irradiance times it). As `aim.entry` says: on a disk of the
+/// target's radius perpendicular to `direction` around the line through the target's centre,
+/// in the plane 2 scene radii upstream of the scene's centre, sampled uniformly; or where
+/// such a line — or, where the ambient medium scatters, half the time a line across the whole
+/// world sphere — enters the world sphere. None for a line that misses the world sphere.
+pub fn covering_disk(aim: Aim, direction: DVec3, uv: (f64, f64)) -> Option<(DVec3, f64)> {
     let ((center, radius), (target, r)) = (aim.scene, aim.target);
-    let (x, y) = uniform_disk(uv);
     let frame = Frame::new(direction);
-    let upstream = (target - center).dot(direction) + 2.0 * radius;
-    let origin = target - direction * upstream + frame.to_world(DVec3::new(x, y, 0.0)) * r;
-    (origin, PI * r * r)
+    let across = |(x, y): (f64, f64), radius: f64| frame.to_world(DVec3::new(x, y, 0.0)) * radius;
+    let (world, scatters) = match aim.entry {
+        Entry::Upstream => {
+            let upstream = (target - center).dot(direction) + 2.0 * radius;
+            let origin = target - direction * upstream + across(uniform_disk(uv), r);
+            return Some((origin, PI * r * r));
+        }
+        Entry::World { ball, scatters } => (ball, scatters),
+    };
+    let (c, big) = world;
+    // The line's foot in the plane through the world's centre, drawn from the mixture: the
+    // world's lines uniform in their distance ρ from its centre (density 1/(2πρR) across the
+    // beam), for light scattered from a line reaches the scene about as 1/ρ.
+    let share = if scatters { 0.5 } else { 1.0 };
+    let target_foot = target - direction * (target - c).dot(direction);
+    let foot = match uv.0 < share {
+        true => target_foot + across(uniform_disk((uv.0 / share, uv.1)), r),
+        false => {
+            let rho = big * (uv.0 - share) / (1.0 - share);
+            let phi = TAU * uv.1;
+            c + across((rho * phi.cos(), rho * phi.sin()), 1.0)
+        }
+    };
+    let rho = (foot - c).length();
+    let in_target = (foot - target_foot).length_squared() <= r * r;
+    let density = share * f64::from(u8::from(in_target)) / (PI * r * r)
+        + (1.0 - share) * f64::from(u8::from(rho < big)) / (TAU * rho * big);
+    let half_chord = (big * big - rho * rho).sqrt();
+    // Just inside the sphere, so that the photon's first step starts within the world.
+    let origin = foot - direction * (half_chord * (1.0 - 1e-9));
+    (half_chord > 0.0 && density > 0.0 && density.is_finite()).then(|| (origin, 1.0 / density))
 }
+
 /// The emitting surface of an area light.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Emitter {
@@ -520,7 +585,7 @@ impl Light {
                 direction,
                 irradiance,
             } => {
-                let (origin, area) = covering_disk(aim, *direction, (u[0], u[1]));
+                let (origin, area) = covering_disk(aim, *direction, (u[0], u[1]))?;
                 emission(origin, *direction, *irradiance * area)
             }
         }

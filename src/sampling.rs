@@ -23,6 +23,8 @@ pub enum Purpose {
     ReceiverPhotons = 4,
     /// A pixel's [`Strata`] in a pass.
     PixelStrata = 5,
+    /// Samples that weigh photon sources before a pass (the same in every pass).
+    Pilot = 6,
 }
 
 /// A 64-bit hash of `z` (splitmix64: an increment, then its finaliser), for keying streams.

@@ -78,7 +78,8 @@ fn led_emission_follows_its_profile() {
         peak_intensity: Rgb::splat(2.0 * (m + 1.0) / TAU),
         m,
     };
-    let ball = grinlight::lights::Aim::whole((DVec3::ZERO, 1.0));
+    let ball =
+        grinlight::lights::Aim::whole((DVec3::ZERO, 1.0), grinlight::lights::Entry::Upstream);
     chi2(
         "led",
         |r| {
@@ -113,7 +114,7 @@ fn spot_emission_carries_its_power() {
     for _ in 0..n {
         if let Some(e) = spot.emit(
             [rng.gen(), rng.gen(), rng.gen(), rng.gen()],
-            grinlight::lights::Aim::whole((DVec3::ZERO, 1.0)),
+            grinlight::lights::Aim::whole((DVec3::ZERO, 1.0), grinlight::lights::Entry::Upstream),
         ) {
             assert!(e.direction.z >= cos_outer - 1e-12);
             sum += e.power.x;
@@ -172,4 +173,60 @@ fn strata_hold_one_number_each_and_every_sample_is_uniform() {
     // Any spp: the strata hold at most Strata::MOST samples, the rest draw their own.
     strata.draw(u32::MAX, &mut rng);
     assert!(strata.get(Strata::MOST - 1).is_some() && strata.get(Strata::MOST).is_none());
+}
+
+/// Parallel light entering the world sphere of a scattering ambient medium: the lines its
+/// photons set off along are drawn from a mixture (the target's disk, and the world's lines
+/// uniform in their distance from the centre), each weighed by the reciprocal of that
+/// mixture's density, so the weights add up to the area of any part of the beam — the world's
+/// disk πR² in all, the target's πr² over the lines through it (4 standard errors); each
+/// starts on the world sphere, travelling along the light.
+#[test]
+fn world_entry_lines_cover_the_beam() {
+    use grinlight::lights::{covering_disk, Aim, Entry};
+    let world = (DVec3::new(0.3, -0.2, 0.1), 10.0);
+    let target = (DVec3::new(0.5, 0.0, 0.0), 1.5);
+    let aim = Aim {
+        scene: target,
+        target,
+        entry: Entry::World {
+            ball: world,
+            scatters: true,
+        },
+    };
+    let direction = DVec3::new(0.3, -1.0, 0.2).normalize();
+    let mut rng = Pcg64Mcg::seed_from_u64(11);
+    let n = 400_000;
+    let (mut all, mut all2, mut through, mut through2) = (0.0, 0.0, 0.0, 0.0);
+    for _ in 0..n {
+        let Some((origin, area)) = covering_disk(aim, direction, (rng.gen(), rng.gen())) else {
+            continue;
+        };
+        let on_sphere = (origin - world.0).length() / world.1;
+        assert!((on_sphere - 1.0).abs() < 1e-8, "{on_sphere}");
+        assert!((origin - world.0).dot(direction) < 0.0, "starts upstream");
+        all += area;
+        all2 += area * area;
+        let off = (origin - target.0) - direction * (origin - target.0).dot(direction);
+        if off.length() <= target.1 {
+            through += area;
+            through2 += area * area;
+        }
+    }
+    let n = n as f64;
+    for (sum, sum2, expected) in [
+        (all, all2, std::f64::consts::PI * world.1 * world.1),
+        (
+            through,
+            through2,
+            std::f64::consts::PI * target.1 * target.1,
+        ),
+    ] {
+        let mean = sum / n;
+        let se = ((sum2 / n - mean * mean) / n).sqrt();
+        assert!(
+            (mean - expected).abs() < 4.0 * se,
+            "{mean} ± {se} against {expected}"
+        );
+    }
 }

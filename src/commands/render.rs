@@ -772,7 +772,7 @@ fn draw_paths(
 ) -> Result<()> {
     let out = files.paths.as_ref().expect("planned with the paths");
     let tracer = crate::transport::Tracer::new(scene, &settings.trace);
-    let sources = crate::photon::Sources::new(&tracer);
+    let sources = crate::photon::Sources::for_receivers(&tracer);
     let drawn = crate::photon::photon_paths(&tracer, &sources, settings.seed, 0, paths.count);
     let legend = crate::fiber::figure::write(
         scene,

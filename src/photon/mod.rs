@@ -18,16 +18,19 @@
 
 mod budget;
 mod map;
+mod shell;
 mod volume;
 
 pub use budget::{Budget, Ended, Fate, Ledger};
 pub use map::{Photon, PhotonMap};
+pub use shell::Shell;
 pub use volume::{Segment, VolumeMap};
 
 use crate::bsdf::Lobes;
 use crate::color::Rgb;
+use crate::curve::Bounds;
 use crate::environment::Environment;
-use crate::lights::{Aim, Emission, Light, SceneBall};
+use crate::lights::{Aim, Cone, Emission, Entry, Light, SceneBall};
 use crate::receiver::Detection;
 use crate::sampling::{stream, Purpose};
 use crate::spectrum::{colour, Spectrum};
@@ -47,6 +50,8 @@ const CHUNK: u64 = 4096;
 enum Source<'a> {
     Light(&'a Light),
     Environment(&'a Environment),
+    /// The light the ambient medium scatters outside the scene ball (map photons).
+    Shell(Shell),
 }
 
 /// A photon source with what its photons start in.
@@ -76,6 +81,12 @@ pub struct Launch {
     /// For a photon of a photon map in a dispersive scene: the wavelength it takes on where
     /// it meets dispersion, and its power there.
     pub hero: Option<PhotonHero>,
+    /// For a map photon from a light or the environment in a scene whose ambient medium
+    /// scatters outside the scene ball: that ball. Where such a photon first scatters outside
+    /// it, it ends: light scattered there first is the shell's ([`Shell`]).
+    pub shell: Option<SceneBall>,
+    /// Whether it has scattered in a medium already: a photon of the shell.
+    pub scattered: bool,
 }
 
 /// The wavelength a photon carrying every wavelength takes on where it meets dispersion —
@@ -148,6 +159,13 @@ pub struct Sources<'a> {
     sources: Vec<Placed<'a>>,
     /// Where parallel and environment light is sent.
     aim: Aim,
+    /// For map photons where the ambient medium absorbs or scatters: that medium. Parallel
+    /// and environment light set off upstream of the scene carrying what it lets through
+    /// unscattered from the world sphere to there.
+    crossed: Option<usize>,
+    /// For map photons where the ambient medium scatters outside the scene ball: that part
+    /// of it, a source of its own.
+    shell: Option<Shell>,
     /// Whether receiver photons carry a wavelength ([`crate::scene::Scene::is_spectral`]).
     spectral: bool,
     /// Whether map photons take a hero wavelength ([`crate::scene::Scene::is_dispersive`]).
@@ -157,11 +175,21 @@ pub struct Sources<'a> {
 }
 
 impl<'a> Sources<'a> {
-    /// The lights and the environment of the tracer's scene, each with the medium it emits
-    /// into (a light inside a dielectric shape emits into its interior; parallel and
-    /// environment light into the ambient medium); sources of zero power are left out.
+    /// The sources of the global map's photons: the lights and the environment of the
+    /// tracer's scene, each with the medium it emits into (a light inside a dielectric shape
+    /// emits into its interior; parallel and environment light into the ambient medium) —
+    /// and, in open scattering fog, the fog outside the scene ([`Shell`]); sources of zero
+    /// power are left out.
     pub fn new(tracer: &Tracer<'a>) -> Self {
-        Self::aimed(tracer, Aim::whole(tracer.ball))
+        Self::aimed(tracer, Aim::whole(tracer.ball, Entry::Upstream), true)
+    }
+
+    /// The sources of receiver photons: the lights and the environment as [`Sources::new`],
+    /// traced as light travels — parallel and environment light from the world sphere where
+    /// the ambient medium absorbs or scatters —, so that each photon's power is booked where
+    /// it really goes.
+    pub fn for_receivers(tracer: &Tracer<'a>) -> Self {
+        Self::aimed(tracer, Aim::whole(tracer.ball, world_entry(tracer)), false)
     }
 
     /// The sources of caustic photons: as [`Sources::new`], but sent only through a ball
@@ -205,12 +233,30 @@ impl<'a> Sources<'a> {
             } else {
                 tracer.ball
             },
+            entry: Entry::Upstream,
         };
-        Self::aimed(tracer, aim)
+        Self::aimed(tracer, aim, true)
     }
 
-    fn aimed(tracer: &Tracer<'a>, aim: Aim) -> Self {
+    /// The sources sent as `aim` says, for the maps (`maps`: with the ambient medium's
+    /// transmittance and its shell) or for receivers.
+    fn aimed(tracer: &Tracer<'a>, aim: Aim, maps: bool) -> Self {
         let scene = tracer.scene;
+        let crossed = match (maps, world_entry(tracer)) {
+            (true, Entry::World { .. }) => scene.ambient,
+            _ => None,
+        };
+        // About what parallel and environment light keeps of its power on its way in: the
+        // transmittance from the world sphere to the upstream start along a line through the
+        // scene's centre, for weighing it against the other sources.
+        let crossed_share = crossed.map_or(1.0, |m| {
+            let (center, radius) = tracer.ball;
+            let length = (tracer.world.scale() - 2.0 * radius).max(0.0);
+            let sigma_s = tracer.scattering(m).map_or(0.0, |sc| {
+                sc.sigma_s.mean() * sc.majorant_near(center).density
+            });
+            (-(tracer.medium(m).absorption(center) + sigma_s) * length).exp()
+        });
         let mut sources = Vec::new();
         let mut weights = Vec::new();
         for (i, light) in scene.lights.iter().enumerate() {
@@ -223,7 +269,11 @@ impl<'a> Sources<'a> {
                 medium,
                 spectrum: scene.light_spectrum(i),
             });
-            weights.push(light.selection_power(aim));
+            let crossing = match light.origin() {
+                None => crossed_share,
+                Some(_) => 1.0,
+            };
+            weights.push(light.selection_power(aim) * crossing);
         }
         if let Some(env) = &scene.environment {
             sources.push(Placed {
@@ -231,8 +281,30 @@ impl<'a> Sources<'a> {
                 medium: scene.ambient,
                 spectrum: None,
             });
-            weights.push(env.selection_power(aim));
+            weights.push(env.selection_power(aim) * crossed_share);
         }
+        // The shell, where its pilot photons found light to send (a closed room's walls hide
+        // every light from the fog outside it): then photons that first scatter there end.
+        let others: f64 = weights.iter().filter(|w| w.is_finite() && **w > 0.0).sum();
+        let shell = maps
+            .then(|| Shell::of(tracer))
+            .flatten()
+            .map(|shell| {
+                let dispersive = tracer.disperses_in(Some(shell.medium));
+                (shell, shell.selection_power(tracer, dispersive))
+            })
+            .filter(|(_, pilot)| *pilot > 0.0);
+        if let Some((shell, pilot)) = shell {
+            sources.push(Placed {
+                source: Source::Shell(shell),
+                medium: Some(shell.medium),
+                spectrum: None,
+            });
+            // At least a tenth of the photons: a pilot that barely found the shell's light (a
+            // small lamp seen from far out in the fog) must not leave it to rare heavy photons.
+            weights.push(pilot.max(others / 9.0));
+        }
+        let shell = shell.map(|(shell, _)| shell);
         let total: f64 = weights.iter().filter(|w| w.is_finite() && **w > 0.0).sum();
         let mut kept = Vec::new();
         let mut cdf = Vec::new();
@@ -250,6 +322,8 @@ impl<'a> Sources<'a> {
         Self {
             sources: kept,
             aim,
+            crossed,
+            shell,
             cdf,
             spectral: scene.is_spectral(),
             dispersive: scene.is_dispersive(),
@@ -261,11 +335,18 @@ impl<'a> Sources<'a> {
         self.sources.is_empty()
     }
 
-    /// A photon for uniform numbers `u` (u[0] picks the source), with the power divided by
-    /// the selection probability, and the source's spectrum. Environment radiance is given as in vacuum (see
+    /// A photon for uniform numbers `u` (u[0] picks the source) and, for the shell, more from
+    /// `rng`, with the power divided by the selection probability, and the source's spectrum.
+    /// Environment radiance is given as in vacuum (see
     /// [`crate::transport::chain::Chain::environment_scale`]): in an ambient medium of index
     /// n at the photon's start, its power is n² times the vacuum estimate.
-    fn emit(&self, tracer: &Tracer, u: [f64; 5]) -> Option<(Launch, Option<&Spectrum>)> {
+    fn emit(
+        &self,
+        tracer: &Tracer,
+        u: [f64; 5],
+        rng: &mut impl Rng,
+        stats: &mut Stats,
+    ) -> Option<(Launch, Option<&Spectrum>)> {
         let i = self
             .cdf
             .partition_point(|c| *c <= u[0])
@@ -277,15 +358,25 @@ impl<'a> Sources<'a> {
             medium,
             spectrum,
         } = self.sources[i];
+        let mut hero = None;
         let e = match source {
-            Source::Light(l) => l.emit(rest, self.aim)?,
+            Source::Light(l) => self.crossing(tracer, l.emit(rest, self.aim)?, l.origin()),
             Source::Environment(env) => {
-                let e = env.emit(rest, self.aim);
+                let e = self.crossing(tracer, env.emit(rest, self.aim)?, None);
                 let n = tracer.index(medium, e.origin).unwrap_or(1.0);
                 Emission {
                     power: e.power * (n * n),
                     ..e
                 }
+            }
+            Source::Shell(shell) => {
+                let dispersive = tracer.disperses_in(Some(shell.medium));
+                let photon = shell.emit(tracer, rest, dispersive, rng, stats)?;
+                hero = photon.hero.map(|(nm, power)| PhotonHero {
+                    nm,
+                    power: power / p,
+                });
+                photon.emission
             }
         };
         let launch = Launch {
@@ -295,9 +386,55 @@ impl<'a> Sources<'a> {
             },
             medium,
             wavelength: None,
-            hero: None,
+            hero,
+            shell: match source {
+                Source::Shell(_) => None,
+                _ => self.shell.map(|s| s.ball),
+            },
+            scattered: matches!(source, Source::Shell(_)),
         };
         Some((launch, spectrum))
+    }
+
+    /// Light from beyond the world (`origin` None: parallel or environment light), as a map
+    /// photon `e` sets off upstream of the scene: with what the ambient medium it crossed from
+    /// the world sphere lets through unscattered (absorption and scattering along the line).
+    fn crossing(&self, tracer: &Tracer, e: Emission, origin: Option<DVec3>) -> Emission {
+        let Some(m) = self.crossed.filter(|_| origin.is_none()) else {
+            return e;
+        };
+        let back = tracer.world.exit_distance(e.origin, -e.direction);
+        if !back.is_finite() {
+            return e;
+        }
+        let from = e.origin - e.direction * back;
+        let absorbed = tracer.medium(m).optical_depth(from, e.direction, back);
+        let scattered = tracer.scattering(m).map_or(Rgb::ONE, |sc| {
+            sc.transmittance(sc.column(from, e.direction, back))
+        });
+        Emission {
+            power: e.power * scattered * (-absorbed).exp(),
+            ..e
+        }
+    }
+}
+
+/// Where parallel and environment light enters the tracer's scene as it travels: at the world
+/// sphere where the ambient medium absorbs or scatters (light crosses all of it from beyond
+/// the world, as the camera's paths see), else upstream of the scene.
+fn world_entry(tracer: &Tracer) -> Entry {
+    let scene = tracer.scene;
+    let Some(ambient) = scene.ambient else {
+        return Entry::Upstream;
+    };
+    let scatters = scene.media().scattering(ambient).is_some();
+    let absorbs = tracer.medium(ambient).absorbs();
+    match (tracer.world, scatters || absorbs) {
+        (Bounds::Ball { center, radius }, true) => Entry::World {
+            ball: (center, radius),
+            scatters,
+        },
+        _ => Entry::Upstream,
     }
 }
 
@@ -357,7 +494,13 @@ impl Photons {
 
     /// The random stream of photon `i`, advanced past its launch from `sources`, and the
     /// launch (None where the chosen source emits nothing for these numbers).
-    fn launch(&self, tracer: &Tracer, sources: &Sources, i: u64) -> (Pcg64Mcg, Option<Launch>) {
+    fn launch(
+        &self,
+        tracer: &Tracer,
+        sources: &Sources,
+        i: u64,
+        stats: &mut Stats,
+    ) -> (Pcg64Mcg, Option<Launch>) {
         let purpose = match self.batch {
             Batch::Caustic => Purpose::CausticPhotons,
             Batch::Global => Purpose::GlobalPhotons,
@@ -366,10 +509,12 @@ impl Photons {
         let mut rng = stream(self.seed, purpose, self.pass, i);
         let u = [rng.gen(), rng.gen(), rng.gen(), rng.gen(), rng.gen()];
         let launch = sources
-            .emit(tracer, u)
+            .emit(tracer, u, &mut rng, stats)
             .map(|(launch, spectrum)| match self.batch {
                 Batch::Receivers if sources.spectral => launch.at_wavelength(spectrum, rng.gen()),
                 Batch::Receivers => launch.radiometric(spectrum),
+                // A shell photon in a medium whose σs depends on wavelength has its own.
+                _ if launch.hero.is_some() => launch,
                 _ if sources.dispersive => Launch {
                     hero: Some(launch.draw_wavelength(spectrum, rng.gen())),
                     ..launch
@@ -414,7 +559,7 @@ pub fn shoot(
                 return (stored, stats);
             }
             for i in (c * CHUNK).max(traced.start)..((c + 1) * CHUNK).min(traced.end) {
-                let (mut rng, emission) = photons.launch(tracer, sources, i);
+                let (mut rng, emission) = photons.launch(tracer, sources, i, &mut stats);
                 stats.photons_emitted += 1;
                 if let Some(e) = emission {
                     let photon = Tagged {
@@ -467,7 +612,7 @@ pub fn photon_paths(
     }
     let photons = Photons::all(Batch::Receivers, seed, pass, count);
     for i in 0..count {
-        let (mut rng, emission) = photons.launch(tracer, sources, i);
+        let (mut rng, emission) = photons.launch(tracer, sources, i, &mut Stats::default());
         if let Some(e) = emission {
             let tag = Tagged {
                 index: i,
@@ -585,6 +730,27 @@ fn scatter_photon(vertex: &Vertex, rng: &mut impl Rng) -> Option<PhotonBounce> {
     Some(PhotonBounce { weight, scattered })
 }
 
+/// A map photon scattering at a point `v` of a medium outside the scene ball, of which it sees
+/// `cone`, splits in two: a branch sent uniformly over the cone, weighed p·Ω (the phase
+/// function times the cone's solid angle), and the photon itself, going on along a direction
+/// from the phase function — ending where that direction lies in the cone, whose light is the
+/// branch's. In open fog most of the light scattered outside the scene never comes back: drawn
+/// from the phase function alone, a photon scattered at distance ρ reaches the ball about
+/// (radius / 2ρ)² of the time, carrying a weight none of the others do. Returns the branch's
+/// direction and weight, and the photon's way on (None where it ends).
+fn split_toward(v: &MediumVertex, cone: Cone, rng: &mut impl Rng) -> ((DVec3, f64), Option<Ray>) {
+    let before = -v.wo;
+    let toward = cone.sample((rng.gen(), rng.gen()));
+    let branch = (toward, v.phase.between(before, toward) * cone.solid_angle());
+    let on = v.phase.sample(before, (rng.gen(), rng.gen()));
+    let ray = (cone.density(on) == 0.0).then_some(Ray {
+        origin: v.position,
+        direction: on,
+        medium: v.medium,
+    });
+    (branch, ray)
+}
+
 /// Russian roulette on a bounce of `weight`: the photon goes on with probability equal to its
 /// largest channel (at most 1) and its power is divided by that, so it keeps its size; None
 /// when it is absorbed (always for a weight of 0 or NaN).
@@ -620,21 +786,22 @@ fn trace_photon(
     let hero = launch.hero.map(|h| HeroTracer::for_photon(tracer, h.nm));
     let scene = tracer.scene;
     let e = launch.emission;
-    // The sRGB its power stands for: a photon of one wavelength is stored in that
-    // wavelength's (once it has met dispersion).
-    let mut seen_as = Rgb::ONE;
-    // What it has kept of its launch power while it carries every wavelength.
-    let mut throughput = Rgb::ONE;
     let nm = launch.wavelength;
     if let Some(path) = path.as_mut() {
         path(e.origin);
     }
+    let Sink {
+        photons,
+        volume,
+        detections,
+        budget,
+    } = stored;
     let mut walk = PhotonWalk {
         tag,
         wavelength: tracer.wavelength(),
         ambient: scene.ambient,
         power: e.power / tag.count as f64,
-        detections: &mut stored.detections,
+        detections,
         receivers: &scene.receivers,
         reflected: false,
         left_through: None,
@@ -642,29 +809,111 @@ fn trace_photon(
         last: e.origin,
         reach: tracer.ball.1,
     };
-    let mut ray = Ray {
+    let ray = Ray {
         origin: e.origin,
         direction: e.direction,
         medium: launch.medium,
     };
     let carried = chain::Carried::starting(tracer, hero.as_ref());
-    let mut walker = chain::Walker::carrying(carried, Policy::Roulette);
-    // Whether a specular or glossy lobe or a medium, a medium has scattered it since the
-    // light.
-    let (mut bent, mut fogged) = (false, false);
+    let walker = chain::Walker::carrying(carried, Policy::Roulette);
+    // The photon's path, and the branches split off it outside the scene ball (map photons
+    // in open fog: [`split_toward`]), each followed in turn.
+    let mut branches = vec![Branch {
+        ray,
+        walker,
+        power: walk.power,
+        throughput: Rgb::ONE,
+        seen_as: Rgb::ONE,
+        bent: launch.scattered,
+        fogged: launch.scattered,
+        first: true,
+        splits: tag.batch != Batch::Receivers,
+    }];
+    let mut emitted = (e.power / tag.count as f64).mean();
+    while let Some(branch) = branches.pop() {
+        walk.power = branch.power;
+        let lent = Lent {
+            rng: &mut *rng,
+            stats: &mut *stats,
+        };
+        let stores = Stores {
+            photons: &mut *photons,
+            volume: &mut *volume,
+        };
+        let (fate, fogged) = follow_branch(branch, &launch, &mut walk, &mut branches, lent, stores);
+        budget.book(&Ended {
+            emitted,
+            power: walk.power.mean(),
+            fate,
+            nm,
+            scattered: fogged,
+        });
+        emitted = 0.0;
+    }
+}
+
+/// One path of a photon (the photon's own, or a branch split off it): where it goes on from,
+/// what it carries, and what it has met.
+struct Branch<'w> {
+    ray: Ray,
+    walker: chain::Walker<'w>,
+    /// Its power (W per channel, of the batch's count).
+    power: Rgb,
+    /// What it has kept of its launch power while it carries every wavelength.
+    throughput: Rgb,
+    /// The sRGB its power stands for: a photon of one wavelength is stored in that
+    /// wavelength's (once it has met dispersion).
+    seen_as: Rgb,
+    /// Whether a specular or glossy lobe or a medium has scattered it since the light.
+    bent: bool,
+    /// Whether a medium has scattered it.
+    fogged: bool,
+    /// Whether it has met nothing yet.
+    first: bool,
+    /// Whether it splits where a medium scatters it outside the scene ball (a map photon's
+    /// own path; branches do not split again).
+    splits: bool,
+}
+
+/// The random stream and statistics a photon's branches share.
+struct Lent<'a, R> {
+    rng: &'a mut R,
+    stats: &'a mut Stats,
+}
+
+/// Where a photon's branches are stored: the photons on surfaces and in media.
+struct Stores<'a> {
+    photons: &'a mut Vec<Photon>,
+    volume: &'a mut Vec<Photon>,
+}
+
+/// Follows `branch` of a photon launched as `launch` to its end, storing it as its batch says
+/// and pushing the branches it splits off onto `branches`; returns how it ended and whether a
+/// medium scattered it.
+fn follow_branch<'w, R: Rng>(
+    mut b: Branch<'w>,
+    launch: &Launch,
+    walk: &mut PhotonWalk,
+    branches: &mut Vec<Branch<'w>>,
+    lent: Lent<R>,
+    stored: Stores,
+) -> (Fate, bool) {
+    let Lent { rng, stats } = lent;
+    let tracer = b.walker.tracer;
+    let tag = walk.tag;
     let fate = loop {
-        let chain = walker.follow(ray, rng, stats, &mut walk);
+        let chain = b.walker.follow(b.ray, rng, stats, walk);
         match (chain.dispersed, launch.hero) {
             (Some(before), Some(h)) => {
                 // Its spectrum at the hero wavelength, times the reflectance spectrum of what
                 // it kept on the way there.
-                let kept = colour::reflectance(throughput * before, h.nm);
+                let kept = colour::reflectance(b.throughput * before, h.nm);
                 walk.power = Rgb::splat(h.power * kept / tag.count as f64) * chain.weight;
-                seen_as = colour::sensor(h.nm);
+                b.seen_as = colour::sensor(h.nm);
             }
             _ => {
                 walk.power *= chain.weight;
-                throughput *= chain.weight;
+                b.throughput *= chain.weight;
             }
         }
         let vertex = match chain.end {
@@ -674,7 +923,16 @@ fn trace_photon(
             End::Absorbed { medium: Some(m) } => break Fate::AbsorbedIn(m),
             End::Lost | End::DepthLimit | End::Stopped => break Fate::Lost,
         };
-        bent |= chain.specular > 0;
+        let outside = match &vertex {
+            Vertex::Medium(v) => Cone::toward(tracer.ball, v.position).map(|c| (v, c)),
+            Vertex::Surface(_) => None,
+        };
+        if b.first && chain.specular == 0 && outside.is_some() && launch.shell.is_some() {
+            // Scattered outside the scene ball before anything else: the shell's light.
+            break Fate::Lost;
+        }
+        b.first = false;
+        b.bent |= chain.specular > 0;
         // Photons are stored only at surfaces with a diffuse lobe: camera paths and final
         // gathers pass glossy-only vertices and points in media by sampling them and read no
         // photons there (and photons on the inside of a rough glass ball would be read by the
@@ -683,7 +941,7 @@ fn trace_photon(
             let photon = Photon {
                 position: v.position,
                 normal: v.normal,
-                power: (walk.power * seen_as).as_vec3().to_array(),
+                power: (walk.power * b.seen_as).as_vec3().to_array(),
                 from: v.wo.as_vec3().to_array(),
                 base: v.diffuse_entry() as f32,
             };
@@ -691,19 +949,19 @@ fn trace_photon(
                 // L (S|G|V)+ D: at least one specular or glossy lobe or scattering in a medium,
                 // and no diffuse lobe, since the light. Light through gradient media alone
                 // (L G+ D) is the direct estimate's, which follows it along the curved path.
-                Batch::Caustic => bent,
+                Batch::Caustic => b.bent,
                 Batch::Global => true,
                 Batch::Receivers => false,
             };
             if stores && v.lobes().has_diffuse() {
                 stored.photons.push(photon);
             }
-        } else if tag.batch == Batch::Caustic && bent && !fogged {
+        } else if tag.batch == Batch::Caustic && b.bent && !b.fogged {
             // L (S|G)+ V: a volume caustic, where it first scatters in a medium.
             stored.volume.push(Photon {
                 position: vertex.position(),
                 normal: DVec3::ZERO,
-                power: (walk.power * seen_as).as_vec3().to_array(),
+                power: (walk.power * b.seen_as).as_vec3().to_array(),
                 from: vertex.wo().as_vec3().to_array(),
                 base: 1.0,
             });
@@ -711,7 +969,29 @@ fn trace_photon(
         if tag.batch == Batch::Caustic && vertex.lobes() == Lobes::DIFFUSE_REFLECTION {
             break Fate::Absorbed;
         }
-        let Some(b) = scatter_photon(&vertex, rng) else {
+        if let (Some((v, cone)), true) = (outside, b.splits) {
+            let ((toward, weight), on) = split_toward(v, cone, rng);
+            branches.push(Branch {
+                ray: Ray {
+                    origin: v.position,
+                    direction: toward,
+                    medium: v.medium,
+                },
+                power: walk.power * weight,
+                bent: true,
+                fogged: true,
+                splits: false,
+                ..b
+            });
+            b.bent = true;
+            b.fogged = true;
+            match on {
+                Some(ray) => b.ray = ray,
+                None => break Fate::Lost,
+            }
+            continue;
+        }
+        let Some(bounce) = scatter_photon(&vertex, rng) else {
             break match vertex {
                 Vertex::Medium(MediumVertex {
                     medium: Some(m), ..
@@ -719,29 +999,23 @@ fn trace_photon(
                 _ => Fate::Absorbed,
             };
         };
-        walk.power *= b.weight;
-        throughput *= b.weight;
-        if b.scattered.sample.lobe.has_diffuse() {
+        walk.power *= bounce.weight;
+        b.throughput *= bounce.weight;
+        if bounce.scattered.sample.lobe.has_diffuse() {
             if tag.batch == Batch::Caustic {
                 break Fate::Absorbed;
             }
         } else {
-            bent = true;
-            fogged |= matches!(vertex, Vertex::Medium(_));
+            b.bent = true;
+            b.fogged |= matches!(vertex, Vertex::Medium(_));
             if let Vertex::Surface(v) = &vertex {
-                let to = b.scattered.ray.medium;
+                let to = bounce.scattered.ray.medium;
                 // What the budget tells of a glossy reflection or transmission, as of a smooth
                 // one.
-                let _ = chain::ChainEvents::specular(&mut walk, v.prim, v.medium, to);
+                let _ = chain::ChainEvents::specular(walk, v.prim, v.medium, to);
             }
         }
-        ray = b.scattered.ray;
+        b.ray = bounce.scattered.ray;
     };
-    stored.budget.book(&Ended {
-        emitted: (e.power / tag.count as f64).mean(),
-        power: walk.power.mean(),
-        fate,
-        nm,
-        scattered: fogged,
-    });
+    (fate, b.fogged)
 }

@@ -104,7 +104,7 @@ pub fn trace_receivers(
     observer: &dyn Observer,
 ) -> Result<(Books, Report)> {
     let tracer = Tracer::new(scene, &settings.trace);
-    let sources = Sources::new(&tracer);
+    let sources = Sources::for_receivers(&tracer);
     let pool = thread_pool(settings.threads)?;
     let count = traced.end - traced.start;
     observer.progress(Progress::Measuring {

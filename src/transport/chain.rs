@@ -207,6 +207,7 @@ impl<'w> Carried<'w> {
 /// carried, and how many surfaces it may still meet (shared by a photon's successive chains).
 /// Its random numbers (the Fresnel choices and Russian roulette) and statistics are lent to
 /// each [`Walker::follow`].
+#[derive(Clone, Copy)]
 pub struct Walker<'w> {
     /// Where it travels (at its hero wavelength once it has met dispersion).
     pub tracer: &'w Tracer<'w>,

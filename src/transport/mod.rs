@@ -8,6 +8,7 @@
 
 pub mod chain;
 pub mod connect;
+pub mod lighting;
 mod stats;
 mod vertex;
 pub mod visibility;

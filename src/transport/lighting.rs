@@ -1,0 +1,161 @@
+//! Direct light at a scattering vertex: light that reaches it from the lights and the
+//! environment with no specular interaction on the way (light samples through the one shadow
+//! ray or curved connections, and a BSDF or phase sample, weighed against each other), and the
+//! emission a chain sees at its end. Radiance per RGB channel, W/(m²·sr), scaled across
+//! indices as [`super::chain`] says. Camera paths, the path tracer and the photons the
+//! medium around the scene scatters toward it all estimate direct light here.
+
+use super::chain::{Carried, Chain, End, Policy, Walker};
+use super::connect::connect;
+use super::{visibility, Stats, Tracer, Vertex};
+use crate::color::Rgb;
+use crate::lights::Light;
+use rand::Rng;
+
+/// Radiance the end of `chain` sends back along it, as seen at its start: an emitter's (in
+/// its medium), or the environment's where it escaped into the ambient medium; zero for
+/// every other end. `tracer` is the one the chain ended on (it reads the environment).
+pub fn emission_seen(tracer: &Tracer, chain: &Chain) -> Rgb {
+    let scene = tracer.scene;
+    match chain.end {
+        End::Emitter { radiance, .. } => chain.weight * radiance * chain.radiance_scale(),
+        End::Escaped { direction } if chain.medium == scene.ambient => {
+            scene.environment.as_ref().map_or(Rgb::ZERO, |env| {
+                chain.weight * tracer.radiance(env.radiance(direction)) * chain.environment_scale()
+            })
+        }
+        _ => Rgb::ZERO,
+    }
+}
+
+/// One light sample of `light` at a scattering vertex in a uniform medium, through a straight
+/// shadow ray from its arrival side (multiple importance weighted against the BSDF or phase
+/// sample for area lights).
+fn straight_light(tracer: &Tracer, vertex: &Vertex, light: &Light, uv: (f64, f64)) -> Rgb {
+    let origin = vertex.origin();
+    let Some(inc) = light.sample_incident(origin, uv) else {
+        return Rgb::ZERO;
+    };
+    let cos = vertex.cos(inc.wi);
+    if cos <= 0.0 {
+        return Rgb::ZERO;
+    }
+    let reach = if inc.distance.is_finite() {
+        inc.distance * (1.0 - 1e-7)
+    } else {
+        f64::INFINITY
+    };
+    let f = vertex.eval(inc.wi);
+    if f == Rgb::ZERO {
+        return Rgb::ZERO;
+    }
+    let medium = vertex.medium();
+    let kept = visibility::transmittance(tracer, origin, medium, inc.wi, reach);
+    let unscattered = visibility::unscattered(tracer, origin, medium, inc.wi, reach);
+    let weight = power_heuristic(inc.pdf, vertex.pdf(inc.wi));
+    f * tracer.radiance(inc.irradiance) * (cos * weight * kept) * unscattered
+}
+
+/// A point, spot, LED or parallel light at a scattering vertex in gradient medium `m`,
+/// through the curved connection to it (`uv` samples an LED's disk).
+fn curved_light(
+    tracer: &Tracer,
+    vertex: &Vertex,
+    m: usize,
+    light: &Light,
+    uv: (f64, f64),
+    stats: &mut Stats,
+) -> Rgb {
+    let Some(anchor) = light.anchor(uv) else {
+        return Rgb::ZERO;
+    };
+    let Some(link) = connect(tracer, vertex.origin(), m, &anchor, stats) else {
+        return Rgb::ZERO;
+    };
+    let cos = vertex.cos(link.direction);
+    if cos <= 0.0 {
+        return Rgb::ZERO;
+    }
+    let e = link.irradiance(&anchor, tracer.radiance(light.intensity(-link.arrival)));
+    let unscattered = tracer
+        .scattering(m)
+        .map_or(Rgb::ONE, |sc| sc.transmittance(link.column));
+    vertex.eval(link.direction) * e * unscattered * cos
+}
+
+/// The power heuristic's weight of a strategy of pdf `a` against one of pdf `b` (1 when `a`
+/// is a delta).
+fn power_heuristic(a: f64, b: f64) -> f64 {
+    if a.is_infinite() {
+        1.0
+    } else {
+        a * a / (a * a + b * b)
+    }
+}
+
+/// Direct light at a scattering vertex: light that reaches it from an emitter or the
+/// environment with no specular interaction on the way, reflected toward ωo by its BSDF
+/// (radiance leaving the vertex, W/(m²·sr), per unit of the scattering coefficient at a point
+/// in a medium).
+/// - In a uniform medium, one light sample of every light through a straight shadow ray
+///   (the visibility query: detectors are transparent, absorption applied), and one BSDF
+///   ray, combined by multiple importance sampling with the power heuristic for area lights
+///   (the only lights both strategies can find). Light samples reach the arrival side; a
+///   transmitted BSDF ray is the only strategy for the other side (weight 1).
+/// - In a gradient medium a straight connection is not a light path: point, spot, LED and
+///   parallel light are connected to along the curved path ([`connect`]), and the BSDF ray,
+///   followed along its curved path, finds area lights and the environment (weight 1: there
+///   are no area-light samples to weigh it against).
+///
+/// A BSDF ray that meets a purely specular surface first carries nothing: that light is the
+/// caustic map's. A BSDF ray into a dispersive medium takes on the hero wavelength there;
+/// connections are traced at the wavelength(s) the path carries.
+pub fn direct_light(
+    carried: Carried,
+    vertex: &Vertex,
+    rng: &mut impl Rng,
+    stats: &mut Stats,
+) -> Rgb {
+    let tracer = carried.tracer;
+    let scene = tracer.scene;
+    let graded = vertex.medium().filter(|&m| !tracer.medium(m).is_uniform());
+    let origin = vertex.origin();
+    let mut radiance = Rgb::ZERO;
+    for light in &scene.lights {
+        let lit = match graded {
+            None => straight_light(tracer, vertex, light, (rng.gen(), rng.gen())),
+            Some(m) if !light.is_hittable() => {
+                curved_light(tracer, vertex, m, light, (rng.gen(), rng.gen()), stats)
+            }
+            Some(_) => Rgb::ZERO,
+        };
+        radiance += lit;
+    }
+    let Some(s) = vertex.scatter_with(rng) else {
+        return radiance;
+    };
+    let mut walker = Walker::carrying(carried, Policy::Unscattered);
+    let chain = walker.follow(s.ray, rng, stats, &mut ());
+    // Light samples reach only the arrival side of a vertex in a uniform medium.
+    let weighed = graded.is_none() && !s.sample.transmitted();
+    let mis = match chain.end {
+        End::Emitter {
+            prim,
+            position,
+            direction,
+            ..
+        } if weighed => scene.surfaces[prim]
+            .light
+            .map_or(1.0, |l| match &scene.lights[l] {
+                Light::Area { emitter, .. } => {
+                    let cos_l = -direction.dot(emitter.normal());
+                    let t2 = (position - origin).length_squared();
+                    power_heuristic(s.sample.pdf, t2 / (cos_l * emitter.area()))
+                }
+                _ => 1.0,
+            }),
+        _ => 1.0,
+    };
+    radiance += s.sample.weight * emission_seen(walker.tracer, &chain) * (mis * s.radiance_scale);
+    radiance
+}
