@@ -7,7 +7,7 @@
 Reads the subset of grinlight's scene format that Cornell-box-like scenes use -- quads, boxes,
 spheres and open cylinders; diffuse, conductor, dielectric and plastic materials; quad lights
 and a uniform sky -- and builds
-the same scene for Mitsuba's path tracer (box pixel filter, 64 path segments; the fast
+the same scene for Mitsuba's path tracer (box pixel filter, max_depth + 1 path segments; the fast
 `llvm_ad_rgb` variant, or `--variant scalar_rgb`), with the conventions of refs/README.md:
 two-sided Lambertian quads, a one-sided
 emitter that reflects nothing, exact Fresnel, GGX with visible-normal sampling; plastic as
@@ -146,7 +146,9 @@ def main():
         }
     d = {
         "type": "scene",
-        "integrator": {"type": "volpath" if fog else "path", "max_depth": 65},
+        # grinlight's max_depth counts scattering events, Mitsuba's path segments.
+        "integrator": {"type": "volpath" if fog else "path",
+                       "max_depth": scene.get("render", {}).get("max_depth", 64) + 1},
         "sensor": {
             "type": "perspective", "fov": cam["fov_y_deg"], "fov_axis": "y",
             "to_world": mi.ScalarTransform4f().look_at(
