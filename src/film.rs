@@ -261,6 +261,39 @@ impl Film {
         Ok(())
     }
 
+    /// The `w` × `h` rectangle of this film with its top-left corner at (x0, y0), as a film of
+    /// its own (the same passes; what was rejected is not said of a part).
+    pub fn crop(&self, x0: usize, y0: usize, w: usize, h: usize) -> Film {
+        let rows = |plane: &[[Fixed; 3]]| -> Vec<[Fixed; 3]> {
+            (y0..y0 + h)
+                .flat_map(|y| {
+                    plane[y * self.width + x0..y * self.width + x0 + w]
+                        .iter()
+                        .copied()
+                })
+                .collect()
+        };
+        Film {
+            width: w,
+            height: h,
+            layers: self.layers.clone(),
+            sums: self
+                .sums
+                .iter()
+                .map(|p| if p.is_empty() { Vec::new() } else { rows(p) })
+                .collect(),
+            passes: self.passes,
+            counts: (y0..y0 + h)
+                .flat_map(|y| {
+                    self.counts[y * self.width + x0..y * self.width + x0 + w]
+                        .iter()
+                        .copied()
+                })
+                .collect(),
+            rejected: 0,
+        }
+    }
+
     /// Adds `tile`, a film of a rectangle of this one, with its top-left corner at (x0, y0).
     pub fn paste(&mut self, tile: &Film, x0: usize, y0: usize) {
         for (k, plane) in tile.sums.iter().enumerate() {

@@ -42,7 +42,9 @@ pub struct Settings {
 /// How rays travel through the scene: the curved-ray engine and the path's length.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TraceSettings {
-    /// Maximum number of surface interactions and scattering events in media along a path.
+    /// Maximum number of surface interactions and scattering events in media along a path: a
+    /// bound (camera paths and map photons are ended by Russian roulette past
+    /// [`crate::transport::chain::ROULETTE_AFTER`] events; receiver photons only by it).
     pub max_depth: u32,
     /// Stepper in gradient media.
     pub stepper: StepperKind,
@@ -234,7 +236,7 @@ impl Default for Settings {
 impl Default for TraceSettings {
     fn default() -> Self {
         Self {
-            max_depth: 64,
+            max_depth: 65_536,
             stepper: StepperKind::DEFAULT,
             control: StepControl::default_for(StepperKind::DEFAULT),
             max_steps: 1_000_000,

@@ -441,3 +441,35 @@ fn the_deflection_table_is_used_only_where_it_is_accurate() {
         assert_eq!(film.layer("beauty"), traced.layer("beauty"), "{text}");
     }
 }
+
+/// The deflection table stands only for a medium that bends light and does nothing else: with
+/// a scattering coefficient, absorption, or a density scaling either, the scene is traced
+/// (through the table a fogged black hole rendered a crisp sky).
+#[test]
+fn the_deflection_table_refuses_a_medium_that_scatters_or_absorbs() {
+    use grinlight::integrator::DeflectionTable;
+    use grinlight::transport::Tracer;
+    let path = std::path::Path::new("scenes/schwarzschild.toml");
+    let text = std::fs::read_to_string(path).unwrap();
+    let never = || false;
+    let (scene, settings) = grinlight::scene::load::parse_scene(path, text.clone()).unwrap();
+    let tracer = Tracer::new(&scene, &settings.trace);
+    assert!(DeflectionTable::new(&tracer, &never).is_some());
+    let density = "density_bounds = [[-5, -5, -5], [5, 5, 5]]\ndensity_dims = [2, 2, 2]\n\
+                   density_values = [1, 1, 1, 1, 1, 1, 1, 1]";
+    for extra in [
+        "scattering = [0, 0, 3]".to_string(),
+        "absorption = 0.1".to_string(),
+        format!("scattering = 1\n{density}"),
+    ] {
+        let edited = text.replacen(
+            "profile = \"schwarzschild\"",
+            &format!("profile = \"schwarzschild\"\n{extra}"),
+            1,
+        );
+        assert_ne!(edited, text);
+        let (scene, settings) = grinlight::scene::load::parse_scene(path, edited).unwrap();
+        let tracer = Tracer::new(&scene, &settings.trace);
+        assert!(DeflectionTable::new(&tracer, &never).is_none(), "{extra}");
+    }
+}

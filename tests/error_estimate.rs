@@ -192,3 +192,31 @@ fn a_target_error_ends_the_render_where_the_estimate_reaches_it() {
     assert_eq!(render(&(scene, fixed)), film);
     assert!(film.names().contains(&ERROR));
 }
+
+/// An image black in every pass has no error to reduce: a target error ends it after
+/// [`MIN_PASSES_FOR_ERROR`] passes, saying so (its estimate, 0/0, was never reached).
+#[test]
+fn a_black_image_meets_any_target_error() {
+    let text = "[camera]\nposition = [0, 0, 3]\nlook_at = [0, 0, 0]\nfov_y_deg = 20\n\
+                width = 8\nheight = 8\n[render]\nspp = 1\ntarget_error = 0.01\n\
+                [[material]]\nname = \"black\"\ntype = \"diffuse\"\nalbedo = [0, 0, 0]\n\
+                [[shape]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 2\nmaterial = \"black\"\n\
+                [[light]]\ntype = \"point\"\nposition = [0, 0, 2.5]\nintensity = [1, 1, 1]\n";
+    let (scene, settings) =
+        grinlight::scene::load::parse_scene(std::path::Path::new("black.toml"), text.into())
+            .unwrap();
+    let lines = std::sync::Mutex::new(Vec::new());
+    struct Lines<'a>(&'a std::sync::Mutex<Vec<String>>);
+    impl grinlight::render::Observer for Lines<'_> {
+        fn line(&self, text: &str) {
+            self.0.lock().unwrap().push(text.to_string());
+        }
+    }
+    let (_, report) = grinlight::render::render(&scene, &settings, &Lines(&lines)).unwrap();
+    assert_eq!(report.passes, MIN_PASSES_FOR_ERROR);
+    let lines = lines.into_inner().unwrap();
+    assert!(
+        lines.iter().any(|l| l.contains("black in every pass")),
+        "{lines:?}"
+    );
+}

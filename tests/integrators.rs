@@ -133,7 +133,11 @@ fn passes_rendered_apart_merge_into_the_same_film() {
             &integrator,
             &tracer,
             &settings,
-            Passes { first, count },
+            Passes {
+                first,
+                count,
+                earlier: None,
+            },
             &(),
         )
         .unwrap()

@@ -237,3 +237,21 @@ fn a_density_that_scales_nothing_is_a_warning() {
         "{said}"
     );
 }
+
+/// A scene's `time_budget` or `target_error` without `passes` renders as many passes as it
+/// takes, as the command line's options do; with `passes` that many at most; with neither,
+/// one.
+#[test]
+fn a_time_budget_in_the_scene_renders_as_many_passes_as_fit() {
+    let camera = "[camera]\nposition = [0, 0, 1]\nlook_at = [0, 0, 0]\nfov_y_deg = 40\n";
+    for (render, passes) in [
+        ("time_budget = 30", u32::MAX),
+        ("target_error = 0.01", u32::MAX),
+        ("time_budget = 30\npasses = 5", 5),
+        ("spp = 2", 1),
+    ] {
+        let text = format!("{camera}[render]\n{render}\n");
+        let (_, settings) = grinlight::scene::load::parse_scene(Path::new("t.toml"), text).unwrap();
+        assert_eq!(settings.passes, passes, "{render}");
+    }
+}

@@ -634,3 +634,77 @@ fn damaged_partials_are_refused_before_any_merge_or_resume() {
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// Stops a render once it has finished `0` passes (an interrupt after them).
+struct StopAfterPasses(u32, std::sync::atomic::AtomicBool);
+
+impl Observer for StopAfterPasses {
+    fn pass_done(
+        &self,
+        passes: u32,
+        _: &dyn Fn() -> grinlight::film::Film,
+    ) -> grinlight::error::Result<()> {
+        if passes >= self.0 {
+            self.1.store(true, std::sync::atomic::Ordering::SeqCst);
+        }
+        Ok(())
+    }
+    fn stop_requested(&self) -> bool {
+        self.1.load(std::sync::atomic::Ordering::SeqCst)
+    }
+}
+
+/// A render with a target error, interrupted after 14 passes and resumed, stops where the
+/// uninterrupted render stops — the error judged on all its passes, not the resumed ones
+/// alone — with the same EXR byte for byte; interrupted at the pass that met the target and
+/// resumed, it renders no pass more.
+#[test]
+fn a_resumed_render_with_a_target_error_stops_where_one_run_would() {
+    let dir = workspace("target-resume");
+    let job = |output: &str| RenderJob {
+        output: Some(dir.join(output)),
+        overrides: Overrides {
+            target_error: Some(0.3),
+            passes: None,
+            ..cornell(&dir).overrides
+        },
+        ..cornell(&dir)
+    };
+    let whole = commands::render(&job("whole.exr"), &()).unwrap();
+    let passes = whole.film.as_ref().unwrap().passes;
+    assert!(passes > 20, "{passes}");
+    let stop = StopAfterPasses(14, Default::default());
+    let cut = commands::render(&job("cut.exr"), &stop).unwrap();
+    assert_eq!(cut.film.as_ref().unwrap().passes, 14);
+    let resumed = commands::render(
+        &RenderJob {
+            resume: true,
+            ..job("cut.exr")
+        },
+        &(),
+    )
+    .unwrap();
+    assert_eq!(resumed.film.as_ref().unwrap().passes, passes);
+    assert_eq!(
+        std::fs::read(dir.join("whole.exr")).unwrap(),
+        std::fs::read(dir.join("cut.exr")).unwrap()
+    );
+    // Interrupted at the very pass that met the target, the render saved its state: resumed,
+    // it finds the target met and renders no pass more.
+    let stop = StopAfterPasses(passes, Default::default());
+    commands::render(&job("late.exr"), &stop).unwrap();
+    let resumed = commands::render(
+        &RenderJob {
+            resume: true,
+            ..job("late.exr")
+        },
+        &(),
+    )
+    .unwrap();
+    assert_eq!(resumed.film.as_ref().unwrap().passes, passes);
+    assert_eq!(
+        std::fs::read(dir.join("whole.exr")).unwrap(),
+        std::fs::read(dir.join("late.exr")).unwrap()
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}

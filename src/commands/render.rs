@@ -736,6 +736,9 @@ fn results(
     let report = camera.cloned().unwrap_or_default();
     if camera.is_some() {
         observer.line(&report.summary());
+        if let Some(text) = report.stats.cut_warning(settings.trace.max_depth) {
+            observer.warning(&text);
+        }
     }
     if let Some(error) = film.error() {
         observer.line(&format!(

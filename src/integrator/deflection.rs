@@ -123,7 +123,8 @@ pub struct DeflectionTable<'a> {
 impl<'a> DeflectionTable<'a> {
     /// The table for the tracer's scene, or None when the scene is not one it can render
     /// exactly: anything in it besides the ambient medium (a surface, an area light, a
-    /// receiver), an ambient medium that is not spherically symmetric, absorbs or disperses,
+    /// receiver), an ambient medium that is not spherically symmetric, absorbs, scatters or
+    /// disperses,
     /// a thin-lens camera, a camera at the centre, or a world sphere off the camera–centre
     /// axis (the problem must be symmetric about that axis). Once `stop` answers true the
     /// build ends early (the render then stops before its first pass).
@@ -136,6 +137,7 @@ impl<'a> DeflectionTable<'a> {
         let no_surfaces = scene.accel.primitives().is_empty();
         if !no_surfaces
             || medium.absorbs()
+            || scene.media().scattering(ambient).is_some()
             || scene.media().is_dispersive(ambient)
             || camera.lens.is_some()
             || tracer.camera_medium != Some(ambient)

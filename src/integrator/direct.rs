@@ -13,7 +13,7 @@ use super::single::single_scattering;
 use super::CameraRay;
 use crate::color::Rgb;
 use crate::spectrum::Hero;
-use crate::transport::chain::{Carried, End, Policy, Ray, Walker};
+use crate::transport::chain::{Carried, Chain, End, Policy, Ray, Walker};
 use crate::transport::lighting::direct_light;
 pub use crate::transport::lighting::emission_seen;
 use crate::transport::{HeroTracer, Stats, Tracer, Vertex};
@@ -73,6 +73,7 @@ pub fn camera_path<'w>(
     };
     let mut walker = Walker::carrying(carried, Policy::Weighted).choosing(camera.choices);
     let chain = walker.follow(ray, rng, stats, &mut beams.record(carried.tracer));
+    record_cut(&chain, Rgb::ONE, stats);
     let mut out = Components {
         emitted: emission_seen(walker.tracer, &chain),
         single: single_scattering(beams, walker.carried(), rng, stats),
@@ -102,6 +103,14 @@ pub fn direct(carried: Carried, vp: &VisiblePoint, rng: &mut impl Rng, stats: &m
             Rgb::ZERO
         }
         _ => direct_at(carried, vp, rng, stats),
+    }
+}
+
+/// Counts in `stats` what a camera path whose chain ended at the depth limit carried there:
+/// `throughput` before the chain times the chain's weight.
+pub fn record_cut(chain: &Chain, throughput: Rgb, stats: &mut Stats) {
+    if chain.end == End::DepthLimit {
+        stats.camera_weight_cut += (throughput * chain.weight).mean();
     }
 }
 

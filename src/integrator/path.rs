@@ -12,7 +12,7 @@
 //! misses it, the photon mapper does not.
 
 use super::beam::Beams;
-use super::direct::{camera_path, direct, emission_seen, hero, VisiblePoint};
+use super::direct::{camera_path, direct, emission_seen, hero, record_cut, VisiblePoint};
 use super::single::single_scattering;
 use super::{CameraRay, Integrator, Sample, Slot};
 use crate::color::Rgb;
@@ -70,6 +70,7 @@ impl<'a> PathTracer<'a> {
             let mut beams = Beams::default();
             let chain = walker.follow(b.ray, s.rng, s.stats, &mut beams.record(walker.tracer));
             let weight = b.sample.weight * b.radiance_scale;
+            record_cut(&chain, vp.throughput * weight, s.stats);
             sum += vp.throughput
                 * weight
                 * single_scattering(&beams, walker.carried(), s.rng, s.stats);

@@ -29,7 +29,7 @@
 //!   by the same schedule (a beam reads a 2D kernel, as a surface does).
 
 use super::beam::Beams;
-use super::direct::{camera_path, direct, emission_seen, hero, VisiblePoint};
+use super::direct::{camera_path, direct, emission_seen, hero, record_cut, VisiblePoint};
 use super::footprint::{Eye, Way};
 use super::neighbourhood::Neighbourhood;
 use super::single::single_scattering;
@@ -254,6 +254,8 @@ impl<'a> PhotonMapper<'a> {
             let mut next = vp.vertex.scatter_with(s.rng);
             while let Some(b) = next {
                 let chain = walker.follow(b.ray, s.rng, s.stats, &mut ());
+                let before = vp.throughput * weight * b.sample.weight * b.radiance_scale;
+                record_cut(&chain, before / gather as f64, s.stats);
                 weight = weight * b.sample.weight * chain.weight * b.radiance_scale;
                 let End::Scatter(y) = chain.end else { break };
                 weight *= chain.radiance_scale();
@@ -297,6 +299,8 @@ impl<'a> PhotonMapper<'a> {
                 }
             }
             if walker.depth == 0 {
+                s.stats.camera_weight_cut += vp.throughput.mean();
+                s.stats.depth_limited += 1;
                 return None;
             }
             found.direct += direct(walker.carried(), &vp, s.rng, s.stats);
@@ -307,6 +311,7 @@ impl<'a> PhotonMapper<'a> {
             let throughput = vp.throughput * b.sample.weight * b.radiance_scale;
             let mut beams = Beams::default();
             let chain = walker.follow(b.ray, s.rng, s.stats, &mut beams.record(walker.tracer));
+            record_cut(&chain, throughput, s.stats);
             found.caustic += throughput * self.volume_caustic(maps, &beams, walker.tracer, s);
             found.direct +=
                 throughput * single_scattering(&beams, walker.carried(), s.rng, s.stats);

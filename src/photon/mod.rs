@@ -830,6 +830,9 @@ fn trace_photon(
         splits: tag.batch != Batch::Receivers,
     }];
     let mut emitted = (e.power / tag.count as f64).mean();
+    if tag.batch != Batch::Receivers {
+        stats.photon_power_emitted += emitted;
+    }
     while let Some(branch) = branches.pop() {
         walk.power = branch.power;
         let lent = Lent {
@@ -921,7 +924,13 @@ fn follow_branch<'w, R: Rng>(
             End::Escaped { .. } => break walk.escaped(chain.medium),
             End::Emitter { .. } | End::Absorbed { medium: None } => break Fate::Absorbed,
             End::Absorbed { medium: Some(m) } => break Fate::AbsorbedIn(m),
-            End::Lost | End::DepthLimit | End::Stopped => break Fate::Lost,
+            End::DepthLimit => {
+                if tag.batch != Batch::Receivers {
+                    stats.photon_power_cut += walk.power.mean();
+                }
+                break Fate::Lost;
+            }
+            End::Lost | End::Stopped => break Fate::Lost,
         };
         let outside = match &vertex {
             Vertex::Medium(v) => Cone::toward(tracer.ball, v.position).map(|c| (v, c)),
@@ -969,20 +978,36 @@ fn follow_branch<'w, R: Rng>(
         if tag.batch == Batch::Caustic && vertex.lobes() == Lobes::DIFFUSE_REFLECTION {
             break Fate::Absorbed;
         }
+        // Map photons go on from here past a depth only by Russian roulette ([`chain::ROULETTE_AFTER`]); a
+        // receiver photon goes on to `max_depth`, so that the budget books every photon's own
+        // power.
+        let met = tracer.settings.max_depth.saturating_sub(b.walker.depth);
+        if tag.batch != Batch::Receivers && met > chain::ROULETTE_AFTER {
+            if rng.gen::<f64>() >= chain::ROULETTE_SURVIVAL {
+                break Fate::Lost;
+            }
+            walk.power /= chain::ROULETTE_SURVIVAL;
+        }
         if let (Some((v, cone)), true) = (outside, b.splits) {
             let ((toward, weight), on) = split_toward(v, cone, rng);
-            branches.push(Branch {
-                ray: Ray {
-                    origin: v.position,
-                    direction: toward,
-                    medium: v.medium,
-                },
-                power: walk.power * weight,
-                bent: true,
-                fogged: true,
-                splits: false,
-                ..b
-            });
+            // A branch from far out, whose weight is small, is kept by Russian roulette in
+            // proportion to it: in a thick fog a photon scatters outside the ball dozens of
+            // times, and each branch is a photon to trace.
+            let kept = (2.0 * weight).min(1.0);
+            if rng.gen::<f64>() < kept {
+                branches.push(Branch {
+                    ray: Ray {
+                        origin: v.position,
+                        direction: toward,
+                        medium: v.medium,
+                    },
+                    power: walk.power * (weight / kept),
+                    bent: true,
+                    fogged: true,
+                    splits: false,
+                    ..b
+                });
+            }
             b.bent = true;
             b.fogged = true;
             match on {

@@ -11,7 +11,7 @@
 use crate::camera::FilmPoint;
 use crate::color::Rgb;
 use crate::error::{Error, Result};
-use crate::film::Film;
+use crate::film::{ErrorTotals, Film};
 use crate::integrator::{
     CameraRay, DeflectionTable, Integrator, PathTracer, PhotonMapper, Plan, Sample,
 };
@@ -120,6 +120,7 @@ pub fn render(
     let passes = Passes {
         first: 0,
         count: settings.passes,
+        earlier: None,
     };
     render_passes(scene, settings, passes, observer)
 }
@@ -165,12 +166,15 @@ pub fn render_passes(
 }
 
 /// A range of global pass indices.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Passes {
+#[derive(Clone, Copy, Debug)]
+pub struct Passes<'f> {
     /// The first pass's index.
     pub first: u32,
     /// How many (`u32::MAX` with a time budget: as many as fit).
     pub count: u32,
+    /// The film of the passes already rendered before this range (a resumed render's): the
+    /// target error is judged on them and the range together, as one render would.
+    pub earlier: Option<&'f Film>,
 }
 
 /// Renders `passes` of the tracer's scene with `integrator` into one film. Stopped by the
@@ -192,6 +196,9 @@ pub fn render_with<I: Integrator>(
     let pool = thread_pool(settings.threads)?;
     let start = Instant::now();
     let mut report = Report::default();
+    let mut target = settings
+        .target_error
+        .map(|t| Target::new(t, passes.earlier, &tiles));
     observer.progress(Progress::Rendering {
         tiles: tiles.len() as u64,
         passes: (passes.count != u32::MAX).then_some(passes.count),
@@ -204,6 +211,12 @@ pub fn render_with<I: Integrator>(
             .time_budget
             .is_some_and(|b| start.elapsed().as_secs_f64() >= b);
         if (k > 0 && over_budget) || stop() {
+            break;
+        }
+        if target
+            .as_mut()
+            .is_some_and(|t| t.reached(&tiles, start, observer))
+        {
             break;
         }
         observer.progress(Progress::Pass(k));
@@ -250,22 +263,6 @@ pub fn render_with<I: Integrator>(
             t.film.film.passes = report.passes;
         }
         observer.pass_done(report.passes, &|| assemble(&tiles, report.passes))?;
-        if let Some(target) = settings.target_error {
-            let totals = tiles
-                .par_iter()
-                .map(|t| t.film.film.error_totals())
-                .reduce(Default::default, |a, b| a + b);
-            if totals.mean > 0.0 {
-                let error = totals.relative_rmse();
-                observer.line(&format!(
-                    "pass {}: estimated error {error:.4} (relative RMSE; target {target})",
-                    report.passes
-                ));
-                if error <= target && report.passes >= MIN_PASSES_FOR_ERROR {
-                    break;
-                }
-            }
-        }
     }
     if report.partial.is_none() && stop() && report.passes < passes.count {
         report.partial = Some(format!("{} of {} passes", report.passes, passes.count));
@@ -279,6 +276,101 @@ pub fn render_with<I: Integrator>(
         tiles.into_iter().map(|t| t.film),
     );
     Ok((film, report))
+}
+
+/// The stopping rule of a target error: the film's own estimate of its relative RMSE, over
+/// the passes of the range rendered and those rendered before it, after at least
+/// [`MIN_PASSES_FOR_ERROR`] passes.
+struct Target {
+    error: f64,
+    /// The earlier passes' film cut as the tiles are (empty without one).
+    earlier: Vec<Film>,
+    /// Whether the user was told the target looks out of reach.
+    warned: bool,
+    /// The passes at the last check.
+    checked: u32,
+}
+
+/// A render this long that is projected to need ten times as long again for its target error
+/// says so, once.
+const TARGET_OUT_OF_REACH_AFTER: f64 = 60.0;
+
+impl Target {
+    fn new(error: f64, earlier: Option<&Film>, tiles: &[Tile]) -> Self {
+        let earlier = earlier
+            .map(|f| {
+                tiles
+                    .iter()
+                    .map(|t| f.crop(t.film.x0, t.film.y0, t.film.film.width, t.film.film.height))
+                    .collect()
+            })
+            .unwrap_or_default();
+        Self {
+            error,
+            earlier,
+            warned: false,
+            checked: 0,
+        }
+    }
+
+    /// Whether the film of the earlier passes and `tiles` has reached the target (printing its
+    /// estimate after each pass): its estimate at or below it, or every pass exactly black (no
+    /// error to reduce). Warns once when the rate so far puts the target ten times the time
+    /// spent (`start`) away.
+    fn reached(&mut self, tiles: &[Tile], start: Instant, observer: &dyn Observer) -> bool {
+        let totals = tiles
+            .par_iter()
+            .enumerate()
+            .map(|(i, t)| match self.earlier.get(i) {
+                Some(e) => {
+                    let mut f = e.clone();
+                    f.merge(&t.film.film)
+                        .expect("a tile and its crop of the earlier film are of one view");
+                    (f.error_totals(), f.passes)
+                }
+                None => (t.film.film.error_totals(), t.film.film.passes),
+            })
+            .reduce(
+                || (ErrorTotals::default(), 0),
+                |a, b| (a.0 + b.0, a.1.max(b.1)),
+            );
+        let (totals, passes) = totals;
+        if passes == self.checked {
+            return false;
+        }
+        self.checked = passes;
+        if passes < 2 {
+            return false;
+        }
+        if totals.mean <= 0.0 {
+            let black = totals.variance == 0.0 && passes >= MIN_PASSES_FOR_ERROR;
+            if black {
+                observer.line(&format!(
+                    "pass {passes}: the image is black in every pass: no error to reduce"
+                ));
+            }
+            return black;
+        }
+        let error = totals.relative_rmse();
+        observer.line(&format!(
+            "pass {passes}: estimated error {error:.4} (relative RMSE; target {})",
+            self.error
+        ));
+        let elapsed = start.elapsed().as_secs_f64();
+        // The estimate falls as 1/√passes: the target is (error/target)² times the passes away.
+        let needed = passes as f64 * (error / self.error).powi(2);
+        if !self.warned && elapsed >= TARGET_OUT_OF_REACH_AFTER && needed >= 11.0 * passes as f64 {
+            self.warned = true;
+            observer.warning(&format!(
+                "target error {} looks out of reach: {error:.4} after {passes} passes, about \
+                 {needed:.0} passes ({:.0} s more at this rate) to reach it; the render goes on \
+                 until then, a time budget or Ctrl-C",
+                self.error,
+                elapsed * (needed / passes as f64 - 1.0)
+            ));
+        }
+        error <= self.error && passes >= MIN_PASSES_FOR_ERROR
+    }
 }
 
 /// The camera's film size in pixels, or an error naming the scene that has no camera.

@@ -100,6 +100,7 @@ pub fn run(
         let range = Passes {
             first: r.start as u32,
             count: (r.end - r.start) as u32,
+            earlier: ran.partial.film.as_ref(),
         };
         let (film, report) = render::render_passes(scene, settings, range, &watcher)?;
         let done = r.start..r.start + report.passes as u64;

@@ -261,6 +261,16 @@ struct Lent<'a, R> {
     stats: &'a mut Stats,
 }
 
+/// Events (surfaces and scattering in media) a camera path or a map photon meets before
+/// Russian roulette may end it: past them each further event is survived with probability
+/// [`ROULETTE_SURVIVAL`], the survivors weighed by its reciprocal — unbiased, and a path
+/// trapped between mirrors or in a conservative fog ends all the same (`max_depth` is only
+/// a bound, 65 536 unless the scene sets it).
+pub const ROULETTE_AFTER: u32 = 64;
+
+/// The chance a path goes on at each event past [`ROULETTE_AFTER`].
+pub const ROULETTE_SURVIVAL: f64 = 0.95;
+
 /// The most null collisions (and redraws at a local majorant's reach) one stretch may meet in
 /// a heterogeneous medium (a path in a near empty corner of a dense grid, or one orbiting in a
 /// void): bounded time, never a loop.
@@ -524,6 +534,13 @@ impl<'w> Walker<'w> {
             return ControlFlow::Break(End::DepthLimit);
         }
         self.depth -= 1;
+        let met = self.tracer.settings.max_depth.saturating_sub(self.depth);
+        if self.policy == Policy::Weighted && met > ROULETTE_AFTER {
+            if lent.rng.gen::<f64>() >= ROULETTE_SURVIVAL {
+                return ControlFlow::Break(End::Absorbed { medium: None });
+            }
+            chain.weight /= ROULETTE_SURVIVAL;
+        }
         self.meet_dispersion(self.tracer.disperses_in(at.medium), chain);
         chain.curved |= at
             .medium

@@ -17,6 +17,13 @@ pub struct Stats {
     pub ends: [u64; 6],
     /// Paths that ended at the depth limit.
     pub depth_limited: u64,
+    /// What camera paths ended at the depth limit carried: their weight there (a camera
+    /// sample's is 1 where it starts; the mean over channels), summed.
+    pub camera_weight_cut: f64,
+    /// The power map photons left their sources with (W, the mean over channels), summed.
+    pub photon_power_emitted: f64,
+    /// The power map photons ended at the depth limit carried there (W), summed.
+    pub photon_power_cut: f64,
     /// Paths lost at a surface because a medium's index is undefined there (inside a medium's
     /// capture region: a black hole's horizon, the hyperbolic medium's rim).
     pub undefined_index: u64,
@@ -66,6 +73,9 @@ impl Stats {
         self.curved_marches += o.curved_marches;
         self.curved_steps += o.curved_steps;
         self.depth_limited += o.depth_limited;
+        self.camera_weight_cut += o.camera_weight_cut;
+        self.photon_power_emitted += o.photon_power_emitted;
+        self.photon_power_cut += o.photon_power_cut;
         self.undefined_index += o.undefined_index;
         self.photons_emitted += o.photons_emitted;
         self.gather_rays += o.gather_rays;
@@ -76,6 +86,33 @@ impl Stats {
         for (a, b) in self.ends.iter_mut().zip(o.ends) {
             *a += b;
         }
+    }
+
+    /// What paths ended at the depth limit took away, where it is more than a thousandth: of
+    /// the camera paths' weight (the light they would have gathered on, as a share of what
+    /// they gathered if the light they found beyond is like the rest), and of the map photons'
+    /// power; None where the cut took less.
+    pub fn cut_warning(&self, max_depth: u32) -> Option<String> {
+        let camera = self.camera_weight_cut / self.camera_rays.max(1) as f64;
+        let photons = self.photon_power_cut / self.photon_power_emitted.max(f64::MIN_POSITIVE);
+        let mut parts = Vec::new();
+        if camera > 1e-3 {
+            parts.push(format!(
+                "{:.2} % of the camera paths' weight",
+                100.0 * camera
+            ));
+        }
+        if photons > 1e-3 {
+            parts.push(format!("{:.2} % of the photons' power", 100.0 * photons));
+        }
+        (!parts.is_empty()).then(|| {
+            format!(
+                "paths cut at max_depth {max_depth} carried {}: the image is that much too dark \
+                 where they went; raise [render] max_depth (or leave it out: paths then end \
+                 by Russian roulette)",
+                parts.join(" and ")
+            )
+        })
     }
 
     /// A multi-line summary.

@@ -46,9 +46,11 @@ pub fn read_render(t: &mut TableReader) -> Result<Settings> {
     let radius = optional_positive(t, "radius")?;
     let time_budget = optional_positive(t, "time_budget")?;
     let target_error = optional_positive(t, "target_error")?;
-    // A target error with no count of passes renders as many as it takes.
-    let passes = match (target_error, t.has("passes")) {
-        (Some(_), false) => u32::MAX,
+    // A time budget or a target error with no count of passes renders as many as it takes
+    // (as the command line's options do).
+    let open_ended = time_budget.is_some() || target_error.is_some();
+    let passes = match (open_ended, t.has("passes")) {
+        (true, false) => u32::MAX,
         _ => t.setting(settings::PASSES, Settings::default().passes as u64)? as u32,
     };
     let d = Settings::default();
