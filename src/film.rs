@@ -469,10 +469,14 @@ impl Film {
                 )
             })
             .collect();
-        let image = Image::from_layers(
+        let mut image = Image::from_layers(
             ImageAttributes::new(IntegerBounds::from_dimensions(size)),
             layers,
         );
+        // Every layer's header says who wrote it: a later render may replace the file.
+        for layer in image.layer_data.iter_mut() {
+            layer.attributes.software_name = Some(crate::output::signature().as_str().into());
+        }
         crate::output::write_atomic(path, |tmp| {
             image.write().to_file(tmp).map_err(|e| Error::Image {
                 path: path.to_path_buf(),

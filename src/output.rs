@@ -3,8 +3,10 @@
 //! Every file a command writes is first declared in an [`Outputs`] plan, which is checked
 //! before any work starts: the directory must exist and take a new file; the path must not be
 //! one of the run's inputs (the scene, a mesh, an environment map, a grid) nor another output
-//! of the same run; and a file already there is replaced only if it is a file of the kind the
-//! run writes (an EXR, a PNG, a CSV) that may be written, never a scene or anything else.
+//! of the same run; and a file already there is replaced only if grinlight wrote it — every
+//! file it writes says so ([`signature`]: an EXR's `software` attribute, a PNG's `Software`
+//! text chunk, a CSV's first line, a partial's magic number) — never a user's image, table,
+//! scene or anything else.
 //!
 //! Then each file is written by [`write_atomic`]: into a temporary file in the same directory,
 //! renamed over the target only once it is complete, so a crash, a kill or a full disk leaves
@@ -24,15 +26,24 @@ pub fn is_exr(path: &std::path::Path) -> bool {
         .is_some_and(|e| e.eq_ignore_ascii_case("exr"))
 }
 
+/// What every file grinlight writes says of itself: `grinlight` and its version.
+pub fn signature() -> String {
+    format!("grinlight {}", env!("CARGO_PKG_VERSION"))
+}
+
+/// How much of a file's start is read to find its signature (an EXR's header holds its
+/// attributes, a PNG's text chunk comes before its image data).
+const SIGNED_WITHIN: usize = 1 << 16;
+
 /// What kind of file an output is: what an existing file at its path must look like to be
-/// replaced.
+/// replaced — one grinlight wrote.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Kind {
-    /// An OpenEXR image (magic number 76 2f 31 01).
+    /// An OpenEXR image (magic number 76 2f 31 01) whose `software` attribute is grinlight's.
     Exr,
-    /// A PNG image.
+    /// A PNG image whose `Software` text chunk is grinlight's.
     Png,
-    /// A CSV table whose first line is a header of lower-case names separated by commas.
+    /// A CSV table whose first line is `# grinlight …` ([`write_csv`]).
     Csv,
     /// A grinlight partial result (see [`crate::shard`]).
     Partial,
@@ -41,29 +52,33 @@ pub enum Kind {
 impl Kind {
     fn name(self) -> &'static str {
         match self {
-            Kind::Exr => "an EXR image",
-            Kind::Png => "a PNG image",
-            Kind::Csv => "a CSV table",
+            Kind::Exr => "an EXR image grinlight wrote",
+            Kind::Png => "a PNG image grinlight wrote",
+            Kind::Csv => "a CSV table grinlight wrote",
             Kind::Partial => "a grinlight partial result",
         }
     }
 
-    /// Whether the start of a file's content is a file of this kind.
+    /// Whether the start of a file's content is a file of this kind that grinlight wrote.
     fn recognises(self, head: &[u8]) -> bool {
+        let find = |needle: &[u8]| head.windows(needle.len()).position(|w| w == needle);
         match self {
-            Kind::Exr => head.starts_with(&[0x76, 0x2f, 0x31, 0x01]),
-            Kind::Partial => head.starts_with(PARTIAL_MAGIC),
-            Kind::Png => head.starts_with(b"\x89PNG\r\n\x1a\n"),
-            Kind::Csv => {
-                let line = head.split(|&b| b == b'\n').next().unwrap_or_default();
-                !line.is_empty()
-                    && line.split(|&b| b == b',').all(|name| {
-                        !name.is_empty()
-                            && name
-                                .iter()
-                                .all(|&b| b.is_ascii_lowercase() || b.is_ascii_digit() || b == b'_')
+            Kind::Exr => {
+                // The attribute: its name, its type, a 4-byte length, then the text.
+                let attribute = b"software\0string\0";
+                head.starts_with(&[0x76, 0x2f, 0x31, 0x01])
+                    && find(attribute).is_some_and(|at| {
+                        head[at + attribute.len()..]
+                            .get(4..)
+                            .is_some_and(|text| text.starts_with(b"grinlight "))
                     })
             }
+            Kind::Partial => head.starts_with(PARTIAL_MAGIC),
+            Kind::Png => {
+                head.starts_with(b"\x89PNG\r\n\x1a\n")
+                    && find(b"tEXtSoftware\0grinlight ").is_some()
+            }
+            Kind::Csv => head.starts_with(b"# grinlight "),
         }
     }
 }
@@ -129,10 +144,11 @@ impl Outputs {
             if meta.permissions().readonly() {
                 return refuse("exists and is read-only: refusing to replace it".into());
             }
-            let mut head = [0u8; 256];
-            let read = std::fs::File::open(path)
-                .and_then(|mut f| f.read(&mut head))
+            let mut head = Vec::new();
+            std::fs::File::open(path)
+                .and_then(|f| f.take(SIGNED_WITHIN as u64).read_to_end(&mut head))
                 .map_err(|e| Error::io(path, e))?;
+            let read = head.len();
             if meta.len() > 0 && !kind.recognises(&head[..read]) {
                 return refuse(format!(
                     "exists and is not {}: refusing to overwrite it (move it or choose another output)",
@@ -266,6 +282,12 @@ pub fn together<T>(write: impl FnOnce() -> Result<T>) -> Result<T> {
         }
     }
     renamed
+}
+
+/// Writes a CSV table to `path` atomically: a first line `# grinlight VERSION: what` (a
+/// comment to CSV readers that take one: pandas' `comment="#"`), then `table`.
+pub fn write_csv(path: &Path, what: &str, table: &str) -> Result<()> {
+    write_text(path, &format!("# {}: {what}\n{table}", signature()))
 }
 
 /// Writes `text` to `path` atomically.

@@ -41,14 +41,26 @@ pub fn canvas(width: u32, height: u32) -> RgbImage {
     RgbImage::from_pixel(width, height, Rgb([255, 255, 255]))
 }
 
-/// Writes `img` as PNG.
+/// Writes `img` as PNG, its `Software` text chunk naming grinlight ([`crate::output::signature`]).
 pub fn save(img: &RgbImage, path: &Path) -> Result<()> {
     crate::output::write_atomic(path, |tmp| {
-        img.save_with_format(tmp, image::ImageFormat::Png)
-            .map_err(|e| Error::Image {
-                path: path.to_path_buf(),
-                message: e.to_string(),
-            })
+        let failed = |e: &dyn std::fmt::Display| Error::Image {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+        };
+        let file = std::fs::File::create(tmp).map_err(|e| Error::io(path, e))?;
+        let mut encoder =
+            png::Encoder::new(std::io::BufWriter::new(file), img.width(), img.height());
+        encoder.set_color(png::ColorType::Rgb);
+        encoder.set_depth(png::BitDepth::Eight);
+        encoder
+            .add_text_chunk("Software".into(), crate::output::signature())
+            .map_err(|e| failed(&e))?;
+        let mut writer = encoder.write_header().map_err(|e| failed(&e))?;
+        writer
+            .write_image_data(img.as_raw())
+            .map_err(|e| failed(&e))?;
+        writer.finish().map_err(|e| failed(&e))
     })
 }
 

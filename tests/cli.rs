@@ -43,10 +43,11 @@ fn trace_writes_a_csv_from_start_to_end_and_a_png() {
     let text = std::fs::read_to_string(&csv).unwrap();
     let rows: Vec<Vec<f64>> = text
         .lines()
-        .skip(1)
+        .skip(2)
         .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
         .collect();
-    assert_eq!(text.lines().next().unwrap(), "step,s,x,y,z,dx,dy,dz,n");
+    assert!(text.starts_with("# grinlight "), "{text}");
+    assert_eq!(text.lines().nth(1).unwrap(), "step,s,x,y,z,dx,dy,dz,n");
     let first = &rows[0];
     assert_eq!(&first[..8], &[0.0, 0.0, -0.8, 0.6, 0.0, 1.0, 0.0, 0.0]);
     let last = rows.last().unwrap();

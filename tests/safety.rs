@@ -92,7 +92,7 @@ fn outputs_never_overwrite_inputs_or_foreign_files() {
                 "--csv",
                 "notes.csv",
             ],
-            "is not a CSV table",
+            "is not a CSV table grinlight wrote",
         ),
     ];
     // The medium's name in the scene (an anonymous uniform medium of the glass's ior).
@@ -128,6 +128,93 @@ fn outputs_never_overwrite_inputs_or_foreign_files() {
     let out = grinlight(&dir, &["render", "m.toml", "-o", "r.exr"]);
     assert!(out.status.success(), "{}", stderr(&out));
     assert!(dir.join("r.exr").is_file() && dir.join("r.png").is_file());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// A user's own file at a path a render derives from its output, or at the output itself, is
+/// never replaced — an image beside the EXR (`photo.png` for `-o photo.exr`), an EXR another
+/// program wrote, a CSV of the user's at a receiver's CSV path (a header line of names, or a
+/// single lower-case word) — each refused naming it, and left byte for byte; the files a
+/// render wrote are replaced by the next render.
+#[test]
+fn a_users_files_on_derived_paths_are_refused() {
+    let dir = workspace("derived");
+    std::fs::copy("scenes/fiber_led.toml", dir.join("fiber.toml")).unwrap();
+    // A PNG and an EXR that grinlight did not write (another program's: no signature).
+    let mut png = Vec::new();
+    image::RgbImage::new(2, 2)
+        .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
+        .unwrap();
+    let exr = std::fs::read(dir.join("sky.exr")).unwrap();
+    let cases: Vec<(&str, Vec<u8>, Vec<&str>)> = vec![
+        (
+            "photo.png",
+            png.clone(),
+            vec!["render", "m.toml", "-o", "photo.exr"],
+        ),
+        (
+            "theirs.exr",
+            exr,
+            vec!["render", "m.toml", "-o", "theirs.exr"],
+        ),
+        (
+            "f.exit.csv",
+            b"x,y\n1,2\n".to_vec(),
+            vec![
+                "render",
+                "fiber.toml",
+                "-o",
+                "f.exr",
+                "--receiver-photons",
+                "1000",
+            ],
+        ),
+        (
+            "g.exit.radial.csv",
+            b"hello\n".to_vec(),
+            vec![
+                "render",
+                "fiber.toml",
+                "-o",
+                "g.exr",
+                "--receiver-photons",
+                "1000",
+            ],
+        ),
+    ];
+    for (file, bytes, args) in &cases {
+        std::fs::write(dir.join(file), bytes).unwrap();
+        let out = grinlight(&dir, args);
+        assert!(!out.status.success(), "{args:?} succeeded");
+        assert!(
+            stderr(&out).contains(&format!("{file}: exists and is not")),
+            "{args:?}: {}",
+            stderr(&out)
+        );
+        assert_eq!(
+            &std::fs::read(dir.join(file)).unwrap(),
+            bytes,
+            "{file} changed"
+        );
+        std::fs::remove_file(dir.join(file)).unwrap();
+    }
+    // What grinlight wrote, it replaces.
+    for _ in 0..2 {
+        let out = grinlight(
+            &dir,
+            &[
+                "render",
+                "fiber.toml",
+                "-o",
+                "f.exr",
+                "--receiver-photons",
+                "1000",
+            ],
+        );
+        assert!(out.status.success(), "{}", stderr(&out));
+        let out = grinlight(&dir, &["render", "m.toml", "-o", "photo.exr"]);
+        assert!(out.status.success(), "{}", stderr(&out));
+    }
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

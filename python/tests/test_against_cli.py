@@ -73,6 +73,7 @@ def test_trace_gives_the_command_lines_csv(cli, scenes, tmp_path):
         cwd=tmp_path,
     )
     with open(tmp_path / "ray.csv") as f:
+        assert f.readline().startswith("# grinlight ")
         rows = [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
     traced = grinlight.trace(scene, medium="rod", stepper="rkn", wavelength=486.1, **ray)
     assert traced.reason == "length reached"
@@ -90,6 +91,7 @@ def test_measure_gives_the_receivers_csv(cli, scenes, tmp_path):
     settings = dict(receiver_photons=30000, seed=3)
     run(cli, "render", scenes / "fiber_led.toml", "-o", tmp_path / "fiber.exr", *cli_flags(settings), cwd=tmp_path)
     with open(tmp_path / "fiber.exit.csv") as f:
+        assert f.readline().startswith("# grinlight ")
         rows = list(csv.DictReader(f))
     m = grinlight.load(scenes / "fiber_led.toml").measure(photons=30000, seed=3, progress=False)
     exit_ = m.receivers["exit"]

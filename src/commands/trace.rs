@@ -283,11 +283,13 @@ pub fn summary(out: &MarchOutcome) -> String {
     )
 }
 
-/// Writes `step,s,x,y,z,dx,dy,dz,n`, one row per accepted point (the start first).
+/// Writes `step,s,x,y,z,dx,dy,dz,n`, one row per accepted point (the start first), after
+/// grinlight's comment line ([`crate::output::write_csv`]).
 pub fn write_csv(points: &[PathPoint], path: &Path) -> Result<()> {
     crate::output::write_atomic(path, |tmp| {
         let io = |e| Error::io(path, e);
         let mut w = std::io::BufWriter::new(std::fs::File::create(tmp).map_err(io)?);
+        writeln!(w, "# {}: a traced ray's path", crate::output::signature()).map_err(io)?;
         writeln!(w, "step,s,x,y,z,dx,dy,dz,n").map_err(io)?;
         for (i, p) in points.iter().enumerate() {
             let (x, d) = (p.state.position, p.state.direction);

@@ -7,7 +7,8 @@ use crate::error::Result;
 use crate::plot::{canvas, save, text, Color, Labels, Panel, PALETTE};
 use std::path::Path;
 
-/// Writes `x,y,irradiance,stderr` (bin centres in the receiver's u, v frame), then
+/// Writes, after grinlight's comment line ([`crate::output::write_csv`]),
+/// `x,y,irradiance,stderr` (bin centres in the receiver's u, v frame), then
 /// `irradiance_LO_HI,stderr_LO_HI` for each wavelength band [LO, HI) nm, one row per bin.
 pub fn write_csv(rec: &Receiver, m: &Measurement, path: &Path) -> Result<()> {
     let mut out = String::from("x,y,irradiance,stderr");
@@ -23,7 +24,8 @@ pub fn write_csv(rec: &Receiver, m: &Measurement, path: &Path) -> Result<()> {
         }
         out.push('\n');
     }
-    crate::output::write_text(path, &out)
+    let what = format!("receiver '{}', irradiance per bin", rec.name);
+    crate::output::write_csv(path, &what, &out)
 }
 
 /// Writes `r,irradiance,stderr` of [`super::radial_profile`].
@@ -32,7 +34,7 @@ pub fn write_radial_csv(profile: &[(f64, f64, f64)], path: &Path) -> Result<()> 
     for (r, e, se) in profile {
         out += &format!("{r:.6e},{e:.6e},{se:.6e}\n");
     }
-    crate::output::write_text(path, &out)
+    crate::output::write_csv(path, "radial irradiance profile", &out)
 }
 
 /// A colour for t ∈ [0, 1]: black → purple → orange → pale yellow (an "inferno"-like ramp).
