@@ -61,6 +61,25 @@ impl Error {
     }
 }
 
+/// A piece of the user's input shown in a message: at most 40 characters, then `…` (a file
+/// of one endless word must not come back as a message of the same size).
+pub fn cut(text: &str) -> String {
+    const SHOWN: usize = 40;
+    match text.char_indices().nth(SHOWN) {
+        Some((end, _)) => format!("{}…", &text[..end]),
+        None => text.to_string(),
+    }
+}
+
+/// A number the user gave, for a message: in exponent form beyond 10⁶ in magnitude (1e300,
+/// not three hundred digits), as written below it.
+pub fn number(x: f64) -> String {
+    match x.abs() >= 1e6 && x.is_finite() {
+        true => format!("{x:e}"),
+        false => format!("{x}"),
+    }
+}
+
 /// The crate's result type.
 pub type Result<T> = std::result::Result<T, Error>;
 

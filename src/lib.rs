@@ -32,6 +32,7 @@ pub mod fiber;
 pub mod film;
 pub mod input;
 pub mod integrator;
+pub mod interrupt;
 pub mod lights;
 pub mod material;
 pub mod math;

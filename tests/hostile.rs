@@ -182,6 +182,19 @@ fn cases() -> Vec<Case> {
             expect: Error("value #3 'x' is not a number"),
         },
         Case {
+            name: "grid file too long",
+            files: vec![("s.toml", scene(&grid("dims = [2, 2, 2]\nfile = \"g.txt\"\n"))), ("g.txt", b"1 1 1 1\n1 1 1 1 1".to_vec())],
+            args: render(""),
+            expect: Error("more than the 8 values of dims [2, 2, 2] (line 2)"),
+        },
+        Case {
+            // A word of a megabyte comes back cut, not whole.
+            name: "grid file endless word",
+            files: vec![("s.toml", scene(&grid("dims = [2, 2, 2]\nfile = \"g.txt\"\n"))), ("g.txt", [b"1 ".to_vec(), vec![b'x'; 300_000], b"\n".to_vec()].concat())],
+            args: render(""),
+            expect: Error("value #1 'xxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxx…' is not a number"),
+        },
+        Case {
             name: "grid file too short",
             files: vec![("s.toml", scene(&grid("dims = [2, 2, 2]\nfile = \"g.txt\"\n"))), ("g.txt", b"1 1 1".to_vec())],
             args: render(""),
@@ -206,6 +219,7 @@ fn cases() -> Vec<Case> {
         mesh_case("index zero", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n", "", Error("index 0 does not exist")),
         mesh_case("relative index too far", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -1 -2 -4\n", "", Error("index -4 does not exist")),
         mesh_case("two-corner face", "v 0 0 0\nv 1 0 0\nf 1 2\n", "", Error("line 3: a face needs at least 3 corners")),
+        mesh_case("zero-area faces", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n", "", Error("key `file`: m.obj: all 1 triangles have zero area (each face's corners lie on a line)")),
         mesh_case("bad normal index", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//2\n", "", Error("normal index 2 does not exist")),
         mesh_case("degenerate mesh", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n", "", Error("all 1 triangles have zero area")),
         mesh_case("mesh scaled beyond range", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "scale = 1e29\ntranslate = [1e30, 0, 0]\n", Error("beyond")),
@@ -453,7 +467,8 @@ fn outputs_finite(dir: &Path, inputs: &[(&str, Vec<u8>)]) -> Result<usize, Strin
             }
             Some("csv") => {
                 let text = std::fs::read_to_string(&path).unwrap();
-                for cell in text.lines().skip(1).flat_map(|l| l.split(',')) {
+                // grinlight's comment line, the header, then the numbers.
+                for cell in text.lines().skip(2).flat_map(|l| l.split(',')) {
                     if !cell.parse::<f64>().is_ok_and(f64::is_finite) {
                         return Err(format!("{}: cell '{cell}'", path.display()));
                     }
@@ -561,6 +576,34 @@ fn pipes_and_huge_files_are_refused_as_inputs() {
         {
             failures.push(format!("{what}: exit {code:?} after {took:?}: {stderr}"));
         }
+    }
+    // A sparse 2 GB density file (one line of zero bytes): refused after its first MiB, with a
+    // message of a few lines, not echoing it.
+    let dir = root.join("density");
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(
+        dir.join("s.toml"),
+        format!(
+            "{light}ambient = \"fog\"\n[[medium]]\nname = \"fog\"\nprofile = \"uniform\"\nn = 1\n\
+             scattering = 0.1\ndensity_bounds = [[-1, -1, -1], [1, 1, 1]]\n\
+             density_dims = [4, 4, 4]\ndensity_file = \"d.txt\"\n"
+        ),
+    )
+    .unwrap();
+    std::fs::File::create(dir.join("d.txt"))
+        .unwrap()
+        .set_len(2 << 30)
+        .unwrap();
+    let (code, _, stderr, took) = run(&dir, &render(""), Duration::from_secs(10));
+    if took >= Duration::from_secs(10)
+        || code != Some(1)
+        || !stderr.contains("line 1 is longer than 1 MiB")
+        || stderr.len() > 2000
+    {
+        failures.push(format!(
+            "sparse density file: exit {code:?} after {took:?}: {} bytes of error",
+            stderr.len()
+        ));
     }
     // A sparse 3 GB file that starts like a partial: refused by its header's length.
     let dir = root.join("sparse");

@@ -171,14 +171,15 @@ fn a_scene_mesh_may_be_a_ply_file() {
 
 /// Damaged files are errors that name the file and where: data that ends early (the record
 /// it ends in), a list count or a corner that is negative or not a whole number, a vertex,
-/// normal or texture coordinate that is not finite, a face of two corners, a header without
-/// `end_header` or with an unknown type, a count of records the file cannot hold.
+/// normal or texture coordinate that is not finite, a face of two corners, a vertex line with
+/// a number too many, a header without `end_header` or with an unknown type, a count of
+/// records the file cannot hold.
 #[test]
 fn a_damaged_ply_file_is_an_error_naming_where() {
     let good = ply_binary(false);
     let cut = good.len() - 20;
     let ascii = String::from_utf8(ply_ascii()).unwrap();
-    let cases: [(&str, Vec<u8>, &str); 10] = [
+    let cases: [(&str, Vec<u8>, &str); 11] = [
         (
             "cut.ply",
             good[..cut].to_vec(),
@@ -202,7 +203,7 @@ fn a_damaged_ply_file_is_an_error_naming_where() {
         (
             "count.ply",
             ascii.replace("7 3 0 5 3", "7 -3 0 5 3").into_bytes(),
-            "face 6: a list of -3 items",
+            "face 6: its list `vertex_indices` is said to hold -3 items: not a count",
         ),
         (
             "fraction.ply",
@@ -236,6 +237,14 @@ fn a_damaged_ply_file_is_an_error_naming_where() {
             "not a PLY file: no `end_header`",
         ),
         (
+            // A vertex line with a number too many: named, not read as the next record.
+            "extra.ply",
+            ascii
+                .replacen("200 100 50 1 0 0", "200 100 50 1 0 0 0.6", 1)
+                .into_bytes(),
+            "vertex 1: 1 more number(s) on its line than the header's properties of `vertex`",
+        ),
+        (
             "type.ply",
             ascii
                 .replace("property uchar red", "property colour red")
@@ -252,5 +261,29 @@ fn a_damaged_ply_file_is_an_error_naming_where() {
             err.contains(want) && err.contains(&path.display().to_string()),
             "{name}: {err}"
         );
+    }
+}
+
+/// What a header may hold that is not data: a comment that says `end_header` (only a line of
+/// its own ends the header), and an element of no properties however many records it claims
+/// (it holds no bytes: a trillion of them read in no time, as nothing).
+#[test]
+fn a_comment_and_an_element_of_no_properties_are_read_past() {
+    let ascii = String::from_utf8(ply_ascii()).unwrap();
+    let want = load_ply(&file("plain.ply", ascii.as_bytes())).unwrap();
+    for (name, text) in [
+        (
+            "comment.ply",
+            ascii.replacen("ply\n", "ply\ncomment a header ends at end_header\n", 1),
+        ),
+        (
+            "junk.ply",
+            ascii.replacen("end_header", "element junk 1000000000000\nend_header", 1),
+        ),
+    ] {
+        let start = std::time::Instant::now();
+        let got = load_ply(&file(name, text.as_bytes())).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(got.triangles, want.triangles, "{name}");
+        assert!(start.elapsed().as_secs_f64() < 1.0, "{name}");
     }
 }

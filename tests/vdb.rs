@@ -171,7 +171,7 @@ fn bad_vdb_input_is_a_clear_error() {
         ),
         (
             "file = \"plume.vdb\"\ngrid = \"temperature\"\nquantity = \"temperature\"\nbackground = -4",
-            "-4 is not a temperature",
+            "key `background`: -4: -4 is not a temperature",
         ),
     ];
     for (keys, want) in cases {
@@ -179,5 +179,19 @@ fn bad_vdb_input_is_a_clear_error() {
         assert!(e.contains(want), "{keys}: {e:?} lacks {want:?}");
         assert!(e.contains("s.toml:"), "{keys}: {e} names no scene line");
     }
+    // A density's background below zero is the background's fault, not the file's.
+    let path = dir.join("d.toml");
+    std::fs::write(
+        &path,
+        "[[medium]]\nname = \"fog\"\nprofile = \"uniform\"\nn = 1\nscattering = 1\n\
+         density_file = \"plume.vdb\"\ndensity_grid = \"temperature\"\n\
+         density_background = -1\n",
+    )
+    .unwrap();
+    let e = grinlight::scene::load::load_scene(&path)
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(e.contains("key `density_background`"), "{e}");
     std::fs::remove_dir_all(&dir).unwrap();
 }

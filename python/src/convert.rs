@@ -9,10 +9,17 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyMapping, PyString, PyTuple};
 
-/// A `ValueError` at `key`.
+/// A `ValueError` at `key` (none: the value as a whole).
 fn bad(key: &str, message: impl std::fmt::Display) -> PyErr {
-    PyValueError::new_err(format!("{key}: {message}"))
+    match key {
+        "" => PyValueError::new_err(message.to_string()),
+        _ => PyValueError::new_err(format!("{key}: {message}")),
+    }
 }
+
+/// How deep lists and dicts may nest in a scene dict: a scene file's are a few levels deep,
+/// and a list or dict that holds itself would nest without end.
+const MAX_NESTING: usize = 64;
 
 /// The Python type name of `v`, for messages.
 fn type_name(v: &Bound<'_, PyAny>) -> String {
@@ -23,23 +30,40 @@ fn type_name(v: &Bound<'_, PyAny>) -> String {
 
 /// A scene dict (any mapping with string keys) as the scene file's top-level table.
 pub fn scene_table(data: &Bound<'_, PyAny>) -> PyResult<toml::Table> {
-    match value(data, "")? {
-        toml::Value::Table(t) => Ok(t),
-        _ => Err(PyValueError::new_err(format!(
+    let not_a_dict = || {
+        PyValueError::new_err(format!(
             "a scene is a dict of the scene file's tables, got {}",
             type_name(data)
-        ))),
+        ))
+    };
+    if data.cast::<PyMapping>().is_err() {
+        return Err(not_a_dict());
+    }
+    match value(data, "", 0)? {
+        toml::Value::Table(t) => Ok(t),
+        _ => Err(not_a_dict()),
     }
 }
 
 /// One Python value at `path` as a TOML value: bool, int, float, str, a mapping with string
 /// keys, a list or tuple; numpy arrays and scalars by their `tolist()`. None has no TOML
-/// form (leave the key out).
-fn value(v: &Bound<'_, PyAny>, path: &str) -> PyResult<toml::Value> {
+/// form (leave the key out). Nested more than [`MAX_NESTING`] deep (`depth` levels so far) is
+/// an error — a list that holds itself among them.
+fn value(v: &Bound<'_, PyAny>, path: &str, depth: usize) -> PyResult<toml::Value> {
     let at = |key: &str| match path {
         "" => key.to_string(),
         _ => format!("{path}.{key}"),
     };
+    if depth > MAX_NESTING {
+        let shown: String = path.chars().take(60).collect();
+        return Err(bad(
+            &shown,
+            format!(
+                "nested more than {MAX_NESTING} lists or dicts deep (a list or dict that holds \
+                 itself?)"
+            ),
+        ));
+    }
     Ok(if v.is_instance_of::<PyBool>() {
         toml::Value::Boolean(v.extract()?)
     } else if v.is_instance_of::<PyInt>() {
@@ -62,20 +86,20 @@ fn value(v: &Bound<'_, PyAny>, path: &str) -> PyResult<toml::Value> {
                 )
             })?;
             let key = key.to_str()?.to_string();
-            let converted = value(&x, &at(&key))?;
+            let converted = value(&x, &at(&key), depth + 1)?;
             table.insert(key, converted);
         }
         toml::Value::Table(table)
     } else if v.is_instance_of::<PyList>() || v.is_instance_of::<PyTuple>() {
         let mut items = Vec::new();
         for (i, x) in v.try_iter()?.enumerate() {
-            items.push(value(&x?, &format!("{path}[{i}]"))?);
+            items.push(value(&x?, &format!("{path}[{i}]"), depth + 1)?);
         }
         toml::Value::Array(items)
     } else if v.is_none() {
         return Err(bad(path, "None has no value in a scene: leave the key out"));
     } else if let Ok(list) = v.call_method0("tolist") {
-        value(&list, path)?
+        value(&list, path, depth + 1)?
     } else {
         return Err(bad(
             path,

@@ -284,6 +284,8 @@ struct Nodes {
     values: Vec<f64>,
     /// The key the values came from (`values` or `file`, prefixed).
     key: String,
+    /// A VDB file's `background` (the value of its inactive voxels), given.
+    background: Option<f64>,
 }
 
 fn read_nodes(t: &mut TableReader, prefix: &str) -> Result<Nodes> {
@@ -315,6 +317,7 @@ fn read_nodes(t: &mut TableReader, prefix: &str) -> Result<Nodes> {
             dims: dense.dims,
             values: dense.values,
             key: key("file"),
+            background,
         });
     }
     let bounds = t.vec3_list(&key("bounds"))?;
@@ -325,7 +328,7 @@ fn read_nodes(t: &mut TableReader, prefix: &str) -> Result<Nodes> {
     let values = t.f64_list_opt(&key("values"))?;
     let (values, from) = match (values, &file) {
         (Some(v), None) => (v, key("values")),
-        (None, Some(path)) => (read_grid_file(t, &key("file"), path)?, key("file")),
+        (None, Some(path)) => (read_grid_file(t, &key("file"), path, dims)?, key("file")),
         _ => {
             return Err(t.error(
                 &key("values"),
@@ -343,15 +346,20 @@ fn read_nodes(t: &mut TableReader, prefix: &str) -> Result<Nodes> {
         dims,
         values,
         key: from,
+        background: None,
     })
 }
 
-/// The key of a lattice's table that `e` is about.
-fn grid_error_key(e: &GridError, prefix: &str, values: &str) -> String {
+/// The key of a lattice's table that `e` is about: a bad value that is the VDB file's
+/// background is the `background` key's.
+fn grid_error_key(e: &GridError, prefix: &str, nodes: &Nodes) -> String {
     match e {
         GridError::TooFewNodes(_) | GridError::TooManyNodes(_) => format!("{prefix}dims"),
         GridError::EmptyBox => format!("{prefix}bounds"),
-        _ => values.to_string(),
+        GridError::BadValue { value, .. } if nodes.background == Some(*value) => {
+            format!("{prefix}background")
+        }
+        GridError::BadValue { .. } | GridError::WrongCount { .. } => nodes.key.clone(),
     }
 }
 
@@ -367,29 +375,29 @@ pub fn read_density(t: &mut TableReader) -> Result<Option<Arc<Density>>> {
         return Ok(None);
     }
     let nodes = read_nodes(t, PREFIX)?;
-    let density = Density::new(nodes.min, nodes.max, nodes.dims, nodes.values)
-        .map_err(|e| t.error(&grid_error_key(&e, PREFIX, &nodes.key), e))?;
+    let mut nodes = nodes;
+    let values = std::mem::take(&mut nodes.values);
+    let density = Density::new(nodes.min, nodes.max, nodes.dims, values)
+        .map_err(|e| t.error(&grid_error_key(&e, PREFIX, &nodes), e))?;
     Ok(Some(Arc::new(density)))
 }
 
 fn read_grid(t: &mut TableReader) -> Result<GridMedium> {
-    let Nodes {
-        min,
-        max,
-        dims,
-        values,
-        key,
-    } = read_nodes(t, "")?;
+    let mut nodes = read_nodes(t, "")?;
     let quantity = read_grid_quantity(t)?;
-    let values = values
+    let values = std::mem::take(&mut nodes.values)
         .into_iter()
         .enumerate()
         .map(|(i, v)| {
             quantity
                 .index(v)
-                .map_err(|e| t.error(&key, format!("value #{i}: {e}")))
+                .map_err(|e| match nodes.background == Some(v) {
+                    true => t.error("background", format!("{}: {e}", crate::error::number(v))),
+                    false => t.error(&nodes.key, format!("value #{i}: {e}")),
+                })
         })
         .collect::<Result<Vec<f64>>>()?;
+    let Nodes { min, max, dims, .. } = nodes;
     let interpolation = match t
         .string_opt("interpolation")?
         .as_deref()
@@ -405,7 +413,7 @@ fn read_grid(t: &mut TableReader) -> Result<GridMedium> {
         }
     };
     GridMedium::new(min, max, dims, values, interpolation)
-        .map_err(|e| t.error(&grid_error_key(&e, "", &key), e))
+        .map_err(|e| t.error(&grid_error_key(&e, "", &nodes), e))
 }
 
 /// A grid's `quantity`: `index` (the default), `density` (kg/m³, with `gladstone_dale` in
@@ -431,20 +439,70 @@ fn read_grid_quantity(t: &mut TableReader) -> Result<GridQuantity> {
     })
 }
 
-fn read_grid_file(t: &TableReader, key: &str, path: &std::path::Path) -> Result<Vec<f64>> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| t.error(key, format!("cannot read {}: {e}", path.display())))?;
-    // `#` starts a comment that runs to the end of its line.
-    text.lines()
-        .flat_map(|line| line.split('#').next().unwrap_or("").split_whitespace())
-        .enumerate()
-        .map(|(i, w)| {
-            w.parse::<f64>().map_err(|_| {
-                t.error(
-                    key,
-                    format!("{}: value #{i} '{w}' is not a number", path.display()),
-                )
-            })
-        })
-        .collect()
+/// The `dims` lattice's node values from a text file of numbers (whitespace between them, `#`
+/// starting a comment to the end of its line), read line by line: never more than the
+/// lattice's nodes are kept (a file with more is refused at the first extra number), the
+/// lattice must fit in memory before any is read, and a word that is not a number is shown
+/// cut to a few dozen characters.
+fn read_grid_file(
+    t: &TableReader,
+    key: &str,
+    path: &std::path::Path,
+    dims: [usize; 3],
+) -> Result<Vec<f64>> {
+    use std::io::BufRead;
+    let fail = |why: String| t.error(key, format!("{}: {why}", path.display()));
+    let expected = dims
+        .iter()
+        .try_fold(1usize, |a, &d| a.checked_mul(d))
+        .ok_or_else(|| {
+            fail(format!(
+                "dims {dims:?} hold more nodes than can be addressed"
+            ))
+        })?;
+    crate::resources::check_memory(
+        (expected as u64).saturating_mul(3 * 8),
+        &format!("a lattice of {expected} nodes"),
+    )
+    .map_err(|e| t.error(key, e))?;
+    crate::input::check_regular(path)?;
+    let file = std::fs::File::open(path).map_err(|e| fail(format!("cannot read it: {e}")))?;
+    let mut values = Vec::with_capacity(expected);
+    let mut line = String::new();
+    let mut reader = std::io::BufReader::new(file);
+    for number in 1.. {
+        line.clear();
+        // A line is read whole: a file of one endless line (no newline) is refused past 1 MiB.
+        let read = std::io::Read::take(&mut reader, MAX_LINE_BYTES + 1)
+            .read_line(&mut line)
+            .map_err(|e| fail(format!("line {number}: {e}")))?;
+        if read == 0 {
+            break;
+        }
+        if read as u64 > MAX_LINE_BYTES {
+            return Err(fail(format!(
+                "line {number} is longer than 1 MiB: not a grid of numbers"
+            )));
+        }
+        crate::interrupt::check(number, "a grid file").map_err(fail)?;
+        for w in line.split('#').next().unwrap_or("").split_whitespace() {
+            let v = w.parse::<f64>().map_err(|_| {
+                fail(format!(
+                    "line {number}: value #{} '{}' is not a number",
+                    values.len(),
+                    crate::error::cut(w)
+                ))
+            })?;
+            if values.len() == expected {
+                return Err(fail(format!(
+                    "more than the {expected} values of dims {dims:?} (line {number})"
+                )));
+            }
+            values.push(v);
+        }
+    }
+    Ok(values)
 }
+
+/// The longest line of a grid's text file read.
+const MAX_LINE_BYTES: u64 = 1 << 20;

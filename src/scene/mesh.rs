@@ -38,7 +38,8 @@ pub fn load_triangles(path: &Path) -> Result<ObjTriangles, String> {
     let mut obj = Parsed::default();
     let mut reader = BufReader::new(file);
     let mut line = Vec::new();
-    loop {
+    for number in 0.. {
+        crate::interrupt::check(number, "an OBJ file").map_err(&at)?;
         line.clear();
         match reader.read_until(b'\n', &mut line) {
             Ok(0) => break,

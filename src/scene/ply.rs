@@ -11,8 +11,14 @@ use std::path::Path;
 /// The triangles of a PLY file. The error names the file and what is wrong: the header line,
 /// or the element and record (1-based) where the data is not what the header says.
 pub fn load_ply(path: &Path) -> Result<ObjTriangles, String> {
+    let at = |why: String| format!("{}: {why}", path.display());
+    // The file is read whole, and its triangles take about as much again: refused at once where
+    // the machine has not the room.
+    let size = std::fs::metadata(path).map_or(0, |m| m.len());
+    crate::resources::check_memory(size.saturating_mul(3), "reading this PLY file")
+        .map_err(|e| at(e.to_string()))?;
     let bytes = std::fs::read(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
-    parse(&bytes).map_err(|why| format!("{}: {why}", path.display()))
+    parse(&bytes).map_err(at)
 }
 
 /// How the records are stored.
@@ -86,7 +92,15 @@ struct Header {
 }
 
 fn header(bytes: &[u8]) -> Result<Header, String> {
-    let end = find(bytes, b"end_header").ok_or("not a PLY file: no `end_header`")?;
+    // `end_header` on a line of its own (a comment may say it too).
+    let end = (0..bytes.len())
+        .filter(|&i| i == 0 || bytes[i - 1] == b'\n')
+        .find(|&i| {
+            let rest = &bytes[i..];
+            rest.starts_with(b"end_header")
+                && matches!(rest.get(10), None | Some(b'\n') | Some(b'\r'))
+        })
+        .ok_or("not a PLY file: no `end_header` line")?;
     let text = std::str::from_utf8(&bytes[..end]).map_err(|_| "a header that is not text")?;
     let mut data = end + b"end_header".len();
     // The header's last line ends with \n (or \r\n).
@@ -153,23 +167,56 @@ fn header(bytes: &[u8]) -> Result<Header, String> {
     })
 }
 
-fn find(haystack: &[u8], needle: &[u8]) -> Option<usize> {
-    haystack.windows(needle.len()).position(|w| w == needle)
-}
-
-/// Reads the scalars of the records, in order, from binary or ASCII data.
+/// Reads the scalars of the records, in order, from binary or ASCII data (where a record is
+/// one line: [`Reader::record`] moves to the next).
 struct Reader<'a> {
     bytes: &'a [u8],
     at: usize,
     format: Format,
+    /// In ASCII: where the current record's line ends.
+    line_end: usize,
 }
 
 impl Reader<'_> {
-    /// The next scalar of type `kind`, as f64; None at the data's end or, in ASCII, at a word
-    /// that is not a number.
+    /// Starts the next record: in ASCII, the next line that is not blank (None at the data's
+    /// end); in binary, nothing to do.
+    fn record(&mut self) -> Option<()> {
+        if self.format != Format::Ascii {
+            return Some(());
+        }
+        loop {
+            self.at = self.line_end;
+            if self.at >= self.bytes.len() {
+                return None;
+            }
+            let rest = &self.bytes[self.at..];
+            let len = rest
+                .iter()
+                .position(|&b| b == b'\n')
+                .map_or(rest.len(), |n| n + 1);
+            self.line_end = self.at + len;
+            if rest[..len].iter().any(|b| !b.is_ascii_whitespace()) {
+                return Some(());
+            }
+        }
+    }
+
+    /// The words the current ASCII record has left unread (0 in binary).
+    fn left_on_line(&self) -> usize {
+        match self.format {
+            Format::Ascii => self.bytes[self.at..self.line_end]
+                .split(|b| b.is_ascii_whitespace())
+                .filter(|w| !w.is_empty())
+                .count(),
+            _ => 0,
+        }
+    }
+
+    /// The next scalar of type `kind`, as f64; None at the data's end or, in ASCII, at the
+    /// end of the record's line or a word that is not a number.
     fn next(&mut self, kind: Scalar) -> Option<f64> {
         if self.format == Format::Ascii {
-            let rest = &self.bytes[self.at..];
+            let rest = &self.bytes[self.at..self.line_end];
             let start = rest.iter().position(|b| !b.is_ascii_whitespace())?;
             let len = rest[start..]
                 .iter()
@@ -263,12 +310,21 @@ fn parse(bytes: &[u8]) -> Result<ObjTriangles, String> {
         bytes,
         at: header.data,
         format: header.format,
+        line_end: header.data,
     };
     let mut values: Vec<f64> = Vec::new();
     let mut corners: Vec<u32> = Vec::new();
     for (e, element) in header.elements.iter().enumerate() {
+        // An element of no properties holds no data, however many records it claims.
+        if element.properties.is_empty() {
+            continue;
+        }
         for r in 0..element.records {
             let at = |why: &str| format!("{} {}: {why}", element.name, r + 1);
+            crate::interrupt::check(r, "a PLY file")?;
+            reader
+                .record()
+                .ok_or_else(|| at("the data ends early (the header promises more records)"))?;
             values.clear();
             corners.clear();
             for (k, property) in element.properties.iter().enumerate() {
@@ -282,7 +338,10 @@ fn parse(bytes: &[u8]) -> Result<ObjTriangles, String> {
                     Some(count) => {
                         let n = read(count)?;
                         if n < 0.0 || n.fract() != 0.0 {
-                            return Err(at(&format!("a list of {n} items")));
+                            return Err(at(&format!(
+                                "its list `{}` is said to hold {n} items: not a count",
+                                property.name
+                            )));
                         }
                         for _ in 0..n as usize {
                             let index = read(property.item)?;
@@ -299,6 +358,13 @@ fn parse(bytes: &[u8]) -> Result<ObjTriangles, String> {
                         values.push(n);
                     }
                 }
+            }
+            let extra = reader.left_on_line();
+            if extra > 0 {
+                return Err(at(&format!(
+                    "{extra} more number(s) on its line than the header's properties of `{}`",
+                    element.name
+                )));
             }
             if e == vertex {
                 let pick = |i: usize| values[i] as f32;

@@ -98,7 +98,11 @@ impl<'a> TableReader<'a> {
         } else if x.abs() > MAX_MAGNITUDE {
             Err(self.error(
                 key,
-                format!("{x} is out of range: scene numbers must be within ±{MAX_MAGNITUDE:e} (beyond, the renderer's products overflow)"),
+                format!(
+                    "{} is out of range: scene numbers must be within ±{MAX_MAGNITUDE:e} \
+                     (beyond, the renderer's products overflow)",
+                    crate::error::number(x)
+                ),
             ))
         } else {
             Ok(x)

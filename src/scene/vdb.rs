@@ -8,7 +8,7 @@
 //! It does not read a grid's background value, so the inactive voxels inside the box take the
 //! scene's `background`, and a grid that has some needs one.
 
-use glam::{DVec3, IVec3};
+use glam::{DVec3, I64Vec3, IVec3};
 use std::fs::File;
 use std::io::BufReader;
 use std::path::Path;
@@ -30,6 +30,10 @@ pub struct Dense {
 
 /// The most voxels a densified grid may hold (4 GiB of f64).
 const MAX_VOXELS: u64 = 1 << 29;
+
+/// A box of more voxels than this is made dense only where its active voxels fill at least
+/// 1 % of it (two voxels 800 apart made a 3.9 GB grid of background).
+const SPARSE_BOX: u64 = 1 << 24;
 
 /// Reads grid `name` (None: the file's only scalar grid) of the VDB file at `path`, its
 /// inactive voxels inside the active box taking `background`. Errors say what is wrong, not
@@ -136,27 +140,60 @@ fn densify<T: Copy>(
     };
     let voxel = DVec3::from_array(voxel);
     // The active box: voxels, and tiles of 8³ or 128³ voxels.
-    let (mut lo, mut hi) = (IVec3::MAX, IVec3::MIN);
+    // In 64 bits: a voxel's coordinates may lie near ±2³¹, where their box overflows i32.
+    let (mut lo, mut hi) = (I64Vec3::MAX, I64Vec3::MIN);
+    let mut active = 0u64;
     for (at, _, level) in grid.iter() {
-        let at = IVec3::from_array(at.as_ivec3().to_array());
+        let at = I64Vec3::from_array(at.as_ivec3().to_array().map(i64::from));
+        let size = level.scale() as i64;
         lo = lo.min(at);
-        hi = hi.max(at + IVec3::splat(level.scale() as i32 - 1));
+        hi = hi.max(at + I64Vec3::splat(size - 1));
+        active = active.saturating_add((size * size * size) as u64);
     }
     if lo.cmpgt(hi).any() {
         return Err("has no active voxel".into());
     }
-    let extent = hi - lo + IVec3::ONE;
-    if extent.cmplt(IVec3::splat(2)).any() {
+    let extent = hi - lo + I64Vec3::ONE;
+    if extent.cmplt(I64Vec3::splat(2)).any() {
         return Err(format!(
             "its active voxels span {extent} voxels: a grid medium needs at least 2 along every axis"
         ));
     }
-    let count = extent.as_i64vec3().element_product() as u64;
+    let count = extent
+        .to_array()
+        .iter()
+        .try_fold(1u64, |a, &d| a.checked_mul(d as u64))
+        .unwrap_or(u64::MAX);
     if count > MAX_VOXELS {
         return Err(format!(
-            "its active box holds {count} voxels, more than the {MAX_VOXELS} a grid medium takes"
+            "its active box, from voxel {lo} to {hi}, holds {count} voxels, more than the \
+             {MAX_VOXELS} a grid medium takes (a grid whose few voxels lie far apart is mostly \
+             background: crop it)"
         ));
     }
+    if count > SPARSE_BOX && active.saturating_mul(100) < count {
+        return Err(format!(
+            "its {active} active voxels fill {:.2} % of their box, from voxel {lo} to {hi}, of \
+             {count} voxels, which a grid medium holds whole ({} of memory, mostly background): \
+             crop the grid to where its voxels are",
+            100.0 * active as f64 / count as f64,
+            crate::resources::human(count.saturating_mul(8))
+        ));
+    }
+    // The dense values, and as much again for the medium built from them: refused at once
+    // where the machine has not the room.
+    crate::resources::check_memory(
+        count.saturating_mul(3 * 8),
+        &format!("the VDB grid's active box of {count} voxels, made dense"),
+    )
+    .map_err(|e| e.to_string())?;
+    let reach = I64Vec3::splat(i64::from(i32::MAX));
+    if hi.cmpgt(reach).any() || lo.cmplt(-reach).any() {
+        return Err(format!(
+            "its active box, from voxel {lo} to {hi}, reaches beyond voxel ±2³¹"
+        ));
+    }
+    let (lo, hi) = (lo.as_ivec3(), hi.as_ivec3());
     let mut values = Vec::with_capacity(count as usize);
     let mut missing = 0u64;
     for k in lo.z..=hi.z {

@@ -59,11 +59,15 @@ impl TriangleMesh {
                     vertices.len()
                 ));
             }
-            if n.iter().any(|v| {
+            if let Some(i) = n.iter().position(|v| {
                 let l = DVec3::from(v.map(f64::from)).length();
                 !(l.is_finite() && l > 0.0)
             }) {
-                return Err("a vertex normal is zero or not finite".into());
+                return Err(format!(
+                    "the normal of vertex {} is {:?}: zero or not finite",
+                    i + 1,
+                    n[i]
+                ));
             }
         }
         if triangles.is_empty() {

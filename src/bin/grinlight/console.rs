@@ -4,25 +4,22 @@
 use grinlight::commands::{Observer, Progress};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::io::Write;
-use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Mutex;
 use std::time::Instant;
 
 /// The exit code of a run cut short by an interrupt (128 + SIGINT).
 pub const INTERRUPTED: i32 = 130;
 
-/// Set by the first interrupt (SIGINT, SIGTERM, SIGHUP).
-static STOP: AtomicBool = AtomicBool::new(false);
-
 /// On the first interrupt, asks the running command to stop and write what it has; on the
 /// second, quits at once (every output is written atomically, so no file is left half
 /// written either way).
 pub fn install_interrupt_handler() {
     let result = ctrlc::set_handler(|| {
-        if STOP.swap(true, Ordering::SeqCst) {
+        if grinlight::interrupt::requested() {
             eprintln!("\ninterrupted again: quitting at once");
             std::process::exit(INTERRUPTED);
         }
+        grinlight::interrupt::request();
         eprintln!(
             "\ninterrupted: stopping and writing what is done (interrupt again to quit at once)"
         );
@@ -150,7 +147,7 @@ impl Observer for Console {
     }
 
     fn stop_requested(&self) -> bool {
-        STOP.load(Ordering::Relaxed)
+        grinlight::interrupt::requested()
     }
 }
 

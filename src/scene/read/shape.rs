@@ -170,6 +170,14 @@ fn read_mesh(t: &mut TableReader) -> Result<Vec<Primitive>> {
     }
     .map_err(|e| t.error("file", e))?;
     let smooth = t.bool_or("smooth", obj.normals.is_some())?;
+    // Whether any face has an area as the file gives it (else a scale is not to blame).
+    let given = |i: u32| DVec3::from(obj.positions[i as usize].map(f64::from));
+    let any_area = obj.triangles.iter().any(|&[a, b, c]| {
+        (given(b) - given(a))
+            .cross(given(c) - given(a))
+            .length_squared()
+            > 0.0
+    });
     // Placed in f64, stored in f32: the stored vertices are the geometry.
     let mut vertices = obj.positions;
     for (i, v) in vertices.iter_mut().enumerate() {
@@ -205,9 +213,17 @@ fn read_mesh(t: &mut TableReader) -> Result<Vec<Primitive>> {
         let problem = std::fs::read(&path)
             .ok()
             .and_then(|b| crate::scene::mesh::diagnose(&b));
-        return Err(match problem {
-            Some(p) => t.error("file", format!("{}: {p}", path.display())),
-            None => t.error(
+        return Err(match (problem, any_area) {
+            (Some(p), _) => t.error("file", format!("{}: {p}", path.display())),
+            (None, false) => t.error(
+                "file",
+                format!(
+                    "{}: all {faces} triangles have zero area (each face's corners lie on a \
+                     line)",
+                    path.display()
+                ),
+            ),
+            (None, true) => t.error(
                 "scale",
                 format!(
                     "{}: all {faces} triangles have zero area at this scale",
