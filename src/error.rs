@@ -35,6 +35,16 @@ pub enum Error {
         /// What is wrong, naming the key.
         message: String,
     },
+    /// A setting — one name, snake_case, for a `[render]` or `[camera]` key, a command-line
+    /// option (`--` and dashes: `target_error` is `--target-error`) and a Python keyword —
+    /// has a value it does not take. The front ends name it their own way.
+    #[error("{key} {message}")]
+    Setting {
+        /// The setting's name.
+        key: &'static str,
+        /// What is wrong with its value (its range, the value given).
+        message: String,
+    },
     /// A command-line argument is invalid.
     #[error("{0}")]
     Usage(String),
@@ -83,15 +93,18 @@ pub fn number(x: f64) -> String {
 /// The crate's result type.
 pub type Result<T> = std::result::Result<T, Error>;
 
-/// `v` if it is a finite number in (0, 1e30], else a usage error naming the command-line flag.
-pub fn positive(flag: &str, v: f64) -> Result<f64> {
+/// `v` if it is a finite number in (0, 1e30], else an error naming the setting `key`.
+pub fn positive(key: &'static str, v: f64) -> Result<f64> {
     if v.is_finite() && v > 0.0 && v <= MAX_MAGNITUDE {
         Ok(v)
     } else {
-        Err(Error::Usage(format!(
-            "--{flag} must be a number in (0, {:e}], got {v:?}",
-            MAX_MAGNITUDE
-        )))
+        Err(Error::Setting {
+            key,
+            message: format!(
+                "must be a number in (0, {MAX_MAGNITUDE:e}], got {}",
+                number(v)
+            ),
+        })
     }
 }
 

@@ -159,7 +159,7 @@ fn bad_input_fails_with_a_message_and_no_panic() {
                 "1",
                 "--wavelength 1000",
             ),
-            "--wavelength 1000: must be from 360 to 830 nm",
+            "--wavelength must be from 360 to 830 nm, got 1000",
         ),
     ];
     for (args, needle) in &cases {
@@ -328,4 +328,68 @@ fn the_scene_file_and_the_command_line_refuse_the_same_values() {
         }
     }
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// A trace that keeps every point (the library's `trace_ray`, Python's `trace`) is refused up
+/// front when `max_steps` points cannot fit in memory, naming the setting; the command line's,
+/// which streams its CSV and keeps a bounded plot, is stopped by an interrupt where it is
+/// (reason: stopped), its CSV written up to there, the exit code 130.
+#[test]
+fn a_trace_holds_bounded_memory_and_stops_on_an_interrupt() {
+    use grinlight::commands::{trace_ray, RayTrace, TraceControl};
+    let (scene, _) =
+        grinlight::scene::load_scene(std::path::Path::new("scenes/media.toml")).unwrap();
+    let ray = RayTrace {
+        medium: "luneburg".into(),
+        from: glam::DVec3::ZERO,
+        dir: glam::DVec3::X,
+        length: 1.0,
+        wavelength: None,
+        stepper: RayTrace::STEPPER,
+        control: TraceControl::Fixed { step: Some(1e-9) },
+        max_steps: 1 << 40,
+    };
+    let e = trace_ray(&scene, &ray, &())
+        .expect_err("refused")
+        .to_string();
+    assert!(e.contains("max_steps") && e.contains("memory"), "{e}");
+
+    let csv = temp("interrupted.csv");
+    let child = Command::new(env!("CARGO_BIN_EXE_grinlight"))
+        .args([
+            "trace",
+            "scenes/media.toml",
+            "--medium",
+            "luneburg",
+            "--from",
+            "0,0,0",
+            "--dir",
+            "1,0,0",
+            "--length",
+            "1",
+            "--control",
+            "fixed",
+            "--step",
+            "1e-9",
+            "--max-steps",
+            "1000000000",
+            "--csv",
+            csv.to_str().unwrap(),
+        ])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(1500));
+    Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    let out = child.wait_with_output().unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(out.status.code(), Some(130), "{stdout}");
+    assert!(stdout.contains("reason: stopped"), "{stdout}");
+    let text = std::fs::read_to_string(&csv).unwrap();
+    assert!(text.starts_with("# grinlight ") && text.lines().count() > 1000);
+    std::fs::remove_file(&csv).unwrap();
 }

@@ -236,6 +236,7 @@ class Scene:
         progress: Progress = True,
         shard: Optional[Tuple[int, int]] = None,
         output: Optional[PathLike] = None,
+        resume: bool = False,
         **overrides: Any,
     ) -> Union[Image, Path]:
         """Renders the camera's view (and measures the receivers) in memory; every keyword
@@ -246,21 +247,33 @@ class Scene:
 
         With ``shard=(k, n)`` renders the k-th of n slices of the scene file's render into a
         partial result at ``output`` (default ``<scene>.shard-k-of-n.partial``) and returns
-        its path, for :func:`merge`.
+        its path, for :func:`merge`; ``resume=True`` continues a shard an interrupt cut short
+        (its partial holds the work done).
 
         Ctrl-C stops after the tiles in flight: ``KeyboardInterrupt`` is raised with the
         finished passes as its ``.image``."""
         values = dict(overrides, spp=spp, passes=passes, time_budget=time_budget, seed=seed, threads=threads, integrator=integrator)
         if shard is not None:
+            if (
+                isinstance(shard, (str, bytes))
+                or not isinstance(shard, Sequence)
+                or len(shard) != 2
+                or not all(isinstance(x, int) and not isinstance(x, bool) for x in shard)
+            ):
+                raise ValueError(f"shard: expected (k, n), two whole numbers with 1 ≤ k ≤ n, got {shard!r}")
             k, n = shard
+            if k < 1 or n < k or n >= 2**32:
+                raise ValueError(f"shard: expected (k, n) with 1 ≤ k ≤ n, got {shard!r}")
             callback, close = _progress_bar(progress)
             try:
                 out = self._inner.render_shard(
-                    {**self._overrides, **_given(values)}, int(k), int(n), None if output is None else Path(output), callback
+                    {**self._overrides, **_given(values)}, k, n, None if output is None else Path(output), bool(resume), callback
                 )
             finally:
                 close()
             return Path(out)
+        if resume:
+            raise ValueError("resume: a whole render in memory keeps no state to resume; resume a shard's render (shard=(k, n))")
         if output is not None:
             raise ValueError("output: a whole render returns its image (write it with Image.write); output names a shard's partial")
         if self.camera is None:
@@ -351,5 +364,7 @@ def merge(partials: Sequence[PathLike], output: Optional[PathLike] = None, allow
     """Merges the partial results of a render's shards as ``grinlight merge`` does — writing
     the render's EXR, PNG and receiver files (at ``output``, default the scene's) — and
     returns the merged image (None for a scene without a camera)."""
+    if isinstance(partials, (str, bytes, os.PathLike)):
+        raise ValueError(f"partials: expected a list of partial files, got one path {partials!r} (write [{partials!r}])")
     film = _grinlight.merge([Path(p) for p in partials], None if output is None else Path(output), allow_missing)
     return None if film is None else Image({}, None, [], [], _film=film)

@@ -182,7 +182,7 @@ impl Scene {
 
     /// Renders shard `index` of `count` of the scene file's render into a partial result,
     /// as `grinlight render --shard K/N` does; returns the partial's path.
-    #[pyo3(signature = (overrides, index, count, output=None, progress=None))]
+    #[pyo3(signature = (overrides, index, count, output=None, resume=false, progress=None))]
     fn render_shard(
         &self,
         py: Python<'_>,
@@ -190,6 +190,7 @@ impl Scene {
         index: u32,
         count: u32,
         output: Option<PathBuf>,
+        resume: bool,
         progress: Option<Bound<'_, PyAny>>,
     ) -> PyResult<PathBuf> {
         let Source::File { path, .. } = &self.source else {
@@ -204,13 +205,16 @@ impl Scene {
             output: output.clone(),
             overrides: convert::overrides(overrides)?,
             shard: Some(shard),
+            resume,
             ..RenderJob::default()
         };
         let watched = watched(py, progress.as_ref(), |observer| {
             commands::render(&job, observer)
         })?;
         let lines = watched.report.lines.join("\n");
-        if watched.uninterrupted()?.map_err(py_err)?.interrupted {
+        // Interrupted, the shard saved what it did: the report says how to resume it.
+        let outcome = watched.result.map_err(py_err)?;
+        if watched.interrupted || outcome.interrupted {
             return Err(PyKeyboardInterrupt::new_err(lines));
         }
         Ok(output.unwrap_or_else(|| commands::shard_partial(path, shard)))

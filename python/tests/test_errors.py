@@ -39,6 +39,34 @@ def test_a_bad_dict_names_its_key(data, key):
     assert str(e.value).startswith(key), str(e.value)
 
 
+def test_a_list_that_holds_itself_or_nests_too_deep_is_refused():
+    loop = []
+    loop.append(loop)
+    deep = [1.0]
+    for _ in range(10000):
+        deep = [deep]
+    for data in ({"shape": loop}, {"shape": deep}, {"medium": [{"name": {"a": loop}}]}):
+        with pytest.raises(ValueError, match="nested more than 64 lists or dicts deep"):
+            grinlight.load_dict(data)
+
+
+@pytest.mark.parametrize("data", [None, 3, "scene.toml", [ROD]])
+def test_a_scene_that_is_not_a_dict_is_refused(data):
+    with pytest.raises(ValueError, match="a scene is a dict of the scene file's tables, got"):
+        grinlight.load_dict(data)
+
+
+def test_shards_and_merges_check_their_arguments(scenes, tmp_path):
+    scene = grinlight.load(scenes / "cornell_caustic.toml")
+    for shard in [(1,), (1, 2, 3), "1/2", (0, 2), (3, 2), (1.0, 2)]:
+        with pytest.raises(ValueError, match="shard: expected"):
+            scene.render(shard=shard, progress=False)
+    with pytest.raises(ValueError, match="partials: expected a list"):
+        grinlight.merge(str(tmp_path / "s1.partial"))
+    with pytest.raises(ValueError, match="resume"):
+        scene.render(resume=True, progress=False)
+
+
 def test_numpy_values_are_accepted():
     scene = grinlight.load_dict({"medium": [dict(ROD, gradient=np.array([0.0, 0.1, 0.0]), n0=np.float32(1.5))]})
     assert scene.media == ["rod"]
@@ -47,7 +75,10 @@ def test_numpy_values_are_accepted():
 @pytest.mark.parametrize(
     "overrides, key",
     [
-        (dict(spp=0), "--spp"),
+        (dict(spp=0), "spp expected an integer ≥ 1, got 0"),
+        (dict(target_error=-1.0), "target_error must be a number"),
+        (dict(passes=0), "passes expected"),
+        (dict(width=0), "width expected"),
         (dict(spp=-1), "spp"),
         (dict(spp=1.5), "spp"),
         (dict(radius=math.nan), "radius"),
@@ -77,11 +108,12 @@ def test_a_scene_files_error_names_file_line_and_key(tmp_path):
     [
         (dict(origin=[0, math.nan, 0]), "origin"),
         (dict(origin=[0, 0]), "origin"),
-        (dict(direction=[0, 0, 0]), "--dir"),
+        (dict(direction=[0, 0, 0]), "direction must be a non-zero vector"),
         (dict(length=math.nan), "length"),
         (dict(length=-1.0), "length"),
         (dict(stepper="euler"), "stepper"),
-        (dict(tolerance=0.0), "tol"),
+        (dict(tolerance=0.0), "tolerance must be a number"),
+        (dict(max_steps=2**40, control="fixed", step=1e-9), "max_steps"),
         (dict(wavelength=100.0), "wavelength"),
         (dict(bogus=1), "bogus"),
     ],
@@ -147,3 +179,22 @@ def test_progress_is_reported(scenes):
     assert seen, "a render of several tenths of a second reports progress"
     assert all(stage in ("rendering", "measuring", "") for _, _, stage in seen)
     assert all(0 <= done <= total for done, total, stage in seen if stage == "rendering")
+
+
+def test_an_interrupted_shard_resumes_to_the_same_partial(scenes, tmp_path):
+    scene = grinlight.load(scenes / "cornell_caustic.toml", width=48, height=36, spp=1, photons=20000, caustic_photons=20000, passes=60)
+    whole = scene.render(shard=(1, 1), output=tmp_path / "whole.partial", progress=False)
+    inherited = signal.signal(signal.SIGINT, signal.default_int_handler)
+    timer = threading.Timer(0.8, lambda: os.kill(os.getpid(), signal.SIGINT))
+    try:
+        timer.start()
+        with pytest.raises(KeyboardInterrupt) as e:
+            scene.render(shard=(1, 1), output=tmp_path / "cut.partial", progress=False)
+    finally:
+        timer.join()
+        signal.signal(signal.SIGINT, inherited)
+    assert "resume=True" in str(e.value), str(e.value)
+    cut = scene.render(shard=(1, 1), output=tmp_path / "cut.partial", resume=True, progress=False)
+    a = grinlight.merge([whole], output=tmp_path / "a.exr")
+    b = grinlight.merge([cut], output=tmp_path / "b.exr")
+    np.testing.assert_array_equal(a["beauty"], b["beauty"])

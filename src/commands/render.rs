@@ -86,8 +86,10 @@ impl Overrides {
     /// command-line values meet the scene file's.
     pub fn apply(&self, scene: &mut Description, s: &mut Settings) -> Result<()> {
         let count = |c: Count, v: u64| {
-            c.check(v)
-                .map_err(|why| Error::Usage(format!("{} {why}", c.flag())))
+            c.check(v).map_err(|message| Error::Setting {
+                key: c.key,
+                message,
+            })
         };
         if let Some(n) = self.spp {
             s.spp = count(settings::SPP, n as u64)? as u32;
@@ -113,13 +115,13 @@ impl Overrides {
             p.radius = Some(positive("radius", r)?);
         }
         if let Some(b) = self.time_budget {
-            s.time_budget = Some(positive("time-budget", b)?);
+            s.time_budget = Some(positive("time_budget", b)?);
             if self.passes.is_none() {
                 s.passes = u32::MAX;
             }
         }
         if let Some(e) = self.target_error {
-            s.target_error = Some(positive("target-error", e)?);
+            s.target_error = Some(positive("target_error", e)?);
             if self.passes.is_none() {
                 s.passes = u32::MAX;
             }
@@ -265,11 +267,12 @@ pub fn render(job: &RenderJob, observer: &dyn Observer) -> Result<RenderOutcome>
     let shard = job.shard.unwrap_or(Shard::WHOLE);
     let open_ended = settings.time_budget.is_some() || settings.target_error.is_some();
     if job.shard.is_some() && (open_ended || job.paths > 0) {
-        return Err(Error::Usage(
-            "--shard renders a fixed share of the work: give --passes, not --time-budget or \
-             --target-error, and draw --paths from a whole render"
+        return Err(Error::Setting {
+            key: "shard",
+            message: "renders a fixed share of the work: give passes, not time_budget or \
+                      target_error, and draw paths from a whole render"
                 .into(),
-        ));
+        });
     }
     let mut outputs = Outputs::new(&scene.inputs);
     let (files, state) = match job.shard {
@@ -347,7 +350,7 @@ pub fn render(job: &RenderJob, observer: &dyn Observer) -> Result<RenderOutcome>
             if interrupted {
                 format!(
                     "; PARTIAL (interrupted): passes {passes} and photons {photons} remain, \
-                     continue with --resume"
+                     continue by resuming (--resume; Python: resume=True)"
                 )
             } else {
                 "; merge the shards with `grinlight merge`".into()
@@ -522,10 +525,13 @@ fn start_partial(
     observer: &dyn Observer,
 ) -> Result<Partial> {
     if resume && !state.exists() {
-        return Err(Error::Usage(format!(
-            "--resume: {} does not exist: nothing to resume (run without --resume)",
-            state.display()
-        )));
+        return Err(Error::Setting {
+            key: "resume",
+            message: format!(
+                "{} does not exist: nothing to resume (run without resuming)",
+                state.display()
+            ),
+        });
     }
     if !state.exists() {
         return Ok(Partial::empty(header));
@@ -548,11 +554,13 @@ fn start_partial(
         )));
     }
     match (difference, resume, saved.is_complete()) {
-        (Some(d), true, _) => Err(Error::Usage(format!(
-            "--resume: {} is a partial of another render ({d}): give the options it was \
-             started with",
-            state.display()
-        ))),
+        (Some(d), true, _) => Err(Error::Setting {
+            key: "resume",
+            message: format!(
+                "{} is a partial of another render ({d}): give the options it was started with",
+                state.display()
+            ),
+        }),
         (Some(d), false, _) => Err(Error::Usage(format!(
             "{} holds the partial result of another render ({d}): refusing to replace it \
              (move it, or choose another output)",
@@ -561,7 +569,7 @@ fn start_partial(
         (None, true, _) => Ok(saved),
         (None, false, false) => Err(Error::Usage(format!(
             "{} holds this render unfinished ({} passes, {} receiver photons done): continue \
-             it with --resume, or remove it to start again",
+             it by resuming (--resume; Python: resume=True), or remove it to start again",
             state.display(),
             saved.passes.len(),
             saved.photons.len()

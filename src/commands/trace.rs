@@ -111,12 +111,18 @@ impl TraceControl {
     ) -> Result<StepControl> {
         Ok(match self {
             TraceControl::Adaptive { tolerance } => StepControl::Adaptive {
-                tolerance: positive("tol", tolerance.unwrap_or(stepper.default_tolerance()))?,
+                tolerance: positive(
+                    "tolerance",
+                    tolerance.unwrap_or(stepper.default_tolerance()),
+                )?,
             },
             TraceControl::Fixed { step } => StepControl::Fixed {
                 step: positive(
                     "step",
-                    step.ok_or_else(|| Error::Usage("--control fixed needs --step".into()))?,
+                    step.ok_or_else(|| Error::Setting {
+                        key: "step",
+                        message: "is needed by the fixed control".into(),
+                    })?,
                 )?,
             },
             TraceControl::Tessendorf {
@@ -126,9 +132,14 @@ impl TraceControl {
                 seed,
             } => {
                 if !(t_min >= 0.0 && t_max > t_min) {
-                    return Err(Error::Usage(format!(
-                        "need 0 ≤ --tmin < --tmax, got {t_min:?} and {t_max:?}"
-                    )));
+                    return Err(Error::Setting {
+                        key: "t_min",
+                        message: format!(
+                            "must be ≥ 0 and below t_max, got {} and t_max {}",
+                            crate::error::number(t_min),
+                            crate::error::number(t_max)
+                        ),
+                    });
                 }
                 StepControl::Tessendorf {
                     initial_step: positive(
@@ -145,7 +156,10 @@ impl TraceControl {
 }
 
 /// Runs `grinlight trace`: the ray's summary, and its CSV and plot if asked, written
-/// atomically after checking that neither can overwrite an input or another output.
+/// atomically after checking that neither can overwrite an input or another output. The CSV
+/// is written as the ray goes (a trace of 10⁹ steps is 10⁹ rows, not 10⁹ points held); the
+/// plot draws at most [`PLOT_POINTS`] of them, evenly spread. An interrupt ends the ray where
+/// it is (reason: stopped), its files written up to there.
 pub fn trace(job: &TraceJob, observer: &dyn Observer) -> Result<MarchOutcome> {
     let (scene, _) = crate::scene::load_scene(&job.scene)?;
     let mut outputs = Outputs::new(&scene.inputs);
@@ -155,18 +169,49 @@ pub fn trace(job: &TraceJob, observer: &dyn Observer) -> Result<MarchOutcome> {
     if let Some(plot) = &job.plot {
         outputs.add(plot, Kind::Png)?;
     }
-    let Traced { outcome, points } = trace_ray(&scene, &job.ray, observer)?;
-    if let Some(path) = &job.csv {
-        write_csv(&points, path)?;
-    }
+    let mut drawn = Decimated::default();
+    let mut rows = 0u64;
+    let outcome = match &job.csv {
+        None => follow(&scene, &job.ray, observer, &mut |p| {
+            if job.plot.is_some() {
+                drawn.push(*p);
+            }
+            Ok(())
+        })?,
+        Some(path) => {
+            let mut outcome = None;
+            crate::output::write_atomic(path, |tmp| {
+                let io = |e| Error::io(path, e);
+                let mut w = std::io::BufWriter::new(std::fs::File::create(tmp).map_err(io)?);
+                writeln!(w, "# {}: a traced ray's path", crate::output::signature()).map_err(io)?;
+                writeln!(w, "step,s,x,y,z,dx,dy,dz,n").map_err(io)?;
+                outcome = Some(follow(&scene, &job.ray, observer, &mut |p| {
+                    let (x, d) = (p.state.position, p.state.direction);
+                    writeln!(
+                        w,
+                        "{rows},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e}",
+                        p.s, x.x, x.y, x.z, d.x, d.y, d.z, p.state.index.n
+                    )
+                    .map_err(io)?;
+                    rows += 1;
+                    if job.plot.is_some() {
+                        drawn.push(*p);
+                    }
+                    Ok(())
+                })?);
+                w.flush().map_err(io)
+            })?;
+            outcome.expect("followed while writing")
+        }
+    };
     let medium = scene.medium(&job.ray.medium)?;
     let legend = match &job.plot {
-        Some(path) => Some(plot_path(medium, &points, path)?),
+        Some(path) => Some(plot_path(medium, &drawn.points, path)?),
         None => None,
     };
     observer.line(&summary(&outcome));
     if let Some(path) = &job.csv {
-        observer.line(&format!("wrote {} ({} rows)", path.display(), points.len()));
+        observer.line(&format!("wrote {} ({rows} rows)", path.display()));
     }
     if let (Some(path), Some(legend)) = (&job.plot, legend) {
         observer.line(&format!("wrote {}: {legend}", path.display()));
@@ -174,9 +219,66 @@ pub fn trace(job: &TraceJob, observer: &dyn Observer) -> Result<MarchOutcome> {
     Ok(outcome)
 }
 
-/// Follows one ray through a medium of a loaded scene, after checking every value of the
-/// request (each error names its command-line flag); warns where the stepper cannot bend it.
+/// The most points a traced ray's plot draws.
+pub const PLOT_POINTS: usize = 1 << 17;
+
+/// Points of a path kept for a plot: every one until [`PLOT_POINTS`], then every other of
+/// them and of those that follow, and so on — evenly spread over the whole path, in bounded
+/// memory.
+#[derive(Default)]
+struct Decimated {
+    points: Vec<PathPoint>,
+    /// Keep every `stride`-th point (0 before the first).
+    stride: usize,
+    seen: usize,
+}
+
+impl Decimated {
+    fn push(&mut self, p: PathPoint) {
+        self.stride = self.stride.max(1);
+        if self.seen.is_multiple_of(self.stride) {
+            if self.points.len() == PLOT_POINTS {
+                self.points = self.points.iter().step_by(2).copied().collect();
+                self.stride *= 2;
+            }
+            if self.seen.is_multiple_of(self.stride) {
+                self.points.push(p);
+            }
+        }
+        self.seen += 1;
+    }
+}
+
+/// Follows one ray through a medium of a loaded scene, keeping every accepted point (the start
+/// first), after checking every value of the request (each error names its setting) and that
+/// `max_steps` points fit in memory; warns where the stepper cannot bend it; an interrupt (the
+/// observer's) ends it where it is.
 pub fn trace_ray(scene: &Scene, job: &RayTrace, observer: &dyn Observer) -> Result<Traced> {
+    // What a point takes here, and as the numpy arrays the Python package makes of it.
+    let per_point = (std::mem::size_of::<PathPoint>() + 10 * 8) as u64;
+    crate::resources::check_memory(
+        job.max_steps.saturating_add(1).saturating_mul(per_point),
+        &format!(
+            "a traced ray of up to {} steps, every point kept (max_steps)",
+            job.max_steps
+        ),
+    )?;
+    let mut points = Vec::new();
+    let outcome = follow(scene, job, observer, &mut |p| {
+        points.push(*p);
+        Ok(())
+    })?;
+    Ok(Traced { outcome, points })
+}
+
+/// Follows one ray as [`trace_ray`] says, showing `visit` each accepted point (the start
+/// first); stopped by the observer (or an error of `visit`) where it is.
+fn follow(
+    scene: &Scene,
+    job: &RayTrace,
+    observer: &dyn Observer,
+    visit: &mut dyn FnMut(&PathPoint) -> Result<()>,
+) -> Result<MarchOutcome> {
     let reference = scene.medium(&job.medium)?;
     let dispersed = match job.wavelength {
         None => None,
@@ -185,33 +287,47 @@ pub fn trace_ray(scene: &Scene, job: &RayTrace, observer: &dyn Observer) -> Resu
             .index(&job.medium)
             .and_then(|i| scene.media().at_wavelength(i, nm)),
         Some(nm) => {
-            return Err(Error::Usage(format!(
-                "--wavelength {nm}: must be from {LAMBDA_MIN} to {LAMBDA_MAX} nm"
-            )))
+            return Err(Error::Setting {
+                key: "wavelength",
+                message: format!(
+                    "must be from {LAMBDA_MIN} to {LAMBDA_MAX} nm, got {}",
+                    crate::error::number(nm)
+                ),
+            })
         }
     };
     let medium = dispersed.as_deref().unwrap_or(reference);
     let length = positive("length", job.length)?;
-    for (flag, v) in [("from", job.from), ("dir", job.dir)] {
+    for (key, v) in [("origin", job.from), ("direction", job.dir)] {
         if !v.is_finite() {
-            return Err(Error::Usage(format!("--{flag} {v} is not finite")));
+            return Err(Error::Setting {
+                key,
+                message: format!("{v} is not finite"),
+            });
         }
     }
     if job.from.abs().max_element() > crate::scene::table::MAX_MAGNITUDE {
-        return Err(Error::Usage(format!(
-            "--from {}: coordinates must be within ±{:e}",
-            job.from,
-            crate::scene::table::MAX_MAGNITUDE
-        )));
+        return Err(Error::Setting {
+            key: "origin",
+            message: format!(
+                "{}: coordinates must be within ±{:e}",
+                job.from.to_array().map(crate::error::number).join(", "),
+                crate::scene::table::MAX_MAGNITUDE
+            ),
+        });
     }
     if job.dir == DVec3::ZERO {
-        return Err(Error::Usage("--dir must be a non-zero vector".into()));
+        return Err(Error::Setting {
+            key: "direction",
+            message: "must be a non-zero vector".into(),
+        });
     }
-    let start = RayState::new(medium, job.from, job.dir).ok_or_else(|| {
-        Error::Usage(format!(
-            "--from {}: the medium captures rays there (singular or non-positive index)",
+    let start = RayState::new(medium, job.from, job.dir).ok_or_else(|| Error::Setting {
+        key: "origin",
+        message: format!(
+            "{}: the medium captures rays there (singular or non-positive index)",
             job.from
-        ))
+        ),
     })?;
     let control = job
         .control
@@ -225,11 +341,34 @@ pub fn trace_ray(scene: &Scene, job: &RayTrace, observer: &dyn Observer) -> Resu
         length,
         max_steps: crate::settings::MAX_STEPS
             .check(job.max_steps)
-            .map_err(|why| Error::Usage(format!("--max-steps {why}")))?,
+            .map_err(|message| Error::Setting {
+                key: "max_steps",
+                message,
+            })?,
         bounds: Bounds::Unbounded,
     };
-    let (outcome, points) = trace_path(medium, job.stepper, control, start, &limits);
-    Ok(Traced { outcome, points })
+    let mut failed = None;
+    let mut opl = 0.0;
+    let outcome = march_with(job.stepper, medium, control, start, &limits, |s, st| {
+        opl += st.optical_path;
+        let point = PathPoint {
+            s,
+            opl,
+            state: st.state,
+        };
+        if let Err(e) = visit(&point) {
+            failed = Some(e);
+            return std::ops::ControlFlow::Break(());
+        }
+        match observer.stop_requested() {
+            true => std::ops::ControlFlow::Break(()),
+            false => std::ops::ControlFlow::Continue(()),
+        }
+    });
+    match failed {
+        Some(e) => Err(e),
+        None => Ok(outcome),
+    }
 }
 
 /// One accepted point of a traced path.
@@ -242,28 +381,6 @@ pub struct PathPoint {
     pub opl: f64,
     /// The state there.
     pub state: RayState,
-}
-
-/// Traces one ray and keeps every accepted point.
-pub fn trace_path(
-    medium: &dyn Medium,
-    kind: StepperKind,
-    control: StepControl,
-    start: RayState,
-    limits: &MarchLimits,
-) -> (MarchOutcome, Vec<PathPoint>) {
-    let mut points = Vec::new();
-    let mut opl = 0.0;
-    let out = march_with(kind, medium, control, start, limits, |s, st| {
-        opl += st.optical_path;
-        points.push(PathPoint {
-            s,
-            opl,
-            state: st.state,
-        });
-        std::ops::ControlFlow::Continue(())
-    });
-    (out, points)
 }
 
 /// Whether a ray starts exactly perpendicular to ∇n (to 1e-12), where Snell steps cannot
@@ -281,27 +398,6 @@ pub fn summary(out: &MarchOutcome) -> String {
         "end ({:.12}, {:.12}, {:.12}) dir ({:.12}, {:.12}, {:.12}) s {:.12} opl {:.12} steps {} attempts {} reason: {}",
         p.x, p.y, p.z, d.x, d.y, d.z, out.arclength, out.optical_path, out.steps, out.attempts, out.reason.name()
     )
-}
-
-/// Writes `step,s,x,y,z,dx,dy,dz,n`, one row per accepted point (the start first), after
-/// grinlight's comment line ([`crate::output::write_csv`]).
-pub fn write_csv(points: &[PathPoint], path: &Path) -> Result<()> {
-    crate::output::write_atomic(path, |tmp| {
-        let io = |e| Error::io(path, e);
-        let mut w = std::io::BufWriter::new(std::fs::File::create(tmp).map_err(io)?);
-        writeln!(w, "# {}: a traced ray's path", crate::output::signature()).map_err(io)?;
-        writeln!(w, "step,s,x,y,z,dx,dy,dz,n").map_err(io)?;
-        for (i, p) in points.iter().enumerate() {
-            let (x, d) = (p.state.position, p.state.direction);
-            writeln!(
-                w,
-                "{i},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e}",
-                p.s, x.x, x.y, x.z, d.x, d.y, d.z, p.state.index.n
-            )
-            .map_err(io)?;
-        }
-        w.flush().map_err(io)
-    })
 }
 
 /// Draws the path in two projections over the index as a grey shade (darker = lower n):

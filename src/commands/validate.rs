@@ -42,7 +42,7 @@ pub fn validate(job: &ValidateJob, observer: &dyn Observer) -> Result<()> {
         )));
     }
     if let Some(w) = job.max_width {
-        positive("max-width", w)?;
+        positive("max_width", w)?;
     }
     let load = || -> Result<(Description, Settings)> {
         let (s, mut settings) = scene::load_description(&job.scene)?;

@@ -153,9 +153,7 @@ impl Header {
         if self.program != other.program {
             return differ("program", &self.program, &other.program);
         }
-        if self.scene != other.scene {
-            return differ("scene", &self.scene, &other.scene);
-        }
+        // The scene is its contents (the render's directory may have moved or been copied).
         if self.inputs != other.inputs {
             return Some(
                 "the scene's files (the scene or a file it reads) changed between them".into(),
@@ -172,12 +170,20 @@ impl Header {
         if self.shard.count != other.shard.count {
             return differ("shard count", &self.shard.count, &other.shard.count);
         }
-        if (self.passes, self.photons) != (other.passes, other.photons) {
-            return differ(
-                "passes and receiver photons",
-                &(self.passes, self.photons),
-                &(other.passes, other.photons),
-            );
+        if self.passes != other.passes {
+            let passes = |p: u32| match p {
+                u32::MAX => "as many as it takes (a time_budget or target_error)".to_string(),
+                p => p.to_string(),
+            };
+            return Some(format!(
+                "passes: {} against {} — give the passes, time_budget or target_error it was \
+                 started with",
+                passes(self.passes),
+                passes(other.passes)
+            ));
+        }
+        if self.photons != other.photons {
+            return differ("receiver photons", &self.photons, &other.photons);
         }
         None
     }

@@ -328,3 +328,17 @@ impl From<ValidateArgs> for ValidateJob {
         }
     }
 }
+
+/// The command-line option of a setting (see [`grinlight::error::Error::Setting`]): `--` and
+/// its name with dashes, but for the trace options whose flags are shorter than the names the
+/// library and Python give them.
+pub fn flag(key: &str) -> String {
+    match key {
+        "origin" => "--from".into(),
+        "direction" => "--dir".into(),
+        "tolerance" => "--tol".into(),
+        "t_min" => "--tmin".into(),
+        "t_max" => "--tmax".into(),
+        other => format!("--{}", other.replace('_', "-")),
+    }
+}

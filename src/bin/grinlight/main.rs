@@ -19,7 +19,7 @@ fn run(cli: Cli, console: &console::Console) -> Result<bool, Error> {
         }
         Command::Trace(args) => {
             commands::trace(&args.into(), console)?;
-            true
+            !grinlight::interrupt::requested()
         }
         Command::Merge(args) => {
             commands::merge(&args.into(), console)?;
@@ -37,7 +37,12 @@ fn main() {
         Ok(false) => console::INTERRUPTED,
         Err(e) => {
             console.clear();
-            eprintln!("error: {e}");
+            match &e {
+                Error::Setting { key, message } => {
+                    eprintln!("error: {} {message}", args::flag(key))
+                }
+                _ => eprintln!("error: {e}"),
+            }
             match e {
                 Error::Interrupted(_) => console::INTERRUPTED,
                 _ => 1,
