@@ -6,7 +6,7 @@
 use glam::DVec3;
 use grinlight::curve::{
     march_with, Bounds, CircleArc, GeodesicRay, MarchLimits, MarchOutcome, Path, RayState,
-    RoundSurface, StepControl, StepperKind,
+    RoundSurface, StepControl, StepperKind, Termination,
 };
 use grinlight::media::{FishEye, HyperbolicMedium, Medium};
 use grinlight::shapes::segment_roots;
@@ -604,5 +604,47 @@ fn the_tracer_follows_fish_eye_rays_to_the_sphere_at_every_scale() {
             .fold(0.0, f64::max);
         println!("largest difference between scales: {worst:e} R");
         assert!(worst < 1e-12, "{worst}");
+    }
+}
+
+/// Rays from the centre of a spherically symmetric medium keep their line (∇n lies along it):
+/// a fish-eye of radius 10⁻¹⁵⁰ seen from its centre — where a stepper's rounding turned every
+/// camera ray onto a circle closing near the centre, a million steps each — lets every camera
+/// ray out to the world sphere in under 2000 steps, with the exact stepper and with Snell's and
+/// the arc chain alike, each leaving along the direction it set off in.
+#[test]
+fn rays_from_the_centre_of_a_tiny_fish_eye_leave_along_their_line() {
+    let text = "ambient = \"fe\"\n[[medium]]\nname = \"fe\"\nprofile = \"fisheye\"\nn0 = 1.5\n\
+                radius = 1e-150\n[[light]]\ntype = \"environment\"\nsky = \"checker\"\n\
+                [camera]\nposition = [0, 0, 0]\nlook_at = [0.3, 0.2, -1]\nfov_y_deg = 40\n\
+                width = 8\nheight = 6\n[render]\nspp = 1\n";
+    let (scene, settings) =
+        grinlight::scene::load::parse_scene(std::path::Path::new("fe.toml"), text.into()).unwrap();
+    let (_, report) = grinlight::render::render(&scene, &settings, &()).unwrap();
+    let stats = &report.stats;
+    assert_eq!(stats.curved_marches, 48);
+    assert!(stats.curved_steps < 48 * 2000, "{}", stats.summary());
+    assert!(
+        stats.summary().contains("ends: left bounds 48"),
+        "{}",
+        stats.summary()
+    );
+    let medium = scene.medium("fe").unwrap();
+    let d = DVec3::new(0.3, 0.2, -1.0).normalize();
+    for kind in [StepperKind::Linearize, StepperKind::Snell, StepperKind::Arc] {
+        let start = RayState::new(medium, DVec3::ZERO, d).unwrap();
+        let limits = MarchLimits {
+            length: 10.0,
+            max_steps: 1_000_000,
+            bounds: Bounds::Unbounded,
+        };
+        let control = StepControl::default_for(kind);
+        let out = march_with(kind, medium, control, start, &limits, |_, _| {
+            ControlFlow::Continue(())
+        });
+        assert_eq!(out.reason, Termination::LengthReached, "{kind:?}");
+        assert!(out.steps < 200_000, "{kind:?}: {} steps", out.steps);
+        assert!((out.state.position - 10.0 * d).length() < 1e-9, "{kind:?}");
+        assert!((out.state.direction - d).length() < 1e-12, "{kind:?}");
     }
 }

@@ -5,6 +5,7 @@ use super::stepper::{
     ArcChain, Linearize, RayState, Rk4Sharma, Rkn64, SnellSteps, Step, Stepper, StepperKind,
 };
 use crate::media::Medium;
+use glam::DVec3;
 use rand::Rng;
 use rand_pcg::Pcg64Mcg;
 use std::ops::ControlFlow;
@@ -151,6 +152,7 @@ where
     O: FnMut(f64, &Step) -> ControlFlow<()>,
 {
     let mut out = MarchOutcome::at(start);
+    let radial = Radial::of(medium, &start);
     let at_start = Step {
         state: start,
         length: 0.0,
@@ -279,6 +281,9 @@ where
                 None => break,
             }
         }
+        if let Some(line) = &radial {
+            line.keep(&mut step);
+        }
         if leaves(limits, step.state.position) {
             let exit = locate_exit(stepper, medium, &state, step, limits);
             let flow = accept(&mut out, medium, exit, &mut observe);
@@ -295,6 +300,57 @@ where
         }
         h = next_h;
     }
+}
+
+/// The line a ray keeps in a spherically symmetric medium when it starts through the centre
+/// (from the centre, or along the line to it): ∇n lies along the line, so the ray never leaves
+/// it. A stepper's rounding does — and off the line the ray is a circle, which about a small
+/// lens (a fish-eye of radius 10⁻¹⁵⁰, seen from its centre) closes within rounding distance of
+/// the centre, and a million steps never carried a camera ray out. So each step's end is put
+/// back on the line, heading along it.
+struct Radial {
+    center: DVec3,
+    /// Unit direction along the line.
+    axis: DVec3,
+}
+
+impl Radial {
+    /// The line of a ray from `start` in `medium`, if it starts through the centre (within
+    /// 10⁻¹² of its distance from it).
+    fn of<M: Medium + ?Sized>(medium: &M, start: &RayState) -> Option<Radial> {
+        let center = medium.symmetry_center()?;
+        let off = start.position - center;
+        (off.cross(start.direction).length() <= 1e-12 * off.length()).then_some(Radial {
+            center,
+            axis: start.direction,
+        })
+    }
+
+    /// `step`'s end put back on the line, heading along it, once it has strayed from it by
+    /// more than [`Radial::STRAY`] of its distance from the centre (a stepper's rounding,
+    /// ~10⁻¹⁶ a step, partly corrects itself; put back each step, the rounding of the point
+    /// put back cost RKN's radial rays 10⁻¹² of their accuracy). Its index sample stays the
+    /// stepper's own (the next step starts from it).
+    fn keep(&self, step: &mut Step) {
+        let off = step.state.position - self.center;
+        let along = off.dot(self.axis);
+        let strayed = (off - self.axis * along).length() > Self::STRAY * along.abs()
+            || step.state.direction.cross(self.axis).length() > Self::STRAY;
+        if strayed {
+            step.state.position = self.center + self.axis * along;
+            step.state.direction = match step.state.direction.dot(self.axis) < 0.0 {
+                true => -self.axis,
+                false => self.axis,
+            };
+        }
+    }
+}
+
+impl Radial {
+    /// How far (relative) a radial ray may stray from its line before it is put back: off the
+    /// line by δ at distance r, a ray in a fish-eye turns back within about r/δ of the centre,
+    /// so it still reaches 10¹⁴ times as far.
+    const STRAY: f64 = 1e-14;
 }
 
 /// x^(1/p), by square and cube roots for the orders the steppers have (a general power
@@ -468,6 +524,7 @@ where
     M: Medium + ?Sized,
 {
     let mut out = MarchOutcome::at(start);
+    let radial = Radial::of(medium, &start);
     let Some(&last) = lengths.last() else {
         return out;
     };
@@ -483,10 +540,13 @@ where
         out.attempts += 1;
         let state = out.state;
         // The step an adaptive march keeps (RK4's is its two half steps, not one whole).
-        let Some(step) = stepper.estimated_step(medium, &state, h).map(|e| e.step) else {
+        let Some(mut step) = stepper.estimated_step(medium, &state, h).map(|e| e.step) else {
             out.reason = Termination::Captured;
             return out;
         };
+        if let Some(line) = &radial {
+            line.keep(&mut step);
+        }
         if leaves(limits, step.state.position) {
             let exit = locate_exit(stepper, medium, &state, step, limits);
             let _ = accept(&mut out, medium, exit, &mut observe);
