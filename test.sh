@@ -14,4 +14,7 @@ fi
 [ -x .venv/bin/python ] || "$python" -m venv .venv
 .venv/bin/python -m pip install --quiet --upgrade pip
 .venv/bin/python -m pip install --quiet ".[test]"
-GRINLIGHT_BIN="$PWD/target/release/grinlight" .venv/bin/python -m pytest -q python/tests
+# The binary the Rust tests built, wherever cargo put it (CARGO_TARGET_DIR, relative to here).
+target="${CARGO_TARGET_DIR:-target}"
+case "$target" in /*) ;; *) target="$PWD/$target" ;; esac
+GRINLIGHT_BIN="$target/release/grinlight" .venv/bin/python -m pytest -q python/tests

@@ -213,3 +213,34 @@ fn the_readme_scene_loads() {
     .unwrap();
     assert!(description.camera.is_some() && description.shapes.len() == 2);
 }
+
+/// Every `$ grinlight trace …` example in docs/guide.md prints, run here, the line the guide
+/// shows under it.
+#[test]
+fn the_guides_trace_examples_print_what_it_shows() {
+    let guide = std::fs::read_to_string("docs/guide.md").unwrap();
+    let lines: Vec<&str> = guide.lines().collect();
+    let mut checked = 0;
+    for (i, line) in lines.iter().enumerate() {
+        let Some(command) = line.strip_prefix("$ grinlight trace ") else {
+            continue;
+        };
+        let args: Vec<&str> = std::iter::once("trace")
+            .chain(command.split_whitespace())
+            .collect();
+        let out = Command::new(env!("CARGO_BIN_EXE_grinlight"))
+            .args(&args)
+            .output()
+            .expect("run grinlight");
+        assert!(out.status.success(), "{command}");
+        let printed = String::from_utf8(out.stdout).unwrap();
+        assert_eq!(
+            printed.trim_end(),
+            lines[i + 1],
+            "docs/guide.md line {}",
+            i + 2
+        );
+        checked += 1;
+    }
+    assert!(checked > 0, "no trace example in docs/guide.md");
+}

@@ -255,3 +255,28 @@ fn a_time_budget_in_the_scene_renders_as_many_passes_as_fit() {
         assert_eq!(settings.passes, passes, "{render}");
     }
 }
+
+/// A phase function on a medium that does not scatter is a warning at its key; a scattering
+/// coefficient given as a table of zeros is σs = 0, allowed (a table of indices must stay > 0).
+#[test]
+fn a_phase_without_scattering_is_a_warning_and_a_zero_table_is_no_scattering() {
+    let text = "[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = 1\nphase = { hg = 0.5 }\n\
+                [[medium]]\nname = \"b\"\nprofile = \"uniform\"\nn = 1\n\
+                scattering = { table = [[400, 0], [700, 0]] }\n";
+    let (description, _) =
+        grinlight::scene::load::parse_description(Path::new("p.toml"), text.to_string()).unwrap();
+    let said = description.warnings.join("\n");
+    assert!(
+        said.starts_with("p.toml:5:1: ") && said.contains("does not scatter"),
+        "{said}"
+    );
+    let scene = description.build();
+    assert!(!scene.media().any_scatters());
+    let index =
+        "[[medium]]\nname = \"c\"\nprofile = \"uniform\"\nn = { table = [[400, 0], [700, 1.5]] }\n";
+    let e = grinlight::scene::load::parse_description(Path::new("i.toml"), index.to_string())
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(e.contains("key `n`") && e.contains("> 0"), "{e}");
+}

@@ -201,9 +201,13 @@ class Scene:
 
     @property
     def camera(self) -> Optional[Tuple[int, int]]:
-        """The camera's image size (width, height) in pixels as the scene gives it (before
-        any ``width`` or ``height`` setting); None without a camera."""
-        return self._inner.camera
+        """The camera's image size (width, height) in pixels as its renders have it: the
+        scene's, or the ``width`` and ``height`` given to :func:`load`; None without a
+        camera. (A ``width`` given to one :meth:`render` sizes that render only.)"""
+        size = self._inner.camera
+        if size is None:
+            return None
+        return (self._overrides.get("width", size[0]), self._overrides.get("height", size[1]))
 
     @property
     def media(self) -> List[str]:

@@ -198,3 +198,12 @@ def test_an_interrupted_shard_resumes_to_the_same_partial(scenes, tmp_path):
     a = grinlight.merge([whole], output=tmp_path / "a.exr")
     b = grinlight.merge([cut], output=tmp_path / "b.exr")
     np.testing.assert_array_equal(a["beauty"], b["beauty"])
+
+
+def test_the_cameras_size_is_what_renders_use(scenes):
+    plain = grinlight.load(scenes / "cornell_caustic.toml")
+    sized = grinlight.load(scenes / "cornell_caustic.toml", width=40, height=30)
+    assert plain.camera == (256, 256)
+    assert sized.camera == (40, 30)
+    image = sized.render(progress=False, spp=1, passes=1, photons=1000, caustic_photons=1000)
+    assert (image.width, image.height) == sized.camera

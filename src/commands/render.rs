@@ -264,6 +264,12 @@ pub fn render(job: &RenderJob, observer: &dyn Observer) -> Result<RenderOutcome>
     job.overrides.apply(&mut description, &mut settings)?;
     let fiber = fiber_to_draw(job, &description)?;
     let scene = build_checked(description, &settings, observer)?;
+    if settings.target_error.is_some() && scene.camera.is_none() {
+        observer.warning(
+            "target_error judges the camera's image, and the scene has no [camera]: the \
+             receivers are measured with receiver_photons photons regardless",
+        );
+    }
     let shard = job.shard.unwrap_or(Shard::WHOLE);
     let open_ended = settings.time_budget.is_some() || settings.target_error.is_some();
     if job.shard.is_some() && (open_ended || job.paths > 0) {

@@ -161,7 +161,11 @@ impl TraceControl {
 /// plot draws at most [`PLOT_POINTS`] of them, evenly spread. An interrupt ends the ray where
 /// it is (reason: stopped), its files written up to there.
 pub fn trace(job: &TraceJob, observer: &dyn Observer) -> Result<MarchOutcome> {
-    let (scene, _) = crate::scene::load_scene(&job.scene)?;
+    let (description, _) = crate::scene::load::load_description(&job.scene)?;
+    for w in &description.warnings {
+        observer.warning(w);
+    }
+    let scene = description.build();
     let mut outputs = Outputs::new(&scene.inputs);
     if let Some(csv) = &job.csv {
         outputs.add(csv, Kind::Csv)?;

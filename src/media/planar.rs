@@ -112,7 +112,7 @@ impl HeightTable {
         up: DVec3,
     ) -> Result<Self, (&'static str, String)> {
         Ok(Self {
-            table: MonotoneCubic::new(h, n, false, ("h", "n"))?,
+            table: MonotoneCubic::indices(h, n, false, ("h", "n"))?,
             origin,
             up,
         })

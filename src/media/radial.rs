@@ -102,7 +102,7 @@ impl RadialTable {
     /// least two nodes, r from 0 strictly increasing and finite, every n finite and > 0.
     pub fn new(r: Vec<f64>, n: Vec<f64>, axis: Axis) -> Result<Self, (&'static str, String)> {
         let from_zero = r.first() == Some(&0.0);
-        let table = match MonotoneCubic::new(r, n, true, ("r", "n")) {
+        let table = match MonotoneCubic::indices(r, n, true, ("r", "n")) {
             Ok(t) if from_zero => t,
             Err((key, message)) if key == "n" => return Err((key, message)),
             _ => return Err(("r", "must start at 0 and increase strictly".into())),

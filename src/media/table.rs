@@ -15,9 +15,24 @@ pub struct MonotoneCubic {
 }
 
 impl MonotoneCubic {
+    /// [`MonotoneCubic::new`] for a table of indices: every value > 0 besides.
+    pub fn indices(
+        x: Vec<f64>,
+        y: Vec<f64>,
+        flat_start: bool,
+        keys: (&'static str, &'static str),
+    ) -> Result<Self, (&'static str, String)> {
+        if !y.iter().all(|v| *v > 0.0) {
+            return Err((keys.1, "every value must be a finite number > 0".into()));
+        }
+        Self::new(x, y, flat_start, keys)
+    }
+
     /// The curve through the nodes, or why not, as (the offending key `x_key` or `y_key`,
-    /// message): at least two nodes, x strictly increasing and finite, every y finite and > 0
-    /// (an index). With `flat_start`, y'(x₀) = 0 (a radial profile, smooth across the axis).
+    /// message): at least two nodes, x strictly increasing and finite, every y finite and ≥ 0
+    /// (an index or a coefficient; [`MonotoneCubic::indices`] for > 0). With `flat_start`,
+    /// y'(x₀) = 0 (a radial profile, smooth across the axis). Between its nodes it lies
+    /// between their values, so it stays ≥ 0 — or > 0 where they are.
     pub fn new(
         x: Vec<f64>,
         y: Vec<f64>,
@@ -37,8 +52,8 @@ impl MonotoneCubic {
         if !x.windows(2).all(|w| w[1] > w[0]) || !x.iter().all(|v| v.is_finite()) {
             return Err((x_key, "must increase strictly".into()));
         }
-        if !y.iter().all(|v| v.is_finite() && *v > 0.0) {
-            return Err((y_key, "every value must be a finite number > 0".into()));
+        if !y.iter().all(|v| v.is_finite() && *v >= 0.0) {
+            return Err((y_key, "every value must be a finite number ≥ 0".into()));
         }
         // Fritsch–Carlson: secant slopes, averaged inside, zeroed at extrema, limited to 3×.
         let secant: Vec<f64> = (0..x.len() - 1)

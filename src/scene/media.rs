@@ -70,6 +70,7 @@ pub fn read_scattering(
     t: &mut TableReader,
     density: Option<Arc<Density>>,
 ) -> Result<Option<Scattering>> {
+    let phase_given = t.has("phase");
     let phase = match t.value_opt("phase") {
         None => Phase::Isotropic,
         Some(Value::String(name)) if name == "isotropic" => Phase::Isotropic,
@@ -89,8 +90,17 @@ pub fn read_scattering(
             ))
         }
     };
+    let warn_unused_phase = |t: &TableReader, scatters: bool| {
+        if phase_given && !scatters {
+            t.warn(
+                "phase",
+                "this medium does not scatter (no `scattering` > 0): its phase function does nothing",
+            );
+        }
+    };
     if !t.is_over_wavelength("scattering") {
         let sigma_s = t.rgb_or("scattering", Some(Rgb::ZERO))?;
+        warn_unused_phase(t, sigma_s.max_element() > 0.0);
         return Ok((sigma_s.max_element() > 0.0).then_some(Scattering {
             sigma_s,
             spectrum: None,
@@ -105,6 +115,7 @@ pub fn read_scattering(
         least >= 0.0 && most.is_finite(),
         format!("must be ≥ 0 and finite from 360 to 830 nm, got {least:?} to {most:?}"),
     )?;
+    warn_unused_phase(t, most > 0.0);
     Ok((most > 0.0).then(|| Scattering::over_wavelength(spectrum, phase, density)))
 }
 
