@@ -237,6 +237,7 @@ fn cases() -> Vec<Case> {
         Case { name: "--shard 4/3", files: vec![("s.toml", scene(LIGHT))], args: render("--shard 4/3"), expect: Error("K out of range") },
         Case { name: "--shard 2", files: vec![("s.toml", scene(LIGHT))], args: render("--shard 2"), expect: Error("no '/'") },
         Case { name: "--shard a/b", files: vec![("s.toml", scene(LIGHT))], args: render("--shard a/b"), expect: Error("not a whole number") },
+        Case { name: "--target-error -1", files: vec![("s.toml", scene(LIGHT))], args: render("--target-error -1"), expect: Error("--target-error must be a number in (0, 1e30], got -1") },
         Case { name: "--shard with --time-budget", files: vec![("s.toml", scene(LIGHT))], args: render("--shard 1/2 --time-budget 5"), expect: Error("give passes, not time_budget") },
         Case { name: "--resume with nothing saved", files: vec![("s.toml", scene(LIGHT))], args: render("--resume"), expect: Error("nothing to resume") },
         Case { name: "merge a scene file", files: vec![("s.toml", scene(LIGHT))], args: args("merge s.toml -o m.exr"), expect: Error("not a grinlight partial") },

@@ -76,6 +76,8 @@ impl From<MergeArgs> for MergeJob {
 
 /// `grinlight validate` options.
 #[derive(clap::Args)]
+// A negative number is a value (refused by its range, named), not an unknown option.
+#[command(allow_negative_numbers = true)]
 pub struct ValidateArgs {
     /// Scene file (TOML) with a GRIN-filled cylinder and at least one [[receiver]].
     scene: PathBuf,
@@ -99,6 +101,8 @@ pub struct ValidateArgs {
 
 /// `grinlight trace` options.
 #[derive(clap::Args)]
+// A negative number is a value (refused by its range, named), not an unknown option.
+#[command(allow_negative_numbers = true)]
 pub struct TraceArgs {
     /// Scene file (TOML).
     scene: PathBuf,
@@ -156,6 +160,8 @@ pub struct TraceArgs {
 
 /// `grinlight render` options; each overrides the scene's `[render]` / `[camera]` key.
 #[derive(clap::Args)]
+// A negative number is a value (refused by its range, named), not an unknown option.
+#[command(allow_negative_numbers = true)]
 pub struct RenderArgs {
     /// Scene file (TOML).
     scene: PathBuf,
