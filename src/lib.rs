@@ -21,6 +21,7 @@
 
 pub mod accel;
 pub mod bsdf;
+pub mod bvh;
 pub mod camera;
 pub mod color;
 pub mod commands;

@@ -2,13 +2,11 @@
 //! coaxial tubes ([`coaxial`]), which a BVH cannot prune. The BVH knows nothing of primitives:
 //! f32 boxes are padded outward, and the closures do the exact f64 test.
 
-mod build;
 mod coaxial;
-
-pub(crate) use build::build_bvh;
 
 use coaxial::CoaxialStack;
 
+use crate::bvh::build_bvh;
 use crate::curve::{ArcHull, Path};
 use crate::shapes::{padded_box as padded, Hit, Primitive};
 use glam::{DVec3, Vec3A};

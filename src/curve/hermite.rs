@@ -2,7 +2,7 @@
 //! quintic Hermite interpolation, and the [`Path`] interface surfaces are tested against.
 
 use super::segment::{ArcHull, ArcPoint, CurvedSegment};
-use super::stepper::RayState;
+use super::state::RayState;
 use glam::DVec3;
 
 /// A smooth path parametrised by arclength from its start: what a surface's crossing is

@@ -27,7 +27,7 @@
 
 use super::hermite::Path;
 use super::segment::ArcPoint;
-use crate::media::{FishEye, HyperbolicMedium};
+use crate::media::{ConstantCurvature, FishEye, HyperbolicMedium};
 use glam::{DVec3, DVec4};
 use std::f64::consts::TAU;
 
@@ -101,6 +101,16 @@ pub struct GeodesicPoint {
 }
 
 impl GeodesicRay {
+    /// The ray of the constant-curvature index field `field` from `position` along
+    /// `direction`; None where that field has no ray ([`GeodesicRay::fish_eye`],
+    /// [`GeodesicRay::hyperbolic`]).
+    pub fn of(field: ConstantCurvature, position: DVec3, direction: DVec3) -> Option<Self> {
+        match field {
+            ConstantCurvature::FishEye(eye) => Self::fish_eye(eye, position, direction),
+            ConstantCurvature::Hyperbolic(m) => Self::hyperbolic(m, position, direction),
+        }
+    }
+
     /// The ray of the fish-eye `eye` from `position` along `direction` (any length); None if
     /// either is not finite or the direction is zero.
     pub fn fish_eye(eye: &FishEye, position: DVec3, direction: DVec3) -> Option<Self> {

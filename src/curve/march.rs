@@ -1,8 +1,9 @@
 //! The march: repeated steps under a step control until an explicit termination.
 
 use super::bounds::Bounds;
+use super::state::RayState;
 use super::stepper::{
-    ArcChain, Linearize, RayState, Rk4Sharma, Rkn64, SnellSteps, Step, Stepper, StepperKind,
+    ArcChain, Linearize, Rk4Sharma, Rkn64, SnellSteps, Step, Stepper, StepperKind,
 };
 use crate::media::Medium;
 use glam::DVec3;

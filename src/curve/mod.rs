@@ -8,6 +8,7 @@ mod hermite;
 mod linearize;
 mod march;
 mod segment;
+mod state;
 mod stepper;
 
 pub use bounds::Bounds;
@@ -20,7 +21,8 @@ pub use march::{
     MarchLimits, MarchOutcome, StepControl, Termination,
 };
 pub use segment::{accurate_cross, ArcHull, ArcPoint, CurvedSegment};
+pub use state::RayState;
 pub use stepper::{
-    ArcChain, ArcPath, EstimatedStep, ExactPath, Linearize, RayState, Rk4Sharma, Rkn64, RknTableau,
+    ArcChain, ArcPath, EstimatedStep, ExactPath, Linearize, Rk4Sharma, Rkn64, RknTableau,
     SnellSteps, Step, Stepper, StepperKind, RKN64,
 };

@@ -1,44 +1,11 @@
 //! Steppers: one step of a ray through a medium, behind one small interface.
 
 use super::hermite::Path;
-use super::linearize::CircleArc;
+use super::linearize::{CircleArc, GeodesicRay};
 use super::segment::{deviation_bound, ArcHull, ArcPoint, CurvedSegment};
+use super::state::RayState;
 use crate::media::{IndexSample, Medium};
 use glam::DVec3;
-
-/// Where a ray is, where it goes, and the medium's answer there (reused by the next step).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct RayState {
-    /// Position (scene units).
-    pub position: DVec3,
-    /// Unit direction of propagation.
-    pub direction: DVec3,
-    /// n and ∇n at `position`.
-    pub index: IndexSample,
-}
-
-impl RayState {
-    /// The state at `position` heading along `direction` (normalised here), or `None` if the
-    /// medium captures a ray at that point.
-    pub fn new<M: Medium + ?Sized>(medium: &M, position: DVec3, direction: DVec3) -> Option<Self> {
-        Some(Self {
-            position,
-            direction: unit(direction),
-            index: medium.sample(position)?,
-        })
-    }
-}
-
-/// `v` normalised; a vector whose squared length overflows or underflows (1e300, 1e300, 0)
-/// is scaled by its largest component first.
-fn unit(v: DVec3) -> DVec3 {
-    let l2 = v.length_squared();
-    if l2.is_finite() && l2 >= f64::MIN_POSITIVE {
-        v.normalize()
-    } else {
-        (v / v.abs().max_element()).normalize()
-    }
-}
 
 /// The result of one step.
 #[derive(Clone, Copy, Debug)]
@@ -237,7 +204,7 @@ pub fn step_doubling(
 }
 
 /// The transformation method where it is exact: in a medium whose rays have a closed form
-/// ([`Medium::geodesic`]: the fish-eye, the hyperbolic medium) a step follows the ray's circle
+/// ([`Medium::constant_curvature`]: the fish-eye, the hyperbolic medium) a step follows the ray's circle
 /// ([`CircleArc`], from the curvature vector at its start) to the requested arclength and takes
 /// its optical path from the angle the geodesic turns ([`crate::curve::GeodesicRay`]): no
 /// error, so adaptive control lengthens its steps to their longest ([`Stepper::step_hint`]),
@@ -250,7 +217,11 @@ impl Linearize {
     /// The exact step, in a medium with a closed form (None: it has none; Some(None): the
     /// step reached a point where the medium captures rays).
     fn exact<M: Medium + ?Sized>(medium: &M, state: &RayState, h: f64) -> Option<Option<Step>> {
-        let ray = medium.geodesic(state.position, state.direction)?;
+        let ray = GeodesicRay::of(
+            medium.constant_curvature()?,
+            state.position,
+            state.direction,
+        )?;
         let circle = CircleArc::new(state.position, state.direction, state.index.log_gradient());
         let end = circle.at(h);
         let Some(index) = medium.sample(end.position) else {

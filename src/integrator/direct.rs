@@ -91,7 +91,8 @@ pub fn camera_path<'w>(
     out
 }
 
-/// Direct light at the visible point `vp` ([`direct_at`]) — but none at a point in a scattering
+/// Direct light at the visible point `vp` ([`direct_light`]) as seen at the camera (times the
+/// path's throughput there) — but none at a point in a scattering
 /// medium of uniform index: the direct light scattered along the whole straight stretch that
 /// ended there is [`super::single::single_scattering`]'s, which samples it where the lights are.
 pub fn direct(carried: Carried, vp: &VisiblePoint, rng: &mut impl Rng, stats: &mut Stats) -> Rgb {
@@ -102,7 +103,9 @@ pub fn direct(carried: Carried, vp: &VisiblePoint, rng: &mut impl Rng, stats: &m
         {
             Rgb::ZERO
         }
-        _ => direct_at(carried, vp, rng, stats),
+        Vertex::Medium(_) | Vertex::Surface(_) => {
+            vp.throughput * direct_light(carried, &vp.vertex, rng, stats)
+        }
     }
 }
 
@@ -112,15 +115,4 @@ pub fn record_cut(chain: &Chain, throughput: Rgb, stats: &mut Stats) {
     if chain.end == End::DepthLimit {
         stats.camera_weight_cut += (throughput * chain.weight).mean();
     }
-}
-
-/// Direct light at the visible point `vp` ([`direct_light`]) as seen at the camera: times the
-/// path's throughput there.
-pub fn direct_at(
-    carried: Carried,
-    vp: &VisiblePoint,
-    rng: &mut impl Rng,
-    stats: &mut Stats,
-) -> Rgb {
-    vp.throughput * direct_light(carried, &vp.vertex, rng, stats)
 }

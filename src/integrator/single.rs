@@ -4,7 +4,7 @@
 //! **The estimator.** Light scattered toward the chain's start along a stretch of length T is
 //! ∫₀ᵀ σs(t) (T_s(t)/P(t)) T_a(t) (n_start/n)² L_direct(x(t)) dt, where P(t) is the chance the
 //! stretch reaches t (its free flight's survival; T_s/P = 1 for a grey σs) and L_direct the
-//! direct light a phase-function vertex at x(t) scatters ([`super::direct::direct_at`]: a light
+//! direct light a phase-function vertex at x(t) scatters ([`crate::transport::lighting::direct_light`]: a light
 //! sample and a phase sample, weighed against each other). Drawing the free flight's end and
 //! lighting it estimates this integral with density ∝ σs T_s, which near a small bright light
 //! leaves most samples in the dark. Here t is drawn with density ∝ 1/|x(t) − y|² about a point
@@ -16,9 +16,9 @@
 //! gradient medium is not a line to sample along.
 
 use super::beam::{Beams, Straight};
-use super::direct::{direct_at, VisiblePoint};
 use crate::color::Rgb;
 use crate::transport::chain::Carried;
+use crate::transport::lighting::direct_light;
 use crate::transport::{MediumVertex, Stats, Vertex};
 use glam::DVec3;
 use rand::Rng;
@@ -68,19 +68,15 @@ pub fn single_scattering(
         let column = s.scattering.column(s.origin, s.dir, t);
         let kept = flights.weigh(s.scattering, column, false);
         let density = s.scattering.density.as_ref().map_or(1.0, |d| d.at(x));
-        let vp = VisiblePoint {
-            vertex: Vertex::Medium(MediumVertex {
-                position: x,
-                wo: -s.dir,
-                medium: Some(s.medium),
-                phase: s.scattering.phase,
-            }),
-            throughput: s.weight
-                * s.scattering.sigma_s
-                * kept
-                * (density * absorbed * s.radiance_scale / pdf),
-        };
-        sum += direct_at(carried, &vp, rng, stats);
+        let vertex = Vertex::Medium(MediumVertex {
+            position: x,
+            wo: -s.dir,
+            medium: Some(s.medium),
+            phase: s.scattering.phase,
+        });
+        let throughput =
+            s.weight * s.scattering.sigma_s * kept * (density * absorbed * s.radiance_scale / pdf);
+        sum += throughput * direct_light(carried, &vertex, rng, stats);
     }
     sum
 }

@@ -1,7 +1,6 @@
 //! Absorption: a coefficient σa around any index profile, constant or scaled by a density.
 
-use super::{Density, IndexSample, Medium};
-use crate::curve::GeodesicRay;
+use super::{ConstantCurvature, Density, IndexSample, Medium};
 use glam::DVec3;
 use std::sync::Arc;
 
@@ -40,8 +39,8 @@ impl Medium for Absorbing {
     fn is_uniform(&self) -> bool {
         self.inner.is_uniform()
     }
-    fn geodesic(&self, position: DVec3, direction: DVec3) -> Option<GeodesicRay> {
-        self.inner.geodesic(position, direction)
+    fn constant_curvature(&self) -> Option<ConstantCurvature<'_>> {
+        self.inner.constant_curvature()
     }
     fn exact_reach(&self) -> Option<f64> {
         self.inner.exact_reach()

@@ -27,8 +27,17 @@ pub use spherical::{
 };
 pub use table::MonotoneCubic;
 
-use crate::curve::GeodesicRay;
 use glam::DVec3;
+
+/// An index field of constant curvature, whose rays are circles found in closed form
+/// ([`crate::curve::GeodesicRay::of`]): the transformation method where it is exact.
+#[derive(Clone, Copy, Debug)]
+pub enum ConstantCurvature<'m> {
+    /// Positive curvature: Maxwell's fish-eye.
+    FishEye(&'m FishEye),
+    /// Negative curvature: the Poincaré ball.
+    Hyperbolic(&'m HyperbolicMedium),
+}
 
 /// The refractive index and its gradient at one point.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -101,15 +110,14 @@ pub trait Medium: Send + Sync {
         false
     }
 
-    /// The ray from `position` along `direction` in closed form, where the index field has
-    /// constant curvature (the fish-eye, the hyperbolic medium: [`GeodesicRay`]) — its rays
-    /// are then circles ([`crate::curve::CircleArc`]) and `stepper = "linearize"` follows them
+    /// The index field when it has constant curvature (the fish-eye, the hyperbolic medium) —
+    /// its rays are then circles in closed form and `stepper = "linearize"` follows them
     /// without error. Default: None, no closed form.
-    fn geodesic(&self, _position: DVec3, _direction: DVec3) -> Option<GeodesicRay> {
+    fn constant_curvature(&self) -> Option<ConstantCurvature<'_>> {
         None
     }
 
-    /// Where the medium has a closed form ([`Medium::geodesic`]): an arclength a ray may go in
+    /// Where the medium has a closed form ([`Medium::constant_curvature`]): an arclength a ray may go in
     /// one step of `stepper = "linearize"` whose optical path the closed form finds without
     /// ambiguity (scene units). Default: None.
     fn exact_reach(&self) -> Option<f64> {

@@ -1,8 +1,7 @@
 //! Profiles that depend on the distance from a centre: Luneburg lens, Maxwell fish-eye, black
 //! holes (Tessendorf's (2022) weak-field index and the exact Schwarzschild / Reissner–Nordström one).
 
-use super::{IndexSample, Medium};
-use crate::curve::GeodesicRay;
+use super::{ConstantCurvature, IndexSample, Medium};
 use glam::DVec3;
 
 /// Luneburg lens n = √(2 − (r/R)²) inside the sphere of radius R, 1 outside: parallel rays
@@ -77,8 +76,8 @@ impl Medium for FishEye {
     fn step_hint(&self, p: DVec3, _dir: DVec3) -> f64 {
         0.25 * self.radius.max((p - self.center).length())
     }
-    fn geodesic(&self, position: DVec3, direction: DVec3) -> Option<GeodesicRay> {
-        GeodesicRay::fish_eye(self, position, direction)
+    fn constant_curvature(&self) -> Option<ConstantCurvature<'_>> {
+        Some(ConstantCurvature::FishEye(self))
     }
     /// πR/2: n ≤ n0, so the geodesic's angle grows as dθ/ds = 2n/(n0 R) ≤ 2/R and turns at most
     /// half the great circle, and the x-space circle (of radius ≥ R: it holds a point and its
@@ -134,8 +133,8 @@ impl Medium for HyperbolicMedium {
         let w = 1.0 - ((p - self.center) / self.radius).length_squared();
         0.25 * self.radius * w.max(Self::RIM_MARGIN)
     }
-    fn geodesic(&self, position: DVec3, direction: DVec3) -> Option<GeodesicRay> {
-        GeodesicRay::hyperbolic(self, position, direction)
+    fn constant_curvature(&self) -> Option<ConstantCurvature<'_>> {
+        Some(ConstantCurvature::Hyperbolic(self))
     }
     /// θ is unique along the hyperbolic medium's geodesics, but the rim is near: nothing beyond
     /// the medium's own hint.

@@ -11,7 +11,7 @@
 //! in-scattered along the whole stretch, with no distance drawn.
 
 use super::Photon;
-use crate::accel::build_bvh;
+use crate::bvh::build_bvh;
 use crate::shapes::padded_box;
 use glam::{DVec3, Vec3A};
 use kiddo::immutable::float::kdtree::ImmutableKdTree;

@@ -5,7 +5,7 @@
 
 use super::hit::{padded_box, Hit};
 use super::triangle::Triangle;
-use crate::accel::build_bvh;
+use crate::bvh::build_bvh;
 use crate::curve::{ArcHull, Path};
 use glam::{DVec2, DVec3, Vec3A};
 use obvhs::bvh2::Bvh2;
