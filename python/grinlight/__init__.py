@@ -271,7 +271,7 @@ class Scene:
             callback, close = _progress_bar(progress)
             try:
                 out = self._inner.render_shard(
-                    {**self._overrides, **_given(values)}, k, n, None if output is None else Path(output), bool(resume), callback
+                    {**self._overrides, **_given(values)}, f"{k}/{n}", None if output is None else Path(output), bool(resume), callback
                 )
             finally:
                 close()

@@ -180,15 +180,14 @@ impl Scene {
         Ok(out)
     }
 
-    /// Renders shard `index` of `count` of the scene file's render into a partial result,
-    /// as `grinlight render --shard K/N` does; returns the partial's path.
-    #[pyo3(signature = (overrides, index, count, output=None, resume=false, progress=None))]
+    /// Renders the shard `shard` ("K/N", as `grinlight render --shard K/N` reads it) of the
+    /// scene file's render into a partial result; returns the partial's path.
+    #[pyo3(signature = (overrides, shard, output=None, resume=false, progress=None))]
     fn render_shard(
         &self,
         py: Python<'_>,
         overrides: &Bound<'_, PyDict>,
-        index: u32,
-        count: u32,
+        shard: &str,
         output: Option<PathBuf>,
         resume: bool,
         progress: Option<Bound<'_, PyAny>>,
@@ -199,7 +198,7 @@ impl Scene {
                  dict as TOML and load that",
             ));
         };
-        let shard = Shard::parse(&format!("{index}/{count}")).map_err(py_err)?;
+        let shard = Shard::parse(shard).map_err(py_err)?;
         let job = RenderJob {
             scene: path.clone(),
             output: output.clone(),
