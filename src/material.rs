@@ -1,9 +1,11 @@
 //! Surface materials: what a scene says a surface is. [`crate::bsdf`] is how it scatters;
-//! [`crate::transport::Tracer::vertex_bsdf`] makes the one from the other at a hit.
+//! [`Material::bsdf`] makes the one from the other at a point of the surface.
 
-use crate::bsdf::{Coat, Ggx, Lobes, Metal};
+use crate::bsdf::{Bsdf, Coat, Ggx, Lobes, Metal, Reflectance};
 use crate::color::Rgb;
+use crate::spectrum::colour;
 use crate::texture::Texture;
+use glam::DVec2;
 use std::sync::Arc;
 
 /// How a surface scatters light.
@@ -17,20 +19,20 @@ pub enum Material {
         texture: Option<Arc<Texture>>,
     },
     /// A conductor (`conductor`, and `mirror`: a smooth one of constant reflectance), two-sided:
-    /// a mirror where `roughness` is below [`crate::bsdf::SMOOTH_ALPHA`], else GGX.
+    /// a mirror where `ggx` is None, else GGX microfacet reflection.
     Conductor {
         /// Its complex index or reflectance.
         index: ConductorIndex,
-        /// GGX α.
-        roughness: f64,
+        /// The microsurface; None: smooth (a roughness below [`crate::bsdf::SMOOTH_ALPHA`],
+        /// decided once by [`Ggx::rough`] where the scene is read).
+        ggx: Option<Ggx>,
     },
     /// A dielectric boundary, with the index on each side evaluated at the hit point: Fresnel
-    /// reflection and Snell refraction where `roughness` is below
-    /// [`crate::bsdf::SMOOTH_ALPHA`], else Walter et al.'s rough interface. The inside is the
-    /// shape's interior medium.
+    /// reflection and Snell refraction where `ggx` is None, else the rough interface. The
+    /// inside is the shape's interior medium.
     Dielectric {
-        /// GGX α.
-        roughness: f64,
+        /// The microsurface; None: smooth (as a conductor's).
+        ggx: Option<Ggx>,
     },
     /// A diffuse base under a rough dielectric coat, two-sided.
     Plastic {
@@ -76,19 +78,101 @@ impl Material {
     /// The lobes of the BSDF this material makes at any hit (None for a detector or an
     /// emitter, which scatter nothing): what the photon plan reads before any ray is traced.
     pub fn lobes(&self) -> Option<Lobes> {
-        let rough = |alpha: f64| Ggx::rough([alpha, alpha]).is_some();
         Some(match self {
             Material::Diffuse { .. } => Lobes::DIFFUSE_REFLECTION,
-            Material::Conductor { roughness, .. } if rough(*roughness) => Lobes::GLOSSY_REFLECTION,
-            Material::Conductor { .. } => Lobes::SPECULAR_REFLECTION,
-            Material::Dielectric { roughness } if rough(*roughness) => {
+            Material::Conductor { ggx: Some(_), .. } => Lobes::GLOSSY_REFLECTION,
+            Material::Conductor { ggx: None, .. } => Lobes::SPECULAR_REFLECTION,
+            Material::Dielectric { ggx: Some(_) } => {
                 Lobes::GLOSSY_REFLECTION.with(Lobes::GLOSSY_TRANSMISSION)
             }
-            Material::Dielectric { .. } => {
+            Material::Dielectric { ggx: None } => {
                 Lobes::SPECULAR_REFLECTION.with(Lobes::SPECULAR_TRANSMISSION)
             }
             Material::Plastic { .. } => Lobes::DIFFUSE_REFLECTION.with(Lobes::GLOSSY_REFLECTION),
             Material::Detector { .. } | Material::Emissive { .. } => return None,
         })
+    }
+
+    /// The BSDF this material makes at the surface point `at`, whose lobes are
+    /// [`Material::lobes`]: None for a detector or an emitter (they scatter nothing), or where
+    /// an index it needs is undefined (a singular medium).
+    pub fn bsdf(&self, at: &impl SurfacePoint) -> Option<Bsdf<'_>> {
+        let textured = |albedo: Rgb, texture: &Option<Arc<Texture>>| {
+            let albedo = texture.as_ref().map_or(albedo, |t| albedo * t.at(at.uv()));
+            reflectance(albedo, at.wavelength())
+        };
+        Some(match self {
+            Material::Diffuse { albedo, texture } => Bsdf::Lambert {
+                albedo: textured(*albedo, texture),
+            },
+            Material::Conductor { index, ggx } => Bsdf::Conductor {
+                fresnel: index.reflectance(at.wavelength(), at.index_near()?),
+                ggx: *ggx,
+            },
+            Material::Dielectric { ggx } => Bsdf::Dielectric {
+                n1: at.index_near()?,
+                n2: at.index_far()?,
+                ggx: *ggx,
+            },
+            Material::Plastic {
+                albedo,
+                texture,
+                coat,
+            } => Bsdf::Plastic {
+                albedo: textured(*albedo, texture),
+                coat,
+            },
+            Material::Detector { .. } | Material::Emissive { .. } => return None,
+        })
+    }
+}
+
+/// What a material asks of the point where a path meets it, to make its BSDF there
+/// ([`Material::bsdf`]); each answer is computed only when asked.
+pub trait SurfacePoint {
+    /// The surface coordinates (u, v) there.
+    fn uv(&self) -> DVec2;
+    /// The wavelength the path carries (vacuum nm); None where it carries RGB.
+    fn wavelength(&self) -> Option<f64>;
+    /// The index on the side the path arrives from; None where it is undefined.
+    fn index_near(&self) -> Option<f64>;
+    /// The index on the far side of a transmitting surface; None where it is undefined.
+    fn index_far(&self) -> Option<f64>;
+}
+
+/// A reflectance as a path carries it: the RGB itself, or its smooth spectrum's value at the
+/// path's wavelength ([`colour::reflectance`]).
+pub fn reflectance(rgb: Rgb, wavelength: Option<f64>) -> Rgb {
+    match wavelength {
+        None => rgb,
+        Some(nm) => Rgb::splat(colour::reflectance(rgb, nm)),
+    }
+}
+
+impl ConductorIndex {
+    /// The Fresnel reflectance at wavelength `wavelength` (None: the path carries RGB),
+    /// relative to an outside of index `n_out`: a measured metal's exact term at one
+    /// wavelength, or its colour (the reflected D65 over the observer,
+    /// [`crate::bsdf::Metal::colour`]) when the path carries every wavelength.
+    pub fn reflectance(&self, wavelength: Option<f64>, n_out: f64) -> Reflectance<'_> {
+        match (self, wavelength) {
+            (&ConductorIndex::Constant(c), nm) => Reflectance::Constant(reflectance(c, nm)),
+            (ConductorIndex::Measured(metal), Some(nm)) => {
+                let (eta, k) = metal.index(nm);
+                Reflectance::Complex {
+                    eta: Rgb::splat(eta / n_out),
+                    k: Rgb::splat(k / n_out),
+                }
+            }
+            (ConductorIndex::Measured(metal), None) => Reflectance::Measured { metal, n_out },
+            (&ConductorIndex::Rgb { eta, k }, Some(nm)) => Reflectance::Complex {
+                eta: Rgb::splat(colour::reflectance(eta, nm) / n_out),
+                k: Rgb::splat(colour::reflectance(k, nm) / n_out),
+            },
+            (&ConductorIndex::Rgb { eta, k }, None) => Reflectance::Complex {
+                eta: eta / n_out,
+                k: k / n_out,
+            },
+        }
     }
 }

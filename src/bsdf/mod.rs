@@ -182,9 +182,19 @@ fn local(n: DVec3, v: DVec3) -> (Frame, DVec3) {
     (f, l)
 }
 
-/// A sample drawn in the local `frame` with its direction turned to world coordinates; None
-/// when its weight or pdf is not finite and positive.
-fn in_world(frame: &Frame, s: BsdfSample) -> Option<BsdfSample> {
+/// A sample drawn by `sample` in the local frame of `n` from ωo = `wo` there (None where
+/// `wo` is not above the surface), its direction turned to world coordinates; None when its
+/// weight or pdf is not finite and positive.
+fn in_local(
+    n: DVec3,
+    wo: DVec3,
+    sample: impl FnOnce(DVec3) -> Option<BsdfSample>,
+) -> Option<BsdfSample> {
+    let (frame, o) = local(n, wo);
+    if o.z <= 0.0 {
+        return None;
+    }
+    let s = sample(o)?;
     (s.weight.0.is_finite() && s.pdf > 0.0).then(|| BsdfSample {
         wi: frame.to_world(s.wi).normalize(),
         ..s
@@ -206,30 +216,40 @@ impl Bsdf<'_> {
         }
     }
 
+    /// Whether a sample reads its third number, u.2 (a discrete choice: Fresnel's between
+    /// reflection and refraction, a plastic's between its lobes, the seed of a rough
+    /// interface's walk). A Lambertian surface and a conductor read none; the two direction
+    /// numbers are read by every BSDF but a smooth one.
+    pub fn draws_choice(&self) -> bool {
+        match self {
+            Bsdf::Lambert { .. } | Bsdf::Conductor { .. } => false,
+            Bsdf::Dielectric { .. } | Bsdf::Plastic { .. } => true,
+        }
+    }
+
     /// Samples a direction for uniform numbers `u` (u.0, u.1 for the lobe's direction, u.2
-    /// for a discrete choice such as Fresnel's; a specular surface uses only u.2). None when
-    /// the sample carries nothing (it would leave on the wrong side of the surface).
+    /// for a discrete choice such as Fresnel's: [`Bsdf::draws_choice`]; a specular surface
+    /// uses only u.2). None when the sample carries nothing (it would leave on the wrong side
+    /// of the surface).
     pub fn sample(&self, wo: DVec3, n: DVec3, u: (f64, f64, f64)) -> Option<BsdfSample> {
         // Smooth surfaces and the Lambertian lobe in world coordinates (as the transport has
         // always computed them, to the bit); rough lobes in the local frame of `n`.
         match *self {
             Bsdf::Lambert { albedo } => {
                 let wi = Frame::new(n).to_world(cosine_hemisphere((u.0, u.1)));
-                return Some(BsdfSample {
+                Some(BsdfSample {
                     wi,
                     weight: albedo,
                     pdf: wi.dot(n).max(0.0) * FRAC_1_PI,
                     lobe: Lobes::DIFFUSE_REFLECTION,
-                });
-            }
-            Bsdf::Conductor { fresnel, ggx: None } => {
-                return Some(BsdfSample {
-                    wi: reflect(-wo, n),
-                    weight: fresnel.at(wo.dot(n)),
-                    pdf: f64::INFINITY,
-                    lobe: Lobes::SPECULAR_REFLECTION,
                 })
             }
+            Bsdf::Conductor { fresnel, ggx: None } => Some(BsdfSample {
+                wi: reflect(-wo, n),
+                weight: fresnel.at(wo.dot(n)),
+                pdf: f64::INFINITY,
+                lobe: Lobes::SPECULAR_REFLECTION,
+            }),
             Bsdf::Dielectric { n1, n2, ggx: None } => {
                 if wo.dot(n) < 0.0 {
                     return None;
@@ -240,41 +260,31 @@ impl Bsdf<'_> {
                 } else {
                     (refract(-wo, n, n1, n2, cos_t), Lobes::SPECULAR_TRANSMISSION)
                 };
-                return Some(BsdfSample {
+                Some(BsdfSample {
                     wi,
                     weight: Rgb::ONE,
                     pdf: f64::INFINITY,
                     lobe,
-                });
+                })
             }
-            _ => {}
-        }
-        let (frame, o) = local(n, wo);
-        if o.z <= 0.0 {
-            return None;
-        }
-        let s = match *self {
             Bsdf::Conductor {
                 fresnel,
                 ggx: Some(g),
-            } => {
+            } => in_local(n, wo, |o| {
                 let m = g.sample_visible(o, (u.0, u.1));
                 let i = reflect(-o, m);
-                if i.z <= 0.0 {
-                    return None;
-                }
-                BsdfSample {
+                (i.z > 0.0).then(|| BsdfSample {
                     wi: i,
                     weight: fresnel.at(o.dot(m)) * (g.g2(i, o) / g.g1(o)),
                     pdf: g.visible_d(o, m) / (4.0 * o.dot(m)),
                     lobe: Lobes::GLOSSY_REFLECTION,
-                }
-            }
+                })
+            }),
             Bsdf::Dielectric {
                 n1,
                 n2,
                 ggx: Some(g),
-            } => {
+            } => in_local(n, wo, |o| {
                 let exit = walk::dielectric(&g, n1, n2, o, u)?;
                 let i = exit.wi;
                 let lobe = match i.z > 0.0 {
@@ -289,14 +299,14 @@ impl Bsdf<'_> {
                     true => single,
                     false => f64::INFINITY,
                 };
-                BsdfSample {
+                Some(BsdfSample {
                     wi: i,
                     weight: Rgb::ONE,
                     pdf,
                     lobe,
-                }
-            }
-            Bsdf::Plastic { albedo, coat } => {
+                })
+            }),
+            Bsdf::Plastic { albedo, coat } => in_local(n, wo, |o| {
                 let p = coat.specular_probability(o.z, albedo);
                 let (i, lobe) = if u.2 < p {
                     let m = coat.ggx.sample_visible(o, (u.0, u.1));
@@ -308,38 +318,49 @@ impl Bsdf<'_> {
                     return None;
                 }
                 let pdf = coat.pdf(o, i, p);
-                BsdfSample {
+                Some(BsdfSample {
                     wi: i,
                     weight: coat.f(o, i, albedo) * (i.z / pdf),
                     pdf,
                     lobe,
-                }
-            }
-            _ => unreachable!("smooth and Lambertian BSDFs are sampled above"),
-        };
-        in_world(&frame, s)
+                })
+            }),
+        }
     }
 
     /// f(wo, wi) (1/sr) of the non-delta lobes: 0 for directions only a delta reaches.
     pub fn eval(&self, wo: DVec3, wi: DVec3, n: DVec3) -> Rgb {
         let (frame, o) = local(n, wo);
         let i = frame.to_local(wi);
+        let above = o.z > 0.0 && i.z > 0.0;
         match *self {
-            Bsdf::Lambert { albedo } if o.z > 0.0 && i.z > 0.0 => albedo * FRAC_1_PI,
+            Bsdf::Conductor { ggx: None, .. } | Bsdf::Dielectric { ggx: None, .. } => Rgb::ZERO,
+            Bsdf::Lambert { albedo } => match above {
+                true => albedo * FRAC_1_PI,
+                false => Rgb::ZERO,
+            },
             Bsdf::Conductor {
                 fresnel,
                 ggx: Some(g),
-            } if o.z > 0.0 && i.z > 0.0 => {
-                let m = (i + o).normalize();
-                fresnel.at(o.dot(m)) * (g.d(m) * g.g2(i, o) / (4.0 * i.z * o.z))
-            }
+            } => match above {
+                true => {
+                    let m = (i + o).normalize();
+                    fresnel.at(o.dot(m)) * (g.d(m) * g.g2(i, o) / (4.0 * i.z * o.z))
+                }
+                false => Rgb::ZERO,
+            },
             Bsdf::Dielectric {
                 n1,
                 n2,
                 ggx: Some(g),
-            } if o.z > 0.0 && i.z != 0.0 => Rgb::splat(rough_dielectric_f(&g, n1, n2, o, i)),
-            Bsdf::Plastic { albedo, coat } if o.z > 0.0 && i.z > 0.0 => coat.f(o, i, albedo),
-            _ => Rgb::ZERO,
+            } => match o.z > 0.0 && i.z != 0.0 {
+                true => Rgb::splat(rough_dielectric_f(&g, n1, n2, o, i)),
+                false => Rgb::ZERO,
+            },
+            Bsdf::Plastic { albedo, coat } => match above {
+                true => coat.f(o, i, albedo),
+                false => Rgb::ZERO,
+            },
         }
     }
 
@@ -348,21 +369,32 @@ impl Bsdf<'_> {
     pub fn pdf(&self, wo: DVec3, wi: DVec3, n: DVec3) -> f64 {
         let (frame, o) = local(n, wo);
         let i = frame.to_local(wi);
+        let above = o.z > 0.0 && i.z > 0.0;
         match *self {
-            Bsdf::Lambert { .. } if o.z > 0.0 => i.z.max(0.0) * FRAC_1_PI,
-            Bsdf::Conductor { ggx: Some(g), .. } if o.z > 0.0 && i.z > 0.0 => {
-                let m = (i + o).normalize();
-                g.visible_d(o, m) / (4.0 * o.dot(m))
-            }
+            Bsdf::Conductor { ggx: None, .. } | Bsdf::Dielectric { ggx: None, .. } => 0.0,
+            Bsdf::Lambert { .. } => match o.z > 0.0 {
+                true => i.z.max(0.0) * FRAC_1_PI,
+                false => 0.0,
+            },
+            Bsdf::Conductor { ggx: Some(g), .. } => match above {
+                true => {
+                    let m = (i + o).normalize();
+                    g.visible_d(o, m) / (4.0 * o.dot(m))
+                }
+                false => 0.0,
+            },
             Bsdf::Dielectric {
                 n1,
                 n2,
                 ggx: Some(g),
-            } if o.z > 0.0 && i.z != 0.0 => rough_dielectric_pdf(&g, n1, n2, o, i),
-            Bsdf::Plastic { albedo, coat } if o.z > 0.0 && i.z > 0.0 => {
-                coat.pdf(o, i, coat.specular_probability(o.z, albedo))
-            }
-            _ => 0.0,
+            } => match o.z > 0.0 && i.z != 0.0 {
+                true => rough_dielectric_pdf(&g, n1, n2, o, i),
+                false => 0.0,
+            },
+            Bsdf::Plastic { albedo, coat } => match above {
+                true => coat.pdf(o, i, coat.specular_probability(o.z, albedo)),
+                false => 0.0,
+            },
         }
     }
 
@@ -374,10 +406,13 @@ impl Bsdf<'_> {
     /// reaches the base, which the exit factor turns into radiance toward any ωo.
     pub fn diffuse_entry(&self, wi: DVec3, n: DVec3) -> f64 {
         let cos = wi.dot(n);
+        if cos <= 0.0 {
+            return 0.0;
+        }
         match *self {
-            Bsdf::Lambert { .. } if cos > 0.0 => 1.0,
-            Bsdf::Plastic { coat, .. } if cos > 0.0 => coat.entering(cos / n.length()),
-            _ => 0.0,
+            Bsdf::Lambert { .. } => 1.0,
+            Bsdf::Plastic { coat, .. } => coat.entering(cos / n.length()),
+            Bsdf::Conductor { .. } | Bsdf::Dielectric { .. } => 0.0,
         }
     }
 
@@ -386,10 +421,13 @@ impl Bsdf<'_> {
     /// without a diffuse lobe or below the surface.
     pub fn diffuse_exit(&self, wo: DVec3, n: DVec3) -> Rgb {
         let cos = wo.dot(n);
+        if cos <= 0.0 {
+            return Rgb::ZERO;
+        }
         match *self {
-            Bsdf::Lambert { albedo } if cos > 0.0 => albedo * FRAC_1_PI,
-            Bsdf::Plastic { albedo, coat } if cos > 0.0 => coat.leaving(cos / n.length(), albedo),
-            _ => Rgb::ZERO,
+            Bsdf::Lambert { albedo } => albedo * FRAC_1_PI,
+            Bsdf::Plastic { albedo, coat } => coat.leaving(cos / n.length(), albedo),
+            Bsdf::Conductor { .. } | Bsdf::Dielectric { .. } => Rgb::ZERO,
         }
     }
 
@@ -406,14 +444,8 @@ impl Bsdf<'_> {
     ) -> Option<BsdfSample> {
         match *self {
             Bsdf::Lambert { .. } => None,
-            Bsdf::Plastic { coat, .. } => {
-                let (frame, o) = local(n, wo);
-                if o.z <= 0.0 {
-                    return None;
-                }
-                in_world(&frame, coat.sample_lobe(o, u)?)
-            }
-            _ => self.sample(wo, n, u),
+            Bsdf::Plastic { coat, .. } => in_local(n, wo, |o| coat.sample_lobe(o, u)),
+            Bsdf::Conductor { .. } | Bsdf::Dielectric { .. } => self.sample(wo, n, u),
         }
     }
 
@@ -422,7 +454,7 @@ impl Bsdf<'_> {
     pub fn lambert_albedo(&self) -> Option<Rgb> {
         match self {
             Bsdf::Lambert { albedo } => Some(*albedo),
-            _ => None,
+            Bsdf::Conductor { .. } | Bsdf::Dielectric { .. } | Bsdf::Plastic { .. } => None,
         }
     }
 

@@ -389,7 +389,7 @@ impl<'a> Sources<'a> {
             hero,
             shell: match source {
                 Source::Shell(_) => None,
-                _ => self.shell.map(|s| s.ball),
+                Source::Light(_) | Source::Environment(_) => self.shell.map(|s| s.ball),
             },
             scattered: matches!(source, Source::Shell(_)),
         };

@@ -12,7 +12,6 @@
 //! BSDF carries them. Power (a photon's flux) never scales.
 
 use super::{Event, HeroTracer, MediumVertex, Stats, SurfaceVertex, Tracer, Vertex};
-use crate::bsdf::Bsdf;
 use crate::color::Rgb;
 use crate::material::Material;
 use crate::volume::{Flights, Scattering};
@@ -377,7 +376,9 @@ impl<'w> Walker<'w> {
                     chain.dispersed = Some(chain.weight);
                     chain.weight = Rgb::ONE;
                 }
-                _ => chain.weight *= hero.weight,
+                Policy::Weighted | Policy::Principal | Policy::Unscattered => {
+                    chain.weight *= hero.weight
+                }
             }
         }
     }
@@ -422,7 +423,11 @@ impl<'w> Walker<'w> {
             let p = match end {
                 End::Scatter(v) => v.position(),
                 End::Emitter { position, .. } => position,
-                _ => at.origin,
+                End::Escaped { .. }
+                | End::Absorbed { .. }
+                | End::Lost
+                | End::DepthLimit
+                | End::Stopped => at.origin,
             };
             chain.n_end = self.tracer.index(at.medium, p).unwrap_or(1.0);
         }
@@ -658,7 +663,7 @@ impl<'w> Walker<'w> {
         let u = match self.policy {
             Policy::Unscattered => return ControlFlow::Break(End::Stopped),
             // A mirror makes no choice and draws no number.
-            _ if matches!(vertex.bsdf, Bsdf::Conductor { .. }) => 0.0,
+            _ if !vertex.bsdf.draws_choice() => 0.0,
             Policy::Principal => 0.5,
             _ => self.choices.next().unwrap_or_else(|| rng.gen()),
         };

@@ -24,7 +24,12 @@ pub fn emission_seen(tracer: &Tracer, chain: &Chain) -> Rgb {
                 chain.weight * tracer.radiance(env.radiance(direction)) * chain.environment_scale()
             })
         }
-        _ => Rgb::ZERO,
+        End::Escaped { .. }
+        | End::Scatter(_)
+        | End::Absorbed { .. }
+        | End::Lost
+        | End::DepthLimit
+        | End::Stopped => Rgb::ZERO,
     }
 }
 
@@ -152,7 +157,11 @@ pub fn direct_light(
                     let t2 = (position - origin).length_squared();
                     power_heuristic(s.sample.pdf, t2 / (cos_l * emitter.area()))
                 }
-                _ => 1.0,
+                // Only an area light is a surface a sample can hit.
+                Light::Point { .. }
+                | Light::Spot { .. }
+                | Light::Led { .. }
+                | Light::Directional { .. } => 1.0,
             }),
         _ => 1.0,
     };

@@ -15,14 +15,13 @@ pub mod visibility;
 
 pub use vertex::{MediumVertex, Scattered, SurfaceVertex, Vertex};
 
-use crate::bsdf::{Bsdf, Ggx, Reflectance};
 use crate::color::Rgb;
 use crate::curve::{
     march_with, step_optical_depth, Bounds, ExactPath, HermitePath, MarchLimits, MarchOutcome,
     Path, RayState, StepControl, Termination,
 };
 use crate::lights::SceneBall;
-use crate::material::{ConductorIndex, Material};
+use crate::material::{Material, SurfacePoint};
 use crate::media::Medium;
 use crate::scene::{Scene, Surface};
 use crate::settings::TraceSettings;
@@ -372,10 +371,7 @@ impl<'a> Tracer<'a> {
     /// RGB itself, or — rays at one wavelength — its reflectance spectrum there
     /// ([`colour::reflectance`]), the same in every channel.
     pub fn reflectance(&self, rgb: Rgb) -> Rgb {
-        match &self.wavelength {
-            None => rgb,
-            Some(w) => Rgb::splat(colour::reflectance(rgb, w.nm)),
-        }
+        crate::material::reflectance(rgb, self.wavelength.as_ref().map(|w| w.nm))
     }
 
     /// A radiance, irradiance or intensity of emitted light likewise: the RGB itself, or its
@@ -478,49 +474,26 @@ impl<'a> Tracer<'a> {
             incoming,
         } = hit;
         let side = facing(normals.geometric, incoming);
-        let textured = |albedo: Rgb, texture: &Option<std::sync::Arc<crate::texture::Texture>>| {
-            let uv = || uv.unwrap_or_else(|| scene.accel.primitives()[prim].uv_at(position));
-            self.reflectance(texture.as_ref().map_or(albedo, |t| albedo * t.at(uv())))
-        };
-        let index_at = |m: Option<usize>| self.index(m, position);
-        let (bsdf, beyond) = match &scene.materials[surface.material] {
-            Material::Detector { .. } | Material::Emissive { .. } => return None,
-            Material::Diffuse { albedo, texture } => (
-                Bsdf::Lambert {
-                    albedo: textured(*albedo, texture),
-                },
-                medium,
-            ),
-            Material::Conductor { index, roughness } => (
-                Bsdf::Conductor {
-                    fresnel: self.conductor(index, index_at(medium)?),
-                    ggx: Ggx::rough([*roughness; 2]),
-                },
-                medium,
-            ),
-            Material::Dielectric { roughness } => {
+        let material = &scene.materials[surface.material];
+        // Detectors and emitters have no lobes: no vertex.
+        let beyond = match material.lobes()?.transmits() {
+            true => {
                 let inside = surface.interior?;
-                let to = if side == normals.geometric {
-                    Some(inside)
-                } else {
-                    surface.exterior.or(scene.ambient)
-                };
-                let (n1, n2) = (index_at(medium)?, index_at(to)?);
-                let ggx = Ggx::rough([*roughness; 2]);
-                (Bsdf::Dielectric { n1, n2, ggx }, to)
+                match side == normals.geometric {
+                    true => Some(inside),
+                    false => surface.exterior.or(scene.ambient),
+                }
             }
-            Material::Plastic {
-                albedo,
-                texture,
-                coat,
-            } => (
-                Bsdf::Plastic {
-                    albedo: textured(*albedo, texture),
-                    coat,
-                },
-                medium,
-            ),
+            false => medium,
         };
+        let bsdf = material.bsdf(&HitPoint {
+            tracer: self,
+            prim,
+            position,
+            uv,
+            near: medium,
+            far: beyond,
+        })?;
         let shading = if side == normals.geometric {
             normals.shading
         } else {
@@ -536,33 +509,6 @@ impl<'a> Tracer<'a> {
             medium,
             beyond,
         })
-    }
-
-    /// A conductor's Fresnel reflectance at the tracer's wavelength(s), relative to an outside
-    /// of index `n_out`: a measured metal's exact term at one wavelength, or its colour (the
-    /// reflected D65 over the observer, [`crate::bsdf::Metal::colour`]) when the path carries
-    /// every wavelength.
-    fn conductor<'m>(&self, index: &'m ConductorIndex, n_out: f64) -> Reflectance<'m> {
-        let nm = self.wavelength.as_ref().map(|w| w.nm);
-        match (index, nm) {
-            (&ConductorIndex::Constant(c), _) => Reflectance::Constant(self.reflectance(c)),
-            (ConductorIndex::Measured(metal), Some(nm)) => {
-                let (eta, k) = metal.index(nm);
-                Reflectance::Complex {
-                    eta: Rgb::splat(eta / n_out),
-                    k: Rgb::splat(k / n_out),
-                }
-            }
-            (ConductorIndex::Measured(metal), None) => Reflectance::Measured { metal, n_out },
-            (&ConductorIndex::Rgb { eta, k }, Some(nm)) => Reflectance::Complex {
-                eta: Rgb::splat(colour::reflectance(eta, nm) / n_out),
-                k: Rgb::splat(colour::reflectance(k, nm) / n_out),
-            },
-            (&ConductorIndex::Rgb { eta, k }, None) => Reflectance::Complex {
-                eta: eta / n_out,
-                k: k / n_out,
-            },
-        }
     }
 
     /// The next event of a ray from `origin` along unit `dir` inside medium `medium` (None:
@@ -869,5 +815,32 @@ fn keyed_by_ray(control: StepControl, origin: DVec3, dir: DVec3) -> StepControl 
             }
         }
         other => other,
+    }
+}
+
+/// A surface point as [`Material::bsdf`] asks of it: the hit, the media on each side and the
+/// tracer's wavelength.
+struct HitPoint<'t, 'a> {
+    tracer: &'t Tracer<'a>,
+    prim: usize,
+    position: DVec3,
+    uv: Option<DVec2>,
+    near: Option<usize>,
+    far: Option<usize>,
+}
+
+impl SurfacePoint for HitPoint<'_, '_> {
+    fn uv(&self) -> DVec2 {
+        self.uv
+            .unwrap_or_else(|| self.tracer.scene.accel.primitives()[self.prim].uv_at(self.position))
+    }
+    fn wavelength(&self) -> Option<f64> {
+        self.tracer.wavelength.as_ref().map(|w| w.nm)
+    }
+    fn index_near(&self) -> Option<f64> {
+        self.tracer.index(self.near, self.position)
+    }
+    fn index_far(&self) -> Option<f64> {
+        self.tracer.index(self.far, self.position)
     }
 }

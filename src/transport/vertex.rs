@@ -214,8 +214,12 @@ impl SurfaceVertex<'_> {
     fn frame(&self) -> DVec3 {
         match self.bsdf {
             Bsdf::Lambert { .. } => self.normal,
-            _ if self.wo.dot(self.shading) > 0.0 => self.shading,
-            _ => self.normal,
+            Bsdf::Conductor { .. } | Bsdf::Dielectric { .. } | Bsdf::Plastic { .. } => {
+                match self.wo.dot(self.shading) > 0.0 {
+                    true => self.shading,
+                    false => self.normal,
+                }
+            }
         }
     }
 
@@ -259,7 +263,10 @@ impl SurfaceVertex<'_> {
                 let r = n1 / n2;
                 r * r
             }
-            _ => 1.0,
+            Bsdf::Lambert { .. }
+            | Bsdf::Conductor { .. }
+            | Bsdf::Dielectric { .. }
+            | Bsdf::Plastic { .. } => 1.0,
         }
     }
 
@@ -309,9 +316,9 @@ impl SurfaceVertex<'_> {
     /// third only where the BSDF makes a discrete choice (a Lambertian surface draws two).
     pub fn scatter_with(&self, rng: &mut impl rand::Rng) -> Option<Scattered> {
         let u = (rng.gen(), rng.gen());
-        let choice = match self.bsdf {
-            Bsdf::Lambert { .. } | Bsdf::Conductor { .. } => 0.0,
-            Bsdf::Dielectric { .. } | Bsdf::Plastic { .. } => rng.gen(),
+        let choice = match self.bsdf.draws_choice() {
+            true => rng.gen(),
+            false => 0.0,
         };
         self.scatter((u.0, u.1, choice))
     }

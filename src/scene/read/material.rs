@@ -39,8 +39,7 @@ fn texture(t: &mut TableReader) -> Result<Option<Arc<Texture>>> {
     Ok(Some(Arc::new(texture)))
 }
 
-/// GGX α at `roughness` (`default` if absent), a number in [0, 1]; below
-/// [`crate::bsdf::SMOOTH_ALPHA`] the surface is smooth.
+/// GGX α at `roughness` (`default` if absent), a number in [0, 1].
 fn roughness(t: &mut TableReader, default: f64) -> Result<f64> {
     let alpha = t.f64_or("roughness", default)?;
     t.check(
@@ -49,6 +48,13 @@ fn roughness(t: &mut TableReader, default: f64) -> Result<f64> {
         format!("must be GGX α in [0, 1], got {alpha:?}"),
     )?;
     Ok(alpha)
+}
+
+/// The microsurface of `roughness` (smooth if absent): None, a smooth surface, where α is
+/// below [`crate::bsdf::SMOOTH_ALPHA`] — the one place rough and smooth are told apart.
+fn microsurface(t: &mut TableReader) -> Result<Option<Ggx>> {
+    let alpha = roughness(t, 0.0)?;
+    Ok(Ggx::rough([alpha, alpha]))
 }
 
 /// A conductor's index: `metal` (a measured metal's symbol, or "perfect"), or `eta` and `k`
@@ -120,14 +126,14 @@ pub fn read_material(t: &mut TableReader) -> Result<(Material, Option<Interior>)
         "mirror" => (
             Material::Conductor {
                 index: ConductorIndex::Constant(unit_color(t, "reflectance", Some(Rgb::ONE))?),
-                roughness: 0.0,
+                ggx: None,
             },
             None,
         ),
         "conductor" => (
             Material::Conductor {
                 index: conductor_index(t)?,
-                roughness: roughness(t, 0.0)?,
+                ggx: microsurface(t)?,
             },
             None,
         ),
@@ -178,8 +184,8 @@ pub fn read_material(t: &mut TableReader) -> Result<(Material, Option<Interior>)
                     ))
                 }
             };
-            let roughness = roughness(t, 0.0)?;
-            (Material::Dielectric { roughness }, Some(interior))
+            let ggx = microsurface(t)?;
+            (Material::Dielectric { ggx }, Some(interior))
         }
         other => {
             return Err(t.error(
