@@ -11,9 +11,8 @@ use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 use std::f64::consts::PI;
 
-mod common;
-use common::chi2::chi2;
-use common::quadrature;
+use crate::common::chi2::chi2;
+use crate::common::quadrature;
 
 /// A direction at polar angle `theta` from +z, in the x–z plane.
 fn at(theta: f64) -> DVec3 {

@@ -17,7 +17,7 @@ fn cli_reference() -> String {
     };
     let mut doc = String::from(
         "# Command-line reference\n\nGenerated from `grinlight help` (a test checks it is current; \
-         `GRINLIGHT_WRITE_DOCS=1 cargo test --release --test docs` rewrites it). The scene keys \
+         `GRINLIGHT_WRITE_DOCS=1 cargo test --release --test tests docs::` rewrites it). The scene keys \
          these options override are in [scene-format.md](scene-format.md); how to use them, in \
          [guide.md](guide.md).\n\n## grinlight\n\n```\n",
     );
@@ -41,7 +41,7 @@ fn the_cli_reference_is_the_programs_help() {
     }
     assert!(
         std::fs::read_to_string(path).is_ok_and(|t| t == current),
-        "docs/cli.md is stale: GRINLIGHT_WRITE_DOCS=1 cargo test --release --test docs"
+        "docs/cli.md is stale: GRINLIGHT_WRITE_DOCS=1 cargo test --release --test tests docs::"
     );
 }
 
@@ -243,4 +243,75 @@ fn the_guides_trace_examples_print_what_it_shows() {
         checked += 1;
     }
     assert!(checked > 0, "no trace example in docs/guide.md");
+}
+
+/// Every recipe of docs/cookbook.md — a `## title` and the TOML block under it — is a scene
+/// grinlight renders without a warning (at a few pixels and photons, here), writing its image
+/// or its receivers' readings.
+#[test]
+fn every_cookbook_recipe_renders_without_a_warning() {
+    let cookbook = std::fs::read_to_string("docs/cookbook.md").unwrap();
+    let dir = std::env::temp_dir().join(format!("grinlight-cookbook-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut rendered = 0;
+    for section in cookbook.split("\n## ").skip(1) {
+        let title = section.lines().next().unwrap();
+        let start = section.find("```toml\n").expect("a TOML block") + 8;
+        let end = start + section[start..].find("```").unwrap();
+        let slug: String = title
+            .chars()
+            .map(|c| {
+                if c.is_ascii_alphanumeric() {
+                    c.to_ascii_lowercase()
+                } else {
+                    '_'
+                }
+            })
+            .collect();
+        let scene = dir.join(format!("{slug}.toml"));
+        std::fs::write(&scene, &section[start..end]).unwrap();
+        let has_camera = section[start..end].contains("[camera]");
+        let mut args: Vec<String> = ["render", scene.to_str().unwrap(), "-o"]
+            .iter()
+            .map(|s| s.to_string())
+            .collect();
+        args.push(dir.join(format!("{slug}.exr")).to_str().unwrap().into());
+        args.extend(
+            [
+                "--passes",
+                "1",
+                "--photons",
+                "2000",
+                "--caustic-photons",
+                "2000",
+                "--receiver-photons",
+                "5000",
+                "--threads",
+                "2",
+            ]
+            .map(String::from),
+        );
+        if has_camera {
+            args.extend(["--width", "16", "--height", "12", "--spp", "1"].map(String::from));
+        }
+        let out = Command::new(env!("CARGO_BIN_EXE_grinlight"))
+            .args(&args)
+            .output()
+            .expect("run grinlight");
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "recipe {title:?}: {stderr}");
+        assert!(
+            !stderr.to_lowercase().contains("warning"),
+            "recipe {title:?} warns: {stderr}"
+        );
+        let written = if has_camera {
+            dir.join(format!("{slug}.exr"))
+        } else {
+            dir.join(format!("{slug}.exit.csv"))
+        };
+        assert!(written.is_file(), "recipe {title:?} wrote no {written:?}");
+        rendered += 1;
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+    assert_eq!(rendered, 7, "docs/cookbook.md's recipes");
 }

@@ -1,8 +1,6 @@
 //! The exact arc against the same arc evaluated in 320-bit arithmetic.
 
-mod common;
-
-use common::bigarc;
+use crate::common::bigarc;
 use glam::DVec3;
 use grinlight::curve::CurvedSegment;
 use rand::Rng;

@@ -381,7 +381,7 @@ fn staircase_landing(layers: &[(f64, f64)], theta: f64, len: f64, gap: f64) -> f
 /// still over a 25 µm receiver bin with 200 layers (measured 0.155 and 0.052 mm; the GRIN
 /// rays themselves agree with an independent integration to 6e-6 mm) — the
 /// reason the receiver distributions of GRIN and layered fibers differ beyond noise at 2·10⁵
-/// photons (README, examples/layering_study.rs).
+/// photons (docs/guide.md "Receivers and `grinlight validate`", examples/layering_study.rs).
 #[test]
 fn the_layered_twin_is_a_staircase_and_converges_slowly() {
     use glam::DVec3;

@@ -9,8 +9,7 @@ use grinlight::scene::load::parse_scene;
 use grinlight::settings::{IntegratorKind, Settings};
 use std::path::Path;
 
-mod common;
-use common::quadrature;
+use crate::common::quadrature;
 
 /// The directional albedo E(μ) of single-scattering GGX with F = 1: ∫ f cos θi dωi by a
 /// product quadrature over microfacet normals (dωi = 4 (ωo·m) dωm, cos θm = 1 − t²),

@@ -192,7 +192,7 @@ fn furnace_sphere_reaches_the_analytic_radiance() {
     );
 }
 
-mod common;
+use crate::common;
 
 /// A meshed lens renders as the analytic one: `scenes/luneburg.toml` at 96 × 72 with its lens
 /// as the analytic sphere and as a smooth 2 048-triangle octahedral sphere (the file's exact

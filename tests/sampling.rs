@@ -4,7 +4,7 @@
 //! fails at significance 1e-4 (critical value by the Wilson–Hilferty approximation), so a
 //! correct sampler fails it once in 10⁴ seeds, and this seed is fixed.
 
-use common::chi2::chi2;
+use crate::common::chi2::chi2;
 use glam::DVec3;
 use grinlight::color::Rgb;
 use grinlight::lights::{Emitter, Light};
@@ -15,8 +15,6 @@ use grinlight::sampling::{
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 use std::f64::consts::{PI, TAU};
-
-mod common;
 
 fn uv(rng: &mut Pcg64Mcg) -> (f64, f64) {
     (rng.gen(), rng.gen())

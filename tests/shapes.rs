@@ -7,7 +7,7 @@ use grinlight::shapes::{Hit, Primitive, Triangle};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 
-mod common;
+use crate::common;
 
 fn rv(rng: &mut Pcg64Mcg) -> DVec3 {
     DVec3::new(

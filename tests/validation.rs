@@ -1,8 +1,6 @@
 //! The curved-ray engine against exact solutions. Every tolerance is stated with
 //! its reason next to the assertion.
 
-mod common;
-
 use glam::DVec3;
 use grinlight::curve::{
     march_with, Bounds, CurvedSegment, MarchLimits, MarchOutcome, RayState, StepControl,

@@ -4,7 +4,7 @@
 //! index field, grey and coloured; and the light a semi-infinite isotropic medium reflects,
 //! against Chandrasekhar's H-function.
 
-mod common;
+use crate::common;
 
 use glam::DVec3;
 use grinlight::photon::{shoot, Batch, Photons, Sources};

@@ -1,5 +1,3 @@
-#![allow(dead_code)]
-
 pub mod bigarc;
 pub mod chi2;
 pub mod quadrature;
