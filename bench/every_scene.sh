@@ -40,7 +40,7 @@ for ((i = 0; i < runs; i++)); do
                 earlier) bin=target/earlier/release/grinlight ;;
             esac
             if [[ $passes == own ]]; then flags=(); else flags=(--passes "$passes" --spp "$spp"); fi
-            if t=$(wall "$bin" render "$scene" "${flags[@]}" -o "$out/frame.exr"); then
+            if t=$(wall "$bin" render "$scene" "${flags[@]}" -o "$out/$build.exr"); then
                 echo "$t" >> "$out/$name.$build"
             else
                 echo "$build failed on $name: $(tail -1 "$out/log")" >&2

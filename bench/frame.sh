@@ -28,7 +28,7 @@ for ((i = 0; i < runs; i++)); do
         flags=(--spp 1)
         if "$bin" render --help | grep -q -- --no-table; then flags+=(--no-table); fi
         /usr/bin/time -f "%e %M" -o "$out/time" "$bin" render scenes/black_hole.toml \
-            "${flags[@]}" -o "$out/frame.exr" > "$out/log" 2>&1
+            "${flags[@]}" -o "$out/$build.exr" > "$out/log" 2>&1
         read -r wall kb < "$out/time"
         rendered=$(sed -nE 's/^rendered .* in ([0-9.]+) s$/\1/p' "$out/log")
         echo "$wall" >> "$out/$build.wall"

@@ -13,8 +13,9 @@ other=${2:-}
 cargo build --release --quiet --bin grinlight
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
-seconds() { # binary scene -> wall seconds from the render's own report
-  "$1" render "$2" -o "$out/x.exr" 2>&1 | sed -nE 's/^rendered .* in ([0-9.]+) s$/\1/p'
+seconds() { # binary scene -> wall seconds from the render's own report (each binary its own
+  # output: a build marks what it writes and refuses to replace another's file)
+  "$1" render "$2" -o "$out/$(echo "$1" | tr / _).exr" 2>&1 | sed -nE 's/^rendered .* in ([0-9.]+) s$/\1/p'
 }
 for ((i = 0; i < runs; i++)); do
   for bin in target/release/grinlight $other; do

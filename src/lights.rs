@@ -321,6 +321,19 @@ impl Light {
             Light::Directional { irradiance, .. } => irradiance,
         }
     }
+
+    /// The radiance leaving the front of its surface (the side its normal points to),
+    /// W/(m²·sr): an area light's; a point, spot, LED or directional light is not a surface
+    /// a ray can meet (zero).
+    pub fn surface_radiance(&self) -> Rgb {
+        match self {
+            Light::Area { radiance, .. } => *radiance,
+            Light::Point { .. }
+            | Light::Spot { .. }
+            | Light::Led { .. }
+            | Light::Directional { .. } => Rgb::ZERO,
+        }
+    }
 }
 
 /// Light arriving at a point from one sample of a light.

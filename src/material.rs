@@ -43,17 +43,6 @@ pub enum Material {
         /// The coat, with its tabulated albedo.
         coat: Arc<Coat>,
     },
-    /// A receiver's detector plane: transparent, it records the photons crossing it.
-    Detector {
-        /// Index into the scene's receivers.
-        receiver: usize,
-    },
-    /// An emitter of constant radiance from its front side (the side its normal points to),
-    /// black on the back; it reflects nothing.
-    Emissive {
-        /// Radiance per channel, W/(m²·sr).
-        radiance: Rgb,
-    },
 }
 
 /// What a conductor's Fresnel reflectance is made from.
@@ -75,10 +64,10 @@ pub enum ConductorIndex {
 }
 
 impl Material {
-    /// The lobes of the BSDF this material makes at any hit (None for a detector or an
-    /// emitter, which scatter nothing): what the photon plan reads before any ray is traced.
-    pub fn lobes(&self) -> Option<Lobes> {
-        Some(match self {
+    /// The lobes of the BSDF this material makes at any hit: what the photon plan reads
+    /// before any ray is traced.
+    pub fn lobes(&self) -> Lobes {
+        match self {
             Material::Diffuse { .. } => Lobes::DIFFUSE_REFLECTION,
             Material::Conductor { ggx: Some(_), .. } => Lobes::GLOSSY_REFLECTION,
             Material::Conductor { ggx: None, .. } => Lobes::SPECULAR_REFLECTION,
@@ -89,13 +78,11 @@ impl Material {
                 Lobes::SPECULAR_REFLECTION.with(Lobes::SPECULAR_TRANSMISSION)
             }
             Material::Plastic { .. } => Lobes::DIFFUSE_REFLECTION.with(Lobes::GLOSSY_REFLECTION),
-            Material::Detector { .. } | Material::Emissive { .. } => return None,
-        })
+        }
     }
 
     /// The BSDF this material makes at the surface point `at`, whose lobes are
-    /// [`Material::lobes`]: None for a detector or an emitter (they scatter nothing), or where
-    /// an index it needs is undefined (a singular medium).
+    /// [`Material::lobes`]; None where an index it needs is undefined (a singular medium).
     pub fn bsdf(&self, at: &impl SurfacePoint) -> Option<Bsdf<'_>> {
         let textured = |albedo: Rgb, texture: &Option<Arc<Texture>>| {
             let albedo = texture.as_ref().map_or(albedo, |t| albedo * t.at(at.uv()));
@@ -122,7 +109,6 @@ impl Material {
                 albedo: textured(*albedo, texture),
                 coat,
             },
-            Material::Detector { .. } | Material::Emissive { .. } => return None,
         })
     }
 }

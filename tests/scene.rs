@@ -156,8 +156,8 @@ const BAD: &[(&str, usize, usize, &str)] = &[
     ("[[light]]\ntype = \"environment\"\nfile = \"no_such_sky.exr\"\n", 3, 1, "cannot read"),
     ("[[light]]\ntype = \"led\"\ncenter = [0, 0, 0]\nradius = 0.1\npower = -2\n", 5, 1, "key `power`: must be > 0"),
     ("[[light]]\ntype = \"laser\"\n", 2, 1, "unknown light type 'laser'"),
-    // An emissive shape (it would light nothing).
-    ("[[material]]\nname = \"glow\"\ntype = \"emissive\"\nradiance = [1, 1, 1]\n[[shape]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"glow\"\n", 9, 1, "would light nothing"),
+    // An emissive material (a surface that emits is a light; on a shape it would light nothing).
+    ("[[material]]\nname = \"glow\"\ntype = \"emissive\"\nradiance = [1, 1, 1]\n[[shape]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"glow\"\n", 3, 1, "would light nothing"),
     // Ambient naming nothing.
     ("ambient = \"space\"\n", 1, 11, "no medium named 'space'"),
     // Infinite index.

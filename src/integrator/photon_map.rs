@@ -36,6 +36,7 @@ use super::single::single_scattering;
 use super::{CameraRay, Integrator, Sample, Slot};
 use crate::color::Rgb;
 use crate::film::Layer;
+use crate::material::Material;
 use crate::photon::{shoot, Batch, PhotonMap, Photons, Sources, VolumeMap};
 use crate::report::Report;
 use crate::scene::Scene;
@@ -71,7 +72,7 @@ impl Plan {
             scene
                 .surfaces
                 .iter()
-                .filter_map(|s| scene.materials[s.material].lobes())
+                .filter_map(|&s| scene.material(s).map(Material::lobes))
         };
         // (A receiver's detector is transparent: it neither bends nor stores light.) Light
         // scattered in a medium on its way to a surface is a caustic of that surface.

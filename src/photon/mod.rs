@@ -209,8 +209,9 @@ impl<'a> Sources<'a> {
             .iter()
             .zip(&scene.surfaces)
             .filter(|(_, s)| {
-                let lobes = scene.materials[s.material].lobes();
-                lobes.is_some_and(|l| l != Lobes::DIFFUSE_REFLECTION)
+                scene
+                    .material(**s)
+                    .is_some_and(|m| m.lobes() != Lobes::DIFFUSE_REFLECTION)
             })
             .map(|(p, _)| p.bounding_ball())
             .collect();

@@ -4,7 +4,7 @@
 
 use super::data::SceneText;
 use super::media::{read_density, read_medium, read_scattering, uniform};
-use super::model::{Description, Media, Profile, Scene, Shape, Surface};
+use super::model::{Description, Media, Profile, Role, Scene, Shape, Surface};
 use super::read::{
     read_camera, read_environment, read_light_and_spectrum, read_material, read_output,
     read_receiver, read_render, read_shape, Interior,
@@ -151,14 +151,6 @@ fn read_shapes(
             !matches!(kind, Material::Dielectric { .. }) || interior.is_some(),
             "a dielectric shape needs an interior",
         )?;
-        // An emissive shape would be seen but would light nothing (it is neither sampled
-        // nor a photon source): refuse it rather than render it silently wrong.
-        t.check(
-            "material",
-            !matches!(kind, Material::Emissive { .. }),
-            "an emissive material on a [[shape]] would light nothing; make it a [[light]] \
-             (quad or disk, with `radiance`)",
-        )?;
         let exterior = match t.string_opt("exterior")? {
             Some(m) => Some(medium_index(&t, "exterior", &m, media)?),
             None => None,
@@ -167,9 +159,8 @@ fn read_shapes(
         shapes.push(Shape {
             primitives: desc.primitives,
             surface: Surface {
-                material,
+                role: Role::Scatter(material),
                 interior,
-                light: None,
                 exterior,
             },
         });

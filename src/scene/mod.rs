@@ -14,4 +14,4 @@ pub mod table;
 pub mod vdb;
 
 pub use load::{load_description, load_scene, parse_data};
-pub use model::{Description, Media, Scene, Shape, Surface};
+pub use model::{Description, Media, Role, Scene, Shape, Surface};

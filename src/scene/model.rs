@@ -131,18 +131,38 @@ impl Media {
     }
 }
 
-/// A surface of the scene: what it is made of and what fills it.
+/// A surface of the scene: what it does to light and what fills it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Surface {
-    /// Index into the scene's materials.
-    pub material: usize,
+    /// What it does to the light that meets it.
+    pub role: Role,
     /// Index into the scene's media of what is inside (dielectrics), if anything.
     pub interior: Option<usize>,
-    /// Index into the scene's lights when this primitive is an area light's emitting surface.
-    pub light: Option<usize>,
     /// Index into the scene's media of what is outside (dielectrics; None: the ambient
     /// medium). Lets a dielectric separate two media, e.g. concentric layers of a fiber.
     pub exterior: Option<usize>,
+}
+
+/// What a surface does to the light that meets it: scatter it by a material, record it (a
+/// receiver's detector plane) or emit (an area light's surface).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Role {
+    /// It scatters by this material (an index into the scene's materials).
+    Scatter(usize),
+    /// A receiver's detector plane (an index into the scene's receivers): transparent, it
+    /// records the photons crossing it.
+    Detector(usize),
+    /// An area light's emitting surface (an index into the scene's lights): the light's
+    /// radiance from its front side (the side its normal points to), black behind; it
+    /// reflects nothing.
+    Emitter(usize),
+}
+
+impl Surface {
+    /// A receiver's detector plane, which every ray and photon passes through unchanged.
+    pub fn is_detector(&self) -> bool {
+        matches!(self.role, Role::Detector(_))
+    }
 }
 
 /// A `[[shape]]`: its primitives, all with one surface.
@@ -185,45 +205,40 @@ pub struct Description {
 }
 
 impl Description {
-    /// The render-ready scene: the shapes' primitives, then each area light's emitting surface
-    /// (an emissive material of its radiance), then each receiver's detector, in one
-    /// acceleration structure.
+    /// The render-ready scene: the shapes' primitives, then each area light's emitting surface,
+    /// then each receiver's detector, in one acceleration structure.
     pub fn build(self) -> Scene {
-        let mut materials = self.materials;
         let mut primitives = Vec::new();
         let mut surfaces = Vec::new();
         for shape in self.shapes {
             surfaces.extend(std::iter::repeat_n(shape.surface, shape.primitives.len()));
             primitives.extend(shape.primitives);
         }
-        let mut add = |material: Material, light: Option<usize>, primitive: Primitive| {
-            materials.push(material);
+        let mut add = |role: Role, primitive: Primitive| {
             surfaces.push(Surface {
-                material: materials.len() - 1,
+                role,
                 interior: None,
-                light,
                 exterior: None,
             });
             primitives.push(primitive);
         };
         for (i, light) in self.lights.iter().enumerate() {
-            if let Light::Area { emitter, radiance } = light {
-                let radiance = *radiance;
-                add(
-                    Material::Emissive { radiance },
-                    Some(i),
-                    emitter.primitive(),
-                );
+            match light {
+                Light::Area { emitter, .. } => add(Role::Emitter(i), emitter.primitive()),
+                Light::Point { .. }
+                | Light::Spot { .. }
+                | Light::Led { .. }
+                | Light::Directional { .. } => {}
             }
         }
         for (receiver, r) in self.receivers.iter().enumerate() {
-            add(Material::Detector { receiver }, None, r.primitive());
+            add(Role::Detector(receiver), r.primitive());
         }
         Scene {
             path: self.path,
             media: self.media,
             ambient: self.ambient,
-            materials,
+            materials: self.materials,
             surfaces,
             accel: Accel::new(primitives),
             lights: self.lights,
@@ -264,6 +279,14 @@ pub struct Scene {
 }
 
 impl Scene {
+    /// The material a surface scatters by; None for a detector or an emitter.
+    pub fn material(&self, surface: Surface) -> Option<&Material> {
+        match surface.role {
+            Role::Scatter(m) => Some(&self.materials[m]),
+            Role::Detector(_) | Role::Emitter(_) => None,
+        }
+    }
+
     /// The medium called `name`; the error lists the names that exist.
     pub fn medium(&self, name: &str) -> Result<&dyn Medium> {
         match self.media.index(name) {

@@ -14,6 +14,7 @@
 use super::{Event, HeroTracer, MediumVertex, Stats, SurfaceVertex, Tracer, Vertex};
 use crate::color::Rgb;
 use crate::material::Material;
+use crate::scene::Role;
 use crate::volume::{Flights, Scattering};
 use glam::DVec3;
 use rand::Rng;
@@ -598,22 +599,22 @@ impl<'w> Walker<'w> {
         };
         observer.point(hit.position);
         let surface = scene.surfaces[hit.prim];
-        match &scene.materials[surface.material] {
-            Material::Emissive { radiance } => {
+        match surface.role {
+            Role::Emitter(light) => {
                 let front = hit.incoming.dot(hit.normals.geometric) < 0.0;
                 ControlFlow::Break(End::Emitter {
                     prim: hit.prim,
                     radiance: match front {
-                        true => self.tracer.radiance(*radiance),
+                        true => self.tracer.radiance(scene.lights[light].surface_radiance()),
                         false => Rgb::ZERO,
                     },
                     position: hit.position,
                     direction: hit.incoming,
                 })
             }
-            Material::Detector { receiver } => {
+            Role::Detector(receiver) => {
                 if observer
-                    .detector(*receiver, hit.position, chain.weight)
+                    .detector(receiver, hit.position, chain.weight)
                     .is_break()
                 {
                     return ControlFlow::Break(End::Stopped);
@@ -621,12 +622,11 @@ impl<'w> Walker<'w> {
                 at.origin = super::offset(hit.position, hit.incoming);
                 ControlFlow::Continue(())
             }
-            material => {
-                if matches!(material, Material::Dielectric { .. }) {
+            Role::Scatter(material) => {
+                if matches!(scene.materials[material], Material::Dielectric { .. }) {
                     self.meet_dispersion(self.tracer.disperses_at(surface), chain);
                 }
                 let Some(vertex) = self.tracer.vertex(hit, surface, at.medium) else {
-                    // Detectors and emitters are met above: the index is undefined here.
                     lent.stats.undefined_index += 1;
                     return ControlFlow::Break(End::Lost);
                 };

@@ -26,7 +26,6 @@ use crate::curve::{
     march_replay_with, march_with, Bounds, MarchLimits, MarchOutcome, RayState, Termination,
 };
 use crate::lights::Anchor;
-use crate::material::Material;
 use crate::media::Medium;
 use crate::volume::Scattering;
 use glam::{DVec2, DVec3};
@@ -356,10 +355,7 @@ fn unblocked(tracer: &Tracer, from: DVec3, medium: usize, link: &Link, stats: &m
                 if travelled + distance >= link.length * (1.0 - 1e-7) {
                     return true;
                 }
-                if !matches!(
-                    scene.materials[scene.surfaces[prim].material],
-                    Material::Detector { .. }
-                ) {
+                if !scene.surfaces[prim].is_detector() {
                     return false;
                 }
                 travelled += distance;

@@ -10,6 +10,7 @@ use super::connect::connect;
 use super::{visibility, Stats, Tracer, Vertex};
 use crate::color::Rgb;
 use crate::lights::Light;
+use crate::scene::Role;
 use rand::Rng;
 
 /// Radiance the end of `chain` sends back along it, as seen at its start: an emitter's (in
@@ -149,9 +150,8 @@ pub fn direct_light(
             position,
             direction,
             ..
-        } if weighed => scene.surfaces[prim]
-            .light
-            .map_or(1.0, |l| match &scene.lights[l] {
+        } if weighed => match scene.surfaces[prim].role {
+            Role::Emitter(l) => match &scene.lights[l] {
                 Light::Area { emitter, .. } => {
                     let cos_l = -direction.dot(emitter.normal());
                     let t2 = (position - origin).length_squared();
@@ -162,8 +162,18 @@ pub fn direct_light(
                 | Light::Spot { .. }
                 | Light::Led { .. }
                 | Light::Directional { .. } => 1.0,
-            }),
-        _ => 1.0,
+            },
+            // A path ends at an emitter only on an emitter's surface.
+            Role::Scatter(_) | Role::Detector(_) => 1.0,
+        },
+        // Light the sample did not reach by hitting a surface has no second strategy.
+        End::Emitter { .. }
+        | End::Scatter(_)
+        | End::Escaped { .. }
+        | End::Absorbed { .. }
+        | End::Lost
+        | End::DepthLimit
+        | End::Stopped => 1.0,
     };
     radiance += s.sample.weight * emission_seen(walker.tracer, &chain) * (mis * s.radiance_scale);
     radiance

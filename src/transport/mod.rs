@@ -443,7 +443,7 @@ impl<'a> Tracer<'a> {
                 return scene.ambient;
             };
             let s = scene.surfaces[prim];
-            if matches!(scene.materials[s.material], Material::Dielectric { .. }) {
+            if matches!(scene.material(s), Some(Material::Dielectric { .. })) {
                 return if d.dot(h.normal) > 0.0 {
                     s.interior
                 } else {
@@ -474,9 +474,8 @@ impl<'a> Tracer<'a> {
             incoming,
         } = hit;
         let side = facing(normals.geometric, incoming);
-        let material = &scene.materials[surface.material];
-        // Detectors and emitters have no lobes: no vertex.
-        let beyond = match material.lobes()?.transmits() {
+        let material = scene.material(surface)?;
+        let beyond = match material.lobes().transmits() {
             true => {
                 let inside = surface.interior?;
                 match side == normals.geometric {

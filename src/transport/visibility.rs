@@ -5,7 +5,6 @@
 
 use super::{offset, Tracer};
 use crate::color::Rgb;
-use crate::material::Material;
 use glam::DVec3;
 use std::cell::OnceCell;
 
@@ -22,10 +21,7 @@ pub fn transmittance(
     let scene = tracer.scene;
     let (mut o, mut left) = (from, reach);
     while let Some((prim, h)) = scene.accel.intersect_ray(o, dir, 0.0, left) {
-        if !matches!(
-            scene.materials[scene.surfaces[prim].material],
-            Material::Detector { .. }
-        ) {
+        if !scene.surfaces[prim].is_detector() {
             return 0.0;
         }
         let next = offset(o + h.t * dir, dir);
@@ -114,10 +110,7 @@ impl<'a> Occluders<'a> {
             let radius = self.radius + 1e-6 * (self.radius + self.position.abs().max_element());
             let primitives = scene.accel.primitives();
             scene.accel.boxes_meeting(lo, hi, |id| {
-                let detector = matches!(
-                    scene.materials[scene.surfaces[id].material],
-                    Material::Detector { .. }
-                );
+                let detector = scene.surfaces[id].is_detector();
                 let meets = primitives[id].may_meet_ball(self.position, radius);
                 if id != self.prim && !detector && meets {
                     if near.count < Near::KEPT {

@@ -167,12 +167,15 @@ pub fn read_material(t: &mut TableReader) -> Result<(Material, Option<Interior>)
                 None,
             )
         }
-        "emissive" => (
-            Material::Emissive {
-                radiance: t.rgb_or("radiance", None)?,
-            },
-            None,
-        ),
+        // A surface that emits is a light, sampled and a photon source; an emissive material
+        // on a shape would be seen but light nothing: refused rather than rendered wrong.
+        "emissive" => {
+            return Err(t.error(
+                "type",
+                "an emissive material would light nothing; make the surface a [[light]] \
+                 (quad or disk, with `radiance`)",
+            ))
+        }
         "dielectric" => {
             let interior = match (t.has("ior"), t.has("interior")) {
                 (true, false) => Interior::Ior(t.dispersion("ior")?),
