@@ -117,7 +117,7 @@ impl Environment {
             }
         }
         let mean = sum / (rows * cols) as f64;
-        let r = aim.target.1;
+        let r = aim.target.radius;
         mean.element_sum() / 3.0 * 4.0 * PI * PI * r * r
     }
 }

@@ -2,6 +2,7 @@
 //! Radiometry per RGB channel: intensity W/sr, radiance W/(m²·sr), irradiance W/m².
 
 use crate::color::Rgb;
+use crate::math::Ball;
 use crate::sampling::{
     cosine_hemisphere, power_cosine_hemisphere, uniform_cone, uniform_disk, uniform_sphere, Frame,
 };
@@ -22,10 +23,6 @@ pub struct Emission {
     pub power: Rgb,
 }
 
-/// The sphere (centre, radius) that holds the scene: parallel and environment light is
-/// emitted from a disk of this radius that covers it.
-pub type SceneBall = (DVec3, f64);
-
 /// Where photons are sent: parallel and environment light through the `target` ball, from
 /// where it enters the scene ([`Entry`]); light from points and surfaces over the target's cone
 /// ([`Light::emit`]). The target is the scene ball itself (every photon as the light emits
@@ -35,9 +32,9 @@ pub type SceneBall = (DVec3, f64);
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Aim {
     /// The ball holding the scene.
-    pub scene: SceneBall,
+    pub scene: Ball,
     /// The ball the photons are sent through.
-    pub target: SceneBall,
+    pub target: Ball,
     /// Where parallel and environment light sets off.
     pub entry: Entry,
 }
@@ -57,7 +54,7 @@ pub enum Entry {
     /// the whole world's disk, each weighed by the mixture of both densities.
     World {
         /// The world sphere.
-        ball: SceneBall,
+        ball: Ball,
         /// Whether the ambient medium scatters.
         scatters: bool,
     },
@@ -65,7 +62,7 @@ pub enum Entry {
 
 impl Aim {
     /// At the whole scene, light entering it as `entry` says.
-    pub fn whole(scene: SceneBall, entry: Entry) -> Aim {
+    pub fn whole(scene: Ball, entry: Entry) -> Aim {
         Aim {
             scene,
             target: scene,
@@ -95,7 +92,7 @@ pub struct Cone {
 
 impl Cone {
     /// The directions from `from` that meet `ball`; None when `from` is inside it.
-    pub fn toward((center, radius): SceneBall, from: DVec3) -> Option<Cone> {
+    pub fn toward(Ball { center, radius }: Ball, from: DVec3) -> Option<Cone> {
         let v = center - from;
         let d2 = v.length_squared();
         let sin2 = radius * radius / d2;
@@ -134,7 +131,11 @@ impl Cone {
 /// such a line — or, where the ambient medium scatters, half the time a line across the whole
 /// world sphere — enters the world sphere. None for a line that misses the world sphere.
 pub fn covering_disk(aim: Aim, direction: DVec3, uv: (f64, f64)) -> Option<(DVec3, f64)> {
-    let ((center, radius), (target, r)) = (aim.scene, aim.target);
+    let Ball { center, radius } = aim.scene;
+    let Ball {
+        center: target,
+        radius: r,
+    } = aim.target;
     let frame = Frame::new(direction);
     let across = |(x, y): (f64, f64), radius: f64| frame.to_world(DVec3::new(x, y, 0.0)) * radius;
     let (world, scatters) = match aim.entry {
@@ -145,7 +146,10 @@ pub fn covering_disk(aim: Aim, direction: DVec3, uv: (f64, f64)) -> Option<(DVec
         }
         Entry::World { ball, scatters } => (ball, scatters),
     };
-    let (c, big) = world;
+    let Ball {
+        center: c,
+        radius: big,
+    } = world;
     // The line's foot in the plane through the world's centre, drawn from the mixture: the
     // world's lines uniform in their distance ρ from its centre (density 1/(2πρR) across the
     // beam), for light scattered from a line reaches the scene about as 1/ρ.
@@ -626,7 +630,7 @@ impl Light {
             Light::Directional { .. } => return 1.0,
         };
         // The point of the light nearest the target, in the direction of its centre.
-        let toward = aim.target.0 - from;
+        let toward = aim.target.center - from;
         let d = toward.length();
         let nearest = from + toward * (extent / d).min(1.0);
         aim.cone(nearest)
@@ -638,7 +642,7 @@ impl Light {
     fn power(&self, aim: Aim) -> f64 {
         let p = match self {
             Light::Directional { irradiance, .. } => {
-                *irradiance * (PI * aim.target.1 * aim.target.1)
+                *irradiance * (PI * aim.target.radius * aim.target.radius)
             }
             _ => self.peak_intensity() * self.spread(),
         };

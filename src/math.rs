@@ -24,3 +24,12 @@ pub fn offset(p: DVec3, side: DVec3) -> DVec3 {
 pub fn angle_between(a: DVec3, b: DVec3) -> f64 {
     2.0 * (a - b).length().atan2((a + b).length())
 }
+
+/// A ball: the points within `radius` of `center` (scene units).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Ball {
+    /// Its centre.
+    pub center: DVec3,
+    /// Its radius, ≥ 0.
+    pub radius: f64,
+}

@@ -277,13 +277,34 @@ pub enum IntegratorKind {
     Path,
 }
 
+impl IntegratorKind {
+    /// Every integrator, in the order its names are listed.
+    pub const ALL: [IntegratorKind; 2] = [IntegratorKind::PhotonMap, IntegratorKind::Path];
+
+    /// Its name in a scene file, on the command line and in Python.
+    pub fn name(self) -> &'static str {
+        match self {
+            IntegratorKind::PhotonMap => "photon_map",
+            IntegratorKind::Path => "path",
+        }
+    }
+
+    /// Every integrator's name, quoted, as errors list them: `'photon_map' or 'path'`.
+    pub fn names() -> String {
+        let quoted: Vec<String> = Self::ALL
+            .iter()
+            .map(|k| format!("'{}'", k.name()))
+            .collect();
+        quoted.join(" or ")
+    }
+}
+
 impl std::str::FromStr for IntegratorKind {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        match s {
-            "photon_map" => Ok(IntegratorKind::PhotonMap),
-            "path" => Ok(IntegratorKind::Path),
-            other => Err(format!("unknown integrator '{other}' (photon_map, path)")),
-        }
+        Self::ALL
+            .into_iter()
+            .find(|k| k.name() == s)
+            .ok_or_else(|| format!("unknown integrator '{s}' (expected {})", Self::names()))
     }
 }

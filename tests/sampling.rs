@@ -8,6 +8,7 @@ use crate::common::chi2::chi2;
 use glam::DVec3;
 use grinlight::color::Rgb;
 use grinlight::lights::{Emitter, Light};
+use grinlight::math::Ball;
 use grinlight::sampling::{
     cosine_hemisphere, power_cosine_hemisphere, power_cosine_pdf, uniform_cone, uniform_sphere,
     Strata, UNIFORM_SPHERE_PDF,
@@ -76,8 +77,13 @@ fn led_emission_follows_its_profile() {
         peak_intensity: Rgb::splat(2.0 * (m + 1.0) / TAU),
         m,
     };
-    let ball =
-        grinlight::lights::Aim::whole((DVec3::ZERO, 1.0), grinlight::lights::Entry::Upstream);
+    let ball = grinlight::lights::Aim::whole(
+        Ball {
+            center: DVec3::ZERO,
+            radius: 1.0,
+        },
+        grinlight::lights::Entry::Upstream,
+    );
     chi2(
         "led",
         |r| {
@@ -112,7 +118,13 @@ fn spot_emission_carries_its_power() {
     for _ in 0..n {
         if let Some(e) = spot.emit(
             [rng.gen(), rng.gen(), rng.gen(), rng.gen()],
-            grinlight::lights::Aim::whole((DVec3::ZERO, 1.0), grinlight::lights::Entry::Upstream),
+            grinlight::lights::Aim::whole(
+                Ball {
+                    center: DVec3::ZERO,
+                    radius: 1.0,
+                },
+                grinlight::lights::Entry::Upstream,
+            ),
         ) {
             assert!(e.direction.z >= cos_outer - 1e-12);
             sum += e.power.x;
@@ -182,8 +194,14 @@ fn strata_hold_one_number_each_and_every_sample_is_uniform() {
 #[test]
 fn world_entry_lines_cover_the_beam() {
     use grinlight::lights::{covering_disk, Aim, Entry};
-    let world = (DVec3::new(0.3, -0.2, 0.1), 10.0);
-    let target = (DVec3::new(0.5, 0.0, 0.0), 1.5);
+    let world = Ball {
+        center: DVec3::new(0.3, -0.2, 0.1),
+        radius: 10.0,
+    };
+    let target = Ball {
+        center: DVec3::new(0.5, 0.0, 0.0),
+        radius: 1.5,
+    };
     let aim = Aim {
         scene: target,
         target,
@@ -200,24 +218,31 @@ fn world_entry_lines_cover_the_beam() {
         let Some((origin, area)) = covering_disk(aim, direction, (rng.gen(), rng.gen())) else {
             continue;
         };
-        let on_sphere = (origin - world.0).length() / world.1;
+        let on_sphere = (origin - world.center).length() / world.radius;
         assert!((on_sphere - 1.0).abs() < 1e-8, "{on_sphere}");
-        assert!((origin - world.0).dot(direction) < 0.0, "starts upstream");
+        assert!(
+            (origin - world.center).dot(direction) < 0.0,
+            "starts upstream"
+        );
         all += area;
         all2 += area * area;
-        let off = (origin - target.0) - direction * (origin - target.0).dot(direction);
-        if off.length() <= target.1 {
+        let off = (origin - target.center) - direction * (origin - target.center).dot(direction);
+        if off.length() <= target.radius {
             through += area;
             through2 += area * area;
         }
     }
     let n = n as f64;
     for (sum, sum2, expected) in [
-        (all, all2, std::f64::consts::PI * world.1 * world.1),
+        (
+            all,
+            all2,
+            std::f64::consts::PI * world.radius * world.radius,
+        ),
         (
             through,
             through2,
-            std::f64::consts::PI * target.1 * target.1,
+            std::f64::consts::PI * target.radius * target.radius,
         ),
     ] {
         let mean = sum / n;

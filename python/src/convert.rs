@@ -5,6 +5,7 @@
 use glam::DVec3;
 use grinlight::commands::{Overrides, RayTrace, TraceControl};
 use grinlight::curve::StepperKind;
+use grinlight::settings::IntegratorKind;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyMapping, PyString, PyTuple};
@@ -173,7 +174,7 @@ pub fn overrides(d: &Bound<'_, PyDict>) -> PyResult<Overrides> {
             "integrator" => {
                 let name: String = v
                     .extract()
-                    .map_err(|_| bad(&key, "expected 'photon_map' or 'path'"))?;
+                    .map_err(|_| bad(&key, format!("expected {}", IntegratorKind::names())))?;
                 o.integrator = Some(name.parse().map_err(|e| bad(&key, e))?);
             }
             "no_table" => {

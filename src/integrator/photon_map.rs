@@ -140,7 +140,7 @@ struct Traced {
 impl<'a> PhotonMapper<'a> {
     /// The photon mapper of the tracer's scene under `settings`.
     pub fn new(tracer: &'a Tracer<'a>, settings: &Settings) -> Self {
-        let max_radius = settings.photons.radius.unwrap_or(0.05 * tracer.ball.1);
+        let max_radius = settings.photons.radius.unwrap_or(0.05 * tracer.ball.radius);
         Self {
             tracer,
             sources: Sources::new(tracer),

@@ -30,7 +30,8 @@ use crate::bsdf::Lobes;
 use crate::color::Rgb;
 use crate::curve::Bounds;
 use crate::environment::Environment;
-use crate::lights::{Aim, Cone, Emission, Entry, Light, SceneBall};
+use crate::lights::{Aim, Cone, Emission, Entry, Light};
+use crate::math::Ball;
 use crate::receiver::Detection;
 use crate::sampling::{stream, Purpose};
 use crate::spectrum::{colour, Spectrum};
@@ -84,7 +85,7 @@ pub struct Launch {
     /// For a map photon from a light or the environment in a scene whose ambient medium
     /// scatters outside the scene ball: that ball. Where such a photon first scatters outside
     /// it, it ends: light scattered there first is the shell's ([`Shell`]).
-    pub shell: Option<SceneBall>,
+    pub shell: Option<Ball>,
     /// Whether it has scattered in a medium already: a photon of the shell.
     pub scattered: bool,
 }
@@ -203,7 +204,7 @@ impl<'a> Sources<'a> {
     /// ball under its ceiling light, 21 times more.
     pub fn for_caustics(tracer: &Tracer<'a>) -> Self {
         let scene = tracer.scene;
-        let balls: Vec<SceneBall> = scene
+        let balls: Vec<Ball> = scene
             .accel
             .primitives()
             .iter()
@@ -215,21 +216,25 @@ impl<'a> Sources<'a> {
             })
             .map(|(p, _)| p.bounding_ball())
             .collect();
-        let (lo, hi) = balls.iter().fold(
-            (DVec3::INFINITY, DVec3::NEG_INFINITY),
-            |(lo, hi), (c, r)| (lo.min(c - *r), hi.max(c + *r)),
-        );
+        let (lo, hi) = balls
+            .iter()
+            .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), b| {
+                (lo.min(b.center - b.radius), hi.max(b.center + b.radius))
+            });
         let center = 0.5 * (lo + hi);
         let radius = balls
             .iter()
-            .map(|(c, r)| (*c - center).length() + r)
+            .map(|b| (b.center - center).length() + b.radius)
             .fold(0.0, f64::max);
-        let target = (center, 1.1 * radius);
+        let target = Ball {
+            center,
+            radius: 1.1 * radius,
+        };
         // A scattering medium may fill the scene: caustic photons are wanted everywhere.
         let fog = scene.media().any_scatters();
         let aim = Aim {
             scene: tracer.ball,
-            target: if !fog && !balls.is_empty() && target.1 < tracer.ball.1 {
+            target: if !fog && !balls.is_empty() && target.radius < tracer.ball.radius {
                 target
             } else {
                 tracer.ball
@@ -251,7 +256,7 @@ impl<'a> Sources<'a> {
         // transmittance from the world sphere to the upstream start along a line through the
         // scene's centre, for weighing it against the other sources.
         let crossed_share = crossed.map_or(1.0, |m| {
-            let (center, radius) = tracer.ball;
+            let Ball { center, radius } = tracer.ball;
             let length = (tracer.world.scale() - 2.0 * radius).max(0.0);
             let sigma_s = tracer.scattering(m).map_or(0.0, |sc| {
                 sc.sigma_s.mean() * sc.majorant_near(center).density
@@ -432,7 +437,7 @@ fn world_entry(tracer: &Tracer) -> Entry {
     let absorbs = tracer.medium(ambient).absorbs();
     match (tracer.world, scatters || absorbs) {
         (Bounds::Ball { center, radius }, true) => Entry::World {
-            ball: (center, radius),
+            ball: Ball { center, radius },
             scatters,
         },
         _ => Entry::Upstream,
@@ -808,7 +813,7 @@ fn trace_photon(
         left_through: None,
         path,
         last: e.origin,
-        reach: tracer.ball.1,
+        reach: tracer.ball.radius,
     };
     let ray = Ray {
         origin: e.origin,

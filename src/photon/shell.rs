@@ -26,7 +26,8 @@
 //! instead ([`crate::lights::Entry::World`]).
 
 use crate::color::Rgb;
-use crate::lights::{Cone, Emission, SceneBall};
+use crate::lights::{Cone, Emission};
+use crate::math::Ball;
 use crate::sampling::{uniform_sphere, UNIFORM_SPHERE_PDF};
 use crate::spectrum::Spectrum;
 use crate::transport::chain::Carried;
@@ -44,7 +45,7 @@ pub struct Shell {
     /// The ambient medium (index).
     pub medium: usize,
     /// The scene ball: the shell's inside.
-    pub ball: SceneBall,
+    pub ball: Ball,
     /// The world sphere's radius: the shell's outside.
     pub world: f64,
 }
@@ -65,7 +66,7 @@ impl Shell {
     pub fn of(tracer: &Tracer) -> Option<Shell> {
         let medium = tracer.scene.ambient?;
         tracer.scene.media().scattering(medium)?;
-        let (_, radius) = tracer.ball;
+        let radius = tracer.ball.radius;
         match tracer.world {
             crate::curve::Bounds::Ball { radius: world, .. } if world > radius => Some(Shell {
                 medium,
@@ -106,7 +107,10 @@ impl Shell {
         rng: &mut impl Rng,
         stats: &mut Stats,
     ) -> Option<ShellPhoton> {
-        let (center, inner) = self.ball;
+        let Ball {
+            center,
+            radius: inner,
+        } = self.ball;
         let rho = inner + (self.world - inner) * u[0];
         let position = center + uniform_sphere((u[1], u[2])) * rho;
         let point_density = 1.0 / (4.0 * PI * rho * rho * (self.world - inner));

@@ -7,6 +7,7 @@ use super::hit::{padded_box, Hit};
 use super::triangle::Triangle;
 use crate::bvh::build_bvh;
 use crate::curve::{ArcHull, Path};
+use crate::math::Ball;
 use glam::{DVec2, DVec3, Vec3A};
 use obvhs::bvh2::Bvh2;
 use obvhs::ray::{Ray, RayHit};
@@ -27,7 +28,7 @@ pub struct TriangleMesh {
     /// A ball around the bounds' centre that no triangle meets (radius 0 where one passes
     /// through the centre): a lens's or a ball's empty core, where a curved step's capsule
     /// needs no search at all.
-    core: (DVec3, f64),
+    core: Ball,
 }
 
 impl TriangleMesh {
@@ -126,7 +127,10 @@ impl TriangleMesh {
             texcoords,
             bvh,
             bounds,
-            core: (centre, core * (1.0 - 1e-9)),
+            core: Ball {
+                center: centre,
+                radius: core * (1.0 - 1e-9),
+            },
         })
     }
 
@@ -242,9 +246,9 @@ impl TriangleMesh {
     /// a fine mesh's surface), and a leaf's triangles are kept where
     /// their plane may be crossed ([`super::Plane::may_cross`]).
     fn candidates(&self, hull: &ArcHull, mut visit: impl FnMut(usize, Triangle) -> bool) {
-        let (centre, radius) = self.core;
+        let Ball { center, radius } = self.core;
         let room = radius - hull.deviation;
-        if (hull.a - centre).length() < room && (hull.b - centre).length() < room {
+        if (hull.a - center).length() < room && (hull.b - center).length() < room {
             return;
         }
         let nodes = &self.bvh.nodes;

@@ -5,6 +5,7 @@ use super::hit::Hit;
 use super::mesh::TriangleMesh;
 use super::triangle::{edge_coordinates_hit, plane_coordinates, Plane, Triangle};
 use crate::curve::{ArcHull, Path, RoundSurface};
+use crate::math::Ball;
 use glam::{DVec2, DVec3};
 use std::sync::Arc;
 
@@ -95,16 +96,22 @@ impl Primitive {
         }
     }
 
-    /// A ball holding the primitive (centre, radius): a sphere's or a disk's own, otherwise
-    /// the ball through its bounds' corners.
-    pub fn bounding_ball(&self) -> (DVec3, f64) {
+    /// A ball holding the primitive: a sphere's or a disk's own, otherwise the ball through
+    /// its bounds' corners.
+    pub fn bounding_ball(&self) -> Ball {
         match *self {
             Primitive::Sphere { center, radius } | Primitive::Disk { center, radius, .. } => {
-                (center, radius)
+                Ball { center, radius }
             }
-            _ => {
+            Primitive::Triangle(..)
+            | Primitive::Quad { .. }
+            | Primitive::Tube { .. }
+            | Primitive::Mesh(..) => {
                 let (lo, hi) = self.bounds();
-                (0.5 * (lo + hi), 0.5 * (hi - lo).length())
+                Ball {
+                    center: 0.5 * (lo + hi),
+                    radius: 0.5 * (hi - lo).length(),
+                }
             }
         }
     }
@@ -121,8 +128,8 @@ impl Primitive {
                 return false;
             }
         }
-        let (center, r) = self.bounding_ball();
-        point.distance(center) <= r + radius
+        let ball = self.bounding_ball();
+        point.distance(ball.center) <= ball.radius + radius
     }
 
     /// The plane of a planar primitive.

@@ -20,8 +20,8 @@ use crate::curve::{
     march_with, step_optical_depth, Bounds, ExactPath, HermitePath, MarchLimits, MarchOutcome,
     Path, RayState, StepControl, Termination,
 };
-use crate::lights::SceneBall;
 use crate::material::{Material, SurfacePoint};
+use crate::math::Ball;
 use crate::media::Medium;
 use crate::scene::{Scene, Surface};
 use crate::settings::TraceSettings;
@@ -205,7 +205,7 @@ pub struct Tracer<'a> {
     /// How rays travel.
     pub settings: TraceSettings,
     /// The smallest axis-aligned-box sphere around the primitives and the camera.
-    pub ball: SceneBall,
+    pub ball: Ball,
     /// The world sphere.
     pub world: Bounds,
     /// The medium the camera sits in (see [`Tracer::medium_containing`]).
@@ -311,7 +311,10 @@ impl<'a> Tracer<'a> {
         let mut tracer = Self {
             scene,
             settings: *settings,
-            ball: (center, extent.max(1e-9)),
+            ball: Ball {
+                center,
+                radius: extent.max(1e-9),
+            },
             world: Bounds::Ball { center, radius },
             camera_medium: scene.ambient,
             wavelength: None,
