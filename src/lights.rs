@@ -356,6 +356,27 @@ pub struct Incident {
 }
 
 impl Light {
+    /// The solid-angle density (1/sr) with which [`Light::sample_incident`] at `from` draws
+    /// the unit direction `wi` that reaches the light's surface at distance `distance`:
+    /// d²/(cos θ_light · area) for an area light (0 from behind it); ∞ for the lights no
+    /// other strategy can find (point, spot, LED, directional), which it draws with
+    /// certainty.
+    pub fn pdf_incident(&self, wi: DVec3, distance: f64) -> f64 {
+        match self {
+            Light::Area { emitter, .. } => {
+                let cos_l = -wi.dot(emitter.normal());
+                match cos_l > 0.0 {
+                    true => distance * distance / (cos_l * emitter.area()),
+                    false => 0.0,
+                }
+            }
+            Light::Point { .. }
+            | Light::Spot { .. }
+            | Light::Led { .. }
+            | Light::Directional { .. } => f64::INFINITY,
+        }
+    }
+
     /// One sample of the light arriving at `p`; `None` when this sample sends nothing there.
     pub fn sample_incident(&self, p: DVec3, uv: (f64, f64)) -> Option<Incident> {
         let toward = |x: DVec3| {
@@ -367,15 +388,18 @@ impl Light {
             Light::Area { emitter, radiance } => {
                 let x = emitter.sample(uv);
                 let (wi, d) = toward(x)?;
-                let cos_l = -wi.dot(emitter.normal());
-                (cos_l > 0.0).then(|| Incident {
+                let pdf = self.pdf_incident(wi, d);
+                (pdf > 0.0).then(|| Incident {
                     wi,
                     distance: d,
-                    irradiance: *radiance * (cos_l * emitter.area() / (d * d)),
-                    pdf: d * d / (cos_l * emitter.area()),
+                    irradiance: *radiance / pdf,
+                    pdf,
                 })
             }
-            _ => match self.anchor(uv)? {
+            Light::Point { .. }
+            | Light::Spot { .. }
+            | Light::Led { .. }
+            | Light::Directional { .. } => match self.anchor(uv)? {
                 Anchor::Point(x) => {
                     let (wi, d) = toward(x)?;
                     let intensity = self.intensity(-wi);

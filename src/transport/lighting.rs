@@ -151,18 +151,10 @@ pub fn direct_light(
             direction,
             ..
         } if weighed => match scene.surfaces[prim].role {
-            Role::Emitter(l) => match &scene.lights[l] {
-                Light::Area { emitter, .. } => {
-                    let cos_l = -direction.dot(emitter.normal());
-                    let t2 = (position - origin).length_squared();
-                    power_heuristic(s.sample.pdf, t2 / (cos_l * emitter.area()))
-                }
-                // Only an area light is a surface a sample can hit.
-                Light::Point { .. }
-                | Light::Spot { .. }
-                | Light::Led { .. }
-                | Light::Directional { .. } => 1.0,
-            },
+            Role::Emitter(l) => power_heuristic(
+                s.sample.pdf,
+                scene.lights[l].pdf_incident(direction, (position - origin).length()),
+            ),
             // A path ends at an emitter only on an emitter's surface.
             Role::Scatter(_) | Role::Detector(_) => 1.0,
         },
