@@ -10,7 +10,8 @@
 //! caustic photons, 4 spp, 2 gather rays per pass) is kept in `out/caustic_reference.exr` and
 //! reused while that file exists; writes `out/caustic_study.csv`.
 
-use grinlight::film::{read_exr_layer, Film};
+use grinlight::compare::read_exr_layer;
+use grinlight::film::Film;
 use grinlight::settings::IntegratorKind;
 use std::io::Write;
 use std::path::Path;
@@ -58,9 +59,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         println!("reference: {passes} passes in {t:.0} s");
         reference.write_exr(cached)?;
     }
-    let (w, _, beauty) = read_exr_layer(cached, Some("beauty"))?;
-    let (_, _, caustic) = read_exr_layer(cached, Some("caustic"))?;
-    assert_eq!(w, 256);
+    let beauty = read_exr_layer(cached, Some("beauty"))?;
+    assert_eq!(beauty.width, 256);
+    let beauty = beauty.pixels;
+    let caustic = read_exr_layer(cached, Some("caustic"))?.pixels;
     let region: Vec<usize> = (0..beauty.len())
         .filter(|&i| {
             caustic[i][0] + caustic[i][1] + caustic[i][2]

@@ -9,7 +9,7 @@
 //!
 //! Each rectangle is [X0, X1) × [Y0, Y1) in pixels from the top left.
 
-use grinlight::film::{read_exr_layer, relative_rmse};
+use grinlight::compare::{read_exr_layer, relative_rmse};
 use std::path::Path;
 
 /// The pixels of `plane` (`width` wide) inside [x0, x1) × [y0, y1).
@@ -31,9 +31,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         return Err("usage: image_error IMAGE.exr HALF_A.exr HALF_B.exr [X0 Y0 X1 Y1]...".into());
     }
     let read = |p: &str| read_exr_layer(Path::new(p), None);
-    let (w, h, image) = read(&args[0])?;
-    let (_, _, a) = read(&args[1])?;
-    let (_, _, b) = read(&args[2])?;
+    let image = read(&args[0])?;
+    let (w, h, image) = (image.width, image.height, image.pixels);
+    let a = read(&args[1])?.pixels;
+    let b = read(&args[2])?.pixels;
     if a.len() != image.len() || b.len() != image.len() {
         return Err(format!("the images are not all {w}×{h}").into());
     }

@@ -9,7 +9,7 @@
 //! WIDTH (default: the scene's) must divide the reference's width; PASSES defaults to the
 //! scene's; INTEGRATOR is `photon_map` (default) or `path`.
 
-use grinlight::film::{downsample, mean_ratios, read_exr_layer, relative_rmse};
+use grinlight::compare::{mean_ratios, read_exr_layer, relative_rmse, MeanRatios};
 use std::path::Path;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -36,13 +36,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let t = std::time::Instant::now();
     let (film, report) = grinlight::render::render(&scene, &settings, &())?;
     let seconds = t.elapsed().as_secs_f64();
-    let (rw, rh, reference) = read_exr_layer(Path::new(reference_path), None)?;
+    let reference = read_exr_layer(Path::new(reference_path), None)?;
+    let (rw, rh) = (reference.width, reference.height);
     if rw % width != 0 || rh / (rw / width) != height {
         return Err(format!("the reference is {rw}×{rh}, the render {width}×{height}").into());
     }
-    let reference = downsample(&reference, rw, rh, rw / width);
+    let reference = reference.downsample(rw / width).pixels;
     let beauty = film.layer("beauty").ok_or("no beauty layer")?;
-    let (overall, blocks) = mean_ratios(&beauty, &reference, width, 16);
+    let MeanRatios { overall, blocks } = mean_ratios(&beauty, &reference, width, 16);
     let mut sorted = blocks.clone();
     sorted.sort_by(f64::total_cmp);
     let at = |q: f64| sorted[((sorted.len() - 1) as f64 * q).round() as usize];

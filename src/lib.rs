@@ -25,6 +25,7 @@ pub mod bvh;
 pub mod camera;
 pub mod color;
 pub mod commands;
+pub mod compare;
 pub mod curve;
 pub mod environment;
 pub mod error;

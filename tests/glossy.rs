@@ -112,7 +112,7 @@ fn a_rough_perfect_conductor_in_a_white_furnace_reflects_ggx_albedo() {
 /// 1.5× that of two smooth renders of different seeds (the noise floor).
 #[test]
 fn roughness_zero_is_the_smooth_limit() {
-    use grinlight::film::mean_ratios;
+    use grinlight::compare::{mean_ratios, MeanRatios};
     let base = std::fs::read_to_string("scenes/cornell_caustic.toml").unwrap();
     let base = base
         .replace("width = 256", "width = 128")
@@ -124,7 +124,10 @@ fn roughness_zero_is_the_smooth_limit() {
         film.layer("beauty").unwrap()
     };
     let rms = |a: &[[f32; 3]], b: &[[f32; 3]]| {
-        let (mean, blocks) = mean_ratios(a, b, 128, 16);
+        let MeanRatios {
+            overall: mean,
+            blocks,
+        } = mean_ratios(a, b, 128, 16);
         let rms =
             (blocks.iter().map(|r| (r - 1.0).powi(2)).sum::<f64>() / blocks.len() as f64).sqrt();
         (mean, rms)

@@ -453,8 +453,8 @@ fn outputs_finite(dir: &Path, inputs: &[(&str, Vec<u8>)]) -> Result<usize, Strin
                     "normal",
                     grinlight::film::ERROR,
                 ] {
-                    let px = match grinlight::film::read_exr_layer(&path, Some(layer)) {
-                        Ok((_, _, px)) => px,
+                    let px = match grinlight::compare::read_exr_layer(&path, Some(layer)) {
+                        Ok(plane) => plane.pixels,
                         Err(e) if layer != "beauty" && e.to_string().contains("no layer") => {
                             continue
                         }

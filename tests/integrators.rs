@@ -2,7 +2,8 @@
 //! (on the Cornell boxes against Mitsuba and on a GRIN scene), and passes rendered apart and
 //! merged against the same passes rendered at once.
 
-use grinlight::film::{downsample, mean_ratios, read_exr_layer, Film};
+use grinlight::compare::{mean_ratios, read_exr_layer, MeanRatios};
+use grinlight::film::Film;
 use grinlight::integrator::PhotonMapper;
 use grinlight::render::{render_with, Passes};
 use grinlight::scene::{load_scene, Scene};
@@ -35,17 +36,16 @@ fn path_tracer_matches_the_reference_and_the_photon_mapper_on_the_cornell_box() 
     pt.1.spp = 128;
     let film = render(&pt);
     let beauty = film.layer("beauty").unwrap();
-    let (rw, rh, reference) =
-        read_exr_layer(Path::new("refs/cornell_diffuse.reference.exr"), None).unwrap();
-    let reference = downsample(&reference, rw, rh, rw / 128);
-    let (overall, blocks) = mean_ratios(&beauty, &reference, 128, 16);
+    let reference = read_exr_layer(Path::new("refs/cornell_diffuse.reference.exr"), None).unwrap();
+    let reference = reference.downsample(reference.width / 128).pixels;
+    let MeanRatios { overall, blocks } = mean_ratios(&beauty, &reference, 128, 16);
     let worst = blocks.iter().map(|r| (r - 1.0).abs()).fold(0.0, f64::max);
     println!("path tracer vs Mitsuba: mean ratio {overall:.4}, worst block {worst:.4}");
     assert!((overall - 1.0).abs() < 0.01 && worst < 0.03);
     let mut pm = load("scenes/cornell_diffuse.toml", 128, Kind::PhotonMap);
     (pm.1.spp, pm.1.photons.global) = (16, 400_000);
     let pm_beauty = render(&pm).layer("beauty").unwrap();
-    let (overall, blocks) = mean_ratios(&beauty, &pm_beauty, 128, 16);
+    let MeanRatios { overall, blocks } = mean_ratios(&beauty, &pm_beauty, 128, 16);
     let worst = blocks.iter().map(|r| (r - 1.0).abs()).fold(0.0, f64::max);
     println!("path tracer vs photon mapper: mean ratio {overall:.4}, worst block {worst:.4}");
     assert!((overall - 1.0).abs() < 0.01 && worst < 0.03);

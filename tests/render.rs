@@ -1,6 +1,6 @@
 //! Photon mapping and the render against exact answers and an independent reference.
 
-use grinlight::film::{downsample, mean_ratios, read_exr_layer};
+use grinlight::compare::{mean_ratios, read_exr_layer, MeanRatios};
 use grinlight::photon::{shoot, Batch, Photons, Sources};
 use grinlight::scene::load::parse_scene;
 use grinlight::transport::Tracer;
@@ -79,10 +79,10 @@ fn cornell_diffuse_matches_the_reference() {
     let camera = scene.0.camera.as_mut().unwrap();
     (camera.width, camera.height) = (128, 128);
     let film = render(&scene, 0);
-    let (rw, rh, reference) =
-        read_exr_layer(Path::new("refs/cornell_diffuse.reference.exr"), None).unwrap();
-    let reference = downsample(&reference, rw, rh, rw / 128);
-    let (overall, blocks) = mean_ratios(&film.layer("beauty").unwrap(), &reference, 128, 16);
+    let reference = read_exr_layer(Path::new("refs/cornell_diffuse.reference.exr"), None).unwrap();
+    let reference = reference.downsample(reference.width / 128).pixels;
+    let MeanRatios { overall, blocks } =
+        mean_ratios(&film.layer("beauty").unwrap(), &reference, 128, 16);
     let worst = blocks.iter().map(|r| (r - 1.0).abs()).fold(0.0, f64::max);
     println!("mean ratio {overall:.4}, worst block {worst:.4}");
     assert!((overall - 1.0).abs() < 0.01, "mean ratio {overall}");
@@ -222,7 +222,7 @@ fn a_tessellated_luneburg_lens_renders_as_the_analytic_one() {
     };
     let reference = beauty(&text, 0);
     let rms = |img: &[[f32; 3]]| {
-        let (overall, blocks) = mean_ratios(img, &reference, 96, 8);
+        let MeanRatios { overall, blocks } = mean_ratios(img, &reference, 96, 8);
         let r =
             (blocks.iter().map(|b| (b - 1.0).powi(2)).sum::<f64>() / blocks.len() as f64).sqrt();
         (overall, r)

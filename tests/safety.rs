@@ -300,11 +300,13 @@ fn readable(path: &Path) -> bool {
         "normal",
     ]
     .iter()
-    .all(|l| match grinlight::film::read_exr_layer(path, Some(l)) {
-        Ok((w, h, _)) => w == 64 && h == 64,
-        // A layer nothing wrote is left out of the file; beauty never is.
-        Err(e) => *l != "beauty" && e.to_string().contains("no layer"),
-    })
+    .all(
+        |l| match grinlight::compare::read_exr_layer(path, Some(l)) {
+            Ok(plane) => plane.width == 64 && plane.height == 64,
+            // A layer nothing wrote is left out of the file; beauty never is.
+            Err(e) => *l != "beauty" && e.to_string().contains("no layer"),
+        },
+    )
 }
 
 /// SIGINT during a many-pass render: the EXR is written with the passes done, the report
