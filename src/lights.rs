@@ -668,7 +668,9 @@ impl Light {
             Light::Directional { irradiance, .. } => {
                 *irradiance * (PI * aim.target.radius * aim.target.radius)
             }
-            _ => self.peak_intensity() * self.spread(),
+            Light::Point { .. } | Light::Spot { .. } | Light::Led { .. } | Light::Area { .. } => {
+                self.peak_intensity() * self.spread()
+            }
         };
         p.element_sum() / 3.0
     }

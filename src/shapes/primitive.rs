@@ -139,7 +139,7 @@ impl Primitive {
             Primitive::Quad { origin, e1, e2 } => plane(origin, e1.cross(e2).normalize()),
             Primitive::Disk { center, normal, .. } => plane(center, normal),
             Primitive::Triangle(t) => Some(t.plane()),
-            _ => None,
+            Primitive::Sphere { .. } | Primitive::Tube { .. } | Primitive::Mesh(_) => None,
         }
     }
 
@@ -157,7 +157,7 @@ impl Primitive {
                 ..
             } => (inner * inner..=radius * radius).contains(&(p - center).length_squared()),
             Primitive::Triangle(t) => t.contains(p),
-            _ => false,
+            Primitive::Sphere { .. } | Primitive::Tube { .. } | Primitive::Mesh(_) => false,
         }
     }
 
@@ -262,7 +262,7 @@ impl Primitive {
                 inside.then(|| Hit::flat(t, e1.cross(e2).normalize()))
             }
             Primitive::Triangle(t) => t.intersect_ray(o, d, t_min, t_max),
-            _ => {
+            Primitive::Disk { .. } => {
                 let plane = self.plane()?;
                 let t = plane.ray_hit(o, d, t_min, t_max)?;
                 self.contains_planar(o + t * d)
@@ -277,7 +277,9 @@ impl Primitive {
         match *self {
             Primitive::Sphere { center, radius } => Some(RoundSurface::sphere(center, radius)),
             Primitive::Tube { .. } | Primitive::Mesh(_) => None,
-            _ => self.plane().map(|p| p.surface()),
+            Primitive::Quad { .. } | Primitive::Disk { .. } | Primitive::Triangle(_) => {
+                self.plane().map(|p| p.surface())
+            }
         }
     }
 
@@ -288,7 +290,10 @@ impl Primitive {
             Primitive::Tube {
                 base, axis, height, ..
             } => (0.0..=height).contains(&(x - base).dot(axis)),
-            _ => self.contains_planar(x),
+            Primitive::Quad { .. }
+            | Primitive::Disk { .. }
+            | Primitive::Triangle(_)
+            | Primitive::Mesh(_) => self.contains_planar(x),
         }
     }
 
@@ -297,7 +302,11 @@ impl Primitive {
         match *self {
             Primitive::Sphere { center, .. } => (x - center).normalize(),
             Primitive::Tube { base, axis, .. } => across_axis(x - base, axis).normalize(),
-            _ => self.plane().expect("planar").normal,
+            // A mesh's points are its triangles': asked of them, never of the mesh.
+            Primitive::Quad { .. }
+            | Primitive::Disk { .. }
+            | Primitive::Triangle(_)
+            | Primitive::Mesh(_) => self.plane().expect("planar").normal,
         }
     }
 
@@ -326,7 +335,9 @@ impl Primitive {
                 let inside = off_axis(hull.a).max(off_axis(hull.b)) + dev < radius;
                 !(beyond_ends || inside)
             }
-            _ => self.plane().expect("planar").may_cross(hull),
+            Primitive::Quad { .. } | Primitive::Disk { .. } | Primitive::Triangle(_) => {
+                self.plane().expect("planar").may_cross(hull)
+            }
         }
     }
 
@@ -354,7 +365,12 @@ impl Primitive {
                 let p = across_axis(x - base, axis);
                 (p.length_squared() - radius * radius, 2.0 * p)
             }),
-            _ => super::round_roots(seg, length, &self.round_surface()?),
+            // (A mesh returned above: it has no round surface.)
+            Primitive::Sphere { .. }
+            | Primitive::Quad { .. }
+            | Primitive::Disk { .. }
+            | Primitive::Triangle(_)
+            | Primitive::Mesh(_) => super::round_roots(seg, length, &self.round_surface()?),
         };
         roots.into_iter().filter(|&s| s > s_min).find_map(|s| {
             let x = seg.at(s).position;
