@@ -45,6 +45,18 @@ fn render(text: &str, integrator: IntegratorKind) -> (f64, f64) {
 
 const BOTH: [IntegratorKind; 2] = [IntegratorKind::Path, IntegratorKind::PhotonMap];
 
+/// Both integrators render `text` (the case `name`) to an image mean within 1 % of `expected`.
+fn both_integrators_read(name: &str, text: &str, expected: f64) {
+    for integrator in BOTH {
+        let (mean, se) = render(text, integrator);
+        println!("{name}, {integrator:?}: {mean:.5} ± {se:.5} against {expected:.5}");
+        assert!(
+            (mean - expected).abs() <= 0.01 * expected,
+            "{name}, {integrator:?}: {mean} ± {se} against {expected}"
+        );
+    }
+}
+
 /// A white Lambertian sphere, a box of white plastic (its coat nearly smooth: α = 0.001,
 /// whose single scattering loses nothing measurable) and a rough sphere of the surrounding
 /// index (`ior`), side by side.
@@ -129,14 +141,7 @@ fn white_objects_in_fog_read_the_radiance_around_them() {
         ),
     ];
     for (name, text, expected) in cases {
-        for integrator in BOTH {
-            let (mean, se) = render(&text, integrator);
-            println!("{name}, {integrator:?}: {mean:.4} ± {se:.4} against {expected:.4}");
-            assert!(
-                (mean - expected).abs() <= 0.01 * expected,
-                "{name}, {integrator:?}: {mean} ± {se} against {expected}"
-            );
-        }
+        both_integrators_read(name, &text, expected);
     }
 }
 
@@ -255,13 +260,6 @@ fn lights_in_a_white_spherical_room_light_it_as_an_integrating_sphere_does() {
             })
             .sum::<f64>()
             / (w * h) as f64;
-        for integrator in BOTH {
-            let (mean, se) = render(&text, integrator);
-            println!("{name}, {integrator:?}: {mean:.5} ± {se:.5} against {expected:.5}");
-            assert!(
-                (mean - expected).abs() <= 0.01 * expected,
-                "{name}, {integrator:?}: {mean} ± {se} against {expected}"
-            );
-        }
+        both_integrators_read(name, &text, expected);
     }
 }

@@ -316,6 +316,11 @@ struct Radial {
 }
 
 impl Radial {
+    /// How far (relative) a radial ray may stray from its line before it is put back: off the
+    /// line by δ at distance r, a ray in a fish-eye turns back within about r/δ of the centre,
+    /// so it still reaches 10¹⁴ times as far.
+    const STRAY: f64 = 1e-14;
+
     /// The line of a ray from `start` in `medium`, if it starts through the centre (within
     /// 10⁻¹² of its distance from it).
     fn of<M: Medium + ?Sized>(medium: &M, start: &RayState) -> Option<Radial> {
@@ -345,13 +350,6 @@ impl Radial {
             };
         }
     }
-}
-
-impl Radial {
-    /// How far (relative) a radial ray may stray from its line before it is put back: off the
-    /// line by δ at distance r, a ray in a fish-eye turns back within about r/δ of the centre,
-    /// so it still reaches 10¹⁴ times as far.
-    const STRAY: f64 = 1e-14;
 }
 
 /// x^(1/p), by square and cube roots for the orders the steppers have (a general power
