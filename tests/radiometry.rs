@@ -92,12 +92,10 @@ fn radiance_through_a_flat_interface_scales_with_the_index_ratio_squared() {
     }
 }
 
-/// A medium of one's own: n = n0 exp(g·y) (g may be 0) with σa = a + b·x.
+/// A medium of one's own: n = n0 exp(g·y) (g may be 0).
 struct Graded {
     n0: f64,
     g: f64,
-    a: f64,
-    b: f64,
 }
 
 impl Medium for Graded {
@@ -107,9 +105,6 @@ impl Medium for Graded {
             n,
             grad: DVec3::new(0.0, self.g * n, 0.0),
         })
-    }
-    fn absorption(&self, p: DVec3) -> f64 {
-        self.a + self.b * p.x
     }
     fn step_hint(&self, _p: DVec3, _dir: DVec3) -> f64 {
         f64::INFINITY
@@ -130,15 +125,9 @@ fn basic_radiance_is_invariant_along_a_grin_path() {
          [render]\nspp = 1\ngather = 0\nphotons = 0\ncaustic_photons = 0\nworld_radius = 100\n\
          [[light]]\ntype = \"quad\"\nvertices = [[-5, 3, -5], [5, 3, -5], [5, 3, 5], [-5, 3, 5]]\nradiance = 2\n",
     );
-    let m = scene.0.add_medium(
-        "graded",
-        Box::new(Graded {
-            n0: 1.0,
-            g: 0.2,
-            a: 0.0,
-            b: 0.0,
-        }),
-    );
+    let m = scene
+        .0
+        .add_medium("graded", Box::new(Graded { n0: 1.0, g: 0.2 }));
     scene.0.ambient = Some(m);
     let film = render(&scene);
     let want = 2.0 * (-1.2f64).exp();
@@ -173,38 +162,47 @@ fn the_environment_seen_from_inside_a_medium_is_n_squared_brighter() {
 }
 
 /// Absorption is the integral of σa along the path, not σa at the origin times the length:
-/// σa = 0.1 + 0.05 x. Straight (uniform n = 1.2) to the world sphere of radius R = 5 along
-/// +x from the origin: ∫₀⁵ (0.1 + 0.05 s) ds = 1.125 (the default Gauss–Legendre rule is
-/// exact for it; 1e-12). Curved (n = exp(0.2 y)) to a wall at x = 2: against the integral
-/// along the exact arc (n's log-gradient is constant, so the arc is the path), by a
-/// 20 000-point midpoint rule; the march's trapezoid rule errs by L h² max|σa''|/12 per unit
-/// ≈ 5e-4 h² here (σa'' = 0.05 x'' ≤ 0.01), ≤ 1e-3 relative for any step h ≤ 1. (σa at the
-/// origin times the length would give 0.1·5 = 0.5 instead of 1.125.)
+/// σa = 0.3 + 0.05 x, a density linear in x (trilinear interpolation reproduces it exactly).
+/// Straight (uniform n = 1.2) to the world sphere of radius R = 5 along −x from x = 2:
+/// ∫ (0.3 + 0.05 x) dx over [−3, 2] = 1.375, exact to rounding (1e-12). Curved
+/// (n = exp(0.2 y)) to a wall at x = 2: against the integral along the exact arc (n's
+/// log-gradient is constant, so the arc is the path), by a 20 000-point midpoint rule; the
+/// depth is exact along each step's chord, which departs from the arc by κh²/8 (κ ≤ 0.2), so
+/// σa's change across that gap, 0.05·κh²/8, stays far below 1e-3 of the depth for any step
+/// h ≤ 1. (σa at the start times the length would give 0.4·5 = 2 instead of 1.375.)
 #[test]
 fn absorption_integrates_sigma_a_along_the_path() {
+    use grinlight::media::Density;
+    use grinlight::volume::{Absorption, Participating};
     let mut scene = parse(
         "[render]\nworld_radius = 5\n\
          [[material]]\nname = \"wall\"\ntype = \"diffuse\"\nalbedo = 0.5\n\
          [[shape]]\ntype = \"quad\"\nvertices = [[2, -50, -50], [2, 50, -50], [2, 50, 50], [2, -50, 50]]\nmaterial = \"wall\"\n",
     );
-    let straight = scene.0.add_medium(
-        "straight",
-        Box::new(Graded {
-            n0: 1.2,
-            g: 0.0,
-            a: 0.1,
-            b: 0.05,
+    // d(x) = 0.3 + 0.05 x on x ∈ [−4, 4] (0.1 to 0.5), constant across y and z.
+    let density = Density::new(
+        DVec3::new(-4.0, -6.0, -6.0),
+        DVec3::new(4.0, 6.0, 6.0),
+        [2, 2, 2],
+        [0.1, 0.5].repeat(4),
+    )
+    .unwrap();
+    let radiometry = Participating {
+        absorption: Some(Absorption {
+            sigma_a: 1.0,
+            density: Some(std::sync::Arc::new(density)),
         }),
-    );
-    let curved = scene.0.add_medium(
-        "curved",
-        Box::new(Graded {
-            n0: 1.0,
-            g: 0.2,
-            a: 0.1,
-            b: 0.05,
-        }),
-    );
+        ..Participating::default()
+    };
+    let straight = scene
+        .0
+        .add_medium("straight", Box::new(Graded { n0: 1.2, g: 0.0 }));
+    let curved = scene
+        .0
+        .add_medium("curved", Box::new(Graded { n0: 1.0, g: 0.2 }));
+    for m in [straight, curved] {
+        scene.0.set_participating(m, radiometry.clone());
+    }
     let tracer = Tracer::new(&scene.0, &scene.1.trace);
     let mut stats = Stats::default();
     // Straight, away from the wall, to the world sphere (centred at the wall's centre).
@@ -217,7 +215,7 @@ fn absorption_integrates_sigma_a_along_the_path() {
     else {
         panic!("escapes")
     };
-    let want = 0.1 * distance + 0.05 * (o.x * distance - 0.5 * distance * distance);
+    let want = 0.3 * distance + 0.05 * (o.x * distance - 0.5 * distance * distance);
     assert!(
         (optical_depth - want).abs() < 1e-12,
         "{optical_depth} vs {want}"
@@ -237,7 +235,7 @@ fn absorption_integrates_sigma_a_along_the_path() {
     let steps = 20_000;
     let h = distance / steps as f64;
     let want: f64 = (0..steps)
-        .map(|i| 0.1 + 0.05 * seg.at((i as f64 + 0.5) * h).position.x)
+        .map(|i| 0.3 + 0.05 * seg.at((i as f64 + 0.5) * h).position.x)
         .sum::<f64>()
         * h;
     println!("curved: {optical_depth:.9} vs {want:.9} over {distance:.6}");

@@ -125,7 +125,7 @@ fn a_vdb_density_grid_scales_the_medium_coefficients() {
         let p = world(i, j, k);
         // Trilinear interpolation reproduces the nodes to rounding.
         assert!((density.at(p) - stored).abs() < 1e-12, "({i},{j},{k})");
-        let sigma_a = tracer.medium(0).absorption(p);
+        let sigma_a = tracer.participating(0).sigma_a(p);
         assert!(
             (sigma_a - 0.5 * stored).abs() < 1e-12,
             "({i},{j},{k}): σa {sigma_a}"

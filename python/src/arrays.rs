@@ -128,6 +128,9 @@ pub fn traced<'py>(py: Python<'py>, t: &Traced) -> PyResult<Bound<'py, PyDict>> 
     d.set_item("attempts", o.attempts)?;
     d.set_item("arclength", o.arclength)?;
     d.set_item("optical_path", o.optical_path)?;
-    d.set_item("optical_depth", o.optical_depth)?;
+    d.set_item(
+        "optical_depth",
+        t.points.last().map_or(0.0, |p| p.optical_depth),
+    )?;
     Ok(d)
 }

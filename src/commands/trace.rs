@@ -352,12 +352,21 @@ fn follow(
         bounds: Bounds::Unbounded,
     };
     let mut failed = None;
-    let mut opl = 0.0;
+    let radiometry = scene
+        .media()
+        .index(&job.medium)
+        .map(|i| scene.media().participating(i));
+    let (mut opl, mut optical_depth, mut last) = (0.0, 0.0, start.position);
     let outcome = march_with(job.stepper, medium, control, start, &limits, |s, st| {
         opl += st.optical_path;
+        if let Some(r) = radiometry {
+            optical_depth += r.step_depth(last, st.state.position, st.length);
+        }
+        last = st.state.position;
         let point = PathPoint {
             s,
             opl,
+            optical_depth,
             state: st.state,
         };
         if let Err(e) = visit(&point) {
@@ -383,6 +392,9 @@ pub struct PathPoint {
     /// Optical path length ∫ n ds from the start (the sum of the steps' own, as
     /// [`MarchOutcome::optical_path`]).
     pub opl: f64,
+    /// Optical depth ∫ σa ds of absorption from the start (the medium's
+    /// [`crate::volume::Participating`], summed step by step along the chords).
+    pub optical_depth: f64,
     /// The state there.
     pub state: RayState,
 }

@@ -106,9 +106,6 @@ pub struct MarchOutcome {
     /// Optical path length ∫ n ds travelled: the sum of the steps' own
     /// [`Step::optical_path`], each to its stepper's order.
     pub optical_path: f64,
-    /// Optical depth ∫ σa ds of absorption travelled (trapezoid rule per step); the ray's
-    /// transmittance is exp(−optical_depth).
-    pub optical_depth: f64,
     /// Accepted steps.
     pub steps: u64,
     /// Step attempts, accepted and rejected.
@@ -126,7 +123,6 @@ impl MarchOutcome {
             state: start,
             arclength: 0.0,
             optical_path: 0.0,
-            optical_depth: 0.0,
             steps: 0,
             attempts: 0,
             min_step: f64::INFINITY,
@@ -287,7 +283,7 @@ where
         }
         if leaves(limits, step.state.position) {
             let exit = locate_exit(stepper, medium, &state, step, limits);
-            let flow = accept(&mut out, medium, exit, &mut observe);
+            let flow = accept(&mut out, exit, &mut observe);
             out.reason = if flow.is_break() {
                 Termination::Stopped
             } else {
@@ -295,7 +291,7 @@ where
             };
             return out;
         }
-        if accept(&mut out, medium, step, &mut observe).is_break() {
+        if accept(&mut out, step, &mut observe).is_break() {
             out.reason = Termination::Stopped;
             return out;
         }
@@ -383,39 +379,18 @@ fn step_request(requested: f64, step: &Step, target: f64) -> f64 {
     requested * target / step.length
 }
 
-fn accept<M: Medium + ?Sized, O: FnMut(f64, &Step) -> ControlFlow<()>>(
+fn accept<O: FnMut(f64, &Step) -> ControlFlow<()>>(
     out: &mut MarchOutcome,
-    medium: &M,
     step: Step,
     observe: &mut O,
 ) -> ControlFlow<()> {
     let len = step.length;
     out.optical_path += step.optical_path;
-    out.optical_depth += step_optical_depth(medium, out.state.position, step.state.position, len);
     out.arclength += len;
     out.steps += 1;
     out.min_step = out.min_step.min(len);
     out.state = step.state;
     observe(out.arclength, &step)
-}
-
-/// Optical depth ∫ σa ds of one step between points `a` and `b`, `len` apart along the path:
-/// the medium's optical depth along the chord, scaled by the arclength over the chord's length
-/// (so a constant σa gives σa·len exactly; 0 in a medium that does not absorb).
-pub fn step_optical_depth<M: Medium + ?Sized>(
-    medium: &M,
-    a: glam::DVec3,
-    b: glam::DVec3,
-    len: f64,
-) -> f64 {
-    if !medium.absorbs() {
-        return 0.0;
-    }
-    let chord = (b - a).length();
-    match chord > 0.0 {
-        true => medium.optical_depth(a, (b - a) / chord, chord) * (len / chord),
-        false => medium.absorption(a) * len,
-    }
 }
 
 fn leaves(limits: &MarchLimits, p: glam::DVec3) -> bool {
@@ -548,11 +523,11 @@ where
         }
         if leaves(limits, step.state.position) {
             let exit = locate_exit(stepper, medium, &state, step, limits);
-            let _ = accept(&mut out, medium, exit, &mut observe);
+            let _ = accept(&mut out, exit, &mut observe);
             out.reason = Termination::LeftBounds;
             return out;
         }
-        let _ = accept(&mut out, medium, step, &mut observe);
+        let _ = accept(&mut out, step, &mut observe);
     }
     unreachable!("the step lengths repeat without end")
 }

@@ -17,8 +17,8 @@ pub use linearize::{
     CircleArc, CircleCrossings, GeodesicPoint, GeodesicRay, Hyperplane, RoundSurface, FAR,
 };
 pub use march::{
-    march, march_replay, march_replay_with, march_with, round_off_floor, step_optical_depth,
-    MarchLimits, MarchOutcome, StepControl, Termination,
+    march, march_replay, march_replay_with, march_with, round_off_floor, MarchLimits, MarchOutcome,
+    StepControl, Termination,
 };
 pub use segment::{accurate_cross, ArcHull, ArcPoint, CurvedSegment};
 pub use state::RayState;

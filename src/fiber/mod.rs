@@ -7,10 +7,11 @@
 pub mod figure;
 
 use crate::error::{Error, Result};
-use crate::media::{Absorbing, Medium, UniformMedium};
+use crate::media::{Medium, UniformMedium};
 use crate::scene::{Description, Shape, Surface};
 use crate::settings::TraceSettings;
 use crate::shapes::Primitive;
+use crate::volume::{Absorption, Participating};
 use glam::DVec3;
 
 /// The cylinder filled with a gradient medium.
@@ -200,23 +201,24 @@ impl Description {
         let mut twin = Vec::with_capacity(layers.len());
         let first_medium = self.media.names().count();
         // Each layer keeps the GRIN medium's radiometry: its absorption (at the layer's
-        // middle radius, density included) and its scattering (a density field and all).
-        let scattering = self.media.scattering(fiber.medium).cloned();
+        // middle radius, density included), its scattering (a density field and all) and its
+        // emission.
+        let radiometry = self.media.participating(fiber.medium).clone();
         let side = axis.any_orthonormal_vector();
         for (i, l) in layers.iter().enumerate() {
             let inside: Box<dyn Medium> = Box::new(UniformMedium { n: l.n });
-            let medium = self.media.at(fiber.medium);
-            let layer: Box<dyn Medium> = match medium.absorbs() {
-                true => Box::new(Absorbing {
-                    inner: inside,
-                    sigma_a: medium.absorption(base + side * (0.5 * (l.inner + l.outer))),
-                    density: None,
-                }),
-                false => inside,
-            };
-            let interior = Some(self.media.add(format!("layer {i} (n {:.6})", l.n), layer));
-            self.media
-                .set_scattering(first_medium + i, scattering.clone());
+            let middle = base + side * (0.5 * (l.inner + l.outer));
+            let interior = Some(self.media.add(format!("layer {i} (n {:.6})", l.n), inside));
+            self.media.set_participating(
+                first_medium + i,
+                Participating {
+                    absorption: radiometry.absorption.as_ref().map(|_| Absorption {
+                        sigma_a: radiometry.sigma_a(middle),
+                        density: None,
+                    }),
+                    ..radiometry.clone()
+                },
+            );
             let outside = if i + 1 < layers.len() {
                 Some(first_medium + i + 1)
             } else {

@@ -140,7 +140,7 @@ impl Beams {
         let mut sum = Rgb::ZERO;
         let mut read = Vec::new();
         for (r, points) in self.recorded() {
-            let medium = tracer.medium(r.medium);
+            let radiometry = tracer.participating(r.medium);
             let Some(scattering) = tracer.scattering(r.medium) else {
                 continue;
             };
@@ -155,7 +155,7 @@ impl Beams {
                     length,
                 } = c.segment;
                 let n = c.index.at(along.distance / length);
-                let depth = c.depth + medium.optical_depth(origin, dir, along.distance);
+                let depth = c.depth + radiometry.optical_depth(origin, dir, along.distance);
                 let mut flights = r.stretch.flights;
                 let column = c.column + scattering.column(origin, dir, along.distance);
                 let kept = flights.weigh(scattering, column, false);
@@ -222,6 +222,7 @@ fn chords<'a>(
     let n = |p| tracer.index(Some(r.medium), p);
     // A uniform medium's index is looked up once; a graded one's at each point once.
     let uniform = medium.is_uniform().then(|| n(r.stretch.origin));
+    let radiometry = tracer.participating(r.medium);
     let (mut from, mut depth, mut column) = (r.stretch.origin, 0.0, 0.0);
     let mut n_from = uniform.unwrap_or_else(|| n(from));
     points.iter().filter_map(move |&to| {
@@ -252,7 +253,7 @@ fn chords<'a>(
             column,
             index,
         });
-        depth += medium.optical_depth(from, dir, length);
+        depth += radiometry.optical_depth(from, dir, length);
         column += scattering.column(from, dir, length);
         from = to;
         chord

@@ -136,7 +136,7 @@ impl<'a> DeflectionTable<'a> {
         let center = medium.symmetry_center()?;
         let no_surfaces = scene.accel.primitives().is_empty();
         if !no_surfaces
-            || medium.absorbs()
+            || scene.media().participating(ambient).absorption.is_some()
             || scene.media().scattering(ambient).is_some()
             || scene.media().is_dispersive(ambient)
             || camera.lens.is_some()

@@ -63,7 +63,10 @@ pub fn single_scattering(
             continue;
         }
         let x = s.origin + s.dir * t;
-        let absorbed = (-tracer.medium(s.medium).optical_depth(s.origin, s.dir, t)).exp();
+        let absorbed = (-tracer
+            .participating(s.medium)
+            .optical_depth(s.origin, s.dir, t))
+        .exp();
         let mut flights = s.flights;
         let column = s.scattering.column(s.origin, s.dir, t);
         let kept = flights.weigh(s.scattering, column, false);

@@ -163,9 +163,6 @@ impl GridMedium {
 
 impl Medium for GridMedium {
     /// Transparent.
-    fn absorbs(&self) -> bool {
-        false
-    }
     fn sample(&self, p: DVec3) -> Option<IndexSample> {
         let Located { cell, frac, inside } = self.lattice.locate(p);
         let (n, d) = match self.interpolation {

@@ -1,10 +1,10 @@
-//! Gradient-index media: the [`Medium`] interface and its index profiles.
+//! Gradient-index media: the [`Medium`] interface and its index profiles. A medium here only
+//! bends light; what it absorbs, scatters and emits is `volume::Participating`, a floor above.
 //!
 //! Conventions: positions and lengths are in scene units; the index `n` is dimensionless and
 //! its gradient has units of 1/length. A medium answers `n` and `∇n` together, because every
 //! stepper needs both at the same point.
 
-mod absorbing;
 mod air;
 mod density;
 mod grid;
@@ -14,7 +14,6 @@ mod radial;
 mod spherical;
 mod table;
 
-pub use absorbing::Absorbing;
 pub use air::{GridQuantity, GAS_CONSTANT, GLADSTONE_DALE_AIR, MOLAR_MASS_AIR, STANDARD_PRESSURE};
 pub use density::{Density, LocalMajorant};
 pub use grid::{GridMedium, Interpolation};
@@ -75,29 +74,6 @@ pub trait Medium: Send + Sync {
     /// would not be positive (a black hole's horizon). Never returns a non-finite sample.
     fn sample(&self, p: DVec3) -> Option<IndexSample>;
 
-    /// Absorption coefficient σa at `p` (1/length). Default: transparent.
-    fn absorption(&self, _p: DVec3) -> f64 {
-        0.0
-    }
-
-    /// Whether σa may be non-zero anywhere. False lets every path skip its optical depth;
-    /// the default is true, so a medium that overrides [`Medium::absorption`] cannot be
-    /// taken for transparent by mistake (every transparent profile here says false).
-    fn absorbs(&self) -> bool {
-        true
-    }
-
-    /// Optical depth ∫ σa ds of absorption along the straight segment from `from` along unit
-    /// `dir` over `length` (exp(−depth) of the light is kept). Default: 8-point Gauss–Legendre
-    /// quadrature of [`Medium::absorption`] (exact for σa polynomial of degree ≤ 15 along the
-    /// segment); 0 for a medium that does not absorb.
-    fn optical_depth(&self, from: DVec3, dir: DVec3, length: f64) -> f64 {
-        if !self.absorbs() || length <= 0.0 {
-            return 0.0;
-        }
-        gauss_legendre_8(|s| self.absorption(from + dir * s), length)
-    }
-
     /// The length over which ∇ln n changes appreciably near `p` along unit `dir` (scene
     /// units): adaptive step control never takes a step longer than this, so no feature of
     /// the profile is stepped over. `f64::INFINITY` where ∇ln n is constant. Most profiles
@@ -130,27 +106,4 @@ pub trait Medium: Send + Sync {
     fn symmetry_center(&self) -> Option<DVec3> {
         None
     }
-}
-
-/// ∫₀ᴸ f(s) ds by 8-point Gauss–Legendre quadrature.
-fn gauss_legendre_8(f: impl Fn(f64) -> f64, length: f64) -> f64 {
-    // Nodes on [−1, 1] (positive half) and weights, Abramowitz & Stegun table 25.4.
-    const X: [f64; 4] = [
-        0.183_434_642_495_649_8,
-        0.525_532_409_916_329,
-        0.796_666_477_413_626_7,
-        0.960_289_856_497_536_3,
-    ];
-    const W: [f64; 4] = [
-        0.362_683_783_378_362,
-        0.313_706_645_877_887_3,
-        0.222_381_034_453_374_5,
-        0.101_228_536_290_376_3,
-    ];
-    let half = 0.5 * length;
-    X.iter()
-        .zip(W)
-        .map(|(x, w)| w * (f(half * (1.0 - x)) + f(half * (1.0 + x))))
-        .sum::<f64>()
-        * half
 }

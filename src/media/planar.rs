@@ -13,9 +13,6 @@ pub struct UniformMedium {
 
 impl Medium for UniformMedium {
     /// Transparent.
-    fn absorbs(&self) -> bool {
-        false
-    }
     fn sample(&self, _p: DVec3) -> Option<IndexSample> {
         Some(IndexSample::constant(self.n))
     }
@@ -40,9 +37,6 @@ pub struct LinearMedium {
 
 impl Medium for LinearMedium {
     /// Transparent.
-    fn absorbs(&self) -> bool {
-        false
-    }
     fn sample(&self, p: DVec3) -> Option<IndexSample> {
         let n = self.n0 + self.gradient.dot(p - self.origin);
         (n > 0.0).then_some(IndexSample {
@@ -74,9 +68,6 @@ pub struct ExponentialMedium {
 
 impl Medium for ExponentialMedium {
     /// Transparent.
-    fn absorbs(&self) -> bool {
-        false
-    }
     fn sample(&self, p: DVec3) -> Option<IndexSample> {
         let n = self.n0 * self.gradient.dot(p - self.origin).exp();
         (n > 0.0 && n.is_finite()).then_some(IndexSample {
@@ -125,9 +116,6 @@ impl HeightTable {
 
 impl Medium for HeightTable {
     /// Transparent.
-    fn absorbs(&self) -> bool {
-        false
-    }
     fn sample(&self, p: DVec3) -> Option<IndexSample> {
         let (n, dn) = self.table.at(self.height(p));
         Some(IndexSample {

@@ -34,9 +34,6 @@ pub struct ParabolicFiber {
 
 impl Medium for ParabolicFiber {
     /// Transparent.
-    fn absorbs(&self) -> bool {
-        false
-    }
     fn sample(&self, p: DVec3) -> Option<IndexSample> {
         let rv = self.axis.radial(p);
         let n = self.n0 * (1.0 - 0.5 * self.a * rv.length_squared());
@@ -64,9 +61,6 @@ pub struct SechFiber {
 
 impl Medium for SechFiber {
     /// Transparent.
-    fn absorbs(&self) -> bool {
-        false
-    }
     fn sample(&self, p: DVec3) -> Option<IndexSample> {
         let rv = self.axis.radial(p);
         let r = rv.length();
@@ -118,9 +112,6 @@ impl RadialTable {
 
 impl Medium for RadialTable {
     /// Transparent.
-    fn absorbs(&self) -> bool {
-        false
-    }
     fn sample(&self, p: DVec3) -> Option<IndexSample> {
         let rv = self.axis.radial(p);
         let r = rv.length();

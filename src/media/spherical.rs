@@ -16,9 +16,6 @@ pub struct Luneburg {
 
 impl Medium for Luneburg {
     /// Transparent.
-    fn absorbs(&self) -> bool {
-        false
-    }
     fn symmetry_center(&self) -> Option<DVec3> {
         Some(self.center)
     }
@@ -56,9 +53,6 @@ pub struct FishEye {
 
 impl Medium for FishEye {
     /// Transparent.
-    fn absorbs(&self) -> bool {
-        false
-    }
     fn symmetry_center(&self) -> Option<DVec3> {
         Some(self.center)
     }
@@ -110,9 +104,6 @@ impl HyperbolicMedium {
 
 impl Medium for HyperbolicMedium {
     /// Transparent.
-    fn absorbs(&self) -> bool {
-        false
-    }
     fn symmetry_center(&self) -> Option<DVec3> {
         Some(self.center)
     }
@@ -192,9 +183,6 @@ impl BlackHole {
 
 impl Medium for BlackHole {
     /// Transparent.
-    fn absorbs(&self) -> bool {
-        false
-    }
     fn symmetry_center(&self) -> Option<DVec3> {
         Some(self.center)
     }
@@ -309,9 +297,6 @@ impl ExactBlackHole {
 
 impl Medium for ExactBlackHole {
     /// Transparent.
-    fn absorbs(&self) -> bool {
-        false
-    }
     fn symmetry_center(&self) -> Option<DVec3> {
         Some(self.center)
     }

@@ -261,7 +261,7 @@ impl<'a> Sources<'a> {
             let sigma_s = tracer.scattering(m).map_or(0.0, |sc| {
                 sc.sigma_s.mean() * sc.majorant_near(center).density
             });
-            (-(tracer.medium(m).absorption(center) + sigma_s) * length).exp()
+            (-(tracer.participating(m).sigma_a(center) + sigma_s) * length).exp()
         });
         let mut sources = Vec::new();
         let mut weights = Vec::new();
@@ -414,7 +414,9 @@ impl<'a> Sources<'a> {
             return e;
         }
         let from = e.origin - e.direction * back;
-        let absorbed = tracer.medium(m).optical_depth(from, e.direction, back);
+        let absorbed = tracer
+            .participating(m)
+            .optical_depth(from, e.direction, back);
         let scattered = tracer.scattering(m).map_or(Rgb::ONE, |sc| {
             sc.transmittance(sc.column(from, e.direction, back))
         });
@@ -434,7 +436,7 @@ fn world_entry(tracer: &Tracer) -> Entry {
         return Entry::Upstream;
     };
     let scatters = scene.media().scattering(ambient).is_some();
-    let absorbs = tracer.medium(ambient).absorbs();
+    let absorbs = scene.media().participating(ambient).absorption.is_some();
     match (tracer.world, scatters || absorbs) {
         (Bounds::Ball { center, radius }, true) => Entry::World {
             ball: Ball { center, radius },

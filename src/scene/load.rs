@@ -3,8 +3,10 @@
 //! at file:line:col and naming the key.
 
 use super::data::SceneText;
-use super::media::{read_density, read_medium, read_scattering, uniform};
-use super::model::{Description, Media, Profile, Role, Scene, Shape, Surface};
+use super::media::{
+    read_absorption, read_density, read_emission, read_profile, read_scattering, uniform,
+};
+use super::model::{Description, Media, Role, Scene, Shape, Surface};
 use super::read::{
     read_camera, read_environment, read_light_and_spectrum, read_material, read_output,
     read_receiver, read_render, read_shape, Interior,
@@ -19,7 +21,8 @@ use crate::lights::Light;
 use crate::material::Material;
 use crate::receiver::Receiver;
 use crate::settings::Settings;
-use crate::spectrum::{Dispersion, Spectrum, LAMBDA_D};
+use crate::spectrum::{Dispersion, Spectrum};
+use crate::volume::Participating;
 use std::path::Path;
 use toml::Spanned;
 
@@ -70,13 +73,11 @@ fn read_media(source: &Source, tables: Vec<Spanned<SpannedTable>>) -> Result<Med
         let mut t = reader(source, table, "[[medium]]");
         let name = named(&mut t, media.names(), "medium")?;
         let density = read_density(&mut t)?;
-        let medium = read_medium(&mut t, density.clone())?;
+        let medium = read_profile(&mut t)?;
+        let absorption = read_absorption(&mut t, density.clone())?;
         let scattering = read_scattering(&mut t, density.clone())?;
-        let absorbs = match &medium {
-            Profile::Fixed(m) => m.absorbs(),
-            Profile::Dispersive(at) => at(LAMBDA_D).absorbs(),
-        };
-        if density.is_some() && scattering.is_none() && !absorbs {
+        let emission = read_emission(&mut t, absorption.is_some())?;
+        if density.is_some() && scattering.is_none() && absorption.is_none() {
             let key = match t.has("density_file") {
                 true => "density_file",
                 false => "density_values",
@@ -88,7 +89,14 @@ fn read_media(source: &Source, tables: Vec<Spanned<SpannedTable>>) -> Result<Med
         }
         t.finish()?;
         let i = media.add_profile(name, medium);
-        media.set_scattering(i, scattering);
+        media.set_participating(
+            i,
+            Participating {
+                absorption,
+                scattering,
+                emission,
+            },
+        );
     }
     Ok(media)
 }

@@ -6,13 +6,12 @@ use super::table::TableReader;
 use crate::color::Rgb;
 use crate::error::Result;
 use crate::media::{
-    Absorbing, Axis, BlackHole, Density, ExactBlackHole, ExponentialMedium, FishEye, GridError,
-    GridMedium, GridQuantity, HeightTable, HyperbolicMedium, Interpolation, LinearMedium, Luneburg,
-    Medium, ParabolicFiber, RadialTable, SechFiber, UniformMedium, GLADSTONE_DALE_AIR,
-    STANDARD_PRESSURE,
+    Axis, BlackHole, Density, ExactBlackHole, ExponentialMedium, FishEye, GridError, GridMedium,
+    GridQuantity, HeightTable, HyperbolicMedium, Interpolation, LinearMedium, Luneburg, Medium,
+    ParabolicFiber, RadialTable, SechFiber, UniformMedium, GLADSTONE_DALE_AIR, STANDARD_PRESSURE,
 };
 use crate::spectrum::{Dispersion, LAMBDA_D};
-use crate::volume::{Phase, Scattering};
+use crate::volume::{Absorption, Emission, Phase, Scattering};
 use glam::DVec3;
 use std::sync::Arc;
 use toml::Value;
@@ -35,30 +34,39 @@ pub const PROFILES: &[&str] = &[
     "grid",
 ];
 
-/// Reads one `[[medium]]` table (its `name` already taken) and builds the medium, with its
-/// `absorption` coefficient if it has one, scaled by `density` if it is heterogeneous.
-pub fn read_medium(t: &mut TableReader, density: Option<Arc<Density>>) -> Result<Profile> {
-    let absorption = t.f64_or("absorption", 0.0)?;
+/// A `[[medium]]` table's `absorption` coefficient σa (1/length, ≥ 0; 0 or absent: it does
+/// not absorb), scaled by `density` if it is heterogeneous.
+pub fn read_absorption(
+    t: &mut TableReader,
+    density: Option<Arc<Density>>,
+) -> Result<Option<Absorption>> {
+    let sigma_a = t.f64_or("absorption", 0.0)?;
     t.check(
         "absorption",
-        absorption.is_finite() && absorption >= 0.0,
-        format!("must be a finite number ≥ 0 (1/length), got {absorption:?}"),
+        sigma_a.is_finite() && sigma_a >= 0.0,
+        format!("must be a finite number ≥ 0 (1/length), got {sigma_a:?}"),
     )?;
-    let absorbing = move |inner: Box<dyn Medium>| -> Box<dyn Medium> {
-        if absorption > 0.0 {
-            Box::new(Absorbing {
-                inner,
-                sigma_a: absorption,
-                density: density.clone(),
-            })
-        } else {
-            inner
-        }
-    };
-    Ok(match read_profile(t)? {
-        Profile::Fixed(m) => Profile::Fixed(absorbing(m)),
-        Profile::Dispersive(at) => Profile::Dispersive(Box::new(move |nm| absorbing(at(nm)))),
-    })
+    Ok((sigma_a > 0.0).then_some(Absorption { sigma_a, density }))
+}
+
+/// A `[[medium]]` table's `emission` Le (basic radiance, RGB ≥ 0: emitted at the rate σa,
+/// [`crate::volume::Emission`]); refused on a medium that does not absorb, which cannot emit.
+pub fn read_emission(t: &mut TableReader, absorbs: bool) -> Result<Option<Emission>> {
+    if !t.has("emission") {
+        return Ok(None);
+    }
+    let radiance = t.rgb_or("emission", Some(Rgb::ZERO))?;
+    t.check(
+        "emission",
+        radiance.0.is_finite() && radiance.0.min_element() >= 0.0,
+        format!("must be finite and ≥ 0 in every channel, got {radiance:?}"),
+    )?;
+    t.check(
+        "emission",
+        absorbs || radiance.max_element() == 0.0,
+        "a medium emits σa·Le per unit length (Kirchhoff's law): give it an `absorption` > 0",
+    )?;
+    Ok((radiance.max_element() > 0.0).then_some(Emission { radiance }))
 }
 
 /// A `[[medium]]` table's scattering, if it scatters: `scattering` σs (1/length, ≥ 0: a
@@ -122,7 +130,7 @@ pub fn read_scattering(
 /// The index profile of a `[[medium]]` table. Every index-valued key (`n`, `n0`) and the
 /// fiber profiles' shape constants (`a` or `g` of `parabolic`, `g` of `sech`) may depend on
 /// wavelength; the medium is dispersive when one of them does.
-fn read_profile(t: &mut TableReader) -> Result<Profile> {
+pub fn read_profile(t: &mut TableReader) -> Result<Profile> {
     let profile = t.string("profile")?;
     Ok(match profile.as_str() {
         "radial_table" | "height_table" | "luneburg" | "black_hole" | "schwarzschild"

@@ -14,7 +14,7 @@ use crate::media::Medium;
 use crate::receiver::Receiver;
 use crate::shapes::Primitive;
 use crate::spectrum::{Spectrum, LAMBDA_D};
-use crate::volume::Scattering;
+use crate::volume::{Participating, Scattering};
 use std::path::{Path, PathBuf};
 
 /// How a dispersive medium is built at a vacuum wavelength (nm).
@@ -35,8 +35,8 @@ struct Entry {
     name: String,
     medium: Box<dyn Medium>,
     dispersion: Option<AtWavelength>,
-    /// How it scatters (None: it does not).
-    scattering: Option<Scattering>,
+    /// What it does to light's power: absorbs, scatters, emits.
+    participating: Participating,
 }
 
 /// The scene's media by name; [`Surface::interior`], [`Surface::exterior`] and the ambient
@@ -53,7 +53,7 @@ impl Media {
             name: name.into(),
             medium,
             dispersion: None,
-            scattering: None,
+            participating: Participating::default(),
         });
         self.0.len() - 1
     }
@@ -64,7 +64,7 @@ impl Media {
             name: name.into(),
             medium: at(LAMBDA_D),
             dispersion: Some(at),
-            scattering: None,
+            participating: Participating::default(),
         });
         self.0.len() - 1
     }
@@ -82,26 +82,43 @@ impl Media {
         self.0[i].medium.as_ref()
     }
 
-    /// Sets how medium `i` scatters (None: it does not).
-    pub fn set_scattering(&mut self, i: usize, scattering: Option<Scattering>) {
-        self.0[i].scattering = scattering;
+    /// Sets what medium `i` does to light's power.
+    pub fn set_participating(&mut self, i: usize, participating: Participating) {
+        self.0[i].participating = participating;
+    }
+
+    /// What medium `i` does to light's power.
+    pub fn participating(&self, i: usize) -> &Participating {
+        &self.0[i].participating
     }
 
     /// How medium `i` scatters (None: it does not).
     pub fn scattering(&self, i: usize) -> Option<&Scattering> {
-        self.0[i].scattering.as_ref()
+        self.0[i].participating.scattering.as_ref()
     }
 
     /// Whether any medium scatters.
     pub fn any_scatters(&self) -> bool {
-        self.0.iter().any(|e| e.scattering.is_some())
+        self.0.iter().any(|e| e.participating.scattering.is_some())
+    }
+
+    /// The first medium that emits, by name (None: none does).
+    pub fn first_emitting(&self) -> Option<&str> {
+        self.0
+            .iter()
+            .find(|e| e.participating.emission.is_some())
+            .map(|e| e.name.as_str())
     }
 
     /// Whether a path through medium `i` depends on its wavelength: its index does, or its
     /// scattering coefficient.
     pub fn is_dispersive(&self, i: usize) -> bool {
         let e = &self.0[i];
-        e.dispersion.is_some() || e.scattering.as_ref().is_some_and(Scattering::is_spectral)
+        e.dispersion.is_some()
+            || e.participating
+                .scattering
+                .as_ref()
+                .is_some_and(Scattering::is_spectral)
     }
 
     /// Medium `i` at vacuum wavelength `nm`, when it is dispersive (None: it is
@@ -310,6 +327,11 @@ impl Scene {
     /// [`Surface::interior`] or [`Scene::ambient`].
     pub fn add_medium(&mut self, name: impl Into<String>, medium: Box<dyn Medium>) -> usize {
         self.media.add(name, medium)
+    }
+
+    /// Sets what medium `i` does to light's power (absorbs, scatters, emits).
+    pub fn set_participating(&mut self, i: usize, participating: Participating) {
+        self.media.set_participating(i, participating);
     }
 
     /// The medium at index `i` (see [`Surface::interior`] and [`Scene::ambient`]).

@@ -27,7 +27,7 @@ use crate::curve::{
 };
 use crate::lights::Anchor;
 use crate::media::Medium;
-use crate::volume::Scattering;
+use crate::volume::{Participating, Scattering};
 use glam::{DVec2, DVec3};
 
 /// A solved connection.
@@ -77,6 +77,8 @@ enum Goal {
 struct Problem<'a> {
     tracer: &'a Tracer<'a>,
     medium: &'a dyn Medium,
+    /// What the medium does to light's power (the link's optical depth is summed).
+    radiometry: &'a Participating,
     /// How the medium scatters, if it is heterogeneous (the link's column is summed).
     scattering: Option<&'a Scattering>,
     from: DVec3,
@@ -139,7 +141,7 @@ impl Problem<'_> {
         let settings = &self.tracer.settings;
         let start = RayState::new(self.medium, self.from, self.direction(ab))?;
         let mut lengths = Vec::new();
-        let (mut last, mut column) = (self.from, 0.0);
+        let (mut last, mut column, mut depth) = (self.from, 0.0, 0.0);
         let out = march_with(
             settings.stepper,
             self.medium,
@@ -150,6 +152,7 @@ impl Problem<'_> {
                 if step.length > 0.0 {
                     lengths.push(step.length);
                     let to = step.state.position;
+                    depth += self.radiometry.step_depth(last, to, step.length);
                     let chord = (to - last).length();
                     if let Some(sc) = self.scattering.filter(|_| chord > 0.0) {
                         column += sc.column(last, (to - last) / chord, chord);
@@ -165,7 +168,7 @@ impl Problem<'_> {
             residual: self.residual(&out)?,
             end: out.state,
             length: out.arclength,
-            optical_depth: out.optical_depth,
+            optical_depth: depth,
             column: match self.scattering {
                 Some(_) => column,
                 None => out.arclength,
@@ -315,6 +318,7 @@ pub fn connect(
     let problem = Problem {
         tracer,
         medium: tracer.medium(medium),
+        radiometry: tracer.participating(medium),
         scattering: tracer.scattering(medium).filter(|sc| sc.is_heterogeneous()),
         from,
         chord,

@@ -17,8 +17,8 @@ pub use vertex::{MediumVertex, Scattered, SurfaceVertex, Vertex};
 
 use crate::color::Rgb;
 use crate::curve::{
-    march_with, step_optical_depth, Bounds, ExactPath, HermitePath, MarchLimits, MarchOutcome,
-    Path, RayState, StepControl, Termination,
+    march_with, Bounds, ExactPath, HermitePath, MarchLimits, MarchOutcome, Path, RayState,
+    StepControl, Termination,
 };
 use crate::material::{Material, SurfacePoint};
 use crate::math::Ball;
@@ -27,7 +27,7 @@ use crate::scene::{Scene, Surface};
 use crate::settings::TraceSettings;
 use crate::shapes::Hit;
 use crate::spectrum::{colour, Hero, LAMBDA_D};
-use crate::volume::Scattering;
+use crate::volume::{Participating, Scattering};
 use glam::{DVec2, DVec3};
 pub use stats::Stats;
 use std::ops::ControlFlow;
@@ -267,6 +267,21 @@ impl<'a> HeroTracer<'a> {
     }
 }
 
+/// A gradient medium a march crosses: its index field and what it does to light's power.
+#[derive(Clone, Copy)]
+struct Along<'m> {
+    medium: &'m dyn Medium,
+    radiometry: &'m Participating,
+}
+
+/// A march to the next surface: the surface met or the point at the reach (None: neither),
+/// how the march ended, and the optical depth of absorption along the path it went.
+struct Marched {
+    hit: Option<Event>,
+    outcome: MarchOutcome,
+    optical_depth: f64,
+}
+
 /// Directions along which [`Tracer::medium_containing`] looks for the enclosing surface: far
 /// from any axis, so they rarely graze the axis-aligned walls of a scene.
 const PROBES: [DVec3; 3] = [
@@ -416,6 +431,26 @@ impl<'a> Tracer<'a> {
             .or_else(|| self.scene.media().scattering(i))
     }
 
+    /// What medium `i` does to light's power: its absorption and emission (its scattering at
+    /// the tracer's wavelength is [`Tracer::scattering`]).
+    pub fn participating(&self, i: usize) -> &Participating {
+        self.scene.media().participating(i)
+    }
+
+    /// The optical depth of absorption along the straight piece from `from` along unit `dir`
+    /// over `length` in `medium` (0 in vacuum and in a medium that does not absorb).
+    pub fn optical_depth(
+        &self,
+        medium: Option<usize>,
+        from: DVec3,
+        dir: DVec3,
+        length: f64,
+    ) -> f64 {
+        medium.map_or(0.0, |i| {
+            self.participating(i).optical_depth(from, dir, length)
+        })
+    }
+
     /// The refractive index at `p` in `medium` (None: vacuum, n = 1); None where the medium
     /// captures rays (a horizon).
     pub fn index(&self, medium: Option<usize>, p: DVec3) -> Option<f64> {
@@ -551,12 +586,13 @@ impl<'a> Tracer<'a> {
         stats: &mut Stats,
         path: Option<&mut dyn FnMut(DVec3)>,
     ) -> Event {
-        let m = medium.map(|i| self.medium(i));
-        match m {
-            Some(m) if !m.is_uniform() => self.curved(m, origin, dir, reach, stats, path),
+        match medium {
+            Some(i) if !self.medium(i).is_uniform() => {
+                self.curved(i, origin, dir, reach, stats, path)
+            }
             _ => {
                 stats.straight_rays += 1;
-                let depth = |length: f64| m.map_or(0.0, |m| m.optical_depth(origin, dir, length));
+                let depth = |length: f64| self.optical_depth(medium, origin, dir, length);
                 match self.scene.accel.intersect_ray(origin, dir, 0.0, reach) {
                     Some((prim, h)) => Event::Surface {
                         prim,
@@ -592,7 +628,7 @@ impl<'a> Tracer<'a> {
 
     fn curved(
         &self,
-        medium: &dyn Medium,
+        i: usize,
         origin: DVec3,
         dir: DVec3,
         reach: f64,
@@ -600,6 +636,7 @@ impl<'a> Tracer<'a> {
         path: Option<&mut dyn FnMut(DVec3)>,
     ) -> Event {
         let settings = &self.settings;
+        let medium = self.medium(i);
         let Some(start) = RayState::new(medium, origin, dir) else {
             stats.record_end(Termination::Captured);
             return Event::Lost;
@@ -610,7 +647,15 @@ impl<'a> Tracer<'a> {
             bounds: self.world,
         };
         let control = keyed_by_ray(settings.control, origin, dir);
-        let (hit, out) = self.march_to_surface(medium, control, start, &limits, reach, path);
+        let along = Along {
+            medium,
+            radiometry: self.participating(i),
+        };
+        let Marched {
+            hit,
+            outcome: out,
+            optical_depth,
+        } = self.march_to_surface(along, control, start, &limits, reach, path);
         stats.curved_marches += 1;
         stats.curved_steps += out.steps;
         stats.record_end(out.reason);
@@ -620,7 +665,7 @@ impl<'a> Tracer<'a> {
                 position: out.state.position,
                 direction: out.state.direction,
                 distance: out.arclength,
-                optical_depth: out.optical_depth,
+                optical_depth,
             },
             // Trapped (the path's length ran out inside the world), captured, out of steps.
             (None, _) => Event::Lost,
@@ -632,13 +677,14 @@ impl<'a> Tracer<'a> {
     /// `start`), with the march's outcome. `path` is shown each accepted point before it.
     fn march_to_surface(
         &self,
-        medium: &dyn Medium,
+        along: Along,
         control: StepControl,
         start: RayState,
         limits: &MarchLimits,
         reach: f64,
         mut path: Option<&mut dyn FnMut(DVec3)>,
-    ) -> (Option<Event>, MarchOutcome) {
+    ) -> Marched {
+        let Along { medium, radiometry } = along;
         let mut prev = start;
         let (mut prev_s, mut prev_depth) = (0.0, 0.0);
         let mut hit = None;
@@ -669,7 +715,7 @@ impl<'a> Tracer<'a> {
                         direction: c.direction,
                         distance: prev_s + c.along,
                         optical_depth: prev_depth
-                            + step_optical_depth(medium, prev.position, c.position, c.along),
+                            + radiometry.step_depth(prev.position, c.position, c.along),
                     });
                     return ControlFlow::Break(());
                 }
@@ -685,7 +731,7 @@ impl<'a> Tracer<'a> {
                         direction: p.direction,
                         distance: reach,
                         optical_depth: prev_depth
-                            + step_optical_depth(medium, prev.position, p.position, along),
+                            + radiometry.step_depth(prev.position, p.position, along),
                     });
                     return ControlFlow::Break(());
                 }
@@ -693,13 +739,17 @@ impl<'a> Tracer<'a> {
                 if let Some(path) = path.as_mut() {
                     path(st.position);
                 }
-                prev_depth += step_optical_depth(medium, prev.position, st.position, len);
+                prev_depth += radiometry.step_depth(prev.position, st.position, len);
                 prev = *st;
                 prev_s = s;
                 ControlFlow::Continue(())
             },
         );
-        (hit, out)
+        Marched {
+            hit,
+            outcome: out,
+            optical_depth: prev_depth,
+        }
     }
 
     /// The first surface on a step from `prev` to `st` whose path is known exactly — a chain

@@ -28,12 +28,12 @@ pub fn transmittance(
         left -= (next - o).dot(dir);
         o = next;
     }
-    match medium.map(|m| tracer.medium(m)) {
-        Some(m) if m.absorbs() => {
+    match medium.and_then(|m| tracer.participating(m).absorption.as_ref()) {
+        Some(absorption) => {
             let length = reach.min(tracer.world.exit_distance(from, dir));
-            (-m.optical_depth(from, dir, length)).exp()
+            (-absorption.optical_depth(from, dir, length)).exp()
         }
-        _ => 1.0,
+        None => 1.0,
     }
 }
 

@@ -1,7 +1,6 @@
-//! Scattering in media: a medium's radiometry beside its index field ([`crate::media`]).
+//! Participating media: a medium's radiometry beside its index field ([`crate::media`]).
 //! A medium may scatter light with coefficient σs (1/length, per RGB channel, or a form over
-//! wavelength) and a [`Phase`] function; it may absorb with σa (the index profile's
-//! `absorption`).
+//! wavelength) and a [`Phase`] function; it may absorb with σa and emit ([`Participating`]).
 //!
 //! **Free flights.** Light travelling a path of arclength s in the medium keeps exp(−σs s)
 //! unscattered — along a curved path exactly as along a straight one, since σs is constant
@@ -33,8 +32,10 @@
 //! does it ([`crate::transport::chain::Chain::radiance_scale`]). A phase function is
 //! normalised over solid angle at the point, whatever n is there.
 
+mod participating;
 mod phase;
 
+pub use participating::{Absorption, Emission, Participating};
 pub use phase::Phase;
 
 use crate::color::Rgb;

@@ -1,0 +1,108 @@
+//! A participating medium: what a medium does to light's power beside bending it — it absorbs
+//! (σa), scatters (σs and a phase function: [`Scattering`]) and emits (Le), each scaled by the
+//! medium's density where it is heterogeneous. The index field ([`crate::media::Medium`]) only
+//! bends rays; the curved-segment engine returns geometry, and the transport asks this type
+//! what the light loses and gains along it.
+//!
+//! **Emission.** A medium that absorbs with σa(x) emits σa(x)·Le per unit length (the
+//! emission coefficient of Kirchhoff's law, as pbrt-v4's and Mitsuba 3's media state it), Le
+//! given as *basic radiance* L/n²: a thermal emitter of index n shows n²·Le (Kirchhoff's law
+//! in a medium), so Le is the radiance an optically thick body of the medium shows in vacuum,
+//! Fresnel apart. Along a stretch of optical depth τa (absorption only) the light emitted
+//! and not absorbed again on the way is then Le·(1 − e^(−τa)) as basic radiance — exactly, for
+//! any density and along any curved path, since d/ds e^(−τa(s)) = −σa(s)·e^(−τa(s)) — and a
+//! path starting at index n sees n² times it ([`Emission::along`]).
+
+use super::Scattering;
+use crate::color::Rgb;
+use crate::media::Density;
+use glam::DVec3;
+use std::sync::Arc;
+
+/// Absorption: a coefficient σa (1/length, > 0) where the density is 1, scaled by the density.
+#[derive(Clone, Debug)]
+pub struct Absorption {
+    /// σa (1/length) where the density is 1.
+    pub sigma_a: f64,
+    /// The density scaling σa (None: 1 everywhere).
+    pub density: Option<Arc<Density>>,
+}
+
+impl Absorption {
+    /// σa at `p` (1/length).
+    pub fn at(&self, p: DVec3) -> f64 {
+        self.sigma_a * self.density.as_ref().map_or(1.0, |d| d.at(p))
+    }
+
+    /// The optical depth ∫ σa ds along the straight piece from `from` along unit `dir` over
+    /// `length`: σa times the density's column, exactly.
+    pub fn optical_depth(&self, from: DVec3, dir: DVec3, length: f64) -> f64 {
+        match &self.density {
+            None => self.sigma_a * length,
+            Some(d) => self.sigma_a * d.column(from, dir, length),
+        }
+    }
+
+    /// The optical depth of one step of a curved path between `a` and `b`, `length` apart
+    /// along the path: the depth along the chord, scaled by the arclength over the chord's
+    /// length (so a constant σa gives σa·length exactly).
+    pub fn step_depth(&self, a: DVec3, b: DVec3, length: f64) -> f64 {
+        let chord = (b - a).length();
+        match chord > 0.0 {
+            true => self.optical_depth(a, (b - a) / chord, chord) * (length / chord),
+            false => self.at(a) * length,
+        }
+    }
+}
+
+/// Emission: basic radiance Le (W/(m²·sr) per RGB channel, ≥ 0) emitted at the rate σa
+/// (see the module's notes).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Emission {
+    /// Le, as basic radiance L/n².
+    pub radiance: Rgb,
+}
+
+impl Emission {
+    /// The basic radiance emitted along a stretch of absorption optical depth `depth` and
+    /// not absorbed on it: Le·(1 − e^(−depth)).
+    pub fn along(&self, depth: f64) -> Rgb {
+        self.radiance * -(-depth).exp_m1()
+    }
+}
+
+/// What a medium does to light's power: it may absorb, scatter and emit (each None where it
+/// does not).
+#[derive(Clone, Debug, Default)]
+pub struct Participating {
+    /// Absorption (None: it does not absorb).
+    pub absorption: Option<Absorption>,
+    /// Scattering (None: it does not scatter).
+    pub scattering: Option<Scattering>,
+    /// Emission (only a medium that absorbs emits).
+    pub emission: Option<Emission>,
+}
+
+impl Participating {
+    /// The optical depth of absorption along the straight piece from `from` along unit `dir`
+    /// over `length` (0 where it does not absorb).
+    pub fn optical_depth(&self, from: DVec3, dir: DVec3, length: f64) -> f64 {
+        match &self.absorption {
+            Some(a) if length > 0.0 => a.optical_depth(from, dir, length),
+            _ => 0.0,
+        }
+    }
+
+    /// The optical depth of absorption along one step of a curved path ([`Absorption::step_depth`];
+    /// 0 where it does not absorb).
+    pub fn step_depth(&self, a: DVec3, b: DVec3, length: f64) -> f64 {
+        self.absorption
+            .as_ref()
+            .map_or(0.0, |ab| ab.step_depth(a, b, length))
+    }
+
+    /// σa at `p` (1/length; 0 where it does not absorb).
+    pub fn sigma_a(&self, p: DVec3) -> f64 {
+        self.absorption.as_ref().map_or(0.0, |a| a.at(p))
+    }
+}
