@@ -313,5 +313,5 @@ fn every_cookbook_recipe_renders_without_a_warning() {
         rendered += 1;
     }
     std::fs::remove_dir_all(&dir).unwrap();
-    assert_eq!(rendered, 7, "docs/cookbook.md's recipes");
+    assert_eq!(rendered, 8, "docs/cookbook.md's recipes");
 }

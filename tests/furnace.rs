@@ -145,6 +145,32 @@ fn white_objects_in_fog_read_the_radiance_around_them() {
     }
 }
 
+/// A fog that absorbs, scatters and emits basic radiance 1, open under a sky of radiance 1,
+/// around white objects: in equilibrium every pixel reads n² (1 for n = 1, 1.33² for n =
+/// 1.33), whatever σa and σs — the path tracer gathers the fog's emission along every stretch
+/// of every path. The photon mapper sends no photons from a medium, and says so.
+#[test]
+fn white_objects_in_emitting_fog_under_a_sky_of_its_radiance_read_it() {
+    let render_keys = "[render]\nspp = 4\npasses = 8\n";
+    let sky = "[[light]]\ntype = \"environment\"\nsky = \"uniform\"\n";
+    for n in [1.0, 1.33] {
+        let glowing = fog(n, 0.2) + "absorption = 0.1\nemission = 1\n";
+        let text = format!("{glowing}{}{sky}{CAMERA}{render_keys}", white_objects(n));
+        let (mean, se) = render(&text, IntegratorKind::Path);
+        println!("emitting fog, n = {n}: {mean:.5} ± {se:.5} against {:.5}", n * n);
+        assert!(
+            (mean - n * n).abs() <= 0.01 * n * n,
+            "emitting fog, n = {n}: {mean} ± {se}"
+        );
+        let (scene, settings) = parse_scene(Path::new("furnace.toml"), text).unwrap();
+        let refused = grinlight::render::render(&scene, &settings, &()).unwrap_err();
+        assert!(
+            refused.to_string().contains("integrator = \"path\""),
+            "{refused}"
+        );
+    }
+}
+
 /// The sun in open fog and a lamp in a fogged closed room have no closed form: the photon
 /// mapper's image mean is the path tracer's within 1 % and 4 standard errors of their
 /// pixel-by-pixel difference (the noise of the two, not the image's own variation).

@@ -345,6 +345,13 @@ fn cases() -> Vec<Case> {
         )
     };
     v.extend([
+        ambient_case("emission without absorption", "profile = \"uniform\"\nn = 1\nemission = 1", Error("s.toml:")),
+        ambient_case("emission below 0", "profile = \"uniform\"\nn = 1\nabsorption = 1\nemission = [1, -1, 1]", Error("`emission`")),
+        ambient_case("emitting medium, photon mapper", "profile = \"uniform\"\nn = 1\nabsorption = 1\nemission = 1", Error("photons are sent only from lights")),
+        Case {
+            args: render("--integrator path"),
+            ..ambient_case("huge emission in a dense medium", "profile = \"uniform\"\nn = 1\nabsorption = 1e12\nemission = 1e12", Finite("rendered"))
+        },
         ambient_case("luneburg ambient of radius 1e-6", "profile = \"luneburg\"\nradius = 1e-6", Finite("rendered")),
         ambient_case("luneburg ambient of radius 1e-300", "profile = \"luneburg\"\nradius = 1e-300", Finite("rendered")),
         ambient_case("black_hole of rs 1e-160", "profile = \"black_hole\"\ncenter = [0, 0, -5]\nrs = 1e-160", Finite("rendered")),

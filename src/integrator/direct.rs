@@ -33,7 +33,8 @@ pub struct VisiblePoint<'w> {
 /// What one camera path found.
 #[derive(Clone, Copy)]
 pub struct Components<'w> {
-    /// Emission and environment radiance met along the specular chain.
+    /// Emission and environment radiance met along the specular chain, and the light its
+    /// media emitted on the way.
     pub emitted: Rgb,
     /// Direct light scattered toward the camera along the chain's straight stretches through
     /// scattering media ([`super::single::single_scattering`]).
@@ -75,7 +76,7 @@ pub fn camera_path<'w>(
     let chain = walker.follow(ray, rng, stats, &mut beams.record(carried.tracer));
     record_cut(&chain, Rgb::ONE, stats);
     let mut out = Components {
-        emitted: emission_seen(walker.tracer, &chain),
+        emitted: emission_seen(walker.tracer, &chain) + chain.emitted,
         single: single_scattering(beams, walker.carried(), rng, stats),
         visible: None,
         bounces: chain.specular,

@@ -75,6 +75,8 @@ impl<'a> PathTracer<'a> {
                 * weight
                 * single_scattering(&beams, walker.carried(), s.rng, s.stats);
             let throughput = vp.throughput * weight * chain.weight;
+            // Light emitted by media on the way is sampled by no light sample: it counts here.
+            sum += vp.throughput * weight * chain.emitted;
             // With no specular bounce, emission here is the direct estimate's (already counted).
             if chain.specular > 0 {
                 sum += vp.throughput * weight * emission_seen(walker.tracer, &chain);

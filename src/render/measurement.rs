@@ -103,6 +103,7 @@ pub fn trace_receivers(
     traced: std::ops::Range<u64>,
     observer: &dyn Observer,
 ) -> Result<(Books, Report)> {
+    super::photons_carry_all_light(scene)?;
     let tracer = Tracer::new(scene, &settings.trace);
     let sources = Sources::for_receivers(&tracer);
     let pool = thread_pool(settings.threads)?;

@@ -137,6 +137,7 @@ pub fn render_passes(
     let tracer = Tracer::new(scene, &settings.trace);
     match settings.integrator {
         Kind::PhotonMap => {
+            photons_carry_all_light(scene)?;
             let stop = || observer.stop_requested();
             let table = settings
                 .deflection_table
@@ -162,6 +163,22 @@ pub fn render_passes(
             passes,
             observer,
         ),
+    }
+}
+
+/// Refuses a scene whose light photons cannot carry: light emitted by a medium (no photon
+/// is sent from a volume), which the photon mapper and the receivers would leave out. The
+/// path tracer gathers it along every camera path.
+fn photons_carry_all_light(scene: &Scene) -> Result<()> {
+    match scene.media().first_emitting() {
+        None => Ok(()),
+        Some(name) => Err(crate::error::Error::Setting {
+            key: "integrator",
+            message: format!(
+                "medium '{name}' emits light (`emission`), and photons are sent only from lights: \
+                 render it with integrator = \"path\" (receivers cannot measure it)"
+            ),
+        }),
     }
 }
 

@@ -99,6 +99,11 @@ pub struct Chain<'s> {
     pub specular: u32,
     /// Whether a stretch of it crossed a non-uniform medium (a curved path).
     pub curved: bool,
+    /// Radiance the media on the way emitted toward the start and did not absorb again, as
+    /// seen at the start (basic radiance times n_start²; [`crate::volume::Emission`]) and
+    /// weighted as the chain was there: a camera path's ([`Policy::Weighted`]; zero for
+    /// every other policy).
+    pub emitted: Rgb,
     /// A photon's chain ([`Policy::Roulette`]) that met dispersion: its weight up to there
     /// (then `weight` counts from there, at the hero wavelength). The photon's power changes
     /// there in a way only it knows (its source's spectrum at the wavelength).
@@ -402,6 +407,7 @@ impl<'w> Walker<'w> {
             n_end: 1.0,
             specular: 0,
             curved: false,
+            emitted: Rgb::ZERO,
             dispersed: None,
         };
         self.meet_dispersion(self.tracer.disperses_in(ray.medium), &mut chain);
@@ -565,6 +571,7 @@ impl<'w> Walker<'w> {
                 (Policy::Principal, _) => Rgb::ONE,
             };
         }
+        self.gather_emission(chain, at.medium, &event);
         let hit = match event {
             Event::Lost => return ControlFlow::Break(End::Lost),
             _ if self.absorbed(chain, event.transmittance(), lent.rng) => {
@@ -635,6 +642,21 @@ impl<'w> Walker<'w> {
                     false => ControlFlow::Break(End::Scatter(Vertex::Surface(vertex))),
                 }
             }
+        }
+    }
+
+    /// Adds to a camera path's chain the light `medium` emitted along the stretch to `event`
+    /// and did not absorb again: Le·(1 − e^(−τa)) as basic radiance, exact for any density and
+    /// any curved path ([`crate::volume::Emission`]), times the chain's weight at the
+    /// stretch's start (its free flight weighed in: the flight's survival stands for the
+    /// scattering along the way, as for anything met at its end).
+    fn gather_emission(&self, chain: &mut Chain, medium: Option<usize>, event: &Event) {
+        let emission = medium.and_then(|m| self.tracer.participating(m).emission);
+        if let (Policy::Weighted, Some(emission), false) =
+            (self.policy, emission, *event == Event::Lost)
+        {
+            let basic = self.tracer.radiance(emission.along(event.optical_depth()));
+            chain.emitted += chain.weight * basic * (chain.n_start * chain.n_start);
         }
     }
 

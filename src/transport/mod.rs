@@ -157,14 +157,19 @@ impl Event {
         self
     }
 
-    /// The fraction exp(−∫σa ds) of light kept on the way to the event (0 when lost).
-    pub fn transmittance(&self) -> f64 {
+    /// The optical depth ∫σa ds of absorption on the way to the event (∞ when lost).
+    pub fn optical_depth(&self) -> f64 {
         match *self {
             Event::Surface { optical_depth, .. }
             | Event::Escaped { optical_depth, .. }
-            | Event::Reached { optical_depth, .. } => (-optical_depth).exp(),
-            Event::Lost => 0.0,
+            | Event::Reached { optical_depth, .. } => optical_depth,
+            Event::Lost => f64::INFINITY,
         }
+    }
+
+    /// The fraction exp(−∫σa ds) of light kept on the way to the event (0 when lost).
+    pub fn transmittance(&self) -> f64 {
+        (-self.optical_depth()).exp()
     }
 }
 
