@@ -5,6 +5,7 @@ use crate::color::Rgb;
 use crate::math::Ball;
 use crate::sampling::{
     cosine_hemisphere, power_cosine_hemisphere, uniform_cone, uniform_disk, uniform_sphere, Frame,
+    Pick,
 };
 use glam::DVec3;
 use std::f64::consts::{PI, TAU};
@@ -693,4 +694,182 @@ fn smoothstep(lo: f64, hi: f64, x: f64) -> f64 {
     }
     let t = ((x - lo) / (hi - lo)).clamp(0.0, 1.0);
     t * t * (3.0 - 2.0 * t)
+}
+
+/// How many lights a scattering vertex's direct estimate samples: a choice of the integrator,
+/// by where its cost lies. Measured on 64 lamps of spread intensities in a room
+/// (`bench/many_lights.sh`, 10 s each): the path tracer, whose every vertex takes a light
+/// sample, read a relative RMSE of 0.0729 sampling each light and 0.0316 drawing one; the
+/// photon mapper, whose time goes to its photons and whose direct estimate is at the first
+/// vertex only, 0.0258 sampling each and 0.0495 drawing one.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LightSamples {
+    /// One light drawn by the [`LightSampler`].
+    One,
+    /// One sample of every light.
+    Each,
+}
+
+/// Which light a scattering vertex's light sample goes to: one light drawn in proportion to
+/// a bound on the irradiance it can send to the vertex — a located light's peak intensity
+/// over its squared distance (its size added, so that a surface's own lamp does not take
+/// every sample), parallel light's irradiance — its estimate divided by the probability it
+/// had. No light that can reach the vertex has probability 0, so the estimate is unbiased; a
+/// scene of many lights costs one shadow ray a vertex instead of one per light, and near
+/// lamps get the samples that far ones do not need (a whole-scene power sampler would give
+/// every point the same choice). Each draw costs one pass over the lights, no ray and no
+/// allocation; a scene of one light draws no number.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LightSampler {
+    reach: Vec<Reach>,
+}
+
+/// What [`LightSampler`] knows of one light.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Reach {
+    /// A light at a place: its centre, its squared extent (scene units²) and its peak
+    /// intensity (W/sr, mean over channels).
+    Located {
+        center: DVec3,
+        extent2: f64,
+        intensity: f64,
+    },
+    /// Parallel light: its irradiance (W/m², mean over channels).
+    Parallel { irradiance: f64 },
+}
+
+/// The squared distance (scene units²) below which [`LightSampler`] treats a lamp as that
+/// near: a bound that keeps the weight of a point light at the vertex itself finite.
+const NEAREST2: f64 = 1e-12;
+
+impl Reach {
+    fn of(light: &Light) -> Self {
+        match light {
+            Light::Directional { irradiance, .. } => Reach::Parallel {
+                irradiance: irradiance.mean(),
+            },
+            Light::Point { position, .. } | Light::Spot { position, .. } => Reach::Located {
+                center: *position,
+                extent2: 0.0,
+                intensity: light.peak_intensity().mean(),
+            },
+            Light::Area { emitter, .. } | Light::Led { emitter, .. } => Reach::Located {
+                center: emitter.center(),
+                extent2: emitter.extent() * emitter.extent(),
+                intensity: light.peak_intensity().mean(),
+            },
+        }
+    }
+
+    /// The weight of the light at `p` (W/m²; 0 only for a light that sends nothing).
+    fn at(&self, p: DVec3) -> f64 {
+        let w = match *self {
+            Reach::Parallel { irradiance } => irradiance,
+            Reach::Located {
+                center,
+                extent2,
+                intensity,
+            } => intensity / (center.distance_squared(p) + extent2).max(NEAREST2),
+        };
+        match w.is_finite() && w > 0.0 {
+            true => w,
+            false => 0.0,
+        }
+    }
+}
+
+impl LightSampler {
+    /// The sampler of `lights`.
+    pub fn new(lights: &[Light]) -> Self {
+        Self {
+            reach: lights.iter().map(Reach::of).collect(),
+        }
+    }
+
+    /// The choice among the lights at point `p`.
+    pub fn at(&self, p: DVec3) -> LightChoice<'_> {
+        LightChoice {
+            sampler: self,
+            point: p,
+            total: self.reach.iter().map(|r| r.at(p)).sum(),
+        }
+    }
+}
+
+/// The lights' distribution at one point ([`LightSampler::at`]).
+#[derive(Clone, Copy, Debug)]
+pub struct LightChoice<'s> {
+    sampler: &'s LightSampler,
+    point: DVec3,
+    /// The sum of the lights' weights there.
+    total: f64,
+}
+
+impl LightChoice<'_> {
+    /// A light and its probability, drawing one number from `rng` unless there is one light
+    /// (None: no light sends power).
+    pub fn pick(&self, rng: &mut impl rand::Rng) -> Option<Pick> {
+        let reach = &self.sampler.reach;
+        if !(self.total > 0.0 && self.total.is_finite()) {
+            return None;
+        }
+        if reach.len() == 1 {
+            return Some(Pick {
+                index: 0,
+                probability: 1.0,
+            });
+        }
+        let target = rng.gen::<f64>() * self.total;
+        let mut acc = 0.0;
+        let mut last = None;
+        for (index, r) in reach.iter().enumerate() {
+            let w = r.at(self.point);
+            if w > 0.0 {
+                acc += w;
+                last = Some(index);
+                if target < acc {
+                    break;
+                }
+            }
+        }
+        // Rounding may leave the target at the very end: the last light of weight > 0.
+        last.map(|index| Pick {
+            index,
+            probability: self.probability(index),
+        })
+    }
+
+    /// The probability light `i` is drawn here.
+    pub fn probability(&self, i: usize) -> f64 {
+        match self.sampler.reach.len() {
+            1 => 1.0,
+            _ => self.sampler.reach[i].at(self.point) / self.total,
+        }
+    }
+
+    /// The lights a vertex's direct estimate samples, by `samples`, each with the chance it
+    /// had (every light with chance 1, or one drawn from `rng`).
+    pub fn sampled(
+        &self,
+        samples: LightSamples,
+        rng: &mut impl rand::Rng,
+    ) -> impl Iterator<Item = Pick> {
+        let (each, one) = match samples {
+            LightSamples::Each => (Some(0..self.sampler.reach.len()), None),
+            LightSamples::One => (None, self.pick(rng)),
+        };
+        let every = each.into_iter().flatten().map(|index| Pick {
+            index,
+            probability: 1.0,
+        });
+        every.chain(one)
+    }
+
+    /// The chance light `i` had under `samples`.
+    pub fn chance(&self, samples: LightSamples, i: usize) -> f64 {
+        match samples {
+            LightSamples::Each => 1.0,
+            LightSamples::One => self.probability(i),
+        }
+    }
 }

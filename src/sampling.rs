@@ -148,3 +148,58 @@ pub fn power_cosine_pdf(m: f64, cos: f64) -> f64 {
 
 /// Pdf of [`uniform_sphere`] (1/sr).
 pub const UNIFORM_SPHERE_PDF: f64 = 0.25 / PI;
+
+/// A discrete distribution over indices 0..n, each drawn with probability proportional to its
+/// weight (≥ 0; a weight of 0 is never drawn): its cumulative sums, the last one 1.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Discrete {
+    cdf: Vec<f64>,
+}
+
+/// An index drawn from a [`Discrete`] and the probability it had.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Pick {
+    /// The index.
+    pub index: usize,
+    /// Its probability, > 0.
+    pub probability: f64,
+}
+
+impl Discrete {
+    /// The distribution of `weights` (each finite and ≥ 0); None when they sum to 0.
+    pub fn new(weights: &[f64]) -> Option<Self> {
+        let total: f64 = weights.iter().sum();
+        if !(total > 0.0 && total.is_finite()) {
+            return None;
+        }
+        let mut acc = 0.0;
+        let mut cdf: Vec<f64> = weights
+            .iter()
+            .map(|w| {
+                acc += w / total;
+                acc
+            })
+            .collect();
+        // The last index that can be drawn ends at exactly 1, and so does every one after it.
+        let last = weights.iter().rposition(|&w| w > 0.0)?;
+        cdf[last..].fill(1.0);
+        Some(Self { cdf })
+    }
+
+    /// The index a uniform `u` in [0, 1) draws.
+    pub fn pick(&self, u: f64) -> Pick {
+        let index = self
+            .cdf
+            .partition_point(|c| *c <= u)
+            .min(self.cdf.len() - 1);
+        Pick {
+            index,
+            probability: self.probability(index),
+        }
+    }
+
+    /// The probability of index `i`.
+    pub fn probability(&self, i: usize) -> f64 {
+        self.cdf[i] - if i == 0 { 0.0 } else { self.cdf[i - 1] }
+    }
+}

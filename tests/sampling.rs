@@ -253,3 +253,80 @@ fn world_entry_lines_cover_the_beam() {
         );
     }
 }
+
+/// A discrete distribution draws each index in proportion to its weight and never one of
+/// weight 0 (trailing zeros included): 10⁶ stratified draws over weights (0, 1, 3, 0, 6, 0)
+/// land in each index's share of [0, 1) exactly, to one draw in 10⁶.
+#[test]
+fn a_discrete_distribution_draws_in_proportion_to_its_weights() {
+    use grinlight::sampling::Discrete;
+    let weights = [0.0, 1.0, 3.0, 0.0, 6.0, 0.0];
+    let d = Discrete::new(&weights).unwrap();
+    let n = 1_000_000;
+    let mut counts = [0usize; 6];
+    for i in 0..n {
+        let pick = d.pick((i as f64 + 0.5) / n as f64);
+        assert!((pick.probability - weights[pick.index] / 10.0).abs() < 1e-15);
+        counts[pick.index] += 1;
+    }
+    for (i, w) in weights.iter().enumerate() {
+        let share = counts[i] as f64 / n as f64;
+        assert!((share - w / 10.0).abs() <= 1e-6, "index {i}: {share}");
+    }
+    assert!(Discrete::new(&[0.0, 0.0]).is_none());
+}
+
+/// The light choice at a point: probabilities that sum to 1 over the lights, each light drawn
+/// at its probability (10⁵ draws, within 4 standard errors), a near lamp favoured over a far
+/// one of equal intensity by the squared distances, parallel light weighed by its irradiance,
+/// and a single light taken without drawing.
+#[test]
+fn the_light_choice_follows_each_lights_irradiance_bound() {
+    use glam::DVec3;
+    use grinlight::color::Rgb;
+    use grinlight::lights::{LightSampler, LightSamples};
+    use rand::SeedableRng;
+    let point = |x: f64| grinlight::lights::Light::Point {
+        position: DVec3::new(x, 0.0, 0.0),
+        intensity: Rgb::ONE,
+    };
+    let sun = grinlight::lights::Light::Directional {
+        direction: DVec3::NEG_Y,
+        irradiance: Rgb::splat(0.5),
+    };
+    let lights = [point(1.0), point(3.0), sun];
+    let sampler = LightSampler::new(&lights);
+    let choice = sampler.at(DVec3::ZERO);
+    // Weights 1, 1/9 and 0.5.
+    let total = 1.0 + 1.0 / 9.0 + 0.5;
+    let want = [1.0 / total, 1.0 / 9.0 / total, 0.5 / total];
+    let sum: f64 = (0..3).map(|i| choice.probability(i)).sum();
+    assert!((sum - 1.0).abs() < 1e-15);
+    let mut rng = rand_pcg::Pcg64Mcg::seed_from_u64(7);
+    let n = 100_000;
+    let mut counts = [0usize; 3];
+    for _ in 0..n {
+        let picks: Vec<_> = choice.sampled(LightSamples::One, &mut rng).collect();
+        assert_eq!(picks.len(), 1);
+        assert!((picks[0].probability - want[picks[0].index]).abs() < 1e-15);
+        counts[picks[0].index] += 1;
+    }
+    for i in 0..3 {
+        let p = want[i];
+        let se = (p * (1.0 - p) / n as f64).sqrt();
+        let share = counts[i] as f64 / n as f64;
+        assert!(
+            (share - p).abs() <= 4.0 * se,
+            "light {i}: {share} against {p}"
+        );
+    }
+    let each: Vec<_> = choice.sampled(LightSamples::Each, &mut rng).collect();
+    assert_eq!(each.len(), 3);
+    assert!(each.iter().all(|p| p.probability == 1.0));
+    let one = LightSampler::new(&lights[..1]);
+    let mut counting = rand_pcg::Pcg64Mcg::seed_from_u64(7);
+    let before = counting.clone();
+    let pick = one.at(DVec3::ZERO).pick(&mut counting).unwrap();
+    assert_eq!((pick.index, pick.probability), (0, 1.0));
+    assert_eq!(counting, before, "one light draws no number");
+}

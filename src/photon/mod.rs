@@ -33,7 +33,7 @@ use crate::environment::Environment;
 use crate::lights::{Aim, Cone, Emission, Entry, Light};
 use crate::math::Ball;
 use crate::receiver::Detection;
-use crate::sampling::{stream, Purpose};
+use crate::sampling::{stream, Discrete, Pick, Purpose};
 use crate::spectrum::{colour, Spectrum};
 use crate::transport::chain::{self, End, Policy, Ray};
 use crate::transport::{HeroTracer, MediumVertex, Scattered, Stats, Tracer, Vertex};
@@ -171,8 +171,8 @@ pub struct Sources<'a> {
     spectral: bool,
     /// Whether map photons take a hero wavelength ([`crate::scene::Scene::is_dispersive`]).
     dispersive: bool,
-    /// Cumulative selection probabilities, the last one 1.
-    cdf: Vec<f64>,
+    /// How a photon picks its source (None: nothing emits).
+    choice: Option<Discrete>,
 }
 
 impl<'a> Sources<'a> {
@@ -311,26 +311,17 @@ impl<'a> Sources<'a> {
             weights.push(pilot.max(others / 9.0));
         }
         let shell = shell.map(|(shell, _)| shell);
-        let total: f64 = weights.iter().filter(|w| w.is_finite() && **w > 0.0).sum();
-        let mut kept = Vec::new();
-        let mut cdf = Vec::new();
-        let mut acc = 0.0;
-        for (s, w) in sources.into_iter().zip(weights) {
-            if w.is_finite() && w > 0.0 {
-                acc += w / total;
-                kept.push(s);
-                cdf.push(acc);
-            }
-        }
-        if let Some(last) = cdf.last_mut() {
-            *last = 1.0;
-        }
+        let (kept, weights): (Vec<Placed>, Vec<f64>) = sources
+            .into_iter()
+            .zip(weights)
+            .filter(|(_, w)| w.is_finite() && *w > 0.0)
+            .unzip();
         Self {
+            choice: Discrete::new(&weights),
             sources: kept,
             aim,
             crossed,
             shell,
-            cdf,
             spectral: scene.is_spectral(),
             dispersive: scene.is_dispersive(),
         }
@@ -353,11 +344,10 @@ impl<'a> Sources<'a> {
         rng: &mut impl Rng,
         stats: &mut Stats,
     ) -> Option<(Launch, Option<&Spectrum>)> {
-        let i = self
-            .cdf
-            .partition_point(|c| *c <= u[0])
-            .min(self.cdf.len() - 1);
-        let p = self.cdf[i] - if i == 0 { 0.0 } else { self.cdf[i - 1] };
+        let Pick {
+            index: i,
+            probability: p,
+        } = self.choice.as_ref()?.pick(u[0]);
         let rest = [u[1], u[2], u[3], u[4]];
         let Placed {
             source,

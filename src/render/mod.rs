@@ -15,6 +15,7 @@ use crate::film::{ErrorTotals, Film};
 use crate::integrator::{
     CameraRay, DeflectionTable, Integrator, PathTracer, PhotonMapper, Plan, Sample,
 };
+use crate::lights::LightSamples;
 pub use crate::report::Report;
 use crate::sampling::{stream, Purpose, Strata};
 use crate::scene::Scene;
@@ -138,6 +139,7 @@ pub fn render_passes(
     match settings.integrator {
         Kind::PhotonMap => {
             photons_carry_all_light(scene)?;
+            let tracer = tracer.sampling_lights(LightSamples::Each);
             let stop = || observer.stop_requested();
             let table = settings
                 .deflection_table

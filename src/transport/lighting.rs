@@ -10,6 +10,7 @@ use super::connect::connect;
 use super::{visibility, Stats, Tracer, Vertex};
 use crate::color::Rgb;
 use crate::lights::Light;
+use crate::sampling::Pick;
 use crate::scene::Role;
 use rand::Rng;
 
@@ -37,7 +38,13 @@ pub fn emission_seen(tracer: &Tracer, chain: &Chain) -> Rgb {
 /// One light sample of `light` at a scattering vertex in a uniform medium, through a straight
 /// shadow ray from its arrival side (multiple importance weighted against the BSDF or phase
 /// sample for area lights).
-fn straight_light(tracer: &Tracer, vertex: &Vertex, light: &Light, uv: (f64, f64)) -> Rgb {
+fn straight_light(
+    tracer: &Tracer,
+    vertex: &Vertex,
+    light: &Light,
+    chosen: f64,
+    uv: (f64, f64),
+) -> Rgb {
     let origin = vertex.origin();
     let Some(inc) = light.sample_incident(origin, uv) else {
         return Rgb::ZERO;
@@ -58,7 +65,7 @@ fn straight_light(tracer: &Tracer, vertex: &Vertex, light: &Light, uv: (f64, f64
     let medium = vertex.medium();
     let kept = visibility::transmittance(tracer, origin, medium, inc.wi, reach);
     let unscattered = visibility::unscattered(tracer, origin, medium, inc.wi, reach);
-    let weight = power_heuristic(inc.pdf, vertex.pdf(inc.wi));
+    let weight = power_heuristic(inc.pdf * chosen, vertex.pdf(inc.wi));
     f * tracer.radiance(inc.irradiance) * (cos * weight * kept) * unscattered
 }
 
@@ -103,13 +110,16 @@ fn power_heuristic(a: f64, b: f64) -> f64 {
 /// environment with no specular interaction on the way, reflected toward ωo by its BSDF
 /// (radiance leaving the vertex, W/(m²·sr), per unit of the scattering coefficient at a point
 /// in a medium).
-/// - In a uniform medium, one light sample of every light through a straight shadow ray
-///   (the visibility query: detectors are transparent, absorption applied), and one BSDF
-///   ray, combined by multiple importance sampling with the power heuristic for area lights
-///   (the only lights both strategies can find). Light samples reach the arrival side; a
+/// - In a uniform medium, one light sample of every light or of one drawn by a bound on the
+///   irradiance it can send to the vertex, as the integrator chose ([`crate::lights::LightSamples`]) through a straight shadow ray (the visibility query:
+///   detectors are transparent, absorption applied), and one BSDF ray, combined by multiple
+///   importance sampling with the power heuristic for area lights (the only lights both
+///   strategies can find; a light sample's density is the light's times the chance it was
+///   drawn). Light samples reach the arrival side; a
 ///   transmitted BSDF ray is the only strategy for the other side (weight 1).
 /// - In a gradient medium a straight connection is not a light path: point, spot, LED and
-///   parallel light are connected to along the curved path ([`connect`]), and the BSDF ray,
+///   parallel light (the light drawn, if it is one of them) are connected to along the
+///   curved path ([`connect`]), and the BSDF ray,
 ///   followed along its curved path, finds area lights and the environment (weight 1: there
 ///   are no area-light samples to weigh it against).
 ///
@@ -127,15 +137,19 @@ pub fn direct_light(
     let graded = vertex.medium().filter(|&m| !tracer.medium(m).is_uniform());
     let origin = vertex.origin();
     let mut radiance = Rgb::ZERO;
-    for light in &scene.lights {
+    let choice = tracer.light_sampler.at(origin);
+    let samples = tracer.light_samples;
+    for Pick { index, probability } in choice.sampled(samples, rng) {
+        let light = &scene.lights[index];
         let lit = match graded {
-            None => straight_light(tracer, vertex, light, (rng.gen(), rng.gen())),
+            None => straight_light(tracer, vertex, light, probability, (rng.gen(), rng.gen())),
             Some(m) if !light.is_hittable() => {
                 curved_light(tracer, vertex, m, light, (rng.gen(), rng.gen()), stats)
             }
+            // An area light's light reaches a vertex in a gradient medium by the BSDF ray.
             Some(_) => Rgb::ZERO,
         };
-        radiance += lit;
+        radiance += lit / probability;
     }
     let Some(s) = vertex.scatter_with(rng) else {
         return radiance;
@@ -153,7 +167,8 @@ pub fn direct_light(
         } if weighed => match scene.surfaces[prim].role {
             Role::Emitter(l) => power_heuristic(
                 s.sample.pdf,
-                scene.lights[l].pdf_incident(direction, (position - origin).length()),
+                scene.lights[l].pdf_incident(direction, (position - origin).length())
+                    * choice.chance(samples, l),
             ),
             // A path ends at an emitter only on an emitter's surface.
             Role::Scatter(_) | Role::Detector(_) => 1.0,

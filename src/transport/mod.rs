@@ -20,6 +20,7 @@ use crate::curve::{
     march_with, Bounds, ExactPath, HermitePath, MarchLimits, MarchOutcome, Path, RayState,
     StepControl, Termination,
 };
+use crate::lights::{LightSampler, LightSamples};
 use crate::material::{Material, SurfacePoint};
 use crate::math::Ball;
 use crate::media::Medium;
@@ -215,6 +216,11 @@ pub struct Tracer<'a> {
     pub world: Bounds,
     /// The medium the camera sits in (see [`Tracer::medium_containing`]).
     pub camera_medium: Option<usize>,
+    /// Which light a vertex's light sample goes to.
+    pub light_sampler: LightSampler,
+    /// How many lights a vertex's direct estimate samples (the integrator's choice:
+    /// [`Tracer::sampling_lights`]; one unless it says).
+    pub light_samples: LightSamples,
     /// The wavelength rays travel at, when it is not [`LAMBDA_D`] (see
     /// [`Tracer::at_wavelength`]).
     wavelength: Option<Wavelength>,
@@ -328,21 +334,32 @@ impl<'a> Tracer<'a> {
         let center = 0.5 * (lo + hi);
         let extent = 0.5 * (hi - lo).length();
         let radius = settings.world_radius.unwrap_or(10.0 * extent.max(1.0));
+        let ball = Ball {
+            center,
+            radius: extent.max(1e-9),
+        };
         let mut tracer = Self {
             scene,
             settings: *settings,
-            ball: Ball {
-                center,
-                radius: extent.max(1e-9),
-            },
+            ball,
             world: Bounds::Ball { center, radius },
             camera_medium: scene.ambient,
+            light_sampler: LightSampler::new(&scene.lights),
+            light_samples: LightSamples::One,
             wavelength: None,
         };
         if let Some(c) = &scene.camera {
             tracer.camera_medium = tracer.medium_containing(c.position);
         }
         tracer
+    }
+
+    /// The same tracer with each vertex's direct estimate sampling lights as `samples` says.
+    pub fn sampling_lights(self, samples: LightSamples) -> Self {
+        Self {
+            light_samples: samples,
+            ..self
+        }
     }
 
     /// The same tracer with rays at vacuum wavelength `nm`: each dispersive medium is the
@@ -356,6 +373,8 @@ impl<'a> Tracer<'a> {
             ball: self.ball,
             world: self.world,
             camera_medium: self.camera_medium,
+            light_sampler: self.light_sampler.clone(),
+            light_samples: self.light_samples,
             wavelength: Some(Wavelength {
                 nm,
                 media: (0..media.len())
