@@ -87,6 +87,47 @@ impl Accel {
         best
     }
 
+    /// Whether a surface lies on the straight ray o + t d (d unit), t ∈ (t_min, t_max), other
+    /// than those `passes` lets through: an any-hit query, which stops at the first blocking
+    /// surface it meets (a shadow ray needs no nearest hit).
+    pub fn blocked(
+        &self,
+        o: DVec3,
+        d: DVec3,
+        t_min: f64,
+        t_max: f64,
+        passes: impl Fn(usize) -> bool,
+    ) -> bool {
+        for stack in &self.stacks {
+            let mut from = t_min;
+            while let Some((id, h)) = stack.intersect_ray(&self.primitives, o, d, from, t_max) {
+                if !passes(id) {
+                    return true;
+                }
+                from = h.t;
+            }
+        }
+        if self.in_bvh.is_empty() {
+            return false;
+        }
+        let ray = Ray::new(
+            Vec3A::from(o.as_vec3()),
+            Vec3A::from(d.as_vec3()),
+            0.0,
+            // Rounded up: the f32 bound must not cull a node holding a hit short of t_max.
+            (t_max as f32).next_up(),
+        );
+        let missed = self.bvh.ray_traverse_miss(ray, |_, i| {
+            let id = self.in_bvh[self.bvh.primitive_indices[i] as usize];
+            match self.primitives[id].intersect_ray(o, d, t_min, t_max) {
+                // Any value below the ray's bound ends the traversal.
+                Some(_) if !passes(id) => f32::NEG_INFINITY,
+                _ => f32::INFINITY,
+            }
+        });
+        !missed
+    }
+
     /// Whether the scene has no surface at all.
     pub fn is_empty(&self) -> bool {
         self.primitives.is_empty()

@@ -14,9 +14,9 @@ use super::CameraRay;
 use crate::color::Rgb;
 use crate::spectrum::Hero;
 use crate::transport::chain::{Carried, Chain, End, Policy, Ray, Walker};
-use crate::transport::lighting::direct_light;
 pub use crate::transport::lighting::emission_seen;
-use crate::transport::{HeroTracer, Stats, Tracer, Vertex};
+use crate::transport::lighting::{bsdf_sample_weight, direct_light, light_samples};
+use crate::transport::{HeroTracer, Scattered, Stats, Tracer, Vertex};
 use rand::Rng;
 
 /// A scattering vertex a camera path has reached, with what radiance leaving it becomes at
@@ -97,16 +97,40 @@ pub fn camera_path<'w>(
 /// medium of uniform index: the direct light scattered along the whole straight stretch that
 /// ended there is [`super::single::single_scattering`]'s, which samples it where the lights are.
 pub fn direct(carried: Carried, vp: &VisiblePoint, rng: &mut impl Rng, stats: &mut Stats) -> Rgb {
-    match vp.vertex {
-        Vertex::Medium(v)
-            if v.medium
-                .is_some_and(|m| carried.tracer.medium(m).is_uniform()) =>
-        {
-            Rgb::ZERO
-        }
-        Vertex::Medium(_) | Vertex::Surface(_) => {
-            vp.throughput * direct_light(carried, &vp.vertex, rng, stats)
-        }
+    match takes_direct(carried.tracer, &vp.vertex) {
+        true => vp.throughput * direct_light(carried, &vp.vertex, rng, stats),
+        false => Rgb::ZERO,
+    }
+}
+
+/// [`direct`]'s light samples alone, for a path that goes on along its own BSDF or phase
+/// sample and weighs the emission it finds ([`continued_emission`]).
+pub fn lit(carried: Carried, vp: &VisiblePoint, rng: &mut impl Rng, stats: &mut Stats) -> Rgb {
+    match takes_direct(carried.tracer, &vp.vertex) {
+        true => vp.throughput * light_samples(carried, &vp.vertex, rng, stats),
+        false => Rgb::ZERO,
+    }
+}
+
+/// The emission the chain of a path's BSDF or phase sample `s` from `vertex` found, as seen
+/// at the vertex (times the sample's weight and radiance scale): after a specular surface in
+/// full (caustics: no light sample finds them), else weighed against [`lit`]'s light samples
+/// where the vertex takes direct light at all.
+pub fn continued_emission(tracer: &Tracer, vertex: &Vertex, s: &Scattered, chain: &Chain) -> Rgb {
+    let mis = match (chain.specular > 0, takes_direct(tracer, vertex)) {
+        (true, _) => 1.0,
+        (false, true) => bsdf_sample_weight(tracer, vertex, s, chain),
+        (false, false) => return Rgb::ZERO,
+    };
+    s.sample.weight * emission_seen(tracer, chain) * (mis * s.radiance_scale)
+}
+
+/// Whether direct light is estimated at `vertex`: everywhere but at a point in a scattering
+/// medium of uniform index, whose direct light is the stretch's single scattering.
+fn takes_direct(tracer: &Tracer, vertex: &Vertex) -> bool {
+    match vertex {
+        Vertex::Medium(v) => !v.medium.is_some_and(|m| tracer.medium(m).is_uniform()),
+        Vertex::Surface(_) => true,
     }
 }
 

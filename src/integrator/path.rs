@@ -1,18 +1,20 @@
 //! Unidirectional path tracing through the curved transport: the camera's specular chain to
 //! its first scattering vertex, then BSDF-sampled bounces from vertex to vertex (diffuse or
 //! glossy), each followed through purely specular surfaces and gradient media. At every
-//! vertex the light arriving with no specular interaction is the direct estimate
-//! ([`super::direct`]: light samples where a straight shadow ray is valid, curved connections
-//! and curved BSDF rays where it is not); a bounce whose chain reaches an emitter or the sky
-//! after a specular interaction adds that light (caustics). Russian roulette after three
-//! bounces.
+//! vertex the light arriving with no specular interaction is estimated by two strategies
+//! weighed against each other: light samples ([`super::direct::lit`]: straight shadow rays
+//! where they are valid, curved connections where they are not) and the bounce's own BSDF or
+//! phase sample, whose chain is the path's way on as well ([`super::direct::continued_emission`]:
+//! one ray for both, where a separate BSDF ray would trace a third). A bounce whose chain
+//! reaches an emitter or the sky after a specular interaction adds that light in full
+//! (caustics). Russian roulette after three bounces.
 //!
 //! Light from point, spot, LED and parallel sources that reaches a diffuse point only through
 //! a specular chain (their caustics) cannot be found by any direction sample: the path tracer
 //! misses it, the photon mapper does not.
 
 use super::beam::Beams;
-use super::direct::{camera_path, direct, emission_seen, hero, record_cut, VisiblePoint};
+use super::direct::{camera_path, continued_emission, hero, lit, record_cut, VisiblePoint};
 use super::single::single_scattering;
 use super::{CameraRay, Integrator, Sample, Slot};
 use crate::color::Rgb;
@@ -50,11 +52,18 @@ impl<'a> PathTracer<'a> {
         Self { tracer }
     }
 
-    /// The light reaching the camera from bounces after the visible point `vp`: direct
-    /// light at every later scattering vertex, and emission found through specular chains
-    /// from every vertex.
-    fn indirect<'w>(&self, mut vp: VisiblePoint<'w>, carried: Carried<'w>, s: &mut Sample) -> Rgb {
+    /// The light reaching the camera along the bounces from the visible point `vp`: direct
+    /// light at every later scattering vertex (light samples), and the emission each bounce's
+    /// chain finds (weighed against the light samples where it met no specular surface); the
+    /// first bounce's, where it met none, is the visible point's direct light.
+    fn bounces<'w>(
+        &self,
+        mut vp: VisiblePoint<'w>,
+        carried: Carried<'w>,
+        s: &mut Sample,
+    ) -> Bounces {
         let mut walker = Walker::carrying(carried, Policy::Weighted);
+        let mut direct = Rgb::ZERO;
         let mut sum = Rgb::ZERO;
         for bounce in 0.. {
             if bounce >= SURE_BOUNCES {
@@ -77,9 +86,11 @@ impl<'a> PathTracer<'a> {
             let throughput = vp.throughput * weight * chain.weight;
             // Light emitted by media on the way is sampled by no light sample: it counts here.
             sum += vp.throughput * weight * chain.emitted;
-            // With no specular bounce, emission here is the direct estimate's (already counted).
-            if chain.specular > 0 {
-                sum += vp.throughput * weight * emission_seen(walker.tracer, &chain);
+            // The sample is also direct light's second strategy, weighed against `lit`'s.
+            let found = vp.throughput * continued_emission(walker.tracer, &vp.vertex, &b, &chain);
+            match bounce == 0 && chain.specular == 0 {
+                true => direct += found,
+                false => sum += found,
             }
             let End::Scatter(vertex) = chain.end else {
                 break;
@@ -88,10 +99,21 @@ impl<'a> PathTracer<'a> {
                 vertex,
                 throughput: throughput * chain.radiance_scale(),
             };
-            sum += direct(walker.carried(), &vp, s.rng, s.stats);
+            sum += lit(walker.carried(), &vp, s.rng, s.stats);
         }
-        sum
+        Bounces {
+            direct,
+            indirect: sum,
+        }
     }
+}
+
+/// The light a camera path's bounces from its visible point bring: the visible point's
+/// direct light its first bounce found (the second strategy of direct light there), and the
+/// rest.
+struct Bounces {
+    direct: Rgb,
+    indirect: Rgb,
 }
 
 impl Integrator for PathTracer<'_> {
@@ -116,10 +138,11 @@ impl Integrator for PathTracer<'_> {
         let Some(vp) = c.visible else { return };
         s.add(ALBEDO, vp.vertex.albedo());
         s.add(NORMAL, vp.vertex.normal());
-        let direct = direct(c.carried, &vp, s.rng, s.stats);
+        let direct = lit(c.carried, &vp, s.rng, s.stats);
         s.add(DIRECT, direct);
-        let indirect = self.indirect(vp, c.carried, s);
-        s.add(INDIRECT, indirect);
+        let bounces = self.bounces(vp, c.carried, s);
+        s.add(DIRECT, bounces.direct);
+        s.add(INDIRECT, bounces.indirect);
     }
 }
 

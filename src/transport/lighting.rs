@@ -7,7 +7,7 @@
 
 use super::chain::{Carried, Chain, End, Policy, Walker};
 use super::connect::connect;
-use super::{visibility, Stats, Tracer, Vertex};
+use super::{visibility, Scattered, Stats, Tracer, Vertex};
 use crate::color::Rgb;
 use crate::lights::Light;
 use crate::sampling::Pick;
@@ -132,14 +132,32 @@ pub fn direct_light(
     rng: &mut impl Rng,
     stats: &mut Stats,
 ) -> Rgb {
+    let mut radiance = light_samples(carried, vertex, rng, stats);
+    let Some(s) = vertex.scatter_with(rng) else {
+        return radiance;
+    };
+    let mut walker = Walker::carrying(carried, Policy::Unscattered);
+    let chain = walker.follow(s.ray, rng, stats, &mut ());
+    let mis = bsdf_sample_weight(carried.tracer, vertex, &s, &chain);
+    radiance += s.sample.weight * emission_seen(walker.tracer, &chain) * (mis * s.radiance_scale);
+    radiance
+}
+
+/// The light samples of [`direct_light`] alone (its first strategy): for a path that goes on
+/// along its own BSDF or phase sample and weighs the emission that finds by
+/// [`bsdf_sample_weight`], so that one ray serves as the second strategy and as the way on.
+pub fn light_samples(
+    carried: Carried,
+    vertex: &Vertex,
+    rng: &mut impl Rng,
+    stats: &mut Stats,
+) -> Rgb {
     let tracer = carried.tracer;
     let scene = tracer.scene;
     let graded = vertex.medium().filter(|&m| !tracer.medium(m).is_uniform());
-    let origin = vertex.origin();
+    let choice = tracer.light_sampler.at(vertex.origin());
     let mut radiance = Rgb::ZERO;
-    let choice = tracer.light_sampler.at(origin);
-    let samples = tracer.light_samples;
-    for Pick { index, probability } in choice.sampled(samples, rng) {
+    for Pick { index, probability } in choice.sampled(tracer.light_samples, rng) {
         let light = &scene.lights[index];
         let lit = match graded {
             None => straight_light(tracer, vertex, light, probability, (rng.gen(), rng.gen())),
@@ -151,25 +169,36 @@ pub fn direct_light(
         };
         radiance += lit / probability;
     }
-    let Some(s) = vertex.scatter_with(rng) else {
-        return radiance;
-    };
-    let mut walker = Walker::carrying(carried, Policy::Unscattered);
-    let chain = walker.follow(s.ray, rng, stats, &mut ());
+    radiance
+}
+
+/// The multiple-importance weight of the emission that a BSDF or phase sample `s` of `vertex`
+/// found at the end of `chain`, a chain that met no specular surface: the power heuristic
+/// against the light samples where they could have found it (an area light, seen from the
+/// arrival side of a vertex in a uniform medium), 1 where they could not (the environment,
+/// a transmitted sample, a vertex in a gradient medium).
+pub fn bsdf_sample_weight(tracer: &Tracer, vertex: &Vertex, s: &Scattered, chain: &Chain) -> f64 {
+    let graded = vertex
+        .medium()
+        .is_some_and(|m| !tracer.medium(m).is_uniform());
     // Light samples reach only the arrival side of a vertex in a uniform medium.
-    let weighed = graded.is_none() && !s.sample.transmitted();
-    let mis = match chain.end {
+    let weighed = !graded && !s.sample.transmitted();
+    match chain.end {
         End::Emitter {
             prim,
             position,
             direction,
             ..
-        } if weighed => match scene.surfaces[prim].role {
-            Role::Emitter(l) => power_heuristic(
-                s.sample.pdf,
-                scene.lights[l].pdf_incident(direction, (position - origin).length())
-                    * choice.chance(samples, l),
-            ),
+        } if weighed => match tracer.scene.surfaces[prim].role {
+            Role::Emitter(l) => {
+                let choice = tracer.light_sampler.at(vertex.origin());
+                power_heuristic(
+                    s.sample.pdf,
+                    tracer.scene.lights[l]
+                        .pdf_incident(direction, (position - vertex.origin()).length())
+                        * choice.chance(tracer.light_samples, l),
+                )
+            }
             // A path ends at an emitter only on an emitter's surface.
             Role::Scatter(_) | Role::Detector(_) => 1.0,
         },
@@ -181,7 +210,5 @@ pub fn direct_light(
         | End::Lost
         | End::DepthLimit
         | End::Stopped => 1.0,
-    };
-    radiance += s.sample.weight * emission_seen(walker.tracer, &chain) * (mis * s.radiance_scale);
-    radiance
+    }
 }

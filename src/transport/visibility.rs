@@ -19,14 +19,10 @@ pub fn transmittance(
     reach: f64,
 ) -> f64 {
     let scene = tracer.scene;
-    let (mut o, mut left) = (from, reach);
-    while let Some((prim, h)) = scene.accel.intersect_ray(o, dir, 0.0, left) {
-        if !scene.surfaces[prim].is_detector() {
-            return 0.0;
-        }
-        let next = offset(o + h.t * dir, dir);
-        left -= (next - o).dot(dir);
-        o = next;
+    if scene.accel.blocked(from, dir, 0.0, reach, |prim| {
+        scene.surfaces[prim].is_detector()
+    }) {
+        return 0.0;
     }
     match medium.and_then(|m| tracer.participating(m).absorption.as_ref()) {
         Some(absorption) => {
