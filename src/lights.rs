@@ -5,7 +5,7 @@ use crate::color::Rgb;
 use crate::math::Ball;
 use crate::sampling::{
     cosine_hemisphere, power_cosine_hemisphere, uniform_cone, uniform_disk, uniform_sphere, Frame,
-    Pick,
+    Given, Pick,
 };
 use glam::DVec3;
 use std::f64::consts::{PI, TAU};
@@ -806,9 +806,9 @@ pub struct LightChoice<'s> {
 }
 
 impl LightChoice<'_> {
-    /// A light and its probability, drawing one number from `rng` unless there is one light
-    /// (None: no light sends power).
-    pub fn pick(&self, rng: &mut impl rand::Rng) -> Option<Pick> {
+    /// A light and its probability, by the number `u` (drawn from `rng` where not given)
+    /// unless there is one light, which takes none (None: no light sends power).
+    pub fn pick(&self, u: Given<1>, rng: &mut impl rand::Rng) -> Option<Pick> {
         let reach = &self.sampler.reach;
         if !(self.total > 0.0 && self.total.is_finite()) {
             return None;
@@ -819,7 +819,8 @@ impl LightChoice<'_> {
                 probability: 1.0,
             });
         }
-        let target = rng.gen::<f64>() * self.total;
+        let [u] = u.or_draw(rng);
+        let target = u * self.total;
         let mut acc = 0.0;
         let mut last = None;
         for (index, r) in reach.iter().enumerate() {
@@ -845,24 +846,6 @@ impl LightChoice<'_> {
             1 => 1.0,
             _ => self.sampler.reach[i].at(self.point) / self.total,
         }
-    }
-
-    /// The lights a vertex's direct estimate samples, by `samples`, each with the chance it
-    /// had (every light with chance 1, or one drawn from `rng`).
-    pub fn sampled(
-        &self,
-        samples: LightSamples,
-        rng: &mut impl rand::Rng,
-    ) -> impl Iterator<Item = Pick> {
-        let (each, one) = match samples {
-            LightSamples::Each => (Some(0..self.sampler.reach.len()), None),
-            LightSamples::One => (None, self.pick(rng)),
-        };
-        let every = each.into_iter().flatten().map(|index| Pick {
-            index,
-            probability: 1.0,
-        });
-        every.chain(one)
     }
 
     /// The chance light `i` had under `samples`.

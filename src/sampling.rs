@@ -72,6 +72,50 @@ impl Strata {
     }
 }
 
+/// Two dimensions of a pixel's n samples, stratified together (jittered): one point in each
+/// cell of an m × m grid over [0, 1)², m = ⌊√n⌋, uniform within it, handed to the samples in
+/// a random order independent of the pixel's other dimensions (pbrt's stratified sampler,
+/// its dimensions padded by shuffling). Samples past the first m² (at most [`Strata::MOST`])
+/// draw their own numbers.
+#[derive(Default)]
+pub struct Strata2 {
+    points: Vec<[f64; 2]>,
+}
+
+impl Strata2 {
+    /// Draws the points of `n` samples from `rng` (reusing its storage).
+    pub fn draw(&mut self, n: u32, rng: &mut impl Rng) {
+        let m = n.min(Strata::MOST).isqrt();
+        self.points.clear();
+        self.points.extend((0..m * m).map(|s| {
+            let (i, j) = (s % m, s / m);
+            [
+                (i as f64 + rng.gen::<f64>()) / m as f64,
+                (j as f64 + rng.gen::<f64>()) / m as f64,
+            ]
+        }));
+        self.points.shuffle(rng);
+    }
+
+    /// Sample `s`'s point (None past the stratified ones).
+    pub fn get(&self, s: u32) -> Given<2> {
+        Given(self.points.get(s as usize).copied())
+    }
+}
+
+/// Uniform numbers in [0, 1) a draw takes in place of its stream's, where given (a camera
+/// sample's stratified numbers for its first vertex: [`Strata`], [`Strata2`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Given<const N: usize>(pub Option<[f64; N]>);
+
+impl<const N: usize> Given<N> {
+    /// The given numbers, or N drawn from `rng` in order.
+    pub fn or_draw(self, rng: &mut impl Rng) -> [f64; N] {
+        self.0
+            .unwrap_or_else(|| std::array::from_fn(|_| rng.gen::<f64>()))
+    }
+}
+
 /// An orthonormal frame (t, b, n) around a unit vector n.
 #[derive(Clone, Copy, Debug)]
 pub struct Frame {

@@ -46,6 +46,7 @@ fn measure(text: &str) -> Option<(f64, Way)> {
         origin,
         direction,
         choices: Choices::new([0.999; Choices::COUNT]),
+        first: Default::default(),
         film,
     };
     let carried = Carried::on(&tracer);

@@ -185,6 +185,41 @@ fn strata_hold_one_number_each_and_every_sample_is_uniform() {
     assert!(strata.get(Strata::MOST - 1).is_some() && strata.get(Strata::MOST).is_none());
 }
 
+/// A pixel's jittered 2D points: each cell of the m × m grid (m = ⌊√n⌋) holds exactly one of
+/// its first m² samples' points, the rest are not given; and sample 0's point over 10⁵ draws
+/// of n = 16, binned 8 × 8, is uniform on [0, 1)² (χ² at significance 1e-4, 63 degrees of
+/// freedom: critical value 113.7, by Wilson–Hilferty).
+#[test]
+fn jittered_strata_hold_one_point_a_cell_and_every_point_is_uniform() {
+    use grinlight::sampling::Strata2;
+    let mut rng = Pcg64Mcg::seed_from_u64(5);
+    let mut strata = Strata2::default();
+    for (n, m) in [(1u32, 1usize), (16, 4), (20, 4), (1024, 32)] {
+        strata.draw(n, &mut rng);
+        let mut held = vec![0; m * m];
+        for s in 0..(m * m) as u32 {
+            let [u, v] = strata.get(s).0.unwrap();
+            assert!((0.0..1.0).contains(&u) && (0.0..1.0).contains(&v));
+            held[(u * m as f64) as usize + m * (v * m as f64) as usize] += 1;
+        }
+        assert!(held.iter().all(|&h| h == 1), "n = {n}");
+        assert!(strata.get((m * m) as u32).0.is_none());
+    }
+    let (draws, side) = (100_000, 8);
+    let mut counts = vec![0.0; side * side];
+    for _ in 0..draws {
+        strata.draw(16, &mut rng);
+        let [u, v] = strata.get(0).0.unwrap();
+        counts[(u * side as f64) as usize + side * (v * side as f64) as usize] += 1.0;
+    }
+    let expected = draws as f64 / (side * side) as f64;
+    let chi2: f64 = counts
+        .iter()
+        .map(|c| (c - expected).powi(2) / expected)
+        .sum();
+    assert!(chi2 < 113.7, "χ² = {chi2}");
+}
+
 /// Parallel light entering the world sphere of a scattering ambient medium: the lines its
 /// photons set off along are drawn from a mixture (the target's disk, and the world's lines
 /// uniform in their distance from the centre), each weighed by the reciprocal of that
@@ -279,12 +314,13 @@ fn a_discrete_distribution_draws_in_proportion_to_its_weights() {
 /// The light choice at a point: probabilities that sum to 1 over the lights, each light drawn
 /// at its probability (10⁵ draws, within 4 standard errors), a near lamp favoured over a far
 /// one of equal intensity by the squared distances, parallel light weighed by its irradiance,
-/// and a single light taken without drawing.
+/// a given number used as a drawn one, and a single light taken without drawing.
 #[test]
 fn the_light_choice_follows_each_lights_irradiance_bound() {
     use glam::DVec3;
     use grinlight::color::Rgb;
     use grinlight::lights::{LightSampler, LightSamples};
+    use grinlight::sampling::Given;
     use rand::SeedableRng;
     let point = |x: f64| grinlight::lights::Light::Point {
         position: DVec3::new(x, 0.0, 0.0),
@@ -306,10 +342,13 @@ fn the_light_choice_follows_each_lights_irradiance_bound() {
     let n = 100_000;
     let mut counts = [0usize; 3];
     for _ in 0..n {
-        let picks: Vec<_> = choice.sampled(LightSamples::One, &mut rng).collect();
-        assert_eq!(picks.len(), 1);
-        assert!((picks[0].probability - want[picks[0].index]).abs() < 1e-15);
-        counts[picks[0].index] += 1;
+        let pick = choice.pick(Given(None), &mut rng).unwrap();
+        assert!((pick.probability - want[pick.index]).abs() < 1e-15);
+        assert_eq!(
+            pick.probability,
+            choice.chance(LightSamples::One, pick.index)
+        );
+        counts[pick.index] += 1;
     }
     for i in 0..3 {
         let p = want[i];
@@ -320,13 +359,17 @@ fn the_light_choice_follows_each_lights_irradiance_bound() {
             "light {i}: {share} against {p}"
         );
     }
-    let each: Vec<_> = choice.sampled(LightSamples::Each, &mut rng).collect();
-    assert_eq!(each.len(), 3);
-    assert!(each.iter().all(|p| p.probability == 1.0));
+    assert!((0..3).all(|i| choice.chance(LightSamples::Each, i) == 1.0));
+    // A given number picks as a drawn one does: u below light 0's share takes light 0.
+    let given = choice.pick(Given(Some([0.5 * want[0]])), &mut rng).unwrap();
+    assert_eq!(given.index, 0);
     let one = LightSampler::new(&lights[..1]);
     let mut counting = rand_pcg::Pcg64Mcg::seed_from_u64(7);
     let before = counting.clone();
-    let pick = one.at(DVec3::ZERO).pick(&mut counting).unwrap();
+    let pick = one
+        .at(DVec3::ZERO)
+        .pick(Given(None), &mut counting)
+        .unwrap();
     assert_eq!((pick.index, pick.probability), (0, 1.0));
     assert_eq!(counting, before, "one light draws no number");
 }

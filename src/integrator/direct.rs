@@ -15,7 +15,7 @@ use crate::color::Rgb;
 use crate::spectrum::Hero;
 use crate::transport::chain::{Carried, Chain, End, Policy, Ray, Walker};
 pub use crate::transport::lighting::emission_seen;
-use crate::transport::lighting::{bsdf_sample_weight, direct_light, light_samples};
+use crate::transport::lighting::{bsdf_sample_weight, direct_light, light_samples, LightNumbers};
 use crate::transport::{HeroTracer, Scattered, Stats, Tracer, Vertex};
 use rand::Rng;
 
@@ -105,9 +105,15 @@ pub fn direct(carried: Carried, vp: &VisiblePoint, rng: &mut impl Rng, stats: &m
 
 /// [`direct`]'s light samples alone, for a path that goes on along its own BSDF or phase
 /// sample and weighs the emission it finds ([`continued_emission`]).
-pub fn lit(carried: Carried, vp: &VisiblePoint, rng: &mut impl Rng, stats: &mut Stats) -> Rgb {
+pub fn lit(
+    carried: Carried,
+    vp: &VisiblePoint,
+    numbers: LightNumbers,
+    rng: &mut impl Rng,
+    stats: &mut Stats,
+) -> Rgb {
     match takes_direct(carried.tracer, &vp.vertex) {
-        true => vp.throughput * light_samples(carried, &vp.vertex, rng, stats),
+        true => vp.throughput * light_samples(carried, &vp.vertex, numbers, rng, stats),
         false => Rgb::ZERO,
     }
 }

@@ -77,9 +77,24 @@ pub struct CameraRay {
     pub direction: DVec3,
     /// Each stratified over the pixel's samples ([`crate::sampling::Strata`]).
     pub choices: Choices,
+    /// The numbers its first scattering vertex's samples take, stratified over the pixel's
+    /// samples where given (the path tracer reads them).
+    pub first: FirstVertex,
     /// Where on the film and the lens it was drawn (its neighbours' rays are drawn beside it:
     /// [`footprint`]).
     pub film: FilmPoint,
+}
+
+/// The numbers a camera sample's first scattering vertex takes in place of its stream's,
+/// stratified over the pixel's samples ([`crate::sampling::Strata2`], [`crate::sampling::Strata`]):
+/// the direct estimate's light sample and the BSDF or phase sample of the path's way on —
+/// the dimensions whose noise the first vertex's direct light shows.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct FirstVertex {
+    /// The light sample's.
+    pub light: crate::transport::lighting::LightNumbers,
+    /// The BSDF or phase sample's.
+    pub bsdf: crate::transport::BsdfNumbers,
 }
 
 /// A way of estimating what the camera sees.

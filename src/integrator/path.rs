@@ -21,7 +21,8 @@ use crate::color::Rgb;
 use crate::film::Layer;
 use crate::report::Report;
 use crate::transport::chain::{Carried, End, Policy, Walker};
-use crate::transport::Tracer;
+use crate::transport::lighting::LightNumbers;
+use crate::transport::{BsdfNumbers, Tracer};
 use rand::Rng;
 
 /// The layers, in order; `beauty` is their radiance sum.
@@ -56,10 +57,12 @@ impl<'a> PathTracer<'a> {
     /// light at every later scattering vertex (light samples), and the emission each bounce's
     /// chain finds (weighed against the light samples where it met no specular surface); the
     /// first bounce's, where it met none, is the visible point's direct light.
+    /// The first bounce's BSDF or phase sample takes `first` where given.
     fn bounces<'w>(
         &self,
         mut vp: VisiblePoint<'w>,
         carried: Carried<'w>,
+        first: BsdfNumbers,
         s: &mut Sample,
     ) -> Bounces {
         let mut walker = Walker::carrying(carried, Policy::Weighted);
@@ -73,7 +76,11 @@ impl<'a> PathTracer<'a> {
                 }
                 vp.throughput /= survive;
             }
-            let Some(b) = vp.vertex.scatter_with(s.rng) else {
+            let numbers = match bounce {
+                0 => first,
+                _ => BsdfNumbers::default(),
+            };
+            let Some(b) = vp.vertex.scatter_given(numbers, s.rng) else {
                 break;
             };
             let mut beams = Beams::default();
@@ -99,7 +106,13 @@ impl<'a> PathTracer<'a> {
                 vertex,
                 throughput: throughput * chain.radiance_scale(),
             };
-            sum += lit(walker.carried(), &vp, s.rng, s.stats);
+            sum += lit(
+                walker.carried(),
+                &vp,
+                LightNumbers::default(),
+                s.rng,
+                s.stats,
+            );
         }
         Bounces {
             direct,
@@ -138,9 +151,9 @@ impl Integrator for PathTracer<'_> {
         let Some(vp) = c.visible else { return };
         s.add(ALBEDO, vp.vertex.albedo());
         s.add(NORMAL, vp.vertex.normal());
-        let direct = lit(c.carried, &vp, s.rng, s.stats);
+        let direct = lit(c.carried, &vp, ray.first.light, s.rng, s.stats);
         s.add(DIRECT, direct);
-        let bounces = self.bounces(vp, c.carried, s);
+        let bounces = self.bounces(vp, c.carried, ray.first.bsdf, s);
         s.add(DIRECT, bounces.direct);
         s.add(INDIRECT, bounces.indirect);
     }

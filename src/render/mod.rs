@@ -13,15 +13,17 @@ use crate::color::Rgb;
 use crate::error::{Error, Result};
 use crate::film::{ErrorTotals, Film};
 use crate::integrator::{
-    CameraRay, DeflectionTable, Integrator, PathTracer, PhotonMapper, Plan, Sample,
+    CameraRay, DeflectionTable, FirstVertex, Integrator, PathTracer, PhotonMapper, Plan, Sample,
 };
 use crate::lights::LightSamples;
 pub use crate::report::Report;
-use crate::sampling::{stream, Purpose, Strata};
+use crate::sampling::{stream, Given, Purpose, Strata, Strata2};
 use crate::scene::Scene;
 use crate::settings::IntegratorKind as Kind;
 use crate::settings::Settings;
 use crate::transport::chain::Choices;
+use crate::transport::lighting::LightNumbers;
+use crate::transport::BsdfNumbers;
 use crate::transport::{Stats, Tracer};
 use rand::Rng;
 use rayon::prelude::*;
@@ -480,6 +482,7 @@ fn camera_tile<I: Integrator>(
     let mut record = PassRecord::new(layers, spp as u64, film.film.planes_held());
     let mut values = vec![Rgb::ZERO; layers];
     let mut choices: [Strata; Choices::COUNT] = Default::default();
+    let mut first = FirstStrata::default();
     for ty in 0..film.film.height {
         for tx in 0..film.film.width {
             let (x, y) = (film.x0 + tx, film.y0 + ty);
@@ -491,6 +494,7 @@ fn camera_tile<I: Integrator>(
             for dimension in &mut choices {
                 dimension.draw(spp, &mut strata_rng);
             }
+            first.draw(spp, &mut strata_rng);
             for s in 0..spp {
                 let mut rng = stream(seed, Purpose::Camera, key, s as u64);
                 // Stratified over the pixel: sample s of the first n² lies in cell (s mod n,
@@ -528,6 +532,7 @@ fn camera_tile<I: Integrator>(
                         origin,
                         direction,
                         choices: picks,
+                        first: first.get(s),
                         film,
                     },
                     &mut sample,
@@ -542,6 +547,40 @@ fn camera_tile<I: Integrator>(
         }
     }
     *tile = Some(record);
+}
+
+/// A pixel's stratified dimensions of its samples' first scattering vertex ([`FirstVertex`]).
+#[derive(Default)]
+struct FirstStrata {
+    light: Strata2,
+    pick: Strata,
+    direction: Strata2,
+    choice: Strata,
+}
+
+impl FirstStrata {
+    /// Draws the numbers of `n` samples from `rng`.
+    fn draw(&mut self, n: u32, rng: &mut impl Rng) {
+        self.light.draw(n, rng);
+        self.pick.draw(n, rng);
+        self.direction.draw(n, rng);
+        self.choice.draw(n, rng);
+    }
+
+    /// Sample `s`'s numbers.
+    fn get(&self, s: u32) -> FirstVertex {
+        let one = |strata: &Strata| Given(strata.get(s).map(|u| [u]));
+        FirstVertex {
+            light: LightNumbers {
+                uv: self.light.get(s),
+                pick: one(&self.pick),
+            },
+            bsdf: BsdfNumbers {
+                direction: self.direction.get(s),
+                choice: one(&self.choice),
+            },
+        }
+    }
 }
 
 /// Bytes a render of `scene` needs at its peak, estimated from above for typical scenes: the

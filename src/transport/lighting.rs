@@ -10,7 +10,8 @@ use super::connect::connect;
 use super::{visibility, Scattered, Stats, Tracer, Vertex};
 use crate::color::Rgb;
 use crate::lights::Light;
-use crate::sampling::Pick;
+use crate::lights::LightSamples;
+use crate::sampling::{Given, Pick};
 use crate::scene::Role;
 use rand::Rng;
 
@@ -132,7 +133,7 @@ pub fn direct_light(
     rng: &mut impl Rng,
     stats: &mut Stats,
 ) -> Rgb {
-    let mut radiance = light_samples(carried, vertex, rng, stats);
+    let mut radiance = light_samples(carried, vertex, LightNumbers::default(), rng, stats);
     let Some(s) = vertex.scatter_with(rng) else {
         return radiance;
     };
@@ -149,27 +150,58 @@ pub fn direct_light(
 pub fn light_samples(
     carried: Carried,
     vertex: &Vertex,
+    numbers: LightNumbers,
     rng: &mut impl Rng,
     stats: &mut Stats,
 ) -> Rgb {
     let tracer = carried.tracer;
     let scene = tracer.scene;
     let graded = vertex.medium().filter(|&m| !tracer.medium(m).is_uniform());
-    let choice = tracer.light_sampler.at(vertex.origin());
-    let mut radiance = Rgb::ZERO;
-    for Pick { index, probability } in choice.sampled(tracer.light_samples, rng) {
+    // Light `index`'s sample at `uv`, drawn with chance `chosen`, divided by it.
+    let sample = |Pick { index, probability }: Pick, [u, v]: [f64; 2], stats: &mut Stats| {
         let light = &scene.lights[index];
         let lit = match graded {
-            None => straight_light(tracer, vertex, light, probability, (rng.gen(), rng.gen())),
+            None => straight_light(tracer, vertex, light, probability, (u, v)),
             Some(m) if !light.is_hittable() => {
-                curved_light(tracer, vertex, m, light, (rng.gen(), rng.gen()), stats)
+                curved_light(tracer, vertex, m, light, (u, v), stats)
             }
             // An area light's light reaches a vertex in a gradient medium by the BSDF ray.
             Some(_) => Rgb::ZERO,
         };
-        radiance += lit / probability;
+        lit / probability
+    };
+    match tracer.light_samples {
+        LightSamples::Each => {
+            let mut radiance = Rgb::ZERO;
+            for index in 0..scene.lights.len() {
+                let uv = [rng.gen(), rng.gen()];
+                let each = Pick {
+                    index,
+                    probability: 1.0,
+                };
+                radiance += sample(each, uv, stats);
+            }
+            radiance
+        }
+        LightSamples::One => {
+            let uv = numbers.uv.or_draw(rng);
+            let choice = tracer.light_sampler.at(vertex.origin());
+            match choice.pick(numbers.pick, rng) {
+                Some(pick) => sample(pick, uv, stats),
+                None => Rgb::ZERO,
+            }
+        }
     }
-    radiance
+}
+
+/// The numbers a vertex's light sample takes in place of its stream's, where given: the
+/// point on the light and the number that picks it.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LightNumbers {
+    /// Where on the light (an area light's or LED's surface).
+    pub uv: Given<2>,
+    /// Which light ([`crate::lights::LightChoice::pick`]).
+    pub pick: Given<1>,
 }
 
 /// The multiple-importance weight of the emission that a BSDF or phase sample `s` of `vertex`

@@ -13,7 +13,7 @@ mod stats;
 mod vertex;
 pub mod visibility;
 
-pub use vertex::{MediumVertex, Scattered, SurfaceVertex, Vertex};
+pub use vertex::{BsdfNumbers, MediumVertex, Scattered, SurfaceVertex, Vertex};
 
 use crate::color::Rgb;
 use crate::curve::{

@@ -14,6 +14,7 @@ use super::chain::Ray;
 use super::offset;
 use crate::bsdf::{Bsdf, BsdfSample, Lobes};
 use crate::color::Rgb;
+use crate::sampling::Given;
 use crate::volume::Phase;
 use glam::DVec3;
 
@@ -147,10 +148,20 @@ impl<'s> Vertex<'s> {
     /// [`SurfaceVertex::scatter_with`]; a medium draws two numbers, and its sample's weight
     /// p/pdf is 1).
     pub fn scatter_with(&self, rng: &mut impl rand::Rng) -> Option<Scattered> {
+        self.scatter_given(BsdfNumbers::default(), rng)
+    }
+
+    /// [`Vertex::scatter_with`] taking `numbers` where they are given.
+    pub fn scatter_given(
+        &self,
+        numbers: BsdfNumbers,
+        rng: &mut impl rand::Rng,
+    ) -> Option<Scattered> {
         match self {
-            Vertex::Surface(v) => v.scatter_with(rng),
+            Vertex::Surface(v) => v.scatter_given(numbers, rng),
             Vertex::Medium(v) => {
-                let wi = v.phase.sample(-v.wo, (rng.gen(), rng.gen()));
+                let [a, b] = numbers.direction.or_draw(rng);
+                let wi = v.phase.sample(-v.wo, (a, b));
                 Some(Scattered {
                     sample: BsdfSample {
                         wi,
@@ -189,6 +200,15 @@ pub struct SurfaceVertex<'s> {
     pub medium: Option<usize>,
     /// The medium on the other side, where a transmitted path goes.
     pub beyond: Option<usize>,
+}
+
+/// The numbers a vertex's BSDF or phase sample takes in place of its stream's, where given.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct BsdfNumbers {
+    /// The direction's two.
+    pub direction: Given<2>,
+    /// The choice among lobes (read only by a BSDF that makes one).
+    pub choice: Given<1>,
 }
 
 /// A direction sampled at a vertex and the ray leaving along it.
@@ -315,12 +335,21 @@ impl SurfaceVertex<'_> {
     /// [`SurfaceVertex::scatter`] with its numbers drawn from `rng`: two for the direction and a
     /// third only where the BSDF makes a discrete choice (a Lambertian surface draws two).
     pub fn scatter_with(&self, rng: &mut impl rand::Rng) -> Option<Scattered> {
-        let u = (rng.gen(), rng.gen());
+        self.scatter_given(BsdfNumbers::default(), rng)
+    }
+
+    /// [`SurfaceVertex::scatter_with`] taking `numbers` where they are given.
+    pub fn scatter_given(
+        &self,
+        numbers: BsdfNumbers,
+        rng: &mut impl rand::Rng,
+    ) -> Option<Scattered> {
+        let [a, b] = numbers.direction.or_draw(rng);
         let choice = match self.bsdf.draws_choice() {
-            true => rng.gen(),
+            true => numbers.choice.or_draw(rng)[0],
             false => 0.0,
         };
-        self.scatter((u.0, u.1, choice))
+        self.scatter((a, b, choice))
     }
 
     /// A direction from the lobes beyond the diffuse one, drawn from `rng`
