@@ -40,6 +40,7 @@ pub mod material;
 pub mod math;
 pub mod media;
 pub mod output;
+pub mod photometry;
 pub mod photon;
 pub mod plot;
 pub mod receiver;

@@ -3,12 +3,14 @@
 
 use crate::color::Rgb;
 use crate::math::Ball;
+use crate::photometry::Goniogram;
 use crate::sampling::{
     cosine_hemisphere, power_cosine_hemisphere, uniform_cone, uniform_disk, uniform_sphere, Frame,
     Given, Pick,
 };
 use glam::DVec3;
 use std::f64::consts::{PI, TAU};
+use std::sync::Arc;
 
 /// One photon leaving a light: where, which way, and the light's power as this sample
 /// estimates it (W per channel): the emitted radiance (or intensity) over the joint pdf of the
@@ -306,6 +308,18 @@ pub enum Light {
         /// The exponent m.
         m: f64,
     },
+    /// A point source whose intensity over direction is a luminaire's measured table
+    /// ([`crate::photometry`]: an IES file's).
+    Goniometric {
+        /// Position.
+        position: DVec3,
+        /// How the luminaire is turned.
+        aim: Luminaire,
+        /// The table's intensity unit in W/sr, per channel.
+        colour: Rgb,
+        /// I(γ, C), in the table's unit.
+        table: Arc<Goniogram>,
+    },
     /// Parallel light.
     Directional {
         /// Unit direction of propagation.
@@ -323,6 +337,7 @@ impl Light {
             Light::Point { intensity, .. } | Light::Spot { intensity, .. } => intensity,
             Light::Area { radiance, .. } => radiance,
             Light::Led { peak_intensity, .. } => peak_intensity,
+            Light::Goniometric { colour, .. } => colour,
             Light::Directional { irradiance, .. } => irradiance,
         }
     }
@@ -336,8 +351,49 @@ impl Light {
             Light::Point { .. }
             | Light::Spot { .. }
             | Light::Led { .. }
+            | Light::Goniometric { .. }
             | Light::Directional { .. } => Rgb::ZERO,
         }
+    }
+}
+
+/// How a measured luminaire is turned: its nadir (γ = 0) and its C = 0 and C = 90°
+/// directions (unit, orthogonal; C counterclockwise seen from above, so c90 = −nadir × c0).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Luminaire {
+    /// The direction of γ = 0 (straight down the luminaire's axis).
+    pub nadir: DVec3,
+    /// The direction of C = 0, γ = 90°.
+    pub c0: DVec3,
+    /// The direction of C = 90°, γ = 90°.
+    pub c90: DVec3,
+}
+
+impl Luminaire {
+    /// The luminaire with nadir `nadir` and its C = 0 plane through `c0` (both non-zero, not
+    /// parallel: `c0` is made orthogonal to the nadir).
+    pub fn new(nadir: DVec3, c0: DVec3) -> Self {
+        let nadir = nadir.normalize();
+        let c0 = (c0 - nadir * c0.dot(nadir)).normalize();
+        Self {
+            nadir,
+            c0,
+            c90: (-nadir).cross(c0),
+        }
+    }
+
+    /// The angles (cos γ, C) of unit direction `dir` leaving the luminaire.
+    fn angles(&self, dir: DVec3) -> (f64, f64) {
+        (
+            dir.dot(self.nadir),
+            dir.dot(self.c90).atan2(dir.dot(self.c0)),
+        )
+    }
+
+    /// The unit direction of angles (cos γ, C).
+    fn direction(&self, cos_gamma: f64, c: f64) -> DVec3 {
+        let sin_gamma = (1.0 - cos_gamma * cos_gamma).max(0.0).sqrt();
+        self.nadir * cos_gamma + (self.c0 * c.cos() + self.c90 * c.sin()) * sin_gamma
     }
 }
 
@@ -374,6 +430,7 @@ impl Light {
             Light::Point { .. }
             | Light::Spot { .. }
             | Light::Led { .. }
+            | Light::Goniometric { .. }
             | Light::Directional { .. } => f64::INFINITY,
         }
     }
@@ -400,6 +457,7 @@ impl Light {
             Light::Point { .. }
             | Light::Spot { .. }
             | Light::Led { .. }
+            | Light::Goniometric { .. }
             | Light::Directional { .. } => match self.anchor(uv)? {
                 Anchor::Point(x) => {
                     let (wi, d) = toward(x)?;
@@ -426,9 +484,9 @@ impl Light {
     /// irradiance. None for an area light.
     pub fn anchor(&self, uv: (f64, f64)) -> Option<Anchor> {
         match self {
-            Light::Point { position, .. } | Light::Spot { position, .. } => {
-                Some(Anchor::Point(*position))
-            }
+            Light::Point { position, .. }
+            | Light::Spot { position, .. }
+            | Light::Goniometric { position, .. } => Some(Anchor::Point(*position)),
             Light::Led { emitter, .. } => Some(Anchor::Point(emitter.sample(uv))),
             Light::Directional {
                 direction,
@@ -465,6 +523,12 @@ impl Light {
                     Rgb::ZERO
                 }
             }
+            Light::Goniometric {
+                aim, colour, table, ..
+            } => {
+                let (cos_gamma, c) = aim.angles(dir);
+                *colour * table.intensity(cos_gamma.clamp(-1.0, 1.0).acos(), c)
+            }
             Light::Area { .. } | Light::Directional { .. } => Rgb::ZERO,
         }
     }
@@ -490,7 +554,9 @@ impl Light {
     /// scene).
     pub fn origin(&self) -> Option<DVec3> {
         match self {
-            Light::Point { position, .. } | Light::Spot { position, .. } => Some(*position),
+            Light::Point { position, .. }
+            | Light::Spot { position, .. }
+            | Light::Goniometric { position, .. } => Some(*position),
             Light::Area { emitter, .. } | Light::Led { emitter, .. } => {
                 Some(crate::math::offset(emitter.center(), emitter.normal()))
             }
@@ -520,6 +586,10 @@ impl Light {
             } => TAU * (1.0 - 0.5 * (cos_inner + cos_outer)),
             Light::Area { .. } => PI,
             Light::Led { m, .. } => TAU / (m + 1.0),
+            Light::Goniometric { table, .. } => match table.peak() > 0.0 {
+                true => table.power() / table.peak(),
+                false => 0.0,
+            },
             Light::Directional { .. } => 0.0,
         }
     }
@@ -558,7 +628,9 @@ impl Light {
             })
         };
         match self {
-            Light::Point { position, .. } | Light::Spot { position, .. } => {
+            Light::Point { position, .. }
+            | Light::Spot { position, .. }
+            | Light::Goniometric { position, .. } => {
                 if let Some(cone) = self.narrowing_cone(*position, aim) {
                     return aimed(*position, cone, &|d| self.intensity(d));
                 }
@@ -623,6 +695,18 @@ impl Light {
                 Frame::new(emitter.normal()).to_world(power_cosine_hemisphere(*m, (u[2], u[3]))),
                 *peak_intensity * (TAU / (m + 1.0)),
             ),
+            Light::Goniometric {
+                position,
+                aim: luminaire,
+                table,
+                ..
+            } => {
+                let drawn = table.draw([u[0], u[1], u[2]])?;
+                let direction = luminaire.direction(drawn.cos_gamma, drawn.c);
+                let power = self.intensity(direction) / drawn.pdf;
+                (power != Rgb::ZERO).then_some(())?;
+                emission(*position, direction, power)
+            }
             Light::Directional {
                 direction,
                 irradiance,
@@ -648,7 +732,9 @@ impl Light {
     /// [`Light::spread`].
     fn reach(&self, aim: Aim) -> f64 {
         let (from, extent) = match self {
-            Light::Point { position, .. } | Light::Spot { position, .. } => (*position, 0.0),
+            Light::Point { position, .. }
+            | Light::Spot { position, .. }
+            | Light::Goniometric { position, .. } => (*position, 0.0),
             Light::Area { emitter, .. } | Light::Led { emitter, .. } => {
                 (emitter.center(), emitter.extent())
             }
@@ -669,9 +755,11 @@ impl Light {
             Light::Directional { irradiance, .. } => {
                 *irradiance * (PI * aim.target.radius * aim.target.radius)
             }
-            Light::Point { .. } | Light::Spot { .. } | Light::Led { .. } | Light::Area { .. } => {
-                self.peak_intensity() * self.spread()
-            }
+            Light::Point { .. }
+            | Light::Spot { .. }
+            | Light::Led { .. }
+            | Light::Area { .. }
+            | Light::Goniometric { .. } => self.peak_intensity() * self.spread(),
         };
         p.element_sum() / 3.0
     }
@@ -683,6 +771,7 @@ impl Light {
             Light::Point { intensity, .. } | Light::Spot { intensity, .. } => *intensity,
             Light::Area { emitter, radiance } => *radiance * emitter.area(),
             Light::Led { peak_intensity, .. } => *peak_intensity,
+            Light::Goniometric { colour, table, .. } => *colour * table.peak(),
             Light::Directional { .. } => Rgb::ZERO,
         }
     }
@@ -748,7 +837,9 @@ impl Reach {
             Light::Directional { irradiance, .. } => Reach::Parallel {
                 irradiance: irradiance.mean(),
             },
-            Light::Point { position, .. } | Light::Spot { position, .. } => Reach::Located {
+            Light::Point { position, .. }
+            | Light::Spot { position, .. }
+            | Light::Goniometric { position, .. } => Reach::Located {
                 center: *position,
                 extent2: 0.0,
                 intensity: light.peak_intensity().mean(),

@@ -224,13 +224,7 @@ fn the_photon_mapper_reads_the_sun_and_a_lamp_in_fog_as_the_path_tracer_does() {
 #[test]
 fn lights_in_a_white_spherical_room_light_it_as_an_integrating_sphere_does() {
     let rho = 0.5;
-    let room = format!(
-        "[[material]]\nname = \"wall\"\ntype = \"diffuse\"\nalbedo = [{rho}, {rho}, {rho}]\n\
-         [[shape]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"wall\"\n\
-         [camera]\nposition = [0, 0, 0]\nlook_at = [0, -0.3, -1]\nfov_y_deg = 100\n\
-         width = 32\nheight = 24\n[render]\nspp = 16\npasses = 8\nphotons = 100000\n\
-         caustic_photons = 100000\n"
-    );
+    let room = crate::common::white_spherical_room(rho, [0.0, -0.3, -1.0]);
     let (cos_in, cos_out) = (40f64.to_radians().cos(), 60f64.to_radians().cos());
     let smooth = move |c: f64| {
         let t = ((c - cos_out) / (cos_in - cos_out)).clamp(0.0, 1.0);
@@ -316,13 +310,7 @@ fn many_lights_in_a_white_spherical_room_light_it_as_an_integrating_sphere_does(
             (p, 0.02 * 50f64.powf(((k * 7) % 16) as f64 / 15.0))
         })
         .collect();
-    let mut text = format!(
-        "[[material]]\nname = \"wall\"\ntype = \"diffuse\"\nalbedo = [{rho}, {rho}, {rho}]\n\
-         [[shape]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"wall\"\n\
-         [camera]\nposition = [0, 0, 0]\nlook_at = [0, -0.3, -1]\nfov_y_deg = 100\n\
-         width = 32\nheight = 24\n[render]\nspp = 16\npasses = 8\nphotons = 100000\n\
-         caustic_photons = 100000\n"
-    );
+    let mut text = crate::common::white_spherical_room(rho, [0.0, -0.3, -1.0]);
     for (p, i) in &lights {
         text += &format!(
             "[[light]]\ntype = \"point\"\nposition = [{}, {}, {}]\nintensity = [{i}, {i}, {i}]\n",

@@ -134,6 +134,28 @@ fn cases() -> Vec<Case> {
         |extra: &str| format!("{LIGHT}[[receiver]]\nname = \"r\"\ncenter = [0, 0, 0.5]\n{extra}");
     let mut v = vec![
         // Scene keys: numbers out of range, negative, NaN, infinite, zero.
+        scene_case("luminaire without its file", "[[light]]\ntype = \"goniometric\"\nfile = \"no.ies\"\nposition = [0, 0, 1]\n", Error("s.toml:")),
+        Case {
+            files: vec![
+                ("s.toml", scene("[[light]]\ntype = \"goniometric\"\nfile = \"l.ies\"\nposition = [0, 0, 1]\n")),
+                ("l.ies", b"IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 3 1 1 2 0 0 0\n1 1 10\n0 45 nan\n0\n1 1 1\n".to_vec()),
+            ],
+            ..scene_case("luminaire of a NaN angle", "", Error("not a number"))
+        },
+        Case {
+            files: vec![
+                ("s.toml", scene("[[light]]\ntype = \"goniometric\"\nfile = \"l.ies\"\nposition = [0, 0, 1]\n")),
+                ("l.ies", b"IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 2 1 1 2 0 0 0\n1 1 10\n0 90\n0\n0 0\n".to_vec()),
+            ],
+            ..scene_case("luminaire that sends nothing", "", Error("sends no light"))
+        },
+        Case {
+            files: vec![
+                ("s.toml", scene("[[light]]\ntype = \"goniometric\"\nfile = \"l.ies\"\nposition = [0, 0, 1]\ndirection = [1, 0, 0]\nc0 = [2, 0, 0]\n")),
+                ("l.ies", b"IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 2 1 1 2 0 0 0\n1 1 10\n0 90\n0\n5 1\n".to_vec()),
+            ],
+            ..scene_case("luminaire whose C = 0 is its nadir", "", Error("must not be parallel"))
+        },
         scene_case("intensity 1e308", "[[light]]\ntype = \"point\"\nposition = [0, 0, 1]\nintensity = 1e308\n", Error("out of range")),
         scene_case("camera at 1e308", "[[light]]\ntype = \"point\"\nposition = [0, 0, 1e308]\nintensity = 1\n", Error("out of range")),
         scene_case("negative intensity", "[[light]]\ntype = \"point\"\nposition = [0, 0, 1]\nintensity = -1\n", Error("must not be negative")),

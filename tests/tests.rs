@@ -17,6 +17,7 @@ mod glossy;
 mod hostile;
 mod integrators;
 mod linearize;
+mod luminaire;
 mod media;
 mod photon_map;
 mod plane;

@@ -245,6 +245,7 @@ impl Description {
                 Light::Point { .. }
                 | Light::Spot { .. }
                 | Light::Led { .. }
+                | Light::Goniometric { .. }
                 | Light::Directional { .. } => {}
             }
         }

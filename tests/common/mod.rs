@@ -4,6 +4,21 @@ pub mod quadrature;
 
 use glam::DVec3;
 
+/// The white spherical room of the integrating-sphere furnaces: a Lambertian sphere of
+/// radius 1 and albedo `rho` about the origin, the camera at its centre looking toward
+/// `look_at` (100° vertical field, 32 × 24), 8 passes of 16 samples and 10⁵ photons of each
+/// kind a pass; its lights are the caller's.
+pub fn white_spherical_room(rho: f64, look_at: [f64; 3]) -> String {
+    let [x, y, z] = look_at;
+    format!(
+        "[[material]]\nname = \"wall\"\ntype = \"diffuse\"\nalbedo = [{rho}, {rho}, {rho}]\n\
+         [[shape]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"wall\"\n\
+         [camera]\nposition = [0, 0, 0]\nlook_at = [{x}, {y}, {z}]\nfov_y_deg = 100\n\
+         width = 32\nheight = 24\n[render]\nspp = 16\npasses = 8\nphotons = 100000\n\
+         caustic_photons = 100000\n"
+    )
+}
+
 /// An octahedral sphere of radius 1: the octahedron's faces split in four `k` times and
 /// projected on the sphere (8·4^k triangles), wound counter-clockwise seen from outside.
 pub fn octahedral_sphere(k: usize) -> Vec<[DVec3; 3]> {

@@ -4,7 +4,7 @@ use super::shape::parallelogram;
 use crate::color::Rgb;
 use crate::environment::{Environment, Sky};
 use crate::error::Result;
-use crate::lights::{Emitter, Light};
+use crate::lights::{Emitter, Light, Luminaire};
 use crate::scene::table::TableReader;
 use crate::spectrum::emission::Shape;
 use crate::spectrum::Spectrum;
@@ -125,8 +125,38 @@ pub fn read_light(t: &mut TableReader, kind: &str) -> Result<Light> {
             let peak_intensity = color * (power * (m + 1.0) / std::f64::consts::TAU);
             Light::Led { emitter, peak_intensity, m }
         }
+        "goniometric" => {
+            let path = t.input_file("file")?;
+            let text = crate::input::read_text(&path, 64 << 20, "photometric file")
+                .map_err(|e| t.error("file", e))?;
+            let table = crate::photometry::ies::parse(&text)
+                .map_err(|e| t.error("file", format!("{}: {e}", path.display())))?;
+            t.check("file", table.power() > 0.0, "the luminaire's table sends no light")?;
+            let nadir = t.direction_or("direction", -DVec3::Y)?;
+            let fallback = match nadir.cross(DVec3::X).length() > 1e-6 {
+                true => DVec3::X,
+                false => DVec3::Z,
+            };
+            let c0 = t.direction_or("c0", fallback)?;
+            t.check(
+                "c0",
+                nadir.cross(c0).length() > 1e-9,
+                "must not be parallel to `direction` (the luminaire's nadir)",
+            )?;
+            let scale = match (t.has("power"), t.has("scale")) {
+                (true, true) => return Err(t.error("scale", "give `power` or `scale`, not both")),
+                (true, false) => t.positive("power")? / table.power(),
+                (false, _) => t.positive_or("scale", 1.0)?,
+            };
+            Light::Goniometric {
+                position: t.vec3("position")?,
+                aim: Luminaire::new(nadir, c0),
+                colour: t.rgb_or("color", Some(Rgb::ONE))? * scale,
+                table: std::sync::Arc::new(table),
+            }
+        }
         "directional" => Light::Directional { direction: t.direction_or("direction", -DVec3::Y)?, irradiance: t.rgb_or("irradiance", None)? },
-        other => return Err(t.error("type", format!("unknown light type '{other}' (point, spot, quad, disk, led, directional, environment)"))),
+        other => return Err(t.error("type", format!("unknown light type '{other}' (point, spot, quad, disk, led, goniometric, directional, environment)"))),
     })
 }
 

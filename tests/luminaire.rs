@@ -1,0 +1,209 @@
+//! Measured luminaires (IES LM-63 files): the table read and its symmetry expanded, its power
+//! against the closed form of the distribution it tabulates, its photons' directions drawn
+//! without bias, and a luminaire lighting the white spherical room as an integrating sphere
+//! says it must, by both integrators.
+
+use glam::DVec3;
+use grinlight::lights::{Aim, Entry, Light, Luminaire};
+use grinlight::math::Ball;
+use grinlight::photometry::ies;
+use grinlight::scene::load::parse_scene;
+use std::f64::consts::PI;
+
+/// An IES LM-63-2002 file of type C with `verticals` and `horizontals` (degrees) and the
+/// candela of `intensity(γ, C)` (degrees) at each node, ten numbers a line.
+fn ies_file(verticals: &[f64], horizontals: &[f64], intensity: impl Fn(f64, f64) -> f64) -> String {
+    let mut numbers: Vec<String> = Vec::new();
+    numbers.extend(verticals.iter().map(|v| format!("{v}")));
+    numbers.extend(horizontals.iter().map(|h| format!("{h}")));
+    for &c in horizontals {
+        numbers.extend(verticals.iter().map(|&g| format!("{:.9}", intensity(g, c))));
+    }
+    let mut text = String::from("IESNA:LM-63-2002\n[TEST] grinlight\n[MANUFAC] none\nTILT=NONE\n");
+    text += &format!(
+        "1 -1 1 {} {} 1 2 0 0 0\n1 1 10\n",
+        verticals.len(),
+        horizontals.len()
+    );
+    for chunk in numbers.chunks(10) {
+        text += &chunk.join(" ");
+        text.push('\n');
+    }
+    text
+}
+
+fn degrees(from: f64, to: f64, step: f64) -> Vec<f64> {
+    let n = ((to - from) / step).round() as usize;
+    (0..=n).map(|k| from + step * k as f64).collect()
+}
+
+/// A Lambertian downlight I = 100 cos γ tabulated at 1° (one plane: rotationally symmetric):
+/// its nodes read back exactly, its power is π·100 (the bilinear table errs by ≤ Δγ²/8 ≈
+/// 4e-5 of it: 1e-4), nothing goes upward; and quadrant (0–90°) and bilateral (0–180°) files
+/// of I = 100 + 50 cos 2C and 100 + 50 cos C read the same as the full distribution at
+/// mirrored angles (1e-9).
+#[test]
+fn an_ies_table_reads_back_with_its_symmetry() {
+    let lambert = ies::parse(&ies_file(&degrees(0.0, 90.0, 1.0), &[0.0], |g, _| {
+        100.0 * g.to_radians().cos()
+    }))
+    .unwrap();
+    for g in [0.0f64, 17.0, 45.0, 89.0] {
+        let want = 100.0 * g.to_radians().cos();
+        assert!((lambert.intensity(g.to_radians(), 1.234) - want).abs() < 1e-9 * 100.0);
+    }
+    assert_eq!(lambert.intensity(100f64.to_radians(), 0.0), 0.0);
+    assert!(
+        (lambert.power() / (100.0 * PI) - 1.0).abs() < 1e-4,
+        "{}",
+        lambert.power()
+    );
+    let quadrants = Symmetric {
+        horizontals: &[0.0, 30.0, 60.0, 90.0],
+        intensity: |c| 100.0 + 50.0 * (2.0 * c).to_radians().cos(),
+        mirrors: |c| vec![c, 180.0 - c, 180.0 + c, 360.0 - c],
+    };
+    let bilateral = Symmetric {
+        horizontals: &[0.0, 45.0, 90.0, 135.0, 180.0],
+        intensity: |c| 100.0 + 50.0 * c.to_radians().cos(),
+        mirrors: |c| vec![c, 360.0 - c],
+    };
+    for case in [quadrants, bilateral] {
+        let text = ies_file(&degrees(0.0, 180.0, 10.0), case.horizontals, |_, c| {
+            (case.intensity)(c)
+        });
+        let table = ies::parse(&text).unwrap();
+        for &c in case.horizontals {
+            for mirrored in (case.mirrors)(c) {
+                let got = table.intensity(1.0, mirrored.to_radians());
+                let want = (case.intensity)(c);
+                assert!(
+                    (got - want).abs() < 1e-9,
+                    "C = {mirrored}: {got} against {want}"
+                );
+            }
+        }
+    }
+}
+
+/// A file's horizontal symmetry: the planes it gives, the intensity over C it tabulates and
+/// the angles (degrees) where each given plane's intensity recurs.
+struct Symmetric {
+    horizontals: &'static [f64],
+    intensity: fn(f64) -> f64,
+    mirrors: fn(f64) -> Vec<f64>,
+}
+
+/// Unreadable tables are refused with the reason: type B photometry, a tilt file of its own,
+/// too few numbers, descending angles, a negative candela value.
+#[test]
+fn a_bad_ies_file_is_refused_with_its_reason() {
+    let good = ies_file(&[0.0, 90.0], &[0.0], |_, _| 1.0);
+    let cases = [
+        (good.replace("1 -1 1 2 1 1 2", "1 -1 1 2 1 2 2"), "type C"),
+        (good.replace("TILT=NONE", "TILT=lamp.tlt"), "tilt file"),
+        (
+            good.lines().take(6).collect::<Vec<_>>().join("\n"),
+            "ends before",
+        ),
+        (
+            ies_file(&[90.0, 0.0], &[0.0], |_, _| 1.0),
+            "vertical angles must rise",
+        ),
+        (ies_file(&[0.0, 90.0], &[0.0], |_, _| -1.0), "≥ 0"),
+        ("no such thing\n".to_string(), "TILT="),
+    ];
+    for (text, needle) in cases {
+        let e = ies::parse(&text).unwrap_err();
+        assert!(e.contains(needle), "{e:?} lacks {needle:?}");
+    }
+}
+
+/// Photons from a luminaire carry its power without bias: over 2·10⁵ photons of the
+/// cos γ downlight turned to nadir −y, the mean photon power is its power (4 standard
+/// errors) and no photon leaves upward.
+#[test]
+fn a_luminaires_photons_carry_its_power() {
+    let table = ies::parse(&ies_file(&degrees(0.0, 90.0, 5.0), &[0.0], |g, _| {
+        100.0 * g.to_radians().cos()
+    }))
+    .unwrap();
+    let power = table.power();
+    let light = Light::Goniometric {
+        position: DVec3::ZERO,
+        aim: Luminaire::new(-DVec3::Y, DVec3::X),
+        colour: grinlight::color::Rgb::ONE,
+        table: std::sync::Arc::new(table),
+    };
+    let aim = Aim::whole(
+        Ball {
+            center: DVec3::ZERO,
+            radius: 1.0,
+        },
+        Entry::Upstream,
+    );
+    let n = 200_000;
+    let (mut sum, mut sum2) = (0.0, 0.0);
+    for k in 0..n {
+        let u = |a: u64| grinlight::sampling::mix(k * 4 + a) as f64 / u64::MAX as f64;
+        let Some(e) = light.emit([u(0), u(1), u(2), u(3)], aim) else {
+            continue;
+        };
+        assert!(e.direction.y <= 1e-12, "upward: {}", e.direction);
+        let p = e.power.0.x;
+        sum += p;
+        sum2 += p * p;
+    }
+    let mean = sum / n as f64;
+    let se = ((sum2 / n as f64 - mean * mean) / n as f64).sqrt();
+    assert!(
+        (mean - power).abs() <= 4.0 * se + 1e-12,
+        "{mean} ± {se} against {power}"
+    );
+}
+
+/// The white spherical room of albedo ρ = 0.5 lit by a luminaire at its centre whose IES table
+/// is I = I₀ cos γ downward (I₀ = 1, at 1°): each pixel reads (ρ/π)(I(ω) + ρΦ/(A(1 − ρ))),
+/// Φ = π I₀, as for the other lights; both integrators, image mean within 1 %.
+#[test]
+fn a_luminaire_lights_a_white_spherical_room_as_an_integrating_sphere_does() {
+    let dir = std::env::temp_dir().join(format!("grinlight-ies-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(
+        dir.join("down.ies"),
+        ies_file(&degrees(0.0, 90.0, 1.0), &[0.0], |g, _| {
+            g.to_radians().cos()
+        }),
+    )
+    .unwrap();
+    let rho = 0.5;
+    let text = crate::common::white_spherical_room(rho, [0.0, -0.6, -1.0])
+        + "[[light]]\ntype = \"goniometric\"\nfile = \"down.ies\"\nposition = [0, 0, 0]\n";
+    let path = dir.join("room.toml");
+    let (scene, settings) = parse_scene(&path, text).unwrap();
+    let camera = scene.camera.as_ref().unwrap();
+    let bounced = rho * PI / (4.0 * PI * (1.0 - rho));
+    let (w, h) = (camera.width as usize, camera.height as usize);
+    let expected: f64 = (0..w * h)
+        .map(|i| {
+            let d = camera.direction((i % w) as u32, (i / w) as u32, 0.5, 0.5);
+            rho / PI * ((-d.y).max(0.0) + bounced)
+        })
+        .sum::<f64>()
+        / (w * h) as f64;
+    for integrator in grinlight::settings::IntegratorKind::ALL {
+        let settings = grinlight::settings::Settings {
+            integrator,
+            ..settings.clone()
+        };
+        let film = grinlight::render::render(&scene, &settings, &()).unwrap().0;
+        let pixels = film.layer("beauty").unwrap();
+        let mean = pixels.iter().map(|p| p[1] as f64).sum::<f64>() / pixels.len() as f64;
+        println!("luminaire, {integrator:?}: {mean:.5} against {expected:.5}");
+        assert!(
+            (mean - expected).abs() <= 0.01 * expected,
+            "{integrator:?}: {mean} against {expected}"
+        );
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
