@@ -207,3 +207,96 @@ fn a_luminaire_lights_a_white_spherical_room_as_an_integrating_sphere_does() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// An intensity over (γ, C) in degrees.
+type Distribution = fn(f64, f64) -> f64;
+
+/// A EULUMDAT file of Isym `symmetry` over `mc` C planes (every 360/mc degrees) and γ every
+/// 10°, its stored planes (as the format counts them) holding `intensity(γ, C)` in cd/klm,
+/// lamps of 2000 lm in all and a conversion factor of 1.5.
+fn ldt_file(symmetry: usize, mc: usize, intensity: impl Fn(f64, f64) -> f64) -> String {
+    let step = 360.0 / mc as f64;
+    let gammas = degrees(0.0, 180.0, 10.0);
+    let stored: Vec<f64> = match symmetry {
+        0 => (0..mc).map(|i| i as f64 * step).collect(),
+        1 => vec![0.0],
+        2 => (0..=mc / 2).map(|i| i as f64 * step).collect(),
+        3 => (0..=mc / 2)
+            .map(|i| (270.0 + i as f64 * step) % 360.0)
+            .collect(),
+        _ => (0..=mc / 4).map(|i| i as f64 * step).collect(),
+    };
+    let mut lines: Vec<String> = vec![
+        "grinlight test".into(),
+        "1".into(),
+        symmetry.to_string(),
+        mc.to_string(),
+        step.to_string(),
+        gammas.len().to_string(),
+        "10".into(),
+    ];
+    lines.extend(["r", "name", "no", "file.ldt", "today"].map(String::from));
+    lines.extend(
+        [
+            "100", "100", "50", "90", "90", "0", "0", "0", "0", "100", "80",
+        ]
+        .map(String::from),
+    );
+    lines.extend(["1,5", "0", "2"].map(String::from));
+    for field in [
+        ["1", "1"],
+        ["LED", "LED"],
+        ["1200", "800"],
+        ["3000K", "3000K"],
+        ["80", "80"],
+        ["20", "15"],
+    ] {
+        lines.extend(field.map(String::from));
+    }
+    lines.extend((0..10).map(|_| "0.5".to_string()));
+    lines.extend((0..mc).map(|i| (i as f64 * step).to_string()));
+    lines.extend(gammas.iter().map(|g| g.to_string()));
+    for c in stored {
+        lines.extend(gammas.iter().map(|&g| format!("{:.9}", intensity(g, c))));
+    }
+    lines.join("\r\n") + "\r\n"
+}
+
+/// EULUMDAT tables of each symmetry, holding a distribution with that symmetry, read back at
+/// every plane of the full turn as the distribution itself (1e-9 of it): cd/klm times the lamp
+/// sets' 2000 lm over 1000 times the conversion factor 1.5; and a table that stops short is
+/// refused with the line it lacks.
+#[test]
+fn a_eulumdat_table_reads_back_with_its_symmetry() {
+    use grinlight::photometry::eulumdat;
+    let cases: [(usize, Distribution); 5] = [
+        (0, |g, c| {
+            100.0 + g + 30.0 * c.to_radians().cos() + 10.0 * c.to_radians().sin()
+        }),
+        (1, |g, _| 100.0 + g),
+        (2, |g, c| 100.0 + g + 30.0 * c.to_radians().cos()),
+        (3, |g, c| 100.0 + g + 30.0 * c.to_radians().sin()),
+        (4, |g, c| 100.0 + g + 30.0 * (2.0 * c).to_radians().cos()),
+    ];
+    for (symmetry, f) in cases {
+        let table = eulumdat::parse(&ldt_file(symmetry, 24, f)).unwrap();
+        for i in 0..24 {
+            let c = i as f64 * 15.0;
+            for g in [0.0f64, 40.0, 170.0] {
+                let got = table.intensity(g.to_radians(), c.to_radians());
+                let want = f(g, c) * 2.0 * 1.5;
+                assert!(
+                    (got - want).abs() < 1e-9 * want,
+                    "Isym {symmetry}, C {c}, γ {g}: {got} against {want}"
+                );
+            }
+        }
+    }
+    let short: String = ldt_file(1, 24, |_, _| 1.0)
+        .lines()
+        .take(30)
+        .collect::<Vec<_>>()
+        .join("\n");
+    let e = eulumdat::parse(&short).unwrap_err();
+    assert!(e.contains("ends before"), "{e}");
+}

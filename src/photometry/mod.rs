@@ -1,5 +1,5 @@
 //! Measured luminaires: a luminaire's intensity over direction as its photometric file gives
-//! it (a goniogram), read from IES LM-63 files ([`ies`]).
+//! it (a goniogram), read from IES LM-63 files ([`ies`]) and EULUMDAT files ([`eulumdat`]).
 //!
 //! **Conventions** (type C photometry, as IES LM-63 and EULUMDAT state it): the vertical angle
 //! γ is measured from the luminaire's nadir (γ = 0 straight down its axis, 180° straight up);
@@ -8,6 +8,7 @@
 //! scene ([`Goniogram::scaled`]). Between the measured angles the intensity is bilinear in
 //! (γ, C); outside the measured γ range it is 0; C wraps around.
 
+pub mod eulumdat;
 pub mod ies;
 
 use crate::sampling::Discrete;

@@ -129,8 +129,14 @@ pub fn read_light(t: &mut TableReader, kind: &str) -> Result<Light> {
             let path = t.input_file("file")?;
             let text = crate::input::read_text(&path, 64 << 20, "photometric file")
                 .map_err(|e| t.error("file", e))?;
-            let table = crate::photometry::ies::parse(&text)
-                .map_err(|e| t.error("file", format!("{}: {e}", path.display())))?;
+            let eulumdat = path
+                .extension()
+                .is_some_and(|e| e.eq_ignore_ascii_case("ldt"));
+            let table = match eulumdat {
+                true => crate::photometry::eulumdat::parse(&text),
+                false => crate::photometry::ies::parse(&text),
+            }
+            .map_err(|e| t.error("file", format!("{}: {e}", path.display())))?;
             t.check("file", table.power() > 0.0, "the luminaire's table sends no light")?;
             let nadir = t.direction_or("direction", -DVec3::Y)?;
             let fallback = match nadir.cross(DVec3::X).length() > 1e-6 {
