@@ -62,7 +62,7 @@ impl Strata {
         let n = n.min(Self::MOST);
         self.numbers.clear();
         self.numbers
-            .extend((0..n).map(|i| (i as f64 + rng.gen::<f64>()) / n as f64));
+            .extend((0..n).map(|i| in_stratum(i, n, rng.gen())));
         self.numbers.shuffle(rng);
     }
 
@@ -70,6 +70,12 @@ impl Strata {
     pub fn get(&self, s: u32) -> Option<f64> {
         self.numbers.get(s as usize).copied()
     }
+}
+
+/// The point at `u` ∈ [0, 1) of stratum `i` of `n` over [0, 1): (i + u)/n, kept below 1 (for
+/// u near 1 the sum rounds up to i + 1, and the last stratum's point would be 1 itself).
+pub fn in_stratum(i: u32, n: u32, u: f64) -> f64 {
+    ((i as f64 + u) / n as f64).min(1.0 - f64::EPSILON / 2.0)
 }
 
 /// Two dimensions of a pixel's n samples, stratified together (jittered): one point in each
@@ -89,10 +95,7 @@ impl Strata2 {
         self.points.clear();
         self.points.extend((0..m * m).map(|s| {
             let (i, j) = (s % m, s / m);
-            [
-                (i as f64 + rng.gen::<f64>()) / m as f64,
-                (j as f64 + rng.gen::<f64>()) / m as f64,
-            ]
+            [in_stratum(i, m, rng.gen()), in_stratum(j, m, rng.gen())]
         }));
         self.points.shuffle(rng);
     }

@@ -17,7 +17,7 @@ use crate::integrator::{
 };
 use crate::lights::LightSamples;
 pub use crate::report::Report;
-use crate::sampling::{stream, Given, Purpose, Strata, Strata2};
+use crate::sampling::{in_stratum, stream, Given, Purpose, Strata, Strata2};
 use crate::scene::Scene;
 use crate::settings::IntegratorKind as Kind;
 use crate::settings::Settings;
@@ -502,8 +502,8 @@ fn camera_tile<I: Integrator>(
                 // converge much faster); any further samples are uniform.
                 let (mut u, mut v) = (rng.gen::<f64>(), rng.gen::<f64>());
                 if s < strata * strata {
-                    u = ((s % strata) as f64 + u) / strata as f64;
-                    v = ((s / strata) as f64 + v) / strata as f64;
+                    u = in_stratum(s % strata, strata, u);
+                    v = in_stratum(s / strata, strata, v);
                 }
                 let film = FilmPoint {
                     px: x as u32,
