@@ -145,7 +145,7 @@ impl<'s> Vertex<'s> {
     }
 
     /// A direction drawn from `rng` and the ray leaving along it (see
-    /// [`SurfaceVertex::scatter_with`]; a medium draws two numbers, and its sample's weight
+    /// [`SurfaceVertex::scatter_given`]; a medium draws two numbers, and its sample's weight
     /// p/pdf is 1).
     pub fn scatter_with(&self, rng: &mut impl rand::Rng) -> Option<Scattered> {
         self.scatter_given(BsdfNumbers::default(), rng)
@@ -332,13 +332,9 @@ impl SurfaceVertex<'_> {
         })
     }
 
-    /// [`SurfaceVertex::scatter`] with its numbers drawn from `rng`: two for the direction and a
-    /// third only where the BSDF makes a discrete choice (a Lambertian surface draws two).
-    pub fn scatter_with(&self, rng: &mut impl rand::Rng) -> Option<Scattered> {
-        self.scatter_given(BsdfNumbers::default(), rng)
-    }
-
-    /// [`SurfaceVertex::scatter_with`] taking `numbers` where they are given.
+    /// [`SurfaceVertex::scatter`] with `numbers` where they are given, else drawn from `rng`:
+    /// two for the direction and a third only where the BSDF makes a discrete choice (a
+    /// Lambertian surface draws two).
     pub fn scatter_given(
         &self,
         numbers: BsdfNumbers,
