@@ -147,7 +147,14 @@ fn cases() -> Vec<Case> {
                 ("s.toml", scene("[[light]]\ntype = \"goniometric\"\nfile = \"l.ies\"\nposition = [0, 0, 1]\n")),
                 ("l.ies", b"IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 2 1 1 2 0 0 0\n1 1 10\n0 90\n0\n0 0\n".to_vec()),
             ],
-            ..scene_case("luminaire that sends nothing", "", Error("sends no light"))
+            ..scene_case("luminaire that sends nothing", "", Error("finite power > 0"))
+        },
+        Case {
+            files: vec![
+                ("s.toml", scene("[[light]]\ntype = \"goniometric\"\nfile = \"l.ies\"\nposition = [0, 0, 1]\n")),
+                ("l.ies", b"IESNA:LM-63-2002\nTILT=NONE\n1 -1 1e300 2 1 1 2 0 0 0\n1e300 1 10\n0 90\n0\n5 1\n".to_vec()),
+            ],
+            ..scene_case("luminaire of 1e600 candela", "", Error("finite power > 0"))
         },
         Case {
             files: vec![

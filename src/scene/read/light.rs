@@ -137,7 +137,11 @@ pub fn read_light(t: &mut TableReader, kind: &str) -> Result<Light> {
                 false => crate::photometry::ies::parse(&text),
             }
             .map_err(|e| t.error("file", format!("{}: {e}", path.display())))?;
-            t.check("file", table.power() > 0.0, "the luminaire's table sends no light")?;
+            t.check(
+                "file",
+                table.power() > 0.0 && table.power().is_finite(),
+                format!("the luminaire's table must send a finite power > 0, got {}", table.power()),
+            )?;
             let nadir = t.direction_or("direction", -DVec3::Y)?;
             let fallback = match nadir.cross(DVec3::X).length() > 1e-6 {
                 true => DVec3::X,
