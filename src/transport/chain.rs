@@ -190,6 +190,10 @@ pub struct Carried<'w> {
     pub hero: Option<&'w HeroTracer<'w>>,
     /// Its free flights in scattering media so far.
     pub flights: Flights,
+    /// Surfaces (detectors included) and scattering events in media it may still meet: the
+    /// tracer's `max_depth` at its start, spent by every chain it follows, so that a camera
+    /// path's bounces after its visible point count on from the events before it.
+    pub depth: u32,
 }
 
 impl<'w> Carried<'w> {
@@ -204,6 +208,7 @@ impl<'w> Carried<'w> {
             tracer,
             hero,
             flights: Flights::default(),
+            depth: tracer.settings.max_depth,
         }
     }
 }
@@ -341,13 +346,13 @@ impl<'w> Walker<'w> {
         Self::carrying(Carried::on(tracer), policy)
     }
 
-    /// A walker for a path carrying `carried`, allowed the tracer's `max_depth` surfaces.
+    /// A walker for a path carrying `carried`, allowed the surfaces it has left.
     pub fn carrying(carried: Carried<'w>, policy: Policy) -> Self {
         Self {
             tracer: carried.tracer,
             hero: carried.hero,
             policy,
-            depth: carried.tracer.settings.max_depth,
+            depth: carried.depth,
             flights: carried.flights,
             choices: Choices::default(),
         }
@@ -365,6 +370,7 @@ impl<'w> Walker<'w> {
             tracer: self.tracer,
             hero: self.hero,
             flights: self.flights,
+            depth: self.depth,
         }
     }
 
