@@ -154,13 +154,13 @@ fn box_faces(lo: DVec3, hi: DVec3) -> Vec<Primitive> {
 
 fn read_mesh(t: &mut TableReader) -> Result<Vec<Primitive>> {
     let path = t.input_file("file")?;
-    let translate = t.vec3_or("translate", DVec3::ZERO)?;
-    let scale = t.f64_or("scale", 1.0)?;
-    t.check("scale", scale != 0.0, "must not be 0")?;
-    let rot = t.vec3_or("rotate_deg", DVec3::ZERO)?;
-    let m = DMat3::from_rotation_z(rot.z.to_radians())
-        * DMat3::from_rotation_y(rot.y.to_radians())
-        * DMat3::from_rotation_x(rot.x.to_radians());
+    let Placement {
+        linear,
+        scale,
+        normal_map,
+        translate,
+        key: placed_by,
+    } = read_placement(t)?;
     let is_ply = path
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("ply"));
@@ -193,9 +193,9 @@ fn read_mesh(t: &mut TableReader) -> Result<Vec<Primitive>> {
                 v
             ),
         )?;
-        let p = translate + m * (scale * given);
+        let p = translate + linear * (scale * given);
         t.check(
-            "scale",
+            placed_by,
             p.abs().max_element() <= MAX_MAGNITUDE,
             format_args!(
                 "{}: scaled and moved, a vertex lies beyond ±{MAX_MAGNITUDE:e}",
@@ -224,7 +224,7 @@ fn read_mesh(t: &mut TableReader) -> Result<Vec<Primitive>> {
                 ),
             ),
             (None, true) => t.error(
-                "scale",
+                placed_by,
                 format!(
                     "{}: all {faces} triangles have zero area at this scale",
                     path.display()
@@ -245,10 +245,9 @@ fn read_mesh(t: &mut TableReader) -> Result<Vec<Primitive>> {
     triangles.shrink_to_fit();
     let normals = match (smooth, obj.normals) {
         (false, _) => None,
-        // Normals transform by the inverse transpose: the rotation, and the sign of the scale.
         (true, Some(mut n)) => {
             for v in &mut n {
-                let w = scale.signum() * (m * DVec3::from(v.map(f64::from)));
+                let w = normal_map * DVec3::from(v.map(f64::from));
                 *v = w.normalize_or_zero().as_vec3().to_array();
             }
             Some(n)
@@ -258,6 +257,69 @@ fn read_mesh(t: &mut TableReader) -> Result<Vec<Primitive>> {
     let mesh = TriangleMesh::new(vertices, triangles, normals, obj.texcoords)
         .map_err(|e| t.error("file", e))?;
     Ok(vec![Primitive::Mesh(std::sync::Arc::new(mesh))])
+}
+
+/// How a mesh's file coordinates are placed in the scene: p ↦ linear·(scale·p) + translate,
+/// and the key that gave it (named where a placed vertex is refused).
+struct Placement {
+    linear: DMat3,
+    scale: f64,
+    /// What normals are multiplied by before they are normalised: a multiple of the inverse
+    /// transpose of `linear` (for a turn and a scale: the turn, and the sign of the scale).
+    normal_map: DMat3,
+    translate: DVec3,
+    key: &'static str,
+}
+
+/// A mesh's placement: `matrix`, the 12 numbers of an affine map's rows [a b c t] (or 16, the
+/// last row 0 0 0 1), or `scale`, then `rotate_deg` (x, then y, then z), then `translate`.
+fn read_placement(t: &mut TableReader) -> Result<Placement> {
+    if let Some(m) = t.f64_list_opt("matrix")? {
+        for key in ["scale", "rotate_deg", "translate"] {
+            t.check(
+                key,
+                !t.has(key),
+                "give either `matrix` or scale, rotate_deg and translate",
+            )?;
+        }
+        t.check(
+            "matrix",
+            m.len() == 12 || (m.len() == 16 && m[12..] == [0.0, 0.0, 0.0, 1.0]),
+            format!(
+                "expected the 12 numbers of 3 rows [a, b, c, t] (or 16, the last row 0, 0, 0, \
+                 1), got {} numbers",
+                m.len()
+            ),
+        )?;
+        let row = |i: usize| DVec3::new(m[4 * i], m[4 * i + 1], m[4 * i + 2]);
+        let linear = DMat3::from_cols(row(0), row(1), row(2)).transpose();
+        t.check(
+            "matrix",
+            linear.determinant().abs() > 0.0 && linear.is_finite(),
+            "the matrix flattens the mesh (its 3×3 part has no inverse)",
+        )?;
+        return Ok(Placement {
+            linear,
+            scale: 1.0,
+            normal_map: linear.inverse().transpose(),
+            translate: DVec3::new(m[3], m[7], m[11]),
+            key: "matrix",
+        });
+    }
+    let translate = t.vec3_or("translate", DVec3::ZERO)?;
+    let scale = t.f64_or("scale", 1.0)?;
+    t.check("scale", scale != 0.0, "must not be 0")?;
+    let rot = t.vec3_or("rotate_deg", DVec3::ZERO)?;
+    let turn = DMat3::from_rotation_z(rot.z.to_radians())
+        * DMat3::from_rotation_y(rot.y.to_radians())
+        * DMat3::from_rotation_x(rot.x.to_radians());
+    Ok(Placement {
+        linear: turn,
+        scale,
+        normal_map: turn * scale.signum(),
+        translate,
+        key: "scale",
+    })
 }
 
 /// Vertex normals of a mesh without them, by Max's weights (J. Graphics Tools 4(2), 1999):
