@@ -35,6 +35,9 @@ pub fn signature() -> String {
 /// attributes, a PNG's text chunk comes before its image data).
 const SIGNED_WITHIN: usize = 1 << 16;
 
+/// The first words of a scene file `grinlight convert` writes.
+pub const CONVERTED: &str = "# Converted by grinlight ";
+
 /// What kind of file an output is: what an existing file at its path must look like to be
 /// replaced — one grinlight wrote.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -47,6 +50,8 @@ pub enum Kind {
     Csv,
     /// A grinlight partial result (see [`crate::shard`]).
     Partial,
+    /// A scene file `grinlight convert` wrote, whose first line is `# Converted by grinlight `.
+    ConvertedScene,
 }
 
 impl Kind {
@@ -56,6 +61,7 @@ impl Kind {
             Kind::Png => "a PNG image grinlight wrote",
             Kind::Csv => "a CSV table grinlight wrote",
             Kind::Partial => "a grinlight partial result",
+            Kind::ConvertedScene => "a scene file grinlight converted",
         }
     }
 
@@ -79,6 +85,7 @@ impl Kind {
                     && find(b"tEXtSoftware\0grinlight ").is_some()
             }
             Kind::Csv => head.starts_with(b"# grinlight "),
+            Kind::ConvertedScene => head.starts_with(CONVERTED.as_bytes()),
         }
     }
 }

@@ -16,6 +16,26 @@ const BASE: &str = "[camera]\nposition = [0, 0, 3]\nlook_at = [0, 0, 0]\nfov_y_d
 
 const LIGHT: &str = "[[light]]\ntype = \"point\"\nposition = [0, 0, 1]\nintensity = 1\n";
 
+/// A Mitsuba scene of an 8 × 8 box-filtered view, 1 sample, a point light and `body`.
+fn mitsuba(body: &str) -> Vec<u8> {
+    format!(
+        "<scene version=\"3.0.0\">\n<sensor type=\"perspective\"><sampler type=\"independent\"><integer name=\"sample_count\" value=\"1\"/></sampler>\
+         <film type=\"hdrfilm\"><integer name=\"width\" value=\"8\"/><integer name=\"height\" value=\"8\"/><rfilter type=\"box\"/></film></sensor>\n\
+         <emitter type=\"point\"><point name=\"position\" value=\"0, 0, 2\"/></emitter>\n{body}\n</scene>\n"
+    )
+    .into_bytes()
+}
+
+/// A Mitsuba scene case: `s.xml` of [`mitsuba`]`(body)`, rendered.
+fn xml_case(name: &'static str, body: &str, expect: Expect) -> Case {
+    Case {
+        name,
+        files: vec![("s.xml", mitsuba(body))],
+        args: args("render s.xml"),
+        expect,
+    }
+}
+
 /// What a case must end in.
 enum Expect {
     /// Failure whose standard error contains this.
@@ -401,6 +421,33 @@ fn cases() -> Vec<Case> {
         Case { name: "a partial of its magic line alone", files: vec![("p.partial", PARTIAL.to_vec())], args: args("merge p.partial -o m.exr"), expect: Error("p.partial: a damaged partial result (it ends inside its header)") },
         Case { name: "a partial of another version", files: vec![("p.partial", b"GRINLIGHT PARTIAL 1\nxyz".to_vec())], args: args("merge p.partial -o m.exr"), expect: Error("of file version 1") },
         Case { name: "a partial with a 4 GiB header", files: vec![("p.partial", [PARTIAL, &[0xff; 4]].concat())], args: args("merge p.partial -o m.exr"), expect: Error("a header of 4294967295 bytes") },
+    ]);
+    v.extend([
+        xml_case("Mitsuba: a sphere", "<shape type=\"sphere\"><point name=\"center\" value=\"0, 0, -3\"/></shape>", Finite("wrote")),
+        Case { name: "Mitsuba: malformed XML", files: vec![("s.xml", b"<scene version=\"3.0.0\"><shape".to_vec())], args: args("render s.xml"), expect: Error("s.xml:1:") },
+        Case { name: "Mitsuba: not a scene", files: vec![("s.xml", b"<html></html>".to_vec())], args: args("render s.xml"), expect: Error("expected a Mitsuba <scene>, found <html>") },
+        Case { name: "Mitsuba: version 0.6", files: vec![("s.xml", b"<scene version=\"0.6.0\"></scene>".to_vec())], args: args("render s.xml"), expect: Error("only Mitsuba 2 and 3 scenes") },
+        Case { name: "Mitsuba: an empty file", files: vec![("s.xml", Vec::new())], args: args("render s.xml"), expect: Error("malformed XML") },
+        xml_case("Mitsuba: an unknown plugin", "<shape type=\"sphere\"><bsdf type=\"hair\"/></shape>", Error("the BSDF 'hair' is not supported")),
+        xml_case("Mitsuba: an unknown element", "<shape type=\"sphere\"><colour name=\"x\" value=\"1\"/></shape>", Error("unknown element <colour>")),
+        xml_case("Mitsuba: $ without a default", "<shape type=\"sphere\"><float name=\"radius\" value=\"$r\"/></shape>", Error("'$r' has no value")),
+        xml_case("Mitsuba: a missing mesh", "<shape type=\"obj\"><string name=\"filename\" value=\"no.obj\"/></shape>", Error("'no.obj' not found")),
+        xml_case("Mitsuba: a NaN radius", "<shape type=\"sphere\"><float name=\"radius\" value=\"nan\"/></shape>", Error("is not a number")),
+        xml_case("Mitsuba: a huge radius", "<shape type=\"sphere\"><float name=\"radius\" value=\"1e300\"/></shape>", Error("as converted, shape[0].radius")),
+        xml_case("Mitsuba: a negative radius", "<shape type=\"sphere\"><float name=\"radius\" value=\"-1\"/></shape>", Error("shape[0].radius")),
+        xml_case("Mitsuba: a ref to nothing", "<shape type=\"sphere\"><ref id=\"nothing\"/></shape>", Error("no object has this id")),
+        xml_case("Mitsuba: a zero rotation axis", "<shape type=\"sphere\"><transform name=\"to_world\"><rotate angle=\"30\"/></transform></shape>", Error("the axis is zero")),
+        xml_case("Mitsuba: a flat cube", "<shape type=\"cube\"><transform name=\"to_world\"><scale x=\"0\"/><rotate y=\"1\" angle=\"30\"/></transform></shape>", Error("flattens the cube")),
+        Case {
+            name: "Mitsuba: an include cycle",
+            files: vec![("s.xml", mitsuba("<include filename=\"a.xml\"/>")), ("a.xml", b"<scene version=\"3.0.0\"><include filename=\"a.xml\"/></scene>".to_vec())],
+            args: args("render s.xml"),
+            expect: Error("a cycle"),
+        },
+        Case { name: "convert over a user's file", files: vec![("s.xml", mitsuba("")), ("out.toml", b"mine".to_vec())], args: args("convert s.xml -o out.toml"), expect: Error("out.toml") },
+        Case { name: "convert to its own input", files: vec![("s.xml", mitsuba(""))], args: args("convert s.xml -o s.xml"), expect: Error("should end in .toml") },
+        Case { name: "-D without =", files: vec![("s.xml", mitsuba(""))], args: args("render s.xml -D r"), expect: Error("expected NAME=VALUE") },
+        Case { name: "-D on a grinlight scene", files: vec![("s.toml", scene(LIGHT))], args: render("-D r=1"), expect: Error("apply to scenes of other renderers") },
     ]);
     v.push(Case {
         name: "trace --dir 0,0,0",

@@ -15,6 +15,7 @@ mod footprint;
 mod furnace;
 mod glossy;
 mod hostile;
+mod import;
 mod integrators;
 mod linearize;
 mod luminaire;

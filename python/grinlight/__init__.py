@@ -317,13 +317,23 @@ class Scene:
         return trace(self, origin, direction, length, medium=medium, **options)
 
 
-def load(path: PathLike, **overrides: Any) -> Scene:
-    """Reads the scene file at ``path``; ``overrides`` replace its ``[render]`` and
+def load(
+    path: PathLike,
+    *,
+    defines: Optional[Mapping[str, Any]] = None,
+    approximate: bool = False,
+    **overrides: Any,
+) -> Scene:
+    """Reads the scene file at ``path``: grinlight's TOML, or a Mitsuba 3 scene (``.xml``,
+    converted as ``grinlight convert`` does: docs/import.md), whose ``$parameters`` take the
+    values ``defines`` gives (as ``-D``) and whose approximations are made (and listed among
+    a render's warnings) only when ``approximate``. ``overrides`` replace its ``[render]`` and
     ``[camera]`` keys for every render (as the command line's options do). Errors raise
     ``ValueError`` naming the file, line, column and key (``OSError`` for an unreadable
     file)."""
     given = _given(overrides)
-    return Scene(_grinlight.load(Path(path), given), given)
+    pairs = [(str(k), str(v)) for k, v in (defines or {}).items()]
+    return Scene(_grinlight.load(Path(path), given, pairs, bool(approximate)), given)
 
 
 def load_dict(data: Mapping[str, Any], base_dir: PathLike = ".", **overrides: Any) -> Scene:

@@ -12,6 +12,7 @@ mod watch;
 use grinlight::commands::{self, MergeJob, RenderJob, RenderOutcome};
 use grinlight::error::Error;
 use grinlight::film::Film;
+use grinlight::import::{Format, ImportOptions};
 use grinlight::output::{Kind, Outputs};
 use grinlight::receiver::Receiver;
 use grinlight::scene::{self, Description};
@@ -34,10 +35,21 @@ fn py_err(e: Error) -> PyErr {
     }
 }
 
-/// Where a scene comes from: a file (its text as read when loaded) or a dict.
+/// Where a scene comes from: a file (its text as read when loaded), a dict, or another
+/// renderer's scene file (converted anew for each render).
 enum Source {
-    File { path: PathBuf, text: String },
-    Data { table: toml::Table, dir: PathBuf },
+    File {
+        path: PathBuf,
+        text: String,
+    },
+    Data {
+        table: toml::Table,
+        dir: PathBuf,
+    },
+    Imported {
+        path: PathBuf,
+        options: ImportOptions,
+    },
 }
 
 /// A loaded scene: checked when loaded, parsed anew for each render (so every render starts
@@ -62,6 +74,9 @@ impl Scene {
         match &self.source {
             Source::File { path, text } => scene::load::parse_description(path, text.clone()),
             Source::Data { table, dir } => scene::parse_data(table, dir),
+            Source::Imported { path, options } => {
+                grinlight::import::load_description(path, options)
+            }
         }
         .map_err(py_err)
     }
@@ -89,10 +104,31 @@ impl Scene {
     }
 }
 
-/// Reads the scene file at `path`, checked now with the render settings `overrides`: an
-/// error names its file, line, column and key.
+/// Reads the scene file at `path` (grinlight's TOML, or a Mitsuba 3 scene ending in `.xml`,
+/// its `$parameters` given `defines`, approximated where `approximate`), checked now with the
+/// render settings `overrides`: an error names its file, line, column and key.
 #[pyfunction]
-fn load(path: PathBuf, overrides: &Bound<'_, PyDict>) -> PyResult<Scene> {
+#[pyo3(signature = (path, overrides, defines=Vec::new(), approximate=false))]
+fn load(
+    path: PathBuf,
+    overrides: &Bound<'_, PyDict>,
+    defines: Vec<(String, String)>,
+    approximate: bool,
+) -> PyResult<Scene> {
+    let options = ImportOptions {
+        defines,
+        approximate,
+    };
+    if Format::of(&path) != Format::Grinlight {
+        return Scene::checked(Source::Imported { path, options }, overrides);
+    }
+    if options != ImportOptions::default() {
+        return Err(PyValueError::new_err(format!(
+            "{}: defines and approximate apply to scenes of other renderers (.xml), not to a \
+             grinlight scene",
+            path.display()
+        )));
+    }
     let text =
         grinlight::input::read_text(&path, grinlight::input::MAX_SCENE_BYTES, "a scene file")
             .map_err(py_err)?;
@@ -125,6 +161,7 @@ impl Scene {
         match &self.source {
             Source::File { path, .. } => path.clone(),
             Source::Data { dir, .. } => dir.join(scene::source::DATA_NAME),
+            Source::Imported { path, .. } => path.clone(),
         }
     }
 
@@ -192,12 +229,15 @@ impl Scene {
         resume: bool,
         progress: Option<Bound<'_, PyAny>>,
     ) -> PyResult<PathBuf> {
-        let Source::File { path, .. } = &self.source else {
-            return Err(PyValueError::new_err(
-                "shards are rendered from a scene file (merging them reloads it): save the \
-                 dict as TOML and load that",
-            ));
-        };
+        let (path, import) =
+            match &self.source {
+                Source::File { path, .. } => (path, ImportOptions::default()),
+                Source::Imported { path, options } => (path, options.clone()),
+                Source::Data { .. } => return Err(PyValueError::new_err(
+                    "shards are rendered from a scene file (merging them reloads it): save the \
+                     dict as TOML and load that",
+                )),
+            };
         let shard = Shard::parse(shard).map_err(py_err)?;
         let job = RenderJob {
             scene: path.clone(),
@@ -205,6 +245,7 @@ impl Scene {
             overrides: convert::overrides(overrides)?,
             shard: Some(shard),
             resume,
+            import,
             ..RenderJob::default()
         };
         let watched = watched(py, progress.as_ref(), |observer| {
@@ -363,7 +404,9 @@ fn merge(
     let header = grinlight::shard::file::Opened::open(first)
         .map_err(py_err)?
         .header;
-    let (description, settings) = scene::load_description(&header.scene).map_err(py_err)?;
+    let (description, settings) =
+        grinlight::import::load_description(&header.scene, &ImportOptions::default())
+            .map_err(py_err)?;
     Ok(Some(RenderedFilm {
         film: rendered.film,
         passes: rendered.passes,

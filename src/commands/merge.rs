@@ -5,7 +5,6 @@ use super::render::{output_exr, publish, Files, RenderOutcome, Work};
 use super::Observer;
 use crate::error::{Error, Result};
 use crate::output::Outputs;
-use crate::scene;
 use crate::shard::file::Opened;
 use crate::shard::{Header, Merge, Partial, Shard};
 use std::path::PathBuf;
@@ -45,7 +44,7 @@ pub fn merge(job: &MergeJob, observer: &dyn Observer) -> Result<RenderOutcome> {
     }
     let first = first.expect("at least one partial");
     let path = first.scene.clone();
-    let (description, settings) = scene::load_description(&path)?;
+    let (description, settings) = crate::import::load_description(&path, &Default::default())?;
     let scene = description.build();
     if Header::new(&scene, &settings, Shard::WHOLE, first.role)?.inputs != first.inputs {
         return Err(Error::Usage(format!(

@@ -4,11 +4,13 @@
 //! stop; each checks every file it will write before any work (see [`crate::output`]) and
 //! what it asks of the machine (see [`crate::resources`]).
 
+mod convert;
 mod merge;
 mod render;
 mod trace;
 mod validate;
 
+pub use convert::{convert, ConvertJob};
 pub use merge::{merge, MergeJob};
 pub use render::{
     render, render_in_memory, shard_partial, Overrides, RenderJob, RenderOutcome, Rendered,

@@ -9,7 +9,7 @@ use crate::output::{Kind, Outputs};
 use crate::photon::Budget;
 use crate::receiver::{self, Measurement};
 use crate::report::Report;
-use crate::scene::{self, Description, Scene};
+use crate::scene::{Description, Scene};
 use crate::settings::{self, Count, Settings};
 use crate::shard::file::Opened;
 use crate::shard::{Header, Partial, Role, Saving, Shard};
@@ -40,6 +40,8 @@ pub struct RenderJob {
     pub shard: Option<Shard>,
     /// Continue the partial a killed or interrupted run of the same job saved.
     pub resume: bool,
+    /// How a scene of another renderer (`.xml`) is read.
+    pub import: crate::import::ImportOptions,
 }
 
 /// Values that replace the scene's `[render]` and `[camera]` keys of the same names; each is
@@ -257,7 +259,7 @@ fn beside(path: &Path, suffix: &str) -> PathBuf {
 /// or interrupted run left. The observer is shown the report line by line; when it asks to
 /// stop, the files hold what was done and the outcome is marked partial.
 pub fn render(job: &RenderJob, observer: &dyn Observer) -> Result<RenderOutcome> {
-    let (mut description, mut settings) = scene::load_description(&job.scene)?;
+    let (mut description, mut settings) = crate::import::load_description(&job.scene, &job.import)?;
     for w in &description.warnings {
         observer.warning(w);
     }

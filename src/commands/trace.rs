@@ -161,7 +161,7 @@ impl TraceControl {
 /// plot draws at most [`PLOT_POINTS`] of them, evenly spread. An interrupt ends the ray where
 /// it is (reason: stopped), its files written up to there.
 pub fn trace(job: &TraceJob, observer: &dyn Observer) -> Result<MarchOutcome> {
-    let (description, _) = crate::scene::load::load_description(&job.scene)?;
+    let (description, _) = crate::import::load_description(&job.scene, &Default::default())?;
     for w in &description.warnings {
         observer.warning(w);
     }

@@ -10,7 +10,7 @@ use crate::receiver;
 use crate::receiver::{Comparison, Measurement};
 use crate::render::Observer;
 use crate::report::Report;
-use crate::scene::{self, Description, Scene};
+use crate::scene::{Description, Scene};
 use crate::settings::Settings;
 use std::path::PathBuf;
 
@@ -45,7 +45,7 @@ pub fn validate(job: &ValidateJob, observer: &dyn Observer) -> Result<()> {
         positive("max_width", w)?;
     }
     let load = || -> Result<(Description, Settings)> {
-        let (s, mut settings) = scene::load_description(&job.scene)?;
+        let (s, mut settings) = crate::import::load_description(&job.scene, &Default::default())?;
         if let Some(n) = job.photons {
             settings.receiver_photons = crate::settings::RECEIVER_PHOTONS
                 .check(n)

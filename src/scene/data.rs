@@ -100,9 +100,16 @@ fn tables(value: &Value) -> Option<impl Iterator<Item = &Table>> {
     }
 }
 
-/// A key as a quoted TOML key (any characters).
+/// A key as TOML writes it: bare where it may be (letters, digits, `_` and `-`), else quoted.
 fn quoted(key: &str) -> String {
-    Value::String(key.to_string()).to_string()
+    let bare = !key.is_empty()
+        && key
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-');
+    match bare {
+        true => key.to_string(),
+        false => Value::String(key.to_string()).to_string(),
+    }
 }
 
 #[cfg(test)]
@@ -131,7 +138,7 @@ mod tests {
         let at = |needle: &str| written.key_at(written.text.find(needle).unwrap());
         assert_eq!(at("ambient"), Some("ambient"));
         assert_eq!(at("[0, 1, 2]"), Some("camera.position"));
-        assert_eq!(at("[[\"medium\"]]"), Some("medium[0]"));
+        assert_eq!(at("[[medium]]"), Some("medium[0]"));
         assert_eq!(at("\"uniform\""), Some("medium[0].profile"));
         assert_eq!(at("albedo"), Some("medium[1].scattering"));
         assert_eq!(

@@ -3,9 +3,10 @@
 use clap::{Parser, Subcommand, ValueEnum};
 use glam::DVec3;
 use grinlight::commands::{
-    MergeJob, Overrides, RayTrace, RenderJob, TraceControl, TraceJob, ValidateJob,
+    ConvertJob, MergeJob, Overrides, RayTrace, RenderJob, TraceControl, TraceJob, ValidateJob,
 };
 use grinlight::curve::StepperKind;
+use grinlight::import::ImportOptions;
 use grinlight::shard::Shard;
 use std::path::PathBuf;
 
@@ -36,7 +37,7 @@ pub enum Control {
 #[derive(Subcommand)]
 pub enum Command {
     /// Render a scene's camera view to a multi-layer EXR and a PNG preview, and measure its
-    /// receivers. Ctrl-C writes what is done so far (marked partial) and exits with 130;
+    /// receivers. A Mitsuba 3 scene (.xml) is converted as `convert` does. Ctrl-C writes what is done so far (marked partial) and exits with 130;
     /// a second Ctrl-C quits at once.
     Render(RenderArgs),
     /// Compare a scene's GRIN fiber with its layered twin (concentric homogeneous cylinders)
@@ -44,9 +45,63 @@ pub enum Command {
     Validate(ValidateArgs),
     /// Trace one ray through a medium of a scene (unbounded) and print where it ends.
     Trace(TraceArgs),
+    /// Convert a Mitsuba 3 scene (.xml) to a grinlight scene file (TOML), to render or to
+    /// edit (add a GRIN medium); what converts only approximately is refused unless
+    /// --approximate, then listed.
+    Convert(ConvertArgs),
     /// Merge the partial results of a render's shards (`render --shard K/N`) into its EXR,
     /// PNG, receiver files and energy budget: bit for bit those of one whole render.
     Merge(MergeArgs),
+}
+
+/// How a scene of another renderer is read (`render`, `convert`).
+#[derive(clap::Args)]
+pub struct ImportArgs {
+    /// Give the scene's parameter $NAME the value VALUE (Mitsuba's -D), before its <default>.
+    #[arg(short = 'D', long = "define", value_name = "NAME=VALUE", value_parser = parse_define)]
+    define: Vec<(String, String)>,
+    /// Convert what converts only approximately (each approximation listed) instead of
+    /// refusing it.
+    #[arg(long)]
+    approximate: bool,
+}
+
+impl From<ImportArgs> for ImportOptions {
+    fn from(a: ImportArgs) -> Self {
+        ImportOptions {
+            defines: a.define,
+            approximate: a.approximate,
+        }
+    }
+}
+
+fn parse_define(s: &str) -> std::result::Result<(String, String), String> {
+    match s.split_once('=') {
+        Some((name, value)) if !name.is_empty() => Ok((name.to_string(), value.to_string())),
+        _ => Err(format!("expected NAME=VALUE, got '{s}'")),
+    }
+}
+
+/// `grinlight convert` options.
+#[derive(clap::Args)]
+pub struct ConvertArgs {
+    /// The Mitsuba 3 scene (.xml).
+    scene: PathBuf,
+    /// The grinlight scene file to write (.toml); it may replace only a file convert wrote.
+    #[arg(short, long)]
+    output: PathBuf,
+    #[command(flatten)]
+    import: ImportArgs,
+}
+
+impl From<ConvertArgs> for ConvertJob {
+    fn from(a: ConvertArgs) -> Self {
+        ConvertJob {
+            scene: a.scene,
+            output: a.output,
+            import: a.import.into(),
+        }
+    }
 }
 
 /// `grinlight merge` options.
@@ -163,8 +218,10 @@ pub struct TraceArgs {
 // A negative number is a value (refused by its range, named), not an unknown option.
 #[command(allow_negative_numbers = true)]
 pub struct RenderArgs {
-    /// Scene file (TOML).
+    /// Scene file: grinlight's TOML, or a Mitsuba 3 scene (.xml).
     scene: PathBuf,
+    #[command(flatten)]
+    import: ImportArgs,
     /// Output EXR, ending in .exr (default: [output] path, else <scene name>.exr here); the
     /// PNG preview and receiver files are written beside it. With --shard: the partial file,
     /// ending in .partial (default: <scene name>.shard-K-of-N.partial here).
@@ -288,6 +345,7 @@ impl From<RenderArgs> for RenderJob {
             paths: a.paths.unwrap_or(0),
             shard: a.shard,
             resume: a.resume,
+            import: a.import.into(),
         }
     }
 }

@@ -21,6 +21,12 @@ fn run(cli: Cli, console: &console::Console) -> Result<bool, Error> {
             commands::trace(&args.into(), console)?;
             !grinlight::interrupt::requested()
         }
+        Command::Convert(args) => {
+            for told in commands::convert(&args.into())? {
+                commands::Observer::warning(console, &told);
+            }
+            true
+        }
         Command::Merge(args) => {
             commands::merge(&args.into(), console)?;
             true

@@ -1,0 +1,112 @@
+#!/usr/bin/env python3
+"""Render the Mitsuba 3 scenes of scenes/mitsuba/ with Mitsuba itself: the references that
+tests/import.rs holds grinlight's renders of the same XML files against.
+
+    python3 bench/mitsuba_import.py [CASE ...] [--runs K] [--spp N] [--grinlight]
+
+For each case (a scene of scenes/mitsuba/ and the values of its parameters: CASES below), K independent Mitsuba renders (seeds 0..K-1, N samples a pixel each, the
+scene's own resolution) are averaged over blocks of 8 × 8 pixels; the block means and their
+standard errors (from the spread of the K runs) are written to
+tests/data/mitsuba/<case>.csv. With --grinlight, grinlight renders the same XML as many times
+(`grinlight render`, its release build) and the script prints a table: image means, their ratio,
+and the largest block z-score |Δ|/√(se₁² + se₂²).
+
+Needs `pip install mitsuba` (3.9.1 wrote the files here), the fast `llvm_ad_rgb` variant:
+`apt-get install libllvm19` and DRJIT_LIBLLVM_PATH set to the `libLLVM-19.so` it installs.
+"""
+import argparse
+import os
+import subprocess
+import tempfile
+
+import numpy as np
+
+BLOCK = 8
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+# Case name -> (scene in scenes/mitsuba/, its $parameters).
+CASES = {
+    "cornell_box": ("cornell_box.xml", {}),
+    # Paths of two segments: direct light alone (grinlight's max_depth 1).
+    "cornell_box_direct": ("cornell_box.xml", {"max_depth": "2"}),
+}
+
+
+def blocks(image):
+    """Block means of an (h, w, 3) image, as (h/B, w/B, 3)."""
+    h, w, _ = image.shape
+    return image[: h - h % BLOCK, : w - w % BLOCK].reshape(h // BLOCK, BLOCK, w // BLOCK, BLOCK, 3).mean(axis=(1, 3))
+
+
+def mitsuba_runs(path, defines, runs, spp):
+    import mitsuba as mi
+
+    mi.set_variant("llvm_ad_rgb")
+    scene = mi.load_file(path, spp=spp, **defines)
+    out = []
+    for k in range(runs):
+        image = np.array(mi.render(scene, seed=k, spp=spp))[:, :, :3].astype(np.float64)
+        out.append(blocks(image))
+    return np.array(out)
+
+
+def grinlight_runs(path, defines, runs, spp):
+    import OpenEXR
+
+    exe = os.path.join(ROOT, "target", "release", "grinlight")
+    out = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for k in range(runs):
+            exr = os.path.join(tmp, f"run{k}.exr")
+            define = [arg for k_v in defines.items() for arg in ("-D", "=".join(k_v))]
+            subprocess.run([exe, "render", path, "-o", exr, "--seed", str(k), "--spp", str(spp)] + define,
+                           check=True, capture_output=True)
+            with OpenEXR.File(exr, separate_channels=True) as f:
+                part = next(p for p in f.parts if p.name() == "beauty")
+                image = np.stack([part.channels[c].pixels for c in "RGB"], axis=-1).astype(np.float64)
+            out.append(blocks(image))
+    return np.array(out)
+
+
+def stats(runs):
+    mean = runs.mean(axis=0)
+    se = runs.std(axis=0, ddof=1) / np.sqrt(len(runs))
+    return mean, se
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("cases", nargs="*", choices=[[]] + list(CASES))
+    ap.add_argument("--runs", type=int, default=16)
+    ap.add_argument("--spp", type=int, default=1024)
+    ap.add_argument("--grinlight", action="store_true")
+    a = ap.parse_args()
+    import mitsuba as mi
+
+    rows = []
+    for name in a.cases or list(CASES):
+        scene, defines = CASES[name]
+        path = os.path.join(ROOT, "scenes", "mitsuba", scene)
+        mean, se = stats(mitsuba_runs(path, defines, a.runs, a.spp))
+        csv = os.path.join(ROOT, "tests", "data", "mitsuba", name + ".csv")
+        with open(csv, "w") as f:
+            given = "".join(f" -D {k}={v}" for k, v in defines.items())
+            f.write(f"# Mitsuba {mi.__version__} llvm_ad_rgb, scenes/mitsuba/{scene}{given}: {a.runs} runs of {a.spp} spp, "
+                    f"means over blocks of {BLOCK}x{BLOCK} pixels and their standard errors (bench/mitsuba_import.py)\n")
+            f.write("bx,by,r,g,b,se_r,se_g,se_b\n")
+            for by in range(mean.shape[0]):
+                for bx in range(mean.shape[1]):
+                    m, s = mean[by, bx], se[by, bx]
+                    f.write(f"{bx},{by},{m[0]:.9g},{m[1]:.9g},{m[2]:.9g},{s[0]:.6g},{s[1]:.6g},{s[2]:.6g}\n")
+        if a.grinlight:
+            gm, gs = stats(grinlight_runs(path, defines, a.runs, a.spp // 4))
+            z = np.abs(gm - mean) / np.sqrt(gs ** 2 + se ** 2 + 1e-300)
+            rows.append((name, mean.mean(), gm.mean(), gm.mean() / mean.mean(), z.max()))
+    if rows:
+        print(f"{'scene':28} {'Mitsuba mean':>13} {'grinlight':>10} {'ratio':>7} {'max |z|':>8}")
+        for r in rows:
+            print(f"{r[0]:28} {r[1]:13.5f} {r[2]:10.5f} {r[3]:7.4f} {r[4]:8.2f}")
+
+
+if __name__ == "__main__":
+    main()

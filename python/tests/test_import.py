@@ -1,0 +1,51 @@
+"""Mitsuba 3 scenes from Python: ``grinlight.load("scene.xml")`` renders what
+``grinlight render scene.xml`` renders; its parameters and approximations are keywords; what
+cannot be converted raises ValueError naming the file and line."""
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import grinlight
+
+ROOT = Path(__file__).resolve().parents[2]
+BOX = ROOT / "scenes" / "mitsuba" / "cornell_box.xml"
+
+
+def test_a_mitsuba_scene_loads_with_its_parameters_and_renders():
+    scene = grinlight.load(BOX, defines={"res": 16, "spp": 2})
+    assert scene.camera == (16, 16)
+    image = scene.render(threads=1)
+    beauty = image["beauty"]
+    assert beauty.shape == (16, 16, 3)
+    assert np.all(np.isfinite(beauty)) and beauty.mean() > 0
+
+
+def test_an_unsupported_element_is_refused_by_line(tmp_path):
+    xml = tmp_path / "s.xml"
+    xml.write_text(
+        '<scene version="3.0.0">\n<sensor type="perspective"><film type="hdrfilm">'
+        '<rfilter type="box"/></film></sensor>\n<shape type="sphere"><bsdf type="principled"/></shape>\n</scene>'
+    )
+    with pytest.raises(ValueError) as e:
+        grinlight.load(xml)
+    assert "s.xml:3:" in str(e.value) and "'principled' is not supported" in str(e.value)
+
+
+def test_an_approximation_is_made_only_when_asked(tmp_path):
+    xml = tmp_path / "s.xml"
+    xml.write_text(
+        '<scene version="3.0.0"><sensor type="perspective"><film type="hdrfilm">'
+        '<integer name="width" value="4"/><integer name="height" value="4"/></film></sensor>'
+        '<emitter type="constant"/></scene>'
+    )
+    with pytest.raises(ValueError, match="--approximate"):
+        grinlight.load(xml)
+    image = grinlight.load(xml, approximate=True).render(spp=1)
+    assert any("approximated" in w and "gaussian" in w for w in image.warnings)
+
+
+def test_defines_belong_to_other_renderers_scenes():
+    with pytest.raises(ValueError, match="other renderers"):
+        grinlight.load(ROOT / "scenes" / "cornell_caustic.toml", defines={"a": 1})

@@ -1,0 +1,1463 @@
+//! Mitsuba 3 scenes (XML, versions 2.x and 3.x) converted to grinlight's scene schema: each
+//! plugin and parameter either converted exactly, approximated (only when asked, each
+//! approximation listed), or refused naming its file, line and element. `docs/import.md`
+//! lists every conversion and its conventions.
+
+pub mod xml;
+
+use crate::error::{cut, Result};
+use glam::{DMat3, DMat4, DVec3};
+use std::collections::HashMap;
+use std::path::PathBuf;
+use std::rc::Rc;
+use toml::{Table, Value as Toml};
+use xml::{Document, Object, Place};
+
+/// A Mitsuba scene as a grinlight scene table.
+pub struct Converted {
+    /// The scene, in the schema of `docs/scene-format.md`.
+    pub table: Table,
+    /// What was approximated (file:line: what), empty unless approximations were allowed.
+    pub approximations: Vec<String>,
+    /// What the user should know though it converts exactly (file:line: what).
+    pub notes: Vec<String>,
+    /// The XML files read.
+    pub files: Vec<PathBuf>,
+}
+
+/// Mitsuba's named indices of refraction (its `ior.h`, read back from Mitsuba 3.9.1).
+const NAMED_IOR: [(&str, f64); 23] = [
+    ("vacuum", 1.0),
+    ("helium", 1.000036),
+    ("hydrogen", 1.000132),
+    ("air", 1.000277),
+    ("carbon dioxide", 1.00045),
+    ("water", 1.3330),
+    ("acetone", 1.36),
+    ("ethanol", 1.361),
+    ("carbon tetrachloride", 1.461),
+    ("glycerol", 1.4729),
+    ("benzene", 1.501),
+    ("silicone oil", 1.52045),
+    ("bromine", 1.661),
+    ("water ice", 1.31),
+    ("fused quartz", 1.458),
+    ("pyrex", 1.470),
+    ("acrylic glass", 1.49),
+    ("polypropylene", 1.49),
+    ("bk7", 1.5046),
+    ("sodium chloride", 1.544),
+    ("amber", 1.55),
+    ("pet", 1.5750),
+    ("diamond", 2.419),
+];
+
+/// Mitsuba's conductors whose measured η + ik grinlight has (from the same handbook data).
+const METALS: [&str; 4] = ["Ag", "Al", "Au", "Cu"];
+
+/// The 35 mm film diagonal Mitsuba turns a `focal_length` into a diagonal field of view with.
+const FILM_DIAGONAL_MM: f64 = 43.266_615_305_567_87;
+
+/// Converts the scene read from `doc`; `approximate` lets what converts only approximately
+/// through (each one listed).
+pub fn convert(doc: &Document, approximate: bool) -> Result<Converted> {
+    let mut c = Converter {
+        doc,
+        approximate,
+        approximations: Vec::new(),
+        notes: Vec::new(),
+        materials: Vec::new(),
+        material_names: HashMap::new(),
+        media: Vec::new(),
+        medium_names: HashMap::new(),
+        shapes: Vec::new(),
+        lights: Vec::new(),
+        environment: None,
+        ambient: None,
+        one_sided: Vec::new(),
+    };
+    let scene = doc.scene.clone();
+    let mut table = Table::new();
+    let sensors = scene.children("sensor");
+    let sensor = match sensors.as_slice() {
+        [one] => one,
+        [] => {
+            return Err(scene.error("the scene has no <sensor>: grinlight renders a camera's view"))
+        }
+        [_, second, ..] => {
+            return Err(second
+                .place
+                .error("a second <sensor>: grinlight renders one camera's view"))
+        }
+    };
+    let mut render = c.sensor(&sensor.object, &mut table)?;
+    c.integrator(&scene, &mut render)?;
+    for child in scene.all_children() {
+        Object::mark(child);
+        match child.object.tag.as_str() {
+            "shape" => c.shape(&child.object)?,
+            "emitter" => c.emitter(&child.object)?,
+            // Converted where shapes, emitters and the sensor refer to them.
+            "bsdf" | "texture" | "medium" | "phase" | "volume" | "sensor" | "integrator" => {}
+            "film" | "sampler" | "rfilter" => {
+                return Err(child.place.error(format!(
+                    "{} belongs inside the <sensor>",
+                    child.object.what()
+                )))
+            }
+            other => {
+                return Err(child
+                    .place
+                    .error(format!("<{}> is not read at the top level", cut(other))))
+            }
+        }
+    }
+    scene.finish()?;
+    if !c.one_sided.is_empty() {
+        let place = scene.place.clone();
+        let list = c.one_sided.join(", ");
+        c.note(
+            &place,
+            format!(
+                "{list}: one-sided in Mitsuba (black from behind), two-sided in grinlight — \
+                 the same wherever only their fronts are seen"
+            ),
+        );
+    }
+    if let Some(env) = c.environment.take() {
+        c.lights.push(env);
+    }
+    if let Some(ambient) = &c.ambient {
+        table.insert("ambient".into(), Toml::String(ambient.clone()));
+    }
+    table.insert("render".into(), Toml::Table(render));
+    for (key, list) in [
+        ("medium", std::mem::take(&mut c.media)),
+        ("material", std::mem::take(&mut c.materials)),
+        ("shape", std::mem::take(&mut c.shapes)),
+        ("light", std::mem::take(&mut c.lights)),
+    ] {
+        if !list.is_empty() {
+            table.insert(
+                key.into(),
+                Toml::Array(list.into_iter().map(Toml::Table).collect()),
+            );
+        }
+    }
+    Ok(Converted {
+        table,
+        approximations: c.approximations,
+        notes: c.notes,
+        files: doc.files.clone(),
+    })
+}
+
+/// What a shape's BSDF became.
+#[derive(Clone)]
+enum Surface {
+    /// A grinlight material, and — a dielectric — the relative index inside.
+    Material { name: String, ior: Option<f64> },
+    /// Mitsuba's `null`: no surface (a medium's boundary only).
+    Null,
+}
+
+struct Converter<'d> {
+    doc: &'d Document,
+    approximate: bool,
+    approximations: Vec<String>,
+    notes: Vec<String>,
+    materials: Vec<Table>,
+    /// Each BSDF object converted, by address (one material however often it is used).
+    material_names: HashMap<*const Object, Surface>,
+    media: Vec<Table>,
+    /// Each medium converted at an index (bits of n), by address.
+    medium_names: HashMap<(*const Object, u64), String>,
+    shapes: Vec<Table>,
+    lights: Vec<Table>,
+    environment: Option<Table>,
+    ambient: Option<String>,
+    /// The BSDFs that are one-sided in Mitsuba (black from behind), two-sided here.
+    one_sided: Vec<String>,
+}
+
+/// A vector as a TOML array.
+fn vec3(v: DVec3) -> Toml {
+    Toml::Array(v.to_array().iter().map(|&x| Toml::Float(x)).collect())
+}
+
+/// A table from key–value pairs.
+fn table<const N: usize>(pairs: [(&str, Toml); N]) -> Table {
+    pairs.into_iter().map(|(k, v)| (k.to_string(), v)).collect()
+}
+
+fn string(s: &str) -> Toml {
+    Toml::String(s.to_string())
+}
+
+/// The linear part of an affine map.
+fn linear(m: &DMat4) -> DMat3 {
+    DMat3::from_mat4(*m)
+}
+
+/// The uniform scale s of a map whose linear part is s times a rotation (None: it shears or
+/// scales unevenly, beyond a relative 1e-6).
+fn similarity(m: &DMat4) -> Option<f64> {
+    let l = linear(m);
+    let s = [l.x_axis.length(), l.y_axis.length(), l.z_axis.length()];
+    let scale = s[0];
+    let even = s.iter().all(|&x| (x - scale).abs() <= 1e-6 * scale);
+    let square = (l.x_axis.dot(l.y_axis).abs()
+        + l.y_axis.dot(l.z_axis).abs()
+        + l.x_axis.dot(l.z_axis).abs())
+        <= 1e-6 * scale * scale;
+    (scale > 0.0 && even && square).then_some(scale)
+}
+
+impl Converter<'_> {
+    /// An approximation: listed if allowed, else refused at `place`.
+    fn approximate(&mut self, place: &Place, what: impl std::fmt::Display) -> Result<()> {
+        if self.approximate {
+            self.approximations.push(format!("{place}: {what}"));
+            Ok(())
+        } else {
+            Err(place.error(format!(
+                "{what} — grinlight cannot convert this exactly; `--approximate` accepts it \
+                 and lists it"
+            )))
+        }
+    }
+
+    fn note(&mut self, place: &Place, what: impl std::fmt::Display) {
+        self.notes.push(format!("{place}: {what}"));
+    }
+
+    /// A colour parameter: an `<rgb>`, a `<float>` or a uniform `<spectrum>` (as Mitsuba's RGB
+    /// variants read them); a texture or a spectrum over wavelength is refused.
+    fn colour(&mut self, obj: &Object, name: &str, default: f64) -> Result<DVec3> {
+        if let Some(child) = obj.named_child(name) {
+            return Err(child.place.error(format!(
+                "{}: a {} as '{name}' is not supported by grinlight's import (give an rgb)",
+                obj.what(),
+                child.object.what()
+            )));
+        }
+        let Some(p) = obj.property(name) else {
+            return Ok(DVec3::splat(default));
+        };
+        match &p.value {
+            xml::Value::Rgb(v) => Ok(*v),
+            xml::Value::Float(x) | xml::Value::UniformSpectrum(x) => Ok(DVec3::splat(*x)),
+            xml::Value::Integer(i) => Ok(DVec3::splat(*i as f64)),
+            xml::Value::SampledSpectrum(s) => Err(p.place.error(format!(
+                "{}: '{name}' is a spectrum over wavelength (\"{}\"); grinlight's import reads \
+                 an rgb or one number",
+                obj.what(),
+                cut(s)
+            ))),
+            other => Err(p.place.error(format!(
+                "{}: '{name}' should be an rgb, a float or a spectrum, got {other:?}",
+                obj.what()
+            ))),
+        }
+    }
+
+    /// A colour parameter that must be 1 (Mitsuba's specular reflectance and transmittance
+    /// factors, which no physical surface has).
+    fn unit_factor(&mut self, obj: &Object, name: &str) -> Result<()> {
+        let f = self.colour(obj, name, 1.0)?;
+        if f != DVec3::ONE {
+            let place = obj
+                .property(name)
+                .map_or(obj.place.clone(), |p| p.place.clone());
+            return Err(place.error(format!(
+                "{}: '{name}' = {:?}: grinlight's surfaces have no such factor (only 1 is read)",
+                obj.what(),
+                f.to_array()
+            )));
+        }
+        Ok(())
+    }
+
+    /// An index of refraction: a number or one of Mitsuba's names.
+    fn ior(&mut self, obj: &Object, name: &str, default: &str) -> Result<f64> {
+        if let Some(x) = obj.float(name).ok().flatten() {
+            return Ok(x);
+        }
+        let given = obj.string(name)?.unwrap_or(default).to_string();
+        let named = NAMED_IOR
+            .iter()
+            .find(|(n, _)| n.eq_ignore_ascii_case(&given))
+            .map(|&(_, n)| n);
+        named.ok_or_else(|| {
+            let names: Vec<&str> = NAMED_IOR.iter().map(|(n, _)| *n).collect();
+            obj.error(format!(
+                "'{name}' = \"{}\" is none of Mitsuba's named indices ({})",
+                cut(&given),
+                names.join(", ")
+            ))
+        })
+    }
+
+    /// GGX α from `alpha` (or equal `alpha_u`, `alpha_v`), `distribution` GGX (Beckmann only
+    /// approximately).
+    fn roughness(&mut self, obj: &Object) -> Result<f64> {
+        let distribution = obj
+            .string("distribution")?
+            .unwrap_or("beckmann")
+            .to_string();
+        obj.ignore("sample_visible");
+        let alpha = match (obj.float("alpha_u")?, obj.float("alpha_v")?) {
+            (Some(u), Some(v)) if u == v => u,
+            (Some(_), Some(_)) => {
+                return Err(
+                    obj.error("an anisotropic roughness (alpha_u ≠ alpha_v) is not supported")
+                )
+            }
+            _ => obj.float_or("alpha", 0.1)?,
+        };
+        match distribution.as_str() {
+            "ggx" => {}
+            "beckmann" => {
+                let place = obj.place.clone();
+                self.approximate(
+                    &place,
+                    format!(
+                        "{}: a Beckmann microfacet distribution (Mitsuba's default) taken as \
+                         GGX of the same α",
+                        obj.what()
+                    ),
+                )?;
+            }
+            other => return Err(obj.error(format!("unknown distribution '{}'", cut(other)))),
+        }
+        if !(0.0..=1.0).contains(&alpha) {
+            return Err(obj.error(format!("alpha = {alpha} is outside grinlight's [0, 1]")));
+        }
+        Ok(alpha)
+    }
+
+    /// The material a BSDF becomes (each BSDF object once).
+    fn bsdf(&mut self, bsdf: &Rc<Object>) -> Result<Surface> {
+        let key = Rc::as_ptr(bsdf);
+        if let Some(s) = self.material_names.get(&key) {
+            return Ok(s.clone());
+        }
+        let (two_sided, inner) =
+            match bsdf.kind.as_str() {
+                "twosided" => {
+                    let inner = bsdf.children("bsdf");
+                    match inner.as_slice() {
+                        [one] => (true, one.object.clone()),
+                        _ => return Err(bsdf.error(
+                            "a twosided BSDF with two different sides is not supported (give one \
+                             nested BSDF)",
+                        )),
+                    }
+                }
+                _ => (false, bsdf.clone()),
+            };
+        if two_sided {
+            bsdf.finish()?;
+        }
+        let surface = self.material(&inner, two_sided, bsdf.id.as_deref())?;
+        self.material_names.insert(key, surface.clone());
+        Ok(surface)
+    }
+
+    fn material(&mut self, b: &Object, two_sided: bool, id: Option<&str>) -> Result<Surface> {
+        let one_sided = |c: &mut Self| {
+            if !two_sided {
+                c.one_sided.push(b.what());
+            }
+        };
+        let (kind, mut m, ior) = match b.kind.as_str() {
+            "null" => {
+                b.finish()?;
+                return Ok(Surface::Null);
+            }
+            "diffuse" => {
+                one_sided(self);
+                let albedo = self.colour(b, "reflectance", 0.5)?;
+                ("diffuse", table([("albedo", vec3(albedo))]), None)
+            }
+            "dielectric" | "roughdielectric" => {
+                let eta = self.ior(b, "int_ior", "bk7")? / self.ior(b, "ext_ior", "air")?;
+                self.unit_factor(b, "specular_reflectance")?;
+                self.unit_factor(b, "specular_transmittance")?;
+                let mut m = table([("ior", Toml::Float(eta))]);
+                if b.kind == "roughdielectric" {
+                    m.insert("roughness".into(), Toml::Float(self.roughness(b)?));
+                }
+                ("dielectric", m, Some(eta))
+            }
+            "conductor" | "roughconductor" => {
+                one_sided(self);
+                self.unit_factor(b, "specular_reflectance")?;
+                let mut m = match (b.has("eta"), b.has("k")) {
+                    (true, true) => table([
+                        ("eta", vec3(self.colour(b, "eta", 0.0)?)),
+                        ("k", vec3(self.colour(b, "k", 0.0)?)),
+                    ]),
+                    (false, false) => {
+                        let name = b.string("material")?.unwrap_or("none").to_string();
+                        let metal = match name.as_str() {
+                            "none" => "perfect",
+                            n if METALS.contains(&n) => n,
+                            other => {
+                                return Err(b.error(format!(
+                                    "material '{}': grinlight has the measured metals {} (and \
+                                     'none', a perfect mirror); give eta and k",
+                                    cut(other),
+                                    METALS.join(", ")
+                                )))
+                            }
+                        };
+                        table([("metal", string(metal))])
+                    }
+                    _ => return Err(b.error("give both eta and k, or neither")),
+                };
+                if b.kind == "roughconductor" {
+                    m.insert("roughness".into(), Toml::Float(self.roughness(b)?));
+                }
+                ("conductor", m, None)
+            }
+            "plastic" | "roughplastic" => {
+                one_sided(self);
+                let albedo = self.colour(b, "diffuse_reflectance", 0.5)?;
+                self.unit_factor(b, "specular_reflectance")?;
+                let eta =
+                    self.ior(b, "int_ior", "polypropylene")? / self.ior(b, "ext_ior", "air")?;
+                // grinlight's plastic keeps the light scattered between the base and the
+                // coat's inner side, ρ/(1 − ρ F̄ᵢ): Mitsuba's `nonlinear = true`.
+                if !b.boolean_or("nonlinear", false)? {
+                    let place = b.place.clone();
+                    self.approximate(
+                        &place,
+                        format!(
+                            "{}: Mitsuba's linear base (nonlinear = false, its default) taken as \
+                             grinlight's, which keeps the light scattered between base and \
+                             coat (as nonlinear = true)",
+                            b.what()
+                        ),
+                    )?;
+                }
+                let roughness = match b.kind.as_str() {
+                    "roughplastic" => self.roughness(b)?.max(1e-3),
+                    _ => {
+                        let place = b.place.clone();
+                        self.approximate(
+                            &place,
+                            format!(
+                                "{}: a smooth coat taken as GGX α = 0.001, grinlight's smoothest",
+                                b.what()
+                            ),
+                        )?;
+                        1e-3
+                    }
+                };
+                (
+                    "plastic",
+                    table([
+                        ("albedo", vec3(albedo)),
+                        ("ior", Toml::Float(eta)),
+                        ("roughness", Toml::Float(roughness)),
+                    ]),
+                    None,
+                )
+            }
+            other => {
+                return Err(b.error(format!(
+                    "the BSDF '{}' is not supported by grinlight's import (diffuse, \
+                     dielectric, roughdielectric, conductor, roughconductor, plastic, \
+                     roughplastic, twosided, null are)",
+                    cut(other)
+                )))
+            }
+        };
+        b.finish()?;
+        let name = self.unique_material_name(id.or(b.id.as_deref()));
+        m.insert("name".into(), string(&name));
+        m.insert("type".into(), string(kind));
+        self.materials.push(m);
+        Ok(Surface::Material { name, ior })
+    }
+
+    fn unique_material_name(&self, id: Option<&str>) -> String {
+        let taken = |n: &str| {
+            self.materials
+                .iter()
+                .any(|m| m.get("name").and_then(Toml::as_str) == Some(n))
+        };
+        let base = id.unwrap_or("bsdf").to_string();
+        if id.is_some() && !taken(&base) {
+            return base;
+        }
+        (1..)
+            .map(|i| format!("{base}-{i}"))
+            .find(|n| !taken(n))
+            .expect("a free name")
+    }
+
+    /// The grinlight medium a Mitsuba medium becomes at (relative) index `n`.
+    fn medium(&mut self, medium: &Rc<Object>, n: f64) -> Result<String> {
+        let key = (Rc::as_ptr(medium), n.to_bits());
+        if let Some(name) = self.medium_names.get(&key) {
+            return Ok(name.clone());
+        }
+        if medium.kind != "homogeneous" {
+            return Err(medium.error(format!(
+                "the medium '{}' is not supported by grinlight's import (homogeneous is)",
+                cut(&medium.kind)
+            )));
+        }
+        let scale = medium.float_or("scale", 1.0)?;
+        let sigma_t = self.colour(medium, "sigma_t", 1.0)? * scale;
+        let albedo = self.colour(medium, "albedo", 0.75)?;
+        medium.ignore("sample_emitters");
+        let sigma_a = sigma_t * (DVec3::ONE - albedo);
+        let sigma_s = sigma_t * albedo;
+        if (sigma_a.max_element() - sigma_a.min_element()) > 1e-9 * sigma_a.max_element() {
+            return Err(medium.error(format!(
+                "an absorption σt(1 − albedo) = {:?} that differs by channel: grinlight's \
+                 absorption is one number",
+                sigma_a.to_array()
+            )));
+        }
+        let mut m = table([("profile", string("uniform")), ("n", Toml::Float(n))]);
+        if sigma_a.x > 0.0 {
+            m.insert("absorption".into(), Toml::Float(sigma_a.x));
+        }
+        if sigma_s.max_element() > 0.0 {
+            m.insert("scattering".into(), vec3(sigma_s));
+            if let Some(phase) = medium.child("phase")? {
+                let p = &phase.object;
+                match p.kind.as_str() {
+                    "isotropic" => {}
+                    "hg" => {
+                        let g = p.float_or("g", 0.8)?;
+                        m.insert("phase".into(), Toml::Table(table([("hg", Toml::Float(g))])));
+                    }
+                    other => {
+                        return Err(p.error(format!(
+                            "the phase function '{}' is not supported (isotropic and hg are)",
+                            cut(other)
+                        )))
+                    }
+                }
+                p.finish()?;
+            }
+        } else {
+            medium.children("phase");
+        }
+        medium.finish()?;
+        let base = medium.id.clone().unwrap_or_else(|| "medium".into());
+        let taken = |name: &str, media: &[Table]| {
+            media
+                .iter()
+                .any(|t| t.get("name").and_then(Toml::as_str) == Some(name))
+        };
+        let name = if !taken(&base, &self.media) && medium.id.is_some() {
+            base
+        } else {
+            (1..)
+                .map(|i| format!("{base}-{i}"))
+                .find(|x| !taken(x, &self.media))
+                .expect("a free name")
+        };
+        m.insert("name".into(), string(&name));
+        self.media.push(m);
+        self.medium_names.insert(key, name.clone());
+        Ok(name)
+    }
+
+    /// The camera (`[camera]` into `out`) and the sampler's settings (the `[render]` table
+    /// returned).
+    fn sensor(&mut self, s: &Object, out: &mut Table) -> Result<Table> {
+        let thin_lens = match s.kind.as_str() {
+            "perspective" => false,
+            "thinlens" => true,
+            other => {
+                return Err(s.error(format!(
+                    "the sensor '{}' is not supported (perspective and thinlens are)",
+                    cut(other)
+                )))
+            }
+        };
+        let m = s.transform("to_world")?;
+        let origin = m.transform_point3(DVec3::ZERO);
+        let l = linear(&m);
+        let (left, up, dir) = (l.x_axis, l.y_axis, l.z_axis);
+        let Some(_) = similarity(&m) else {
+            return Err(s.error(
+                "to_world scales unevenly or shears: a camera's frame is turned and moved only",
+            ));
+        };
+        if left.dot(up.cross(dir)) <= 0.0 {
+            return Err(s.error("to_world mirrors the camera (its x axis is not up × forward): grinlight does not render mirrored images"));
+        }
+        let film = s.child("film")?.map(|c| c.object.clone());
+        let (width, height) = match &film {
+            Some(f) => self.film(f)?,
+            None => (768, 576),
+        };
+        let (w, h) = (width as f64, height as f64);
+        // Mitsuba's field of view on its axis, turned into the horizontal one.
+        let tan_half_x = |fov_deg: f64, axis: &str| -> Option<f64> {
+            let t = (0.5 * fov_deg.to_radians()).tan();
+            match axis {
+                "x" => Some(t),
+                "y" => Some(t * w / h),
+                "diagonal" => Some(t * w / (w * w + h * h).sqrt()),
+                "smaller" => Some(if w <= h { t } else { t * w / h }),
+                "larger" => Some(if w >= h { t } else { t * w / h }),
+                _ => None,
+            }
+        };
+        let axis = s.string("fov_axis")?.unwrap_or("x").to_string();
+        let tan_x = match (s.float("fov")?, s.string("focal_length")?) {
+            (Some(_), Some(_)) => return Err(s.error("give fov or focal_length, not both")),
+            (Some(fov), None) => tan_half_x(fov, &axis),
+            (None, focal) => {
+                let text = focal.unwrap_or("50mm");
+                let mm = text
+                    .trim()
+                    .trim_end_matches("mm")
+                    .trim()
+                    .parse::<f64>()
+                    .ok()
+                    .filter(|f| *f > 0.0 && f.is_finite())
+                    .ok_or_else(|| {
+                        s.error(format!(
+                            "focal_length \"{}\" is not a length in mm",
+                            cut(text)
+                        ))
+                    })?;
+                let diagonal = 2.0 * (FILM_DIAGONAL_MM / (2.0 * mm)).atan().to_degrees();
+                tan_half_x(diagonal, "diagonal")
+            }
+        }
+        .ok_or_else(|| {
+            s.error(format!(
+                "fov_axis '{}' is none of x, y, diagonal, smaller, larger",
+                cut(&axis)
+            ))
+        })?;
+        let fov_x = 2.0 * tan_x.atan().to_degrees();
+        for clip in ["near_clip", "far_clip"] {
+            if s.float(clip)?.is_some() {
+                let place = s.place.clone();
+                self.note(&place, format!("{clip} read past: grinlight does not clip"));
+            }
+        }
+        let mut camera = table([
+            ("position", vec3(origin)),
+            ("look_at", vec3(origin + dir.normalize())),
+            ("up", vec3(up.normalize())),
+            ("width", Toml::Integer(width)),
+            ("height", Toml::Integer(height)),
+            ("fov_x_deg", Toml::Float(fov_x)),
+        ]);
+        if thin_lens {
+            camera.insert(
+                "aperture_radius".into(),
+                Toml::Float(s.float_or("aperture_radius", 0.03)?),
+            );
+            camera.insert(
+                "focus_distance".into(),
+                Toml::Float(s.float_or("focus_distance", 0.0)?),
+            );
+        }
+        if let Some(medium) = s.named_child("medium").or(s.child("medium")?) {
+            // The camera's medium: grinlight finds it from the camera's position; a medium no
+            // shape holds fills the space around them.
+            let name = self.medium(&medium.object.clone(), 1.0)?;
+            self.ambient = Some(name);
+        }
+        let mut render = Table::new();
+        if let Some(sampler) = s.child("sampler")? {
+            let sampler = &sampler.object;
+            let spp = sampler.integer_or("sample_count", 4)?;
+            if spp < 1 {
+                return Err(sampler.error("sample_count must be ≥ 1"));
+            }
+            render.insert("spp".into(), Toml::Integer(spp));
+            render.insert(
+                "seed".into(),
+                Toml::Integer(sampler.integer_or("seed", 0)?.max(0)),
+            );
+            // The pattern of the points changes the noise, not what they estimate.
+            for name in ["jitter", "scramble_seed"] {
+                sampler.ignore(name);
+            }
+            sampler.finish()?;
+        } else {
+            render.insert("spp".into(), Toml::Integer(4));
+        }
+        if let Some(f) = &film {
+            f.finish()?;
+        }
+        s.finish()?;
+        out.insert("camera".into(), Toml::Table(camera));
+        Ok(render)
+    }
+
+    /// The film's size; its pixel filter must be a box (others only approximately).
+    fn film(&mut self, f: &Object) -> Result<(i64, i64)> {
+        if f.kind != "hdrfilm" {
+            return Err(f.error(format!(
+                "the film '{}' is not supported (hdrfilm is)",
+                cut(&f.kind)
+            )));
+        }
+        let width = f.integer_or("width", 768)?;
+        let height = f.integer_or("height", 576)?;
+        if !(1..=65536).contains(&width) || !(1..=65536).contains(&height) {
+            return Err(f.error(format!(
+                "{width}×{height} pixels: each side must be 1…65536"
+            )));
+        }
+        // How the image is stored, not what it holds.
+        for name in ["pixel_format", "component_format", "file_format"] {
+            f.ignore(name);
+        }
+        let filter = f.child("rfilter")?.map(|c| c.object.clone());
+        let kind = filter
+            .as_ref()
+            .map_or("gaussian".to_string(), |r| r.kind.clone());
+        if kind != "box" {
+            let place = filter.as_ref().map_or(f.place.clone(), |r| r.place.clone());
+            self.approximate(
+                &place,
+                format!(
+                    "the pixel filter '{kind}'{} taken as a box (grinlight's pixels are \
+                     box-filtered: the image is a little sharper)",
+                    if filter.is_none() {
+                        " (Mitsuba's default)"
+                    } else {
+                        ""
+                    }
+                ),
+            )?;
+            if let Some(r) = &filter {
+                r.ignore("stddev");
+                r.ignore("radius");
+                r.ignore("B");
+                r.ignore("C");
+                r.ignore("lobes");
+            }
+        }
+        if let Some(r) = &filter {
+            r.finish()?;
+        }
+        Ok((width, height))
+    }
+
+    /// `[render] integrator` and `max_depth` from the `<integrator>`.
+    fn integrator(&mut self, scene: &Object, render: &mut Table) -> Result<()> {
+        render.insert("integrator".into(), string("path"));
+        let Some(child) = scene.child("integrator")? else {
+            return Ok(());
+        };
+        let mut i = child.object.clone();
+        while matches!(i.kind.as_str(), "moment" | "aov") {
+            if i.kind == "aov" {
+                i.ignore("aovs");
+                let place = i.place.clone();
+                self.note(&place, "<integrator type=\"aov\">: its AOVs are not written (grinlight writes albedo and normal layers)");
+            }
+            let inner = i.child("integrator")?.map(|c| c.object.clone());
+            i.finish()?;
+            i = inner.ok_or_else(|| i.error("holds no <integrator>"))?;
+        }
+        match i.kind.as_str() {
+            "path" | "volpath" | "volpathmis" | "ptracer" => {}
+            other => {
+                return Err(i.error(format!(
+                    "the integrator '{}' is not supported (path, volpath, volpathmis and \
+                     ptracer are, as grinlight's path tracer)",
+                    cut(other)
+                )))
+            }
+        }
+        let depth = i.integer_or("max_depth", -1)?;
+        match depth {
+            -1 => {}
+            // Mitsuba counts a path's segments; grinlight the scattering events between.
+            d if d >= 2 => {
+                render.insert("max_depth".into(), Toml::Integer(d - 1));
+            }
+            d => {
+                return Err(i.error(format!(
+                    "max_depth = {d}: grinlight renders paths with at least one scattering \
+                     (Mitsuba's max_depth ≥ 2, or -1)"
+                )))
+            }
+        }
+        // Russian roulette and a pass's size change the noise, not the estimate.
+        for name in ["rr_depth", "samples_per_pass"] {
+            i.ignore(name);
+        }
+        if i.boolean_or("hide_emitters", false)? {
+            return Err(i.error("hide_emitters = true is not supported"));
+        }
+        i.finish()?;
+        Ok(())
+    }
+
+    /// The emitter nested in a shape, if any.
+    fn area_radiance(&mut self, shape: &Object) -> Result<Option<(DVec3, Place)>> {
+        let Some(e) = shape.child("emitter")? else {
+            return Ok(None);
+        };
+        let e = e.object.clone();
+        if e.kind != "area" {
+            return Err(e.error("a shape's emitter must be 'area'"));
+        }
+        let radiance = self.colour(&e, "radiance", 1.0)?;
+        e.finish()?;
+        Ok(Some((radiance, e.place.clone())))
+    }
+
+    fn shape(&mut self, shape: &Rc<Object>) -> Result<()> {
+        let m = shape.transform("to_world")?;
+        let flip = shape.boolean_or("flip_normals", false)?;
+        let emitting = self.area_radiance(shape)?;
+        let bsdf = shape.child("bsdf")?.map(|c| c.object.clone());
+        let interior = Self::medium_child(shape, "interior")?;
+        let exterior = Self::medium_child(shape, "exterior")?;
+        if let Some((radiance, place)) = emitting {
+            // grinlight's area lights reflect nothing: exact only for a black surface.
+            let black = match &bsdf {
+                None => false,
+                Some(b) => {
+                    let inner = match b.kind.as_str() {
+                        "twosided" => b.children("bsdf").first().map(|c| c.object.clone()),
+                        _ => Some(b.clone()),
+                    };
+                    inner.is_some_and(|i| {
+                        i.kind == "diffuse"
+                            && self.colour(&i, "reflectance", 0.5).ok() == Some(DVec3::ZERO)
+                    })
+                }
+            };
+            if !black {
+                self.approximate(
+                    &place,
+                    format!(
+                        "{}'s surface reflects light in Mitsuba; grinlight's area lights \
+                         reflect nothing (exact for a black diffuse BSDF)",
+                        shape.what()
+                    ),
+                )?;
+            }
+            let quad = self.emitting_quad(shape, &m, flip)?;
+            shape.finish()?;
+            let light = match quad {
+                Emitting::Quad(v) => table([
+                    ("type", string("quad")),
+                    ("vertices", Toml::Array(v.into_iter().map(vec3).collect())),
+                    ("radiance", vec3(radiance)),
+                ]),
+                Emitting::Disk {
+                    center,
+                    normal,
+                    radius,
+                } => table([
+                    ("type", string("disk")),
+                    ("center", vec3(center)),
+                    ("normal", vec3(normal)),
+                    ("radius", Toml::Float(radius)),
+                    ("radiance", vec3(radiance)),
+                ]),
+            };
+            self.lights.push(light);
+            return Ok(());
+        }
+        let surface = match &bsdf {
+            Some(b) => self.bsdf(b)?,
+            None => self.default_diffuse(),
+        };
+        let mut out = Table::new();
+        match (&surface, &interior) {
+            (Surface::Null, None) => {
+                let place = shape.place.clone();
+                self.note(
+                    &place,
+                    format!(
+                        "{} has a null BSDF and no medium: it is invisible, left out",
+                        shape.what()
+                    ),
+                );
+                self.geometry(shape, &m, flip)?;
+                shape.finish()?;
+                return Ok(());
+            }
+            (Surface::Null, Some(medium)) => {
+                // An index-matched boundary: a dielectric of index 1 around the medium.
+                let name = self.medium(medium, 1.0)?;
+                out.insert("material".into(), string(&self.index_matched()));
+                out.insert("interior".into(), string(&name));
+            }
+            (Surface::Material { name, ior }, medium) => {
+                out.insert("material".into(), string(name));
+                match (ior, medium) {
+                    (Some(eta), Some(medium)) => {
+                        let inside = self.medium(medium, *eta)?;
+                        out.insert("interior".into(), string(&inside));
+                    }
+                    (None, Some(medium)) => {
+                        return Err(medium.error(format!(
+                            "is the interior of {}, whose BSDF lets no light in",
+                            shape.what()
+                        )))
+                    }
+                    (_, None) => {}
+                }
+            }
+        }
+        if let Some(medium) = &exterior {
+            let name = self.medium(medium, 1.0)?;
+            if self.ambient.as_deref() != Some(name.as_str()) {
+                out.insert("exterior".into(), string(&name));
+            }
+        }
+        for (k, v) in self.geometry(shape, &m, flip)? {
+            out.insert(k, v);
+        }
+        shape.finish()?;
+        self.push_shape(out);
+        Ok(())
+    }
+
+    /// A shape table: a parallelepiped cube becomes six quads sharing its keys.
+    fn push_shape(&mut self, mut out: Table) {
+        if let Some(Toml::Array(faces)) = out.remove("faces") {
+            for face in faces {
+                let mut quad = out.clone();
+                quad.insert("type".into(), string("quad"));
+                quad.insert("vertices".into(), face);
+                self.shapes.push(quad);
+            }
+        } else {
+            self.shapes.push(out);
+        }
+    }
+
+    fn medium_child(shape: &Object, name: &str) -> Result<Option<Rc<Object>>> {
+        match shape.named_child(name) {
+            None => Ok(None),
+            Some(c) if c.object.tag == "medium" => Ok(Some(c.object.clone())),
+            Some(c) => Err(c.place.error(format!("'{name}' should be a <medium>"))),
+        }
+    }
+
+    /// Mitsuba's default BSDF, diffuse with reflectance 0.5.
+    fn default_diffuse(&mut self) -> Surface {
+        let name = "default-diffuse";
+        if !self
+            .materials
+            .iter()
+            .any(|m| m.get("name").and_then(Toml::as_str) == Some(name))
+        {
+            self.materials.push(table([
+                ("name", string(name)),
+                ("type", string("diffuse")),
+                ("albedo", vec3(DVec3::splat(0.5))),
+            ]));
+        }
+        Surface::Material {
+            name: name.into(),
+            ior: None,
+        }
+    }
+
+    /// A dielectric of relative index 1: the boundary of a medium behind a null BSDF.
+    fn index_matched(&mut self) -> String {
+        let name = "index-matched";
+        if !self
+            .materials
+            .iter()
+            .any(|m| m.get("name").and_then(Toml::as_str) == Some(name))
+        {
+            self.materials.push(table([
+                ("name", string(name)),
+                ("type", string("dielectric")),
+                ("ior", Toml::Float(1.0)),
+            ]));
+        }
+        name.into()
+    }
+
+    /// The geometry keys of a shape.
+    fn geometry(&mut self, shape: &Object, m: &DMat4, flip: bool) -> Result<Table> {
+        let refuse_flip = |what: &str| -> Result<()> {
+            match flip {
+                true => Err(shape.error(format!("flip_normals on a {what} is not supported"))),
+                false => Ok(()),
+            }
+        };
+        Ok(match shape.kind.as_str() {
+            "obj" | "ply" => {
+                refuse_flip("mesh")?;
+                let file = self.mesh_file(shape)?;
+                // Mitsuba interpolates vertex normals (the file's or its own) unless told not to.
+                let smooth = !shape.boolean_or("face_normals", false)?;
+                shape.ignore("flip_tex_coords");
+                let mut t = table([
+                    ("type", string("mesh")),
+                    ("file", string(&file.to_string_lossy())),
+                    ("smooth", Toml::Boolean(smooth)),
+                ]);
+                if *m != DMat4::IDENTITY {
+                    let rows = m.transpose().to_cols_array();
+                    t.insert(
+                        "matrix".into(),
+                        Toml::Array(rows[..12].iter().map(|&x| Toml::Float(x)).collect()),
+                    );
+                }
+                t
+            }
+            "sphere" => {
+                refuse_flip("sphere")?;
+                let center = shape.vector("center")?.unwrap_or(DVec3::ZERO);
+                let radius = shape.float_or("radius", 1.0)?;
+                let s = similarity(m).ok_or_else(|| {
+                    shape.error("to_world scales unevenly or shears: an ellipsoid is not supported")
+                })?;
+                table([
+                    ("type", string("sphere")),
+                    ("center", vec3(m.transform_point3(center))),
+                    ("radius", Toml::Float(radius * s)),
+                ])
+            }
+            "rectangle" => table([
+                ("type", string("quad")),
+                (
+                    "vertices",
+                    Toml::Array(rectangle(m, flip).into_iter().map(vec3).collect()),
+                ),
+            ]),
+            "disk" => {
+                let (center, normal, radius) = disk(shape, m, flip)?;
+                table([
+                    ("type", string("disk")),
+                    ("center", vec3(center)),
+                    ("normal", vec3(normal)),
+                    ("radius", Toml::Float(radius)),
+                ])
+            }
+            "cube" => {
+                refuse_flip("cube")?;
+                let l = linear(m);
+                let diagonal = l.x_axis.y == 0.0
+                    && l.x_axis.z == 0.0
+                    && l.y_axis.x == 0.0
+                    && l.y_axis.z == 0.0
+                    && l.z_axis.x == 0.0
+                    && l.z_axis.y == 0.0;
+                if diagonal {
+                    let (a, b) = (
+                        m.transform_point3(DVec3::NEG_ONE),
+                        m.transform_point3(DVec3::ONE),
+                    );
+                    table([
+                        ("type", string("box")),
+                        ("min", vec3(a.min(b))),
+                        ("max", vec3(a.max(b))),
+                    ])
+                } else {
+                    if l.determinant() == 0.0 {
+                        return Err(shape.error("to_world flattens the cube"));
+                    }
+                    table([(
+                        "faces",
+                        Toml::Array(
+                            cube_faces(m)
+                                .into_iter()
+                                .map(|f| Toml::Array(f.into_iter().map(vec3).collect()))
+                                .collect(),
+                        ),
+                    )])
+                }
+            }
+            "cylinder" => {
+                refuse_flip("cylinder")?;
+                let p0 = shape.vector("p0")?.unwrap_or(DVec3::ZERO);
+                let p1 = shape.vector("p1")?.unwrap_or(DVec3::Z);
+                let radius = shape.float_or("radius", 1.0)?;
+                let s = similarity(m).ok_or_else(|| {
+                    shape.error(
+                        "to_world scales unevenly or shears: an elliptic cylinder is not supported",
+                    )
+                })?;
+                let (a, b) = (m.transform_point3(p0), m.transform_point3(p1));
+                let axis = (b - a)
+                    .try_normalize()
+                    .ok_or_else(|| shape.error("p0 = p1"))?;
+                table([
+                    ("type", string("cylinder")),
+                    ("base", vec3(a)),
+                    ("axis", vec3(axis)),
+                    ("radius", Toml::Float(radius * s)),
+                    ("height", Toml::Float((b - a).length())),
+                    // Mitsuba's cylinder is a tube without caps.
+                    ("capped", Toml::Boolean(false)),
+                ])
+            }
+            other => {
+                return Err(shape.error(format!(
+                    "the shape '{}' is not supported by grinlight's import (obj, ply, sphere, \
+                     rectangle, disk, cube, cylinder are)",
+                    cut(other)
+                )))
+            }
+        })
+    }
+
+    fn mesh_file(&mut self, shape: &Object) -> Result<PathBuf> {
+        let name = shape
+            .string("filename")?
+            .ok_or_else(|| shape.error("has no filename"))?
+            .to_string();
+        let extension = std::path::Path::new(&name)
+            .extension()
+            .map(|e| e.to_string_lossy().to_ascii_lowercase());
+        if extension.as_deref() != Some(shape.kind.as_str()) {
+            return Err(shape.error(format!(
+                "filename '{}' should end in .{}",
+                cut(&name),
+                shape.kind
+            )));
+        }
+        let path = self.doc.find(&name, &shape.place)?;
+        Ok(std::fs::canonicalize(&path).unwrap_or(path))
+    }
+
+    /// The light an emitting shape becomes: a rectangle, a disk, or a mesh that is one
+    /// parallelogram (two triangles).
+    fn emitting_quad(&mut self, shape: &Object, m: &DMat4, flip: bool) -> Result<Emitting> {
+        match shape.kind.as_str() {
+            "rectangle" => Ok(Emitting::Quad(rectangle(m, flip))),
+            "disk" => {
+                let (center, normal, radius) = disk(shape, m, flip)?;
+                Ok(Emitting::Disk {
+                    center,
+                    normal,
+                    radius,
+                })
+            }
+            "obj" | "ply" => {
+                let path = self.mesh_file(shape)?;
+                shape.ignore("face_normals");
+                shape.ignore("flip_tex_coords");
+                let mesh = match shape.kind.as_str() {
+                    "ply" => crate::scene::ply::load_ply(&path),
+                    _ => crate::scene::mesh::load_triangles(&path),
+                }
+                .map_err(|e| shape.error(e))?;
+                let corner = |i: u32| {
+                    m.transform_point3(DVec3::from(mesh.positions[i as usize].map(f64::from)))
+                };
+                let quad = match mesh.triangles.as_slice() {
+                    [a, b] => parallelogram([a.map(corner), b.map(corner)], flip),
+                    _ => None,
+                };
+                quad.map(Emitting::Quad).ok_or_else(|| {
+                    shape.error(format!(
+                        "an area emitter on a mesh of {} triangles: grinlight's area lights are \
+                         parallelograms and disks (a mesh of two triangles forming one is read)",
+                        mesh.triangles.len()
+                    ))
+                })
+            }
+            other => Err(shape.error(format!(
+                "an area emitter on a '{}': grinlight's area lights are rectangles, disks and \
+                 two-triangle parallelogram meshes",
+                cut(other)
+            ))),
+        }
+    }
+
+    /// A top-level emitter.
+    fn emitter(&mut self, e: &Rc<Object>) -> Result<()> {
+        let m = e.transform("to_world")?;
+        let light = match e.kind.as_str() {
+            "point" => {
+                let position = match e.vector("position")? {
+                    Some(p) => p,
+                    None => m.transform_point3(DVec3::ZERO),
+                };
+                table([
+                    ("type", string("point")),
+                    ("position", vec3(position)),
+                    ("intensity", vec3(self.colour(e, "intensity", 1.0)?)),
+                ])
+            }
+            "spot" => {
+                let cutoff = e.float_or("cutoff_angle", 20.0)?;
+                let beam = e.float_or("beam_width", 0.75 * cutoff)?;
+                if beam < cutoff {
+                    let place = e.place.clone();
+                    self.approximate(
+                        &place,
+                        "the spot's falloff, linear in angle from beam_width to cutoff_angle in \
+                         Mitsuba, taken as grinlight's smooth step in cos θ between them",
+                    )?;
+                }
+                table([
+                    ("type", string("spot")),
+                    ("position", vec3(m.transform_point3(DVec3::ZERO))),
+                    ("direction", vec3(m.transform_vector3(DVec3::Z).normalize())),
+                    ("intensity", vec3(self.colour(e, "intensity", 1.0)?)),
+                    ("cone_deg", Toml::Float(cutoff)),
+                    ("falloff_deg", Toml::Float(beam.min(cutoff))),
+                ])
+            }
+            "directional" => {
+                let direction = match e.vector("direction")? {
+                    Some(d) => d,
+                    None => m.transform_vector3(DVec3::Z),
+                };
+                let direction = direction
+                    .try_normalize()
+                    .ok_or_else(|| e.error("the direction is zero"))?;
+                table([
+                    ("type", string("directional")),
+                    ("direction", vec3(direction)),
+                    ("irradiance", vec3(self.colour(e, "irradiance", 1.0)?)),
+                ])
+            }
+            "constant" => {
+                let radiance = self.colour(e, "radiance", 1.0)?;
+                e.finish()?;
+                return self.set_environment(
+                    e,
+                    table([
+                        ("type", string("environment")),
+                        ("sky", string("uniform")),
+                        ("radiance", vec3(radiance)),
+                    ]),
+                );
+            }
+            "envmap" => {
+                let name = e
+                    .string("filename")?
+                    .ok_or_else(|| e.error("has no filename"))?
+                    .to_string();
+                let ext = std::path::Path::new(&name)
+                    .extension()
+                    .map(|x| x.to_string_lossy().to_ascii_lowercase());
+                if !matches!(ext.as_deref(), Some("exr") | Some("hdr")) {
+                    return Err(e.error(format!(
+                        "'{}': grinlight's environment maps are EXR or HDR files",
+                        cut(&name)
+                    )));
+                }
+                let path = self.doc.find(&name, &e.place)?;
+                let scale = e.float_or("scale", 1.0)?;
+                // Mitsuba's map has +z at its centre and grinlight's −z: half a turn about +y,
+                // then the map's own turn about +y (any other turn is refused).
+                let l = linear(&m);
+                let about_y = (l.y_axis - DVec3::Y).length() < 1e-9
+                    && l.x_axis.y.abs() < 1e-9
+                    && l.z_axis.y.abs() < 1e-9
+                    && similarity(&m).is_some_and(|s| (s - 1.0).abs() < 1e-9);
+                if !about_y {
+                    return Err(e.error(
+                        "to_world turns the map about an axis other than +y: not supported",
+                    ));
+                }
+                let turn = l.z_axis.x.atan2(l.z_axis.z).to_degrees();
+                e.ignore("filter_type");
+                e.finish()?;
+                let path = std::fs::canonicalize(&path).unwrap_or(path);
+                return self.set_environment(
+                    e,
+                    table([
+                        ("type", string("environment")),
+                        ("file", string(&path.to_string_lossy())),
+                        ("rotation_deg", Toml::Float(180.0 + turn)),
+                        ("scale", Toml::Float(scale)),
+                    ]),
+                );
+            }
+            other => {
+                return Err(e.error(format!(
+                    "the emitter '{}' is not supported by grinlight's import (point, spot, \
+                     directional, constant, envmap, and area on a shape are)",
+                    cut(other)
+                )))
+            }
+        };
+        e.finish()?;
+        self.lights.push(light);
+        Ok(())
+    }
+
+    fn set_environment(&mut self, e: &Object, env: Table) -> Result<()> {
+        if self.environment.is_some() {
+            return Err(
+                e.error("a second environment emitter (constant or envmap): grinlight has one")
+            );
+        }
+        self.environment = Some(env);
+        Ok(())
+    }
+}
+
+/// An emitting shape as a grinlight area light.
+enum Emitting {
+    Quad([DVec3; 4]),
+    Disk {
+        center: DVec3,
+        normal: DVec3,
+        radius: f64,
+    },
+}
+
+/// Mitsuba's rectangle [−1, 1]² at z = 0 (normal +z) placed by `m`: v0..v3 with the normal
+/// (v1 − v0) × (v3 − v0), reversed when flipped.
+fn rectangle(m: &DMat4, flip: bool) -> [DVec3; 4] {
+    let p = |x: f64, y: f64| m.transform_point3(DVec3::new(x, y, 0.0));
+    let v = [p(-1.0, -1.0), p(1.0, -1.0), p(1.0, 1.0), p(-1.0, 1.0)];
+    // Mitsuba's normal is +z through the inverse transpose; the corners' cross product is
+    // that times the determinant, so a mirroring map reverses the order as a flip does.
+    let mirrored = linear(m).determinant() < 0.0;
+    match flip != mirrored {
+        false => v,
+        true => [v[0], v[3], v[2], v[1]],
+    }
+}
+
+/// Mitsuba's unit disk at z = 0 (normal +z) placed by `m`: its centre, normal and radius (the
+/// map must keep it round).
+fn disk(shape: &Object, m: &DMat4, flip: bool) -> Result<(DVec3, DVec3, f64)> {
+    let l = linear(m);
+    let (a, b) = (l.x_axis, l.y_axis);
+    let round = (a.length() - b.length()).abs() <= 1e-6 * a.length()
+        && a.dot(b).abs() <= 1e-6 * a.length_squared();
+    if !round || a.length() == 0.0 {
+        return Err(shape.error("to_world makes the disk an ellipse: not supported"));
+    }
+    // Mitsuba's normal: +z through the inverse transpose.
+    let normal = (l.inverse().transpose() * DVec3::Z).normalize();
+    Ok((
+        m.transform_point3(DVec3::ZERO),
+        if flip { -normal } else { normal },
+        a.length(),
+    ))
+}
+
+/// The four corners of two triangles that form one parallelogram, ordered v0..v3 around it
+/// with its normal on the triangles' side (the other side if flipped).
+fn parallelogram(triangles: [[DVec3; 3]; 2], flip: bool) -> Option<[DVec3; 4]> {
+    let [t, u] = triangles;
+    let normal = (t[1] - t[0]).cross(t[2] - t[0]);
+    let scale = normal.length().sqrt();
+    let same = |p: DVec3, q: DVec3| (p - q).length() <= 1e-9 * scale.max(1e-300);
+    // The corner of u not in t.
+    let far = u.into_iter().find(|p| !t.iter().any(|q| same(*p, *q)))?;
+    if u.iter().filter(|p| t.iter().any(|q| same(**p, *q))).count() != 2 {
+        return None;
+    }
+    // The corner of t opposite the shared edge: the one u lacks.
+    let i = (0..3).find(|&i| !u.iter().any(|p| same(*p, t[i])))?;
+    let (v0, v1, v3) = (t[i], t[(i + 1) % 3], t[(i + 2) % 3]);
+    let v2 = far;
+    if !same(v1 + v3 - v0, v2) {
+        return None;
+    }
+    let order = [v0, v1, v2, v3];
+    let along = (v1 - v0).cross(v3 - v0).dot(normal) > 0.0;
+    let order = if along != flip {
+        order
+    } else {
+        [v0, v3, v2, v1]
+    };
+    // Both triangles must face the same way.
+    let agree = (u[1] - u[0]).cross(u[2] - u[0]).dot(normal) > 0.0;
+    agree.then_some(order)
+}
+
+/// Mitsuba's cube [−1, 1]³ placed by `m` as six parallelograms, normals outward.
+fn cube_faces(m: &DMat4) -> Vec<[DVec3; 4]> {
+    let p = |x: f64, y: f64, z: f64| m.transform_point3(DVec3::new(x, y, z));
+    // Each face: corners counterclockwise seen from outside the unit cube.
+    let mut faces = vec![
+        [
+            p(1., -1., -1.),
+            p(1., 1., -1.),
+            p(1., 1., 1.),
+            p(1., -1., 1.),
+        ],
+        [
+            p(-1., -1., -1.),
+            p(-1., -1., 1.),
+            p(-1., 1., 1.),
+            p(-1., 1., -1.),
+        ],
+        [
+            p(-1., 1., -1.),
+            p(-1., 1., 1.),
+            p(1., 1., 1.),
+            p(1., 1., -1.),
+        ],
+        [
+            p(-1., -1., -1.),
+            p(1., -1., -1.),
+            p(1., -1., 1.),
+            p(-1., -1., 1.),
+        ],
+        [
+            p(-1., -1., 1.),
+            p(1., -1., 1.),
+            p(1., 1., 1.),
+            p(-1., 1., 1.),
+        ],
+        [
+            p(-1., -1., -1.),
+            p(-1., 1., -1.),
+            p(1., 1., -1.),
+            p(1., -1., -1.),
+        ],
+    ];
+    if linear(m).determinant() < 0.0 {
+        for f in &mut faces {
+            *f = [f[0], f[3], f[2], f[1]];
+        }
+    }
+    faces
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cube_faces_face_outward() {
+        for m in [
+            DMat4::IDENTITY,
+            DMat4::from_scale(DVec3::new(-1.0, 2.0, 1.0)),
+            DMat4::from_axis_angle(DVec3::new(1.0, 2.0, 3.0).normalize(), 0.7),
+        ] {
+            let centre = m.transform_point3(DVec3::ZERO);
+            for f in cube_faces(&m) {
+                let n = (f[1] - f[0]).cross(f[3] - f[0]);
+                let mid = 0.25 * (f[0] + f[1] + f[2] + f[3]);
+                assert!(n.dot(mid - centre) > 0.0);
+                assert!((f[1] + f[3] - f[0] - f[2]).length() < 1e-12);
+            }
+        }
+    }
+
+    #[test]
+    fn a_split_quad_is_found_whichever_diagonal_and_order() {
+        let v = [DVec3::ZERO, DVec3::X, DVec3::new(1.0, 0.0, 1.0), DVec3::Z];
+        // Normal (x) × (z) = −y.
+        let q = parallelogram([[v[0], v[1], v[2]], [v[0], v[2], v[3]]], false).unwrap();
+        assert!((q[1] - q[0]).cross(q[3] - q[0]).dot(DVec3::NEG_Y) > 0.0);
+        let q = parallelogram([[v[1], v[2], v[3]], [v[3], v[0], v[1]]], true).unwrap();
+        assert!((q[1] - q[0]).cross(q[3] - q[0]).dot(DVec3::Y) > 0.0);
+        assert!(parallelogram([[v[0], v[1], v[2]], [v[0], v[1], DVec3::Y]], false).is_none());
+    }
+}

@@ -1,0 +1,137 @@
+//! Scenes written for other renderers, brought in: a Mitsuba 3 XML scene ([`mitsuba`])
+//! converted to grinlight's scene schema and read as any scene is — rendered as it is
+//! (`grinlight render scene.xml`) or written out as a grinlight scene file (`grinlight
+//! convert`) to which a GRIN medium can be added. What cannot be converted exactly is refused
+//! by file, line and element, or — asked for — approximated and listed.
+
+pub mod mitsuba;
+
+use crate::error::{Error, Result};
+use crate::scene::Description;
+use crate::settings::Settings;
+use std::path::{Path, PathBuf};
+
+/// How a scene written for another renderer is read.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ImportOptions {
+    /// Values of the scene's `$name` parameters (Mitsuba's `-D name=value`), before its
+    /// `<default>`s.
+    pub defines: Vec<(String, String)>,
+    /// Convert what converts only approximately (each approximation listed) instead of
+    /// refusing it.
+    pub approximate: bool,
+}
+
+/// The format of a scene file, from its extension.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Format {
+    /// grinlight's own TOML.
+    Grinlight,
+    /// Mitsuba 3's XML (`.xml`).
+    Mitsuba,
+}
+
+impl Format {
+    /// The format of `path`: Mitsuba for `.xml`, else grinlight's.
+    pub fn of(path: &Path) -> Format {
+        match path.extension().and_then(|e| e.to_str()) {
+            Some(e) if e.eq_ignore_ascii_case("xml") => Format::Mitsuba,
+            _ => Format::Grinlight,
+        }
+    }
+}
+
+/// A scene of another format, converted: its grinlight scene table and what the user should
+/// be told (approximations first).
+pub struct Imported {
+    /// The scene as grinlight's schema.
+    pub table: toml::Table,
+    /// Each approximation made (file:line: what).
+    pub approximations: Vec<String>,
+    /// What converts exactly but differs in a way worth knowing (file:line: what).
+    pub notes: Vec<String>,
+    /// The files of the scene read.
+    pub files: Vec<PathBuf>,
+}
+
+/// Converts the scene `path` (not grinlight's own format) to a grinlight scene table.
+pub fn import(path: &Path, options: &ImportOptions) -> Result<Imported> {
+    match Format::of(path) {
+        Format::Mitsuba => {
+            let doc = mitsuba::xml::read(path, &options.defines)?;
+            let c = mitsuba::convert(&doc, options.approximate)?;
+            Ok(Imported {
+                table: c.table,
+                approximations: c.approximations,
+                notes: c.notes,
+                files: c.files,
+            })
+        }
+        Format::Grinlight => Err(Error::Usage(format!(
+            "{}: a grinlight scene needs no conversion",
+            path.display()
+        ))),
+    }
+}
+
+/// Reads any scene file: grinlight's own, or another renderer's converted. The files an
+/// imported scene read are among the description's inputs (no output may replace them); its
+/// approximations and notes are among its warnings.
+pub fn load_description(path: &Path, options: &ImportOptions) -> Result<(Description, Settings)> {
+    match Format::of(path) {
+        Format::Grinlight => {
+            if *options != ImportOptions::default() {
+                return Err(Error::Usage(format!(
+                    "{}: -D and --approximate apply to scenes of other renderers (.xml), not to \
+                     a grinlight scene",
+                    path.display()
+                )));
+            }
+            crate::scene::load_description(path)
+        }
+        Format::Mitsuba => {
+            let imported = import(path, options)?;
+            let dir = path.parent().unwrap_or(Path::new("."));
+            // The converted table's own errors (a value grinlight refuses) name its key.
+            let (mut description, settings) = crate::scene::parse_data(&imported.table, dir)
+                .map_err(|e| match e {
+                    Error::Key { key, message } => Error::Key {
+                        key: format!("{} as converted, {key}", path.display()),
+                        message,
+                    },
+                    other => other,
+                })?;
+            description.inputs.extend(imported.files);
+            let told = imported
+                .approximations
+                .iter()
+                .map(|a| format!("approximated: {a}"))
+                .chain(imported.notes);
+            description.warnings.splice(0..0, told);
+            Ok((description, settings))
+        }
+    }
+}
+
+impl Imported {
+    /// The grinlight scene file equivalent to the scene read from `source`: a header naming
+    /// where it came from and each approximation and note, then the scene (mesh and image
+    /// files referenced by absolute path).
+    pub fn to_toml(&self, source: &Path) -> String {
+        let mut text = format!(
+            "{}{} from {}.\n",
+            crate::output::CONVERTED,
+            env!("CARGO_PKG_VERSION"),
+            source.display()
+        );
+        for a in &self.approximations {
+            text.push_str(&format!("# approximated: {a}\n"));
+        }
+        for n in &self.notes {
+            text.push_str(&format!("# note: {n}\n"));
+        }
+        text.push('\n');
+        text.push_str(&crate::scene::data::SceneText::write(&self.table).text);
+        text
+    }
+}
