@@ -299,8 +299,20 @@ impl Converter<'_> {
     }
 
     /// GGX α from `alpha` (or equal `alpha_u`, `alpha_v`), `distribution` GGX (Beckmann only
-    /// approximately).
+    /// approximately). The masking differs by model, said in a note: Mitsuba's is the
+    /// separable Smith G₁(ωi)G₁(ωo), grinlight's the height-correlated one (and its rough
+    /// dielectric keeps every order of scattering on the microsurface).
     fn roughness(&mut self, obj: &Object) -> Result<f64> {
+        let place = obj.place.clone();
+        self.note(
+            &place,
+            format!(
+                "{}: grinlight's microfacet model masks with correlated heights (Mitsuba: \
+                 separable) and a rough dielectric scatters on its microsurface more than once \
+                 (Mitsuba: once): grazing highlights differ by a few percent",
+                obj.what()
+            ),
+        );
         let distribution = obj
             .string("distribution")?
             .unwrap_or("beckmann")
@@ -915,6 +927,20 @@ impl Converter<'_> {
                 }
             }
         }
+        if let (Some(ambient), None) = (&self.ambient, &exterior) {
+            // Mitsuba's ray leaving this surface outward is in the medium it names there:
+            // none, vacuum — where grinlight's goes on in the medium around the camera.
+            let (ambient, place) = (ambient.clone(), shape.place.clone());
+            self.approximate(
+                &place,
+                format!(
+                    "{} names no exterior medium: Mitsuba's light leaves it in vacuum, \
+                     grinlight's in '{ambient}', the sensor's medium (give it <ref \
+                     name=\"exterior\" id=\"...\"/> to make the two agree)",
+                    shape.what()
+                ),
+            )?;
+        }
         if let Some(medium) = &exterior {
             let name = self.medium(medium, 1.0)?;
             if self.ambient.as_deref() != Some(name.as_str()) {
@@ -1268,7 +1294,13 @@ impl Converter<'_> {
                     ));
                 }
                 let turn = l.z_axis.x.atan2(l.z_axis.z).to_degrees();
-                e.ignore("filter_type");
+                // grinlight's map is constant over each pixel; Mitsuba interpolates it.
+                let place = e.place.clone();
+                self.approximate(
+                    &place,
+                    "the map, interpolated bilinearly between pixel centres by Mitsuba, taken \
+                     as grinlight's, constant over each pixel",
+                )?;
                 e.finish()?;
                 let path = std::fs::canonicalize(&path).unwrap_or(path);
                 return self.set_environment(
