@@ -34,6 +34,8 @@ CASES = {
     # A mirror ball, a diffuse ball, an environment map turned about +y, a directional light.
     # (Its map is interpolated by Mitsuba, constant over each pixel in grinlight: --approximate.)
     "spheres_envmap": ("spheres_envmap.xml", {}),
+    # An image texture on a rectangle and on an OBJ quad.
+    "textures": ("textures.xml", {}),
 }
 
 

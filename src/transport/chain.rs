@@ -547,13 +547,17 @@ impl<'w> Walker<'w> {
         observer: &mut dyn ChainEvents,
     ) -> ControlFlow<End<'w>> {
         let scene = self.tracer.scene;
-        if self.depth == 0 {
+        // A chain that may meet nothing more still goes as far as its next event: light it
+        // reaches there (an emitter, the sky) counts, as a path of max_depth interactions
+        // and one more segment to the light; an interaction there is cut.
+        let exhausted = self.depth == 0;
+        let cut = |lent: &mut Lent<R>| {
             lent.stats.depth_limited += 1;
-            return ControlFlow::Break(End::DepthLimit);
-        }
-        self.depth -= 1;
+            ControlFlow::Break(End::DepthLimit)
+        };
+        self.depth = self.depth.saturating_sub(1);
         let met = self.tracer.settings.max_depth.saturating_sub(self.depth);
-        if self.policy == Policy::Weighted && met > ROULETTE_AFTER {
+        if self.policy == Policy::Weighted && !exhausted && met > ROULETTE_AFTER {
             if lent.rng.gen::<f64>() >= ROULETTE_SURVIVAL {
                 return ControlFlow::Break(End::Absorbed { medium: None });
             }
@@ -593,6 +597,7 @@ impl<'w> Walker<'w> {
                 chain.n_end = self.tracer.index(at.medium, position).unwrap_or(1.0);
                 return ControlFlow::Break(End::Escaped { direction });
             }
+            Event::Reached { .. } if exhausted => return cut(lent),
             Event::Reached {
                 position,
                 direction,
@@ -625,6 +630,7 @@ impl<'w> Walker<'w> {
                     direction: hit.incoming,
                 })
             }
+            Role::Detector(_) | Role::Scatter(_) if exhausted => cut(lent),
             Role::Detector(receiver) => {
                 if observer
                     .detector(receiver, hit.position, chain.weight)

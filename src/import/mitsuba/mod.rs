@@ -155,8 +155,13 @@ pub fn convert(doc: &Document, approximate: bool) -> Result<Converted> {
 /// What a shape's BSDF became.
 #[derive(Clone)]
 enum Surface {
-    /// A grinlight material, and — a dielectric — the relative index inside.
-    Material { name: String, ior: Option<f64> },
+    /// A grinlight material; a dielectric's relative index inside; whether an image
+    /// texture colours it (Mitsuba's (u, v) must then be the shape's in grinlight).
+    Material {
+        name: String,
+        ior: Option<f64>,
+        textured: bool,
+    },
     /// Mitsuba's `null`: no surface (a medium's boundary only).
     Null,
 }
@@ -259,6 +264,53 @@ impl Converter<'_> {
                 obj.what()
             ))),
         }
+    }
+
+    /// A diffuse colour: `albedo` from an RGB (Mitsuba's default 0.5), or `texture` from a
+    /// `bitmap` (an sRGB PNG or JPEG, bilinear and repeating as grinlight's textures are).
+    fn albedo(&mut self, b: &Object, name: &str) -> Result<Table> {
+        let Some(child) = b.named_child(name) else {
+            return Ok(table([("albedo", vec3(self.colour(b, name, 0.5)?))]));
+        };
+        let tex = child.object.clone();
+        if tex.tag != "texture" || tex.kind != "bitmap" {
+            return Err(tex.error(format!(
+                "as '{name}': grinlight's import reads an rgb or a bitmap texture"
+            )));
+        }
+        let file = tex
+            .string("filename")?
+            .ok_or_else(|| tex.error("has no filename"))?
+            .to_string();
+        let ext = std::path::Path::new(&file)
+            .extension()
+            .map(|x| x.to_string_lossy().to_ascii_lowercase());
+        if !matches!(ext.as_deref(), Some("png") | Some("jpg") | Some("jpeg")) {
+            return Err(tex.error(format!(
+                "'{}': grinlight's textures are sRGB PNG or JPEG images",
+                cut(&file)
+            )));
+        }
+        let path = self.doc.find(&file, &tex.place)?;
+        let path = std::fs::canonicalize(&path).unwrap_or(path);
+        if tex.boolean_or("raw", false)? {
+            return Err(tex.error("raw = true: grinlight decodes a texture's sRGB"));
+        }
+        let filter = tex.string("filter_type")?.unwrap_or("bilinear").to_string();
+        let wrap = tex.string("wrap_mode")?.unwrap_or("repeat").to_string();
+        if filter != "bilinear" || wrap != "repeat" {
+            return Err(tex.error(format!(
+                "filter_type '{}' and wrap_mode '{}': grinlight's textures are bilinear and \
+                 repeating",
+                cut(&filter),
+                cut(&wrap)
+            )));
+        }
+        if tex.transform("to_uv")? != DMat4::IDENTITY {
+            return Err(tex.error("a to_uv transform is not supported"));
+        }
+        tex.finish()?;
+        Ok(table([("texture", string(&path.to_string_lossy()))]))
     }
 
     /// A colour parameter that must be 1 (Mitsuba's specular reflectance and transmittance
@@ -389,8 +441,7 @@ impl Converter<'_> {
             }
             "diffuse" => {
                 one_sided(self);
-                let albedo = self.colour(b, "reflectance", 0.5)?;
-                ("diffuse", table([("albedo", vec3(albedo))]), None)
+                ("diffuse", self.albedo(b, "reflectance")?, None)
             }
             "dielectric" | "roughdielectric" => {
                 let eta = self.ior(b, "int_ior", "bk7")? / self.ior(b, "ext_ior", "air")?;
@@ -435,7 +486,7 @@ impl Converter<'_> {
             }
             "plastic" | "roughplastic" => {
                 one_sided(self);
-                let albedo = self.colour(b, "diffuse_reflectance", 0.5)?;
+                let mut base = self.albedo(b, "diffuse_reflectance")?;
                 self.unit_factor(b, "specular_reflectance")?;
                 let eta =
                     self.ior(b, "int_ior", "polypropylene")? / self.ior(b, "ext_ior", "air")?;
@@ -467,15 +518,9 @@ impl Converter<'_> {
                         1e-3
                     }
                 };
-                (
-                    "plastic",
-                    table([
-                        ("albedo", vec3(albedo)),
-                        ("ior", Toml::Float(eta)),
-                        ("roughness", Toml::Float(roughness)),
-                    ]),
-                    None,
-                )
+                base.insert("ior".into(), Toml::Float(eta));
+                base.insert("roughness".into(), Toml::Float(roughness));
+                ("plastic", base, None)
             }
             other => {
                 return Err(b.error(format!(
@@ -487,11 +532,16 @@ impl Converter<'_> {
             }
         };
         b.finish()?;
+        let textured = m.contains_key("texture");
         let name = self.unique_material_name(id.or(b.id.as_deref()));
         m.insert("name".into(), string(&name));
         m.insert("type".into(), string(kind));
         self.materials.push(m);
-        Ok(Surface::Material { name, ior })
+        Ok(Surface::Material {
+            name,
+            ior,
+            textured,
+        })
     }
 
     fn unique_material_name(&self, id: Option<&str>) -> String {
@@ -900,7 +950,7 @@ impl Converter<'_> {
                         shape.what()
                     ),
                 );
-                self.geometry(shape, &m, flip)?;
+                self.geometry(shape, &m, flip, false)?;
                 shape.finish()?;
                 return Ok(());
             }
@@ -910,7 +960,7 @@ impl Converter<'_> {
                 out.insert("material".into(), string(&self.index_matched()));
                 out.insert("interior".into(), string(&name));
             }
-            (Surface::Material { name, ior }, medium) => {
+            (Surface::Material { name, ior, .. }, medium) => {
                 out.insert("material".into(), string(name));
                 match (ior, medium) {
                     (Some(eta), Some(medium)) => {
@@ -947,7 +997,8 @@ impl Converter<'_> {
                 out.insert("exterior".into(), string(&name));
             }
         }
-        for (k, v) in self.geometry(shape, &m, flip)? {
+        let textured = matches!(surface, Surface::Material { textured: true, .. });
+        for (k, v) in self.geometry(shape, &m, flip, textured)? {
             out.insert(k, v);
         }
         shape.finish()?;
@@ -994,6 +1045,7 @@ impl Converter<'_> {
         Surface::Material {
             name: name.into(),
             ior: None,
+            textured: false,
         }
     }
 
@@ -1014,8 +1066,15 @@ impl Converter<'_> {
         name.into()
     }
 
-    /// The geometry keys of a shape.
-    fn geometry(&mut self, shape: &Object, m: &DMat4, flip: bool) -> Result<Table> {
+    /// The geometry keys of a shape; `textured`: its material has an image texture, looked up
+    /// at the shape's (u, v), which must then be Mitsuba's.
+    fn geometry(&mut self, shape: &Object, m: &DMat4, flip: bool, textured: bool) -> Result<Table> {
+        if textured && !matches!(shape.kind.as_str(), "rectangle" | "obj") {
+            return Err(shape.error(
+                "a texture on this shape: its (u, v) in Mitsuba are not grinlight's (textures \
+                 are read on rectangles and OBJ meshes)",
+            ));
+        }
         let refuse_flip = |what: &str| -> Result<()> {
             match flip {
                 true => Err(shape.error(format!("flip_normals on a {what} is not supported"))),
@@ -1028,7 +1087,16 @@ impl Converter<'_> {
                 let file = self.mesh_file(shape)?;
                 // Mitsuba interpolates vertex normals (the file's or its own) unless told not to.
                 let smooth = !shape.boolean_or("face_normals", false)?;
-                shape.ignore("flip_tex_coords");
+                // Mitsuba turns an OBJ's v upside down by default, which makes its image rows
+                // grinlight's (v from the bottom row up).
+                let flip_v = shape.boolean_or("flip_tex_coords", true)?;
+                if textured && !(shape.kind == "obj" && flip_v) {
+                    return Err(shape.error(
+                        "a texture on a mesh whose (u, v) Mitsuba reads unflipped: grinlight \
+                         reads an OBJ's v from the image's bottom row up (flip_tex_coords = \
+                         true)",
+                    ));
+                }
                 let mut t = table([
                     ("type", string("mesh")),
                     ("file", string(&file.to_string_lossy())),
@@ -1056,13 +1124,25 @@ impl Converter<'_> {
                     ("radius", Toml::Float(radius * s)),
                 ])
             }
-            "rectangle" => table([
-                ("type", string("quad")),
-                (
-                    "vertices",
-                    Toml::Array(rectangle(m, flip).into_iter().map(vec3).collect()),
-                ),
-            ]),
+            "rectangle" => {
+                // Mitsuba's image row is v from the top, grinlight's from the bottom: a textured
+                // quad starts at the rectangle's (−1, 1) corner, so that its v is 1 − Mitsuba's
+                // (its normal turns over, which no two-sided textured surface minds).
+                let corners = match textured {
+                    true => {
+                        let p = |x: f64, y: f64| m.transform_point3(DVec3::new(x, y, 0.0));
+                        [p(-1.0, 1.0), p(1.0, 1.0), p(1.0, -1.0), p(-1.0, -1.0)]
+                    }
+                    false => rectangle(m, flip),
+                };
+                table([
+                    ("type", string("quad")),
+                    (
+                        "vertices",
+                        Toml::Array(corners.into_iter().map(vec3).collect()),
+                    ),
+                ])
+            }
             "disk" => {
                 let (center, normal, radius) = disk(shape, m, flip)?;
                 table([
