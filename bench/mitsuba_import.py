@@ -8,7 +8,7 @@ For each case (a scene of scenes/mitsuba/ and the values of its parameters: CASE
 scene's own resolution) are averaged over blocks of 8 × 8 pixels; the block means and their
 standard errors (from the spread of the K runs) are written to
 tests/data/mitsuba/<case>.csv. With --grinlight, grinlight renders the same XML as many times
-(`grinlight render --approximate`, its release build) and the script prints a table: image means, their ratio,
+(`grinlight render`, its release build) and the script prints a table: image means, their ratio,
 and the largest block z-score |Δ|/√(se₁² + se₂²).
 
 Needs `pip install mitsuba` (3.9.1 wrote the files here), the fast `llvm_ad_rgb` variant:
@@ -32,7 +32,6 @@ CASES = {
     # Fog, a spot light in it, a glass ball of denser fog (volpath).
     "cornell_fog": ("cornell_fog.xml", {}),
     # A mirror ball, a diffuse ball, an environment map turned about +y, a directional light.
-    # (Its map is interpolated by Mitsuba, constant over each pixel in grinlight: --approximate.)
     "spheres_envmap": ("spheres_envmap.xml", {}),
     # An image texture on a rectangle and on an OBJ quad.
     "textures": ("textures.xml", {}),
@@ -66,7 +65,7 @@ def grinlight_runs(path, defines, runs, spp):
         for k in range(runs):
             exr = os.path.join(tmp, f"run{k}.exr")
             define = [arg for k_v in defines.items() for arg in ("-D", "=".join(k_v))]
-            subprocess.run([exe, "render", path, "-o", exr, "--seed", str(k), "--spp", str(spp), "--approximate"] + define,
+            subprocess.run([exe, "render", path, "-o", exr, "--seed", str(k), "--spp", str(spp)] + define,
                            check=True, capture_output=True)
             with OpenEXR.File(exr, separate_channels=True) as f:
                 part = next(p for p in f.parts if p.name() == "beauty")

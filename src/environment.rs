@@ -19,6 +19,8 @@ pub enum Sky {
         height: usize,
         /// Pixels.
         pixels: Vec<[f32; 3]>,
+        /// How radiance between the pixels is read.
+        filter: ImageFilter,
     },
     /// Random stars on black, deterministic in `seed` (about 2 stars per square degree on
     /// average, denser toward the poles where lat-long cells are smaller).
@@ -38,6 +40,17 @@ pub enum Sky {
     },
 }
 
+/// How an environment image is read between its pixels.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ImageFilter {
+    /// Constant over each pixel (pixel (i, j) covers u ∈ [i/W, (i+1)/W), v ∈ [j/H, (j+1)/H)).
+    #[default]
+    Nearest,
+    /// Bilinear as Mitsuba 3's `envmap` reads its map: columns at the pixel centres
+    /// u = (i + ½)/W, wrapping around; rows from pole to pole, row j at v = j/(H − 1).
+    Bilinear,
+}
+
 /// An environment: a sky, turned and scaled.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Environment {
@@ -47,6 +60,40 @@ pub struct Environment {
     pub rotation: f64,
     /// Radiance multiplier.
     pub scale: f64,
+}
+
+/// An environment image's radiance at (u, v) ∈ [0, 1]², read by `filter`.
+fn image_radiance(
+    pixels: &[[f32; 3]],
+    width: usize,
+    height: usize,
+    filter: ImageFilter,
+    u: f64,
+    v: f64,
+) -> Rgb {
+    let at = |x: usize, y: usize| {
+        let p = pixels[y * width + x];
+        Rgb::new(p[0] as f64, p[1] as f64, p[2] as f64)
+    };
+    match filter {
+        ImageFilter::Nearest => {
+            let x = ((u * width as f64) as usize).min(width - 1);
+            let y = ((v * height as f64) as usize).min(height - 1);
+            at(x, y)
+        }
+        ImageFilter::Bilinear => {
+            let x = (u - 0.5 / width as f64).rem_euclid(1.0) * width as f64;
+            let y = v * (height.max(2) - 1) as f64;
+            let (x0, y0) = (
+                (x as usize).min(width - 1),
+                (y as usize).min(height.saturating_sub(2)),
+            );
+            let (fx, fy) = (x - x0 as f64, y - y0 as f64);
+            let (x1, y1) = ((x0 + 1) % width, (y0 + 1).min(height - 1));
+            let row = |y: usize| at(x0, y) * (1.0 - fx) + at(x1, y) * fx;
+            row(y0) * (1.0 - fy) + row(y1) * fy
+        }
+    }
 }
 
 /// Star cells per 2π of longitude (cell ≈ 0.18°) and the chance that a cell holds a star.
@@ -69,12 +116,8 @@ impl Environment {
                     width,
                     height,
                     pixels,
-                } => {
-                    let x = ((u * *width as f64) as usize).min(width - 1);
-                    let y = ((v * *height as f64) as usize).min(height - 1);
-                    let p = pixels[y * width + x];
-                    Rgb::new(p[0] as f64, p[1] as f64, p[2] as f64)
-                }
+                    filter,
+                } => image_radiance(pixels, *width, *height, *filter, u, v),
                 Sky::Starfield { seed } => starfield(*seed, d, u, v),
                 Sky::Checker { squares } => {
                     let n = *squares as f64;
@@ -170,4 +213,39 @@ fn starfield(seed: u64, d: DVec3, u: f64, v: f64) -> Rgb {
         }
     }
     sum
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bilinear_reads_pixels_at_their_centres_and_wraps_around() {
+        // 4 × 3 pixels, each its own value: (x + 10 y).
+        let pixels: Vec<[f32; 3]> = (0..12)
+            .map(|i| [((i % 4) + 10 * (i / 4)) as f32; 3])
+            .collect();
+        let read = |u: f64, v: f64| {
+            image_radiance(&pixels, 4, 3, ImageFilter::Bilinear, u, v)
+                .0
+                .x
+        };
+        // Column i at u = (i + ½)/4; row j at v = j/2 (pole to pole).
+        assert_eq!(read(0.375, 0.0), 1.0);
+        assert_eq!(read(0.375, 0.5), 11.0);
+        assert_eq!(read(0.375, 1.0), 21.0);
+        // Halfway between columns 1 and 2, and between rows 0 and 1.
+        assert_eq!(read(0.5, 0.25), 6.5);
+        // Across the seam: halfway between the last column and the first.
+        assert_eq!(read(0.0, 0.0), 1.5);
+        assert_eq!(read(1.0, 0.0), 1.5);
+        // Nearest: constant over each pixel.
+        let near = |u: f64, v: f64| {
+            image_radiance(&pixels, 4, 3, ImageFilter::Nearest, u, v)
+                .0
+                .x
+        };
+        assert_eq!(near(0.3, 0.1), 1.0);
+        assert_eq!(near(0.99, 0.99), 23.0);
+    }
 }

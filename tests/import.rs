@@ -385,21 +385,15 @@ fn reference(case: &str) -> Blocks {
     b
 }
 
-/// grinlight's renders of `scenes/mitsuba/<scene>` (`runs` seeds of `spp`; its approximations
-/// made where `approximate`), as block means over runs with their standard errors.
-fn grinlight_blocks(
-    scene: &str,
-    defines: &[(&str, &str)],
-    approximate: bool,
-    runs: u64,
-    spp: u32,
-) -> Blocks {
+/// grinlight's renders of `scenes/mitsuba/<scene>` (`runs` seeds of `spp`), converted exactly,
+/// as block means over runs with their standard errors.
+fn grinlight_blocks(scene: &str, defines: &[(&str, &str)], runs: u64, spp: u32) -> Blocks {
     let options = ImportOptions {
         defines: defines
             .iter()
             .map(|(k, v)| (k.to_string(), v.to_string()))
             .collect(),
-        approximate,
+        approximate: false,
     };
     let (description, mut settings) =
         load_description(&Path::new("scenes/mitsuba").join(scene), &options).unwrap();
@@ -445,17 +439,16 @@ fn grinlight_blocks(
     Blocks { mean, se }
 }
 
-/// The largest block z-score |Δ|/σ — the difference first reduced by `allowance` times
-/// Mitsuba's value, what an approximation is allowed; σ = √(se₁² + se₂²) plus 1e-5 of the
-/// value, the resolution of Mitsuba's f32 sums (its noiseless sky reads 0.9000085 for 0.9) —
-/// and the ratio of the image means.
-fn compare(ours: &Blocks, theirs: &Blocks, allowance: f64) -> (f64, f64) {
+/// The largest block z-score |Δ|/σ — σ = √(se₁² + se₂²) plus 1e-5 of the value, the
+/// resolution of Mitsuba's f32 sums (its noiseless sky reads 0.9000085 for 0.9) — and the
+/// ratio of the image means.
+fn compare(ours: &Blocks, theirs: &Blocks) -> (f64, f64) {
     let mut worst: f64 = 0.0;
     for i in 0..ours.mean.len() {
         for c in 0..3 {
             let (a, b) = (ours.mean[i][c], theirs.mean[i][c]);
             let sigma = (ours.se[i][c].powi(2) + theirs.se[i][c].powi(2)).sqrt() + 1e-5 * b.abs();
-            let d = ((a - b).abs() - allowance * b.abs()).max(0.0);
+            let d = (a - b).abs();
             if d > 4.0 * sigma {
                 eprintln!(
                     "block {i} channel {c}: {a} ± {} against {b} ± {}",
@@ -476,30 +469,25 @@ fn the_mitsuba_scenes_render_as_mitsuba_renders_them() {
     // 192 block-channels, our standard errors from 32 runs (Student's t with 31 degrees of
     // freedom: P(|t| > 5) ≈ 2e-5 a block-channel, 0.4 % for the image) dominating Mitsuba's
     // (16 runs of 1024 spp: 5.7 times smaller). Image means within 1 %.
-    for (case, scene, defines, spp, allowance) in [
-        ("cornell_box", "cornell_box.xml", vec![], 16, 0.0),
+    for (case, scene, defines, spp) in [
+        ("cornell_box", "cornell_box.xml", vec![], 16),
         (
             "cornell_box_direct",
             "cornell_box.xml",
             vec![("max_depth", "2")],
             16,
-            0.0,
         ),
         // Fog in the room and denser fog in a ball behind a null boundary, a spot light:
         // Mitsuba's volpath.
-        ("cornell_fog", "cornell_fog.xml", vec![], 8, 0.0),
-        // The environment map turned and a directional light: an approximation, as Mitsuba
-        // interpolates the map and grinlight keeps it constant over each pixel. On this smooth
-        // map the two differ by at most 0.6 % in any block (measured at 4096 samples a pixel
-        // each, bench/mitsuba_import.py): 1 % is allowed; a map turned or mirrored wrongly
-        // moves its bright blob, and the blocks it lights, by far more.
-        ("spheres_envmap", "spheres_envmap.xml", vec![], 16, 0.01),
+        ("cornell_fog", "cornell_fog.xml", vec![], 8),
+        // An environment map turned about +y, read between its pixels as Mitsuba reads it,
+        // and a directional light.
+        ("spheres_envmap", "spheres_envmap.xml", vec![], 16),
         // An image texture on a rectangle and on an OBJ quad: Mitsuba's (u, v) and rows.
-        ("textures", "textures.xml", vec![], 16, 0.0),
+        ("textures", "textures.xml", vec![], 16),
     ] {
-        // Only where an approximation is allowed is one made: the others convert exactly.
-        let ours = grinlight_blocks(scene, &defines, allowance > 0.0, 32, spp);
-        let (worst, ratio) = compare(&ours, &reference(case), allowance);
+        let ours = grinlight_blocks(scene, &defines, 32, spp);
+        let (worst, ratio) = compare(&ours, &reference(case));
         eprintln!("{case}: largest block z {worst:.2}, mean ratio {ratio:.5}");
         assert!(
             worst < 5.0,

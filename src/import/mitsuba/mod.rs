@@ -1374,13 +1374,6 @@ impl Converter<'_> {
                     ));
                 }
                 let turn = l.z_axis.x.atan2(l.z_axis.z).to_degrees();
-                // grinlight's map is constant over each pixel; Mitsuba interpolates it.
-                let place = e.place.clone();
-                self.approximate(
-                    &place,
-                    "the map, interpolated bilinearly between pixel centres by Mitsuba, taken \
-                     as grinlight's, constant over each pixel",
-                )?;
                 e.finish()?;
                 let path = std::fs::canonicalize(&path).unwrap_or(path);
                 return self.set_environment(
@@ -1389,6 +1382,8 @@ impl Converter<'_> {
                         ("type", string("environment")),
                         ("file", string(&path.to_string_lossy())),
                         ("rotation_deg", Toml::Float(180.0 + turn)),
+                        // Read between pixels as Mitsuba reads its map.
+                        ("filter", string("bilinear")),
                         ("scale", Toml::Float(scale)),
                     ]),
                 );

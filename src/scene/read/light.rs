@@ -2,7 +2,7 @@
 
 use super::shape::parallelogram;
 use crate::color::Rgb;
-use crate::environment::{Environment, Sky};
+use crate::environment::{Environment, ImageFilter, Sky};
 use crate::error::Result;
 use crate::lights::{Emitter, Light, Luminaire};
 use crate::scene::table::TableReader;
@@ -198,10 +198,21 @@ pub fn read_environment(t: &mut TableReader) -> Result<Environment> {
                     ),
                 ));
             }
+            let filter = match t.string_opt("filter")?.as_deref() {
+                None | Some("nearest") => ImageFilter::Nearest,
+                Some("bilinear") => ImageFilter::Bilinear,
+                Some(other) => {
+                    return Err(t.error(
+                        "filter",
+                        format!("unknown filter '{other}' (nearest, bilinear)"),
+                    ))
+                }
+            };
             Sky::Image {
                 width: img.width() as usize,
                 height: img.height() as usize,
                 pixels: img.pixels().map(|p| p.0).collect(),
+                filter,
             }
         }
         (false, Some(sky)) => match sky.as_str() {
