@@ -393,3 +393,52 @@ fn a_trace_holds_bounded_memory_and_stops_on_an_interrupt() {
     assert!(text.starts_with("# grinlight ") && text.lines().count() > 1000);
     std::fs::remove_file(&csv).unwrap();
 }
+
+#[test]
+fn convert_writes_a_scene_replaces_only_its_own_and_render_reads_the_xml() {
+    let dir = temp("convert");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = dir.join("box.toml");
+    let out_s = out.to_str().unwrap();
+    let xml = "scenes/mitsuba/cornell_box.xml";
+    let first = grinlight(&["convert", xml, "-o", out_s, "-D", "res=8"]);
+    assert!(
+        first.status.success(),
+        "{}",
+        String::from_utf8_lossy(&first.stderr)
+    );
+    let text = std::fs::read_to_string(&out).unwrap();
+    assert!(text.starts_with("# Converted by grinlight "), "{text}");
+    assert!(text.contains("width = 8"), "{text}");
+    // Its own file it replaces; a file of the user's it leaves alone.
+    let again = grinlight(&["convert", xml, "-o", out_s]);
+    assert!(
+        again.status.success(),
+        "{}",
+        String::from_utf8_lossy(&again.stderr)
+    );
+    let mine = dir.join("mine.toml");
+    std::fs::write(&mine, "# my scene\n").unwrap();
+    let refused = grinlight(&["convert", xml, "-o", mine.to_str().unwrap()]);
+    assert_eq!(refused.status.code(), Some(1));
+    assert_eq!(std::fs::read_to_string(&mine).unwrap(), "# my scene\n");
+    // The XML renders as it is, its parameters from the command line.
+    let exr = dir.join("box.exr");
+    let render = grinlight(&[
+        "render",
+        xml,
+        "-D",
+        "res=8",
+        "-D",
+        "spp=1",
+        "-o",
+        exr.to_str().unwrap(),
+    ]);
+    assert!(
+        render.status.success(),
+        "{}",
+        String::from_utf8_lossy(&render.stderr)
+    );
+    assert!(exr.exists());
+}
