@@ -2,12 +2,12 @@
 """Render the Mitsuba 3 scenes of scenes/mitsuba/ with Mitsuba itself: the references that
 tests/import.rs holds grinlight's renders of the same XML files against.
 
-    python3 bench/mitsuba_import.py [CASE ...] [--runs K] [--spp N] [--grinlight]
+    python3 bench/mitsuba_import.py [CASE ...] [--runs K] [--spp N] [--write] [--grinlight]
 
 For each case (a scene of scenes/mitsuba/ and the values of its parameters: CASES below), K independent Mitsuba renders (seeds 0..K-1, N samples a pixel each, the
-scene's own resolution) are averaged over blocks of 8 × 8 pixels; the block means and their
-standard errors (from the spread of the K runs) are written to
-tests/data/mitsuba/<case>.csv. With --grinlight, grinlight renders the same XML as many times
+scene's own resolution) are averaged over blocks of 8 × 8 pixels; with --write, the block means
+and their standard errors (from the spread of the K runs) are written to
+tests/data/mitsuba/<case>.csv (the references were written with --runs 16 --spp 1024). With --grinlight, grinlight renders the same XML as many times
 (`grinlight render`, its release build) and the script prints a table: image means, their ratio,
 and the largest block z-score |Δ|/√(se₁² + se₂²).
 
@@ -85,6 +85,7 @@ def main():
     ap.add_argument("cases", nargs="*", choices=[[]] + list(CASES))
     ap.add_argument("--runs", type=int, default=16)
     ap.add_argument("--spp", type=int, default=1024)
+    ap.add_argument("--write", action="store_true")
     ap.add_argument("--grinlight", action="store_true")
     a = ap.parse_args()
     import mitsuba as mi
@@ -95,7 +96,7 @@ def main():
         path = os.path.join(ROOT, "scenes", "mitsuba", scene)
         mean, se = stats(mitsuba_runs(path, defines, a.runs, a.spp))
         csv = os.path.join(ROOT, "tests", "data", "mitsuba", name + ".csv")
-        with open(csv, "w") as f:
+        with open(csv if a.write else os.devnull, "w") as f:
             given = "".join(f" -D {k}={v}" for k, v in defines.items())
             f.write(f"# Mitsuba {mi.__version__} llvm_ad_rgb, scenes/mitsuba/{scene}{given}: {a.runs} runs of {a.spp} spp, "
                     f"means over blocks of {BLOCK}x{BLOCK} pixels and their standard errors (bench/mitsuba_import.py)\n")

@@ -291,6 +291,8 @@ pub enum Light {
         cos_inner: f64,
         /// cos of the cone's half angle (no light beyond).
         cos_outer: f64,
+        /// How the intensity falls from the inner angle to the outer.
+        falloff: Falloff,
     },
     /// Constant radiance from one side of a quad or disk (also visible to the camera).
     Area {
@@ -509,8 +511,9 @@ impl Light {
                 intensity,
                 cos_inner,
                 cos_outer,
+                falloff,
                 ..
-            } => *intensity * smoothstep(*cos_outer, *cos_inner, dir.dot(*direction)),
+            } => *intensity * falloff.at(*cos_outer, *cos_inner, dir.dot(*direction)),
             Light::Led {
                 emitter,
                 peak_intensity,
@@ -667,9 +670,10 @@ impl Light {
                 intensity,
                 cos_inner,
                 cos_outer,
+                falloff,
             } => {
                 let local = uniform_cone(*cos_outer, (u[0], u[1]));
-                let f = smoothstep(*cos_outer, *cos_inner, local.z);
+                let f = falloff.at(*cos_outer, *cos_inner, local.z);
                 (f > 0.0).then_some(())?;
                 let solid_angle = TAU * (1.0 - cos_outer);
                 emission(
@@ -773,6 +777,36 @@ impl Light {
             Light::Led { peak_intensity, .. } => *peak_intensity,
             Light::Goniometric { colour, table, .. } => *colour * table.peak(),
             Light::Directional { .. } => Rgb::ZERO,
+        }
+    }
+}
+
+/// How a spot's intensity falls off between its inner angle (full) and its outer (none).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Falloff {
+    /// A smooth step in cos θ: 3t² − 2t³, t = (cos θ − cos θ_outer)/(cos θ_inner − cos θ_outer).
+    #[default]
+    SmoothStep,
+    /// Linear in the angle: (θ_outer − θ)/(θ_outer − θ_inner), as Mitsuba 3's `spot`.
+    LinearInAngle,
+}
+
+impl Falloff {
+    /// The fraction of the axis's intensity at cos θ = `cos`, between the cone's `cos_outer`
+    /// and the falloff's start `cos_inner`.
+    pub fn at(self, cos_outer: f64, cos_inner: f64, cos: f64) -> f64 {
+        match self {
+            Falloff::SmoothStep => smoothstep(cos_outer, cos_inner, cos),
+            Falloff::LinearInAngle => {
+                if cos >= cos_inner {
+                    return 1.0;
+                }
+                if cos < cos_outer {
+                    return 0.0;
+                }
+                let (outer, inner) = (cos_outer.acos(), cos_inner.acos());
+                ((outer - cos.clamp(-1.0, 1.0).acos()) / (outer - inner)).clamp(0.0, 1.0)
+            }
         }
     }
 }

@@ -7,7 +7,7 @@
 use crate::common::chi2::chi2;
 use glam::DVec3;
 use grinlight::color::Rgb;
-use grinlight::lights::{Emitter, Light};
+use grinlight::lights::{Emitter, Falloff, Light};
 use grinlight::math::Ball;
 use grinlight::sampling::{
     cosine_hemisphere, power_cosine_hemisphere, power_cosine_pdf, uniform_cone, uniform_sphere,
@@ -101,16 +101,31 @@ fn led_emission_follows_its_profile() {
 }
 
 /// A spot light's photons stay inside its cone and their mean power is the light's power
-/// 2π I ∫ f(cos θ) d(cos θ) (smoothstep falloff, integrated by the midpoint rule here).
+/// 2π I ∫ f(cos θ) d(cos θ), for either falloff curve (integrated by the midpoint rule here:
+/// the smooth step in cos θ, and linear in θ).
 #[test]
 fn spot_emission_carries_its_power() {
     let (cos_inner, cos_outer) = (0.9f64, 0.7f64);
+    let smooth = |c: f64| {
+        let t = ((c - cos_outer) / (cos_inner - cos_outer)).clamp(0.0, 1.0);
+        t * t * (3.0 - 2.0 * t)
+    };
+    let linear = |c: f64| {
+        let (o, i) = (cos_outer.acos(), cos_inner.acos());
+        ((o - c.acos()) / (o - i)).clamp(0.0, 1.0)
+    };
+    spot_power(Falloff::SmoothStep, cos_inner, cos_outer, smooth);
+    spot_power(Falloff::LinearInAngle, cos_inner, cos_outer, linear);
+}
+
+fn spot_power(falloff: Falloff, cos_inner: f64, cos_outer: f64, f: impl Fn(f64) -> f64) {
     let spot = Light::Spot {
         position: DVec3::ZERO,
         direction: DVec3::Z,
         intensity: Rgb::ONE,
         cos_inner,
         cos_outer,
+        falloff,
     };
     let mut rng = Pcg64Mcg::seed_from_u64(5);
     let n = 200_000;
@@ -132,11 +147,7 @@ fn spot_emission_carries_its_power() {
     }
     let steps = 100_000;
     let exact: f64 = (0..steps)
-        .map(|i| {
-            let c = cos_outer + (1.0 - cos_outer) * (i as f64 + 0.5) / steps as f64;
-            let t = ((c - cos_outer) / (cos_inner - cos_outer)).clamp(0.0, 1.0);
-            t * t * (3.0 - 2.0 * t)
-        })
+        .map(|i| f(cos_outer + (1.0 - cos_outer) * (i as f64 + 0.5) / steps as f64))
         .sum::<f64>()
         * (1.0 - cos_outer)
         / steps as f64
@@ -144,7 +155,7 @@ fn spot_emission_carries_its_power() {
     // Relative sd of the mean of f·Ω over 2e5 samples is < 0.2 %; tolerance 1 %.
     assert!(
         (sum / n as f64 / exact - 1.0).abs() < 0.01,
-        "{} vs {exact}",
+        "{falloff:?}: {} vs {exact}",
         sum / n as f64
     );
 }

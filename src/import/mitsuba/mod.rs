@@ -1302,13 +1302,11 @@ impl Converter<'_> {
             "spot" => {
                 let cutoff = e.float_or("cutoff_angle", 20.0)?;
                 let beam = e.float_or("beam_width", 0.75 * cutoff)?;
-                if beam < cutoff {
-                    let place = e.place.clone();
-                    self.approximate(
-                        &place,
-                        "the spot's falloff, linear in angle from beam_width to cutoff_angle in \
-                         Mitsuba, taken as grinlight's smooth step in cos θ between them",
-                    )?;
+                if !(0.0 < beam && beam <= cutoff && cutoff <= 180.0) {
+                    return Err(e.error(format!(
+                        "beam_width {beam}° and cutoff_angle {cutoff}°: grinlight's spot needs \
+                         0 < beam_width ≤ cutoff_angle ≤ 180°"
+                    )));
                 }
                 table([
                     ("type", string("spot")),
@@ -1316,7 +1314,9 @@ impl Converter<'_> {
                     ("direction", vec3(m.transform_vector3(DVec3::Z).normalize())),
                     ("intensity", vec3(self.colour(e, "intensity", 1.0)?)),
                     ("cone_deg", Toml::Float(cutoff)),
-                    ("falloff_deg", Toml::Float(beam.min(cutoff))),
+                    ("falloff_deg", Toml::Float(beam)),
+                    // Mitsuba's falloff is linear in the angle.
+                    ("falloff_curve", string("linear")),
                 ])
             }
             "directional" => {

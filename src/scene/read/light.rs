@@ -4,7 +4,7 @@ use super::shape::parallelogram;
 use crate::color::Rgb;
 use crate::environment::{Environment, ImageFilter, Sky};
 use crate::error::Result;
-use crate::lights::{Emitter, Light, Luminaire};
+use crate::lights::{Emitter, Falloff, Light, Luminaire};
 use crate::scene::table::TableReader;
 use crate::spectrum::emission::Shape;
 use crate::spectrum::Spectrum;
@@ -92,12 +92,23 @@ pub fn read_light(t: &mut TableReader, kind: &str) -> Result<Light> {
             t.check("cone_deg", cone > 0.0 && cone <= 180.0, "must be in (0°, 180°]")?;
             let falloff = t.f64_or("falloff_deg", cone)?;
             t.check("falloff_deg", (0.0..=cone).contains(&falloff), "must be in [0°, cone_deg]")?;
+            let curve = match t.string_opt("falloff_curve")?.as_deref() {
+                None | Some("smoothstep") => Falloff::SmoothStep,
+                Some("linear") => Falloff::LinearInAngle,
+                Some(other) => {
+                    return Err(t.error(
+                        "falloff_curve",
+                        format!("unknown falloff curve '{other}' (smoothstep, linear)"),
+                    ))
+                }
+            };
             Light::Spot {
                 position,
                 direction,
                 intensity,
                 cos_inner: falloff.to_radians().cos(),
                 cos_outer: cone.to_radians().cos(),
+                falloff: curve,
             }
         }
         "quad" => {
