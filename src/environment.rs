@@ -1,11 +1,11 @@
 //! What a ray that leaves the scene sees: a lat-long image or a procedural sky.
 //! Lat-long convention: u = 0.5 + atan2(x, −z)/2π (−z at the centre), v = acos(y)/π (+y at the
-//! top row); the map is turned by `rotation` about +y.
+//! top row); the map is turned by a [`Turn`].
 
 use crate::color::Rgb;
 use crate::lights::{covering_disk, Aim, Emission};
 use crate::sampling::{uniform_sphere, UNIFORM_SPHERE_PDF};
-use glam::DVec3;
+use glam::{DMat3, DVec3};
 use std::f64::consts::{PI, TAU};
 
 /// The source of environment radiance.
@@ -56,10 +56,32 @@ pub enum ImageFilter {
 pub struct Environment {
     /// The source.
     pub sky: Sky,
-    /// Rotation about +y (radians).
-    pub rotation: f64,
+    /// How the map is turned in the scene.
+    pub turn: Turn,
     /// Radiance multiplier.
     pub scale: f64,
+}
+
+/// How an environment's map is turned in the scene: the map's frame to the world's.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Turn {
+    /// About +y by an angle (radians, counterclockwise seen from +y).
+    AboutY(f64),
+    /// By a rotation matrix (orthonormal, determinant 1).
+    Rotation(DMat3),
+}
+
+impl Turn {
+    /// World direction `d` in the map's frame.
+    fn to_map(self, d: DVec3) -> DVec3 {
+        match self {
+            Turn::AboutY(angle) => {
+                let (s, c) = angle.sin_cos();
+                DVec3::new(c * d.x - s * d.z, d.y, s * d.x + c * d.z)
+            }
+            Turn::Rotation(m) => m.transpose() * d,
+        }
+    }
 }
 
 /// An environment image's radiance at (u, v) ∈ [0, 1]², read by `filter`.
@@ -106,8 +128,7 @@ const STAR_RADIUS: f64 = 8e-4;
 impl Environment {
     /// Radiance arriving from unit direction `d` (travelling along −d toward the scene).
     pub fn radiance(&self, d: DVec3) -> Rgb {
-        let (s, c) = self.rotation.sin_cos();
-        let d = DVec3::new(c * d.x - s * d.z, d.y, s * d.x + c * d.z);
+        let d = self.turn.to_map(d);
         let u = 0.5 + d.x.atan2(-d.z) / TAU;
         let v = d.y.clamp(-1.0, 1.0).acos() / PI;
         self.scale
@@ -218,6 +239,26 @@ fn starfield(seed: u64, d: DVec3, u: f64, v: f64) -> Rgb {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_turn_about_y_is_its_rotation_matrix() {
+        let sky = Sky::Checker { squares: 24 };
+        let angle = 0.7;
+        let env = |turn| Environment {
+            sky: sky.clone(),
+            turn,
+            scale: 1.0,
+        };
+        let (a, b) = (
+            env(Turn::AboutY(angle)),
+            env(Turn::Rotation(DMat3::from_rotation_y(angle))),
+        );
+        for i in 0..1000 {
+            let t = i as f64 * 0.37;
+            let d = DVec3::new(t.sin() * (2.0 * t).cos(), (3.0 * t).cos(), t.cos()).normalize();
+            assert_eq!(a.radiance(d), b.radiance(d), "{d}");
+        }
+    }
 
     #[test]
     fn bilinear_reads_pixels_at_their_centres_and_wraps_around() {

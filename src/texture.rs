@@ -1,6 +1,7 @@
-//! Image textures: an 8- or 16-bit sRGB image (PNG, JPEG, …) decoded to linear RGB, looked up
-//! by surface coordinates (u, v) with bilinear filtering, repeating beyond [0, 1].
-//! Convention: u runs left to right along the image's rows, v from its bottom row up.
+//! Textures: an 8- or 16-bit sRGB image (PNG, JPEG, …) decoded to linear RGB, looked up by
+//! surface coordinates (u, v) with bilinear filtering, repeating beyond [0, 1]; or a
+//! checkerboard. Convention: u runs left to right along the image's rows, v from its bottom
+//! row up — the image's own coordinates are (u, 1 − v), its top row at 0.
 
 use crate::color::Rgb;
 use glam::DVec2;
@@ -8,11 +9,25 @@ use std::path::Path;
 
 /// A texture in linear RGB.
 #[derive(Clone, PartialEq)]
-pub struct Texture {
-    width: usize,
-    height: usize,
-    /// Row-major from the top row.
-    texels: Vec<[f32; 3]>,
+pub enum Texture {
+    /// An image.
+    Image {
+        /// Width in texels.
+        width: usize,
+        /// Height in texels.
+        height: usize,
+        /// Row-major from the top row.
+        texels: Vec<[f32; 3]>,
+    },
+    /// Two colours in a checkerboard over the image coordinates (x, y) = `to_uv`·(u, 1 − v):
+    /// `colours[0]` where x and y are both in the first half of their unit cells or both in
+    /// the second (Mitsuba 3's `checkerboard`), `colours[1]` elsewhere.
+    Checkerboard {
+        /// The two colours, linear RGB.
+        colours: [Rgb; 2],
+        /// The affine map to the pattern's coordinates: rows [a, b, c] of x = a u' + b v' + c.
+        to_uv: [[f64; 3]; 2],
+    },
 }
 
 /// The linear value of an sRGB-encoded channel in [0, 1].
@@ -33,7 +48,7 @@ impl Texture {
             return Err(format!("{}: the image is empty", path.display()));
         }
         let texels = img.pixels().map(|p| p.0.map(srgb_decode)).collect();
-        Ok(Self {
+        Ok(Self::Image {
             width,
             height,
             texels,
@@ -44,37 +59,57 @@ impl Texture {
     /// `width` × `height` of them (a caller's error, not a user's: files go through [`Self::load`]).
     pub fn from_texels(width: usize, height: usize, texels: Vec<[f32; 3]>) -> Self {
         assert_eq!(texels.len(), width * height, "texel count");
-        Self {
+        Self::Image {
             width,
             height,
             texels,
         }
     }
 
-    /// The linear colour at `uv`: bilinear between texel centres, repeating (a non-finite
-    /// `uv`, which no sound surface gives, reads (0, 0) rather than spreading NaN).
+    /// The linear colour at `uv`: an image's bilinear between texel centres, repeating (a
+    /// non-finite `uv`, which no sound surface gives, reads (0, 0) rather than spreading NaN).
     pub fn at(&self, uv: DVec2) -> Rgb {
         let uv = if uv.is_finite() { uv } else { DVec2::ZERO };
-        let x = uv.x.rem_euclid(1.0) * self.width as f64 - 0.5;
-        let y = (1.0 - uv.y.rem_euclid(1.0)) * self.height as f64 - 0.5;
-        let (x0, y0) = (x.floor(), y.floor());
-        let (fx, fy) = (x - x0, y - y0);
-        let texel = |i: f64, j: f64| {
-            let i = (i as i64).rem_euclid(self.width as i64) as usize;
-            let j = (j as i64).rem_euclid(self.height as i64) as usize;
-            let t = self.texels[j * self.width + i];
-            Rgb::new(t[0] as f64, t[1] as f64, t[2] as f64)
-        };
-        texel(x0, y0) * ((1.0 - fx) * (1.0 - fy))
-            + texel(x0 + 1.0, y0) * (fx * (1.0 - fy))
-            + texel(x0, y0 + 1.0) * ((1.0 - fx) * fy)
-            + texel(x0 + 1.0, y0 + 1.0) * (fx * fy)
+        match self {
+            Texture::Image {
+                width,
+                height,
+                texels,
+            } => {
+                let x = uv.x.rem_euclid(1.0) * *width as f64 - 0.5;
+                let y = (1.0 - uv.y.rem_euclid(1.0)) * *height as f64 - 0.5;
+                let (x0, y0) = (x.floor(), y.floor());
+                let (fx, fy) = (x - x0, y - y0);
+                let texel = |i: f64, j: f64| {
+                    let i = (i as i64).rem_euclid(*width as i64) as usize;
+                    let j = (j as i64).rem_euclid(*height as i64) as usize;
+                    let t = texels[j * width + i];
+                    Rgb::new(t[0] as f64, t[1] as f64, t[2] as f64)
+                };
+                texel(x0, y0) * ((1.0 - fx) * (1.0 - fy))
+                    + texel(x0 + 1.0, y0) * (fx * (1.0 - fy))
+                    + texel(x0, y0 + 1.0) * ((1.0 - fx) * fy)
+                    + texel(x0 + 1.0, y0 + 1.0) * (fx * fy)
+            }
+            Texture::Checkerboard { colours, to_uv } => {
+                let (u, v) = (uv.x, 1.0 - uv.y);
+                let at = |r: [f64; 3]| r[0] * u + r[1] * v + r[2];
+                let second_half = |x: f64| x - x.floor() > 0.5;
+                match second_half(at(to_uv[0])) == second_half(at(to_uv[1])) {
+                    true => colours[0],
+                    false => colours[1],
+                }
+            }
+        }
     }
 }
 
 impl std::fmt::Debug for Texture {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "Texture({} × {})", self.width, self.height)
+        match self {
+            Texture::Image { width, height, .. } => write!(f, "Texture({width} × {height})"),
+            Texture::Checkerboard { colours, .. } => write!(f, "Checkerboard({colours:?})"),
+        }
     }
 }
 

@@ -90,19 +90,21 @@ pub fn convert(doc: &Document, approximate: bool) -> Result<Converted> {
                 .error("a second <sensor>: grinlight renders one camera's view"))
         }
     };
-    let mut render = c.sensor(&sensor.object, &mut table)?;
+    let mut render = c.sensor(sensor.object(), &mut table)?;
     c.integrator(&scene, &mut render)?;
     for child in scene.all_children() {
         Object::mark(child);
-        match child.object.tag.as_str() {
-            "shape" => c.shape(&child.object)?,
-            "emitter" => c.emitter(&child.object)?,
+        match child.object().tag.as_str() {
+            "shape" => c.shape(child.object())?,
+            "emitter" => c.emitter(child.object())?,
             // Converted where shapes, emitters and the sensor refer to them.
             "bsdf" | "texture" | "medium" | "phase" | "volume" | "sensor" | "integrator" => {}
+            // Defined here for a <ref> in the sensor.
+            "film" | "sampler" | "rfilter" if child.object().id.is_some() => {}
             "film" | "sampler" | "rfilter" => {
                 return Err(child.place.error(format!(
                     "{} belongs inside the <sensor>",
-                    child.object.what()
+                    child.object().what()
                 )))
             }
             other => {
@@ -243,7 +245,7 @@ impl Converter<'_> {
             return Err(child.place.error(format!(
                 "{}: a {} as '{name}' is not supported by grinlight's import (give an rgb)",
                 obj.what(),
-                child.object.what()
+                child.object().what()
             )));
         }
         let Some(p) = obj.property(name) else {
@@ -272,10 +274,33 @@ impl Converter<'_> {
         let Some(child) = b.named_child(name) else {
             return Ok(table([("albedo", vec3(self.colour(b, name, 0.5)?))]));
         };
-        let tex = child.object.clone();
+        let tex = child.object().clone();
+        if tex.tag == "texture" && tex.kind == "checkerboard" {
+            let colours = [
+                self.colour(&tex, "color0", 0.4)?,
+                self.colour(&tex, "color1", 0.2)?,
+            ];
+            let m = tex.transform("to_uv")?;
+            tex.finish()?;
+            // Mitsuba's (u, v) are grinlight's image coordinates (u, 1 − v): see `geometry`.
+            let rows = [
+                m.x_axis.x, m.y_axis.x, m.w_axis.x, m.x_axis.y, m.y_axis.y, m.w_axis.y,
+            ];
+            return Ok(table([
+                (
+                    "checkerboard",
+                    Toml::Array(colours.into_iter().map(vec3).collect()),
+                ),
+                (
+                    "checkerboard_uv",
+                    Toml::Array(rows.iter().map(|&x| Toml::Float(x)).collect()),
+                ),
+            ]));
+        }
         if tex.tag != "texture" || tex.kind != "bitmap" {
             return Err(tex.error(format!(
-                "as '{name}': grinlight's import reads an rgb or a bitmap texture"
+                "as '{name}': grinlight's import reads an rgb, a bitmap or a checkerboard \
+                 texture"
             )));
         }
         let file = tex
@@ -411,7 +436,7 @@ impl Converter<'_> {
                 "twosided" => {
                     let inner = bsdf.children("bsdf");
                     match inner.as_slice() {
-                        [one] => (true, one.object.clone()),
+                        [one] => (true, one.object().clone()),
                         _ => return Err(bsdf.error(
                             "a twosided BSDF with two different sides is not supported (give one \
                              nested BSDF)",
@@ -532,7 +557,7 @@ impl Converter<'_> {
             }
         };
         b.finish()?;
-        let textured = m.contains_key("texture");
+        let textured = m.contains_key("texture") || m.contains_key("checkerboard");
         let name = self.unique_material_name(id.or(b.id.as_deref()));
         m.insert("name".into(), string(&name));
         m.insert("type".into(), string(kind));
@@ -592,7 +617,7 @@ impl Converter<'_> {
         if sigma_s.max_element() > 0.0 {
             m.insert("scattering".into(), vec3(sigma_s));
             if let Some(phase) = medium.child("phase")? {
-                let p = &phase.object;
+                let p = &phase.object();
                 match p.kind.as_str() {
                     "isotropic" => {}
                     "hg" => {
@@ -657,7 +682,7 @@ impl Converter<'_> {
         if left.dot(up.cross(dir)) <= 0.0 {
             return Err(s.error("to_world mirrors the camera (its x axis is not up × forward): grinlight does not render mirrored images"));
         }
-        let film = s.child("film")?.map(|c| c.object.clone());
+        let film = s.child("film")?.map(|c| c.object().clone());
         let (width, height) = match &film {
             Some(f) => self.film(f)?,
             None => (768, 576),
@@ -705,6 +730,10 @@ impl Converter<'_> {
             ))
         })?;
         let fov_x = 2.0 * tan_x.atan().to_degrees();
+        // A pinhole's focus distance changes nothing.
+        if !thin_lens {
+            s.ignore("focus_distance");
+        }
         for clip in ["near_clip", "far_clip"] {
             if s.float(clip)?.is_some() {
                 let place = s.place.clone();
@@ -732,12 +761,12 @@ impl Converter<'_> {
         if let Some(medium) = s.named_child("medium").or(s.child("medium")?) {
             // The camera's medium: grinlight finds it from the camera's position; a medium no
             // shape holds fills the space around them.
-            let name = self.medium(&medium.object.clone(), 1.0)?;
+            let name = self.medium(&medium.object().clone(), 1.0)?;
             self.ambient = Some(name);
         }
         let mut render = Table::new();
         if let Some(sampler) = s.child("sampler")? {
-            let sampler = &sampler.object;
+            let sampler = &sampler.object();
             let spp = sampler.integer_or("sample_count", 4)?;
             if spp < 1 {
                 return Err(sampler.error("sample_count must be ≥ 1"));
@@ -779,10 +808,10 @@ impl Converter<'_> {
             )));
         }
         // How the image is stored, not what it holds.
-        for name in ["pixel_format", "component_format", "file_format"] {
+        for name in ["pixel_format", "component_format", "file_format", "banner"] {
             f.ignore(name);
         }
-        let filter = f.child("rfilter")?.map(|c| c.object.clone());
+        let filter = f.child("rfilter")?.map(|c| c.object().clone());
         let kind = filter
             .as_ref()
             .map_or("gaussian".to_string(), |r| r.kind.clone());
@@ -820,28 +849,35 @@ impl Converter<'_> {
         let Some(child) = scene.child("integrator")? else {
             return Ok(());
         };
-        let mut i = child.object.clone();
+        let mut i = child.object().clone();
         while matches!(i.kind.as_str(), "moment" | "aov") {
             if i.kind == "aov" {
                 i.ignore("aovs");
                 let place = i.place.clone();
                 self.note(&place, "<integrator type=\"aov\">: its AOVs are not written (grinlight writes albedo and normal layers)");
             }
-            let inner = i.child("integrator")?.map(|c| c.object.clone());
+            let inner = i.child("integrator")?.map(|c| c.object().clone());
             i.finish()?;
             i = inner.ok_or_else(|| i.error("holds no <integrator>"))?;
         }
-        match i.kind.as_str() {
-            "path" | "volpath" | "volpathmis" | "ptracer" => {}
+        let depth = match i.kind.as_str() {
+            "path" | "volpath" | "volpathmis" | "ptracer" => i.integer_or("max_depth", -1)?,
+            // Direct light and the emitters seen: paths of two segments; its sample counts
+            // split the same estimate differently.
+            "direct" => {
+                for name in ["emitter_samples", "bsdf_samples", "shading_samples"] {
+                    i.ignore(name);
+                }
+                2
+            }
             other => {
                 return Err(i.error(format!(
-                    "the integrator '{}' is not supported (path, volpath, volpathmis and \
-                     ptracer are, as grinlight's path tracer)",
+                    "the integrator '{}' is not supported (path, volpath, volpathmis, \
+                     ptracer and direct are, as grinlight's path tracer)",
                     cut(other)
                 )))
             }
-        }
-        let depth = i.integer_or("max_depth", -1)?;
+        };
         match depth {
             -1 => {}
             // Mitsuba counts a path's segments; grinlight the scattering events between.
@@ -871,7 +907,7 @@ impl Converter<'_> {
         let Some(e) = shape.child("emitter")? else {
             return Ok(None);
         };
-        let e = e.object.clone();
+        let e = e.object().clone();
         if e.kind != "area" {
             return Err(e.error("a shape's emitter must be 'area'"));
         }
@@ -884,7 +920,7 @@ impl Converter<'_> {
         let m = shape.transform("to_world")?;
         let flip = shape.boolean_or("flip_normals", false)?;
         let emitting = self.area_radiance(shape)?;
-        let bsdf = shape.child("bsdf")?.map(|c| c.object.clone());
+        let bsdf = shape.child("bsdf")?.map(|c| c.object().clone());
         let interior = Self::medium_child(shape, "interior")?;
         let exterior = Self::medium_child(shape, "exterior")?;
         if let Some((radiance, place)) = emitting {
@@ -893,7 +929,7 @@ impl Converter<'_> {
                 None => false,
                 Some(b) => {
                     let inner = match b.kind.as_str() {
-                        "twosided" => b.children("bsdf").first().map(|c| c.object.clone()),
+                        "twosided" => b.children("bsdf").first().map(|c| c.object().clone()),
                         _ => Some(b.clone()),
                     };
                     inner.is_some_and(|i| {
@@ -1023,7 +1059,7 @@ impl Converter<'_> {
     fn medium_child(shape: &Object, name: &str) -> Result<Option<Rc<Object>>> {
         match shape.named_child(name) {
             None => Ok(None),
-            Some(c) if c.object.tag == "medium" => Ok(Some(c.object.clone())),
+            Some(c) if c.object().tag == "medium" => Ok(Some(c.object().clone())),
             Some(c) => Err(c.place.error(format!("'{name}' should be a <medium>"))),
         }
     }
@@ -1361,19 +1397,34 @@ impl Converter<'_> {
                 }
                 let path = self.doc.find(&name, &e.place)?;
                 let scale = e.float_or("scale", 1.0)?;
-                // Mitsuba's map has +z at its centre and grinlight's −z: half a turn about +y,
-                // then the map's own turn about +y (any other turn is refused).
+                // Mitsuba's map has +z at its centre and grinlight's −z: grinlight's map is
+                // Mitsuba's turned half a turn about +y, then by to_world (a rotation).
+                // A rotation to the 1e-6 of a matrix written with six digits, made exactly
+                // orthonormal (a turn of the map by 1e-6 rad at most, below Mitsuba's f32).
                 let l = linear(&m);
-                let about_y = (l.y_axis - DVec3::Y).length() < 1e-9
-                    && l.x_axis.y.abs() < 1e-9
-                    && l.z_axis.y.abs() < 1e-9
-                    && similarity(&m).is_some_and(|s| (s - 1.0).abs() < 1e-9);
-                if !about_y {
-                    return Err(e.error(
-                        "to_world turns the map about an axis other than +y: not supported",
-                    ));
+                let rotation =
+                    similarity(&m).is_some_and(|s| (s - 1.0).abs() < 1e-5) && l.determinant() > 0.0;
+                if !rotation {
+                    return Err(e.error("to_world must be a rotation (no scale, no mirror)"));
                 }
-                let turn = l.z_axis.x.atan2(l.z_axis.z).to_degrees();
+                let x = l.x_axis.normalize();
+                let y = (l.y_axis - x * x.dot(l.y_axis)).normalize();
+                let l = DMat3::from_cols(x, y, x.cross(y));
+                let about_y = (l.y_axis - DVec3::Y).length() < 1e-12;
+                let turn = match about_y {
+                    true => (
+                        "rotation_deg",
+                        Toml::Float(180.0 + l.z_axis.x.atan2(l.z_axis.z).to_degrees()),
+                    ),
+                    false => {
+                        let map = l * DMat3::from_rotation_y(std::f64::consts::PI);
+                        let rows = map.transpose().to_cols_array();
+                        (
+                            "matrix",
+                            Toml::Array(rows.iter().map(|&x| Toml::Float(x)).collect()),
+                        )
+                    }
+                };
                 e.finish()?;
                 let path = std::fs::canonicalize(&path).unwrap_or(path);
                 return self.set_environment(
@@ -1381,7 +1432,7 @@ impl Converter<'_> {
                     table([
                         ("type", string("environment")),
                         ("file", string(&path.to_string_lossy())),
-                        ("rotation_deg", Toml::Float(180.0 + turn)),
+                        turn,
                         // Read between pixels as Mitsuba reads its map.
                         ("filter", string("bilinear")),
                         ("scale", Toml::Float(scale)),

@@ -91,17 +91,38 @@ pub struct Property {
     used: Cell<bool>,
 }
 
-/// A nested object (or a `<ref>` to one), with the name it is given (`<texture
-/// name="reflectance">`).
+/// A nested object (or a `<ref>` to one, which may come before the object it names, as
+/// Mitsuba allows), with the name it is given (`<texture name="reflectance">`).
 #[derive(Debug)]
 pub struct Child {
     /// Its `name` attribute, if any.
     pub name: Option<String>,
-    /// The object.
-    pub object: Rc<Object>,
+    /// The object (a `<ref>`'s, once the whole scene is read).
+    object: std::cell::OnceCell<Rc<Object>>,
+    /// The id a `<ref>` names.
+    reference: Option<String>,
     /// Where it (or the `<ref>`) was written.
     pub place: Place,
     used: Cell<bool>,
+}
+
+impl Child {
+    fn owned(name: Option<String>, object: Rc<Object>, place: Place) -> Child {
+        Child {
+            name,
+            object: std::cell::OnceCell::from(object),
+            reference: None,
+            place,
+            used: Cell::new(false),
+        }
+    }
+
+    /// The object.
+    pub fn object(&self) -> &Rc<Object> {
+        self.object
+            .get()
+            .expect("references are resolved when the scene is read")
+    }
 }
 
 /// A plugin object: `<shape type="sphere" id="...">` with its properties and nested objects.
@@ -256,7 +277,7 @@ impl Object {
         let found: Vec<&Child> = self
             .children
             .iter()
-            .filter(|c| c.object.tag == tag)
+            .filter(|c| c.object().tag == tag)
             .collect();
         found.iter().for_each(|c| c.used.set(true));
         found
@@ -297,7 +318,7 @@ impl Object {
             return Err(c.place.error(format!(
                 "{}: a nested {} is not supported here by grinlight's import",
                 self.what(),
-                c.object.what()
+                c.object().what()
             )));
         }
         Ok(())
@@ -320,29 +341,35 @@ pub struct Document {
     pub scene: Rc<Object>,
     /// The XML files read (the scene and its includes).
     pub files: Vec<PathBuf>,
-    /// The directories `<path>` added, searched after each file's own.
+    /// Where the files a scene names are looked for, in order: the directories `<path>`
+    /// added (the last first), then the scene file's own (Mitsuba's file resolver).
     pub search: Vec<PathBuf>,
 }
 
 impl Document {
-    /// A file the scene names, found in the directory of the file that names it, then in the
-    /// `<path>` directories.
+    /// A file the scene names (see [`find_in`]).
     pub fn find(&self, relative: &str, from: &Place) -> Result<PathBuf> {
         find_in(relative, from, &self.search)
     }
 }
 
+/// A file a scene names: looked for as Mitsuba does, relative to `search` (the `<path>`
+/// directories, then the scene file's directory — also for a name in an included file), and
+/// last beside the file that names it.
 fn find_in(relative: &str, from: &Place, search: &[PathBuf]) -> Result<PathBuf> {
-    let own = from.file.parent().unwrap_or(Path::new("."));
-    std::iter::once(own.to_path_buf())
-        .chain(search.iter().cloned())
+    let own = from.file.parent().unwrap_or(Path::new(".")).to_path_buf();
+    search
+        .iter()
+        .cloned()
+        .chain(std::iter::once(own))
         .map(|dir| dir.join(relative))
         .find(|p| p.exists())
         .ok_or_else(|| {
+            let dirs: Vec<String> = search.iter().map(|d| d.display().to_string()).collect();
             from.error(format!(
-                "'{}' not found in {} or any <path> directory",
+                "'{}' not found in {} (the scene's directory and its <path>s)",
                 cut(relative),
-                own.display()
+                dirs.join(", ")
             ))
         })
 }
@@ -352,7 +379,7 @@ pub fn read(path: &Path, defines: &[(String, String)]) -> Result<Document> {
     let mut reader = Reader {
         values: defines.iter().cloned().collect(),
         ids: HashMap::new(),
-        search: Vec::new(),
+        search: vec![path.parent().unwrap_or(Path::new(".")).to_path_buf()],
         including: Vec::new(),
         files: Vec::new(),
     };
@@ -369,11 +396,31 @@ pub fn read(path: &Path, defines: &[(String, String)]) -> Result<Document> {
         children: Vec::new(),
     };
     reader.file(path, &mut scene)?;
+    resolve(&scene, &reader.ids)?;
     Ok(Document {
         scene: Rc::new(scene),
         files: reader.files,
         search: reader.search,
     })
+}
+
+/// Points every `<ref>` under `object` at the object of its id (anywhere in the scene: a
+/// reference may come before the object, as Mitsuba reads them).
+fn resolve(object: &Object, ids: &HashMap<String, Rc<Object>>) -> Result<()> {
+    for child in &object.children {
+        match &child.reference {
+            Some(id) => {
+                let target = ids.get(id).ok_or_else(|| {
+                    child
+                        .place
+                        .error(format!("<ref id=\"{}\">: no object has this id", cut(id)))
+                })?;
+                child.object.get_or_init(|| target.clone());
+            }
+            None => resolve(child.object(), ids)?,
+        }
+    }
+    Ok(())
 }
 
 struct Reader {
@@ -517,19 +564,14 @@ impl Reader {
                 "path" => {
                     let value = self.required(child, "value", &place)?;
                     let dir = file.parent().unwrap_or(Path::new(".")).join(value);
-                    self.search.push(dir);
+                    self.search.insert(0, dir);
                 }
                 "ref" => {
                     let id = self.required(child, "id", &place)?;
-                    let object = self.ids.get(&id).cloned().ok_or_else(|| {
-                        place.error(format!(
-                            "<ref id=\"{}\">: no object has this id before it",
-                            cut(&id)
-                        ))
-                    })?;
                     into.children.push(Child {
                         name: self.attribute(child, "name", &place)?,
-                        object,
+                        object: std::cell::OnceCell::new(),
+                        reference: Some(id),
                         place,
                         used: Cell::new(false),
                     });
@@ -542,12 +584,8 @@ impl Reader {
                 }
                 t if OBJECT_TAGS.contains(&t) => {
                     let object = self.object(file, doc, child, place.clone())?;
-                    into.children.push(Child {
-                        name: self.attribute(child, "name", &place)?,
-                        object,
-                        place,
-                        used: Cell::new(false),
-                    });
+                    let name = self.attribute(child, "name", &place)?;
+                    into.children.push(Child::owned(name, object, place));
                 }
                 _ => {
                     let name = self

@@ -2,13 +2,13 @@
 
 use super::shape::parallelogram;
 use crate::color::Rgb;
-use crate::environment::{Environment, ImageFilter, Sky};
+use crate::environment::{Environment, ImageFilter, Sky, Turn};
 use crate::error::Result;
 use crate::lights::{Emitter, Falloff, Light, Luminaire};
 use crate::scene::table::TableReader;
 use crate::spectrum::emission::Shape;
 use crate::spectrum::Spectrum;
-use glam::DVec3;
+use glam::{DMat3, DVec3};
 
 /// A light's optional `spectrum` (None: not given — the light is D65 in bands and its RGB in
 /// images): the shape of its emission over wavelength, `"D65"`, `"E"` (equal energy),
@@ -252,9 +252,31 @@ pub fn read_environment(t: &mut TableReader) -> Result<Environment> {
     };
     let scale = t.f64_or("scale", 1.0)?;
     t.check("scale", scale >= 0.0, "must be ≥ 0")?;
-    Ok(Environment {
-        sky,
-        rotation: t.f64_or("rotation_deg", 0.0)?.to_radians(),
-        scale,
-    })
+    let turn = match t.f64_list_opt("matrix")? {
+        Some(m) => {
+            t.check(
+                "rotation_deg",
+                !t.has("rotation_deg"),
+                "give either `matrix` or `rotation_deg`",
+            )?;
+            t.check(
+                "matrix",
+                m.len() == 9,
+                format!("expected the 9 numbers of 3 rows, got {}", m.len()),
+            )?;
+            let turn = DMat3::from_cols_slice(&m).transpose();
+            let orthonormal = (turn.transpose() * turn - DMat3::IDENTITY)
+                .to_cols_array()
+                .iter()
+                .all(|x| x.abs() < 1e-9);
+            t.check(
+                "matrix",
+                orthonormal && turn.determinant() > 0.0,
+                "must be a rotation (orthonormal rows, determinant 1)",
+            )?;
+            Turn::Rotation(turn)
+        }
+        None => Turn::AboutY(t.f64_or("rotation_deg", 0.0)?.to_radians()),
+    };
+    Ok(Environment { sky, turn, scale })
 }

@@ -29,8 +29,37 @@ fn unit_color(t: &mut TableReader, key: &str, default: Option<Rgb>) -> Result<Rg
     Ok(c)
 }
 
-/// An optional image over the surface's (u, v) at `texture`, multiplying the albedo.
+/// An optional texture over the surface's (u, v), multiplying the albedo: an image at
+/// `texture`, or a `checkerboard` of two colours placed by `checkerboard_uv`.
 fn texture(t: &mut TableReader) -> Result<Option<Arc<Texture>>> {
+    if t.has("checkerboard") {
+        t.check(
+            "texture",
+            !t.has("texture"),
+            "give either `texture` or `checkerboard`",
+        )?;
+        let colours = t.vec3_list("checkerboard")?;
+        t.check(
+            "checkerboard",
+            colours.len() == 2
+                && colours
+                    .iter()
+                    .all(|c| c.is_finite() && c.min_element() >= 0.0 && c.max_element() <= 1.0),
+            "expected two colours [[r, g, b], [r, g, b]], each in [0, 1]",
+        )?;
+        let m = t
+            .f64_list_opt("checkerboard_uv")?
+            .unwrap_or(vec![1.0, 0.0, 0.0, 0.0, 1.0, 0.0]);
+        t.check(
+            "checkerboard_uv",
+            m.len() == 6,
+            format!("expected 6 numbers (2 rows [a, b, c]), got {}", m.len()),
+        )?;
+        return Ok(Some(Arc::new(Texture::Checkerboard {
+            colours: [Rgb(colours[0]), Rgb(colours[1])],
+            to_uv: [[m[0], m[1], m[2]], [m[3], m[4], m[5]]],
+        })));
+    }
     if !t.has("texture") {
         return Ok(None);
     }
