@@ -561,3 +561,27 @@ fn references_come_before_their_objects_and_files_resolve_from_the_scene() {
     // Mitsuba's direct integrator: paths of two segments, one scattering.
     assert_eq!(t["render"]["max_depth"].as_integer(), Some(1));
 }
+
+#[test]
+fn a_material_the_import_makes_never_takes_a_bsdfs_name() {
+    // A BSDF of the scene called as the import's own default would be: the shape without a
+    // BSDF still gets Mitsuba's default diffuse, not that glass.
+    let d = dir("made-names");
+    let body = r#"<bsdf type="dielectric" id="default-diffuse"/>
+    <shape type="sphere"><ref id="default-diffuse"/></shape>
+    <shape type="sphere"><point name="center" value="3, 0, 0"/></shape>"#;
+    let p = write(&d, "s.xml", &scene("", body));
+    let t = convert(&p, &ImportOptions::default()).unwrap();
+    let materials = tables(&t, "material");
+    let shapes = tables(&t, "shape");
+    let of = |shape: &toml::Table| {
+        let name = shape["material"].as_str().unwrap();
+        *materials
+            .iter()
+            .find(|m| m["name"].as_str() == Some(name))
+            .unwrap()
+    };
+    assert_eq!(of(shapes[0])["type"].as_str(), Some("dielectric"));
+    assert_eq!(of(shapes[1])["type"].as_str(), Some("diffuse"));
+    assert_eq!(vec3(&of(shapes[1])["albedo"]), [0.5, 0.5, 0.5]);
+}

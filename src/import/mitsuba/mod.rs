@@ -75,6 +75,7 @@ pub fn convert(doc: &Document, approximate: bool) -> Result<Converted> {
         environment: None,
         ambient: None,
         one_sided: Vec::new(),
+        made: HashMap::new(),
     };
     let scene = doc.scene.clone();
     let mut table = Table::new();
@@ -185,6 +186,31 @@ struct Converter<'d> {
     ambient: Option<String>,
     /// The BSDFs that are one-sided in Mitsuba (black from behind), two-sided here.
     one_sided: Vec<String>,
+    /// The materials the import made itself, by their names.
+    made: HashMap<Made, String>,
+}
+
+/// A material the import makes itself, not from a BSDF of the scene.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+enum Made {
+    /// Mitsuba's default BSDF, for a shape without one.
+    DefaultDiffuse,
+    /// The index-matched boundary of a medium behind a `null` BSDF.
+    IndexMatched,
+}
+
+/// A name no table of `tables` has: `wanted` itself where it is free, else `wanted-1`,
+/// `wanted-2`, ….
+fn free_name(tables: &[Table], wanted: &str) -> String {
+    let taken = |n: &str| {
+        tables
+            .iter()
+            .any(|t| t.get("name").and_then(Toml::as_str) == Some(n))
+    };
+    std::iter::once(wanted.to_string())
+        .chain((1..).map(|i| format!("{wanted}-{i}")))
+        .find(|n| !taken(n))
+        .expect("a free name")
 }
 
 /// A vector as a TOML array.
@@ -558,7 +584,7 @@ impl Converter<'_> {
         };
         b.finish()?;
         let textured = m.contains_key("texture") || m.contains_key("checkerboard");
-        let name = self.unique_material_name(id.or(b.id.as_deref()));
+        let name = free_name(&self.materials, id.or(b.id.as_deref()).unwrap_or("bsdf"));
         m.insert("name".into(), string(&name));
         m.insert("type".into(), string(kind));
         self.materials.push(m);
@@ -567,22 +593,6 @@ impl Converter<'_> {
             ior,
             textured,
         })
-    }
-
-    fn unique_material_name(&self, id: Option<&str>) -> String {
-        let taken = |n: &str| {
-            self.materials
-                .iter()
-                .any(|m| m.get("name").and_then(Toml::as_str) == Some(n))
-        };
-        let base = id.unwrap_or("bsdf").to_string();
-        if id.is_some() && !taken(&base) {
-            return base;
-        }
-        (1..)
-            .map(|i| format!("{base}-{i}"))
-            .find(|n| !taken(n))
-            .expect("a free name")
     }
 
     /// The grinlight medium a Mitsuba medium becomes at (relative) index `n`.
@@ -637,20 +647,7 @@ impl Converter<'_> {
             medium.children("phase");
         }
         medium.finish()?;
-        let base = medium.id.clone().unwrap_or_else(|| "medium".into());
-        let taken = |name: &str, media: &[Table]| {
-            media
-                .iter()
-                .any(|t| t.get("name").and_then(Toml::as_str) == Some(name))
-        };
-        let name = if !taken(&base, &self.media) && medium.id.is_some() {
-            base
-        } else {
-            (1..)
-                .map(|i| format!("{base}-{i}"))
-                .find(|x| !taken(x, &self.media))
-                .expect("a free name")
-        };
+        let name = free_name(&self.media, medium.id.as_deref().unwrap_or("medium"));
         m.insert("name".into(), string(&name));
         self.media.push(m);
         self.medium_names.insert(key, name.clone());
@@ -993,7 +990,8 @@ impl Converter<'_> {
             (Surface::Null, Some(medium)) => {
                 // An index-matched boundary: a dielectric of index 1 around the medium.
                 let name = self.medium(medium, 1.0)?;
-                out.insert("material".into(), string(&self.index_matched()));
+                let boundary = self.made_material(Made::IndexMatched);
+                out.insert("material".into(), string(&boundary));
                 out.insert("interior".into(), string(&name));
             }
             (Surface::Material { name, ior, .. }, medium) => {
@@ -1064,42 +1062,41 @@ impl Converter<'_> {
         }
     }
 
-    /// Mitsuba's default BSDF, diffuse with reflectance 0.5.
+    /// Mitsuba's default BSDF, diffuse with reflectance 0.5 (one material for every shape
+    /// without a BSDF, under a name no BSDF of the scene has).
     fn default_diffuse(&mut self) -> Surface {
-        let name = "default-diffuse";
-        if !self
-            .materials
-            .iter()
-            .any(|m| m.get("name").and_then(Toml::as_str) == Some(name))
-        {
-            self.materials.push(table([
-                ("name", string(name)),
-                ("type", string("diffuse")),
-                ("albedo", vec3(DVec3::splat(0.5))),
-            ]));
-        }
+        let name = self.made_material(Made::DefaultDiffuse);
         Surface::Material {
-            name: name.into(),
+            name,
             ior: None,
             textured: false,
         }
     }
 
-    /// A dielectric of relative index 1: the boundary of a medium behind a null BSDF.
-    fn index_matched(&mut self) -> String {
-        let name = "index-matched";
-        if !self
-            .materials
-            .iter()
-            .any(|m| m.get("name").and_then(Toml::as_str) == Some(name))
-        {
-            self.materials.push(table([
-                ("name", string(name)),
-                ("type", string("dielectric")),
-                ("ior", Toml::Float(1.0)),
-            ]));
+    /// The name of a material the import makes itself, made the first time it is asked for.
+    fn made_material(&mut self, made: Made) -> String {
+        if let Some(name) = self.made.get(&made) {
+            return name.clone();
         }
-        name.into()
+        let (wanted, mut table) = match made {
+            Made::DefaultDiffuse => (
+                "default-diffuse",
+                table([
+                    ("type", string("diffuse")),
+                    ("albedo", vec3(DVec3::splat(0.5))),
+                ]),
+            ),
+            // A dielectric of relative index 1: the boundary of a medium behind a null BSDF.
+            Made::IndexMatched => (
+                "index-matched",
+                table([("type", string("dielectric")), ("ior", Toml::Float(1.0))]),
+            ),
+        };
+        let name = free_name(&self.materials, wanted);
+        table.insert("name".into(), string(&name));
+        self.materials.push(table);
+        self.made.insert(made, name.clone());
+        name
     }
 
     /// The geometry keys of a shape; `textured`: its material has an image texture, looked up
