@@ -276,10 +276,10 @@ fn cases() -> Vec<Case> {
         // Environment images.
         env_case("environment NaN pixel", exr_with(f32::NAN), Error("(x 1, y 0)")),
         // Keys a converted Mitsuba scene writes, given wrong by hand.
-        Case { name: "environment filter unknown", files: vec![("s.toml", scene("[[light]]\ntype = \"environment\"\nfile = \"sky.exr\"\nfilter = \"cubic\"\n")), ("sky.exr", exr_with(1.0))], args: render(""), expect: Error("unknown filter 'cubic' (nearest, bilinear)") },
+        Case { name: "environment filter unknown", files: vec![("s.toml", scene("[[light]]\ntype = \"environment\"\nfile = \"sky.exr\"\nfilter = \"cubic\"\n")), ("sky.exr", exr_with(1.0))], args: render(""), expect: Error("unknown value 'cubic' (nearest, bilinear)") },
         Case { name: "environment matrix not a rotation", files: vec![("s.toml", scene("[[light]]\ntype = \"environment\"\nsky = \"uniform\"\nmatrix = [2, 0, 0, 0, 1, 0, 0, 0, 1]\n"))], args: render(""), expect: Error("must be a rotation") },
         Case { name: "environment matrix and rotation_deg", files: vec![("s.toml", scene("[[light]]\ntype = \"environment\"\nsky = \"uniform\"\nmatrix = [1, 0, 0, 0, 1, 0, 0, 0, 1]\nrotation_deg = 3\n"))], args: render(""), expect: Error("give either `matrix` or `rotation_deg`") },
-        scene_case("spot falloff_curve unknown", "[[light]]\ntype = \"spot\"\nposition = [0, 0, 1]\nintensity = 1\ncone_deg = 30\nfalloff_curve = \"cubic\"\n", Error("unknown falloff curve 'cubic'")),
+        scene_case("spot falloff_curve unknown", "[[light]]\ntype = \"spot\"\nposition = [0, 0, 1]\nintensity = 1\ncone_deg = 30\nfalloff_curve = \"cubic\"\n", Error("key `falloff_curve`: unknown value 'cubic' (smoothstep, linear)")),
         scene_case("checkerboard of one colour", "[[material]]\nname = \"c\"\ntype = \"diffuse\"\ncheckerboard = [[1, 0, 0]]\n", Error("expected two colours")),
         scene_case("checkerboard beyond 1", "[[material]]\nname = \"c\"\ntype = \"diffuse\"\ncheckerboard = [[1, 0, 0], [2, 0, 0]]\n", Error("each in [0, 1]")),
         scene_case("checkerboard and texture", "[[material]]\nname = \"c\"\ntype = \"diffuse\"\ncheckerboard = [[1, 0, 0], [0, 0, 0]]\ntexture = \"t.png\"\n", Error("either `texture` or `checkerboard`")),

@@ -156,6 +156,25 @@ impl<'a> TableReader<'a> {
         }
     }
 
+    /// One of the named `options` at `key` (its value where the key is absent: the first);
+    /// another name is refused, listing them.
+    pub fn choice<T: Copy>(&mut self, key: &str, options: &[(&str, T)]) -> Result<T> {
+        let Some(given) = self.string_opt(key)? else {
+            return Ok(options[0].1);
+        };
+        options
+            .iter()
+            .find(|(name, _)| *name == given)
+            .map(|&(_, value)| value)
+            .ok_or_else(|| {
+                let names: Vec<&str> = options.iter().map(|(name, _)| *name).collect();
+                self.error(
+                    key,
+                    format!("unknown value '{given}' ({})", names.join(", ")),
+                )
+            })
+    }
+
     /// A required path, relative to the scene file's directory, of a file the scene reads
     /// (remembered as an input of the scene).
     pub fn input_file(&mut self, key: &str) -> Result<std::path::PathBuf> {

@@ -92,16 +92,10 @@ pub fn read_light(t: &mut TableReader, kind: &str) -> Result<Light> {
             t.check("cone_deg", cone > 0.0 && cone <= 180.0, "must be in (0°, 180°]")?;
             let falloff = t.f64_or("falloff_deg", cone)?;
             t.check("falloff_deg", (0.0..=cone).contains(&falloff), "must be in [0°, cone_deg]")?;
-            let curve = match t.string_opt("falloff_curve")?.as_deref() {
-                None | Some("smoothstep") => Falloff::SmoothStep,
-                Some("linear") => Falloff::LinearInAngle,
-                Some(other) => {
-                    return Err(t.error(
-                        "falloff_curve",
-                        format!("unknown falloff curve '{other}' (smoothstep, linear)"),
-                    ))
-                }
-            };
+            let curve = t.choice(
+                "falloff_curve",
+                &[("smoothstep", Falloff::SmoothStep), ("linear", Falloff::LinearInAngle)],
+            )?;
             Light::Spot {
                 position,
                 direction,
@@ -209,16 +203,13 @@ pub fn read_environment(t: &mut TableReader) -> Result<Environment> {
                     ),
                 ));
             }
-            let filter = match t.string_opt("filter")?.as_deref() {
-                None | Some("nearest") => ImageFilter::Nearest,
-                Some("bilinear") => ImageFilter::Bilinear,
-                Some(other) => {
-                    return Err(t.error(
-                        "filter",
-                        format!("unknown filter '{other}' (nearest, bilinear)"),
-                    ))
-                }
-            };
+            let filter = t.choice(
+                "filter",
+                &[
+                    ("nearest", ImageFilter::Nearest),
+                    ("bilinear", ImageFilter::Bilinear),
+                ],
+            )?;
             Sky::Image {
                 width: img.width() as usize,
                 height: img.height() as usize,
