@@ -26,7 +26,7 @@ use std::path::Path;
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let (scene, settings) = grinlight::scene::load_scene(Path::new("scenes/black_hole.toml"))?;
     let camera = scene.camera.as_ref().ok_or("no camera")?;
-    let hole = scene.ambient.ok_or("no ambient medium")?;
+    let hole = scene.ambient().ok_or("no ambient medium")?;
     let medium = scene.medium_at(hole);
     let (rs, q, center) = (0.01, 0.1, glam::DVec3::ZERO); // as in the scene file
     let tracer = Tracer::new(&scene, &settings.trace);
@@ -47,7 +47,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let n0 = medium.sample(o).ok_or("camera inside the horizon")?.n;
         let b = n0 * r0 * sin_psi / rs;
         let Event::Escaped { direction: out, .. } =
-            tracer.next_event(o, d, scene.ambient, &mut stats)
+            tracer.next_event(o, d, scene.ambient(), &mut stats)
         else {
             continue; // captured
         };
@@ -155,7 +155,7 @@ fn exact_row() -> Result<(Curve, Curve), Box<dyn std::error::Error>> {
             direction: out,
             position,
             ..
-        } = tracer.next_event(o, d, scene.ambient, &mut Stats::default())
+        } = tracer.next_event(o, d, scene.ambient(), &mut Stats::default())
         else {
             continue; // captured
         };

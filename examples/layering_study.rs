@@ -45,7 +45,7 @@ fn rays() -> Vec<(DVec3, DVec3, f64)> {
 fn land(
     scene: &Scene,
     trace: &TraceSettings,
-    medium_at: impl Fn(f64) -> usize,
+    medium_at: impl Fn(f64) -> grinlight::ids::MediumId,
 ) -> (Vec<Option<DVec3>>, f64) {
     let tracer = Tracer::new(scene, trace);
     let mut events = 0;
@@ -95,7 +95,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let twin = twin.build();
         let first = twin.medium_names().count() - layers.len();
         let (hits, per_ray) = land(&twin, &settings.trace, |r| {
-            first + layers.iter().position(|l| r < l.outer).unwrap_or(0)
+            grinlight::ids::MediumId::new(
+                first + layers.iter().position(|l| r < l.outer).unwrap_or(0),
+            )
         });
         let seconds = t.elapsed().as_secs_f64();
         let mut errors: Vec<f64> = hits

@@ -283,7 +283,7 @@ material = "lens"
 "#;
 
 /// Where the tracer finds each ray of `rays` (starts inside the ball) meet the sphere.
-fn hits(tracer: &Tracer, medium: usize, rays: &[Ray]) -> Vec<DVec3> {
+fn hits(tracer: &Tracer, medium: grinlight::ids::MediumId, rays: &[Ray]) -> Vec<DVec3> {
     let mut stats = Stats::default();
     rays.iter()
         .map(

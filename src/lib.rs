@@ -32,6 +32,7 @@ pub mod error;
 pub mod exact;
 pub mod fiber;
 pub mod film;
+pub mod ids;
 pub mod import;
 pub mod input;
 pub mod integrator;

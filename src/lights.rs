@@ -2,6 +2,7 @@
 //! Radiometry per RGB channel: intensity W/sr, radiance W/(m²·sr), irradiance W/m².
 
 use crate::color::Rgb;
+use crate::ids::LightId;
 use crate::math::Ball;
 use crate::photometry::Goniogram;
 use crate::sampling::{
@@ -973,11 +974,11 @@ impl LightChoice<'_> {
         }
     }
 
-    /// The chance light `i` had under `samples`.
-    pub fn chance(&self, samples: LightSamples, i: usize) -> f64 {
+    /// The chance light `light` had under `samples`.
+    pub fn chance(&self, samples: LightSamples, light: LightId) -> f64 {
         match samples {
             LightSamples::Each => 1.0,
-            LightSamples::One => self.probability(i),
+            LightSamples::One => self.probability(light.index()),
         }
     }
 }

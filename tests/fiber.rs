@@ -139,9 +139,7 @@ fn a_meridional_ray_reaches_the_receiver_where_the_paraxial_path_says() {
     use grinlight::transport::Tracer;
     let (scene, settings) = load_scene(Path::new("scenes/fiber_led.toml")).unwrap();
     let tracer = Tracer::new(&scene, &settings.trace);
-    let core = (0..)
-        .find(|&i| scene.medium_names().nth(i) == Some("core"))
-        .unwrap();
+    let core = scene.media().index("core").unwrap();
     let (a, n0, len, gap, x0) = (0.10667f64, 1.5f64, 20.0f64, 0.05f64, 0.05f64);
     // Core → exit face (refracted) → receiver.
     let (hit, events) = principal_ray(&tracer, DVec3::new(x0, 0.0, 1e-9), DVec3::Z, Some(core), 10)
@@ -395,20 +393,21 @@ fn the_layered_twin_is_a_staircase_and_converges_slowly() {
         .medium;
     let grin = load_scene(path).unwrap();
     let thetas: Vec<f64> = (1..=64).map(|i| 0.16 * i as f64 / 64.0).collect();
-    let land = |(scene, settings): &(Scene, Settings), medium: usize, theta: f64| {
-        let dir = DVec3::new(theta.sin(), 0.0, theta.cos());
-        let tracer = Tracer::new(scene, &settings.trace);
-        let (p, _) = principal_ray(
-            &tracer,
-            DVec3::new(0.0, 0.0, 1e-9),
-            dir,
-            Some(medium),
-            100_000,
-        )
-        .expect("reaches the receiver");
-        assert!(p.y.abs() < 1e-9, "meridional");
-        p.x
-    };
+    let land =
+        |(scene, settings): &(Scene, Settings), medium: grinlight::ids::MediumId, theta: f64| {
+            let dir = DVec3::new(theta.sin(), 0.0, theta.cos());
+            let tracer = Tracer::new(scene, &settings.trace);
+            let (p, _) = principal_ray(
+                &tracer,
+                DVec3::new(0.0, 0.0, 1e-9),
+                dir,
+                Some(medium),
+                100_000,
+            )
+            .expect("reaches the receiver");
+            assert!(p.y.abs() < 1e-9, "meridional");
+            p.x
+        };
     let reference: Vec<f64> = thetas.iter().map(|&t| land(&grin, core, t)).collect();
     // The GRIN side against an independent integration of the meridional ray equation in z,
     // x'' = (1 + x'²) ∂n/∂x / n (RK4, 20 000 steps), then Snell at the exit face and the gap.
@@ -441,7 +440,7 @@ fn the_layered_twin_is_a_staircase_and_converges_slowly() {
         let mut agree = 0;
         let mut off: Vec<f64> = Vec::new();
         for (&theta, &g) in thetas.iter().zip(&reference) {
-            let x = land(&twin, first, theta);
+            let x = land(&twin, grinlight::ids::MediumId::new(first), theta);
             let s = staircase_landing(&model, theta, 20.0, 0.05);
             agree += usize::from((x - s).abs() < 1e-4);
             off.push((x - g).abs());
@@ -694,9 +693,14 @@ fn a_scattering_fibers_twin_scatters_and_absorbs_alike() {
     let (twin, layers) = twinned(path, Some(text), (0.005, 0.25));
     let scene = &twin.0;
     let core = scene.media().index("core").unwrap();
-    for i in (0..scene.media().len())
-        .filter(|&i| scene.media().names().nth(i).unwrap().starts_with("layer"))
-    {
+    for i in scene.media().ids().filter(|&i| {
+        scene
+            .media()
+            .names()
+            .nth(i.index())
+            .unwrap()
+            .starts_with("layer")
+    }) {
         assert_eq!(scene.media().scattering(i), scene.media().scattering(core));
         assert!((scene.media().participating(i).sigma_a(glam::DVec3::ZERO) - 0.02).abs() < 1e-15);
     }

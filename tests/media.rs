@@ -552,7 +552,7 @@ fn grids_of_temperature_and_density_are_air_indices() {
         );
         let (scene, settings) = parse_scene(std::path::Path::new("air.toml"), text).unwrap();
         grinlight::transport::Tracer::new(&scene, &settings.trace)
-            .index(Some(0), DVec3::splat(0.5))
+            .index(Some(grinlight::ids::MediumId::new(0)), DVec3::splat(0.5))
             .unwrap()
     };
     let stp = 2.9262e-4;

@@ -6,14 +6,22 @@
 
 use glam::DVec3;
 use grinlight::media::{IndexSample, Medium};
-use grinlight::scene::load::parse_scene;
-use grinlight::scene::Scene;
+use grinlight::scene::load::{parse_description, parse_scene};
+use grinlight::scene::{Description, Scene};
 use grinlight::settings::Settings;
 use grinlight::transport::{Event, Stats, Tracer};
 use std::path::Path;
 
 fn parse(text: &str) -> (Scene, Settings) {
     parse_scene(Path::new("radiometry.toml"), text.to_string()).unwrap()
+}
+
+/// The scene of `text` as `edit` changes its description (a medium of one's own added).
+fn parse_edited(text: &str, edit: impl FnOnce(&mut Description)) -> (Scene, Settings) {
+    let (mut description, settings) =
+        parse_description(Path::new("radiometry.toml"), text.to_string()).unwrap();
+    edit(&mut description);
+    (description.build(), settings)
 }
 
 fn render(scene: &(Scene, Settings)) -> grinlight::film::Film {
@@ -120,15 +128,12 @@ impl Medium for Graded {
 /// on the way); the film's f32 bounds the tolerance, 1e-6 relative.
 #[test]
 fn basic_radiance_is_invariant_along_a_grin_path() {
-    let mut scene = parse(
+    let scene = parse_edited(
         "[camera]\nposition = [0, 0, 0]\nlook_at = [0, 1, 0]\nup = [0, 0, 1]\nfov_y_deg = 0.5\nwidth = 4\nheight = 4\n\
          [render]\nspp = 1\ngather = 0\nphotons = 0\ncaustic_photons = 0\nworld_radius = 100\n\
          [[light]]\ntype = \"quad\"\nvertices = [[-5, 3, -5], [5, 3, -5], [5, 3, 5], [-5, 3, 5]]\nradiance = 2\n",
+        |d| d.ambient = Some(d.media.add("graded", Box::new(Graded { n0: 1.0, g: 0.2 }))),
     );
-    let m = scene
-        .0
-        .add_medium("graded", Box::new(Graded { n0: 1.0, g: 0.2 }));
-    scene.0.ambient = Some(m);
     let film = render(&scene);
     let want = 2.0 * (-1.2f64).exp();
     for p in film.layer("emitted").unwrap() {
@@ -174,11 +179,6 @@ fn the_environment_seen_from_inside_a_medium_is_n_squared_brighter() {
 fn absorption_integrates_sigma_a_along_the_path() {
     use grinlight::media::Density;
     use grinlight::volume::{Absorption, Participating};
-    let mut scene = parse(
-        "[render]\nworld_radius = 5\n\
-         [[material]]\nname = \"wall\"\ntype = \"diffuse\"\nalbedo = 0.5\n\
-         [[shape]]\ntype = \"quad\"\nvertices = [[2, -50, -50], [2, 50, -50], [2, 50, 50], [2, -50, 50]]\nmaterial = \"wall\"\n",
-    );
     // d(x) = 0.3 + 0.05 x on x ∈ [−4, 4] (0.1 to 0.5), constant across y and z.
     let density = Density::new(
         DVec3::new(-4.0, -6.0, -6.0),
@@ -194,15 +194,20 @@ fn absorption_integrates_sigma_a_along_the_path() {
         }),
         ..Participating::default()
     };
-    let straight = scene
-        .0
-        .add_medium("straight", Box::new(Graded { n0: 1.2, g: 0.0 }));
-    let curved = scene
-        .0
-        .add_medium("curved", Box::new(Graded { n0: 1.0, g: 0.2 }));
-    for m in [straight, curved] {
-        scene.0.set_participating(m, radiometry.clone());
-    }
+    let (mut straight, mut curved) = (None, None);
+    let scene = parse_edited(
+        "[render]\nworld_radius = 5\n\
+         [[material]]\nname = \"wall\"\ntype = \"diffuse\"\nalbedo = 0.5\n\
+         [[shape]]\ntype = \"quad\"\nvertices = [[2, -50, -50], [2, 50, -50], [2, 50, 50], [2, -50, 50]]\nmaterial = \"wall\"\n",
+        |d| {
+            for (name, g, id) in [("straight", 0.0, &mut straight), ("curved", 0.2, &mut curved)] {
+                let m = d.media.add(name, Box::new(Graded { n0: 1.2 - g, g }));
+                d.media.set_participating(m, radiometry.clone());
+                *id = Some(m);
+            }
+        },
+    );
+    let (straight, curved) = (straight.unwrap(), curved.unwrap());
     let tracer = Tracer::new(&scene.0, &scene.1.trace);
     let mut stats = Stats::default();
     // Straight, away from the wall, to the world sphere (centred at the wall's centre).
@@ -318,7 +323,7 @@ fn a_trapped_ray_is_lost_not_escaped() {
         if (2.9..3.1).contains(&r) {
             continue;
         }
-        let e = tracer.next_event(p, d, scene.ambient, &mut Stats::default());
+        let e = tracer.next_event(p, d, scene.ambient(), &mut Stats::default());
         if r < 2.9 {
             trapped += 1;
             assert_eq!(e, Event::Lost, "d {d}: circle within {r:.3}");
@@ -376,7 +381,7 @@ fn tessendorf_draws_different_xi_for_different_rays() {
         tracer.next_event_along(
             DVec3::new(0.0, 0.0, z),
             DVec3::X,
-            Some(0),
+            Some(grinlight::ids::MediumId::new(0)),
             &mut stats,
             &mut |p| points.push(p.x),
         );
@@ -503,8 +508,14 @@ fn curved_connections_match_independent_answers() {
             (-1.0, 0.8),
         ] {
             let mut stats = Stats::default();
-            let link = connect(&tracer, DVec3::new(x, y, 1.0), 0, &anchor, &mut stats)
-                .expect("parallel light reaches the layer");
+            let link = connect(
+                &tracer,
+                DVec3::new(x, y, 1.0),
+                grinlight::ids::MediumId::new(0),
+                &anchor,
+                &mut stats,
+            )
+            .expect("parallel light reaches the layer");
             let e = link.irradiance(&anchor, grinlight::color::Rgb::ZERO).x * link.direction.y;
             println!(
                 "layer {control:?}: horizontal irradiance {e:.9} vs {:.9}",
@@ -536,8 +547,14 @@ fn curved_connections_match_independent_answers() {
                 let du = (i as f64 + 0.5) / 4.0 - 0.5;
                 let dv = (j as f64 + 0.5) / 4.0 - 0.5;
                 let p = rec.center + rec.u * (cu + 0.5 * du) + rec.v * (cv + 0.5 * dv);
-                let link =
-                    connect(&tracer, p, 0, &anchor, &mut stats).expect("the light is reached");
+                let link = connect(
+                    &tracer,
+                    p,
+                    grinlight::ids::MediumId::new(0),
+                    &anchor,
+                    &mut stats,
+                )
+                .expect("the light is reached");
                 let e = link.irradiance(&anchor, light.intensity(-link.arrival)).x;
                 sum += e * link.direction.y / 16.0;
                 let d = DVec3::new(0.0, 3.0, 0.0) - p;
@@ -592,8 +609,8 @@ fn curved_paths_meet_surfaces_where_a_fine_march_does() {
     let hits = |scene: &(Scene, Settings)| -> Vec<Option<(usize, DVec3, f64)>> {
         let tracer = Tracer::new(&scene.0, &scene.1.trace);
         rays.iter()
-            .map(
-                |&(o, d)| match tracer.next_event(o, d, scene.0.ambient, &mut Stats::default()) {
+            .map(|&(o, d)| {
+                match tracer.next_event(o, d, scene.0.ambient(), &mut Stats::default()) {
                     Event::Surface {
                         prim,
                         position,
@@ -601,8 +618,8 @@ fn curved_paths_meet_surfaces_where_a_fine_march_does() {
                         ..
                     } => Some((prim, position, distance)),
                     _ => None,
-                },
-            )
+                }
+            })
             .collect()
     };
     let reference = hits(&scene_with("rkn", 1e-13));
@@ -666,29 +683,29 @@ fn an_emitting_slab_shows_its_closed_form() {
 #[test]
 fn emission_along_a_curved_path_shows_its_closed_form() {
     use grinlight::volume::{Absorption, Emission, Participating};
-    let mut scene = parse(
+    let scene = parse_edited(
         "[camera]\nposition = [0, 1, 0]\nlook_at = [1, 1.3, 0]\nup = [0, 0, 1]\nfov_y_deg = 0.001\nwidth = 2\nheight = 2\n\
          [render]\nintegrator = \"path\"\nspp = 1\nworld_radius = 100\n\
          [[material]]\nname = \"black\"\ntype = \"diffuse\"\nalbedo = 0\n\
          [[shape]]\ntype = \"quad\"\nvertices = [[3, -50, -50], [3, 50, -50], [3, 50, 50], [3, -50, 50]]\nmaterial = \"black\"\n",
-    );
-    let m = scene
-        .0
-        .add_medium("graded", Box::new(Graded { n0: 1.0, g: 0.2 }));
-    scene.0.set_participating(
-        m,
-        Participating {
-            absorption: Some(Absorption {
-                sigma_a: 0.5,
-                density: None,
-            }),
-            emission: Some(Emission {
-                radiance: grinlight::color::Rgb::ONE,
-            }),
-            ..Participating::default()
+        |d| {
+            let m = d.media.add("graded", Box::new(Graded { n0: 1.0, g: 0.2 }));
+            d.media.set_participating(
+                m,
+                Participating {
+                    absorption: Some(Absorption {
+                        sigma_a: 0.5,
+                        density: None,
+                    }),
+                    emission: Some(Emission {
+                        radiance: grinlight::color::Rgb::ONE,
+                    }),
+                    ..Participating::default()
+                },
+            );
+            d.ambient = Some(m);
         },
     );
-    scene.0.ambient = Some(m);
     let film = render(&scene);
     let start = DVec3::new(0.0, 1.0, 0.0);
     let arc = grinlight::curve::CurvedSegment::new(

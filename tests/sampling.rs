@@ -357,7 +357,7 @@ fn the_light_choice_follows_each_lights_irradiance_bound() {
         assert!((pick.probability - want[pick.index]).abs() < 1e-15);
         assert_eq!(
             pick.probability,
-            choice.chance(LightSamples::One, pick.index)
+            choice.chance(LightSamples::One, grinlight::ids::LightId::new(pick.index))
         );
         counts[pick.index] += 1;
     }
@@ -370,7 +370,9 @@ fn the_light_choice_follows_each_lights_irradiance_bound() {
             "light {i}: {share} against {p}"
         );
     }
-    assert!((0..3).all(|i| choice.chance(LightSamples::Each, i) == 1.0));
+    assert!(
+        (0..3).all(|i| choice.chance(LightSamples::Each, grinlight::ids::LightId::new(i)) == 1.0)
+    );
     // A given number picks as a drawn one does: u below light 0's share takes light 0.
     let given = choice.pick(Given(Some([0.5 * want[0]])), &mut rng).unwrap();
     assert_eq!(given.index, 0);

@@ -211,8 +211,16 @@ fn dispersive_indices_read_and_wrong_ones_are_located() {
         let text = format!("[[material]]\nname = \"g\"\ntype = \"dielectric\"\n{line}\n");
         let (scene, _) = parse_scene(Path::new("s.toml"), text).unwrap();
         let media = scene.media();
-        assert_eq!(media.is_dispersive(0), line != "ior = 1.5", "{line}");
-        let n = media.at(0).sample(DVec3::ZERO).unwrap().n;
+        assert_eq!(
+            media.is_dispersive(grinlight::ids::MediumId::new(0)),
+            line != "ior = 1.5",
+            "{line}"
+        );
+        let n = media
+            .at(grinlight::ids::MediumId::new(0))
+            .sample(DVec3::ZERO)
+            .unwrap()
+            .n;
         assert!((n - 1.517).abs() < 0.02, "{line}: n_d = {n}");
     }
     let bad = [

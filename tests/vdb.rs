@@ -92,7 +92,9 @@ fn a_vdb_temperature_grid_is_a_medium_of_air() {
         } else {
             300.0
         };
-        let n = tracer.index(Some(0), world(i, j, k)).unwrap();
+        let n = tracer
+            .index(Some(grinlight::ids::MediumId::new(0)), world(i, j, k))
+            .unwrap();
         let expected = air.index(stored).unwrap();
         // Cubic interpolation reproduces the nodes to rounding (1e-15 of n).
         assert!(
@@ -115,7 +117,7 @@ fn a_vdb_density_grid_scales_the_medium_coefficients() {
     let tracer = grinlight::transport::Tracer::new(&scene, &settings.trace);
     let density = scene
         .media()
-        .scattering(0)
+        .scattering(grinlight::ids::MediumId::new(0))
         .unwrap()
         .density
         .clone()
@@ -125,7 +127,9 @@ fn a_vdb_density_grid_scales_the_medium_coefficients() {
         let p = world(i, j, k);
         // Trilinear interpolation reproduces the nodes to rounding.
         assert!((density.at(p) - stored).abs() < 1e-12, "({i},{j},{k})");
-        let sigma_a = tracer.participating(0).sigma_a(p);
+        let sigma_a = tracer
+            .participating(grinlight::ids::MediumId::new(0))
+            .sigma_a(p);
         assert!(
             (sigma_a - 0.5 * stored).abs() < 1e-12,
             "({i},{j},{k}): σa {sigma_a}"

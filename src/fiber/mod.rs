@@ -7,6 +7,7 @@
 pub mod figure;
 
 use crate::error::{Error, Result};
+use crate::ids::MediumId;
 use crate::media::{Medium, UniformMedium};
 use crate::scene::{Description, Shape, Surface};
 use crate::settings::TraceSettings;
@@ -27,8 +28,8 @@ pub struct GrinFiber {
     pub height: f64,
     /// Its side's surface (material, interior medium, exterior).
     pub surface: Surface,
-    /// Index of the interior medium.
-    pub medium: usize,
+    /// The interior medium.
+    pub medium: MediumId,
     /// Index of its shape in the description.
     pub shape: usize,
 }
@@ -199,7 +200,7 @@ impl Description {
         // The fiber's shape (its tube and end faces) gives way to one shape per layer: a tube
         // with the next layer (or the fiber's exterior) outside, and two annular end faces.
         let mut twin = Vec::with_capacity(layers.len());
-        let first_medium = self.media.names().count();
+        let first_medium = self.media.len();
         // Each layer keeps the GRIN medium's radiometry: its absorption (at the layer's
         // middle radius, density included), its scattering (a density field and all) and its
         // emission.
@@ -208,9 +209,9 @@ impl Description {
         for (i, l) in layers.iter().enumerate() {
             let inside: Box<dyn Medium> = Box::new(UniformMedium { n: l.n });
             let middle = base + side * (0.5 * (l.inner + l.outer));
-            let interior = Some(self.media.add(format!("layer {i} (n {:.6})", l.n), inside));
+            let layer = self.media.add(format!("layer {i} (n {:.6})", l.n), inside);
             self.media.set_participating(
-                first_medium + i,
+                layer,
                 Participating {
                     absorption: radiometry.absorption.as_ref().map(|_| Absorption {
                         sigma_a: radiometry.sigma_a(middle),
@@ -220,7 +221,7 @@ impl Description {
                 },
             );
             let outside = if i + 1 < layers.len() {
-                Some(first_medium + i + 1)
+                Some(MediumId::new(first_medium + i + 1))
             } else {
                 surface.exterior
             };
@@ -232,7 +233,7 @@ impl Description {
                     height,
                 }],
                 surface: Surface {
-                    interior,
+                    interior: Some(layer),
                     exterior: outside,
                     ..surface
                 },
@@ -247,7 +248,7 @@ impl Description {
                     })
                     .to_vec(),
                 surface: Surface {
-                    interior,
+                    interior: Some(layer),
                     ..surface
                 },
             });

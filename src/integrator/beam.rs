@@ -19,6 +19,7 @@
 //! chain's start as (n_start/n)² of it, as at any other event ([`crate::volume`]).
 
 use crate::color::Rgb;
+use crate::ids::MediumId;
 use crate::photon::{Segment, VolumeMap};
 use crate::transport::chain::{ChainEvents, Stretch};
 use crate::transport::Tracer;
@@ -43,7 +44,7 @@ pub struct Beams {
 /// A stretch in a scattering medium and where its points start in [`Beams::points`].
 struct Recorded {
     stretch: Stretch,
-    medium: usize,
+    medium: MediumId,
     first: usize,
 }
 
@@ -56,7 +57,7 @@ pub struct Straight<'a> {
     /// To where it ends (a surface, the world's edge or its free flight's end).
     pub length: f64,
     /// The medium.
-    pub medium: usize,
+    pub medium: MediumId,
     /// How the medium scatters.
     pub scattering: &'a Scattering,
     /// The chain's weight at its start.

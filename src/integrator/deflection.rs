@@ -131,7 +131,7 @@ impl<'a> DeflectionTable<'a> {
     pub fn new(tracer: &'a Tracer<'a>, stop: &'a (dyn Fn() -> bool + Sync)) -> Option<Self> {
         let scene = tracer.scene;
         let camera = scene.camera.as_ref()?;
-        let ambient = scene.ambient?;
+        let ambient = scene.ambient()?;
         let medium = scene.medium_at(ambient);
         let center = medium.symmetry_center()?;
         let no_surfaces = scene.accel.primitives().is_empty();

@@ -154,7 +154,7 @@ mod tests {
             origin: DVec3::ZERO,
             dir: DVec3::X,
             length: 3.0,
-            medium: 0,
+            medium: crate::ids::MediumId::new(0),
             scattering: &crate::volume::Scattering {
                 sigma_s: Rgb::ONE,
                 spectrum: None,

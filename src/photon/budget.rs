@@ -6,6 +6,7 @@
 //! holding it.
 
 use crate::exact::ExactSum;
+use crate::ids::MediumId;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -24,7 +25,7 @@ pub enum Fate {
     Absorbed,
     /// It was absorbed in this medium (by index): on the way through it, or where it
     /// scattered in it.
-    AbsorbedIn(usize),
+    AbsorbedIn(MediumId),
     /// It was captured by a singular medium, ran out of steps, was cut at `max_depth`, or left
     /// the world from inside a dielectric (the world sphere cuts the object).
     Lost,
@@ -135,7 +136,7 @@ impl Ledger {
             Fate::Reflected => self.reflected.add(power),
             Fate::Missed => self.missed.add(power),
             Fate::Absorbed => self.absorbed.add(power),
-            Fate::AbsorbedIn(m) => self.absorbed_in.entry(m).or_default().add(power),
+            Fate::AbsorbedIn(m) => self.absorbed_in.entry(m.index()).or_default().add(power),
             Fate::Lost => self.lost.add(power),
         }
         if photon.scattered {
@@ -311,7 +312,7 @@ mod tests {
     #[test]
     fn photons_are_booked_in_their_parts_and_ledgers_add() {
         let photons = [
-            ended(Fate::AbsorbedIn(1), true),
+            ended(Fate::AbsorbedIn(MediumId::new(1)), true),
             ended(Fate::OutThrough(3), false),
             ended(Fate::Absorbed, true),
             ended(Fate::Lost, false),
@@ -342,7 +343,7 @@ mod tests {
     #[test]
     fn books_that_do_not_fit_the_scene_are_refused() {
         let mut ledger = Ledger::default();
-        ledger.book(&ended(Fate::AbsorbedIn(2), true));
+        ledger.book(&ended(Fate::AbsorbedIn(MediumId::new(2)), true));
         assert!(ledger.fits(1, 3, 0).is_ok());
         let why = ledger.fits(1, 2, 0).unwrap_err();
         assert!(why.contains("medium 2 of a scene of 2"), "{why}");

@@ -30,6 +30,7 @@ use crate::bsdf::Lobes;
 use crate::color::Rgb;
 use crate::curve::Bounds;
 use crate::environment::Environment;
+use crate::ids::{MediumId, ReceiverId};
 use crate::lights::{Aim, Cone, Emission, Entry, Light};
 use crate::math::Ball;
 use crate::receiver::Detection;
@@ -60,7 +61,7 @@ enum Source<'a> {
 struct Placed<'a> {
     source: Source<'a>,
     /// The medium its photons start in.
-    medium: Option<usize>,
+    medium: Option<MediumId>,
     /// The spectrum it was given (None: its colour is its RGB, and its spectrum D65).
     spectrum: Option<&'a Spectrum>,
 }
@@ -72,7 +73,7 @@ pub struct Launch {
     /// Where, which way and with what power (already divided by the selection probability).
     pub emission: Emission,
     /// The medium it starts in.
-    pub medium: Option<usize>,
+    pub medium: Option<MediumId>,
     /// Its vacuum wavelength (nm), drawn from its source's spectrum when the photon feeds
     /// receivers in a spectral scene ([`crate::scene::Scene::is_spectral`]); its power is then
     /// that one wavelength's (`Launch::draw_wavelength`). None: it carries every wavelength
@@ -163,7 +164,7 @@ pub struct Sources<'a> {
     /// For map photons where the ambient medium absorbs or scatters: that medium. Parallel
     /// and environment light set off upstream of the scene carrying what it lets through
     /// unscattered from the world sphere to there.
-    crossed: Option<usize>,
+    crossed: Option<MediumId>,
     /// For map photons where the ambient medium scatters outside the scene ball: that part
     /// of it, a source of its own.
     shell: Option<Shell>,
@@ -249,7 +250,7 @@ impl<'a> Sources<'a> {
     fn aimed(tracer: &Tracer<'a>, aim: Aim, maps: bool) -> Self {
         let scene = tracer.scene;
         let crossed = match (maps, world_entry(tracer)) {
-            (true, Entry::World { .. }) => scene.ambient,
+            (true, Entry::World { .. }) => scene.ambient(),
             _ => None,
         };
         // About what parallel and environment light keeps of its power on its way in: the
@@ -268,7 +269,7 @@ impl<'a> Sources<'a> {
         for (i, light) in scene.lights.iter().enumerate() {
             let medium = match light.origin() {
                 Some(p) => tracer.medium_containing(p),
-                None => scene.ambient,
+                None => scene.ambient(),
             };
             sources.push(Placed {
                 source: Source::Light(light),
@@ -284,7 +285,7 @@ impl<'a> Sources<'a> {
         if let Some(env) = &scene.environment {
             sources.push(Placed {
                 source: Source::Environment(env),
-                medium: scene.ambient,
+                medium: scene.ambient(),
                 spectrum: None,
             });
             weights.push(env.selection_power(aim) * crossed_share);
@@ -422,7 +423,7 @@ impl<'a> Sources<'a> {
 /// the world, as the camera's paths see), else upstream of the scene.
 fn world_entry(tracer: &Tracer) -> Entry {
     let scene = tracer.scene;
-    let Some(ambient) = scene.ambient else {
+    let Some(ambient) = scene.ambient() else {
         return Entry::Upstream;
     };
     let scatters = scene.media().scattering(ambient).is_some();
@@ -641,7 +642,7 @@ struct PhotonWalk<'a, 'p> {
     tag: Tagged,
     /// Vacuum wavelength, nm.
     wavelength: f64,
-    ambient: Option<usize>,
+    ambient: Option<MediumId>,
     /// The photon's power at the start of the current chain.
     power: Rgb,
     detections: &'a mut Vec<Detection>,
@@ -659,7 +660,7 @@ impl PhotonWalk<'_, '_> {
     /// How a photon that left the world in `medium` ended: out through the face it last left
     /// a dielectric by, reflected, or missed; lost when it escaped from inside a dielectric
     /// (the world sphere cuts the object).
-    fn escaped(&self, medium: Option<usize>) -> Fate {
+    fn escaped(&self, medium: Option<MediumId>) -> Fate {
         match self.left_through {
             _ if medium != self.ambient => Fate::Lost,
             Some(p) => Fate::OutThrough(p),
@@ -687,11 +688,11 @@ impl chain::ChainEvents for PhotonWalk<'_, '_> {
         self.path.is_some()
     }
 
-    fn detector(&mut self, receiver: usize, position: DVec3, weight: Rgb) -> ControlFlow<()> {
+    fn detector(&mut self, receiver: ReceiverId, position: DVec3, weight: Rgb) -> ControlFlow<()> {
         if self.tag.batch == Batch::Receivers {
-            if let Some(bin) = self.receivers[receiver].bin(position) {
+            if let Some(bin) = self.receivers[receiver.index()].bin(position) {
                 self.detections.push(Detection {
-                    receiver: receiver as u32,
+                    receiver: receiver.index() as u32,
                     bin: bin as u32,
                     photon: self.tag.index,
                     flux: (self.power * weight).element_sum() / 3.0,
@@ -702,7 +703,12 @@ impl chain::ChainEvents for PhotonWalk<'_, '_> {
         ControlFlow::Continue(())
     }
 
-    fn specular(&mut self, prim: usize, from: Option<usize>, to: Option<usize>) -> ControlFlow<()> {
+    fn specular(
+        &mut self,
+        prim: usize,
+        from: Option<MediumId>,
+        to: Option<MediumId>,
+    ) -> ControlFlow<()> {
         if to == from {
             self.reflected = true;
         } else if to == self.ambient {
@@ -797,7 +803,7 @@ fn trace_photon(
     let mut walk = PhotonWalk {
         tag,
         wavelength: tracer.wavelength(),
-        ambient: scene.ambient,
+        ambient: scene.ambient(),
         power: e.power / tag.count as f64,
         detections,
         receivers: &scene.receivers,

@@ -26,6 +26,7 @@
 //! instead ([`crate::lights::Entry::World`]).
 
 use crate::color::Rgb;
+use crate::ids::MediumId;
 use crate::lights::{Cone, Emission};
 use crate::math::Ball;
 use crate::sampling::{uniform_sphere, UNIFORM_SPHERE_PDF};
@@ -43,7 +44,7 @@ const PILOT: u32 = 1024;
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Shell {
     /// The ambient medium (index).
-    pub medium: usize,
+    pub medium: MediumId,
     /// The scene ball: the shell's inside.
     pub ball: Ball,
     /// The world sphere's radius: the shell's outside.
@@ -64,7 +65,7 @@ impl Shell {
     /// The shell of the tracer's scene: where the ambient medium scatters and the world is a
     /// sphere larger than the scene ball.
     pub fn of(tracer: &Tracer) -> Option<Shell> {
-        let medium = tracer.scene.ambient?;
+        let medium = tracer.scene.ambient()?;
         tracer.scene.media().scattering(medium)?;
         let radius = tracer.ball.radius;
         match tracer.world {

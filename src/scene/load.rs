@@ -17,6 +17,7 @@ use crate::camera::Camera;
 use crate::curve::StepControl;
 use crate::environment::Environment;
 use crate::error::{Error, Result};
+use crate::ids::{MaterialId, MediumId};
 use crate::lights::Light;
 use crate::material::Material;
 use crate::receiver::Receiver;
@@ -57,11 +58,11 @@ fn reader<'a>(source: &'a Source, table: Spanned<SpannedTable>, what: &str) -> T
 struct Materials {
     list: Vec<Material>,
     names: Vec<String>,
-    interiors: Vec<Option<usize>>,
+    interiors: Vec<Option<MediumId>>,
 }
 
 /// The index of the medium `name` in `media`, or an error at `key` of `t`.
-fn medium_index(t: &TableReader, key: &str, name: &str, media: &Media) -> Result<usize> {
+fn medium_index(t: &TableReader, key: &str, name: &str, media: &Media) -> Result<MediumId> {
     media
         .index(name)
         .ok_or_else(|| t.error(key, format!("no medium named '{name}'")))
@@ -167,7 +168,7 @@ fn read_shapes(
         shapes.push(Shape {
             primitives: desc.primitives,
             surface: Surface {
-                role: Role::Scatter(material),
+                role: Role::Scatter(MaterialId::new(material)),
                 interior,
                 exterior,
             },

@@ -8,6 +8,7 @@ use crate::accel::Accel;
 use crate::camera::Camera;
 use crate::environment::Environment;
 use crate::error::{Error, Result};
+use crate::ids::{LightId, MaterialId, MediumId, ReceiverId};
 use crate::lights::Light;
 use crate::material::Material;
 use crate::media::Medium;
@@ -48,29 +49,29 @@ pub struct Media(Vec<Entry>);
 
 impl Media {
     /// Adds a medium whose index does not depend on wavelength and returns its index.
-    pub fn add(&mut self, name: impl Into<String>, medium: Box<dyn Medium>) -> usize {
+    pub fn add(&mut self, name: impl Into<String>, medium: Box<dyn Medium>) -> MediumId {
         self.0.push(Entry {
             name: name.into(),
             medium,
             dispersion: None,
             participating: Participating::default(),
         });
-        self.0.len() - 1
+        MediumId::new(self.0.len() - 1)
     }
 
     /// Adds a dispersive medium, built by `at` for each wavelength, and returns its index.
-    pub fn add_dispersive(&mut self, name: impl Into<String>, at: AtWavelength) -> usize {
+    pub fn add_dispersive(&mut self, name: impl Into<String>, at: AtWavelength) -> MediumId {
         self.0.push(Entry {
             name: name.into(),
             medium: at(LAMBDA_D),
             dispersion: Some(at),
             participating: Participating::default(),
         });
-        self.0.len() - 1
+        MediumId::new(self.0.len() - 1)
     }
 
     /// Adds a medium as read and returns its index.
-    pub fn add_profile(&mut self, name: impl Into<String>, profile: Profile) -> usize {
+    pub fn add_profile(&mut self, name: impl Into<String>, profile: Profile) -> MediumId {
         match profile {
             Profile::Fixed(m) => self.add(name, m),
             Profile::Dispersive(at) => self.add_dispersive(name, at),
@@ -78,23 +79,23 @@ impl Media {
     }
 
     /// The medium at index `i`, at [`LAMBDA_D`].
-    pub fn at(&self, i: usize) -> &dyn Medium {
-        self.0[i].medium.as_ref()
+    pub fn at(&self, i: MediumId) -> &dyn Medium {
+        self.0[i.index()].medium.as_ref()
     }
 
     /// Sets what medium `i` does to light's power.
-    pub fn set_participating(&mut self, i: usize, participating: Participating) {
-        self.0[i].participating = participating;
+    pub fn set_participating(&mut self, i: MediumId, participating: Participating) {
+        self.0[i.index()].participating = participating;
     }
 
     /// What medium `i` does to light's power.
-    pub fn participating(&self, i: usize) -> &Participating {
-        &self.0[i].participating
+    pub fn participating(&self, i: MediumId) -> &Participating {
+        &self.0[i.index()].participating
     }
 
     /// How medium `i` scatters (None: it does not).
-    pub fn scattering(&self, i: usize) -> Option<&Scattering> {
-        self.0[i].participating.scattering.as_ref()
+    pub fn scattering(&self, i: MediumId) -> Option<&Scattering> {
+        self.0[i.index()].participating.scattering.as_ref()
     }
 
     /// Whether any medium scatters.
@@ -112,8 +113,8 @@ impl Media {
 
     /// Whether a path through medium `i` depends on its wavelength: its index does, or its
     /// scattering coefficient.
-    pub fn is_dispersive(&self, i: usize) -> bool {
-        let e = &self.0[i];
+    pub fn is_dispersive(&self, i: MediumId) -> bool {
+        let e = &self.0[i.index()];
         e.dispersion.is_some()
             || e.participating
                 .scattering
@@ -123,8 +124,8 @@ impl Media {
 
     /// Medium `i` at vacuum wavelength `nm`, when it is dispersive (None: it is
     /// [`Media::at`] at every wavelength).
-    pub fn at_wavelength(&self, i: usize, nm: f64) -> Option<Box<dyn Medium>> {
-        self.0[i].dispersion.as_ref().map(|at| at(nm))
+    pub fn at_wavelength(&self, i: MediumId, nm: f64) -> Option<Box<dyn Medium>> {
+        self.0[i.index()].dispersion.as_ref().map(|at| at(nm))
     }
 
     /// The number of media.
@@ -137,9 +138,17 @@ impl Media {
         self.0.is_empty()
     }
 
+    /// Every medium's id, in order.
+    pub fn ids(&self) -> impl Iterator<Item = MediumId> {
+        (0..self.0.len()).map(MediumId::new)
+    }
+
     /// The index of the medium called `name`.
-    pub fn index(&self, name: &str) -> Option<usize> {
-        self.0.iter().position(|e| e.name == name)
+    pub fn index(&self, name: &str) -> Option<MediumId> {
+        self.0
+            .iter()
+            .position(|e| e.name == name)
+            .map(MediumId::new)
     }
 
     /// Names of all media, in order.
@@ -153,26 +162,27 @@ impl Media {
 pub struct Surface {
     /// What it does to the light that meets it.
     pub role: Role,
-    /// Index into the scene's media of what is inside (dielectrics), if anything.
-    pub interior: Option<usize>,
-    /// Index into the scene's media of what is outside (dielectrics; None: the ambient
-    /// medium). Lets a dielectric separate two media, e.g. concentric layers of a fiber.
-    pub exterior: Option<usize>,
+    /// What is inside (dielectrics; None: vacuum).
+    pub interior: Option<MediumId>,
+    /// What is outside (dielectrics; None: vacuum). Lets a dielectric separate two media,
+    /// e.g. concentric layers of a fiber. In a [`Description`], None is the ambient medium,
+    /// which [`Description::build`] writes here.
+    pub exterior: Option<MediumId>,
 }
 
 /// What a surface does to the light that meets it: scatter it by a material, record it (a
 /// receiver's detector plane) or emit (an area light's surface).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Role {
-    /// It scatters by this material (an index into the scene's materials).
-    Scatter(usize),
-    /// A receiver's detector plane (an index into the scene's receivers): transparent, it
+    /// It scatters by this material.
+    Scatter(MaterialId),
+    /// A receiver's detector plane: transparent, it
     /// records the photons crossing it.
-    Detector(usize),
-    /// An area light's emitting surface (an index into the scene's lights): the light's
+    Detector(ReceiverId),
+    /// An area light's emitting surface: the light's
     /// radiance from its front side (the side its normal points to), black behind; it
     /// reflects nothing.
-    Emitter(usize),
+    Emitter(LightId),
 }
 
 impl Surface {
@@ -198,7 +208,7 @@ pub struct Description {
     /// Media.
     pub media: Media,
     /// The medium filling space outside all shapes (None: vacuum, n = 1).
-    pub ambient: Option<usize>,
+    pub ambient: Option<MediumId>,
     /// The file's materials.
     pub materials: Vec<Material>,
     /// The file's shapes.
@@ -228,7 +238,11 @@ impl Description {
         let mut primitives = Vec::new();
         let mut surfaces = Vec::new();
         for shape in self.shapes {
-            surfaces.extend(std::iter::repeat_n(shape.surface, shape.primitives.len()));
+            let surface = Surface {
+                exterior: shape.surface.exterior.or(self.ambient),
+                ..shape.surface
+            };
+            surfaces.extend(std::iter::repeat_n(surface, shape.primitives.len()));
             primitives.extend(shape.primitives);
         }
         let mut add = |role: Role, primitive: Primitive| {
@@ -241,7 +255,9 @@ impl Description {
         };
         for (i, light) in self.lights.iter().enumerate() {
             match light {
-                Light::Area { emitter, .. } => add(Role::Emitter(i), emitter.primitive()),
+                Light::Area { emitter, .. } => {
+                    add(Role::Emitter(LightId::new(i)), emitter.primitive())
+                }
                 Light::Point { .. }
                 | Light::Spot { .. }
                 | Light::Led { .. }
@@ -250,7 +266,7 @@ impl Description {
             }
         }
         for (receiver, r) in self.receivers.iter().enumerate() {
-            add(Role::Detector(receiver), r.primitive());
+            add(Role::Detector(ReceiverId::new(receiver)), r.primitive());
         }
         Scene {
             path: self.path,
@@ -273,8 +289,9 @@ impl Description {
 pub struct Scene {
     path: PathBuf,
     media: Media,
-    /// The medium filling space outside all shapes (None: vacuum, n = 1).
-    pub ambient: Option<usize>,
+    /// The medium filling space outside all shapes (None: vacuum, n = 1); every surface's
+    /// exterior is resolved against it when the scene is built.
+    ambient: Option<MediumId>,
     /// Materials by index.
     pub materials: Vec<Material>,
     /// Per primitive of [`Scene::accel`], its surface.
@@ -300,7 +317,7 @@ impl Scene {
     /// The material a surface scatters by; None for a detector or an emitter.
     pub fn material(&self, surface: Surface) -> Option<&Material> {
         match surface.role {
-            Role::Scatter(m) => Some(&self.materials[m]),
+            Role::Scatter(m) => Some(&self.materials[m.index()]),
             Role::Detector(_) | Role::Emitter(_) => None,
         }
     }
@@ -324,19 +341,23 @@ impl Scene {
         }
     }
 
-    /// Adds a medium (e.g. a profile of one's own) and returns its index, for
-    /// [`Surface::interior`] or [`Scene::ambient`].
-    pub fn add_medium(&mut self, name: impl Into<String>, medium: Box<dyn Medium>) -> usize {
-        self.media.add(name, medium)
+    /// The light `id`.
+    pub fn light(&self, id: LightId) -> &Light {
+        &self.lights[id.index()]
     }
 
-    /// Sets what medium `i` does to light's power (absorbs, scatters, emits).
-    pub fn set_participating(&mut self, i: usize, participating: Participating) {
-        self.media.set_participating(i, participating);
+    /// The receiver `id`.
+    pub fn receiver(&self, id: ReceiverId) -> &Receiver {
+        &self.receivers[id.index()]
     }
 
-    /// The medium at index `i` (see [`Surface::interior`] and [`Scene::ambient`]).
-    pub fn medium_at(&self, i: usize) -> &dyn Medium {
+    /// The medium filling space outside all shapes (None: vacuum, n = 1).
+    pub fn ambient(&self) -> Option<MediumId> {
+        self.ambient
+    }
+
+    /// The medium `i` (see [`Surface::interior`] and [`Scene::ambient`]).
+    pub fn medium_at(&self, i: MediumId) -> &dyn Medium {
         self.media.at(i)
     }
 
@@ -355,7 +376,7 @@ impl Scene {
     /// Whether a path's course depends on its wavelength: some medium is dispersive (camera
     /// paths and photons then take a hero wavelength where they meet it).
     pub fn is_dispersive(&self) -> bool {
-        (0..self.media.len()).any(|i| self.media.is_dispersive(i))
+        self.media.ids().any(|i| self.media.is_dispersive(i))
     }
 
     /// Whether photons must carry a wavelength: a medium is dispersive or a receiver measures

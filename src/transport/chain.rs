@@ -13,6 +13,7 @@
 
 use super::{Event, HeroTracer, MediumVertex, Stats, SurfaceVertex, Tracer, Vertex};
 use crate::color::Rgb;
+use crate::ids::{MediumId, ReceiverId};
 use crate::material::Material;
 use crate::scene::Role;
 use crate::volume::{Flights, Scattering};
@@ -28,7 +29,7 @@ pub struct Ray {
     /// Unit direction.
     pub direction: DVec3,
     /// The medium it starts in (None: vacuum).
-    pub medium: Option<usize>,
+    pub medium: Option<MediumId>,
 }
 
 /// How a chain carries its losses (absorption along the way, a mirror's reflectance).
@@ -72,7 +73,7 @@ pub enum End<'s> {
     /// Russian roulette ended it: absorbed on the way in a medium, or by a lossy mirror.
     Absorbed {
         /// The medium that absorbed it (None: a mirror, or on the way through vacuum).
-        medium: Option<usize>,
+        medium: Option<MediumId>,
     },
     /// Captured, out of steps, trapped, or at an index that cannot be evaluated.
     Lost,
@@ -90,7 +91,7 @@ pub struct Chain<'s> {
     /// Throughput (Weighted) or the photon's power factor (Roulette).
     pub weight: Rgb,
     /// The medium at the end.
-    pub medium: Option<usize>,
+    pub medium: Option<MediumId>,
     /// n at the start, in the start medium.
     pub n_start: f64,
     /// n at the end, in the end medium (at the escape point for an escape).
@@ -134,7 +135,7 @@ pub struct Stretch {
     /// Where it starts.
     pub origin: DVec3,
     /// The medium it travels in.
-    pub medium: Option<usize>,
+    pub medium: Option<MediumId>,
     /// The chain's weight at its start (its own absorption and free flight not yet in it).
     pub weight: Rgb,
     /// The path's free flights with this stretch's drawn (what [`Flights::weigh`] needs to
@@ -156,7 +157,12 @@ pub trait ChainEvents {
     }
     /// It crosses receiver `receiver`'s detector at `position` carrying `weight`; `Break`
     /// ends the chain ([`End::Stopped`]).
-    fn detector(&mut self, _receiver: usize, _position: DVec3, _weight: Rgb) -> ControlFlow<()> {
+    fn detector(
+        &mut self,
+        _receiver: ReceiverId,
+        _position: DVec3,
+        _weight: Rgb,
+    ) -> ControlFlow<()> {
         ControlFlow::Continue(())
     }
     /// It was reflected or refracted at primitive `prim`, from medium `from` into `to`;
@@ -164,8 +170,8 @@ pub trait ChainEvents {
     fn specular(
         &mut self,
         _prim: usize,
-        _from: Option<usize>,
-        _to: Option<usize>,
+        _from: Option<MediumId>,
+        _to: Option<MediumId>,
     ) -> ControlFlow<()> {
         ControlFlow::Continue(())
     }
@@ -337,7 +343,7 @@ impl Flight {
 struct Cursor {
     origin: DVec3,
     dir: DVec3,
-    medium: Option<usize>,
+    medium: Option<MediumId>,
 }
 
 impl<'w> Walker<'w> {
@@ -623,7 +629,7 @@ impl<'w> Walker<'w> {
                 ControlFlow::Break(End::Emitter {
                     prim: hit.prim,
                     radiance: match front {
-                        true => self.tracer.radiance(scene.lights[light].surface_radiance()),
+                        true => self.tracer.radiance(scene.light(light).surface_radiance()),
                         false => Rgb::ZERO,
                     },
                     position: hit.position,
@@ -642,7 +648,10 @@ impl<'w> Walker<'w> {
                 ControlFlow::Continue(())
             }
             Role::Scatter(material) => {
-                if matches!(scene.materials[material], Material::Dielectric { .. }) {
+                if matches!(
+                    scene.materials[material.index()],
+                    Material::Dielectric { .. }
+                ) {
                     self.meet_dispersion(self.tracer.disperses_at(surface), chain);
                 }
                 let Some(vertex) = self.tracer.vertex(hit, surface, at.medium) else {
@@ -662,7 +671,7 @@ impl<'w> Walker<'w> {
     /// any curved path ([`crate::volume::Emission`]), times the chain's weight at the
     /// stretch's start (its free flight weighed in: the flight's survival stands for the
     /// scattering along the way, as for anything met at its end).
-    fn gather_emission(&self, chain: &mut Chain, medium: Option<usize>, event: &Event) {
+    fn gather_emission(&self, chain: &mut Chain, medium: Option<MediumId>, event: &Event) {
         let emission = medium.and_then(|m| self.tracer.participating(m).emission);
         if let (Policy::Weighted, Some(emission), false) =
             (self.policy, emission, *event == Event::Lost)
@@ -740,12 +749,12 @@ pub fn principal_ray(
     tracer: &Tracer,
     origin: DVec3,
     dir: DVec3,
-    medium: Option<usize>,
+    medium: Option<MediumId>,
     max_events: u32,
 ) -> Option<(DVec3, u32)> {
     struct FirstDetector(Option<DVec3>);
     impl ChainEvents for FirstDetector {
-        fn detector(&mut self, _: usize, position: DVec3, _: Rgb) -> ControlFlow<()> {
+        fn detector(&mut self, _: ReceiverId, position: DVec3, _: Rgb) -> ControlFlow<()> {
             self.0 = Some(position);
             ControlFlow::Break(())
         }

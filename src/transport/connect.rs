@@ -25,6 +25,7 @@ use super::{Event, Stats, Tracer};
 use crate::curve::{
     march_replay_with, march_with, Bounds, MarchLimits, MarchOutcome, RayState, Termination,
 };
+use crate::ids::MediumId;
 use crate::lights::Anchor;
 use crate::media::Medium;
 use crate::volume::{Participating, Scattering};
@@ -299,7 +300,7 @@ impl Problem<'_> {
 pub fn connect(
     tracer: &Tracer,
     from: DVec3,
-    medium: usize,
+    medium: MediumId,
     anchor: &Anchor,
     stats: &mut Stats,
 ) -> Option<Link> {
@@ -344,7 +345,13 @@ pub fn connect(
 }
 
 /// Whether the connecting path meets no surface but detectors before its end.
-fn unblocked(tracer: &Tracer, from: DVec3, medium: usize, link: &Link, stats: &mut Stats) -> bool {
+fn unblocked(
+    tracer: &Tracer,
+    from: DVec3,
+    medium: MediumId,
+    link: &Link,
+    stats: &mut Stats,
+) -> bool {
     let scene = tracer.scene;
     let (mut origin, mut dir, mut travelled) = (from, link.direction, 0.0);
     loop {

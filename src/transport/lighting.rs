@@ -9,6 +9,7 @@ use super::chain::{Carried, Chain, End, Policy, Walker};
 use super::connect::connect;
 use super::{visibility, Scattered, Stats, Tracer, Vertex};
 use crate::color::Rgb;
+use crate::ids::MediumId;
 use crate::lights::Light;
 use crate::lights::LightSamples;
 use crate::sampling::{Given, Pick};
@@ -22,7 +23,7 @@ pub fn emission_seen(tracer: &Tracer, chain: &Chain) -> Rgb {
     let scene = tracer.scene;
     match chain.end {
         End::Emitter { radiance, .. } => chain.weight * radiance * chain.radiance_scale(),
-        End::Escaped { direction } if chain.medium == scene.ambient => {
+        End::Escaped { direction } if chain.medium == scene.ambient() => {
             scene.environment.as_ref().map_or(Rgb::ZERO, |env| {
                 chain.weight * tracer.radiance(env.radiance(direction)) * chain.environment_scale()
             })
@@ -75,7 +76,7 @@ fn straight_light(
 fn curved_light(
     tracer: &Tracer,
     vertex: &Vertex,
-    m: usize,
+    m: MediumId,
     light: &Light,
     uv: (f64, f64),
     stats: &mut Stats,
@@ -226,7 +227,9 @@ pub fn bsdf_sample_weight(tracer: &Tracer, vertex: &Vertex, s: &Scattered, chain
                 let choice = tracer.light_sampler.at(vertex.origin());
                 power_heuristic(
                     s.sample.pdf,
-                    tracer.scene.lights[l]
+                    tracer
+                        .scene
+                        .light(l)
                         .pdf_incident(direction, (position - vertex.origin()).length())
                         * choice.chance(tracer.light_samples, l),
                 )

@@ -20,6 +20,7 @@ use crate::curve::{
     march_with, Bounds, ExactPath, HermitePath, MarchLimits, MarchOutcome, Path, RayState,
     StepControl, Termination,
 };
+use crate::ids::MediumId;
 use crate::lights::{LightSampler, LightSamples};
 use crate::material::{Material, SurfacePoint};
 use crate::math::Ball;
@@ -215,7 +216,7 @@ pub struct Tracer<'a> {
     /// The world sphere.
     pub world: Bounds,
     /// The medium the camera sits in (see [`Tracer::medium_containing`]).
-    pub camera_medium: Option<usize>,
+    pub camera_medium: Option<MediumId>,
     /// Which light a vertex's light sample goes to.
     pub light_sampler: LightSampler,
     /// How many lights a vertex's direct estimate samples (the integrator's choice:
@@ -343,7 +344,7 @@ impl<'a> Tracer<'a> {
             settings: *settings,
             ball,
             world: Bounds::Ball { center, radius },
-            camera_medium: scene.ambient,
+            camera_medium: scene.ambient(),
             light_sampler: LightSampler::new(&scene.lights),
             light_samples: LightSamples::One,
             wavelength: None,
@@ -377,10 +378,9 @@ impl<'a> Tracer<'a> {
             light_samples: self.light_samples,
             wavelength: Some(Wavelength {
                 nm,
-                media: (0..media.len())
-                    .map(|i| media.at_wavelength(i, nm))
-                    .collect(),
-                scattering: (0..media.len())
+                media: media.ids().map(|i| media.at_wavelength(i, nm)).collect(),
+                scattering: media
+                    .ids()
                     .map(|i| {
                         media
                             .scattering(i)
@@ -398,15 +398,14 @@ impl<'a> Tracer<'a> {
     }
 
     /// Whether a ray in `medium` travels a path that depends on its wavelength.
-    pub fn disperses_in(&self, medium: Option<usize>) -> bool {
+    pub fn disperses_in(&self, medium: Option<MediumId>) -> bool {
         medium.is_some_and(|i| self.scene.media().is_dispersive(i))
     }
 
     /// Whether a dielectric `surface` bends rays by their wavelength (a dispersive medium on
     /// either side).
     pub fn disperses_at(&self, surface: Surface) -> bool {
-        self.disperses_in(surface.interior)
-            || self.disperses_in(surface.exterior.or(self.scene.ambient))
+        self.disperses_in(surface.interior) || self.disperses_in(surface.exterior)
     }
 
     /// A reflectance (an albedo, a mirror's reflectance) as this tracer's rays see it: the
@@ -440,24 +439,28 @@ impl<'a> Tracer<'a> {
     }
 
     /// Medium `i` at the tracer's wavelength.
-    pub fn medium(&self, i: usize) -> &dyn Medium {
-        match self.wavelength.as_ref().and_then(|w| w.media[i].as_deref()) {
+    pub fn medium(&self, i: MediumId) -> &dyn Medium {
+        match self
+            .wavelength
+            .as_ref()
+            .and_then(|w| w.media[i.index()].as_deref())
+        {
             Some(m) => m,
             None => self.scene.medium_at(i),
         }
     }
 
     /// How medium `i` scatters at the tracer's wavelength (None: it does not).
-    pub fn scattering(&self, i: usize) -> Option<&Scattering> {
+    pub fn scattering(&self, i: MediumId) -> Option<&Scattering> {
         self.wavelength
             .as_ref()
-            .and_then(|w| w.scattering[i].as_ref())
+            .and_then(|w| w.scattering[i.index()].as_ref())
             .or_else(|| self.scene.media().scattering(i))
     }
 
     /// What medium `i` does to light's power: its absorption and emission (its scattering at
     /// the tracer's wavelength is [`Tracer::scattering`]).
-    pub fn participating(&self, i: usize) -> &Participating {
+    pub fn participating(&self, i: MediumId) -> &Participating {
         self.scene.media().participating(i)
     }
 
@@ -465,7 +468,7 @@ impl<'a> Tracer<'a> {
     /// over `length` in `medium` (0 in vacuum and in a medium that does not absorb).
     pub fn optical_depth(
         &self,
-        medium: Option<usize>,
+        medium: Option<MediumId>,
         from: DVec3,
         dir: DVec3,
         length: f64,
@@ -477,7 +480,7 @@ impl<'a> Tracer<'a> {
 
     /// The refractive index at `p` in `medium` (None: vacuum, n = 1); None where the medium
     /// captures rays (a horizon).
-    pub fn index(&self, medium: Option<usize>, p: DVec3) -> Option<f64> {
+    pub fn index(&self, medium: Option<MediumId>, p: DVec3) -> Option<f64> {
         match medium {
             None => Some(1.0),
             Some(m) => self.medium(m).sample(p).map(|s| s.n),
@@ -488,7 +491,7 @@ impl<'a> Tracer<'a> {
     /// it, else the ambient medium. Found by the first dielectric surface along fixed probe
     /// rays (met from its back: `p` is inside it; from its front: outside, in its exterior);
     /// the majority of three probes decides, so a probe grazing an edge does not.
-    pub fn medium_containing(&self, p: DVec3) -> Option<usize> {
+    pub fn medium_containing(&self, p: DVec3) -> Option<MediumId> {
         let [a, b, c] = PROBES.map(|d| self.enclosing_along(p, d));
         if a == b || a == c {
             a
@@ -497,19 +500,19 @@ impl<'a> Tracer<'a> {
         }
     }
 
-    fn enclosing_along(&self, p: DVec3, d: DVec3) -> Option<usize> {
+    fn enclosing_along(&self, p: DVec3, d: DVec3) -> Option<MediumId> {
         let scene = self.scene;
         let mut o = p;
         loop {
             let Some((prim, h)) = scene.accel.intersect_ray(o, d, 0.0, f64::INFINITY) else {
-                return scene.ambient;
+                return scene.ambient();
             };
             let s = scene.surfaces[prim];
             if matches!(scene.material(s), Some(Material::Dielectric { .. })) {
                 return if d.dot(h.normal) > 0.0 {
                     s.interior
                 } else {
-                    s.exterior.or(scene.ambient)
+                    s.exterior
                 };
             }
             o = offset(o + h.t * d, d);
@@ -525,7 +528,7 @@ impl<'a> Tracer<'a> {
         &self,
         hit: SurfaceHit,
         surface: Surface,
-        medium: Option<usize>,
+        medium: Option<MediumId>,
     ) -> Option<SurfaceVertex<'a>> {
         let scene = self.scene;
         let SurfaceHit {
@@ -542,7 +545,7 @@ impl<'a> Tracer<'a> {
                 let inside = surface.interior?;
                 match side == normals.geometric {
                     true => Some(inside),
-                    false => surface.exterior.or(scene.ambient),
+                    false => surface.exterior,
                 }
             }
             false => medium,
@@ -578,7 +581,7 @@ impl<'a> Tracer<'a> {
         &self,
         origin: DVec3,
         dir: DVec3,
-        medium: Option<usize>,
+        medium: Option<MediumId>,
         stats: &mut Stats,
     ) -> Event {
         self.next_event_within(origin, dir, medium, f64::INFINITY, stats, None)
@@ -591,7 +594,7 @@ impl<'a> Tracer<'a> {
         &self,
         origin: DVec3,
         dir: DVec3,
-        medium: Option<usize>,
+        medium: Option<MediumId>,
         stats: &mut Stats,
         path: &mut dyn FnMut(DVec3),
     ) -> Event {
@@ -605,7 +608,7 @@ impl<'a> Tracer<'a> {
         &self,
         origin: DVec3,
         dir: DVec3,
-        medium: Option<usize>,
+        medium: Option<MediumId>,
         reach: f64,
         stats: &mut Stats,
         path: Option<&mut dyn FnMut(DVec3)>,
@@ -652,7 +655,7 @@ impl<'a> Tracer<'a> {
 
     fn curved(
         &self,
-        i: usize,
+        i: MediumId,
         origin: DVec3,
         dir: DVec3,
         reach: f64,
@@ -901,8 +904,8 @@ struct HitPoint<'t, 'a> {
     prim: usize,
     position: DVec3,
     uv: Option<DVec2>,
-    near: Option<usize>,
-    far: Option<usize>,
+    near: Option<MediumId>,
+    far: Option<MediumId>,
 }
 
 impl SurfacePoint for HitPoint<'_, '_> {

@@ -14,6 +14,7 @@ use super::chain::Ray;
 use super::offset;
 use crate::bsdf::{Bsdf, BsdfSample, Lobes};
 use crate::color::Rgb;
+use crate::ids::MediumId;
 use crate::sampling::Given;
 use crate::volume::Phase;
 use glam::DVec3;
@@ -35,7 +36,7 @@ pub struct MediumVertex {
     /// Unit direction back along the arrival (ωo).
     pub wo: DVec3,
     /// The medium.
-    pub medium: Option<usize>,
+    pub medium: Option<MediumId>,
     /// How it redirects light.
     pub phase: Phase,
 }
@@ -67,7 +68,7 @@ impl<'s> Vertex<'s> {
     }
 
     /// The medium a path leaving it toward ωo travels in (a surface's arrival side).
-    pub fn medium(&self) -> Option<usize> {
+    pub fn medium(&self) -> Option<MediumId> {
         match self {
             Vertex::Surface(v) => v.medium,
             Vertex::Medium(v) => v.medium,
@@ -197,9 +198,9 @@ pub struct SurfaceVertex<'s> {
     /// How the surface scatters here.
     pub bsdf: Bsdf<'s>,
     /// The medium on the arrival side (None: vacuum).
-    pub medium: Option<usize>,
+    pub medium: Option<MediumId>,
     /// The medium on the other side, where a transmitted path goes.
-    pub beyond: Option<usize>,
+    pub beyond: Option<MediumId>,
 }
 
 /// The numbers a vertex's BSDF or phase sample takes in place of its stream's, where given.

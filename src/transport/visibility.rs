@@ -5,6 +5,7 @@
 
 use super::{offset, Tracer};
 use crate::color::Rgb;
+use crate::ids::MediumId;
 use glam::DVec3;
 use std::cell::OnceCell;
 
@@ -14,7 +15,7 @@ use std::cell::OnceCell;
 pub fn transmittance(
     tracer: &Tracer,
     from: DVec3,
-    medium: Option<usize>,
+    medium: Option<MediumId>,
     dir: DVec3,
     reach: f64,
 ) -> f64 {
@@ -39,7 +40,7 @@ pub fn transmittance(
 pub fn unscattered(
     tracer: &Tracer,
     from: DVec3,
-    medium: Option<usize>,
+    medium: Option<MediumId>,
     dir: DVec3,
     reach: f64,
 ) -> Rgb {
