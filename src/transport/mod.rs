@@ -5,204 +5,45 @@
 //! emitter or escape, with the radiance change across indices), the visibility query
 //! ([`visibility`]: the only straight shadow ray) and curved connections to lights from
 //! gradient media ([`connect`]).
+//!
+//! [`Tracer`] itself finds next events (this file). Beside it: what a ray meets
+//! (`event.rs`), which medium fills a point (`fill.rs`), the tracer at a hero wavelength and
+//! how colours read there (`spectral.rs`), and the vertex a surface hit makes
+//! (`surface.rs`).
 
 pub mod chain;
 pub mod connect;
+mod event;
+mod fill;
 pub mod lighting;
+mod spectral;
 mod stats;
+mod surface;
 mod vertex;
 pub mod visibility;
 
+pub use event::{Event, Normals, SurfaceHit};
+pub use spectral::HeroTracer;
+use spectral::Wavelength;
 pub use vertex::{BsdfNumbers, MediumVertex, Scattered, SurfaceVertex, Vertex};
 
-use crate::color::Rgb;
 use crate::curve::{
     march_with, Bounds, ExactPath, HermitePath, MarchLimits, MarchOutcome, Path, RayState,
     StepControl, Termination,
 };
 use crate::ids::MediumId;
 use crate::lights::{LightSampler, LightSamples};
-use crate::material::{Material, SurfacePoint};
 use crate::math::Ball;
 use crate::media::Medium;
-use crate::scene::{Scene, Surface};
+use crate::scene::Scene;
 use crate::settings::TraceSettings;
 use crate::shapes::Hit;
-use crate::spectrum::{colour, Hero, LAMBDA_D};
-use crate::volume::{Participating, Scattering};
-use glam::{DVec2, DVec3};
+use crate::volume::Participating;
+use glam::DVec3;
 pub use stats::Stats;
 use std::ops::ControlFlow;
 
-/// What a ray meets next.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Event {
-    /// A surface: the primitive, the hit point, the primitive's geometric and shading normals
-    /// there and the ray's direction on arrival.
-    Surface {
-        /// Primitive index.
-        prim: usize,
-        /// Hit point.
-        position: DVec3,
-        /// Geometric normal (see [`crate::shapes::Hit`]): which side the ray is on.
-        normal: DVec3,
-        /// Shading normal, on the geometric normal's side: what a specular surface reflects
-        /// and refracts about.
-        shading: DVec3,
-        /// A mesh's surface coordinates (u, v) of the hit, for textures
-        /// ([`crate::shapes::Hit::uv`]).
-        uv: Option<DVec2>,
-        /// Unit direction of arrival.
-        direction: DVec3,
-        /// Path length from the origin to the hit (scene units).
-        distance: f64,
-        /// Optical depth ∫ σa ds of absorption from the origin to the hit.
-        optical_depth: f64,
-    },
-    /// The ray left the world sphere.
-    Escaped {
-        /// Where it left.
-        position: DVec3,
-        /// Unit direction when leaving.
-        direction: DVec3,
-        /// Path length from the origin to the world sphere (scene units).
-        distance: f64,
-        /// Optical depth ∫ σa ds of absorption from the origin to the world sphere.
-        optical_depth: f64,
-    },
-    /// The ray went the arclength it was allowed ([`Tracer::next_event_within`]) before any
-    /// surface: where a free flight in a scattering medium ends.
-    Reached {
-        /// Where.
-        position: DVec3,
-        /// Unit direction of travel there.
-        direction: DVec3,
-        /// Path length from the origin (the allowed arclength).
-        distance: f64,
-        /// Optical depth ∫ σa ds of absorption from the origin.
-        optical_depth: f64,
-    },
-    /// The ray ended without reaching a surface or escaping: captured, out of steps, trapped
-    /// (a curved path 100 world radii long that never left the world), or lost inside an
-    /// object it should have left; the reason is counted in the statistics.
-    Lost,
-}
-
-impl Event {
-    /// Where the ray meets a surface, if it does.
-    pub fn surface_hit(&self) -> Option<SurfaceHit> {
-        match *self {
-            Event::Surface {
-                prim,
-                position,
-                normal,
-                shading,
-                uv,
-                direction,
-                ..
-            } => Some(SurfaceHit {
-                prim,
-                position,
-                normals: Normals {
-                    geometric: normal,
-                    shading,
-                },
-                uv,
-                incoming: direction,
-            }),
-            _ => None,
-        }
-    }
-
-    /// The path length from the origin to the event (0 when lost).
-    pub fn distance(&self) -> f64 {
-        match *self {
-            Event::Surface { distance, .. }
-            | Event::Escaped { distance, .. }
-            | Event::Reached { distance, .. } => distance,
-            Event::Lost => 0.0,
-        }
-    }
-
-    /// Where the event happens (None when lost).
-    pub fn position(&self) -> Option<DVec3> {
-        match *self {
-            Event::Surface { position, .. }
-            | Event::Escaped { position, .. }
-            | Event::Reached { position, .. } => Some(position),
-            Event::Lost => None,
-        }
-    }
-
-    /// The event of a ray that had gone `distance` with absorption `depth` before the start
-    /// it was traced from: both added to its own.
-    pub fn continuing(mut self, before: f64, depth_before: f64) -> Event {
-        if let Event::Surface {
-            distance,
-            optical_depth,
-            ..
-        }
-        | Event::Escaped {
-            distance,
-            optical_depth,
-            ..
-        }
-        | Event::Reached {
-            distance,
-            optical_depth,
-            ..
-        } = &mut self
-        {
-            *distance += before;
-            *optical_depth += depth_before;
-        }
-        self
-    }
-
-    /// The optical depth ∫σa ds of absorption on the way to the event (∞ when lost).
-    pub fn optical_depth(&self) -> f64 {
-        match *self {
-            Event::Surface { optical_depth, .. }
-            | Event::Escaped { optical_depth, .. }
-            | Event::Reached { optical_depth, .. } => optical_depth,
-            Event::Lost => f64::INFINITY,
-        }
-    }
-
-    /// The fraction exp(−∫σa ds) of light kept on the way to the event (0 when lost).
-    pub fn transmittance(&self) -> f64 {
-        (-self.optical_depth()).exp()
-    }
-}
-
 pub use crate::math::{facing, offset};
-
-/// A surface's two normals at a hit (see [`crate::shapes::Hit`]): the geometric one tells
-/// which side a ray is on, the shading one (same side) is what a specular surface reflects
-/// and refracts about.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Normals {
-    /// Unit geometric normal.
-    pub geometric: DVec3,
-    /// Unit shading normal.
-    pub shading: DVec3,
-}
-
-/// Where a path meets a surface.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SurfaceHit {
-    /// Primitive index.
-    pub prim: usize,
-    /// Hit point.
-    pub position: DVec3,
-    /// The surface's normals there.
-    pub normals: Normals,
-    /// A mesh's surface coordinates (u, v) there ([`crate::shapes::Hit::uv`]; an analytic
-    /// primitive's are worked out where a texture asks).
-    pub uv: Option<DVec2>,
-    /// Unit direction of arrival.
-    pub incoming: DVec3,
-}
 
 /// Where rays travel: the scene, how rays travel in it, the sphere holding everything in it,
 /// and the sphere beyond which rays count as escaped.
@@ -222,61 +63,9 @@ pub struct Tracer<'a> {
     /// How many lights a vertex's direct estimate samples (the integrator's choice:
     /// [`Tracer::sampling_lights`]; one unless it says).
     pub light_samples: LightSamples,
-    /// The wavelength rays travel at, when it is not [`LAMBDA_D`] (see
+    /// The wavelength rays travel at, when it is not [`crate::spectrum::LAMBDA_D`] (see
     /// [`Tracer::at_wavelength`]).
     wavelength: Option<Wavelength>,
-}
-
-/// A vacuum wavelength (nm) and the scene's dispersive media rebuilt at it (None where a
-/// medium is the same at every wavelength).
-struct Wavelength {
-    nm: f64,
-    media: Vec<Option<Box<dyn Medium>>>,
-    /// Each medium's scattering at `nm`, where σs depends on wavelength.
-    scattering: Vec<Option<Scattering>>,
-}
-
-/// A hero wavelength ready for the paths of one camera sample or one photon to take on where
-/// they meet dispersion ([`Hero`]; [`chain::Walker`] does it): the tracer at that wavelength,
-/// built the first time a path needs it (most paths of a scene never meet its dispersive
-/// part), and the sRGB weight r̄(λ)/p(λ) a camera path's throughput takes on there.
-pub struct HeroTracer<'a> {
-    /// The tracer the paths start on.
-    base: &'a Tracer<'a>,
-    /// The hero wavelength, nm.
-    nm: f64,
-    /// The tracer at `nm`, once built.
-    at: std::cell::OnceCell<Tracer<'a>>,
-    /// [`Hero::sensor_weight`] (one for a photon, whose power changes at dispersion as its
-    /// source's spectrum says).
-    pub weight: Rgb,
-}
-
-impl<'a> HeroTracer<'a> {
-    /// `tracer`'s hero `hero`, for camera paths.
-    pub fn new(tracer: &'a Tracer<'a>, hero: Hero) -> Self {
-        Self {
-            base: tracer,
-            nm: hero.nm,
-            at: std::cell::OnceCell::new(),
-            weight: hero.sensor_weight(),
-        }
-    }
-
-    /// `tracer`'s hero at vacuum wavelength `nm`, for a photon.
-    pub fn for_photon(tracer: &'a Tracer<'a>, nm: f64) -> Self {
-        Self {
-            base: tracer,
-            nm,
-            at: std::cell::OnceCell::new(),
-            weight: Rgb::ONE,
-        }
-    }
-
-    /// The tracer with rays at the hero wavelength.
-    pub fn tracer(&self) -> &Tracer<'a> {
-        self.at.get_or_init(|| self.base.at_wavelength(self.nm))
-    }
 }
 
 /// A gradient medium a march crosses: its index field and what it does to light's power.
@@ -293,26 +82,6 @@ struct Marched {
     outcome: MarchOutcome,
     optical_depth: f64,
 }
-
-/// Directions along which [`Tracer::medium_containing`] looks for the enclosing surface: far
-/// from any axis, so they rarely graze the axis-aligned walls of a scene.
-const PROBES: [DVec3; 3] = [
-    DVec3::new(
-        0.267_261_241_912_424_4,
-        0.534_522_483_824_848_8,
-        0.801_783_725_737_273_2,
-    ),
-    DVec3::new(
-        -0.615_457_454_897_398_3,
-        0.492_365_963_917_918_6,
-        0.615_457_454_897_398_3,
-    ),
-    DVec3::new(
-        0.455_842_305_838_552_3,
-        -0.683_763_458_757_828_4,
-        -0.569_802_882_298_190_4,
-    ),
-];
 
 impl<'a> Tracer<'a> {
     /// The tracer of a scene; the world sphere is the scene's `world_radius` around the centre
@@ -361,218 +130,6 @@ impl<'a> Tracer<'a> {
             light_samples: samples,
             ..self
         }
-    }
-
-    /// The same tracer with rays at vacuum wavelength `nm`: each dispersive medium is the
-    /// one at that wavelength, and so is each scattering coefficient over wavelength. Rays of
-    /// a tracer from [`Tracer::new`] see every medium at [`LAMBDA_D`].
-    pub fn at_wavelength(&self, nm: f64) -> Self {
-        let media = self.scene.media();
-        Self {
-            scene: self.scene,
-            settings: self.settings,
-            ball: self.ball,
-            world: self.world,
-            camera_medium: self.camera_medium,
-            light_sampler: self.light_sampler.clone(),
-            light_samples: self.light_samples,
-            wavelength: Some(Wavelength {
-                nm,
-                media: media.ids().map(|i| media.at_wavelength(i, nm)).collect(),
-                scattering: media
-                    .ids()
-                    .map(|i| {
-                        media
-                            .scattering(i)
-                            .filter(|s| s.is_spectral())
-                            .map(|s| s.at_wavelength(nm))
-                    })
-                    .collect(),
-            }),
-        }
-    }
-
-    /// The vacuum wavelength rays travel at, nm.
-    pub fn wavelength(&self) -> f64 {
-        self.wavelength.as_ref().map_or(LAMBDA_D, |w| w.nm)
-    }
-
-    /// Whether a ray in `medium` travels a path that depends on its wavelength.
-    pub fn disperses_in(&self, medium: Option<MediumId>) -> bool {
-        medium.is_some_and(|i| self.scene.media().is_dispersive(i))
-    }
-
-    /// Whether a dielectric `surface` bends rays by their wavelength (a dispersive medium on
-    /// either side).
-    pub fn disperses_at(&self, surface: Surface) -> bool {
-        self.disperses_in(surface.interior) || self.disperses_in(surface.exterior)
-    }
-
-    /// A reflectance (an albedo, a mirror's reflectance) as this tracer's rays see it: the
-    /// RGB itself, or — rays at one wavelength — its reflectance spectrum there
-    /// ([`colour::reflectance`]), the same in every channel.
-    pub fn reflectance(&self, rgb: Rgb) -> Rgb {
-        crate::material::reflectance(rgb, self.wavelength.as_ref().map(|w| w.nm))
-    }
-
-    /// A radiance, irradiance or intensity of emitted light likewise: the RGB itself, or its
-    /// spectral value (per nm) at the tracer's wavelength ([`colour::illuminant`]).
-    pub fn radiance(&self, rgb: Rgb) -> Rgb {
-        match &self.wavelength {
-            None => rgb,
-            Some(w) => Rgb::splat(colour::illuminant(rgb, w.nm)),
-        }
-    }
-
-    /// An irradiance estimated from stored photons (an RGB sum of a few photons' colours,
-    /// whose channels may be negative: [`colour::sensor`]) as this tracer's rays see it: the
-    /// RGB itself, or — rays at one wavelength — each channel times D65 there, joined to the
-    /// path's sRGB weight channel by channel (as pbrt-v4's SPPM joins camera and photon). The
-    /// reading is linear, so the estimate's noise averages out (an upsampled spectrum of a
-    /// noisy colour would be biased: its negative channels clip), and its expectation over
-    /// wavelengths is the RGB itself wherever the rest of the path is grey.
-    pub fn photon_irradiance(&self, rgb: Rgb) -> Rgb {
-        match &self.wavelength {
-            None => rgb,
-            Some(w) => rgb * colour::d65(w.nm),
-        }
-    }
-
-    /// Medium `i` at the tracer's wavelength.
-    pub fn medium(&self, i: MediumId) -> &dyn Medium {
-        match self
-            .wavelength
-            .as_ref()
-            .and_then(|w| w.media[i.index()].as_deref())
-        {
-            Some(m) => m,
-            None => self.scene.medium_at(i),
-        }
-    }
-
-    /// How medium `i` scatters at the tracer's wavelength (None: it does not).
-    pub fn scattering(&self, i: MediumId) -> Option<&Scattering> {
-        self.wavelength
-            .as_ref()
-            .and_then(|w| w.scattering[i.index()].as_ref())
-            .or_else(|| self.scene.media().scattering(i))
-    }
-
-    /// What medium `i` does to light's power: its absorption and emission (its scattering at
-    /// the tracer's wavelength is [`Tracer::scattering`]).
-    pub fn participating(&self, i: MediumId) -> &Participating {
-        self.scene.media().participating(i)
-    }
-
-    /// The optical depth of absorption along the straight piece from `from` along unit `dir`
-    /// over `length` in `medium` (0 in vacuum and in a medium that does not absorb).
-    pub fn optical_depth(
-        &self,
-        medium: Option<MediumId>,
-        from: DVec3,
-        dir: DVec3,
-        length: f64,
-    ) -> f64 {
-        medium.map_or(0.0, |i| {
-            self.participating(i).optical_depth(from, dir, length)
-        })
-    }
-
-    /// The refractive index at `p` in `medium` (None: vacuum, n = 1); None where the medium
-    /// captures rays (a horizon).
-    pub fn index(&self, medium: Option<MediumId>, p: DVec3) -> Option<f64> {
-        match medium {
-            None => Some(1.0),
-            Some(m) => self.medium(m).sample(p).map(|s| s.n),
-        }
-    }
-
-    /// The medium filling point `p`: the interior of the innermost dielectric shape holding
-    /// it, else the ambient medium. Found by the first dielectric surface along fixed probe
-    /// rays (met from its back: `p` is inside it; from its front: outside, in its exterior);
-    /// the majority of three probes decides, so a probe grazing an edge does not.
-    pub fn medium_containing(&self, p: DVec3) -> Option<MediumId> {
-        let [a, b, c] = PROBES.map(|d| self.enclosing_along(p, d));
-        if a == b || a == c {
-            a
-        } else {
-            b
-        }
-    }
-
-    fn enclosing_along(&self, p: DVec3, d: DVec3) -> Option<MediumId> {
-        let scene = self.scene;
-        let mut o = p;
-        loop {
-            let Some((prim, h)) = scene.accel.intersect_ray(o, d, 0.0, f64::INFINITY) else {
-                return scene.ambient();
-            };
-            let s = scene.surfaces[prim];
-            if matches!(scene.material(s), Some(Material::Dielectric { .. })) {
-                return if d.dot(h.normal) > 0.0 {
-                    s.interior
-                } else {
-                    s.exterior
-                };
-            }
-            o = offset(o + h.t * d, d);
-        }
-    }
-
-    /// The scattering vertex where a path arriving along unit `incoming` in `medium` meets
-    /// `surface` at `position` (with its normals and surface coordinates `uv` there): the
-    /// BSDF its material makes at the tracer's wavelength, with n evaluated at the hit point
-    /// on each side of a dielectric. None for a detector or an emitter (they scatter
-    /// nothing), or where a side's index cannot be evaluated (a singular medium).
-    pub fn vertex(
-        &self,
-        hit: SurfaceHit,
-        surface: Surface,
-        medium: Option<MediumId>,
-    ) -> Option<SurfaceVertex<'a>> {
-        let scene = self.scene;
-        let SurfaceHit {
-            prim,
-            position,
-            normals,
-            uv,
-            incoming,
-        } = hit;
-        let side = facing(normals.geometric, incoming);
-        let material = scene.material(surface)?;
-        let beyond = match material.lobes().transmits() {
-            true => {
-                let inside = surface.interior?;
-                match side == normals.geometric {
-                    true => Some(inside),
-                    false => surface.exterior,
-                }
-            }
-            false => medium,
-        };
-        let bsdf = material.bsdf(&HitPoint {
-            tracer: self,
-            prim,
-            position,
-            uv,
-            near: medium,
-            far: beyond,
-        })?;
-        let shading = if side == normals.geometric {
-            normals.shading
-        } else {
-            -normals.shading
-        };
-        Some(SurfaceVertex {
-            prim,
-            position,
-            normal: side,
-            shading,
-            wo: -incoming,
-            bsdf,
-            medium,
-            beyond,
-        })
     }
 
     /// The next event of a ray from `origin` along unit `dir` inside medium `medium` (None:
@@ -894,32 +451,5 @@ fn keyed_by_ray(control: StepControl, origin: DVec3, dir: DVec3) -> StepControl 
             }
         }
         other => other,
-    }
-}
-
-/// A surface point as [`Material::bsdf`] asks of it: the hit, the media on each side and the
-/// tracer's wavelength.
-struct HitPoint<'t, 'a> {
-    tracer: &'t Tracer<'a>,
-    prim: usize,
-    position: DVec3,
-    uv: Option<DVec2>,
-    near: Option<MediumId>,
-    far: Option<MediumId>,
-}
-
-impl SurfacePoint for HitPoint<'_, '_> {
-    fn uv(&self) -> DVec2 {
-        self.uv
-            .unwrap_or_else(|| self.tracer.scene.accel.primitives()[self.prim].uv_at(self.position))
-    }
-    fn wavelength(&self) -> Option<f64> {
-        self.tracer.wavelength.as_ref().map(|w| w.nm)
-    }
-    fn index_near(&self) -> Option<f64> {
-        self.tracer.index(self.near, self.position)
-    }
-    fn index_far(&self) -> Option<f64> {
-        self.tracer.index(self.far, self.position)
     }
 }

@@ -1,0 +1,172 @@
+//! What a ray meets next ([`Event`]: a surface, the world's edge, the end of its allowed
+//! reach, or nothing it can name), and where a path meets a surface ([`SurfaceHit`]).
+
+use glam::{DVec2, DVec3};
+
+/// What a ray meets next.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Event {
+    /// A surface: the primitive, the hit point, the primitive's geometric and shading normals
+    /// there and the ray's direction on arrival.
+    Surface {
+        /// Primitive index.
+        prim: usize,
+        /// Hit point.
+        position: DVec3,
+        /// Geometric normal (see [`crate::shapes::Hit`]): which side the ray is on.
+        normal: DVec3,
+        /// Shading normal, on the geometric normal's side: what a specular surface reflects
+        /// and refracts about.
+        shading: DVec3,
+        /// A mesh's surface coordinates (u, v) of the hit, for textures
+        /// ([`crate::shapes::Hit::uv`]).
+        uv: Option<DVec2>,
+        /// Unit direction of arrival.
+        direction: DVec3,
+        /// Path length from the origin to the hit (scene units).
+        distance: f64,
+        /// Optical depth ∫ σa ds of absorption from the origin to the hit.
+        optical_depth: f64,
+    },
+    /// The ray left the world sphere.
+    Escaped {
+        /// Where it left.
+        position: DVec3,
+        /// Unit direction when leaving.
+        direction: DVec3,
+        /// Path length from the origin to the world sphere (scene units).
+        distance: f64,
+        /// Optical depth ∫ σa ds of absorption from the origin to the world sphere.
+        optical_depth: f64,
+    },
+    /// The ray went the arclength it was allowed ([`Tracer::next_event_within`]) before any
+    /// surface: where a free flight in a scattering medium ends.
+    Reached {
+        /// Where.
+        position: DVec3,
+        /// Unit direction of travel there.
+        direction: DVec3,
+        /// Path length from the origin (the allowed arclength).
+        distance: f64,
+        /// Optical depth ∫ σa ds of absorption from the origin.
+        optical_depth: f64,
+    },
+    /// The ray ended without reaching a surface or escaping: captured, out of steps, trapped
+    /// (a curved path 100 world radii long that never left the world), or lost inside an
+    /// object it should have left; the reason is counted in the statistics.
+    Lost,
+}
+
+impl Event {
+    /// Where the ray meets a surface, if it does.
+    pub fn surface_hit(&self) -> Option<SurfaceHit> {
+        match *self {
+            Event::Surface {
+                prim,
+                position,
+                normal,
+                shading,
+                uv,
+                direction,
+                ..
+            } => Some(SurfaceHit {
+                prim,
+                position,
+                normals: Normals {
+                    geometric: normal,
+                    shading,
+                },
+                uv,
+                incoming: direction,
+            }),
+            _ => None,
+        }
+    }
+
+    /// The path length from the origin to the event (0 when lost).
+    pub fn distance(&self) -> f64 {
+        match *self {
+            Event::Surface { distance, .. }
+            | Event::Escaped { distance, .. }
+            | Event::Reached { distance, .. } => distance,
+            Event::Lost => 0.0,
+        }
+    }
+
+    /// Where the event happens (None when lost).
+    pub fn position(&self) -> Option<DVec3> {
+        match *self {
+            Event::Surface { position, .. }
+            | Event::Escaped { position, .. }
+            | Event::Reached { position, .. } => Some(position),
+            Event::Lost => None,
+        }
+    }
+
+    /// The event of a ray that had gone `distance` with absorption `depth` before the start
+    /// it was traced from: both added to its own.
+    pub fn continuing(mut self, before: f64, depth_before: f64) -> Event {
+        if let Event::Surface {
+            distance,
+            optical_depth,
+            ..
+        }
+        | Event::Escaped {
+            distance,
+            optical_depth,
+            ..
+        }
+        | Event::Reached {
+            distance,
+            optical_depth,
+            ..
+        } = &mut self
+        {
+            *distance += before;
+            *optical_depth += depth_before;
+        }
+        self
+    }
+
+    /// The optical depth ∫σa ds of absorption on the way to the event (∞ when lost).
+    pub fn optical_depth(&self) -> f64 {
+        match *self {
+            Event::Surface { optical_depth, .. }
+            | Event::Escaped { optical_depth, .. }
+            | Event::Reached { optical_depth, .. } => optical_depth,
+            Event::Lost => f64::INFINITY,
+        }
+    }
+
+    /// The fraction exp(−∫σa ds) of light kept on the way to the event (0 when lost).
+    pub fn transmittance(&self) -> f64 {
+        (-self.optical_depth()).exp()
+    }
+}
+
+/// A surface's two normals at a hit (see [`crate::shapes::Hit`]): the geometric one tells
+/// which side a ray is on, the shading one (same side) is what a specular surface reflects
+/// and refracts about.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Normals {
+    /// Unit geometric normal.
+    pub geometric: DVec3,
+    /// Unit shading normal.
+    pub shading: DVec3,
+}
+
+/// Where a path meets a surface.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SurfaceHit {
+    /// Primitive index.
+    pub prim: usize,
+    /// Hit point.
+    pub position: DVec3,
+    /// The surface's normals there.
+    pub normals: Normals,
+    /// A mesh's surface coordinates (u, v) there ([`crate::shapes::Hit::uv`]; an analytic
+    /// primitive's are worked out where a texture asks).
+    pub uv: Option<DVec2>,
+    /// Unit direction of arrival.
+    pub incoming: DVec3,
+}

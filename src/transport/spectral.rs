@@ -1,0 +1,197 @@
+//! The tracer at a wavelength: the scene's dispersive media (and scattering over wavelength)
+//! at a path's hero wavelength, and how the colours a scene gives (reflectances, emitted
+//! radiance, photon irradiance) read there. A tracer from [`Tracer::new`] sees every medium
+//! at [`LAMBDA_D`] and every colour as RGB.
+
+use super::Tracer;
+use crate::color::Rgb;
+use crate::ids::MediumId;
+use crate::media::Medium;
+use crate::scene::Surface;
+use crate::spectrum::{colour, Hero, LAMBDA_D};
+use crate::volume::{Participating, Scattering};
+use glam::DVec3;
+
+/// A vacuum wavelength (nm) and the scene's dispersive media rebuilt at it (None where a
+/// medium is the same at every wavelength).
+pub(super) struct Wavelength {
+    nm: f64,
+    media: Vec<Option<Box<dyn Medium>>>,
+    /// Each medium's scattering at `nm`, where σs depends on wavelength.
+    scattering: Vec<Option<Scattering>>,
+}
+
+/// A hero wavelength ready for the paths of one camera sample or one photon to take on where
+/// they meet dispersion ([`Hero`]; [`chain::Walker`] does it): the tracer at that wavelength,
+/// built the first time a path needs it (most paths of a scene never meet its dispersive
+/// part), and the sRGB weight r̄(λ)/p(λ) a camera path's throughput takes on there.
+pub struct HeroTracer<'a> {
+    /// The tracer the paths start on.
+    base: &'a Tracer<'a>,
+    /// The hero wavelength, nm.
+    nm: f64,
+    /// The tracer at `nm`, once built.
+    at: std::cell::OnceCell<Tracer<'a>>,
+    /// [`Hero::sensor_weight`] (one for a photon, whose power changes at dispersion as its
+    /// source's spectrum says).
+    pub weight: Rgb,
+}
+
+impl<'a> HeroTracer<'a> {
+    /// `tracer`'s hero `hero`, for camera paths.
+    pub fn new(tracer: &'a Tracer<'a>, hero: Hero) -> Self {
+        Self {
+            base: tracer,
+            nm: hero.nm,
+            at: std::cell::OnceCell::new(),
+            weight: hero.sensor_weight(),
+        }
+    }
+
+    /// `tracer`'s hero at vacuum wavelength `nm`, for a photon.
+    pub fn for_photon(tracer: &'a Tracer<'a>, nm: f64) -> Self {
+        Self {
+            base: tracer,
+            nm,
+            at: std::cell::OnceCell::new(),
+            weight: Rgb::ONE,
+        }
+    }
+
+    /// The tracer with rays at the hero wavelength.
+    pub fn tracer(&self) -> &Tracer<'a> {
+        self.at.get_or_init(|| self.base.at_wavelength(self.nm))
+    }
+}
+
+impl<'a> Tracer<'a> {
+    /// The same tracer with rays at vacuum wavelength `nm`: each dispersive medium is the
+    /// one at that wavelength, and so is each scattering coefficient over wavelength. Rays of
+    /// a tracer from [`Tracer::new`] see every medium at [`LAMBDA_D`].
+    pub fn at_wavelength(&self, nm: f64) -> Self {
+        let media = self.scene.media();
+        Self {
+            scene: self.scene,
+            settings: self.settings,
+            ball: self.ball,
+            world: self.world,
+            camera_medium: self.camera_medium,
+            light_sampler: self.light_sampler.clone(),
+            light_samples: self.light_samples,
+            wavelength: Some(Wavelength {
+                nm,
+                media: media.ids().map(|i| media.at_wavelength(i, nm)).collect(),
+                scattering: media
+                    .ids()
+                    .map(|i| {
+                        media
+                            .scattering(i)
+                            .filter(|s| s.is_spectral())
+                            .map(|s| s.at_wavelength(nm))
+                    })
+                    .collect(),
+            }),
+        }
+    }
+
+    /// The one vacuum wavelength rays travel at, nm, when the tracer was made at one
+    /// ([`Tracer::at_wavelength`]; None: RGB rays, every medium at [`LAMBDA_D`]).
+    pub fn single_wavelength(&self) -> Option<f64> {
+        self.wavelength.as_ref().map(|w| w.nm)
+    }
+
+    /// The vacuum wavelength rays travel at, nm.
+    pub fn wavelength(&self) -> f64 {
+        self.wavelength.as_ref().map_or(LAMBDA_D, |w| w.nm)
+    }
+
+    /// Whether a ray in `medium` travels a path that depends on its wavelength.
+    pub fn disperses_in(&self, medium: Option<MediumId>) -> bool {
+        medium.is_some_and(|i| self.scene.media().is_dispersive(i))
+    }
+
+    /// Whether a dielectric `surface` bends rays by their wavelength (a dispersive medium on
+    /// either side).
+    pub fn disperses_at(&self, surface: Surface) -> bool {
+        self.disperses_in(surface.interior) || self.disperses_in(surface.exterior)
+    }
+
+    /// A reflectance (an albedo, a mirror's reflectance) as this tracer's rays see it: the
+    /// RGB itself, or — rays at one wavelength — its reflectance spectrum there
+    /// ([`colour::reflectance`]), the same in every channel.
+    pub fn reflectance(&self, rgb: Rgb) -> Rgb {
+        crate::material::reflectance(rgb, self.single_wavelength())
+    }
+
+    /// A radiance, irradiance or intensity of emitted light likewise: the RGB itself, or its
+    /// spectral value (per nm) at the tracer's wavelength ([`colour::illuminant`]).
+    pub fn radiance(&self, rgb: Rgb) -> Rgb {
+        match &self.wavelength {
+            None => rgb,
+            Some(w) => Rgb::splat(colour::illuminant(rgb, w.nm)),
+        }
+    }
+
+    /// An irradiance estimated from stored photons (an RGB sum of a few photons' colours,
+    /// whose channels may be negative: [`colour::sensor`]) as this tracer's rays see it: the
+    /// RGB itself, or — rays at one wavelength — each channel times D65 there, joined to the
+    /// path's sRGB weight channel by channel (as pbrt-v4's SPPM joins camera and photon). The
+    /// reading is linear, so the estimate's noise averages out (an upsampled spectrum of a
+    /// noisy colour would be biased: its negative channels clip), and its expectation over
+    /// wavelengths is the RGB itself wherever the rest of the path is grey.
+    pub fn photon_irradiance(&self, rgb: Rgb) -> Rgb {
+        match &self.wavelength {
+            None => rgb,
+            Some(w) => rgb * colour::d65(w.nm),
+        }
+    }
+
+    /// Medium `i` at the tracer's wavelength.
+    pub fn medium(&self, i: MediumId) -> &dyn Medium {
+        match self
+            .wavelength
+            .as_ref()
+            .and_then(|w| w.media[i.index()].as_deref())
+        {
+            Some(m) => m,
+            None => self.scene.medium_at(i),
+        }
+    }
+
+    /// How medium `i` scatters at the tracer's wavelength (None: it does not).
+    pub fn scattering(&self, i: MediumId) -> Option<&Scattering> {
+        self.wavelength
+            .as_ref()
+            .and_then(|w| w.scattering[i.index()].as_ref())
+            .or_else(|| self.scene.media().scattering(i))
+    }
+
+    /// What medium `i` does to light's power: its absorption and emission (its scattering at
+    /// the tracer's wavelength is [`Tracer::scattering`]).
+    pub fn participating(&self, i: MediumId) -> &Participating {
+        self.scene.media().participating(i)
+    }
+
+    /// The optical depth of absorption along the straight piece from `from` along unit `dir`
+    /// over `length` in `medium` (0 in vacuum and in a medium that does not absorb).
+    pub fn optical_depth(
+        &self,
+        medium: Option<MediumId>,
+        from: DVec3,
+        dir: DVec3,
+        length: f64,
+    ) -> f64 {
+        medium.map_or(0.0, |i| {
+            self.participating(i).optical_depth(from, dir, length)
+        })
+    }
+
+    /// The refractive index at `p` in `medium` (None: vacuum, n = 1); None where the medium
+    /// captures rays (a horizon).
+    pub fn index(&self, medium: Option<MediumId>, p: DVec3) -> Option<f64> {
+        match medium {
+            None => Some(1.0),
+            Some(m) => self.medium(m).sample(p).map(|s| s.n),
+        }
+    }
+}

@@ -1,0 +1,93 @@
+//! The vertex a path makes where it meets a surface: the BSDF the surface's material makes at
+//! the hit (at the tracer's wavelength, with the index on either side evaluated there).
+
+use super::{facing, SurfaceHit, SurfaceVertex, Tracer};
+use crate::ids::MediumId;
+use crate::material::SurfacePoint;
+use crate::scene::Surface;
+use glam::{DVec2, DVec3};
+
+impl<'a> Tracer<'a> {
+    /// The scattering vertex where a path arriving along unit `incoming` in `medium` meets
+    /// `surface` at `position` (with its normals and surface coordinates `uv` there): the
+    /// BSDF its material makes at the tracer's wavelength, with n evaluated at the hit point
+    /// on each side of a dielectric. None for a detector or an emitter (they scatter
+    /// nothing), or where a side's index cannot be evaluated (a singular medium).
+    pub fn vertex(
+        &self,
+        hit: SurfaceHit,
+        surface: Surface,
+        medium: Option<MediumId>,
+    ) -> Option<SurfaceVertex<'a>> {
+        let scene = self.scene;
+        let SurfaceHit {
+            prim,
+            position,
+            normals,
+            uv,
+            incoming,
+        } = hit;
+        let side = facing(normals.geometric, incoming);
+        let material = scene.material(surface)?;
+        let beyond = match material.lobes().transmits() {
+            true => {
+                let inside = surface.interior?;
+                match side == normals.geometric {
+                    true => Some(inside),
+                    false => surface.exterior,
+                }
+            }
+            false => medium,
+        };
+        let bsdf = material.bsdf(&HitPoint {
+            tracer: self,
+            prim,
+            position,
+            uv,
+            near: medium,
+            far: beyond,
+        })?;
+        let shading = if side == normals.geometric {
+            normals.shading
+        } else {
+            -normals.shading
+        };
+        Some(SurfaceVertex {
+            prim,
+            position,
+            normal: side,
+            shading,
+            wo: -incoming,
+            bsdf,
+            medium,
+            beyond,
+        })
+    }
+}
+
+/// A surface point as [`Material::bsdf`] asks of it: the hit, the media on each side and the
+/// tracer's wavelength.
+struct HitPoint<'t, 'a> {
+    tracer: &'t Tracer<'a>,
+    prim: usize,
+    position: DVec3,
+    uv: Option<DVec2>,
+    near: Option<MediumId>,
+    far: Option<MediumId>,
+}
+
+impl SurfacePoint for HitPoint<'_, '_> {
+    fn uv(&self) -> DVec2 {
+        self.uv
+            .unwrap_or_else(|| self.tracer.scene.accel.primitives()[self.prim].uv_at(self.position))
+    }
+    fn wavelength(&self) -> Option<f64> {
+        self.tracer.single_wavelength()
+    }
+    fn index_near(&self) -> Option<f64> {
+        self.tracer.index(self.near, self.position)
+    }
+    fn index_far(&self) -> Option<f64> {
+        self.tracer.index(self.far, self.position)
+    }
+}
