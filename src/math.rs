@@ -33,3 +33,91 @@ pub struct Ball {
     /// Its radius, ≥ 0.
     pub radius: f64,
 }
+
+/// An axis-aligned box: the points p with `lo` ≤ p ≤ `hi` in every coordinate (scene units).
+/// [`Bounds3::EMPTY`] (lo = +∞, hi = −∞) holds nothing and starts a union.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Bounds3 {
+    /// The lower corner.
+    pub lo: DVec3,
+    /// The upper corner.
+    pub hi: DVec3,
+}
+
+impl Bounds3 {
+    /// The box that holds nothing.
+    pub const EMPTY: Self = Self {
+        lo: DVec3::INFINITY,
+        hi: DVec3::NEG_INFINITY,
+    };
+
+    /// The box with corners `lo` and `hi`.
+    pub fn new(lo: DVec3, hi: DVec3) -> Self {
+        Self { lo, hi }
+    }
+
+    /// The smallest box holding `points` ([`Bounds3::EMPTY`] for none).
+    pub fn of_points(points: impl IntoIterator<Item = DVec3>) -> Self {
+        points.into_iter().fold(Self::EMPTY, Self::with_point)
+    }
+
+    /// The smallest box holding this one and `p`.
+    pub fn with_point(self, p: DVec3) -> Self {
+        Self::new(self.lo.min(p), self.hi.max(p))
+    }
+
+    /// The smallest box holding this one and `other`.
+    pub fn union(self, other: Self) -> Self {
+        Self::new(self.lo.min(other.lo), self.hi.max(other.hi))
+    }
+
+    /// This box grown by `by` in every direction, per axis.
+    pub fn grown(self, by: DVec3) -> Self {
+        Self::new(self.lo - by, self.hi + by)
+    }
+
+    /// Whether the two boxes share a point (touching counts).
+    pub fn overlaps(&self, other: &Self) -> bool {
+        self.lo.cmple(other.hi).all() && other.lo.cmple(self.hi).all()
+    }
+
+    /// Its centre.
+    pub fn center(&self) -> DVec3 {
+        0.5 * (self.lo + self.hi)
+    }
+
+    /// Its diagonal, hi − lo.
+    pub fn diagonal(&self) -> DVec3 {
+        self.hi - self.lo
+    }
+
+    /// Whether it holds no point (an empty union, or a box never grown from
+    /// [`Bounds3::EMPTY`]).
+    pub fn is_empty(&self) -> bool {
+        !self.lo.cmple(self.hi).all()
+    }
+}
+
+/// A straight piece of a path: from `origin` along unit `dir` for `length` (scene units).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Segment {
+    /// Where it starts.
+    pub origin: DVec3,
+    /// Unit direction.
+    pub dir: DVec3,
+    /// Its length.
+    pub length: f64,
+}
+
+impl Segment {
+    /// Where it ends.
+    pub fn end(&self) -> DVec3 {
+        self.origin + self.dir * self.length
+    }
+}
+
+impl AsRef<Segment> for Segment {
+    fn as_ref(&self) -> &Segment {
+        self
+    }
+}

@@ -260,7 +260,7 @@ fn a_half_space_reflects_as_chandrasekhar_says() {
             .primitives()
             .iter()
             .position(|p| {
-                let (lo, hi) = p.bounds();
+                let grinlight::math::Bounds3 { lo, hi } = p.bounds();
                 lo.y > -1.0 && hi.y > -1.0
             })
             .unwrap();
@@ -433,7 +433,7 @@ fn slabs_reflect_and_transmit_as_a_plane_parallel_random_walk() {
             // at height `face_y`.
             let through = |part: &grinlight::photon::Budget, face_y: f64| {
                 let prim = scene.accel.primitives().iter().position(|p| {
-                    let (lo, hi) = p.bounds();
+                    let grinlight::math::Bounds3 { lo, hi } = p.bounds();
                     (lo.y - face_y).abs() < 1e-9 && (hi.y - face_y).abs() < 1e-9
                 });
                 prim.and_then(|p| part.out_through.get(&p).copied())
@@ -530,7 +530,7 @@ fn a_scattering_coefficient_over_wavelength_acts_at_each_wavelength() {
             .primitives()
             .iter()
             .position(|p| {
-                let (lo, hi) = p.bounds();
+                let grinlight::math::Bounds3 { lo, hi } = p.bounds();
                 (lo.y + depth).abs() < 1e-9 && (hi.y + depth).abs() < 1e-9
             })
             .expect("the slab's bottom face");

@@ -10,6 +10,7 @@
 //! from a boundary is safe) are tested exactly: O(log N) per ray.
 
 use crate::curve::{ArcHull, Path};
+use crate::math::Bounds3;
 use crate::shapes::{Hit, Primitive};
 use glam::DVec3;
 
@@ -28,8 +29,8 @@ pub(super) struct CoaxialStack {
     tubes: Vec<(f64, usize)>,
     /// Caps at the base (h = 0) and the top (h = height), sorted and non-overlapping.
     caps: [Vec<Cap>; 2],
-    /// The stack's box (min, max).
-    bounds: (DVec3, DVec3),
+    /// The stack's box.
+    bounds: Bounds3,
 }
 
 impl CoaxialStack {
@@ -88,14 +89,13 @@ impl CoaxialStack {
                 caps.sort_by(|a, b| a.1.total_cmp(&b.1));
                 if caps.windows(2).all(|w| w[1].0 >= w[0].1) {
                     for c in &caps {
-                        let (lo, hi) = primitives[c.2].bounds();
-                        g.bounds = (g.bounds.0.min(lo), g.bounds.1.max(hi));
+                        g.bounds = g.bounds.union(primitives[c.2].bounds());
                     }
                     g.caps[end] = caps;
                 }
             }
             let outer = primitives[g.tubes.last().expect("MIN_TUBES > 0").1].bounds();
-            g.bounds = (g.bounds.0.min(outer.0), g.bounds.1.max(outer.1));
+            g.bounds = g.bounds.union(outer);
             for id in g.members() {
                 taken[id] = true;
             }
@@ -103,8 +103,8 @@ impl CoaxialStack {
         groups
     }
 
-    /// The stack's box (min, max).
-    pub fn bounds(&self) -> (DVec3, DVec3) {
+    /// The stack's box.
+    pub fn bounds(&self) -> Bounds3 {
         self.bounds
     }
 

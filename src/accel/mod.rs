@@ -8,6 +8,7 @@ use coaxial::CoaxialStack;
 
 use crate::bvh::build_bvh;
 use crate::curve::{ArcHull, Path};
+use crate::math::Bounds3;
 use crate::shapes::{padded_box as padded, Hit, Primitive};
 use glam::{DVec3, Vec3A};
 use obvhs::bvh2::Bvh2;
@@ -29,10 +30,7 @@ impl Accel {
         let mut taken = vec![false; primitives.len()];
         let stacks = CoaxialStack::gather(&primitives, &mut taken);
         let in_bvh: Vec<usize> = (0..primitives.len()).filter(|&i| !taken[i]).collect();
-        let bvh = build_bvh(in_bvh.par_iter().map(|&i| {
-            let (lo, hi) = primitives[i].bounds();
-            padded(lo, hi)
-        }));
+        let bvh = build_bvh(in_bvh.par_iter().map(|&i| padded(primitives[i].bounds())));
         Self {
             primitives,
             bvh,
@@ -137,16 +135,16 @@ impl Accel {
     /// primitives whose boxes meet the hull's): false lets a march skip a step's surface
     /// tests (the inside of a fiber, far from its wall).
     pub fn may_hit(&self, hull: &ArcHull) -> bool {
-        let (lo, hi) = hull.bounds();
-        let overlaps = |(s_lo, s_hi): (DVec3, DVec3)| lo.cmple(s_hi).all() && s_lo.cmple(hi).all();
+        let bounds = hull.bounds();
         if self.stacks.iter().any(|st| {
-            overlaps(st.bounds()) && st.members().any(|id| self.primitives[id].may_cross(hull))
+            st.bounds().overlaps(&bounds)
+                && st.members().any(|id| self.primitives[id].may_cross(hull))
         }) {
             return true;
         }
         let mut found = false;
         if !self.in_bvh.is_empty() {
-            self.bvh.aabb_traverse(padded(lo, hi), |bvh, node_index| {
+            self.bvh.aabb_traverse(padded(bounds), |bvh, node_index| {
                 let node = &bvh.nodes[node_index as usize];
                 found = (node.first_index..node.first_index + node.prim_count).any(|i| {
                     let id = self.in_bvh[bvh.primitive_indices[i as usize] as usize];
@@ -158,24 +156,22 @@ impl Accel {
         found
     }
 
-    /// Calls `f(id)` for every primitive whose box meets the box [`lo`, `hi`] (a stack's
-    /// members when the stack's box does).
-    pub fn boxes_meeting(&self, lo: DVec3, hi: DVec3, mut f: impl FnMut(usize)) {
+    /// Calls `f(id)` for every primitive whose box meets `bounds` (a stack's members when the
+    /// stack's box does).
+    pub fn boxes_meeting(&self, bounds: Bounds3, mut f: impl FnMut(usize)) {
         for stack in &self.stacks {
-            let (s_lo, s_hi) = stack.bounds();
-            if lo.cmple(s_hi).all() && s_lo.cmple(hi).all() {
+            if stack.bounds().overlaps(&bounds) {
                 stack.members().for_each(&mut f);
             }
         }
         if self.in_bvh.is_empty() {
             return;
         }
-        self.bvh.aabb_traverse(padded(lo, hi), |bvh, node_index| {
+        self.bvh.aabb_traverse(padded(bounds), |bvh, node_index| {
             let node = &bvh.nodes[node_index as usize];
             for i in node.first_index..node.first_index + node.prim_count {
                 let id = self.in_bvh[bvh.primitive_indices[i as usize] as usize];
-                let (p_lo, p_hi) = self.primitives[id].bounds();
-                if lo.cmple(p_hi).all() && p_lo.cmple(hi).all() {
+                if self.primitives[id].bounds().overlaps(&bounds) {
                     f(id);
                 }
             }
@@ -194,11 +190,10 @@ impl Accel {
         s_min: f64,
         length: f64,
     ) -> Option<(usize, Hit)> {
-        let (lo, hi) = hull.bounds();
+        let bounds = hull.bounds();
         let mut best: Option<(usize, Hit)> = None;
         for stack in &self.stacks {
-            let (s_lo, s_hi) = stack.bounds();
-            if lo.cmple(s_hi).all() && s_lo.cmple(hi).all() {
+            if stack.bounds().overlaps(&bounds) {
                 let limit = best.map_or(length, |(_, h)| h.t);
                 if let Some(hit) =
                     stack.intersect_segment(&self.primitives, seg, hull, s_min, limit)
@@ -210,7 +205,7 @@ impl Accel {
         if self.in_bvh.is_empty() {
             return best;
         }
-        self.bvh.aabb_traverse(padded(lo, hi), |bvh, node_index| {
+        self.bvh.aabb_traverse(padded(bounds), |bvh, node_index| {
             let node = &bvh.nodes[node_index as usize];
             for i in node.first_index..node.first_index + node.prim_count {
                 let id = self.in_bvh[bvh.primitive_indices[i as usize] as usize];

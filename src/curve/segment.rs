@@ -5,6 +5,7 @@
 //! x(s) = x0 + (L(s) F̂ + Δ(s) p̂)/|F| with L = ln(cosh |F|s + cos β sinh |F|s) and Δ the angle
 //! turned. Everything here follows a stable f64 recipe (relative error ~1e-15, checked against 320-bit arithmetic in tests/exact_arc.rs).
 
+use crate::math::Bounds3;
 use glam::DVec3;
 
 /// a·b − c·d with one rounding (Kahan's FMA trick).
@@ -84,10 +85,9 @@ pub struct ArcHull {
 }
 
 impl ArcHull {
-    /// The axis-aligned box (lower, upper corner) that holds the capsule.
-    pub fn bounds(&self) -> (DVec3, DVec3) {
-        let grow = DVec3::splat(self.deviation);
-        (self.a.min(self.b) - grow, self.a.max(self.b) + grow)
+    /// The axis-aligned box that holds the capsule.
+    pub fn bounds(&self) -> Bounds3 {
+        Bounds3::new(self.a.min(self.b), self.a.max(self.b)).grown(DVec3::splat(self.deviation))
     }
 
     /// Distance from `p` to the chord ab.

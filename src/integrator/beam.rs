@@ -20,7 +20,8 @@
 
 use crate::color::Rgb;
 use crate::ids::MediumId;
-use crate::photon::{Segment, VolumeMap};
+use crate::math::Segment;
+use crate::photon::VolumeMap;
 use crate::transport::chain::{ChainEvents, Stretch};
 use crate::transport::Tracer;
 use crate::volume::{Flights, Scattering};
@@ -50,12 +51,8 @@ struct Recorded {
 
 /// A recorded stretch through a medium of uniform index: one straight segment.
 pub struct Straight<'a> {
-    /// Where it starts.
-    pub origin: DVec3,
-    /// Unit.
-    pub dir: DVec3,
-    /// To where it ends (a surface, the world's edge or its free flight's end).
-    pub length: f64,
+    /// The segment, to where it ends (a surface, the world's edge or its free flight's end).
+    pub segment: Segment,
     /// The medium.
     pub medium: MediumId,
     /// How the medium scatters.
@@ -186,9 +183,11 @@ impl Beams {
             }
             let n = tracer.index(Some(r.medium), r.stretch.origin)?;
             Some(Straight {
-                origin: r.stretch.origin,
-                dir: (end - r.stretch.origin) / length,
-                length,
+                segment: Segment {
+                    origin: r.stretch.origin,
+                    dir: (end - r.stretch.origin) / length,
+                    length,
+                },
                 medium: r.medium,
                 scattering,
                 weight: r.stretch.weight,

@@ -41,7 +41,7 @@ pub fn single_scattering(
     }
     let mut sum = Rgb::ZERO;
     for s in beams.straight(tracer) {
-        let middle = s.origin + s.dir * (0.5 * s.length);
+        let middle = s.segment.origin + s.segment.dir * (0.5 * s.segment.length);
         let mut strategies: Vec<Strategy> = scene
             .lights
             .iter()
@@ -62,18 +62,19 @@ pub fn single_scattering(
         if pdf.is_nan() || pdf <= 0.0 || pdf.is_infinite() {
             continue;
         }
-        let x = s.origin + s.dir * t;
-        let absorbed = (-tracer
-            .participating(s.medium)
-            .optical_depth(s.origin, s.dir, t))
-        .exp();
+        let x = s.segment.origin + s.segment.dir * t;
+        let absorbed =
+            (-tracer
+                .participating(s.medium)
+                .optical_depth(s.segment.origin, s.segment.dir, t))
+            .exp();
         let mut flights = s.flights;
-        let column = s.scattering.column(s.origin, s.dir, t);
+        let column = s.scattering.column(s.segment.origin, s.segment.dir, t);
         let kept = flights.weigh(s.scattering, column, false);
         let density = s.scattering.density.as_ref().map_or(1.0, |d| d.at(x));
         let vertex = Vertex::Medium(MediumVertex {
             position: x,
-            wo: -s.dir,
+            wo: -s.segment.dir,
             medium: Some(s.medium),
             phase: s.scattering.phase,
         });
@@ -105,26 +106,26 @@ impl Strategy {
     /// Equiangular sampling of stretch `s` about the light point `y`; uniform where `y` lies
     /// on the stretch's line (to 1e-9 of its length), where equiangular would not be finite.
     fn about(s: &Straight, y: DVec3) -> Self {
-        let along = (y - s.origin).dot(s.dir);
-        let distance = (s.origin + s.dir * along - y).length();
-        if distance.is_nan() || distance <= 1e-9 * s.length {
+        let along = (y - s.segment.origin).dot(s.segment.dir);
+        let distance = (s.segment.origin + s.segment.dir * along - y).length();
+        if distance.is_nan() || distance <= 1e-9 * s.segment.length {
             return Strategy::Uniform;
         }
         Strategy::Equiangular(Equiangular {
             along,
             distance,
             from: (-along / distance).atan(),
-            to: ((s.length - along) / distance).atan(),
+            to: ((s.segment.length - along) / distance).atan(),
         })
     }
 
     /// t from uniform `u` ∈ [0, 1).
     fn sample(&self, s: &Straight, u: f64) -> f64 {
         match self {
-            Strategy::Equiangular(q) => {
-                (q.along + q.distance * (q.from + u * (q.to - q.from)).tan()).clamp(0.0, s.length)
-            }
-            Strategy::Uniform => u * s.length,
+            Strategy::Equiangular(q) => (q.along
+                + q.distance * (q.from + u * (q.to - q.from)).tan())
+            .clamp(0.0, s.segment.length),
+            Strategy::Uniform => u * s.segment.length,
         }
     }
 
@@ -135,7 +136,7 @@ impl Strategy {
                 let off = t - q.along;
                 q.distance / ((q.to - q.from) * (q.distance * q.distance + off * off))
             }
-            Strategy::Uniform => 1.0 / s.length,
+            Strategy::Uniform => 1.0 / s.segment.length,
         }
     }
 }
@@ -151,9 +152,11 @@ mod tests {
     fn equiangular_draws_follow_their_density() {
         use rand::SeedableRng;
         let s = Straight {
-            origin: DVec3::ZERO,
-            dir: DVec3::X,
-            length: 3.0,
+            segment: crate::math::Segment {
+                origin: DVec3::ZERO,
+                dir: DVec3::X,
+                length: 3.0,
+            },
             medium: crate::ids::MediumId::new(0),
             scattering: &crate::volume::Scattering {
                 sigma_s: Rgb::ONE,
@@ -167,7 +170,7 @@ mod tests {
         };
         let q = Strategy::about(&s, DVec3::new(0.7, 0.2, 0.0));
         let n = 100_000;
-        let h = s.length / n as f64;
+        let h = s.segment.length / n as f64;
         let total: f64 = (0..n).map(|i| q.pdf(&s, h * (i as f64 + 0.5)) * h).sum();
         assert!((total - 1.0).abs() < 1e-6, "{total}");
         let mut rng = rand_pcg::Pcg64Mcg::seed_from_u64(5);
@@ -176,9 +179,9 @@ mod tests {
         let draws = 100_000;
         for _ in 0..draws {
             let t = q.sample(&s, rng.gen());
-            counts[((t / s.length * bins as f64) as usize).min(bins - 1)] += 1;
+            counts[((t / s.segment.length * bins as f64) as usize).min(bins - 1)] += 1;
         }
-        let width = s.length / bins as f64;
+        let width = s.segment.length / bins as f64;
         let chi2: f64 = counts
             .iter()
             .enumerate()

@@ -4,6 +4,7 @@
 //! ∫d ds (scene units) stands where a homogeneous medium's arclength stood.
 
 use super::lattice::{GridError, Lattice};
+use crate::math::Bounds3;
 use glam::DVec3;
 
 /// d(x): trilinear between the nodes of a [`Lattice`] (clamped outside its box), with its
@@ -133,7 +134,7 @@ impl Density {
                 reach: f64::INFINITY,
             };
         }
-        let (min, max) = self.lattice.bounds();
+        let Bounds3 { lo: min, hi: max } = self.lattice.bounds();
         let h = block + (p - p.clamp(min, max)).length();
         let corner = |q: DVec3| self.lattice.locate(q).cell.map(|c| c / BLOCK);
         LocalMajorant {

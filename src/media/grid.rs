@@ -3,6 +3,7 @@
 
 use super::lattice::{GridError, Lattice, Located};
 use super::{IndexSample, Medium};
+use crate::math::Bounds3;
 use glam::DVec3;
 
 /// n on the box `[min, max]` sampled at `dims` nodes per axis (node (i,j,k) at
@@ -180,7 +181,7 @@ impl Medium for GridMedium {
     /// axis n is constant along it: that axis bounds a step only by the way back in plus one
     /// cell, and not at all while `p` moves away.
     fn step_hint(&self, p: DVec3, dir: DVec3) -> f64 {
-        let (min, max) = self.lattice.bounds();
+        let Bounds3 { lo: min, hi: max } = self.lattice.bounds();
         let outside = (min - p).max(p - max).max(DVec3::ZERO);
         let away =
             (p.cmplt(min) & dir.cmplt(DVec3::ZERO)) | (p.cmpgt(max) & dir.cmpgt(DVec3::ZERO));

@@ -1,6 +1,7 @@
 //! Values on a regular lattice of nodes over a box, read trilinearly: the storage an index
 //! grid ([`super::GridMedium`]) and a medium's density ([`super::Density`]) share.
 
+use crate::math::Bounds3;
 use glam::DVec3;
 
 /// Values at `dims` nodes per axis over the box `[min, max]` (node (i,j,k) at
@@ -122,9 +123,9 @@ impl Lattice {
         self.cell
     }
 
-    /// The box's corners.
-    pub fn bounds(&self) -> (DVec3, DVec3) {
-        (self.min, self.max)
+    /// The box.
+    pub fn bounds(&self) -> Bounds3 {
+        Bounds3::new(self.min, self.max)
     }
 
     /// Every node's value.

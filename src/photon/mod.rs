@@ -24,7 +24,7 @@ mod volume;
 pub use budget::{Budget, Ended, Fate, Ledger};
 pub use map::{Photon, PhotonMap};
 pub use shell::Shell;
-pub use volume::{Segment, VolumeMap};
+pub use volume::VolumeMap;
 
 use crate::bsdf::Lobes;
 use crate::color::Rgb;

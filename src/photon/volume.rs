@@ -12,6 +12,8 @@
 
 use super::Photon;
 use crate::bvh::build_bvh;
+use crate::math::Bounds3;
+use crate::math::Segment;
 use crate::shapes::padded_box;
 use glam::{DVec3, Vec3A};
 use kiddo::immutable::float::kdtree::ImmutableKdTree;
@@ -31,30 +33,6 @@ pub struct VolumeMap {
     /// The photons' mean radius: the width of the tube around a path that its balls touch.
     mean_radius: f64,
     bvh: Bvh2,
-}
-
-/// A straight piece of a path through the map.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Segment {
-    /// Where it starts.
-    pub origin: DVec3,
-    /// Unit.
-    pub dir: DVec3,
-    /// Its length.
-    pub length: f64,
-}
-
-impl Segment {
-    /// Where it ends.
-    pub fn end(&self) -> DVec3 {
-        self.origin + self.dir * self.length
-    }
-}
-
-impl AsRef<Segment> for Segment {
-    fn as_ref(&self) -> &Segment {
-        self
-    }
 }
 
 /// At most how many consecutive segments of a path one descent of the BVH serves: every
@@ -114,7 +92,7 @@ impl VolumeMap {
             .collect();
         let bvh = build_bvh(photons.par_iter().zip(&r2).map(|(p, &r2)| {
             let r = DVec3::splat(r2.sqrt());
-            padded_box(p.position - r, p.position + r)
+            padded_box(Bounds3::new(p.position - r, p.position + r))
         }));
         let order = &bvh.primitive_indices;
         let mean_radius = r2.iter().map(|r2| r2.sqrt()).sum::<f64>() / r2.len() as f64;
@@ -223,37 +201,35 @@ impl VolumeMap {
         segments: &[S],
         mut visit: impl FnMut(usize, &Photon, Along),
     ) {
-        self.bvh
-            .aabb_traverse(padded_box(run.lo, run.hi), |bvh, node| {
-                let node = &bvh.nodes[node as usize];
-                let leaf = node.first_index as usize..(node.first_index + node.prim_count) as usize;
-                for i in leaf {
-                    let photon = &self.photons[i];
-                    // A ball clear of the run's box meets none of its segments.
-                    let outside = (run.lo - photon.position)
-                        .max(photon.position - run.hi)
-                        .max(DVec3::ZERO);
-                    if outside.length_squared() > self.r2[i] {
-                        continue;
-                    }
-                    for (k, s) in segments.iter().enumerate() {
-                        let s = s.as_ref();
-                        if let Some(along) =
-                            chord(photon.position - s.origin, s.dir, s.length, self.r2[i])
-                        {
-                            visit(k, photon, along);
-                        }
+        self.bvh.aabb_traverse(padded_box(run.bounds), |bvh, node| {
+            let node = &bvh.nodes[node as usize];
+            let leaf = node.first_index as usize..(node.first_index + node.prim_count) as usize;
+            for i in leaf {
+                let photon = &self.photons[i];
+                // A ball clear of the run's box meets none of its segments.
+                let outside = (run.bounds.lo - photon.position)
+                    .max(photon.position - run.bounds.hi)
+                    .max(DVec3::ZERO);
+                if outside.length_squared() > self.r2[i] {
+                    continue;
+                }
+                for (k, s) in segments.iter().enumerate() {
+                    let s = s.as_ref();
+                    if let Some(along) =
+                        chord(photon.position - s.origin, s.dir, s.length, self.r2[i])
+                    {
+                        visit(k, photon, along);
                     }
                 }
-                true
-            });
+            }
+            true
+        });
     }
 }
 
 /// Consecutive segments of a path and their box.
 struct Run {
-    lo: DVec3,
-    hi: DVec3,
+    bounds: Bounds3,
     /// The index of the first in the path.
     first: usize,
     count: usize,
@@ -268,8 +244,7 @@ impl Run {
     fn of(first: usize, s: &Segment, radius: f64) -> Self {
         let end = s.end();
         Self {
-            lo: s.origin.min(end),
-            hi: s.origin.max(end),
+            bounds: Bounds3::new(s.origin.min(end), s.origin.max(end)),
             first,
             count: 1,
             length: s.length,
@@ -281,8 +256,7 @@ impl Run {
     fn with(&self, s: &Segment) -> Option<Self> {
         let end = s.end();
         let longer = Self {
-            lo: self.lo.min(s.origin).min(end),
-            hi: self.hi.max(s.origin).max(end),
+            bounds: self.bounds.with_point(s.origin).with_point(end),
             first: self.first,
             count: self.count + 1,
             length: self.length + s.length,
@@ -296,7 +270,7 @@ impl Run {
     /// as a ray, alone).
     fn is_tight(&self) -> bool {
         let w = 2.0 * self.radius;
-        let box_volume = (self.hi - self.lo + DVec3::splat(w)).element_product();
+        let box_volume = (self.bounds.diagonal() + DVec3::splat(w)).element_product();
         let tube = (self.length + w) * w * w;
         box_volume.is_finite() && box_volume <= LOOSENESS * tube
     }

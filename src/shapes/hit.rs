@@ -1,5 +1,6 @@
 //! Where a ray meets a surface, and the boxes BVHs hold.
 
+use crate::math::Bounds3;
 use glam::{DVec2, DVec3, Vec3A};
 use obvhs::aabb::Aabb;
 
@@ -33,12 +34,12 @@ impl Hit {
     }
 }
 
-/// An f32 box containing the f64 box [lo, hi], rounded outward (BVHs hold f32 boxes; the
-/// exact tests are in f64).
-pub(crate) fn padded_box(lo: DVec3, hi: DVec3) -> Aabb {
+/// An f32 box containing the f64 box `b`, rounded outward (BVHs hold f32 boxes; the exact
+/// tests are in f64).
+pub(crate) fn padded_box(b: Bounds3) -> Aabb {
     let pad = |v: DVec3| v.abs() * 1e-6 + DVec3::splat(1e-6);
     Aabb::new(
-        Vec3A::from((lo - pad(lo)).as_vec3()),
-        Vec3A::from((hi + pad(hi)).as_vec3()),
+        Vec3A::from((b.lo - pad(b.lo)).as_vec3()),
+        Vec3A::from((b.hi + pad(b.hi)).as_vec3()),
     )
 }

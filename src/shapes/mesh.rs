@@ -8,6 +8,7 @@ use super::triangle::Triangle;
 use crate::bvh::build_bvh;
 use crate::curve::{ArcHull, Path};
 use crate::math::Ball;
+use crate::math::Bounds3;
 use glam::{DVec2, DVec3, Vec3A};
 use obvhs::bvh2::Bvh2;
 use obvhs::ray::{Ray, RayHit};
@@ -24,7 +25,7 @@ pub struct TriangleMesh {
     texcoords: Option<Vec<[f32; 2]>>,
     bvh: Bvh2,
     /// f64 bounds of all vertices.
-    bounds: (DVec3, DVec3),
+    bounds: Bounds3,
     /// A ball around the bounds' centre that no triangle meets (radius 0 where one passes
     /// through the centre): a lens's or a ball's empty core, where a curved step's capsule
     /// needs no search at all.
@@ -87,21 +88,13 @@ impl TriangleMesh {
             return Err("a vertex is not finite".into());
         }
         let vertex = |i: u32| DVec3::from(vertices[i as usize].map(f64::from));
-        let bvh = build_bvh(triangles.par_iter().map(|t| {
-            let (lo, hi) = t
-                .iter()
-                .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &i| {
-                    (lo.min(vertex(i)), hi.max(vertex(i)))
-                });
-            padded_box(lo, hi)
-        }));
-        let bounds = vertices
-            .iter()
-            .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), v| {
-                let p = DVec3::from(v.map(f64::from));
-                (lo.min(p), hi.max(p))
-            });
-        let centre = 0.5 * (bounds.0 + bounds.1);
+        let bvh = build_bvh(
+            triangles
+                .par_iter()
+                .map(|t| padded_box(Bounds3::of_points(t.iter().map(|&i| vertex(i))))),
+        );
+        let bounds = Bounds3::of_points(vertices.iter().map(|v| DVec3::from(v.map(f64::from))));
+        let centre = bounds.center();
         // A lower bound on each triangle's distance from the centre: the larger of the
         // distances to its box and to its plane (shrunk by 1e-9 against rounding).
         let core = triangles
@@ -160,8 +153,8 @@ impl TriangleMesh {
             + size_of_val(self.bvh.primitive_indices.as_slice())
     }
 
-    /// Axis-aligned bounds (min, max) of the vertices.
-    pub fn bounds(&self) -> (DVec3, DVec3) {
+    /// Axis-aligned bounds of the vertices.
+    pub fn bounds(&self) -> Bounds3 {
         self.bounds
     }
 

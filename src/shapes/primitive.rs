@@ -5,7 +5,7 @@ use super::hit::Hit;
 use super::mesh::TriangleMesh;
 use super::triangle::{edge_coordinates_hit, plane_coordinates, Plane, Triangle};
 use crate::curve::{ArcHull, Path, RoundSurface};
-use crate::math::Ball;
+use crate::math::{Ball, Bounds3};
 use glam::{DVec2, DVec3};
 use std::sync::Arc;
 
@@ -63,10 +63,10 @@ impl Primitive {
         Primitive::Triangle(Triangle::new(a, b, c))
     }
 
-    /// Axis-aligned bounds (min, max).
-    pub fn bounds(&self) -> (DVec3, DVec3) {
+    /// Axis-aligned bounds.
+    pub fn bounds(&self) -> Bounds3 {
         match *self {
-            Primitive::Sphere { center, radius } => (center - radius, center + radius),
+            Primitive::Sphere { center, radius } => Bounds3::new(center - radius, center + radius),
             Primitive::Tube {
                 base,
                 axis,
@@ -76,11 +76,10 @@ impl Primitive {
                 // Each end circle's extent along world axis i is r·√(1 − a_i²).
                 let ext = radius * (DVec3::ONE - axis * axis).max(DVec3::ZERO).sqrt();
                 let top = base + axis * height;
-                (base.min(top) - ext, base.max(top) + ext)
+                Bounds3::new(base.min(top) - ext, base.max(top) + ext)
             }
             Primitive::Quad { origin, e1, e2 } => {
-                let pts = [origin, origin + e1, origin + e2, origin + e1 + e2];
-                corners(&pts)
+                Bounds3::of_points([origin, origin + e1, origin + e2, origin + e1 + e2])
             }
             Primitive::Disk {
                 center,
@@ -89,9 +88,11 @@ impl Primitive {
                 ..
             } => {
                 let ext = radius * (DVec3::ONE - normal * normal).max(DVec3::ZERO).sqrt();
-                (center - ext, center + ext)
+                Bounds3::new(center - ext, center + ext)
             }
-            Primitive::Triangle(Triangle { v0, e1, e2 }) => corners(&[v0, v0 + e1, v0 + e2]),
+            Primitive::Triangle(Triangle { v0, e1, e2 }) => {
+                Bounds3::of_points([v0, v0 + e1, v0 + e2])
+            }
             Primitive::Mesh(ref mesh) => mesh.bounds(),
         }
     }
@@ -107,10 +108,10 @@ impl Primitive {
             | Primitive::Quad { .. }
             | Primitive::Tube { .. }
             | Primitive::Mesh(..) => {
-                let (lo, hi) = self.bounds();
+                let b = self.bounds();
                 Ball {
-                    center: 0.5 * (lo + hi),
-                    radius: 0.5 * (hi - lo).length(),
+                    center: b.center(),
+                    radius: 0.5 * b.diagonal().length(),
                 }
             }
         }
@@ -412,13 +413,13 @@ impl std::fmt::Display for Primitive {
             }
             Primitive::Triangle(t) => write!(f, "triangle at {}", v(t.v0)),
             Primitive::Mesh(ref mesh) => {
-                let (lo, hi) = mesh.bounds();
+                let b = mesh.bounds();
                 write!(
                     f,
                     "mesh of {} triangles in {} – {}",
                     mesh.len(),
-                    v(lo),
-                    v(hi)
+                    v(b.lo),
+                    v(b.hi)
                 )
             }
         }
@@ -431,13 +432,6 @@ fn ordered(a: f64, b: f64) -> (f64, f64) {
     } else {
         (b, a)
     }
-}
-
-fn corners(pts: &[DVec3]) -> (DVec3, DVec3) {
-    pts.iter()
-        .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &p| {
-            (lo.min(p), hi.max(p))
-        })
 }
 
 /// The part of `v` across the unit `axis` (a tube's radial offset).

@@ -21,7 +21,8 @@ use glam::DVec3;
 use rand::Rng;
 use std::ops::ControlFlow;
 
-/// A ray: where it starts, which way, and in which medium.
+/// A ray: where it starts, which way, and in which medium; also where a chain stands
+/// between two events.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Ray {
     /// Start.
@@ -339,13 +340,6 @@ impl Flight {
     }
 }
 
-/// Where a chain stands between two events.
-struct Cursor {
-    origin: DVec3,
-    dir: DVec3,
-    medium: Option<MediumId>,
-}
-
 impl<'w> Walker<'w> {
     /// A walker allowed the tracer's `max_depth` surfaces.
     pub fn new(tracer: &'w Tracer<'w>, policy: Policy) -> Self {
@@ -427,11 +421,7 @@ impl<'w> Walker<'w> {
             return chain;
         };
         chain.n_start = n_start;
-        let mut at = Cursor {
-            origin: ray.origin,
-            dir: ray.direction,
-            medium: ray.medium,
-        };
+        let mut at = ray;
         let end = loop {
             if let ControlFlow::Break(end) = self.step(&mut chain, &mut at, &mut lent, observer) {
                 break end;
@@ -467,7 +457,7 @@ impl<'w> Walker<'w> {
         &mut self,
         scattering: Option<&Scattering>,
         chain: &Chain<'w>,
-        at: &Cursor,
+        at: &Ray,
         lent: &mut Lent<R>,
         observer: &mut dyn ChainEvents,
     ) -> (Event, f64) {
@@ -488,7 +478,7 @@ impl<'w> Walker<'w> {
             last: at.origin,
             total: 0.0,
         };
-        let (mut origin, mut dir) = (at.origin, at.dir);
+        let (mut origin, mut dir) = (at.origin, at.direction);
         let (mut travelled, mut depth) = (0.0, 0.0);
         // Points between a step's ends cost a circle's worth of evaluations: computed only
         // for a column or an observer that reads them.
@@ -548,7 +538,7 @@ impl<'w> Walker<'w> {
     fn step<R: Rng>(
         &mut self,
         chain: &mut Chain<'w>,
-        at: &mut Cursor,
+        at: &mut Ray,
         lent: &mut Lent<R>,
         observer: &mut dyn ChainEvents,
     ) -> ControlFlow<End<'w>> {
@@ -698,7 +688,7 @@ impl<'w> Walker<'w> {
     fn bounce(
         &mut self,
         chain: &mut Chain,
-        at: &mut Cursor,
+        at: &mut Ray,
         vertex: &SurfaceVertex,
         rng: &mut impl Rng,
         observer: &mut dyn ChainEvents,
@@ -732,11 +722,7 @@ impl<'w> Walker<'w> {
         {
             return ControlFlow::Break(End::Stopped);
         }
-        *at = Cursor {
-            origin: b.ray.origin,
-            dir: b.ray.direction,
-            medium: b.ray.medium,
-        };
+        *at = b.ray;
         ControlFlow::Continue(())
     }
 }

@@ -33,7 +33,7 @@ use crate::curve::{
 };
 use crate::ids::MediumId;
 use crate::lights::{LightSampler, LightSamples};
-use crate::math::Ball;
+use crate::math::{Ball, Bounds3};
 use crate::media::Medium;
 use crate::scene::Scene;
 use crate::settings::TraceSettings;
@@ -87,22 +87,16 @@ impl<'a> Tracer<'a> {
     /// The tracer of a scene; the world sphere is the scene's `world_radius` around the centre
     /// of everything in it (primitives and camera), or 10× its extent (at least 10 units).
     pub fn new(scene: &'a Scene, settings: &TraceSettings) -> Self {
-        let mut lo = DVec3::INFINITY;
-        let mut hi = DVec3::NEG_INFINITY;
-        for p in scene.accel.primitives() {
-            let (a, b) = p.bounds();
-            lo = lo.min(a);
-            hi = hi.max(b);
-        }
+        let mut bounds =
+            (scene.accel.primitives().iter()).fold(Bounds3::EMPTY, |b, p| b.union(p.bounds()));
         if let Some(c) = &scene.camera {
-            lo = lo.min(c.position);
-            hi = hi.max(c.position);
+            bounds = bounds.with_point(c.position);
         }
-        if !lo.is_finite() {
-            (lo, hi) = (DVec3::ZERO, DVec3::ZERO);
+        if !bounds.lo.is_finite() {
+            bounds = Bounds3::new(DVec3::ZERO, DVec3::ZERO);
         }
-        let center = 0.5 * (lo + hi);
-        let extent = 0.5 * (hi - lo).length();
+        let center = bounds.center();
+        let extent = 0.5 * bounds.diagonal().length();
         let radius = settings.world_radius.unwrap_or(10.0 * extent.max(1.0));
         let ball = Ball {
             center,

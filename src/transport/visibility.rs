@@ -6,6 +6,7 @@
 use super::{offset, Tracer};
 use crate::color::Rgb;
 use crate::ids::MediumId;
+use crate::math::Bounds3;
 use glam::DVec3;
 use std::cell::OnceCell;
 
@@ -102,11 +103,11 @@ impl<'a> Occluders<'a> {
                 count: 0,
             };
             let reach = DVec3::splat(self.radius);
-            let (lo, hi) = (self.position - reach, self.position + reach);
+            let ball_box = Bounds3::new(self.position - reach, self.position + reach);
             // Room for the points' offsets off their surfaces (math::offset) and rounding.
             let radius = self.radius + 1e-6 * (self.radius + self.position.abs().max_element());
             let primitives = scene.accel.primitives();
-            scene.accel.boxes_meeting(lo, hi, |id| {
+            scene.accel.boxes_meeting(ball_box, |id| {
                 let detector = scene.surfaces[id].is_detector();
                 let meets = primitives[id].may_meet_ball(self.position, radius);
                 if id != self.prim && !detector && meets {
