@@ -183,7 +183,7 @@ fn a_materials_lobes_are_its_bsdfs() {
             )
             .surface_hit()
             .expect("the ray meets the sphere");
-        let surface = scene.surfaces[hit.prim];
+        let surface = scene.surface(hit.prim);
         let vertex = tracer.vertex(hit, surface, None).unwrap();
         let material = scene.material(surface).unwrap().lobes();
         assert_eq!(vertex.lobes(), material, "{m}");

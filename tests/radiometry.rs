@@ -606,7 +606,7 @@ fn curved_paths_meet_surfaces_where_a_fine_march_does() {
             )
         })
         .collect();
-    let hits = |scene: &(Scene, Settings)| -> Vec<Option<(usize, DVec3, f64)>> {
+    let hits = |scene: &(Scene, Settings)| -> Vec<Option<(grinlight::ids::PrimId, DVec3, f64)>> {
         let tracer = Tracer::new(&scene.0, &scene.1.trace);
         rays.iter()
             .map(|&(o, d)| {

@@ -209,7 +209,9 @@ fn bvh_equals_a_loop_over_all_primitives() {
         let o = rv(&mut rng) * 2.0;
         let d = rv(&mut rng).normalize();
         let want = nearest(&|p| p.intersect_ray(o, d, 0.0, 10.0).map(|h| h.t));
-        let got = accel.intersect_ray(o, d, 0.0, 10.0).map(|(i, h)| (i, h.t));
+        let got = accel
+            .intersect_ray(o, d, 0.0, 10.0)
+            .map(|b| (b.prim.index(), b.hit.t));
         assert_eq!(got, want);
         let seg = CurvedSegment::new(o, d, rv(&mut rng) * 3.0);
         // Same primitive, same arclength to 1e-12 relative (the refinement's tolerance; the
@@ -220,7 +222,7 @@ fn bvh_equals_a_loop_over_all_primitives() {
         });
         let got = accel
             .intersect_segment(&seg, &seg.hull(1.5), 0.0, 1.5)
-            .map(|(i, h)| (i, h.t));
+            .map(|b| (b.prim.index(), b.hit.t));
         match (got, want) {
             (Some((gi, gt)), Some((wi, wt))) => assert!(
                 gi == wi && (gt - wt).abs() <= 1e-12 * wt,
@@ -336,7 +338,9 @@ fn coaxial_stack_equals_a_loop_over_all_primitives() {
         };
         let d = rv(&mut rng).normalize();
         let want = nearest(&|p| p.intersect_ray(o, d, 0.0, 10.0).map(|h| h.t));
-        let got = accel.intersect_ray(o, d, 0.0, 10.0).map(|(i, h)| (i, h.t));
+        let got = accel
+            .intersect_ray(o, d, 0.0, 10.0)
+            .map(|b| (b.prim.index(), b.hit.t));
         assert_eq!(got, want, "case {case}");
         stack_hits += usize::from(want.is_some_and(|(i, _)| i >= 30));
         if case % 10 == 0 {
@@ -348,7 +352,7 @@ fn coaxial_stack_equals_a_loop_over_all_primitives() {
             let got = accel.intersect_segment(&seg, &seg.hull(1.5), 0.0, 1.5);
             // The refinement stops at 1e-14 of its bracket (≤ the length 1.5), which depends on
             // the nearest hit found so far: allow 1e-12 of the length.
-            match (got.map(|(i, h)| (i, h.t)), want) {
+            match (got.map(|b| (b.prim.index(), b.hit.t)), want) {
                 (Some((gi, gt)), Some((wi, wt))) => assert!(
                     gi == wi && (gt - wt).abs() <= 1e-12 * 1.5,
                     "segment case {case}: {got:?} vs {want:?}"
@@ -399,21 +403,19 @@ fn a_mesh_answers_as_its_triangles_do() {
     for case in 0..1500 {
         let o = rv(&mut rng) * 1.6;
         let d = rv(&mut rng).normalize();
-        let a = one.intersect_ray(o, d, 0.0, 10.0).map(|(_, h)| h);
+        let a = one.intersect_ray(o, d, 0.0, 10.0).map(|b| b.hit);
         // A loose triangle's (u, v) is worked out at the point: the mesh's, its corners'
         // weights.
-        let b = many.intersect_ray(o, d, 0.0, 10.0).map(|(i, h)| Hit {
-            uv: Some(many.primitives()[i].uv_at(o + h.t * d)),
-            ..h
+        let b = many.intersect_ray(o, d, 0.0, 10.0).map(|b| Hit {
+            uv: Some(many.primitive(b.prim).uv_at(o + b.hit.t * d)),
+            ..b.hit
         });
         assert_eq!(a, b, "case {case}");
         hits += usize::from(a.is_some());
         let seg = CurvedSegment::new(o, d, rv(&mut rng) * 3.0);
         let hull = seg.hull(1.5);
-        let a = one.intersect_segment(&seg, &hull, 0.0, 1.5).map(|(_, h)| h);
-        let b = many
-            .intersect_segment(&seg, &hull, 0.0, 1.5)
-            .map(|(_, h)| h);
+        let a = one.intersect_segment(&seg, &hull, 0.0, 1.5).map(|b| b.hit);
+        let b = many.intersect_segment(&seg, &hull, 0.0, 1.5).map(|b| b.hit);
         // The mesh culls with its nodes' boxes against the capsule (tighter than the boxes'
         // overlap the scene BVH uses): never a capsule that holds a crossing.
         if !one.may_hit(&hull) {
@@ -488,7 +490,7 @@ fn a_smooth_mesh_refracts_as_its_surface_does() {
             .surface_hit()
             .expect("the ray meets the ball");
         let b = tracer
-            .vertex(hit, scene.surfaces[hit.prim], None)
+            .vertex(hit, scene.surface(hit.prim), None)
             .and_then(|v| v.scatter((0.0, 0.0, 0.999)))
             .expect("a refraction");
         (b.ray.direction, b.ray.direction.dot(hit.normals.geometric))

@@ -9,24 +9,38 @@
 //! binary search, and the candidates (with one neighbour either side, so a point a rounding error
 //! from a boundary is safe) are tested exactly: O(log N) per ray.
 
+use super::PrimHit;
 use crate::curve::{ArcHull, Path};
+use crate::ids::PrimId;
 use crate::math::Bounds3;
-use crate::shapes::{Hit, Primitive};
+use crate::shapes::Primitive;
 use glam::DVec3;
 
 /// Fewer coaxial tubes than this are left to the BVH.
 const MIN_TUBES: usize = 4;
 
-/// An annular cap at one end: (inner radius, outer radius, primitive id).
-type Cap = (f64, f64, usize);
+/// An annular cap at one end of a stack.
+#[derive(Clone, Copy, Debug)]
+struct Cap {
+    inner: f64,
+    outer: f64,
+    id: PrimId,
+}
+
+/// A tube of a stack.
+#[derive(Clone, Copy, Debug)]
+struct Tube {
+    radius: f64,
+    id: PrimId,
+}
 
 /// Coaxial tubes of one base, axis and height, sorted by radius, and their end caps.
 pub(super) struct CoaxialStack {
     base: DVec3,
     axis: DVec3,
     height: f64,
-    /// Tube radii, strictly ascending, and each tube's primitive id.
-    tubes: Vec<(f64, usize)>,
+    /// The tubes, radii strictly ascending.
+    tubes: Vec<Tube>,
     /// Caps at the base (h = 0) and the top (h = height), sorted and non-overlapping.
     caps: [Vec<Cap>; 2],
     /// The stack's box.
@@ -40,7 +54,8 @@ impl CoaxialStack {
     /// do not overlap (otherwise they all stay in the BVH, where any layout is correct).
     pub fn gather(primitives: &[Primitive], taken: &mut [bool]) -> Vec<Self> {
         let mut groups: Vec<Self> = Vec::new();
-        for (id, p) in primitives.iter().enumerate() {
+        for (i, p) in primitives.iter().enumerate() {
+            let id = PrimId::new(i);
             if let Primitive::Tube {
                 base,
                 axis,
@@ -52,12 +67,12 @@ impl CoaxialStack {
                     .iter_mut()
                     .find(|g| g.base == base && g.axis == axis && g.height == height)
                 {
-                    Some(g) => g.tubes.push((radius, id)),
+                    Some(g) => g.tubes.push(Tube { radius, id }),
                     None => groups.push(Self {
                         base,
                         axis,
                         height,
-                        tubes: vec![(radius, id)],
+                        tubes: vec![Tube { radius, id }],
                         caps: [Vec::new(), Vec::new()],
                         bounds: p.bounds(),
                     }),
@@ -65,8 +80,8 @@ impl CoaxialStack {
             }
         }
         groups.retain_mut(|g| {
-            g.tubes.sort_by(|a, b| a.0.total_cmp(&b.0));
-            g.tubes.len() >= MIN_TUBES && g.tubes.windows(2).all(|w| w[0].0 < w[1].0)
+            g.tubes.sort_by(|a, b| a.radius.total_cmp(&b.radius));
+            g.tubes.len() >= MIN_TUBES && g.tubes.windows(2).all(|w| w[0].radius < w[1].radius)
         });
         for g in &mut groups {
             let top = g.base + g.axis * g.height;
@@ -74,30 +89,34 @@ impl CoaxialStack {
                 let mut caps: Vec<Cap> = primitives
                     .iter()
                     .enumerate()
-                    .filter_map(|(id, p)| match *p {
+                    .filter_map(|(i, p)| match *p {
                         Primitive::Disk {
                             center,
                             normal,
                             radius,
                             inner,
                         } if center == centre && (normal == g.axis || normal == -g.axis) => {
-                            Some((inner, radius, id))
+                            Some(Cap {
+                                inner,
+                                outer: radius,
+                                id: PrimId::new(i),
+                            })
                         }
                         _ => None,
                     })
                     .collect();
-                caps.sort_by(|a, b| a.1.total_cmp(&b.1));
-                if caps.windows(2).all(|w| w[1].0 >= w[0].1) {
+                caps.sort_by(|a, b| a.outer.total_cmp(&b.outer));
+                if caps.windows(2).all(|w| w[1].inner >= w[0].outer) {
                     for c in &caps {
-                        g.bounds = g.bounds.union(primitives[c.2].bounds());
+                        g.bounds = g.bounds.union(primitives[c.id.index()].bounds());
                     }
                     g.caps[end] = caps;
                 }
             }
-            let outer = primitives[g.tubes.last().expect("MIN_TUBES > 0").1].bounds();
+            let outer = primitives[g.tubes.last().expect("MIN_TUBES > 0").id.index()].bounds();
             g.bounds = g.bounds.union(outer);
             for id in g.members() {
-                taken[id] = true;
+                taken[id.index()] = true;
             }
         }
         groups
@@ -108,7 +127,7 @@ impl CoaxialStack {
         self.bounds
     }
 
-    /// Nearest hit of the straight ray o + t d (d unit), t ∈ (t_min, t_max), as (id, hit).
+    /// Nearest hit of the straight ray o + t d (d unit), t ∈ (t_min, t_max).
     pub fn intersect_ray(
         &self,
         primitives: &[Primitive],
@@ -116,16 +135,16 @@ impl CoaxialStack {
         d: DVec3,
         t_min: f64,
         t_max: f64,
-    ) -> Option<(usize, Hit)> {
+    ) -> Option<PrimHit> {
         let oc = o - self.base;
         let (h0, hd) = (oc.dot(self.axis), d.dot(self.axis));
         let (op, dp) = (oc - self.axis * h0, d - self.axis * hd);
         let rho = |t: f64| (op + dp * t).length();
-        let mut best: Option<(usize, Hit)> = None;
-        let test = |id: usize, best: &mut Option<(usize, Hit)>| {
-            let limit = best.map_or(t_max, |(_, h)| h.t);
-            if let Some(h) = primitives[id].intersect_ray(o, d, t_min, limit) {
-                *best = Some((id, h));
+        let mut best: Option<PrimHit> = None;
+        let test = |prim: PrimId, best: &mut Option<PrimHit>| {
+            let limit = best.map_or(t_max, |b| b.hit.t);
+            if let Some(hit) = primitives[prim.index()].intersect_ray(o, d, t_min, limit) {
+                *best = Some(PrimHit { prim, hit });
             }
         };
         // Caps: the annulus holding the crossing of each end plane.
@@ -137,9 +156,9 @@ impl CoaxialStack {
             if t <= t_min || t >= t_max {
                 continue;
             }
-            let k = caps.partition_point(|c| c.1 < rho(t));
+            let k = caps.partition_point(|c| c.outer < rho(t));
             for c in &caps[k.saturating_sub(1)..(k + 2).min(caps.len())] {
-                test(c.2, &mut best);
+                test(c.id, &mut best);
             }
         }
         // Tubes: the two bounding the shell where the ray is first inside the slab.
@@ -155,10 +174,10 @@ impl CoaxialStack {
         };
         if enter <= leave {
             let r = rho(enter);
-            let k = self.tubes.partition_point(|&(radius, _)| radius <= r);
+            let k = self.tubes.partition_point(|t| t.radius <= r);
             let n = self.tubes.len();
-            for &(_, id) in &self.tubes[k.saturating_sub(2)..(k + 2).min(n)] {
-                test(id, &mut best);
+            for t in &self.tubes[k.saturating_sub(2)..(k + 2).min(n)] {
+                test(t.id, &mut best);
             }
         }
         best
@@ -166,11 +185,11 @@ impl CoaxialStack {
 
     /// Every member primitive's id (curved segments test them all: they are rare in a stack,
     /// which holds homogeneous layers, and the shell argument above is for straight rays).
-    pub fn members(&self) -> impl Iterator<Item = usize> + '_ {
+    pub fn members(&self) -> impl Iterator<Item = PrimId> + '_ {
         self.tubes
             .iter()
-            .map(|t| t.1)
-            .chain(self.caps.iter().flatten().map(|c| c.2))
+            .map(|t| t.id)
+            .chain(self.caps.iter().flatten().map(|c| c.id))
     }
 
     /// Nearest crossing of a curved path with a member at arclength s ∈ (s_min, length].
@@ -181,12 +200,12 @@ impl CoaxialStack {
         hull: &ArcHull,
         s_min: f64,
         length: f64,
-    ) -> Option<(usize, Hit)> {
-        let mut best: Option<(usize, Hit)> = None;
-        for id in self.members() {
-            let limit = best.map_or(length, |(_, h)| h.t);
-            if let Some(h) = primitives[id].intersect_segment(seg, hull, s_min, limit) {
-                best = Some((id, h));
+    ) -> Option<PrimHit> {
+        let mut best: Option<PrimHit> = None;
+        for prim in self.members() {
+            let limit = best.map_or(length, |b| b.hit.t);
+            if let Some(hit) = primitives[prim.index()].intersect_segment(seg, hull, s_min, limit) {
+                best = Some(PrimHit { prim, hit });
             }
         }
         best

@@ -8,6 +8,7 @@ use coaxial::CoaxialStack;
 
 use crate::bvh::build_bvh;
 use crate::curve::{ArcHull, Path};
+use crate::ids::PrimId;
 use crate::math::Bounds3;
 use crate::shapes::{padded_box as padded, Hit, Primitive};
 use glam::{DVec3, Vec3A};
@@ -15,12 +16,21 @@ use obvhs::bvh2::Bvh2;
 use obvhs::ray::{Ray, RayHit};
 use rayon::prelude::*;
 
-/// Primitives with a BVH over them; a hit reports the primitive's index in `primitives`.
+/// A primitive met by a ray or a curved path, and where.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PrimHit {
+    /// Which primitive.
+    pub prim: PrimId,
+    /// Where (its `t` is the ray's parameter or the path's arclength).
+    pub hit: Hit,
+}
+
+/// Primitives with a BVH over them; a hit names its primitive by its place in `primitives`.
 pub struct Accel {
     primitives: Vec<Primitive>,
     /// Over the primitives not in a stack; leaf `i` is primitive `in_bvh[i]`.
     bvh: Bvh2,
-    in_bvh: Vec<usize>,
+    in_bvh: Vec<PrimId>,
     stacks: Vec<CoaxialStack>,
 }
 
@@ -29,8 +39,15 @@ impl Accel {
     pub fn new(primitives: Vec<Primitive>) -> Self {
         let mut taken = vec![false; primitives.len()];
         let stacks = CoaxialStack::gather(&primitives, &mut taken);
-        let in_bvh: Vec<usize> = (0..primitives.len()).filter(|&i| !taken[i]).collect();
-        let bvh = build_bvh(in_bvh.par_iter().map(|&i| padded(primitives[i].bounds())));
+        let in_bvh: Vec<PrimId> = (0..primitives.len())
+            .filter(|&i| !taken[i])
+            .map(PrimId::new)
+            .collect();
+        let bvh = build_bvh(
+            in_bvh
+                .par_iter()
+                .map(|&i| padded(primitives[i.index()].bounds())),
+        );
         Self {
             primitives,
             bvh,
@@ -44,17 +61,16 @@ impl Accel {
         &self.primitives
     }
 
-    /// Nearest hit of the straight ray o + t d (d unit), t ∈ (t_min, t_max): (primitive, hit).
-    pub fn intersect_ray(
-        &self,
-        o: DVec3,
-        d: DVec3,
-        t_min: f64,
-        t_max: f64,
-    ) -> Option<(usize, Hit)> {
-        let mut best: Option<(usize, Hit)> = None;
+    /// The primitive `id`.
+    pub fn primitive(&self, id: PrimId) -> &Primitive {
+        &self.primitives[id.index()]
+    }
+
+    /// Nearest hit of the straight ray o + t d (d unit), t ∈ (t_min, t_max).
+    pub fn intersect_ray(&self, o: DVec3, d: DVec3, t_min: f64, t_max: f64) -> Option<PrimHit> {
+        let mut best: Option<PrimHit> = None;
         for stack in &self.stacks {
-            let limit = best.map_or(t_max, |(_, h)| h.t);
+            let limit = best.map_or(t_max, |b| b.hit.t);
             if let Some(hit) = stack.intersect_ray(&self.primitives, o, d, t_min, limit) {
                 best = Some(hit);
             }
@@ -67,17 +83,17 @@ impl Accel {
             Vec3A::from(d.as_vec3()),
             0.0,
             // A stack's hit bounds the search (rounded up, as below).
-            best.map_or(f32::INFINITY, |(_, h)| (h.t as f32).next_up()),
+            best.map_or(f32::INFINITY, |b| (b.hit.t as f32).next_up()),
         );
-        let mut hit = RayHit::none();
-        self.bvh.ray_traverse(ray, &mut hit, |_, i| {
-            let id = self.in_bvh[self.bvh.primitive_indices[i] as usize];
-            let limit = best.map_or(t_max, |(_, h)| h.t);
-            match self.primitives[id].intersect_ray(o, d, t_min, limit) {
-                Some(h) => {
-                    best = Some((id, h));
+        let mut found = RayHit::none();
+        self.bvh.ray_traverse(ray, &mut found, |_, i| {
+            let prim = self.in_bvh[self.bvh.primitive_indices[i] as usize];
+            let limit = best.map_or(t_max, |b| b.hit.t);
+            match self.primitive(prim).intersect_ray(o, d, t_min, limit) {
+                Some(hit) => {
+                    best = Some(PrimHit { prim, hit });
                     // Round up: the f32 bound must not cull a node holding an f64 tie.
-                    (h.t as f32).next_up()
+                    (hit.t as f32).next_up()
                 }
                 None => f32::INFINITY,
             }
@@ -94,15 +110,15 @@ impl Accel {
         d: DVec3,
         t_min: f64,
         t_max: f64,
-        passes: impl Fn(usize) -> bool,
+        passes: impl Fn(PrimId) -> bool,
     ) -> bool {
         for stack in &self.stacks {
             let mut from = t_min;
-            while let Some((id, h)) = stack.intersect_ray(&self.primitives, o, d, from, t_max) {
-                if !passes(id) {
+            while let Some(b) = stack.intersect_ray(&self.primitives, o, d, from, t_max) {
+                if !passes(b.prim) {
                     return true;
                 }
-                from = h.t;
+                from = b.hit.t;
             }
         }
         if self.in_bvh.is_empty() {
@@ -117,7 +133,7 @@ impl Accel {
         );
         let missed = self.bvh.ray_traverse_miss(ray, |_, i| {
             let id = self.in_bvh[self.bvh.primitive_indices[i] as usize];
-            match self.primitives[id].intersect_ray(o, d, t_min, t_max) {
+            match self.primitive(id).intersect_ray(o, d, t_min, t_max) {
                 // Any value below the ray's bound ends the traversal.
                 Some(_) if !passes(id) => f32::NEG_INFINITY,
                 _ => f32::INFINITY,
@@ -138,7 +154,7 @@ impl Accel {
         let bounds = hull.bounds();
         if self.stacks.iter().any(|st| {
             st.bounds().overlaps(&bounds)
-                && st.members().any(|id| self.primitives[id].may_cross(hull))
+                && st.members().any(|id| self.primitive(id).may_cross(hull))
         }) {
             return true;
         }
@@ -148,7 +164,7 @@ impl Accel {
                 let node = &bvh.nodes[node_index as usize];
                 found = (node.first_index..node.first_index + node.prim_count).any(|i| {
                     let id = self.in_bvh[bvh.primitive_indices[i as usize] as usize];
-                    self.primitives[id].may_cross(hull)
+                    self.primitive(id).may_cross(hull)
                 });
                 !found
             });
@@ -158,7 +174,7 @@ impl Accel {
 
     /// Calls `f(id)` for every primitive whose box meets `bounds` (a stack's members when the
     /// stack's box does).
-    pub fn boxes_meeting(&self, bounds: Bounds3, mut f: impl FnMut(usize)) {
+    pub fn boxes_meeting(&self, bounds: Bounds3, mut f: impl FnMut(PrimId)) {
         for stack in &self.stacks {
             if stack.bounds().overlaps(&bounds) {
                 stack.members().for_each(&mut f);
@@ -171,7 +187,7 @@ impl Accel {
             let node = &bvh.nodes[node_index as usize];
             for i in node.first_index..node.first_index + node.prim_count {
                 let id = self.in_bvh[bvh.primitive_indices[i as usize] as usize];
-                if self.primitives[id].bounds().overlaps(&bounds) {
+                if self.primitive(id).bounds().overlaps(&bounds) {
                     f(id);
                 }
             }
@@ -189,12 +205,12 @@ impl Accel {
         hull: &ArcHull,
         s_min: f64,
         length: f64,
-    ) -> Option<(usize, Hit)> {
+    ) -> Option<PrimHit> {
         let bounds = hull.bounds();
-        let mut best: Option<(usize, Hit)> = None;
+        let mut best: Option<PrimHit> = None;
         for stack in &self.stacks {
             if stack.bounds().overlaps(&bounds) {
-                let limit = best.map_or(length, |(_, h)| h.t);
+                let limit = best.map_or(length, |b| b.hit.t);
                 if let Some(hit) =
                     stack.intersect_segment(&self.primitives, seg, hull, s_min, limit)
                 {
@@ -208,10 +224,13 @@ impl Accel {
         self.bvh.aabb_traverse(padded(bounds), |bvh, node_index| {
             let node = &bvh.nodes[node_index as usize];
             for i in node.first_index..node.first_index + node.prim_count {
-                let id = self.in_bvh[bvh.primitive_indices[i as usize] as usize];
-                let limit = best.map_or(length, |(_, h)| h.t);
-                if let Some(h) = self.primitives[id].intersect_segment(seg, hull, s_min, limit) {
-                    best = Some((id, h));
+                let prim = self.in_bvh[bvh.primitive_indices[i as usize] as usize];
+                let limit = best.map_or(length, |b| b.hit.t);
+                if let Some(hit) = self
+                    .primitive(prim)
+                    .intersect_segment(seg, hull, s_min, limit)
+                {
+                    best = Some(PrimHit { prim, hit });
                 }
             }
             true

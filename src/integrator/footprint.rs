@@ -12,6 +12,7 @@ use super::beam::Beams;
 use super::direct::camera_path;
 use super::CameraRay;
 use crate::camera::Camera;
+use crate::ids::PrimId;
 use crate::transport::chain::Carried;
 use crate::transport::{Stats, SurfaceVertex, Vertex};
 use glam::DVec3;
@@ -34,7 +35,7 @@ const STEP: f64 = 0.5;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Way {
     /// The primitive of the visible point.
-    pub prim: usize,
+    pub prim: PrimId,
     /// The specular bounces before it.
     pub bounces: u32,
     /// Whether it crossed a gradient medium (a curved stretch) on the way.

@@ -6,6 +6,7 @@
 //! within r, the glossy Cornell box took 1.3 % longer in all, median of five.)
 
 use crate::color::Rgb;
+use crate::ids::PrimId;
 use crate::photon::{Photon, PhotonMap};
 use crate::transport::visibility::Occluders;
 use crate::transport::{offset, SurfaceVertex, Tracer};
@@ -16,7 +17,7 @@ use glam::DVec3;
 /// the same primitive within r/2 of the centre reads them ([`Neighbourhood::estimate`]) — the
 /// same sum a query of the map there gives.
 pub struct Neighbourhood<'a> {
-    prim: usize,
+    prim: PrimId,
     centre: DVec3,
     /// r² of the estimates it serves.
     r2: f64,

@@ -6,7 +6,7 @@
 //! holding it.
 
 use crate::exact::ExactSum;
-use crate::ids::MediumId;
+use crate::ids::{MediumId, PrimId};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -15,7 +15,7 @@ use std::collections::BTreeMap;
 pub enum Fate {
     /// It escaped the scene after last leaving a dielectric into the ambient medium through
     /// this primitive.
-    OutThrough(usize),
+    OutThrough(PrimId),
     /// It escaped without ever leaving a dielectric (so without entering one), after a
     /// specular reflection.
     Reflected,
@@ -132,7 +132,7 @@ impl Ledger {
         self.emitted.add(photon.emitted);
         let power = photon.power;
         match photon.fate {
-            Fate::OutThrough(p) => self.out_through.entry(p).or_default().add(power),
+            Fate::OutThrough(p) => self.out_through.entry(p.index()).or_default().add(power),
             Fate::Reflected => self.reflected.add(power),
             Fate::Missed => self.missed.add(power),
             Fate::Absorbed => self.absorbed.add(power),
@@ -313,7 +313,7 @@ mod tests {
     fn photons_are_booked_in_their_parts_and_ledgers_add() {
         let photons = [
             ended(Fate::AbsorbedIn(MediumId::new(1)), true),
-            ended(Fate::OutThrough(3), false),
+            ended(Fate::OutThrough(PrimId::new(3)), false),
             ended(Fate::Absorbed, true),
             ended(Fate::Lost, false),
         ];
@@ -350,7 +350,7 @@ mod tests {
         let mut nested = ledger.clone();
         nested.scattered.as_mut().unwrap().scattered = Some(Box::default());
         assert!(nested.fits(1, 3, 0).unwrap_err().contains("scattered part"));
-        ledger.book(&ended(Fate::OutThrough(5), false));
+        ledger.book(&ended(Fate::OutThrough(PrimId::new(5)), false));
         assert!(ledger.fits(5, 3, 0).unwrap_err().contains("primitive 5"));
     }
 }

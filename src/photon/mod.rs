@@ -30,7 +30,7 @@ use crate::bsdf::Lobes;
 use crate::color::Rgb;
 use crate::curve::Bounds;
 use crate::environment::Environment;
-use crate::ids::{MediumId, ReceiverId};
+use crate::ids::{MediumId, PrimId, ReceiverId};
 use crate::lights::{Aim, Cone, Emission, Entry, Light};
 use crate::math::Ball;
 use crate::receiver::Detection;
@@ -648,7 +648,7 @@ struct PhotonWalk<'a, 'p> {
     detections: &'a mut Vec<Detection>,
     receivers: &'a [crate::receiver::Receiver],
     reflected: bool,
-    left_through: Option<usize>,
+    left_through: Option<PrimId>,
     path: Option<&'p mut dyn FnMut(DVec3)>,
     /// The last point shown, and how far a point may lie from it (escapes are drawn only
     /// that far, so a figure's lines stay short).
@@ -705,7 +705,7 @@ impl chain::ChainEvents for PhotonWalk<'_, '_> {
 
     fn specular(
         &mut self,
-        prim: usize,
+        prim: PrimId,
         from: Option<MediumId>,
         to: Option<MediumId>,
     ) -> ControlFlow<()> {

@@ -8,7 +8,7 @@ use crate::accel::Accel;
 use crate::camera::Camera;
 use crate::environment::Environment;
 use crate::error::{Error, Result};
-use crate::ids::{LightId, MaterialId, MediumId, ReceiverId};
+use crate::ids::{LightId, MaterialId, MediumId, PrimId, ReceiverId};
 use crate::lights::Light;
 use crate::material::Material;
 use crate::media::Medium;
@@ -339,6 +339,11 @@ impl Scene {
                 )))
             }
         }
+    }
+
+    /// The surface of primitive `prim`.
+    pub fn surface(&self, prim: PrimId) -> Surface {
+        self.surfaces[prim.index()]
     }
 
     /// The light `id`.

@@ -13,7 +13,7 @@
 
 use super::{Event, HeroTracer, MediumVertex, Stats, SurfaceVertex, Tracer, Vertex};
 use crate::color::Rgb;
-use crate::ids::{MediumId, ReceiverId};
+use crate::ids::{MediumId, PrimId, ReceiverId};
 use crate::material::Material;
 use crate::scene::Role;
 use crate::volume::{Flights, Scattering};
@@ -58,7 +58,7 @@ pub enum End<'s> {
     /// An emitter: its radiance toward the path (zero from its back).
     Emitter {
         /// Primitive index.
-        prim: usize,
+        prim: PrimId,
         /// Radiance, W/(m²·sr), in the medium at its surface.
         radiance: Rgb,
         /// Hit point.
@@ -170,7 +170,7 @@ pub trait ChainEvents {
     /// `Break` ends the chain ([`End::Stopped`]).
     fn specular(
         &mut self,
-        _prim: usize,
+        _prim: PrimId,
         _from: Option<MediumId>,
         _to: Option<MediumId>,
     ) -> ControlFlow<()> {
@@ -612,7 +612,7 @@ impl<'w> Walker<'w> {
             }
         };
         observer.point(hit.position);
-        let surface = scene.surfaces[hit.prim];
+        let surface = scene.surface(hit.prim);
         match surface.role {
             Role::Emitter(light) => {
                 let front = hit.incoming.dot(hit.normals.geometric) < 0.0;

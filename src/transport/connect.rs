@@ -366,7 +366,7 @@ fn unblocked(
                 if travelled + distance >= link.length * (1.0 - 1e-7) {
                     return true;
                 }
-                if !scene.surfaces[prim].is_detector() {
+                if !scene.surface(prim).is_detector() {
                     return false;
                 }
                 travelled += distance;

@@ -1,6 +1,7 @@
 //! What a ray meets next ([`Event`]: a surface, the world's edge, the end of its allowed
 //! reach, or nothing it can name), and where a path meets a surface ([`SurfaceHit`]).
 
+use crate::ids::PrimId;
 use glam::{DVec2, DVec3};
 
 /// What a ray meets next.
@@ -10,7 +11,7 @@ pub enum Event {
     /// there and the ray's direction on arrival.
     Surface {
         /// Primitive index.
-        prim: usize,
+        prim: PrimId,
         /// Hit point.
         position: DVec3,
         /// Geometric normal (see [`crate::shapes::Hit`]): which side the ray is on.
@@ -159,7 +160,7 @@ pub struct Normals {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SurfaceHit {
     /// Primitive index.
-    pub prim: usize,
+    pub prim: PrimId,
     /// Hit point.
     pub position: DVec3,
     /// The surface's normals there.

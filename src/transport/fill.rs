@@ -45,10 +45,10 @@ impl Tracer<'_> {
         let scene = self.scene;
         let mut o = p;
         loop {
-            let Some((prim, h)) = scene.accel.intersect_ray(o, d, 0.0, f64::INFINITY) else {
+            let Some(found) = scene.accel.intersect_ray(o, d, 0.0, f64::INFINITY) else {
                 return scene.ambient();
             };
-            let s = scene.surfaces[prim];
+            let (s, h) = (scene.surface(found.prim), found.hit);
             if matches!(scene.material(s), Some(Material::Dielectric { .. })) {
                 return if d.dot(h.normal) > 0.0 {
                     s.interior

@@ -222,7 +222,7 @@ pub fn bsdf_sample_weight(tracer: &Tracer, vertex: &Vertex, s: &Scattered, chain
             position,
             direction,
             ..
-        } if weighed => match tracer.scene.surfaces[prim].role {
+        } if weighed => match tracer.scene.surface(prim).role {
             Role::Emitter(l) => {
                 let choice = tracer.light_sampler.at(vertex.origin());
                 power_heuristic(

@@ -27,11 +27,12 @@ pub use spectral::HeroTracer;
 use spectral::Wavelength;
 pub use vertex::{BsdfNumbers, MediumVertex, Scattered, SurfaceVertex, Vertex};
 
+use crate::accel::PrimHit;
 use crate::curve::{
     march_with, Bounds, ExactPath, HermitePath, MarchLimits, MarchOutcome, Path, RayState,
     StepControl, Termination,
 };
-use crate::ids::MediumId;
+use crate::ids::{MediumId, PrimId};
 use crate::lights::{LightSampler, LightSamples};
 use crate::math::{Ball, Bounds3};
 use crate::media::Medium;
@@ -172,7 +173,7 @@ impl<'a> Tracer<'a> {
                 stats.straight_rays += 1;
                 let depth = |length: f64| self.optical_depth(medium, origin, dir, length);
                 match self.scene.accel.intersect_ray(origin, dir, 0.0, reach) {
-                    Some((prim, h)) => Event::Surface {
+                    Some(PrimHit { prim, hit: h }) => Event::Surface {
                         prim,
                         position: origin + h.t * dir,
                         normal: h.normal,
@@ -401,7 +402,7 @@ fn show_circle(exact: Option<&ExactPath>, upto: f64, path: &mut Option<&mut dyn 
 
 /// Where a step's path meets a surface.
 struct Crossing {
-    prim: usize,
+    prim: PrimId,
     hit: Hit,
     position: DVec3,
     direction: DVec3,
@@ -411,7 +412,7 @@ struct Crossing {
 
 impl Crossing {
     /// Primitive `prim`'s `hit` on `path`, a piece of the step that starts `offset` into it.
-    fn on<P: Path + ?Sized>(path: &P, offset: f64, (prim, hit): (usize, Hit)) -> Self {
+    fn on<P: Path + ?Sized>(path: &P, offset: f64, PrimHit { prim, hit }: PrimHit) -> Self {
         let p = path.at(hit.t);
         Crossing {
             prim,

@@ -2,7 +2,7 @@
 //! the hit (at the tracer's wavelength, with the index on either side evaluated there).
 
 use super::{facing, SurfaceHit, SurfaceVertex, Tracer};
-use crate::ids::MediumId;
+use crate::ids::{MediumId, PrimId};
 use crate::material::SurfacePoint;
 use crate::scene::Surface;
 use glam::{DVec2, DVec3};
@@ -69,7 +69,7 @@ impl<'a> Tracer<'a> {
 /// tracer's wavelength.
 struct HitPoint<'t, 'a> {
     tracer: &'t Tracer<'a>,
-    prim: usize,
+    prim: PrimId,
     position: DVec3,
     uv: Option<DVec2>,
     near: Option<MediumId>,
@@ -78,8 +78,13 @@ struct HitPoint<'t, 'a> {
 
 impl SurfacePoint for HitPoint<'_, '_> {
     fn uv(&self) -> DVec2 {
-        self.uv
-            .unwrap_or_else(|| self.tracer.scene.accel.primitives()[self.prim].uv_at(self.position))
+        self.uv.unwrap_or_else(|| {
+            self.tracer
+                .scene
+                .accel
+                .primitive(self.prim)
+                .uv_at(self.position)
+        })
     }
     fn wavelength(&self) -> Option<f64> {
         self.tracer.single_wavelength()

@@ -14,7 +14,7 @@ use super::chain::Ray;
 use super::offset;
 use crate::bsdf::{Bsdf, BsdfSample, Lobes};
 use crate::color::Rgb;
-use crate::ids::MediumId;
+use crate::ids::{MediumId, PrimId};
 use crate::sampling::Given;
 use crate::volume::Phase;
 use glam::DVec3;
@@ -186,7 +186,7 @@ impl<'s> Vertex<'s> {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SurfaceVertex<'s> {
     /// Primitive index.
-    pub prim: usize,
+    pub prim: PrimId,
     /// Where.
     pub position: DVec3,
     /// Unit geometric normal on the side the path arrived on.

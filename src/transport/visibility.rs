@@ -5,7 +5,7 @@
 
 use super::{offset, Tracer};
 use crate::color::Rgb;
-use crate::ids::MediumId;
+use crate::ids::{MediumId, PrimId};
 use crate::math::Bounds3;
 use glam::DVec3;
 use std::cell::OnceCell;
@@ -22,7 +22,7 @@ pub fn transmittance(
 ) -> f64 {
     let scene = tracer.scene;
     if scene.accel.blocked(from, dir, 0.0, reach, |prim| {
-        scene.surfaces[prim].is_detector()
+        scene.surface(prim).is_detector()
     }) {
         return 0.0;
     }
@@ -65,7 +65,7 @@ pub fn unscattered(
 pub struct Occluders<'a> {
     tracer: &'a Tracer<'a>,
     /// The point's primitive.
-    prim: usize,
+    prim: PrimId,
     position: DVec3,
     radius: f64,
     near: OnceCell<Near>,
@@ -73,7 +73,7 @@ pub struct Occluders<'a> {
 
 /// The primitives near a point that may hide photons from it.
 struct Near {
-    ids: [usize; Near::KEPT],
+    ids: [PrimId; Near::KEPT],
     count: usize,
 }
 
@@ -85,7 +85,7 @@ impl Near {
 impl<'a> Occluders<'a> {
     /// The surfaces that may hide photons within `radius` of `position` (on primitive
     /// `prim`) from points on that primitive within the ball.
-    pub fn around(tracer: &'a Tracer<'a>, prim: usize, position: DVec3, radius: f64) -> Self {
+    pub fn around(tracer: &'a Tracer<'a>, prim: PrimId, position: DVec3, radius: f64) -> Self {
         Self {
             tracer,
             prim,
@@ -99,17 +99,19 @@ impl<'a> Occluders<'a> {
         self.near.get_or_init(|| {
             let scene = self.tracer.scene;
             let mut near = Near {
-                ids: [0; Near::KEPT],
+                ids: [PrimId::new(0); Near::KEPT],
                 count: 0,
             };
             let reach = DVec3::splat(self.radius);
             let ball_box = Bounds3::new(self.position - reach, self.position + reach);
             // Room for the points' offsets off their surfaces (math::offset) and rounding.
             let radius = self.radius + 1e-6 * (self.radius + self.position.abs().max_element());
-            let primitives = scene.accel.primitives();
             scene.accel.boxes_meeting(ball_box, |id| {
-                let detector = scene.surfaces[id].is_detector();
-                let meets = primitives[id].may_meet_ball(self.position, radius);
+                let detector = scene.surface(id).is_detector();
+                let meets = scene
+                    .accel
+                    .primitive(id)
+                    .may_meet_ball(self.position, radius);
                 if id != self.prim && !detector && meets {
                     if near.count < Near::KEPT {
                         near.ids[near.count] = id;
@@ -135,10 +137,11 @@ impl<'a> Occluders<'a> {
             return false;
         }
         let (dir, reach) = (d / length, length * (1.0 - 1e-7));
-        let primitives = self.tracer.scene.accel.primitives();
+        let accel = &self.tracer.scene.accel;
         match near.count <= Near::KEPT {
             true => near.ids[..near.count].iter().any(|&id| {
-                primitives[id]
+                accel
+                    .primitive(id)
                     .intersect_ray(origin, dir, 0.0, reach)
                     .is_some()
             }),
