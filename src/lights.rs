@@ -9,6 +9,7 @@ use crate::sampling::{
     cosine_hemisphere, power_cosine_hemisphere, uniform_cone, uniform_disk, uniform_sphere, Frame,
     Given, Pick,
 };
+use crate::shapes::{Disk, Primitive, Quad};
 use glam::DVec3;
 use std::f64::consts::{PI, TAU};
 use std::sync::Arc;
@@ -177,95 +178,61 @@ pub fn covering_disk(aim: Aim, direction: DVec3, uv: (f64, f64)) -> Option<(DVec
     (half_chord > 0.0 && density > 0.0 && density.is_finite()).then(|| (origin, 1.0 / density))
 }
 
-/// The emitting surface of an area light.
+/// The emitting surface of an area light: a flat primitive, emitting on its normal's side.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Emitter {
-    /// The parallelogram origin + u e1 + v e2; it emits on the side of e1 × e2.
-    Quad {
-        /// Corner.
-        origin: DVec3,
-        /// First edge.
-        e1: DVec3,
-        /// Second edge.
-        e2: DVec3,
-    },
-    /// A disk emitting on the side of `normal`.
-    Disk {
-        /// Centre.
-        center: DVec3,
-        /// Unit normal.
-        normal: DVec3,
-        /// Radius.
-        radius: f64,
-    },
+    /// A parallelogram, emitting on the side of e1 × e2.
+    Quad(Quad),
+    /// A disk (a full one: `inner` is 0), emitting on the side of its normal.
+    Disk(Disk),
 }
 
 impl Emitter {
     /// The largest distance of a point of the surface from its centre (length).
     pub fn extent(&self) -> f64 {
-        match *self {
-            Emitter::Quad { e1, e2, .. } => 0.5 * (e1 + e2).length().max((e1 - e2).length()),
-            Emitter::Disk { radius, .. } => radius,
+        match self {
+            Emitter::Quad(q) => q.extent(),
+            Emitter::Disk(d) => d.radius,
         }
     }
 
     /// Area (length²).
     pub fn area(&self) -> f64 {
-        match *self {
-            Emitter::Quad { e1, e2, .. } => e1.cross(e2).length(),
-            Emitter::Disk { radius, .. } => PI * radius * radius,
+        match self {
+            Emitter::Quad(q) => q.area(),
+            Emitter::Disk(d) => d.area(),
         }
     }
 
     /// The surface as a scene primitive.
-    pub fn primitive(&self) -> crate::shapes::Primitive {
-        use crate::shapes::Primitive;
+    pub fn primitive(&self) -> Primitive {
         match *self {
-            Emitter::Quad { origin, e1, e2 } => Primitive::Quad { origin, e1, e2 },
-            Emitter::Disk {
-                center,
-                normal,
-                radius,
-            } => Primitive::Disk {
-                center,
-                normal,
-                radius,
-                inner: 0.0,
-            },
+            Emitter::Quad(q) => Primitive::Quad(q),
+            Emitter::Disk(d) => Primitive::Disk(d),
         }
     }
 
     /// The centre of the surface.
     pub fn center(&self) -> DVec3 {
-        match *self {
-            Emitter::Quad { origin, e1, e2 } => origin + 0.5 * (e1 + e2),
-            Emitter::Disk { center, .. } => center,
+        match self {
+            Emitter::Quad(q) => q.center(),
+            Emitter::Disk(d) => d.center,
         }
     }
 
     /// Unit normal of the emitting side.
     pub fn normal(&self) -> DVec3 {
-        match *self {
-            Emitter::Quad { e1, e2, .. } => e1.cross(e2).normalize(),
-            Emitter::Disk { normal, .. } => normal,
+        match self {
+            Emitter::Quad(q) => q.normal(),
+            Emitter::Disk(d) => d.normal,
         }
     }
 
     /// A point uniformly distributed over the surface for `uv` uniform in [0,1)².
     pub fn sample(&self, uv: (f64, f64)) -> DVec3 {
-        match *self {
-            Emitter::Quad { origin, e1, e2 } => origin + uv.0 * e1 + uv.1 * e2,
-            Emitter::Disk {
-                center,
-                normal,
-                radius,
-            } => {
-                let t = normal.any_orthonormal_vector();
-                let b = normal.cross(t);
-                let r = radius * uv.0.sqrt();
-                let phi = TAU * uv.1;
-                center + r * (phi.cos() * t + phi.sin() * b)
-            }
+        match self {
+            Emitter::Quad(q) => q.point_at(uv),
+            Emitter::Disk(d) => d.point_at(uv),
         }
     }
 }

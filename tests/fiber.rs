@@ -4,7 +4,7 @@ use grinlight::fiber::Layer;
 use grinlight::scene::load::parse_scene;
 use grinlight::scene::{load_description, load_scene, Scene};
 use grinlight::settings::Settings;
-use grinlight::shapes::Primitive;
+use grinlight::shapes::{Disk, Primitive};
 use grinlight::transport::chain::principal_ray;
 use std::path::Path;
 
@@ -276,8 +276,7 @@ fn energy_budget_of_the_fiber() {
             .map(|(_, w)| w)
             .sum()
     };
-    let disk_at =
-        |z: f64| move |p: &Primitive| matches!(p, Primitive::Disk { center, .. } if center.z == z);
+    let disk_at = |z: f64| move |p: &Primitive| matches!(p, Primitive::Disk(Disk { center, .. }) if center.z == z);
     let wall = through(&|p| matches!(p, Primitive::Tube { .. }));
     let (entry, exit) = (through(&disk_at(0.0)), through(&disk_at(2.0)));
     assert_eq!(wall, 0.0, "{budget:?}");
@@ -480,7 +479,7 @@ fn the_layered_twin_loses_no_photon() {
         budget
             .out_through
             .keys()
-            .all(|&p| matches!(prims[p], Primitive::Disk { .. })),
+            .all(|&p| matches!(prims[p], Primitive::Disk(..))),
         "light left through the wall"
     );
 }
@@ -570,7 +569,7 @@ fn absorption_in_a_rod_follows_the_slab_formula() {
                 .out_through
                 .iter()
                 .filter(
-                    |(&p, _)| matches!(prims[p], Primitive::Disk { center, .. } if center.z == z),
+                    |(&p, _)| matches!(prims[p], Primitive::Disk(Disk { center, .. }) if center.z == z),
                 )
                 .map(|(_, w)| w)
                 .sum()

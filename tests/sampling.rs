@@ -69,11 +69,7 @@ fn uniform_sphere_and_cone_match_their_pdfs() {
 fn led_emission_follows_its_profile() {
     let m = 3.0;
     let led = Light::Led {
-        emitter: Emitter::Disk {
-            center: DVec3::ZERO,
-            normal: DVec3::Z,
-            radius: 0.01,
-        },
+        emitter: Emitter::Disk(grinlight::shapes::Disk::full(DVec3::ZERO, DVec3::Z, 0.01)),
         peak_intensity: Rgb::splat(2.0 * (m + 1.0) / TAU),
         m,
     };

@@ -3,7 +3,7 @@
 use glam::DVec3;
 use grinlight::accel::Accel;
 use grinlight::curve::CurvedSegment;
-use grinlight::shapes::{Hit, Primitive, Triangle};
+use grinlight::shapes::{Disk, Hit, Primitive, Quad, Triangle};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 
@@ -30,12 +30,12 @@ fn primitives(rng: &mut Pcg64Mcg) -> Vec<Primitive> {
             radius: rng.gen_range(0.1..0.5),
             height: rng.gen_range(0.2..1.0),
         });
-        v.push(Primitive::Quad {
+        v.push(Primitive::Quad(Quad {
             origin: rv(rng),
             e1: rv(rng),
             e2: rv(rng),
-        });
-        v.push(Primitive::Disk {
+        }));
+        v.push(Primitive::Disk(Disk {
             center: rv(rng),
             normal: rv(rng).normalize(),
             radius: rng.gen_range(0.1..0.7),
@@ -44,7 +44,7 @@ fn primitives(rng: &mut Pcg64Mcg) -> Vec<Primitive> {
             } else {
                 0.0
             },
-        });
+        }));
         v.push(Primitive::triangle(rv(rng), rv(rng), rv(rng)));
     }
     v
@@ -91,8 +91,8 @@ fn signed(p: &Primitive, x: DVec3) -> f64 {
             let d = x - base;
             (d - axis * d.dot(axis)).length() - radius
         }
-        Primitive::Quad { origin, e1, e2 } => (x - origin).dot(e1.cross(e2).normalize()),
-        Primitive::Disk { center, normal, .. } => (x - center).dot(normal),
+        Primitive::Quad(Quad { origin, e1, e2 }) => (x - origin).dot(e1.cross(e2).normalize()),
+        Primitive::Disk(Disk { center, normal, .. }) => (x - center).dot(normal),
         Primitive::Triangle(Triangle { v0, e1, e2 }) => (x - v0).dot(e1.cross(e2).normalize()),
         Primitive::Mesh(_) => unreachable!("meshes are tested triangle by triangle"),
     }
@@ -104,19 +104,19 @@ fn on_primitive(p: &Primitive, x: DVec3) -> bool {
         Primitive::Tube {
             base, axis, height, ..
         } => (0.0..=height).contains(&(x - base).dot(axis)),
-        Primitive::Quad { origin, e1, e2 } => {
+        Primitive::Quad(Quad { origin, e1, e2 }) => {
             // Barycentric-free test: x in the parallelogram iff both in-plane coordinates in [0,1].
             let n = e1.cross(e2);
             let u = (x - origin).cross(e2).dot(n) / n.length_squared();
             let v = e1.cross(x - origin).dot(n) / n.length_squared();
             (0.0..=1.0).contains(&u) && (0.0..=1.0).contains(&v)
         }
-        Primitive::Disk {
+        Primitive::Disk(Disk {
             center,
             radius,
             inner,
             ..
-        } => (inner..=radius).contains(&(x - center).length()),
+        }) => (inner..=radius).contains(&(x - center).length()),
         Primitive::Triangle(Triangle { v0, e1, e2 }) => {
             let n = e1.cross(e2);
             let u = (x - v0).cross(e2).dot(n) / n.length_squared();
@@ -309,12 +309,12 @@ fn coaxial_stack_equals_a_loop_over_all_primitives() {
             height,
         });
         for (center, normal) in [(base, -axis), (base + axis * height, axis)] {
-            prims.push(Primitive::Disk {
+            prims.push(Primitive::Disk(Disk {
                 center,
                 normal,
                 radius,
                 inner,
-            });
+            }));
         }
     }
     let accel = Accel::new(prims.clone());
@@ -562,11 +562,11 @@ fn may_meet_ball_holds_every_ball_the_surface_enters() {
     assert!(!sphere.may_meet_ball(DVec3::new(0.0, 0.5, 0.0), 0.4));
     assert!(!sphere.may_meet_ball(DVec3::new(0.0, 1.5, 0.0), 0.4));
     assert!(sphere.may_meet_ball(DVec3::new(0.0, 1.3, 0.0), 0.4));
-    let floor = Primitive::Quad {
+    let floor = Primitive::Quad(Quad {
         origin: DVec3::new(-1.0, 0.0, -1.0),
         e1: DVec3::new(0.0, 0.0, 2.0),
         e2: DVec3::new(2.0, 0.0, 0.0),
-    };
+    });
     assert!(!floor.may_meet_ball(DVec3::new(0.0, 0.5, 0.0), 0.4));
     assert!(floor.may_meet_ball(DVec3::new(0.0, 0.3, 0.0), 0.4));
 }

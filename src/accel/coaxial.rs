@@ -13,7 +13,7 @@ use super::PrimHit;
 use crate::curve::{ArcHull, Path};
 use crate::ids::PrimId;
 use crate::math::Bounds3;
-use crate::shapes::Primitive;
+use crate::shapes::{Disk, Primitive};
 use glam::DVec3;
 
 /// Fewer coaxial tubes than this are left to the BVH.
@@ -90,12 +90,12 @@ impl CoaxialStack {
                     .iter()
                     .enumerate()
                     .filter_map(|(i, p)| match *p {
-                        Primitive::Disk {
+                        Primitive::Disk(Disk {
                             center,
                             normal,
                             radius,
                             inner,
-                        } if center == centre && (normal == g.axis || normal == -g.axis) => {
+                        }) if center == centre && (normal == g.axis || normal == -g.axis) => {
                             Some(Cap {
                                 inner,
                                 outer: radius,

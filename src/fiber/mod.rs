@@ -11,7 +11,7 @@ use crate::ids::MediumId;
 use crate::media::{Medium, UniformMedium};
 use crate::scene::{Description, Shape, Surface};
 use crate::settings::TraceSettings;
-use crate::shapes::Primitive;
+use crate::shapes::{Disk, Primitive};
 use crate::volume::{Absorption, Participating};
 use glam::DVec3;
 
@@ -240,11 +240,13 @@ impl Description {
             });
             twin.push(Shape {
                 primitives: [(base, -axis), (top, axis)]
-                    .map(|(center, normal)| Primitive::Disk {
-                        center,
-                        normal,
-                        radius: l.outer,
-                        inner: l.inner,
+                    .map(|(center, normal)| {
+                        Primitive::Disk(Disk {
+                            center,
+                            normal,
+                            radius: l.outer,
+                            inner: l.inner,
+                        })
                     })
                     .to_vec(),
                 surface: Surface {

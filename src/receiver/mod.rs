@@ -15,7 +15,7 @@ pub use statistics::{
     compare, measure, radial_profile, tally, Comparison, Measurement, Profile, Tally,
 };
 
-use crate::shapes::Primitive;
+use crate::shapes::{Primitive, Quad};
 use glam::DVec3;
 
 /// A detector rectangle: centre, in-plane unit axes `u` (width) and `v` (height), size and
@@ -57,11 +57,11 @@ impl Receiver {
     /// The receiver's surface, a quad with normal u × v.
     pub fn primitive(&self) -> Primitive {
         let (w, h) = self.size;
-        Primitive::Quad {
+        Primitive::Quad(Quad {
             origin: self.center - 0.5 * w * self.u - 0.5 * h * self.v,
             e1: self.u * w,
             e2: self.v * h,
-        }
+        })
     }
 
     /// Local coordinates (along u, along v) of a point, relative to the centre.

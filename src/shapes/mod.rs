@@ -12,5 +12,5 @@ pub use curved::{round_roots, segment_roots};
 pub(crate) use hit::padded_box;
 pub use hit::Hit;
 pub use mesh::TriangleMesh;
-pub use primitive::Primitive;
+pub use primitive::{Disk, Primitive, Quad};
 pub use triangle::{Plane, Triangle};

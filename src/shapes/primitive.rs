@@ -7,7 +7,92 @@ use super::triangle::{edge_coordinates_hit, plane_coordinates, Plane, Triangle};
 use crate::curve::{ArcHull, Path, RoundSurface};
 use crate::math::{Ball, Bounds3};
 use glam::{DVec2, DVec3};
+use std::f64::consts::{PI, TAU};
 use std::sync::Arc;
+
+/// The parallelogram origin + u·e1 + v·e2, u, v ∈ [0, 1], normal e1 × e2 normalised.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Quad {
+    /// Corner v0.
+    pub origin: DVec3,
+    /// v1 − v0.
+    pub e1: DVec3,
+    /// v3 − v0.
+    pub e2: DVec3,
+}
+
+impl Quad {
+    /// Area (length²).
+    pub fn area(&self) -> f64 {
+        self.e1.cross(self.e2).length()
+    }
+
+    /// Its centre.
+    pub fn center(&self) -> DVec3 {
+        self.origin + 0.5 * (self.e1 + self.e2)
+    }
+
+    /// Unit normal, e1 × e2 normalised.
+    pub fn normal(&self) -> DVec3 {
+        self.e1.cross(self.e2).normalize()
+    }
+
+    /// The largest distance of a point of it from its centre.
+    pub fn extent(&self) -> f64 {
+        0.5 * (self.e1 + self.e2)
+            .length()
+            .max((self.e1 - self.e2).length())
+    }
+
+    /// A point uniformly distributed over it for `uv` uniform in [0, 1)².
+    pub fn point_at(&self, (u, v): (f64, f64)) -> DVec3 {
+        self.origin + u * self.e1 + v * self.e2
+    }
+}
+
+/// A disk, or an annulus when `inner` > 0.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Disk {
+    /// Centre.
+    pub center: DVec3,
+    /// Unit normal.
+    pub normal: DVec3,
+    /// Outer radius.
+    pub radius: f64,
+    /// Inner radius (0: a full disk).
+    pub inner: f64,
+}
+
+impl Disk {
+    /// A full disk.
+    pub fn full(center: DVec3, normal: DVec3, radius: f64) -> Self {
+        Self {
+            center,
+            normal,
+            radius,
+            inner: 0.0,
+        }
+    }
+
+    /// Area (length²).
+    pub fn area(&self) -> f64 {
+        PI * (self.radius * self.radius - self.inner * self.inner)
+    }
+
+    /// A point uniformly distributed over it (by area) for `uv` uniform in [0, 1)².
+    pub fn point_at(&self, (u, v): (f64, f64)) -> DVec3 {
+        let t = self.normal.any_orthonormal_vector();
+        let b = self.normal.cross(t);
+        let r = match self.inner > 0.0 {
+            true => (self.inner * self.inner
+                + u * (self.radius * self.radius - self.inner * self.inner))
+                .sqrt(),
+            false => self.radius * u.sqrt(),
+        };
+        let phi = TAU * v;
+        self.center + r * (phi.cos() * t + phi.sin() * b)
+    }
+}
 
 /// A surface primitive. Vectors in scene units.
 #[derive(Clone, Debug, PartialEq)]
@@ -31,26 +116,10 @@ pub enum Primitive {
         /// Length along the axis.
         height: f64,
     },
-    /// The parallelogram origin + u·e1 + v·e2, u, v ∈ [0, 1], normal e1 × e2 normalised.
-    Quad {
-        /// Corner v0.
-        origin: DVec3,
-        /// v1 − v0.
-        e1: DVec3,
-        /// v3 − v0.
-        e2: DVec3,
-    },
-    /// A disk, or an annulus when `inner` > 0.
-    Disk {
-        /// Centre.
-        center: DVec3,
-        /// Unit normal.
-        normal: DVec3,
-        /// Outer radius.
-        radius: f64,
-        /// Inner radius (0: a full disk).
-        inner: f64,
-    },
+    /// A parallelogram.
+    Quad(Quad),
+    /// A disk or an annulus.
+    Disk(Disk),
     /// A triangle.
     Triangle(Triangle),
     /// A triangle mesh (shared, compact; its own BVH): one surface, many triangles.
@@ -78,15 +147,15 @@ impl Primitive {
                 let top = base + axis * height;
                 Bounds3::new(base.min(top) - ext, base.max(top) + ext)
             }
-            Primitive::Quad { origin, e1, e2 } => {
+            Primitive::Quad(Quad { origin, e1, e2 }) => {
                 Bounds3::of_points([origin, origin + e1, origin + e2, origin + e1 + e2])
             }
-            Primitive::Disk {
+            Primitive::Disk(Disk {
                 center,
                 normal,
                 radius,
                 ..
-            } => {
+            }) => {
                 let ext = radius * (DVec3::ONE - normal * normal).max(DVec3::ZERO).sqrt();
                 Bounds3::new(center - ext, center + ext)
             }
@@ -101,11 +170,11 @@ impl Primitive {
     /// its bounds' corners.
     pub fn bounding_ball(&self) -> Ball {
         match *self {
-            Primitive::Sphere { center, radius } | Primitive::Disk { center, radius, .. } => {
+            Primitive::Sphere { center, radius } | Primitive::Disk(Disk { center, radius, .. }) => {
                 Ball { center, radius }
             }
             Primitive::Triangle(..)
-            | Primitive::Quad { .. }
+            | Primitive::Quad(..)
             | Primitive::Tube { .. }
             | Primitive::Mesh(..) => {
                 let b = self.bounds();
@@ -137,8 +206,8 @@ impl Primitive {
     fn plane(&self) -> Option<Plane> {
         let plane = |point, normal| Some(Plane { point, normal });
         match *self {
-            Primitive::Quad { origin, e1, e2 } => plane(origin, e1.cross(e2).normalize()),
-            Primitive::Disk { center, normal, .. } => plane(center, normal),
+            Primitive::Quad(Quad { origin, e1, e2 }) => plane(origin, e1.cross(e2).normalize()),
+            Primitive::Disk(Disk { center, normal, .. }) => plane(center, normal),
             Primitive::Triangle(t) => Some(t.plane()),
             Primitive::Sphere { .. } | Primitive::Tube { .. } | Primitive::Mesh(_) => None,
         }
@@ -147,16 +216,16 @@ impl Primitive {
     /// Whether a point of a planar primitive's plane lies on the primitive (edges included).
     fn contains_planar(&self, p: DVec3) -> bool {
         match *self {
-            Primitive::Quad { origin, e1, e2 } => {
+            Primitive::Quad(Quad { origin, e1, e2 }) => {
                 let (u, v) = plane_coordinates(p - origin, e1, e2);
                 (0.0..=1.0).contains(&u) && (0.0..=1.0).contains(&v)
             }
-            Primitive::Disk {
+            Primitive::Disk(Disk {
                 center,
                 radius,
                 inner,
                 ..
-            } => (inner * inner..=radius * radius).contains(&(p - center).length_squared()),
+            }) => (inner * inner..=radius * radius).contains(&(p - center).length_squared()),
             Primitive::Triangle(t) => t.contains(p),
             Primitive::Sphere { .. } | Primitive::Tube { .. } | Primitive::Mesh(_) => false,
         }
@@ -180,16 +249,18 @@ impl Primitive {
             Primitive::Tube {
                 base, axis, height, ..
             } => DVec2::new(around(x - base, axis), (x - base).dot(axis) / height),
-            Primitive::Quad { origin, e1, e2 } => plane_coordinates(x - origin, e1, e2).into(),
+            Primitive::Quad(Quad { origin, e1, e2 }) => {
+                plane_coordinates(x - origin, e1, e2).into()
+            }
             Primitive::Triangle(Triangle { v0, e1, e2 }) => {
                 plane_coordinates(x - v0, e1, e2).into()
             }
-            Primitive::Disk {
+            Primitive::Disk(Disk {
                 center,
                 normal,
                 radius,
                 ..
-            } => {
+            }) => {
                 let (e1, e2) = normal.any_orthonormal_pair();
                 let p = (x - center) / (2.0 * radius);
                 DVec2::new(0.5 + p.dot(e1), 0.5 + p.dot(e2))
@@ -257,13 +328,13 @@ impl Primitive {
                     })
                 })
             }
-            Primitive::Quad { origin, e1, e2 } => {
+            Primitive::Quad(Quad { origin, e1, e2 }) => {
                 let (t, uv) = edge_coordinates_hit(origin, e1, e2, o, d, t_min, t_max)?;
                 let inside = (0.0..=1.0).contains(&uv.x) && (0.0..=1.0).contains(&uv.y);
                 inside.then(|| Hit::flat(t, e1.cross(e2).normalize()))
             }
             Primitive::Triangle(t) => t.intersect_ray(o, d, t_min, t_max),
-            Primitive::Disk { .. } => {
+            Primitive::Disk(..) => {
                 let plane = self.plane()?;
                 let t = plane.ray_hit(o, d, t_min, t_max)?;
                 self.contains_planar(o + t * d)
@@ -278,7 +349,7 @@ impl Primitive {
         match *self {
             Primitive::Sphere { center, radius } => Some(RoundSurface::sphere(center, radius)),
             Primitive::Tube { .. } | Primitive::Mesh(_) => None,
-            Primitive::Quad { .. } | Primitive::Disk { .. } | Primitive::Triangle(_) => {
+            Primitive::Quad(..) | Primitive::Disk(..) | Primitive::Triangle(_) => {
                 self.plane().map(|p| p.surface())
             }
         }
@@ -291,8 +362,8 @@ impl Primitive {
             Primitive::Tube {
                 base, axis, height, ..
             } => (0.0..=height).contains(&(x - base).dot(axis)),
-            Primitive::Quad { .. }
-            | Primitive::Disk { .. }
+            Primitive::Quad(..)
+            | Primitive::Disk(..)
             | Primitive::Triangle(_)
             | Primitive::Mesh(_) => self.contains_planar(x),
         }
@@ -304,8 +375,8 @@ impl Primitive {
             Primitive::Sphere { center, .. } => (x - center).normalize(),
             Primitive::Tube { base, axis, .. } => across_axis(x - base, axis).normalize(),
             // A mesh's points are its triangles': asked of them, never of the mesh.
-            Primitive::Quad { .. }
-            | Primitive::Disk { .. }
+            Primitive::Quad(..)
+            | Primitive::Disk(..)
             | Primitive::Triangle(_)
             | Primitive::Mesh(_) => self.plane().expect("planar").normal,
         }
@@ -336,7 +407,7 @@ impl Primitive {
                 let inside = off_axis(hull.a).max(off_axis(hull.b)) + dev < radius;
                 !(beyond_ends || inside)
             }
-            Primitive::Quad { .. } | Primitive::Disk { .. } | Primitive::Triangle(_) => {
+            Primitive::Quad(..) | Primitive::Disk(..) | Primitive::Triangle(_) => {
                 self.plane().expect("planar").may_cross(hull)
             }
         }
@@ -368,8 +439,8 @@ impl Primitive {
             }),
             // (A mesh returned above: it has no round surface.)
             Primitive::Sphere { .. }
-            | Primitive::Quad { .. }
-            | Primitive::Disk { .. }
+            | Primitive::Quad(..)
+            | Primitive::Disk(..)
             | Primitive::Triangle(_)
             | Primitive::Mesh(_) => super::round_roots(seg, length, &self.round_surface()?),
         };
@@ -397,13 +468,13 @@ impl std::fmt::Display for Primitive {
                 v(base),
                 v(axis)
             ),
-            Primitive::Quad { origin, .. } => write!(f, "quad at {}", v(origin)),
-            Primitive::Disk {
+            Primitive::Quad(Quad { origin, .. }) => write!(f, "quad at {}", v(origin)),
+            Primitive::Disk(Disk {
                 center,
                 normal,
                 radius,
                 inner,
-            } => {
+            }) => {
                 let ring = if inner > 0.0 {
                     format!("r {inner}–{radius}")
                 } else {

@@ -6,6 +6,7 @@ use crate::environment::{Environment, ImageFilter, Sky, Turn};
 use crate::error::Result;
 use crate::lights::{Emitter, Falloff, Light, Luminaire};
 use crate::scene::table::TableReader;
+use crate::shapes::{Disk, Quad};
 use crate::spectrum::emission::Shape;
 use crate::spectrum::Spectrum;
 use glam::{DMat3, DVec3};
@@ -107,22 +108,22 @@ pub fn read_light(t: &mut TableReader, kind: &str) -> Result<Light> {
         }
         "quad" => {
             let (origin, e1, e2) = parallelogram(t, "vertices")?;
-            area(t, Emitter::Quad { origin, e1, e2 })?
+            area(t, Emitter::Quad(Quad { origin, e1, e2 }))?
         }
         "disk" => {
-            let emitter = Emitter::Disk {
-                center: t.vec3("center")?,
-                normal: t.direction_or("normal", -DVec3::Y)?,
-                radius: t.positive("radius")?,
-            };
+            let emitter = Emitter::Disk(Disk::full(
+                t.vec3("center")?,
+                t.direction_or("normal", -DVec3::Y)?,
+                t.positive("radius")?,
+            ));
             area(t, emitter)?
         }
         "led" => {
-            let emitter = Emitter::Disk {
-                center: t.vec3("center")?,
-                normal: t.direction_or("normal", DVec3::Z)?,
-                radius: t.positive("radius")?,
-            };
+            let emitter = Emitter::Disk(Disk::full(
+                t.vec3("center")?,
+                t.direction_or("normal", DVec3::Z)?,
+                t.positive("radius")?,
+            ));
             let power = t.positive("power")?;
             let m = t.f64_or("m", 1.0)?;
             t.check("m", m >= 0.0, "must be ≥ 0")?;

@@ -2,7 +2,7 @@
 
 use crate::error::Result;
 use crate::scene::table::{TableReader, MAX_MAGNITUDE};
-use crate::shapes::{Primitive, TriangleMesh};
+use crate::shapes::{Disk, Primitive, Quad, TriangleMesh};
 use glam::{DMat3, DVec3};
 
 /// A shape before names are resolved.
@@ -54,18 +54,18 @@ pub fn read_shape(t: &mut TableReader) -> Result<ShapeDesc> {
                 height,
             }];
             if t.bool_or("capped", true)? {
-                p.push(Primitive::Disk {
+                p.push(Primitive::Disk(Disk {
                     center: base,
                     normal: -axis,
                     radius,
                     inner: 0.0,
-                });
-                p.push(Primitive::Disk {
+                }));
+                p.push(Primitive::Disk(Disk {
                     center: base + axis * height,
                     normal: axis,
                     radius,
                     inner: 0.0,
-                });
+                }));
             }
             p
         }
@@ -80,7 +80,7 @@ pub fn read_shape(t: &mut TableReader) -> Result<ShapeDesc> {
         }
         "quad" => {
             let (origin, e1, e2) = parallelogram(t, "vertices")?;
-            vec![Primitive::Quad { origin, e1, e2 }]
+            vec![Primitive::Quad(Quad { origin, e1, e2 })]
         }
         "disk" => {
             let center = t.vec3("center")?;
@@ -92,12 +92,12 @@ pub fn read_shape(t: &mut TableReader) -> Result<ShapeDesc> {
                 (0.0..radius).contains(&inner),
                 "must be in [0, radius)",
             )?;
-            vec![Primitive::Disk {
+            vec![Primitive::Disk(Disk {
                 center,
                 normal,
                 radius,
                 inner,
-            }]
+            })]
         }
         "mesh" => read_mesh(t)?,
         other => {
@@ -119,36 +119,36 @@ fn box_faces(lo: DVec3, hi: DVec3) -> Vec<Primitive> {
     let d = hi - lo;
     let (x, y, z) = (DVec3::X * d.x, DVec3::Y * d.y, DVec3::Z * d.z);
     vec![
-        Primitive::Quad {
+        Primitive::Quad(Quad {
             origin: lo,
             e1: y,
             e2: x,
-        }, // −z
-        Primitive::Quad {
+        }), // −z
+        Primitive::Quad(Quad {
             origin: lo + z,
             e1: x,
             e2: y,
-        }, // +z
-        Primitive::Quad {
+        }), // +z
+        Primitive::Quad(Quad {
             origin: lo,
             e1: z,
             e2: y,
-        }, // −x
-        Primitive::Quad {
+        }), // −x
+        Primitive::Quad(Quad {
             origin: lo + x,
             e1: y,
             e2: z,
-        }, // +x
-        Primitive::Quad {
+        }), // +x
+        Primitive::Quad(Quad {
             origin: lo,
             e1: x,
             e2: z,
-        }, // −y
-        Primitive::Quad {
+        }), // −y
+        Primitive::Quad(Quad {
             origin: lo + y,
             e1: z,
             e2: x,
-        }, // +y
+        }), // +y
     ]
 }
 
