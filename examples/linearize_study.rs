@@ -288,7 +288,7 @@ fn hits(tracer: &Tracer, medium: grinlight::ids::MediumId, rays: &[Ray]) -> Vec<
     rays.iter()
         .map(
             |ray| match tracer.next_event(ray.at, ray.direction, Some(medium), &mut stats) {
-                Event::Surface { position, .. } => position,
+                Event::Surface { hit, .. } => hit.position,
                 other => panic!("a ray inside the ball ended {other:?}"),
             },
         )

@@ -578,7 +578,7 @@ fn the_tracer_follows_fish_eye_rays_to_the_sphere_at_every_scale() {
             Some(medium),
             &mut stats,
         ) {
-            Event::Surface { position, .. } => position / radius,
+            Event::Surface { hit, .. } => hit.position / radius,
             other => panic!("R {radius}: a ray inside the ball ended {other:?}"),
         };
         let here: Vec<DVec3> = rays.iter().map(|&(x, d)| hit(x, d)).collect();

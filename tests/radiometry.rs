@@ -611,12 +611,9 @@ fn curved_paths_meet_surfaces_where_a_fine_march_does() {
         rays.iter()
             .map(|&(o, d)| {
                 match tracer.next_event(o, d, scene.0.ambient(), &mut Stats::default()) {
-                    Event::Surface {
-                        prim,
-                        position,
-                        distance,
-                        ..
-                    } => Some((prim, position, distance)),
+                    Event::Surface { hit, distance, .. } => {
+                        Some((hit.prim, hit.position, distance))
+                    }
                     _ => None,
                 }
             })

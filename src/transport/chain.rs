@@ -583,7 +583,7 @@ impl<'w> Walker<'w> {
             _ if self.absorbed(chain, event.transmittance(), lent.rng) => {
                 return ControlFlow::Break(End::Absorbed { medium: at.medium })
             }
-            Event::Surface { .. } => event.surface_hit().expect("a surface event"),
+            Event::Surface { hit, .. } => hit,
             Event::Escaped {
                 position,
                 direction,

@@ -356,21 +356,15 @@ fn unblocked(
     let (mut origin, mut dir, mut travelled) = (from, link.direction, 0.0);
     loop {
         match tracer.next_event(origin, dir, Some(medium), stats) {
-            Event::Surface {
-                prim,
-                position,
-                direction,
-                distance,
-                ..
-            } => {
+            Event::Surface { hit, distance, .. } => {
                 if travelled + distance >= link.length * (1.0 - 1e-7) {
                     return true;
                 }
-                if !scene.surface(prim).is_detector() {
+                if !scene.surface(hit.prim).is_detector() {
                     return false;
                 }
                 travelled += distance;
-                (origin, dir) = (super::offset(position, direction), direction);
+                (origin, dir) = (super::offset(hit.position, hit.incoming), hit.incoming);
             }
             Event::Escaped { .. } | Event::Reached { .. } => return true,
             Event::Lost => return false,

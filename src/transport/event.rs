@@ -7,23 +7,10 @@ use glam::{DVec2, DVec3};
 /// What a ray meets next.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Event {
-    /// A surface: the primitive, the hit point, the primitive's geometric and shading normals
-    /// there and the ray's direction on arrival.
+    /// A surface.
     Surface {
-        /// Primitive index.
-        prim: PrimId,
-        /// Hit point.
-        position: DVec3,
-        /// Geometric normal (see [`crate::shapes::Hit`]): which side the ray is on.
-        normal: DVec3,
-        /// Shading normal, on the geometric normal's side: what a specular surface reflects
-        /// and refracts about.
-        shading: DVec3,
-        /// A mesh's surface coordinates (u, v) of the hit, for textures
-        /// ([`crate::shapes::Hit::uv`]).
-        uv: Option<DVec2>,
-        /// Unit direction of arrival.
-        direction: DVec3,
+        /// Where, on which primitive, with its normals and the direction of arrival.
+        hit: SurfaceHit,
         /// Path length from the origin to the hit (scene units).
         distance: f64,
         /// Optical depth ∫ σa ds of absorption from the origin to the hit.
@@ -62,25 +49,8 @@ impl Event {
     /// Where the ray meets a surface, if it does.
     pub fn surface_hit(&self) -> Option<SurfaceHit> {
         match *self {
-            Event::Surface {
-                prim,
-                position,
-                normal,
-                shading,
-                uv,
-                direction,
-                ..
-            } => Some(SurfaceHit {
-                prim,
-                position,
-                normals: Normals {
-                    geometric: normal,
-                    shading,
-                },
-                uv,
-                incoming: direction,
-            }),
-            _ => None,
+            Event::Surface { hit, .. } => Some(hit),
+            Event::Escaped { .. } | Event::Reached { .. } | Event::Lost => None,
         }
     }
 
@@ -97,9 +67,8 @@ impl Event {
     /// Where the event happens (None when lost).
     pub fn position(&self) -> Option<DVec3> {
         match *self {
-            Event::Surface { position, .. }
-            | Event::Escaped { position, .. }
-            | Event::Reached { position, .. } => Some(position),
+            Event::Surface { hit, .. } => Some(hit.position),
+            Event::Escaped { position, .. } | Event::Reached { position, .. } => Some(position),
             Event::Lost => None,
         }
     }

@@ -174,12 +174,16 @@ impl<'a> Tracer<'a> {
                 let depth = |length: f64| self.optical_depth(medium, origin, dir, length);
                 match self.scene.accel.intersect_ray(origin, dir, 0.0, reach) {
                     Some(PrimHit { prim, hit: h }) => Event::Surface {
-                        prim,
-                        position: origin + h.t * dir,
-                        normal: h.normal,
-                        shading: h.shading,
-                        uv: h.uv,
-                        direction: dir,
+                        hit: SurfaceHit {
+                            prim,
+                            position: origin + h.t * dir,
+                            normals: Normals {
+                                geometric: h.normal,
+                                shading: h.shading,
+                            },
+                            uv: h.uv,
+                            incoming: dir,
+                        },
                         distance: h.t,
                         optical_depth: depth(h.t),
                     },
@@ -286,12 +290,16 @@ impl<'a> Tracer<'a> {
                 if let Some(c) = found.filter(|c| prev_s + c.along <= reach) {
                     show_circle(step.path.as_ref(), c.along, &mut path);
                     hit = Some(Event::Surface {
-                        prim: c.prim,
-                        position: c.position,
-                        normal: c.hit.normal,
-                        shading: c.hit.shading,
-                        uv: c.hit.uv,
-                        direction: c.direction,
+                        hit: SurfaceHit {
+                            prim: c.prim,
+                            position: c.position,
+                            normals: Normals {
+                                geometric: c.hit.normal,
+                                shading: c.hit.shading,
+                            },
+                            uv: c.hit.uv,
+                            incoming: c.direction,
+                        },
                         distance: prev_s + c.along,
                         optical_depth: prev_depth
                             + radiometry.step_depth(prev.position, c.position, c.along),
