@@ -31,7 +31,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         settings.passes = p.parse()?;
     }
     if let Some(i) = args.get(4) {
-        settings.integrator = i.parse()?;
+        let integrator =
+            grinlight::settings::INTEGRATOR.read(&grinlight::settings::Given::from_text(i))?;
+        integrator.apply(&mut grinlight::settings::Target {
+            settings: &mut settings,
+            camera: None,
+        });
     }
     let t = std::time::Instant::now();
     let (film, report) = grinlight::render::render(&scene, &settings, &())?;

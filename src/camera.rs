@@ -52,6 +52,11 @@ pub struct Camera {
 }
 
 impl Camera {
+    /// Image width in pixels where a scene gives none.
+    pub const DEFAULT_WIDTH: u32 = 640;
+    /// Image height in pixels where a scene gives none.
+    pub const DEFAULT_HEIGHT: u32 = 480;
+
     /// A camera looking from `position` at `look_at` with full vertical field of view
     /// `fov_y_deg`. Fails (with the reason) when the view direction is zero or parallel to `up`.
     pub fn new(

@@ -269,60 +269,64 @@ fn validate_compares_each_band() {
     let _ = std::fs::remove_file(plot);
 }
 
-/// The scene file and the command line hold each integer setting to one range
-/// (`grinlight::settings::COUNTS`): a value just outside it is refused by both, for the same
-/// reason, before any work.
+/// The scene file and the command line read each setting of the settings table
+/// (`grinlight::settings::KEYS`) alike: a value it refuses (each side of a count's range, a
+/// number ≤ 0, a word that is not a choice, a word that is not true or false) is refused by
+/// both, before any work, in the same words.
 #[test]
 fn the_scene_file_and_the_command_line_refuse_the_same_values() {
+    use grinlight::settings::{Given, Table, KEYS};
     let dir = temp("ranges");
     std::fs::create_dir_all(&dir).unwrap();
     let base = std::fs::read_to_string("scenes/cornell_diffuse.toml").unwrap();
-    let flags = [
-        "spp",
-        "passes",
-        "gather",
-        "knn",
-        "receiver_photons",
-        "width",
-        "height",
-    ];
-    for c in grinlight::settings::COUNTS
-        .iter()
-        .filter(|c| flags.contains(&c.key))
-    {
-        let table = if ["width", "height"].contains(&c.key) {
-            "[camera]"
-        } else {
-            "[render]"
-        };
-        let outside = [c.min.checked_sub(1), c.max.checked_add(1)];
-        for value in outside.into_iter().flatten() {
-            let why = c.check(value).unwrap_err();
-            let scene = dir.join(format!("{}-{value}.toml", c.key));
-            let own = format!("{} =", c.key);
+    let bad = |key: &'static grinlight::settings::Key| -> Vec<Given> {
+        let mut values: Vec<Given> = [
+            Given::Integer(-1),
+            Given::Integer(0),
+            Given::Number(-1.5),
+            Given::Text("nonsense".into()),
+            Given::Integer(i128::from(u32::MAX) + 1),
+            Given::Integer(70_000),
+        ]
+        .into_iter()
+        .filter(|g| key.read(g).is_err())
+        .collect();
+        values.dedup();
+        values
+    };
+    for key in KEYS {
+        let values = bad(key);
+        assert!(values.len() >= 2, "{}: too few refused values", key.name);
+        for given in values {
+            let why = key.read(&given).unwrap_err();
+            let (toml, word) = match &given {
+                Given::Integer(i) => (i.to_string(), i.to_string()),
+                Given::Number(x) => (format!("{x:?}"), format!("{x}")),
+                Given::Text(t) => (format!("\"{t}\""), t.clone()),
+                other => panic!("no such test value {other:?}"),
+            };
+            let table = match key.table {
+                Table::Render => "[render]",
+                Table::Camera => "[camera]",
+            };
+            let own = format!("{} =", key.name);
             let text: String = base
                 .lines()
                 .filter(|l| !l.starts_with(&own))
                 .map(|l| format!("{l}\n"))
                 .collect();
-            let text = text.replacen(table, &format!("{table}\n{own} {value}"), 1);
+            let text = text.replacen(table, &format!("{table}\n{own} {toml}"), 1);
+            let scene = dir.join(format!("{}-{word}.toml", key.name));
             std::fs::write(&scene, text).unwrap();
             let by_file = grinlight(&["render", scene.to_str().unwrap()]);
-            let by_flag = grinlight(&[
-                "render",
-                "scenes/cornell_diffuse.toml",
-                &c.flag(),
-                &value.to_string(),
-            ]);
+            let by_flag = grinlight(&["render", "scenes/cornell_diffuse.toml", &key.flag(), &word]);
             for (how, out) in [("file", by_file), ("flag", by_flag)] {
                 let stderr = String::from_utf8_lossy(&out.stderr);
-                // A value beyond the flag's integer type is refused by the parser first.
-                let parsed = !stderr.contains("invalid value");
-                assert!(!out.status.success(), "{} = {value} by {how}", c.key);
+                assert!(!out.status.success(), "{} = {word} by {how}", key.name);
                 assert!(
-                    !parsed || stderr.contains(&why),
-                    "{} = {value} by {how}: '{stderr}' lacks '{why}'",
-                    c.key
+                    stderr.contains(&why),
+                    "{} = {word} by {how}: '{stderr}' lacks '{why}'",
+                    key.name
                 );
             }
         }

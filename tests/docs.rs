@@ -181,22 +181,49 @@ fn numbered_work_items_are_recognised() {
     assert!(numbered_work_item("value #7 is not a number").is_none());
 }
 
-/// Every integer setting's range in the scene-format reference is the range the program holds
-/// the scene file and the command line to (`grinlight::settings::COUNTS`).
+/// Every setting of the settings table (`grinlight::settings::KEYS`) has a row in the
+/// scene-format reference that gives its range and its default, and the default the table
+/// gives in words is the one the program starts from.
 #[test]
-fn the_scene_format_gives_each_settings_range() {
+fn the_scene_format_gives_each_settings_range_and_default() {
+    use grinlight::settings::{Given, Settings, Target, KEYS};
     let doc = std::fs::read_to_string("docs/scene-format.md").unwrap();
-    for c in grinlight::settings::COUNTS {
-        let key = format!("`{}`", c.key);
+    for key in KEYS {
+        let name = format!("`{}`", key.name);
         let row = doc
             .lines()
-            .find(|l| l.starts_with('|') && l.split('|').nth(1).is_some_and(|k| k.contains(&key)))
-            .unwrap_or_else(|| panic!("docs/scene-format.md has no row for {key}"));
+            .find(|l| l.starts_with('|') && l.split('|').nth(1).is_some_and(|k| k.contains(&name)))
+            .unwrap_or_else(|| panic!("docs/scene-format.md has no row for {name}"));
         assert!(
-            row.contains(&c.range()),
-            "docs/scene-format.md: {key} should give its range {}: {row}",
-            c.range()
+            row.contains(&key.range()) && row.contains(key.default),
+            "docs/scene-format.md: {name} should give its range {} and default {}: {row}",
+            key.range(),
+            key.default
         );
+        // A default in numbers or names is the program's own: setting it changes nothing.
+        if let Ok(a) = key.read(&Given::from_text(key.default)) {
+            let mut settings = Settings::default();
+            let mut camera = grinlight::camera::Camera::new(
+                glam::DVec3::ZERO,
+                glam::DVec3::Z,
+                glam::DVec3::Y,
+                40.0,
+                grinlight::camera::Camera::DEFAULT_WIDTH,
+                grinlight::camera::Camera::DEFAULT_HEIGHT,
+            )
+            .unwrap();
+            let before = (settings.clone(), camera.width, camera.height);
+            a.apply(&mut Target {
+                settings: &mut settings,
+                camera: Some(&mut camera),
+            });
+            assert_eq!(
+                (settings, camera.width, camera.height),
+                before,
+                "{name}: the table's default {} is not the program's",
+                key.default
+            );
+        }
     }
 }
 

@@ -4,6 +4,10 @@
 //! difference.
 
 use grinlight::commands::{self, MergeJob, Observer, Overrides, RenderJob, RenderOutcome};
+use grinlight::settings::{
+    Key, CAUSTIC_PHOTONS, HEIGHT, PASSES, PHOTONS, RECEIVER_PHOTONS, SEED, SPP, TARGET_ERROR,
+    THREADS, TIME_BUDGET, WIDTH,
+};
 use grinlight::shard::{Partial, Shard};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
@@ -21,21 +25,29 @@ fn workspace(name: &str) -> PathBuf {
     dir
 }
 
+/// Overrides giving each of `values`.
+fn given(values: &[(&'static Key, u64)]) -> Overrides {
+    let mut o = Overrides::default();
+    for &(key, value) in values {
+        o.set(key, value);
+    }
+    o
+}
+
 /// A small Cornell render: 7 passes of photon maps (progressive caustics), so that every
 /// shard count up to 7 has passes to do.
 fn cornell(dir: &Path) -> RenderJob {
     RenderJob {
         scene: dir.join("cornell.toml"),
-        overrides: Overrides {
-            width: Some(24),
-            height: Some(18),
-            spp: Some(1),
-            photons: Some(3_000),
-            caustic_photons: Some(3_000),
-            passes: Some(7),
-            threads: Some(2),
-            ..Overrides::default()
-        },
+        overrides: given(&[
+            (&WIDTH, 24),
+            (&HEIGHT, 18),
+            (&SPP, 1),
+            (&PHOTONS, 3_000),
+            (&CAUSTIC_PHOTONS, 3_000),
+            (&PASSES, 7),
+            (&THREADS, 2),
+        ]),
         ..RenderJob::default()
     }
 }
@@ -49,11 +61,7 @@ fn fiber(dir: &Path) -> RenderJob {
 fn receivers(dir: &Path, file: &str) -> RenderJob {
     RenderJob {
         scene: dir.join(file),
-        overrides: Overrides {
-            receiver_photons: Some(30_000),
-            threads: Some(2),
-            ..Overrides::default()
-        },
+        overrides: given(&[(&RECEIVER_PHOTONS, 30_000), (&THREADS, 2)]),
         ..RenderJob::default()
     }
 }
@@ -283,8 +291,8 @@ fn mismatched_partials_are_refused_naming_the_difference() {
     let dir = workspace("refuse");
     let shard = |k: u32, n: u32, seed: u64, out: &str| {
         let mut job = cornell(&dir);
-        job.overrides.seed = Some(seed);
-        job.overrides.passes = Some(2);
+        job.overrides.set(&SEED, seed);
+        job.overrides.set(&PASSES, 2);
         job.shard = Some(Shard { index: k, count: n });
         job.output = Some(dir.join(out));
         commands::render(&job, &()).unwrap();
@@ -313,7 +321,7 @@ fn mismatched_partials_are_refused_naming_the_difference() {
         .unwrap_or_default()
     };
     let cases: &[(&[&Path], &str)] = &[
-        (&[&a, &other_seed], "seed: \"1\" against \"9\""),
+        (&[&a, &other_seed], "seed: 1 against 9"),
         (&[&a, &of_three], "shard count"),
         (&[&a, &dir.join("fiber.partial")], "scene"),
         (&[&a, &a], "both shard 1/2"),
@@ -333,8 +341,8 @@ fn mismatched_partials_are_refused_naming_the_difference() {
     // that shard's result alone; the same shard run again replaces its own finished partial.
     let before = std::fs::read(&a).unwrap();
     let mut whole = cornell(&dir);
-    whole.overrides.passes = Some(2);
-    whole.overrides.seed = Some(1);
+    whole.overrides.set(&PASSES, 2);
+    whole.overrides.set(&SEED, 1);
     whole.output = Some(dir.join("a.exr"));
     let e = commands::render(&whole, &()).err().unwrap().to_string();
     assert!(
@@ -378,13 +386,13 @@ fn mismatched_partials_are_refused_naming_the_difference() {
     std::fs::write(dir.join("cornell.toml"), text).unwrap();
     // Resuming with other options names the difference.
     let mut job = cornell(&dir);
-    job.overrides.passes = Some(2);
-    job.overrides.seed = Some(3);
+    job.overrides.set(&PASSES, 2);
+    job.overrides.set(&SEED, 3);
     job.shard = Some(Shard { index: 1, count: 2 });
     job.output = Some(a.clone());
     job.resume = true;
     let e = commands::render(&job, &()).err().unwrap().to_string();
-    assert!(e.contains("seed: \"3\" against \"1\""), "{e}");
+    assert!(e.contains("seed: 3 against 1"), "{e}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
@@ -453,8 +461,8 @@ fn the_slurm_job_scripts_run_as_local_processes() {
 fn a_time_budget_ends_a_whole_render() {
     let dir = workspace("budget");
     let mut job = cornell(&dir);
-    job.overrides.passes = None;
-    job.overrides.time_budget = Some(0.3);
+    job.overrides.unset(&PASSES);
+    job.overrides.set(&TIME_BUDGET, 0.3);
     job.output = Some(dir.join("b.exr"));
     let outcome = commands::render(&job, &()).unwrap();
     assert!(!outcome.interrupted);
@@ -479,7 +487,7 @@ fn a_whole_render_leaves_a_finished_shard_result_alone() {
     let dir = workspace("keep-shard");
     let x = dir.join("x.partial");
     let mut job = cornell(&dir);
-    job.overrides.passes = Some(3);
+    job.overrides.set(&PASSES, 3);
     job.shard = Some(Shard::WHOLE);
     job.output = Some(x.clone());
     commands::render(&job, &()).unwrap();
@@ -536,9 +544,9 @@ impl Observer for StopAfterFirstPass {
 fn damaged_partials_are_refused_before_any_merge_or_resume() {
     let dir = workspace("flip");
     let mut job = cornell(&dir);
-    job.overrides.passes = Some(3);
-    job.overrides.width = Some(16);
-    job.overrides.height = Some(12);
+    job.overrides.set(&PASSES, 3);
+    job.overrides.set(&WIDTH, 16);
+    job.overrides.set(&HEIGHT, 12);
     let shards: Vec<PathBuf> = (1..=3)
         .map(|k| {
             let path = dir.join(format!("s{k}.partial"));
@@ -661,14 +669,14 @@ impl Observer for StopAfterPasses {
 #[test]
 fn a_resumed_render_with_a_target_error_stops_where_one_run_would() {
     let dir = workspace("target-resume");
-    let job = |output: &str| RenderJob {
-        output: Some(dir.join(output)),
-        overrides: Overrides {
-            target_error: Some(0.3),
-            passes: None,
-            ..cornell(&dir).overrides
-        },
-        ..cornell(&dir)
+    let job = |output: &str| {
+        let mut job = RenderJob {
+            output: Some(dir.join(output)),
+            ..cornell(&dir)
+        };
+        job.overrides.set(&TARGET_ERROR, 0.3);
+        job.overrides.unset(&PASSES);
+        job
     };
     let whole = commands::render(&job("whole.exr"), &()).unwrap();
     let passes = whole.film.as_ref().unwrap().passes;

@@ -244,9 +244,8 @@ class Scene:
         **overrides: Any,
     ) -> Union[Image, Path]:
         """Renders the camera's view (and measures the receivers) in memory; every keyword
-        replaces the scene's ``[render]``/``[camera]`` key of its name (``width``,
-        ``height``, ``photons``, ``caustic_photons``, ``gather``, ``radius``, ``knn``,
-        ``receiver_photons``, ``no_table`` besides those named). The same scene, settings and
+        replaces the scene's ``[render]``/``[camera]`` key of its name (the settings listed
+        below; ``no_table=True`` is ``deflection_table=False``). The same scene, settings and
         seed give the EXR ``grinlight render`` writes, bit for bit.
 
         With ``shard=(k, n)`` renders the k-th of n slices of the scene file's render into a
@@ -382,3 +381,13 @@ def merge(partials: Sequence[PathLike], output: Optional[PathLike] = None, allow
         raise ValueError(f"partials: expected a list of partial files, got one path {partials!r} (write [{partials!r}])")
     film = _grinlight.merge([Path(p) for p in partials], None if output is None else Path(output), allow_missing)
     return None if film is None else Image({}, None, [], [], _film=film)
+
+
+def _settings_doc() -> str:
+    """The render settings' list, from the table the scene file and the command line read."""
+    rows = [f"    ``{name}``: {doc} ({values}; default {default})" for name, doc, values, default in _grinlight.render_settings()]
+    return "\n\n        Settings (a value is refused in the scene file's words):\n\n    " + "\n    ".join(rows)
+
+
+if Scene.render.__doc__ is not None:
+    Scene.render.__doc__ += _settings_doc()

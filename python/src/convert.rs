@@ -5,7 +5,7 @@
 use glam::DVec3;
 use grinlight::commands::{Overrides, RayTrace, TraceControl};
 use grinlight::curve::StepperKind;
-use grinlight::settings::IntegratorKind;
+use grinlight::settings::{Given, Key, DEFLECTION_TABLE, KEYS};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyMapping, PyString, PyTuple};
@@ -138,68 +138,54 @@ fn number(v: &Bound<'_, PyAny>, key: &str) -> PyResult<f64> {
     }
 }
 
-/// The keyword arguments a render takes that replace `[render]` and `[camera]` keys.
-pub const OVERRIDES: [&str; 16] = [
-    "spp",
-    "seed",
-    "threads",
-    "integrator",
-    "no_table",
-    "width",
-    "height",
-    "photons",
-    "caustic_photons",
-    "gather",
-    "radius",
-    "knn",
-    "passes",
-    "time_budget",
-    "target_error",
-    "receiver_photons",
-];
+/// A Python value as a setting's value, before the settings table reads it (so a value is
+/// refused in the scene file's words).
+fn given(v: &Bound<'_, PyAny>) -> Given {
+    if let Ok(b) = v.cast::<PyBool>() {
+        Given::Bool(b.is_true())
+    } else if v.is_instance_of::<PyInt>() {
+        match v.extract::<i128>() {
+            Ok(i) => Given::Integer(i),
+            Err(_) => Given::Other(format!("{v} (out of range)")),
+        }
+    } else if let Ok(x) = v.extract::<f64>() {
+        Given::Number(x)
+    } else if let Ok(text) = v.extract::<String>() {
+        Given::Text(text)
+    } else {
+        Given::Other(format!("a {}", type_name(v)))
+    }
+}
 
-/// The command line's overrides from keyword arguments (a value of None: not given).
+/// The settings given as keyword arguments (a value of None: not given), each replacing the
+/// scene's `[render]`/`[camera]` key of its name ([`grinlight::settings::KEYS`]); `no_table`
+/// is `deflection_table=False`.
 pub fn overrides(d: &Bound<'_, PyDict>) -> PyResult<Overrides> {
     let mut o = Overrides::default();
     for (k, v) in d.iter() {
-        let key: String = k.extract()?;
+        let name: String = k.extract()?;
         if v.is_none() {
             continue;
         }
-        let v = &v;
-        match key.as_str() {
-            "spp" => o.spp = Some(count(v, &key)?),
-            "seed" => o.seed = Some(count(v, &key)?),
-            "threads" => o.threads = Some(count(v, &key)?),
-            "integrator" => {
-                let name: String = v
-                    .extract()
-                    .map_err(|_| bad(&key, format!("expected {}", IntegratorKind::names())))?;
-                o.integrator = Some(name.parse().map_err(|e| bad(&key, e))?);
+        if name == "no_table" {
+            match given(&v) {
+                Given::Bool(true) => o.set(&DEFLECTION_TABLE, false),
+                Given::Bool(false) => {}
+                other => return Err(bad(&name, format!("expected true or false, got {other}"))),
             }
-            "no_table" => {
-                o.no_table = v
-                    .extract()
-                    .map_err(|_| bad(&key, format!("expected a bool, got {}", type_name(v))))?
-            }
-            "width" => o.width = Some(count(v, &key)?),
-            "height" => o.height = Some(count(v, &key)?),
-            "photons" => o.photons = Some(count(v, &key)?),
-            "caustic_photons" => o.caustic_photons = Some(count(v, &key)?),
-            "gather" => o.gather = Some(count(v, &key)?),
-            "radius" => o.radius = Some(number(v, &key)?),
-            "knn" => o.knn = Some(count(v, &key)?),
-            "passes" => o.passes = Some(count(v, &key)?),
-            "time_budget" => o.time_budget = Some(number(v, &key)?),
-            "target_error" => o.target_error = Some(number(v, &key)?),
-            "receiver_photons" => o.receiver_photons = Some(count(v, &key)?),
-            other => {
-                return Err(bad(
-                    other,
-                    format!("not a render setting (one of {})", OVERRIDES.join(", ")),
-                ))
-            }
+            continue;
         }
+        let Some(key) = Key::named(&name) else {
+            let names: Vec<&str> = KEYS.iter().map(|k| k.name).collect();
+            return Err(bad(
+                &name,
+                format!(
+                    "not a render setting (one of {}, no_table)",
+                    names.join(", ")
+                ),
+            ));
+        };
+        o.set(key, given(&v));
     }
     Ok(o)
 }

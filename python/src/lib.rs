@@ -415,6 +415,16 @@ fn merge(
     }))
 }
 
+/// The render settings a keyword of `Scene.render` may give, as (name, meaning, values,
+/// default): the settings table the scene file and the command line read.
+#[pyfunction]
+fn render_settings() -> Vec<(&'static str, &'static str, String, &'static str)> {
+    grinlight::settings::KEYS
+        .iter()
+        .map(|k| (k.name, k.doc, k.range(), k.default))
+        .collect()
+}
+
 #[pymodule]
 fn _grinlight(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Scene>()?;
@@ -422,6 +432,7 @@ fn _grinlight(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(load, m)?)?;
     m.add_function(wrap_pyfunction!(load_dict, m)?)?;
     m.add_function(wrap_pyfunction!(merge, m)?)?;
+    m.add_function(wrap_pyfunction!(render_settings, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

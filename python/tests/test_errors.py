@@ -94,6 +94,31 @@ def test_bad_settings_name_their_key(scenes, overrides, key):
     assert key in str(e.value), str(e.value)
 
 
+@pytest.mark.parametrize(
+    "overrides, words",
+    [
+        (dict(spp=1.5), 'spp expected an integer ≥ 1, got 1.5'),
+        (dict(gather=70000), "gather must be at most 65536, got 70000"),
+        (dict(radius=-1.5), "radius must be a number in (0, 1e30], got -1.5"),
+        (dict(integrator="bidirectional"), "integrator expected 'photon_map' or 'path', got \"bidirectional\""),
+        (dict(deflection_table="yes"), 'deflection_table expected true or false, got "yes"'),
+        (dict(passes=[2]), "passes expected an integer ≥ 1, got a list"),
+    ],
+)
+def test_a_setting_is_refused_in_the_scene_files_words(scenes, overrides, words):
+    """The settings table reads a keyword as it reads the scene file's key and the command
+    line's flag (tests/cli.rs checks those two give these words)."""
+    with pytest.raises(ValueError) as e:
+        grinlight.load(scenes / "cornell_caustic.toml").render(progress=False, **overrides)
+    assert str(e.value) == words
+
+
+def test_the_render_docstring_lists_every_setting():
+    doc = grinlight.Scene.render.__doc__
+    for name, _, values, default in grinlight._grinlight.render_settings():
+        assert f"``{name}``" in doc and values in doc and default in doc, name
+
+
 def test_a_scene_files_error_names_file_line_and_key(tmp_path):
     path = tmp_path / "bad.toml"
     path.write_text('[[medium]]\nname = "rod"\nprofile = "luneburg"\nradius = -1\n')

@@ -1,7 +1,7 @@
 //! `grinlight render`: the scene's receivers measured (with the energy budget and, on request,
 //! Zhdanov et al.'s (2020) fiber figure), then its camera view rendered to a multi-layer EXR and a PNG.
 
-use super::{positive, Observer};
+use super::Observer;
 use crate::error::{Error, Result};
 use crate::fiber::GrinFiber;
 use crate::film::Film;
@@ -10,7 +10,7 @@ use crate::photon::Budget;
 use crate::receiver::{self, Measurement};
 use crate::report::Report;
 use crate::scene::{Description, Scene};
-use crate::settings::{self, Count, Settings};
+use crate::settings::{apply_all, Given, Key, Settings, Target};
 use crate::shard::file::Opened;
 use crate::shard::{Header, Partial, Role, Saving, Shard};
 use std::path::{Path, PathBuf};
@@ -44,104 +44,54 @@ pub struct RenderJob {
     pub import: crate::import::ImportOptions,
 }
 
-/// Values that replace the scene's `[render]` and `[camera]` keys of the same names; each is
-/// checked as the scene file's key is.
-#[derive(Clone, Debug, Default, PartialEq)]
+/// Settings given apart from the scene file — the command line's flags, Python's keywords —
+/// that replace its `[render]` and `[camera]` keys of the same names. They are kept as given
+/// and read by the settings table ([`crate::settings::keys`]) when applied, so a value is
+/// refused in the scene file's words.
+#[derive(Clone, Debug, Default)]
 pub struct Overrides {
-    /// Camera samples per pixel per pass (≥ 1).
-    pub spp: Option<u32>,
-    /// Seed of every random stream.
-    pub seed: Option<u64>,
-    /// Worker threads (0: one per core; at most 16 per core).
-    pub threads: Option<usize>,
-    /// The integrator.
-    pub integrator: Option<crate::settings::IntegratorKind>,
-    /// Trace every camera ray where a deflection table would apply.
-    pub no_table: bool,
-    /// Image width in pixels (the vertical field of view is kept).
-    pub width: Option<u32>,
-    /// Image height in pixels.
-    pub height: Option<u32>,
-    /// Global-map photons per pass.
-    pub photons: Option<u64>,
-    /// Caustic-map photons per pass.
-    pub caustic_photons: Option<u64>,
-    /// Final-gather rays per camera sample (0: no secondary light).
-    pub gather: Option<u32>,
-    /// Photon gather radius (scene units).
-    pub radius: Option<f64>,
-    /// k of the k-nearest-photon radius (≥ 1).
-    pub knn: Option<u32>,
-    /// Progressive passes (≥ 1).
-    pub passes: Option<u32>,
-    /// Start no new pass after this many seconds (with no `passes`: as many as fit).
-    pub time_budget: Option<f64>,
-    /// Start no new pass once the film's estimated relative RMSE is at most this (with no
-    /// `passes`: as many as it takes).
-    pub target_error: Option<f64>,
-    /// Photons traced for the receivers (≥ 1).
-    pub receiver_photons: Option<u64>,
+    /// Each setting given and its value, in the order given (a later one of a setting wins).
+    values: Vec<(&'static Key, Given)>,
 }
 
 impl Overrides {
-    /// Applies the values to a loaded scene's settings and camera: the one place
-    /// command-line values meet the scene file's.
+    /// Gives setting `key` the value `value`.
+    pub fn set(&mut self, key: &'static Key, value: impl Into<Given>) {
+        self.unset(key);
+        self.values.push((key, value.into()));
+    }
+
+    /// Takes back what was given for `key`: the scene file's value holds.
+    pub fn unset(&mut self, key: &Key) {
+        self.values.retain(|(k, _)| k.name != key.name);
+    }
+
+    /// The settings given, in order.
+    pub fn values(&self) -> &[(&'static Key, Given)] {
+        &self.values
+    }
+
+    /// Applies the values to a loaded scene's settings and camera: the one place values given
+    /// apart meet the scene file's.
     pub fn apply(&self, scene: &mut Description, s: &mut Settings) -> Result<()> {
-        let count = |c: Count, v: u64| {
-            c.check(v).map_err(|message| Error::Setting {
-                key: c.key,
-                message,
+        let assignments = self
+            .values
+            .iter()
+            .map(|(key, given)| {
+                key.read(given).map_err(|message| Error::Setting {
+                    key: key.name,
+                    message,
+                })
             })
-        };
-        if let Some(n) = self.spp {
-            s.spp = count(settings::SPP, n as u64)? as u32;
-        }
-        s.seed = self.seed.unwrap_or(s.seed);
-        s.integrator = self.integrator.unwrap_or(s.integrator);
-        s.deflection_table &= !self.no_table;
-        s.threads = crate::resources::check_threads(self.threads.unwrap_or(s.threads))?;
-        let p = &mut s.photons;
-        if let Some(n) = self.photons {
-            p.global = count(settings::PHOTONS, n)?;
-        }
-        if let Some(n) = self.caustic_photons {
-            p.caustic = count(settings::CAUSTIC_PHOTONS, n)?;
-        }
-        if let Some(k) = self.knn {
-            p.knn = count(settings::KNN, k as u64)? as u32;
-        }
-        if let Some(g) = self.gather {
-            p.gather = count(settings::GATHER, g as u64)? as u32;
-        }
-        if let Some(r) = self.radius {
-            p.radius = Some(positive("radius", r)?);
-        }
-        if let Some(b) = self.time_budget {
-            s.time_budget = Some(positive("time_budget", b)?);
-            if self.passes.is_none() {
-                s.passes = u32::MAX;
-            }
-        }
-        if let Some(e) = self.target_error {
-            s.target_error = Some(positive("target_error", e)?);
-            if self.passes.is_none() {
-                s.passes = u32::MAX;
-            }
-        }
-        if let Some(p) = self.passes {
-            s.passes = count(settings::PASSES, p as u64)? as u32;
-        }
-        if let Some(n) = self.receiver_photons {
-            s.receiver_photons = count(settings::RECEIVER_PHOTONS, n)?;
-        }
-        if let Some(camera) = scene.camera.as_mut() {
-            if let Some(w) = self.width {
-                camera.width = count(settings::WIDTH, w as u64)? as u32;
-            }
-            if let Some(h) = self.height {
-                camera.height = count(settings::HEIGHT, h as u64)? as u32;
-            }
-        }
+            .collect::<Result<Vec<_>>>()?;
+        apply_all(
+            &assignments,
+            &mut Target {
+                settings: s,
+                camera: scene.camera.as_mut(),
+            },
+        );
+        s.threads = crate::resources::check_threads(s.threads)?;
         Ok(())
     }
 }

@@ -344,7 +344,7 @@ fn follow(
     let limits = MarchLimits {
         length,
         max_steps: crate::settings::MAX_STEPS
-            .check(job.max_steps)
+            .count(job.max_steps)
             .map_err(|message| Error::Setting {
                 key: "max_steps",
                 message,

@@ -48,7 +48,7 @@ pub fn validate(job: &ValidateJob, observer: &dyn Observer) -> Result<()> {
         let (s, mut settings) = crate::import::load_description(&job.scene, &Default::default())?;
         if let Some(n) = job.photons {
             settings.receiver_photons = crate::settings::RECEIVER_PHOTONS
-                .check(n)
+                .count(n)
                 .map_err(|why| Error::Usage(format!("--photons {why}")))?;
         }
         settings.threads = threads;

@@ -9,10 +9,11 @@ use crate::media::Medium;
 use glam::DVec3;
 use rand::Rng;
 use rand_pcg::Pcg64Mcg;
+use serde::{Deserialize, Serialize};
 use std::ops::ControlFlow;
 
 /// How step lengths are chosen.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub enum StepControl {
     /// Every step has length `step` (the last one is clipped to the requested length).
     Fixed {

@@ -6,6 +6,7 @@ use super::segment::{deviation_bound, ArcHull, ArcPoint, CurvedSegment};
 use super::state::RayState;
 use crate::media::{IndexSample, Medium};
 use glam::DVec3;
+use serde::{Deserialize, Serialize};
 
 /// The result of one step.
 #[derive(Clone, Copy, Debug)]
@@ -717,7 +718,7 @@ impl Stepper for SnellSteps {
 }
 
 /// The steppers by name, for the command line and studies: `arc`, `rk4`, `rkn`, `snell`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub enum StepperKind {
     /// [`ArcChain`].
     Arc,

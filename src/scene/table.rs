@@ -333,18 +333,19 @@ impl<'a> TableReader<'a> {
         }
     }
 
-    /// The integer setting `c` (`default` if absent), refused at its key outside its range:
-    /// the one range the command line's override of it is held to as well.
-    pub fn setting(&mut self, c: crate::settings::Count, default: u64) -> Result<u64> {
-        let v = match self.take(c.key) {
-            None => default,
-            Some(Value::Integer(i)) if i >= 0 => i as u64,
-            Some(other) => {
-                let why = format!("expected an integer ≥ {}, got {other}", c.min);
-                return Err(self.error(c.key, why));
-            }
-        };
-        c.check(v).map_err(|why| self.error(c.key, why))
+    /// The render setting `key` (see [`crate::settings::keys`]), read as every front end reads
+    /// it (None: absent).
+    pub fn setting(
+        &mut self,
+        key: &'static crate::settings::Key,
+    ) -> Result<Option<crate::settings::Assignment>> {
+        match self.take(key.name) {
+            None => Ok(None),
+            Some(v) => key
+                .read(&crate::settings::Given::from_toml(&v))
+                .map(Some)
+                .map_err(|why| self.error(key.name, why)),
+        }
     }
 
     /// An optional non-negative integer.

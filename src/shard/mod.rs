@@ -27,7 +27,7 @@ use crate::error::{Error, Result};
 use crate::film::Film;
 use crate::render::Books;
 use crate::scene::Scene;
-use crate::settings::Settings;
+use crate::settings::{IntegratorKind, PhotonSettings, Settings, TraceSettings};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
@@ -87,6 +87,52 @@ pub enum Role {
     Checkpoint,
 }
 
+/// The settings that shape a render's result, as its partials record them: two partials
+/// merge only where these are equal.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Shaping {
+    /// Seed of every random stream.
+    pub seed: u64,
+    /// Camera samples per pixel per pass.
+    pub spp: u32,
+    /// The integrator.
+    pub integrator: IntegratorKind,
+    /// Whether a deflection table may stand in for traced camera rays.
+    pub deflection_table: bool,
+    /// How rays travel.
+    pub trace: TraceSettings,
+    /// The photon maps.
+    pub photons: PhotonSettings,
+    /// The image's width and height (None: no camera).
+    pub image: Option<[u32; 2]>,
+}
+
+impl Shaping {
+    /// The first setting in which `other` differs: its name and both values, in words.
+    pub fn difference(&self, other: &Shaping) -> Option<(&'static str, String, String)> {
+        fn differ<T: PartialEq + std::fmt::Debug>(
+            name: &'static str,
+            a: &T,
+            b: &T,
+        ) -> Option<(&'static str, String, String)> {
+            (a != b).then(|| (name, format!("{a:?}"), format!("{b:?}")))
+        }
+        differ("seed", &self.seed, &other.seed)
+            .or_else(|| differ("spp", &self.spp, &other.spp))
+            .or_else(|| differ("integrator", &self.integrator, &other.integrator))
+            .or_else(|| {
+                differ(
+                    "deflection_table",
+                    &self.deflection_table,
+                    &other.deflection_table,
+                )
+            })
+            .or_else(|| differ("trace", &self.trace, &other.trace))
+            .or_else(|| differ("photons", &self.photons, &other.photons))
+            .or_else(|| differ("image", &self.image, &other.image))
+    }
+}
+
 /// What a partial result is a part of. Two partials merge only when their headers agree in
 /// everything but the shard's index (and role).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -99,8 +145,8 @@ pub struct Header {
     pub scene: PathBuf,
     /// FNV-1a hash of the contents of the scene file and every file it reads, in order.
     pub inputs: u64,
-    /// Every setting that shapes the result, as (name, value).
-    pub settings: Vec<(String, String)>,
+    /// Every setting that shapes the result.
+    pub settings: Shaping,
     /// Which slice.
     pub shard: Shard,
     /// Passes of the whole render (0: no camera).
@@ -114,26 +160,20 @@ impl Header {
     /// the scene's input files to hash them.
     pub fn new(scene: &Scene, settings: &Settings, shard: Shard, role: Role) -> Result<Header> {
         let camera = scene.camera.as_ref();
-        let mut values = vec![
-            ("seed", settings.seed.to_string()),
-            (crate::settings::SPP.key, settings.spp.to_string()),
-            ("integrator", format!("{:?}", settings.integrator)),
-            ("deflection_table", settings.deflection_table.to_string()),
-            ("trace", format!("{:?}", settings.trace)),
-            ("photons", format!("{:?}", settings.photons)),
-        ];
-        if let Some(c) = camera {
-            values.push(("camera", format!("{}×{}", c.width, c.height)));
-        }
         Ok(Header {
             program: format!("grinlight {}", env!("CARGO_PKG_VERSION")),
             role,
             scene: std::path::absolute(scene.path()).map_err(|e| Error::io(scene.path(), e))?,
             inputs: hash_files(&scene.inputs)?,
-            settings: values
-                .into_iter()
-                .map(|(k, v)| (k.to_string(), v))
-                .collect(),
+            settings: Shaping {
+                seed: settings.seed,
+                spp: settings.spp,
+                integrator: settings.integrator,
+                deflection_table: settings.deflection_table,
+                trace: settings.trace,
+                photons: settings.photons,
+                image: camera.map(|c| [c.width, c.height]),
+            },
             shard,
             passes: if camera.is_some() { settings.passes } else { 0 },
             photons: if scene.receivers.is_empty() {
@@ -159,13 +199,8 @@ impl Header {
                 "the scene's files (the scene or a file it reads) changed between them".into(),
             );
         }
-        for ((k, a), (_, b)) in self.settings.iter().zip(&other.settings) {
-            if a != b {
-                return differ(k, a, b);
-            }
-        }
-        if self.settings.len() != other.settings.len() {
-            return differ("settings", &self.settings, &other.settings);
+        if let Some((name, a, b)) = self.settings.difference(&other.settings) {
+            return Some(format!("{name}: {a} against {b}"));
         }
         if self.shard.count != other.shard.count {
             return differ("shard count", &self.shard.count, &other.shard.count);
@@ -290,9 +325,12 @@ impl Partial {
         }
         if let Some(film) = &self.film {
             film.check()?;
-            let size = format!("{}×{}", film.width, film.height);
-            if !h.settings.iter().any(|(k, v)| k == "camera" && *v == size) {
-                return Err(format!("a {size} film of another camera"));
+            let image = h.settings.image.map(|[w, h]| [w as usize, h as usize]);
+            if image != Some([film.width, film.height]) {
+                return Err(format!(
+                    "a {}×{} film of another camera",
+                    film.width, film.height
+                ));
             }
         }
         Ok(())

@@ -7,6 +7,7 @@ use grinlight::commands::{
 };
 use grinlight::curve::StepperKind;
 use grinlight::import::ImportOptions;
+use grinlight::settings::{Given, Key, KEYS};
 use grinlight::shard::Shard;
 use std::path::PathBuf;
 
@@ -235,66 +236,83 @@ pub struct RenderArgs {
     /// saved (<output>.partial, or the shard's file); give the same options.
     #[arg(long)]
     resume: bool,
-    /// Camera samples per pixel per pass (≥ 1).
-    #[arg(long)]
-    spp: Option<u32>,
-    /// How the view is estimated: photon_map (direct, caustic map, final gather over the
-    /// global map) or path (unidirectional path tracing, a reference).
-    #[arg(long)]
-    integrator: Option<grinlight::settings::IntegratorKind>,
-    /// Seed.
-    #[arg(long)]
-    seed: Option<u64>,
-    /// Trace every camera ray even where a deflection table applies (a camera before one
-    /// spherically symmetric ambient medium and nothing else, e.g. a black hole).
+    #[command(flatten)]
+    settings: SettingArgs,
+    /// Trace every camera ray even where a deflection table applies (the same as
+    /// --deflection-table false).
     #[arg(long)]
     no_table: bool,
-    /// Worker threads (0 = all cores; at most 16 per core).
-    #[arg(long)]
-    threads: Option<usize>,
-    /// Image width (the vertical field of view is kept).
-    #[arg(long)]
-    width: Option<u32>,
-    /// Image height.
-    #[arg(long)]
-    height: Option<u32>,
-    /// Global-map photons per pass.
-    #[arg(long)]
-    photons: Option<u64>,
-    /// Caustic-map photons per pass.
-    #[arg(long)]
-    caustic_photons: Option<u64>,
-    /// Final-gather rays per camera sample (0: no secondary light).
-    #[arg(long)]
-    gather: Option<u32>,
-    /// Photon gather radius (scene units): initial caustic radius, largest global radius.
-    #[arg(long)]
-    radius: Option<f64>,
-    /// k of the k-nearest-photon radius (≥ 1).
-    #[arg(long)]
-    knn: Option<u32>,
-    /// Progressive passes (photon pass + camera pass; the caustic radius shrinks; ≥ 1).
-    #[arg(long)]
-    passes: Option<u32>,
-    /// Start no new pass after this many seconds (with no --passes: as many as fit).
-    #[arg(long)]
-    time_budget: Option<f64>,
-    /// Start no new pass once the image's estimated relative RMSE (from the spread of its
-    /// passes) is at most E, after at least 4 passes (with no --passes: as many as it takes).
-    #[arg(long, value_name = "E")]
-    target_error: Option<f64>,
     /// Save the partial and write the EXR (and PNG) every N passes and after every block of
     /// receiver photons (default: every minute and at the end).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
     checkpoint: Option<u32>,
-    /// Photons traced for the scene's receivers (≥ 1).
-    #[arg(long)]
-    receiver_photons: Option<u64>,
     /// Also draw the paths of the first N (≤ 10000) receiver photons through the scene's GRIN
     /// fiber, with its index profile and the first receiver's irradiance (Zhdanov et al. (2020) fig. 5), as
     /// <output stem>.paths.png.
     #[arg(long)]
     paths: Option<u64>,
+}
+
+/// The settings of the settings table ([`grinlight::settings::KEYS`]) as options, one
+/// `--name VALUE` each: built from the table, so its names, help and refusals are the scene
+/// file's.
+pub struct SettingArgs {
+    given: Vec<(&'static Key, String)>,
+}
+
+impl SettingArgs {
+    /// The settings given, for the library to read.
+    fn overrides(self, no_table: bool) -> Overrides {
+        let mut o = Overrides::default();
+        for (key, text) in self.given {
+            o.set(key, Given::from_text(&text));
+        }
+        if no_table {
+            o.set(&grinlight::settings::DEFLECTION_TABLE, false);
+        }
+        o
+    }
+}
+
+impl clap::FromArgMatches for SettingArgs {
+    fn from_arg_matches(m: &clap::ArgMatches) -> Result<Self, clap::Error> {
+        let given = KEYS
+            .iter()
+            .filter_map(|&key| {
+                let text = m.get_one::<String>(key.name)?;
+                Some((key, text.clone()))
+            })
+            .collect();
+        Ok(Self { given })
+    }
+
+    fn update_from_arg_matches(&mut self, m: &clap::ArgMatches) -> Result<(), clap::Error> {
+        *self = Self::from_arg_matches(m)?;
+        Ok(())
+    }
+}
+
+impl clap::Args for SettingArgs {
+    fn augment_args(cmd: clap::Command) -> clap::Command {
+        KEYS.iter().fold(cmd, |cmd, key| {
+            cmd.arg(
+                clap::Arg::new(key.name)
+                    .long(key.flag().trim_start_matches("--").to_string())
+                    .value_name(key.value_name())
+                    .allow_negative_numbers(true)
+                    .help(format!(
+                        "{} [{}; default {}]",
+                        key.doc,
+                        key.range(),
+                        key.default
+                    )),
+            )
+        })
+    }
+
+    fn augment_args_for_update(cmd: clap::Command) -> clap::Command {
+        Self::augment_args(cmd)
+    }
 }
 
 fn parse_shard(s: &str) -> std::result::Result<Shard, String> {
@@ -323,24 +341,7 @@ impl From<RenderArgs> for RenderJob {
         RenderJob {
             scene: a.scene,
             output: a.output,
-            overrides: Overrides {
-                spp: a.spp,
-                seed: a.seed,
-                width: a.width,
-                height: a.height,
-                photons: a.photons,
-                caustic_photons: a.caustic_photons,
-                gather: a.gather,
-                radius: a.radius,
-                knn: a.knn,
-                passes: a.passes,
-                time_budget: a.time_budget,
-                target_error: a.target_error,
-                receiver_photons: a.receiver_photons,
-                threads: a.threads,
-                integrator: a.integrator,
-                no_table: a.no_table,
-            },
+            overrides: a.settings.overrides(a.no_table),
             checkpoint: a.checkpoint.unwrap_or(0),
             paths: a.paths.unwrap_or(0),
             shard: a.shard,

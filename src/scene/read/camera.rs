@@ -11,9 +11,12 @@ pub fn read_camera(t: &mut TableReader) -> Result<Camera> {
     let position = t.vec3("position")?;
     let look_at = t.vec3("look_at")?;
     let up = t.vec3_or("up", DVec3::Y)?;
-    let width = t.setting(settings::WIDTH, 640)?;
-    let height = t.setting(settings::HEIGHT, 480)?;
-    let (width, height) = (width as u32, height as u32);
+    let mut side = |key, default: u32| -> Result<u32> {
+        let n = t.setting(key)?.and_then(|a| a.count());
+        Ok(n.map_or(default, |n| u32::try_from(n).unwrap_or(u32::MAX)))
+    };
+    let width = side(&settings::WIDTH, Camera::DEFAULT_WIDTH)?;
+    let height = side(&settings::HEIGHT, Camera::DEFAULT_HEIGHT)?;
     let fov_y = match (t.has("fov_y_deg"), t.has("fov_x_deg")) {
         (true, false) => t.f64("fov_y_deg")?,
         (false, true) => Camera::fov_y_from_x(t.f64("fov_x_deg")?, width, height),

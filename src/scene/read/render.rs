@@ -3,9 +3,11 @@
 use crate::curve::{StepControl, StepperKind};
 use crate::error::Result;
 use crate::scene::table::TableReader;
-use crate::settings::{self, OutputSettings, PhotonSettings, Settings, TraceSettings};
+use crate::settings::{apply_all, OutputSettings, Settings, Table, Target, KEYS};
 
-/// `[render]`: every setting but the output's.
+/// `[render]`: every setting but the output's; those of the settings table
+/// ([`crate::settings::keys`]) as the command line and Python read them, the stepper and its
+/// control (which depend on each other) here.
 pub fn read_render(t: &mut TableReader) -> Result<Settings> {
     let stepper: StepperKind = t
         .string_opt("stepper")?
@@ -42,56 +44,21 @@ pub fn read_render(t: &mut TableReader) -> Result<Settings> {
             ))
         }
     };
-    let world_radius = optional_positive(t, "world_radius")?;
-    let radius = optional_positive(t, "radius")?;
-    let time_budget = optional_positive(t, "time_budget")?;
-    let target_error = optional_positive(t, "target_error")?;
-    // A time budget or a target error with no count of passes renders as many as it takes
-    // (as the command line's options do).
-    let open_ended = time_budget.is_some() || target_error.is_some();
-    let passes = match (open_ended, t.has("passes")) {
-        (true, false) => u32::MAX,
-        _ => t.setting(settings::PASSES, Settings::default().passes as u64)? as u32,
-    };
-    let d = Settings::default();
-    let integrator = t.string_opt("integrator")?.map_or(Ok(d.integrator), |s| {
-        s.parse().map_err(|e: String| t.error("integrator", e))
-    })?;
-    Ok(Settings {
-        integrator,
-        deflection_table: t.bool_or("deflection_table", d.deflection_table)?,
-        spp: t.setting(settings::SPP, d.spp as u64)? as u32,
-        seed: t.natural_or("seed", d.seed)?,
-        threads: t.natural_or("threads", 0)? as usize,
-        trace: TraceSettings {
-            max_depth: t.setting(settings::MAX_DEPTH, d.trace.max_depth as u64)? as u32,
-            stepper,
-            control,
-            max_steps: t.setting(settings::MAX_STEPS, d.trace.max_steps)?,
-            world_radius,
-        },
-        photons: PhotonSettings {
-            global: t.setting(settings::PHOTONS, d.photons.global)?,
-            caustic: t.setting(settings::CAUSTIC_PHOTONS, d.photons.caustic)?,
-            gather: t.setting(settings::GATHER, d.photons.gather as u64)? as u32,
-            radius,
-            knn: t.setting(settings::KNN, d.photons.knn as u64)? as u32,
-        },
-        passes,
-        time_budget,
-        target_error,
-        receiver_photons: t.setting(settings::RECEIVER_PHOTONS, d.receiver_photons)?,
-        output: d.output,
-    })
-}
-
-/// A key that is either absent or a finite number > 0.
-fn optional_positive(t: &mut TableReader, key: &str) -> Result<Option<f64>> {
-    if t.has(key) {
-        Ok(Some(t.positive(key)?))
-    } else {
-        Ok(None)
+    let mut assignments = Vec::new();
+    for key in KEYS.iter().filter(|k| k.table == Table::Render) {
+        assignments.extend(t.setting(key)?);
     }
+    let mut settings = Settings::default();
+    settings.trace.stepper = stepper;
+    settings.trace.control = control;
+    apply_all(
+        &assignments,
+        &mut Target {
+            settings: &mut settings,
+            camera: None,
+        },
+    );
+    Ok(settings)
 }
 
 /// `[output]`; relative paths are relative to the scene file's directory `dir`.

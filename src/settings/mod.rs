@@ -1,9 +1,20 @@
 //! How to render a scene, kept apart from what the scene is: plain data read from the scene
-//! file's `[render]` and `[output]` tables, changed by the command line in one place
-//! ([`crate::commands::Overrides`]) and handed to the passes. Every key's unit and default is
-//! listed in `docs/scene-format.md`.
+//! file's `[render]` and `[output]` tables, changed by the command line and Python in one
+//! place ([`crate::commands::Overrides`]) and handed to the passes. The settings a user gives
+//! are declared once, in [`keys`]; every key's unit and default is listed in
+//! `docs/scene-format.md`.
+
+pub mod keys;
+
+pub use keys::{
+    apply_all, Assignment, Given, Key, Table, Target, CAUSTIC_PHOTONS, DEFLECTION_TABLE, GATHER,
+    HEIGHT, INTEGRATOR, KEYS, KNN, MAX_DEPTH, MAX_GATHER_OR_KNN, MAX_IMAGE_SIDE, MAX_STEPS, PASSES,
+    PHOTONS, RADIUS, RECEIVER_PHOTONS, SEED, SPP, TARGET_ERROR, THREADS, TIME_BUDGET, WIDTH,
+    WORLD_RADIUS,
+};
 
 use crate::curve::{StepControl, StepperKind};
+use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
 
 /// Everything a render, a measurement or a trace is asked to do with a scene.
@@ -40,7 +51,7 @@ pub struct Settings {
 }
 
 /// How rays travel through the scene: the curved-ray engine and the path's length.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct TraceSettings {
     /// Maximum number of surface interactions and scattering events in media along a path: a
     /// bound (camera paths and map photons are ended by Russian roulette past
@@ -57,138 +68,8 @@ pub struct TraceSettings {
     pub world_radius: Option<f64>,
 }
 
-/// The range an integer setting may take: one definition per key, read by the scene file
-/// (`[render]` and `[camera]`), by the command line's overrides (`--key`, `_` written `-`) and
-/// by the partial header's settings, so the three cannot disagree.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Count {
-    /// The scene file's key.
-    pub key: &'static str,
-    /// The smallest value allowed.
-    pub min: u64,
-    /// The largest value allowed.
-    pub max: u64,
-}
-
-impl Count {
-    /// `value`, or why it is refused (outside `min..=max`).
-    pub fn check(&self, value: u64) -> Result<u64, String> {
-        if (self.min..=self.max).contains(&value) {
-            Ok(value)
-        } else if value < self.min {
-            Err(format!("expected an integer ≥ {}, got {value}", self.min))
-        } else {
-            Err(format!("must be at most {}, got {value}", self.max))
-        }
-    }
-
-    /// The range in words, as `docs/scene-format.md` gives it: `1…65536`, or `≥ 1` where the
-    /// type's own limit is the only one.
-    pub fn range(&self) -> String {
-        if self.max == u64::MAX {
-            format!("≥ {}", self.min)
-        } else {
-            format!("{}…{}", self.min, self.max)
-        }
-    }
-
-    /// The command-line flag of the key (`--receiver-photons` for `receiver_photons`).
-    pub fn flag(&self) -> String {
-        format!("--{}", self.key.replace('_', "-"))
-    }
-}
-
-/// The most final-gather rays a camera sample may ask for, and the largest k of the
-/// k-nearest radius.
-pub const MAX_GATHER_OR_KNN: u64 = 1 << 16;
-
-/// The largest image side in pixels.
-pub const MAX_IMAGE_SIDE: u64 = 1 << 16;
-
-/// Camera samples per pixel per pass.
-pub const SPP: Count = Count {
-    key: "spp",
-    min: 1,
-    max: u32::MAX as u64,
-};
-/// Progressive passes.
-pub const PASSES: Count = Count {
-    key: "passes",
-    min: 1,
-    max: u32::MAX as u64,
-};
-/// Surface interactions and scattering events in media along a path.
-pub const MAX_DEPTH: Count = Count {
-    key: "max_depth",
-    min: 1,
-    max: u32::MAX as u64,
-};
-/// Steps per curved march.
-pub const MAX_STEPS: Count = Count {
-    key: "max_steps",
-    min: 1,
-    max: u64::MAX,
-};
-/// Final-gather rays per camera sample (0: no secondary light).
-pub const GATHER: Count = Count {
-    key: "gather",
-    min: 0,
-    max: MAX_GATHER_OR_KNN,
-};
-/// k of the k-nearest-photon radius.
-pub const KNN: Count = Count {
-    key: "knn",
-    min: 1,
-    max: MAX_GATHER_OR_KNN,
-};
-/// Global-map photons per pass.
-pub const PHOTONS: Count = Count {
-    key: "photons",
-    min: 0,
-    max: u64::MAX,
-};
-/// Caustic-map photons per pass.
-pub const CAUSTIC_PHOTONS: Count = Count {
-    key: "caustic_photons",
-    min: 0,
-    max: u64::MAX,
-};
-/// Photons traced for the receivers.
-pub const RECEIVER_PHOTONS: Count = Count {
-    key: "receiver_photons",
-    min: 1,
-    max: u64::MAX,
-};
-/// Every integer setting, for the documentation's check.
-pub const COUNTS: [Count; 11] = [
-    SPP,
-    PASSES,
-    MAX_DEPTH,
-    MAX_STEPS,
-    GATHER,
-    KNN,
-    PHOTONS,
-    CAUSTIC_PHOTONS,
-    RECEIVER_PHOTONS,
-    WIDTH,
-    HEIGHT,
-];
-
-/// Image width in pixels.
-pub const WIDTH: Count = Count {
-    key: "width",
-    min: 1,
-    max: MAX_IMAGE_SIDE,
-};
-/// Image height in pixels.
-pub const HEIGHT: Count = Count {
-    key: "height",
-    min: 1,
-    max: MAX_IMAGE_SIDE,
-};
-
 /// The photon maps: how many photons per pass, and how the estimates read them.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct PhotonSettings {
     /// Photons per pass for the global map.
     pub global: u64,
@@ -268,7 +149,7 @@ impl Default for OutputSettings {
 }
 
 /// The integrators a scene may ask for (`[render] integrator`; see [`crate::integrator`]).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub enum IntegratorKind {
     /// The photon mapper (default).
     #[default]
@@ -281,30 +162,14 @@ impl IntegratorKind {
     /// Every integrator, in the order its names are listed.
     pub const ALL: [IntegratorKind; 2] = [IntegratorKind::PhotonMap, IntegratorKind::Path];
 
+    /// Every integrator's name, in the order of [`IntegratorKind::ALL`].
+    pub const NAMES: [&'static str; 2] = [Self::ALL[0].name(), Self::ALL[1].name()];
+
     /// Its name in a scene file, on the command line and in Python.
-    pub fn name(self) -> &'static str {
+    pub const fn name(self) -> &'static str {
         match self {
             IntegratorKind::PhotonMap => "photon_map",
             IntegratorKind::Path => "path",
         }
-    }
-
-    /// Every integrator's name, quoted, as errors list them: `'photon_map' or 'path'`.
-    pub fn names() -> String {
-        let quoted: Vec<String> = Self::ALL
-            .iter()
-            .map(|k| format!("'{}'", k.name()))
-            .collect();
-        quoted.join(" or ")
-    }
-}
-
-impl std::str::FromStr for IntegratorKind {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        Self::ALL
-            .into_iter()
-            .find(|k| k.name() == s)
-            .ok_or_else(|| format!("unknown integrator '{s}' (expected {})", Self::names()))
     }
 }
