@@ -163,7 +163,7 @@ where
     }
     let mut rng = match control {
         StepControl::Tessendorf { seed, .. } => Some(Pcg64Mcg::new(u128::from(seed) | 1)),
-        _ => None,
+        StepControl::Adaptive { .. } | StepControl::Fixed { .. } => None,
     };
     // ξ ∈ (0, 1]: never zero (Tessendorf's (2022) shader left ξ = 0 unguarded).
     let mut xi = || 1.0 - rng.as_mut().map_or(0.5, |r| r.gen::<f64>());

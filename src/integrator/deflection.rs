@@ -223,7 +223,7 @@ impl<'a> DeflectionTable<'a> {
                 let out = direction.dot(across).atan2(direction.dot(self.axis));
                 Some(out - alpha)
             }
-            _ => None,
+            Event::Surface { .. } | Event::Reached { .. } | Event::Lost => None,
         };
         Node { alpha, turn }
     }

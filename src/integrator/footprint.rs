@@ -120,7 +120,7 @@ impl<'a> Eye<'a> {
                 Some(Vertex::Surface(w)) if w.prim == way.prim && c.bounces == way.bounces => {
                     Some((w.position - v.position) / step)
                 }
-                _ => None,
+                Some(Vertex::Surface(_) | Vertex::Medium(_)) | None => None,
             }
         };
         // Each axis's derivative from the neighbour ahead, else from the one behind (its sign

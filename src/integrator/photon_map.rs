@@ -167,7 +167,7 @@ impl<'a> PhotonMapper<'a> {
         let photons = Photons::all(batch, self.seed, index as u64, count);
         let sources = match batch {
             Batch::Caustic => &self.caustic_sources,
-            _ => &self.sources,
+            Batch::Global | Batch::Receivers => &self.sources,
         };
         let (sink, stats) = shoot(self.tracer, sources, photons, stop);
         let t1 = Instant::now();
@@ -411,7 +411,7 @@ impl<'a> Integrator for PhotonMapper<'a> {
                 bounces: c.bounces,
                 curved: c.curved,
             }),
-            _ => None,
+            Vertex::Surface(_) | Vertex::Medium(_) => None,
         };
         s.add(ALBEDO, first.vertex.albedo());
         s.add(NORMAL, first.vertex.normal());

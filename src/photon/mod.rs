@@ -251,7 +251,7 @@ impl<'a> Sources<'a> {
         let scene = tracer.scene;
         let crossed = match (maps, world_entry(tracer)) {
             (true, Entry::World { .. }) => scene.ambient(),
-            _ => None,
+            (false, Entry::World { .. }) | (_, Entry::Upstream) => None,
         };
         // About what parallel and environment light keeps of its power on its way in: the
         // transmittance from the world sphere to the upstream start along a line through the
@@ -433,7 +433,10 @@ fn world_entry(tracer: &Tracer) -> Entry {
             ball: Ball { center, radius },
             scatters,
         },
-        _ => Entry::Upstream,
+        (
+            Bounds::Ball { .. } | Bounds::Box { .. } | Bounds::HalfSpace { .. } | Bounds::Unbounded,
+            _,
+        ) => Entry::Upstream,
     }
 }
 
@@ -1025,7 +1028,7 @@ fn follow_branch<'w, R: Rng>(
                 Vertex::Medium(MediumVertex {
                     medium: Some(m), ..
                 }) => Fate::AbsorbedIn(m),
-                _ => Fate::Absorbed,
+                Vertex::Medium(_) | Vertex::Surface(_) => Fate::Absorbed,
             };
         };
         walk.power *= bounce.weight;

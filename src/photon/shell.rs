@@ -74,7 +74,10 @@ impl Shell {
                 ball: tracer.ball,
                 world,
             }),
-            _ => None,
+            crate::curve::Bounds::Ball { .. }
+            | crate::curve::Bounds::Box { .. }
+            | crate::curve::Bounds::HalfSpace { .. }
+            | crate::curve::Bounds::Unbounded => None,
         }
     }
 

@@ -75,7 +75,9 @@ impl Shape {
                 let s = sigma(fwhm);
                 normal_mass((lo - peak) / s, (hi - peak) / s)
             }
-            _ => self.power(0.5 * (lo + hi)) * (hi - lo),
+            Shape::D65 | Shape::Equal | Shape::Blackbody { .. } => {
+                self.power(0.5 * (lo + hi)) * (hi - lo)
+            }
         }
     }
 }
@@ -175,7 +177,7 @@ impl Spectrum {
                     0.0
                 }
             }
-            _ => bin,
+            Shape::D65 | Shape::Equal | Shape::Blackbody { .. } => bin,
         }
     }
 
