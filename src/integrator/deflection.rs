@@ -19,18 +19,21 @@
 //! finds every ray within a tenth of a pixel and no capture disagreement
 //! ([`TableCheck::accepts`]), and traces every ray otherwise, saying so.
 
-use super::{CameraRay, Integrator, Sample, Slot};
+use super::{CameraRay, Integrator, Sample};
 use crate::color::Rgb;
-use crate::film::Layer;
 use crate::report::Report;
 use crate::transport::{Event, Stats, Tracer};
 use glam::DVec3;
 use std::f64::consts::PI;
 use std::time::Instant;
 
-/// The layers, in order: only the environment is seen.
-const LAYERS: &[Layer] = &[Layer::radiance("emitted")];
-const EMITTED: Slot = Slot(0);
+super::layers!(
+    /// The one layer: what escaping rays see.
+    TableLayer {
+        /// The environment seen along each ray's turn.
+        Emitted: radiance "emitted",
+    }
+);
 
 /// Fewest uniform nodes in α over the view's range before refinement.
 const UNIFORM: usize = 1024;
@@ -387,10 +390,7 @@ impl<'a> DeflectionTable<'a> {
 impl Integrator for DeflectionTable<'_> {
     type Pass = ();
     type Pixel = ();
-
-    fn layers(&self) -> &'static [Layer] {
-        LAYERS
-    }
+    type Layer = TableLayer;
 
     fn begin_pass(
         &self,
@@ -404,7 +404,7 @@ impl Integrator for DeflectionTable<'_> {
         Some(())
     }
 
-    fn sample(&self, _pass: &(), _pixel: &mut (), ray: CameraRay, sample: &mut Sample) {
+    fn sample(&self, _pass: &(), _pixel: &mut (), ray: CameraRay, sample: &mut Sample<TableLayer>) {
         let radiance = match (
             self.escape_direction(ray.direction),
             self.tracer.scene.environment.as_ref(),
@@ -412,6 +412,6 @@ impl Integrator for DeflectionTable<'_> {
             (Some(d), Some(env)) => env.radiance(d) * self.scale,
             _ => Rgb::ZERO,
         };
-        sample.add(EMITTED, radiance);
+        sample.add(TableLayer::Emitted, radiance);
     }
 }

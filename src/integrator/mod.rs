@@ -38,34 +38,65 @@ use glam::DVec3;
 use rand_pcg::Pcg64Mcg;
 
 /// One camera sample being estimated: its random stream, the statistics it adds to, and its
-/// value for each of the integrator's layers (zero on entry; in [`Integrator::layers`] order).
-pub struct Sample<'a> {
+/// value for each of the integrator's layers `L` (zero on entry; in [`Layers::FILM`] order).
+pub struct Sample<'a, L> {
     /// The sample's random stream.
     pub rng: &'a mut Pcg64Mcg,
     /// Transport statistics.
     pub stats: &'a mut Stats,
     /// Values per layer.
     pub values: &'a mut [Rgb],
+    layers: std::marker::PhantomData<L>,
 }
 
-impl Sample<'_> {
-    /// Adds `value` to the layer at `slot`.
-    pub fn add(&mut self, slot: Slot, value: Rgb) {
-        self.values[slot.0] += value;
+impl<'a, L: Layers> Sample<'a, L> {
+    /// A sample writing into `values` (one per layer of `L`).
+    pub fn new(rng: &'a mut Pcg64Mcg, stats: &'a mut Stats, values: &'a mut [Rgb]) -> Self {
+        Self {
+            rng,
+            stats,
+            values,
+            layers: std::marker::PhantomData,
+        }
+    }
+
+    /// Adds `value` to `layer`.
+    pub fn add(&mut self, layer: L, value: Rgb) {
+        self.values[layer.index()] += value;
     }
 }
 
-/// A layer's place among an integrator's [`Integrator::layers`]: each integrator names its
-/// slots beside its layer list (and a test checks each slot names its layer).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Slot(pub usize);
-
-impl Slot {
-    /// The layer at this slot of `layers`.
-    pub fn of(self, layers: &[Layer]) -> &Layer {
-        &layers[self.0]
-    }
+/// An integrator's output layers: an enum whose variants are its film's layers, declared by
+/// `layers!` so that a variant's place, its name and its kind cannot drift
+/// apart.
+pub trait Layers: Copy + 'static {
+    /// The film's layers, in the variants' order.
+    const FILM: &'static [Layer];
+    /// Its place in [`Layers::FILM`].
+    fn index(self) -> usize;
 }
+
+/// Declares an integrator's layers: `layers!(Out { Direct: radiance "direct", Albedo: aux
+/// "albedo" })` is an enum `Out` with one variant per layer and its [`Layers`], the film's
+/// layers in the variants' order.
+macro_rules! layers {
+    ($(#[$meta:meta])* $name:ident { $($(#[$vmeta:meta])* $variant:ident: $kind:ident $label:literal),+ $(,)? }) => {
+        $(#[$meta])*
+        #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+        pub enum $name {
+            $($(#[$vmeta])* $variant),+
+        }
+
+        impl crate::integrator::Layers for $name {
+            const FILM: &'static [crate::film::Layer] =
+                &[$(crate::film::Layer::$kind($label)),+];
+            fn index(self) -> usize {
+                self as usize
+            }
+        }
+    };
+}
+pub(crate) use layers;
 
 /// A camera ray: origin and unit direction, the numbers its path's first choices between
 /// reflection and refraction take, and the film point it was drawn through.
@@ -104,7 +135,11 @@ pub trait Integrator: Sync {
     /// What a pass keeps per pixel across that pixel's samples.
     type Pixel: Default;
     /// The layers it writes; `beauty` is developed as the sum of the radiance layers.
-    fn layers(&self) -> &'static [Layer];
+    type Layer: Layers;
+    /// The film's layers.
+    fn layers(&self) -> &'static [Layer] {
+        <Self::Layer as Layers>::FILM
+    }
     /// Prepares pass `index` (global: passes are independent), adding its work to `report`;
     /// None if `stop` answered true before the pass was ready.
     fn begin_pass(
@@ -119,6 +154,6 @@ pub trait Integrator: Sync {
         pass: &Self::Pass,
         pixel: &mut Self::Pixel,
         ray: CameraRay,
-        sample: &mut Sample,
+        sample: &mut Sample<Self::Layer>,
     );
 }

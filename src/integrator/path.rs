@@ -16,28 +16,29 @@
 use super::beam::Beams;
 use super::direct::{camera_path, continued_emission, hero, lit, record_cut, VisiblePoint};
 use super::single::single_scattering;
-use super::{CameraRay, Integrator, Sample, Slot};
+use super::{CameraRay, Integrator, Sample};
 use crate::color::Rgb;
-use crate::film::Layer;
 use crate::report::Report;
 use crate::transport::chain::{Carried, End, Policy, Walker};
 use crate::transport::lighting::LightNumbers;
 use crate::transport::{BsdfNumbers, Tracer};
 use rand::Rng;
 
-/// The layers, in order; `beauty` is their radiance sum.
-const LAYERS: &[Layer] = &[
-    Layer::radiance("direct"),
-    Layer::radiance("indirect"),
-    Layer::radiance("emitted"),
-    Layer::aux("albedo"),
-    Layer::aux("normal"),
-];
-const DIRECT: Slot = Slot(0);
-const INDIRECT: Slot = Slot(1);
-const EMITTED: Slot = Slot(2);
-const ALBEDO: Slot = Slot(3);
-const NORMAL: Slot = Slot(4);
+super::layers!(
+    /// The layers, in order; `beauty` is their radiance sum.
+    PathLayer {
+        /// Light from the lights at the visible point and every later vertex.
+        Direct: radiance "direct",
+        /// Light the bounces' chains found.
+        Indirect: radiance "indirect",
+        /// Emission seen directly.
+        Emitted: radiance "emitted",
+        /// The first scattering surface's albedo.
+        Albedo: aux "albedo",
+        /// Its normal.
+        Normal: aux "normal",
+    }
+);
 
 /// Bounces before Russian roulette starts.
 const SURE_BOUNCES: u32 = 3;
@@ -45,6 +46,11 @@ const SURE_BOUNCES: u32 = 3;
 /// The path tracer of a scene.
 pub struct PathTracer<'a> {
     tracer: &'a Tracer<'a>,
+}
+
+impl PathTracer<'_> {
+    /// The film's layers.
+    pub const LAYERS: &'static [crate::film::Layer] = <PathLayer as super::Layers>::FILM;
 }
 
 impl<'a> PathTracer<'a> {
@@ -63,7 +69,7 @@ impl<'a> PathTracer<'a> {
         mut vp: VisiblePoint<'w>,
         carried: Carried<'w>,
         first: BsdfNumbers,
-        s: &mut Sample,
+        s: &mut Sample<PathLayer>,
     ) -> Bounces {
         let mut walker = Walker::carrying(carried, Policy::Weighted);
         let mut direct = Rgb::ZERO;
@@ -132,47 +138,26 @@ struct Bounces {
 impl Integrator for PathTracer<'_> {
     type Pass = ();
     type Pixel = ();
-
-    fn layers(&self) -> &'static [Layer] {
-        LAYERS
-    }
+    type Layer = PathLayer;
 
     fn begin_pass(&self, _: u32, _: &mut Report, _: &(dyn Fn() -> bool + Sync)) -> Option<()> {
         Some(())
     }
 
-    fn sample(&self, _: &(), _: &mut (), ray: CameraRay, s: &mut Sample) {
+    fn sample(&self, _: &(), _: &mut (), ray: CameraRay, s: &mut Sample<PathLayer>) {
         let hero = hero(self.tracer, s.rng);
         let carried = Carried::starting(self.tracer, hero.as_ref());
         let mut beams = Beams::default();
         let c = camera_path(carried, ray, &mut beams, s.rng, s.stats);
-        s.add(EMITTED, c.emitted);
-        s.add(DIRECT, c.single);
+        s.add(PathLayer::Emitted, c.emitted);
+        s.add(PathLayer::Direct, c.single);
         let Some(vp) = c.visible else { return };
-        s.add(ALBEDO, vp.vertex.albedo());
-        s.add(NORMAL, vp.vertex.normal());
+        s.add(PathLayer::Albedo, vp.vertex.albedo());
+        s.add(PathLayer::Normal, vp.vertex.normal());
         let direct = lit(c.carried, &vp, ray.first.light, s.rng, s.stats);
-        s.add(DIRECT, direct);
+        s.add(PathLayer::Direct, direct);
         let bounces = self.bounces(vp, c.carried, ray.first.bsdf, s);
-        s.add(DIRECT, bounces.direct);
-        s.add(INDIRECT, bounces.indirect);
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn each_slot_names_its_layer() {
-        for (slot, name) in [
-            (DIRECT, "direct"),
-            (INDIRECT, "indirect"),
-            (EMITTED, "emitted"),
-            (ALBEDO, "albedo"),
-            (NORMAL, "normal"),
-        ] {
-            assert_eq!(slot.of(LAYERS).name, name);
-        }
+        s.add(PathLayer::Direct, bounces.direct);
+        s.add(PathLayer::Indirect, bounces.indirect);
     }
 }

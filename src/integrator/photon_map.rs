@@ -33,9 +33,8 @@ use super::direct::{camera_path, direct, emission_seen, hero, record_cut, Visibl
 use super::footprint::{Eye, Way};
 use super::neighbourhood::Neighbourhood;
 use super::single::single_scattering;
-use super::{CameraRay, Integrator, Sample, Slot};
+use super::{CameraRay, Integrator, Sample};
 use crate::color::Rgb;
-use crate::film::Layer;
 use crate::material::Material;
 use crate::photon::{shoot, Batch, PhotonMap, Photons, Sources, VolumeMap};
 use crate::report::Report;
@@ -89,21 +88,23 @@ impl Plan {
     }
 }
 
-/// The layers, in order; `beauty` is their radiance sum.
-const LAYERS: &[Layer] = &[
-    Layer::radiance("direct"),
-    Layer::radiance("caustic"),
-    Layer::radiance("secondary"),
-    Layer::radiance("emitted"),
-    Layer::aux("albedo"),
-    Layer::aux("normal"),
-];
-const DIRECT: Slot = Slot(0);
-const CAUSTIC: Slot = Slot(1);
-const SECONDARY: Slot = Slot(2);
-const EMITTED: Slot = Slot(3);
-const ALBEDO: Slot = Slot(4);
-const NORMAL: Slot = Slot(5);
+super::layers!(
+    /// The layers, in order; `beauty` is their radiance sum.
+    MapLayer {
+        /// Light from the lights at the visible point.
+        Direct: radiance "direct",
+        /// The caustic map's estimate (and volume caustics).
+        Caustic: radiance "caustic",
+        /// The final gather over the global map.
+        Secondary: radiance "secondary",
+        /// Emission seen directly.
+        Emitted: radiance "emitted",
+        /// The first scattering surface's albedo.
+        Albedo: aux "albedo",
+        /// Its normal.
+        Normal: aux "normal",
+    }
+);
 
 /// The photon mapper of a scene.
 pub struct PhotonMapper<'a> {
@@ -135,6 +136,22 @@ pub struct Maps {
 struct Traced {
     surfaces: PhotonMap,
     volume: VolumeMap,
+}
+
+impl PhotonMapper<'_> {
+    /// The film's layers.
+    pub const LAYERS: &'static [crate::film::Layer] = <MapLayer as super::Layers>::FILM;
+
+    /// What one pass's photon maps take (bytes) for `scene` with `photons`: as traced in
+    /// chunks and merged, global photons stored ≈ 4 times each (the mean path of Russian
+    /// roulette at albedo 0.75), with their kd-tree entries.
+    pub fn memory_needed(scene: &Scene, photons: &PhotonSettings) -> u64 {
+        let plan = Plan::of(scene, photons);
+        let per_photon = 2 * std::mem::size_of::<crate::photon::Photon>() as u64 + 32;
+        let caustic = if plan.caustic { photons.caustic } else { 0 };
+        let global = if plan.global { 4 * photons.global } else { 0 };
+        (caustic + global).saturating_mul(per_photon)
+    }
 }
 
 impl<'a> PhotonMapper<'a> {
@@ -244,7 +261,7 @@ impl<'a> PhotonMapper<'a> {
         global: &PhotonMap,
         vp: &VisiblePoint,
         carried: Carried,
-        s: &mut Sample,
+        s: &mut Sample<MapLayer>,
     ) -> Rgb {
         let gather = self.photons.gather;
         let mut sum = Rgb::ZERO;
@@ -290,7 +307,7 @@ impl<'a> PhotonMapper<'a> {
         mut vp: VisiblePoint<'w>,
         carried: Carried<'w>,
         found: &mut Found,
-        s: &mut Sample,
+        s: &mut Sample<MapLayer>,
     ) -> Option<(VisiblePoint<'w>, SurfaceVertex<'w>, Carried<'w>)> {
         let mut walker = Walker::carrying(carried, Policy::Weighted);
         loop {
@@ -331,7 +348,13 @@ impl<'a> PhotonMapper<'a> {
 
     /// The volume caustic a camera chain recorded in `beams` collects on its way through media,
     /// per unit of the path's throughput before it; `tracer`: the one it ended on.
-    fn volume_caustic(&self, maps: &Maps, beams: &Beams, tracer: &Tracer, s: &mut Sample) -> Rgb {
+    fn volume_caustic(
+        &self,
+        maps: &Maps,
+        beams: &Beams,
+        tracer: &Tracer,
+        s: &mut Sample<MapLayer>,
+    ) -> Rgb {
         match &maps.volume {
             Some(volume) => s.stats.time_query(|| beams.radiance(volume, tracer)),
             None => Rgb::ZERO,
@@ -356,10 +379,7 @@ pub fn schedule(index: u32) -> f64 {
 impl<'a> Integrator for PhotonMapper<'a> {
     type Pass = Maps;
     type Pixel = PixelCaustics<'a>;
-
-    fn layers(&self) -> &'static [Layer] {
-        LAYERS
-    }
+    type Layer = MapLayer;
 
     fn begin_pass(
         &self,
@@ -391,17 +411,23 @@ impl<'a> Integrator for PhotonMapper<'a> {
         })
     }
 
-    fn sample(&self, maps: &Maps, pixel: &mut PixelCaustics<'a>, ray: CameraRay, s: &mut Sample) {
+    fn sample(
+        &self,
+        maps: &Maps,
+        pixel: &mut PixelCaustics<'a>,
+        ray: CameraRay,
+        s: &mut Sample<MapLayer>,
+    ) {
         let hero = hero(self.tracer, s.rng);
         let carried = Carried::starting(self.tracer, hero.as_ref());
         // What the path starts with, for the footprint's neighbouring paths.
         let (start, start_rng) = (carried, s.rng.clone());
         let mut beams = Beams::default();
         let c = camera_path(carried, ray, &mut beams, s.rng, s.stats);
-        s.add(EMITTED, c.emitted);
-        s.add(DIRECT, c.single);
+        s.add(MapLayer::Emitted, c.emitted);
+        s.add(MapLayer::Direct, c.single);
         let caustic = self.volume_caustic(maps, &beams, c.carried.tracer, s);
-        s.add(CAUSTIC, caustic);
+        s.add(MapLayer::Caustic, caustic);
         let Some(first) = c.visible else { return };
         // The way the path took to its visible point, where that is its first vertex (the
         // pixel's footprint is measured there).
@@ -413,21 +439,21 @@ impl<'a> Integrator for PhotonMapper<'a> {
             }),
             Vertex::Surface(_) | Vertex::Medium(_) => None,
         };
-        s.add(ALBEDO, first.vertex.albedo());
-        s.add(NORMAL, first.vertex.normal());
+        s.add(MapLayer::Albedo, first.vertex.albedo());
+        s.add(MapLayer::Normal, first.vertex.normal());
         let mut found = Found::default();
         let visible = self.visible_point(maps, first, c.carried, &mut found, s);
-        s.add(DIRECT, found.direct);
-        s.add(EMITTED, found.emitted);
-        s.add(CAUSTIC, found.caustic);
+        s.add(MapLayer::Direct, found.direct);
+        s.add(MapLayer::Emitted, found.emitted);
+        s.add(MapLayer::Caustic, found.caustic);
         let Some((vp, v, carried)) = visible else {
             return;
         };
         let direct = direct(carried, &vp, s.rng, s.stats);
-        s.add(DIRECT, direct);
+        s.add(MapLayer::Direct, direct);
         if let Some(global) = &maps.global {
             let secondary = self.secondary(global, &vp, carried, s);
-            s.add(SECONDARY, secondary);
+            s.add(MapLayer::Secondary, secondary);
         }
         if let Some(caustic) = &maps.caustic {
             let r2 = match pixel.radii.iter().find(|r| r.way == way) {
@@ -462,7 +488,7 @@ impl<'a> Integrator for PhotonMapper<'a> {
                 Some(albedo) => vp.throughput * albedo * e * FRAC_1_PI,
                 None => vp.throughput * e,
             };
-            s.add(CAUSTIC, caustic_light);
+            s.add(MapLayer::Caustic, caustic_light);
         }
     }
 }
@@ -484,23 +510,4 @@ pub struct PixelCaustics<'a> {
 struct Radius {
     way: Option<Way>,
     r2: f64,
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn each_slot_names_its_layer() {
-        for (slot, name) in [
-            (DIRECT, "direct"),
-            (CAUSTIC, "caustic"),
-            (SECONDARY, "secondary"),
-            (EMITTED, "emitted"),
-            (ALBEDO, "albedo"),
-            (NORMAL, "normal"),
-        ] {
-            assert_eq!(slot.of(LAYERS).name, name);
-        }
-    }
 }

@@ -13,7 +13,7 @@ use crate::color::Rgb;
 use crate::error::{Error, Result};
 use crate::film::{ErrorTotals, Film};
 use crate::integrator::{
-    CameraRay, DeflectionTable, FirstVertex, Integrator, PathTracer, PhotonMapper, Plan, Sample,
+    CameraRay, DeflectionTable, FirstVertex, Integrator, PathTracer, PhotonMapper, Sample,
 };
 use crate::lights::LightSamples;
 pub use crate::report::Report;
@@ -520,11 +520,7 @@ fn camera_tile<I: Integrator>(
                 );
                 stats.camera_rays += 1;
                 values.fill(Rgb::ZERO);
-                let mut sample = Sample {
-                    rng: &mut rng,
-                    stats,
-                    values: &mut values,
-                };
+                let mut sample = Sample::new(&mut rng, stats, &mut values);
                 integrator.sample(
                     prepared,
                     &mut state,
@@ -584,35 +580,31 @@ impl FirstStrata {
 }
 
 /// Bytes a render of `scene` needs at its peak, estimated from above for typical scenes: the
-/// camera pass's accumulators and the films of the passes done, one pass's photon
-/// maps (as traced in chunks and merged; global photons stored ≈ 4 times each, the mean path
-/// of Russian roulette at albedo 0.75; kd-tree entries), and the receivers' detections (one
+/// camera pass's accumulators and the films of the passes done (the integrator's layers),
+/// what the integrator keeps for a pass ([`PhotonMapper::memory_needed`]: its photon maps),
+/// and the receivers' detections (one
 /// crossing per photon and receiver, traced and merged). Meshes are already in memory when it
 /// is asked.
 pub fn memory_needed(scene: &Scene, settings: &Settings) -> u64 {
     use std::mem::size_of;
-    let plan = Plan::of(scene, &settings.photons);
     let pixels = scene
         .camera
         .as_ref()
         .map_or(0, |c| c.width as u64 * c.height as u64);
+    // What the integrator keeps besides the film, and its film's layers.
+    let (own, layers) = match settings.integrator {
+        Kind::PhotonMap => (
+            PhotonMapper::memory_needed(scene, &settings.photons),
+            PhotonMapper::LAYERS,
+        ),
+        Kind::Path => (0, PathTracer::LAYERS),
+    };
     // The tiles' films, the whole film of the passes done and the partial's (fixed-point RGB
-    // sums per layer written, at most seven, and of the passes' squares; a count), and the
-    // preview's developed beauty (f32 RGB; the EXR is developed pixel by pixel as written).
-    let planes = 7 + 1;
+    // sums per layer written and of the passes' squares; a count), and the preview's developed
+    // beauty (f32 RGB; the EXR is developed pixel by pixel as written).
+    let planes = layers.len() + 1;
     let sums = planes * size_of::<[crate::exact::Fixed; 3]>() + 8;
     let film = pixels * (3 * sums + 12) as u64;
-    let per_photon = 2 * size_of::<crate::photon::Photon>() as u64 + 32;
-    let caustic = if plan.caustic {
-        settings.photons.caustic
-    } else {
-        0
-    };
-    let global = if plan.global {
-        4 * settings.photons.global
-    } else {
-        0
-    };
     let detections = 2
         * settings.receiver_photons
         * scene.receivers.len() as u64
@@ -622,7 +614,7 @@ pub fn memory_needed(scene: &Scene, settings: &Settings) -> u64 {
         .iter()
         .map(|r| 32 * (r.bins.0 * r.bins.1) as u64)
         .sum();
-    film.saturating_add((caustic + global).saturating_mul(per_photon))
+    film.saturating_add(own)
         .saturating_add(detections)
         .saturating_add(bins)
 }
