@@ -3,7 +3,7 @@
 use glam::DVec3;
 use grinlight::accel::Accel;
 use grinlight::curve::CurvedSegment;
-use grinlight::shapes::{Disk, Hit, Primitive, Quad, Triangle};
+use grinlight::shapes::{Disk, Hit, Primitive, Quad, SegmentHits, Triangle};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 

@@ -13,7 +13,7 @@ use super::PrimHit;
 use crate::curve::{ArcHull, Path};
 use crate::ids::PrimId;
 use crate::math::Bounds3;
-use crate::shapes::{Disk, Primitive};
+use crate::shapes::{Disk, Primitive, SegmentHits};
 use glam::DVec3;
 
 /// Fewer coaxial tubes than this are left to the BVH.

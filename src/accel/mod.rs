@@ -10,7 +10,7 @@ use crate::bvh::build_bvh;
 use crate::curve::{ArcHull, Path};
 use crate::ids::PrimId;
 use crate::math::Bounds3;
-use crate::shapes::{padded_box as padded, Hit, Primitive};
+use crate::shapes::{padded_box as padded, Hit, Primitive, SegmentHits};
 use glam::{DVec3, Vec3A};
 use obvhs::bvh2::Bvh2;
 use obvhs::ray::{Ray, RayHit};
@@ -194,12 +194,12 @@ impl Accel {
             true
         });
     }
+}
 
-    /// Nearest crossing of a curved path (an exact arc, a step's Hermite path) with any
-    /// primitive at arclength s ∈ (s_min, length]. `hull` holds the path over [0, length]
-    /// (which a caller has usually built already); candidates are the primitives whose boxes meet its box and
-    /// that [`Primitive::may_cross`] it (each primitive's own search asks).
-    pub fn intersect_segment<P: Path + ?Sized>(
+impl SegmentHits for Accel {
+    type Found = PrimHit;
+
+    fn intersect_segment<P: Path + ?Sized>(
         &self,
         seg: &P,
         hull: &ArcHull,

@@ -1,5 +1,6 @@
 //! Where a ray meets a surface, and the boxes BVHs hold.
 
+use crate::curve::{ArcHull, Path};
 use crate::math::Bounds3;
 use glam::{DVec2, DVec3, Vec3A};
 use obvhs::aabb::Aabb;
@@ -42,4 +43,21 @@ pub(crate) fn padded_box(b: Bounds3) -> Aabb {
         Vec3A::from((b.lo - pad(b.lo)).as_vec3()),
         Vec3A::from((b.hi + pad(b.hi)).as_vec3()),
     )
+}
+
+/// Where a curved path first meets a surface: the question the march asks of a step's path
+/// (an exact arc, a step's Hermite path), of a primitive, a mesh and the whole scene alike.
+pub trait SegmentHits {
+    /// What a hit reports: the [`Hit`], and for a set of surfaces which one it is.
+    type Found;
+
+    /// Nearest crossing of the path `seg`, held by `hull` over [0, `length`], at arclength
+    /// s ∈ (`s_min`, `length`] (None at once where the hull cannot reach a surface).
+    fn intersect_segment<P: Path + ?Sized>(
+        &self,
+        seg: &P,
+        hull: &ArcHull,
+        s_min: f64,
+        length: f64,
+    ) -> Option<Self::Found>;
 }

@@ -3,7 +3,7 @@
 //! independent triangles"). The f32 vertices *are* the geometry; every test converts them to
 //! f64 exactly and runs in f64, as for any other primitive.
 
-use super::hit::{padded_box, Hit};
+use super::hit::{padded_box, Hit, SegmentHits};
 use super::triangle::Triangle;
 use crate::bvh::build_bvh;
 use crate::curve::{ArcHull, Path};
@@ -284,26 +284,6 @@ impl TriangleMesh {
         });
         found
     }
-
-    /// Nearest crossing of a curved path held by `hull` with a triangle at arclength
-    /// s ∈ (s_min, length].
-    pub fn intersect_segment<P: Path + ?Sized>(
-        &self,
-        seg: &P,
-        hull: &ArcHull,
-        s_min: f64,
-        length: f64,
-    ) -> Option<Hit> {
-        let mut best: Option<(usize, Hit)> = None;
-        self.candidates(hull, |id, tri| {
-            let limit = best.map_or(length, |(_, h)| h.t);
-            if let Some(h) = tri.intersect_segment(seg, s_min, limit) {
-                best = Some((id, h));
-            }
-            true
-        });
-        best.map(|(id, h)| self.shaded(id, seg.at(h.t).position, h))
-    }
 }
 
 /// Whether the segment from `hull.a` to `hull.b` meets the box [lo, hi] (slab test; a
@@ -382,5 +362,27 @@ impl std::fmt::Debug for TriangleMesh {
             .field("triangles", &self.triangles.len())
             .field("smooth", &self.is_smooth())
             .finish()
+    }
+}
+
+impl SegmentHits for TriangleMesh {
+    type Found = Hit;
+
+    fn intersect_segment<P: Path + ?Sized>(
+        &self,
+        seg: &P,
+        hull: &ArcHull,
+        s_min: f64,
+        length: f64,
+    ) -> Option<Hit> {
+        let mut best: Option<(usize, Hit)> = None;
+        self.candidates(hull, |id, tri| {
+            let limit = best.map_or(length, |(_, h)| h.t);
+            if let Some(h) = tri.intersect_segment(seg, s_min, limit) {
+                best = Some((id, h));
+            }
+            true
+        });
+        best.map(|(id, h)| self.shaded(id, seg.at(h.t).position, h))
     }
 }

@@ -10,7 +10,7 @@ mod triangle;
 
 pub use curved::{round_roots, segment_roots};
 pub(crate) use hit::padded_box;
-pub use hit::Hit;
+pub use hit::{Hit, SegmentHits};
 pub use mesh::TriangleMesh;
 pub use primitive::{Disk, Primitive, Quad};
 pub use triangle::{Plane, Triangle};

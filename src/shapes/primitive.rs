@@ -1,7 +1,7 @@
 //! The primitives: sphere, open cylinder (tube), parallelogram (quad), disk, triangle and
 //! triangle mesh.
 
-use super::hit::Hit;
+use super::hit::{Hit, SegmentHits};
 use super::mesh::TriangleMesh;
 use super::triangle::{edge_coordinates_hit, plane_coordinates, Plane, Triangle};
 use crate::curve::{ArcHull, Path, RoundSurface};
@@ -412,43 +412,6 @@ impl Primitive {
             }
         }
     }
-
-    /// Nearest crossing of a curved path held by `hull` with the primitive at arclength
-    /// s ∈ (s_min, length] (None at once where the hull cannot meet it: [`Self::may_cross`]).
-    pub fn intersect_segment<P: Path + ?Sized>(
-        &self,
-        seg: &P,
-        hull: &ArcHull,
-        s_min: f64,
-        length: f64,
-    ) -> Option<Hit> {
-        // A mesh culls its triangles by the hull as it searches; any other primitive first asks
-        // whether the hull can meet it at all (a cheap test before a root search).
-        if let Primitive::Mesh(mesh) = self {
-            return mesh.intersect_segment(seg, hull, s_min, length);
-        }
-        if !self.may_cross(hull) {
-            return None;
-        }
-        let roots = match *self {
-            Primitive::Tube {
-                base, axis, radius, ..
-            } => super::segment_roots(seg, length, |x| {
-                let p = across_axis(x - base, axis);
-                (p.length_squared() - radius * radius, 2.0 * p)
-            }),
-            // (A mesh returned above: it has no round surface.)
-            Primitive::Sphere { .. }
-            | Primitive::Quad(..)
-            | Primitive::Disk(..)
-            | Primitive::Triangle(_)
-            | Primitive::Mesh(_) => super::round_roots(seg, length, &self.round_surface()?),
-        };
-        roots.into_iter().filter(|&s| s > s_min).find_map(|s| {
-            let x = seg.at(s).position;
-            self.accepts(x).then(|| Hit::flat(s, self.normal_at(x)))
-        })
-    }
 }
 
 /// A short description for reports, e.g. "cylinder side r 0.5 at (0, 0, 0) along (0, 0, 1)".
@@ -508,4 +471,43 @@ fn ordered(a: f64, b: f64) -> (f64, f64) {
 /// The part of `v` across the unit `axis` (a tube's radial offset).
 fn across_axis(v: DVec3, axis: DVec3) -> DVec3 {
     v - axis * v.dot(axis)
+}
+
+impl SegmentHits for Primitive {
+    type Found = Hit;
+
+    fn intersect_segment<P: Path + ?Sized>(
+        &self,
+        seg: &P,
+        hull: &ArcHull,
+        s_min: f64,
+        length: f64,
+    ) -> Option<Hit> {
+        // A mesh culls its triangles by the hull as it searches; any other primitive first asks
+        // whether the hull can meet it at all (a cheap test before a root search).
+        if let Primitive::Mesh(mesh) = self {
+            return mesh.intersect_segment(seg, hull, s_min, length);
+        }
+        if !self.may_cross(hull) {
+            return None;
+        }
+        let roots = match *self {
+            Primitive::Tube {
+                base, axis, radius, ..
+            } => super::segment_roots(seg, length, |x| {
+                let p = across_axis(x - base, axis);
+                (p.length_squared() - radius * radius, 2.0 * p)
+            }),
+            // (A mesh returned above: it has no round surface.)
+            Primitive::Sphere { .. }
+            | Primitive::Quad(..)
+            | Primitive::Disk(..)
+            | Primitive::Triangle(_)
+            | Primitive::Mesh(_) => super::round_roots(seg, length, &self.round_surface()?),
+        };
+        roots.into_iter().filter(|&s| s > s_min).find_map(|s| {
+            let x = seg.at(s).position;
+            self.accepts(x).then(|| Hit::flat(s, self.normal_at(x)))
+        })
+    }
 }

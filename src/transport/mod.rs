@@ -38,7 +38,7 @@ use crate::math::{Ball, Bounds3};
 use crate::media::Medium;
 use crate::scene::Scene;
 use crate::settings::TraceSettings;
-use crate::shapes::Hit;
+use crate::shapes::{Hit, SegmentHits};
 use crate::volume::Participating;
 use glam::DVec3;
 pub use stats::Stats;
