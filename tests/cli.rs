@@ -334,6 +334,29 @@ fn the_scene_file_and_the_command_line_refuse_the_same_values() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// A misspelt setting is refused by the scene file and the command line in the same words
+/// ("unknown key `sppp` (expected one of: …)"); Python's are checked in
+/// python/tests/test_errors.py.
+#[test]
+fn a_misspelt_setting_reads_alike_from_the_file_and_the_flag() {
+    let dir = temp("misspelt");
+    std::fs::create_dir_all(&dir).unwrap();
+    let base = std::fs::read_to_string("scenes/cornell_diffuse.toml").unwrap();
+    let scene = dir.join("sppp.toml");
+    std::fs::write(&scene, base.replacen("[render]", "[render]\nsppp = 4", 1)).unwrap();
+    let by_file = grinlight(&["render", scene.to_str().unwrap()]);
+    let by_flag = grinlight(&["render", "scenes/cornell_diffuse.toml", "--sppp", "4"]);
+    for (how, out) in [("file", by_file), ("flag", by_flag)] {
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success(), "{how}");
+        assert!(
+            stderr.contains("unknown key `sppp` (expected one of: ") && stderr.contains("spp"),
+            "{how}: {stderr}"
+        );
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 /// A trace that keeps every point (the library's `trace_ray`, Python's `trace`) is refused up
 /// front when `max_steps` points cannot fit in memory, naming the setting; the command line's,
 /// which streams its CSV and keeps a bounded plot, is stopped by an interrupt where it is

@@ -5,7 +5,7 @@
 use glam::DVec3;
 use grinlight::commands::{Overrides, RayTrace, TraceControl};
 use grinlight::curve::StepperKind;
-use grinlight::settings::{Given, Key, DEFLECTION_TABLE, KEYS};
+use grinlight::settings::{unknown, Given, Key, DEFLECTION_TABLE};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyMapping, PyString, PyTuple};
@@ -176,14 +176,7 @@ pub fn overrides(d: &Bound<'_, PyDict>) -> PyResult<Overrides> {
             continue;
         }
         let Some(key) = Key::named(&name) else {
-            let names: Vec<&str> = KEYS.iter().map(|k| k.name).collect();
-            return Err(bad(
-                &name,
-                format!(
-                    "not a render setting (one of {}, no_table)",
-                    names.join(", ")
-                ),
-            ));
+            return Err(bad(&name, unknown(&name, &["no_table"])));
         };
         o.set(key, given(&v));
     }

@@ -282,6 +282,21 @@ impl Assignment {
     }
 }
 
+/// Why `name` is refused as a setting's name: the scene file's words for a key its table
+/// does not have (`unknown key `sppp` (expected one of: …)`), listing the table's keys and
+/// any `more` a front end also takes.
+pub fn unknown(name: &str, more: &[&str]) -> String {
+    let names: Vec<&str> = KEYS
+        .iter()
+        .map(|k| k.name)
+        .chain(more.iter().copied())
+        .collect();
+    format!(
+        "unknown key `{name}` (expected one of: {})",
+        names.join(", ")
+    )
+}
+
 /// Applies `assignments` in order. A time budget or a target error given without a count of
 /// passes renders as many passes as it takes (the scene file's `[render]` and the command line
 /// alike).

@@ -5,6 +5,7 @@ mod args;
 mod console;
 
 use args::{Cli, Command};
+use clap::error::{ContextKind, ContextValue, ErrorKind};
 use clap::Parser;
 use grinlight::commands;
 use grinlight::error::Error;
@@ -34,8 +35,29 @@ fn run(cli: Cli, console: &console::Console) -> Result<bool, Error> {
     })
 }
 
+/// The command line, or exits with clap's message; a flag `render` does not know is refused
+/// in the scene file's words for a key it does not know, listing the settings.
+fn parse() -> Cli {
+    let e = match Cli::try_parse() {
+        Ok(cli) => return cli,
+        Err(e) => e,
+    };
+    let render = std::env::args().nth(1).as_deref() == Some("render");
+    if let (true, ErrorKind::UnknownArgument, Some(ContextValue::String(flag))) =
+        (render, e.kind(), e.get(ContextKind::InvalidArg))
+    {
+        let name = flag.trim_start_matches('-').replace('-', "_");
+        eprintln!(
+            "error: {flag}: {}; render's other options: grinlight render --help",
+            grinlight::settings::unknown(&name, &["no_table"])
+        );
+        std::process::exit(2);
+    }
+    e.exit()
+}
+
 fn main() {
-    let cli = Cli::parse();
+    let cli = parse();
     let console = console::Console::new();
     console::install_interrupt_handler();
     let code = match run(cli, &console) {
