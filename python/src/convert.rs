@@ -140,10 +140,12 @@ fn number(v: &Bound<'_, PyAny>, key: &str) -> PyResult<f64> {
 
 /// A Python value as a setting's value, before the settings table reads it (so a value is
 /// refused in the scene file's words).
+/// Integers are Python's and numpy's (whatever has `__index__`); numbers anything `float()`
+/// reads.
 fn given(v: &Bound<'_, PyAny>) -> Given {
     if let Ok(b) = v.cast::<PyBool>() {
         Given::Bool(b.is_true())
-    } else if v.is_instance_of::<PyInt>() {
+    } else if v.is_instance_of::<PyInt>() || v.hasattr("__index__").unwrap_or(false) {
         match v.extract::<i128>() {
             Ok(i) => Given::Integer(i),
             Err(_) => Given::Other(format!("{v} (out of range)")),

@@ -72,6 +72,11 @@ def test_numpy_values_are_accepted():
     assert scene.media == ["rod"]
 
 
+def test_numpy_numbers_are_settings(scenes):
+    scene = grinlight.load(scenes / "cornell_caustic.toml", width=np.int64(8), height=np.int32(6), radius=np.float32(0.5))
+    assert scene.camera == (8, 6)
+
+
 @pytest.mark.parametrize(
     "overrides, key",
     [
@@ -98,6 +103,7 @@ def test_bad_settings_name_their_key(scenes, overrides, key):
     "overrides, words",
     [
         (dict(spp=1.5), 'spp expected an integer ≥ 1, got 1.5'),
+        (dict(spp=4.0), 'spp expected an integer ≥ 1, got 4.0'),
         (dict(gather=70000), "gather must be at most 65536, got 70000"),
         (dict(radius=-1.5), "radius must be a number in (0, 1e30], got -1.5"),
         (dict(integrator="bidirectional"), "integrator expected 'photon_map' or 'path', got \"bidirectional\""),

@@ -149,6 +149,8 @@ impl std::fmt::Display for Given {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             Given::Integer(i) => write!(f, "{i}"),
+            // A whole number given as one with a fraction reads as such (`4.0`, not `4`).
+            Given::Number(x) if x.fract() == 0.0 && x.abs() < 1e6 => write!(f, "{x:?}"),
             Given::Number(x) => write!(f, "{}", number(*x)),
             Given::Text(s) => write!(f, "\"{s}\""),
             Given::Bool(b) => write!(f, "{b}"),

@@ -43,10 +43,16 @@ fn parse() -> Cli {
         Err(e) => e,
     };
     let render = std::env::args().nth(1).as_deref() == Some("render");
-    if let (true, ErrorKind::UnknownArgument, Some(ContextValue::String(flag))) =
+    if let (true, ErrorKind::UnknownArgument, Some(ContextValue::String(given))) =
         (render, e.kind(), e.get(ContextKind::InvalidArg))
     {
-        let name = flag.trim_start_matches('-').replace('-', "_");
+        // A stray word is not a flag: clap says what it is.
+        let Some(flag) = given.strip_prefix("--") else {
+            e.exit()
+        };
+        let flag = flag.split('=').next().unwrap_or(flag);
+        let name = flag.replace('-', "_");
+        let flag = format!("--{flag}");
         eprintln!(
             "error: {flag}: {}; render's other options: grinlight render --help",
             grinlight::settings::unknown(&name, &["no_table"])
