@@ -160,7 +160,8 @@ g = { table = [[400.0, 0.33], [550.0, 0.32], [700.0, 0.31]] }
     for nm in [420.0, 486.1327, 587.5618, 656.2725] {
         let medium = media.at_wavelength(rod, nm).unwrap();
         let g = table.at(nm);
-        let start = RayState::new(medium.as_ref(), DVec3::new(1e-3, 0.0, 0.0), DVec3::Z).unwrap();
+        let start =
+            RayState::new(medium.as_medium(), DVec3::new(1e-3, 0.0, 0.0), DVec3::Z).unwrap();
         let limits = MarchLimits {
             length: 2.0 * std::f64::consts::PI / g,
             max_steps: 1_000_000,
@@ -170,7 +171,7 @@ g = { table = [[400.0, 0.33], [550.0, 0.32], [700.0, 0.31]] }
         let mut last = start.position;
         march_with(
             StepperKind::Rk4,
-            medium.as_ref(),
+            medium.as_medium(),
             StepControl::Fixed { step: 0.005 },
             start,
             &limits,

@@ -300,7 +300,7 @@ fn follow(
             })
         }
     };
-    let medium = dispersed.as_deref().unwrap_or(reference);
+    let medium = dispersed.as_ref().map_or(reference, |p| p.as_medium());
     let length = positive("length", job.length)?;
     for (key, v) in [("origin", job.from), ("direction", job.dir)] {
         if !v.is_finite() {

@@ -26,6 +26,7 @@ use crate::transport::chain::{ChainEvents, Stretch};
 use crate::transport::Tracer;
 use crate::volume::{Flights, Scattering};
 use glam::DVec3;
+use std::borrow::Cow;
 
 /// A chain's stretches in scattering media, recorded as it is followed.
 #[derive(Default)]
@@ -56,7 +57,7 @@ pub struct Straight<'a> {
     /// The medium.
     pub medium: MediumId,
     /// How the medium scatters.
-    pub scattering: &'a Scattering,
+    pub scattering: Cow<'a, Scattering>,
     /// The chain's weight at its start.
     pub weight: Rgb,
     /// The path's free flights with this stretch's drawn.
@@ -144,7 +145,7 @@ impl Beams {
             };
             let mut light = Rgb::ZERO;
             read.clear();
-            read.extend(chords(tracer, scattering, r, points));
+            read.extend(chords(tracer, &scattering, r, points));
             volume.along_path(&read, |k, photon, along| {
                 let c: &Chord = &read[k];
                 let Segment {
@@ -156,7 +157,7 @@ impl Beams {
                 let depth = c.depth + radiometry.optical_depth(origin, dir, along.distance);
                 let mut flights = r.stretch.flights;
                 let column = c.column + scattering.column(origin, dir, along.distance);
-                let kept = flights.weigh(scattering, column, false);
+                let kept = flights.weigh(&scattering, column, false);
                 // Light arrives travelling along −from and leaves toward the camera, −dir.
                 let phase = scattering.phase.between(-photon.from_direction(), -dir);
                 let scale = (n_start / n) * (n_start / n);

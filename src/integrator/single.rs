@@ -70,7 +70,7 @@ pub fn single_scattering(
             .exp();
         let mut flights = s.flights;
         let column = s.scattering.column(s.segment.origin, s.segment.dir, t);
-        let kept = flights.weigh(s.scattering, column, false);
+        let kept = flights.weigh(&s.scattering, column, false);
         let density = s.scattering.density.as_ref().map_or(1.0, |d| d.at(x));
         let vertex = Vertex::Medium(MediumVertex {
             position: x,
@@ -158,12 +158,12 @@ mod tests {
                 length: 3.0,
             },
             medium: crate::ids::MediumId::new(0),
-            scattering: &crate::volume::Scattering {
+            scattering: std::borrow::Cow::Owned(crate::volume::Scattering {
                 sigma_s: Rgb::ONE,
                 spectrum: None,
                 phase: crate::volume::Phase::Isotropic,
                 density: None,
-            },
+            }),
             weight: Rgb::ONE,
             flights: crate::volume::Flights::default(),
             radiance_scale: 1.0,

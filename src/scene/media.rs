@@ -8,7 +8,8 @@ use crate::error::Result;
 use crate::media::{
     Axis, BlackHole, Density, ExactBlackHole, ExponentialMedium, FishEye, GridError, GridMedium,
     GridQuantity, HeightTable, HyperbolicMedium, Interpolation, LinearMedium, Luneburg, Medium,
-    ParabolicFiber, RadialTable, SechFiber, UniformMedium, GLADSTONE_DALE_AIR, STANDARD_PRESSURE,
+    ParabolicFiber, Parametric, RadialTable, SechFiber, UniformMedium, GLADSTONE_DALE_AIR,
+    STANDARD_PRESSURE,
 };
 use crate::spectrum::{Dispersion, LAMBDA_D};
 use crate::volume::{Absorption, Emission, Phase, Scattering};
@@ -140,7 +141,7 @@ pub fn read_profile(t: &mut TableReader) -> Result<Profile> {
             let n0 = t.dispersion("n0")?;
             let (gradient, origin) = (t.vec3("gradient")?, t.vec3_or("origin", DVec3::ZERO)?);
             by_wavelength(vec![n0], move |v| {
-                Box::new(LinearMedium {
+                Parametric::Linear(LinearMedium {
                     n0: v[0],
                     gradient,
                     origin,
@@ -151,7 +152,7 @@ pub fn read_profile(t: &mut TableReader) -> Result<Profile> {
             let n0 = t.dispersion("n0")?;
             let (gradient, origin) = (t.vec3("gradient")?, t.vec3_or("origin", DVec3::ZERO)?);
             by_wavelength(vec![n0], move |v| {
-                Box::new(ExponentialMedium {
+                Parametric::Exponential(ExponentialMedium {
                     n0: v[0],
                     gradient,
                     origin,
@@ -163,7 +164,7 @@ pub fn read_profile(t: &mut TableReader) -> Result<Profile> {
             let (shape, is_g) = read_parabolic_shape(t)?;
             let axis = fiber_axis(t)?;
             by_wavelength(vec![n0, shape], move |v| {
-                Box::new(ParabolicFiber {
+                Parametric::Parabolic(ParabolicFiber {
                     n0: v[0],
                     a: if is_g { v[1] * v[1] } else { v[1] },
                     axis,
@@ -175,7 +176,7 @@ pub fn read_profile(t: &mut TableReader) -> Result<Profile> {
             let g = t.dispersion("g")?;
             let axis = fiber_axis(t)?;
             by_wavelength(vec![n0, g], move |v| {
-                Box::new(SechFiber {
+                Parametric::Sech(SechFiber {
                     n0: v[0],
                     g: v[1],
                     axis,
@@ -188,12 +189,12 @@ pub fn read_profile(t: &mut TableReader) -> Result<Profile> {
             let center = t.vec3_or("center", DVec3::ZERO)?;
             let radius = t.positive("radius")?;
             let hyperbolic = profile == "hyperbolic";
-            by_wavelength(vec![n0], move |v| -> Box<dyn Medium> {
+            by_wavelength(vec![n0], move |v| {
                 let n0 = v[0];
                 if hyperbolic {
-                    Box::new(HyperbolicMedium { n0, center, radius })
+                    Parametric::Hyperbolic(HyperbolicMedium { n0, center, radius })
                 } else {
-                    Box::new(FishEye { n0, center, radius })
+                    Parametric::FishEye(FishEye { n0, center, radius })
                 }
             })
         }
@@ -209,24 +210,37 @@ pub fn read_profile(t: &mut TableReader) -> Result<Profile> {
     })
 }
 
-/// The medium `make` builds from `values` evaluated at each wavelength: fixed (built once at
-/// [`LAMBDA_D`]) when none of them depends on wavelength.
+/// The most constants a [`Parametric`] profile has that may depend on wavelength.
+const MOST_CONSTANTS: usize = 2;
+
+/// The medium `make` builds from `values` (at most [`MOST_CONSTANTS`]) evaluated at each
+/// wavelength: fixed (built once at [`LAMBDA_D`]) when none of them depends on wavelength.
 fn by_wavelength(
     values: Vec<Dispersion>,
-    make: impl Fn(&[f64]) -> Box<dyn Medium> + Send + Sync + 'static,
+    make: impl Fn(&[f64]) -> Parametric + Send + Sync + 'static,
 ) -> Profile {
+    assert!(
+        values.len() <= MOST_CONSTANTS,
+        "a profile has at most two constants"
+    );
     let dispersive = values.iter().any(Dispersion::is_dispersive);
-    let at = move |nm: f64| make(&values.iter().map(|d| d.at(nm)).collect::<Vec<_>>());
+    let at = move |nm: f64| {
+        let mut at_nm = [0.0; MOST_CONSTANTS];
+        for (v, d) in at_nm.iter_mut().zip(&values) {
+            *v = d.at(nm);
+        }
+        make(&at_nm[..values.len()])
+    };
     if dispersive {
         Profile::Dispersive(Box::new(at))
     } else {
-        Profile::Fixed(at(LAMBDA_D))
+        Profile::Fixed(at(LAMBDA_D).boxed())
     }
 }
 
 /// A uniform medium of index `n` (a dielectric's `ior`, or `profile = "uniform"`).
 pub fn uniform(n: Dispersion) -> Profile {
-    by_wavelength(vec![n], |v| Box::new(UniformMedium { n: v[0] }))
+    by_wavelength(vec![n], |v| Parametric::Uniform(UniformMedium { n: v[0] }))
 }
 
 /// The parabolic profile's gradient constant: `a` (1/length²), or `g` (1/length) with

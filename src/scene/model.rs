@@ -11,15 +11,15 @@ use crate::error::{Error, Result};
 use crate::ids::{LightId, MaterialId, MediumId, PrimId, ReceiverId};
 use crate::lights::Light;
 use crate::material::Material;
-use crate::media::Medium;
+use crate::media::{Medium, Parametric};
 use crate::receiver::Receiver;
 use crate::shapes::Primitive;
 use crate::spectrum::{Spectrum, LAMBDA_D};
 use crate::volume::{Participating, Scattering};
 use std::path::{Path, PathBuf};
 
-/// How a dispersive medium is built at a vacuum wavelength (nm).
-pub type AtWavelength = Box<dyn Fn(f64) -> Box<dyn Medium> + Send + Sync>;
+/// A dispersive medium's profile at a vacuum wavelength (nm): its constants evaluated there.
+pub type AtWavelength = Box<dyn Fn(f64) -> Parametric + Send + Sync>;
 
 /// A medium as read: one medium, or, when its index depends on wavelength, how to build it at
 /// each.
@@ -63,7 +63,7 @@ impl Media {
     pub fn add_dispersive(&mut self, name: impl Into<String>, at: AtWavelength) -> MediumId {
         self.0.push(Entry {
             name: name.into(),
-            medium: at(LAMBDA_D),
+            medium: at(LAMBDA_D).boxed(),
             dispersion: Some(at),
             participating: Participating::default(),
         });
@@ -79,7 +79,7 @@ impl Media {
     }
 
     /// The medium at index `i`, at [`LAMBDA_D`].
-    pub fn at(&self, i: MediumId) -> &dyn Medium {
+    pub fn at(&self, i: MediumId) -> &(dyn Medium + 'static) {
         self.0[i.index()].medium.as_ref()
     }
 
@@ -123,8 +123,9 @@ impl Media {
     }
 
     /// Medium `i` at vacuum wavelength `nm`, when it is dispersive (None: it is
-    /// [`Media::at`] at every wavelength).
-    pub fn at_wavelength(&self, i: MediumId, nm: f64) -> Option<Box<dyn Medium>> {
+    /// [`Media::at`] at every wavelength). Made on the stack: a path at a wavelength asks
+    /// for it where it enters the medium.
+    pub fn at_wavelength(&self, i: MediumId, nm: f64) -> Option<Parametric> {
         self.0[i.index()].dispersion.as_ref().map(|at| at(nm))
     }
 

@@ -564,8 +564,8 @@ impl<'w> Walker<'w> {
             .medium
             .is_some_and(|m| !self.tracer.medium(m).is_uniform());
         let scattering = at.medium.and_then(|m| self.tracer.scattering(m));
-        let (event, column) = self.fly(scattering, chain, at, lent, observer);
-        if let Some(sc) = scattering {
+        let (event, column) = self.fly(scattering.as_deref(), chain, at, lent, observer);
+        if let Some(sc) = scattering.as_deref() {
             chain.weight *= match (self.policy, event) {
                 (Policy::Weighted | Policy::Roulette, Event::Reached { .. }) => {
                     self.flights.weigh(sc, column, true)

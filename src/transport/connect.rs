@@ -316,11 +316,13 @@ pub fn connect(
         Anchor::Direction { toward, .. } => (toward, Goal::Direction),
     };
     let u = chord.any_orthonormal_vector();
+    let index = tracer.medium(medium);
+    let scattering = tracer.scattering(medium).filter(|sc| sc.is_heterogeneous());
     let problem = Problem {
         tracer,
-        medium: tracer.medium(medium),
+        medium: &*index,
         radiometry: tracer.participating(medium),
-        scattering: tracer.scattering(medium).filter(|sc| sc.is_heterogeneous()),
+        scattering: scattering.as_deref(),
         from,
         chord,
         u,

@@ -24,7 +24,7 @@ pub mod visibility;
 
 pub use event::{Event, Normals, SurfaceHit};
 pub use spectral::HeroTracer;
-use spectral::Wavelength;
+pub use spectral::MediumAt;
 pub use vertex::{BsdfNumbers, MediumVertex, Scattered, SurfaceVertex, Vertex};
 
 use crate::accel::PrimHit;
@@ -43,6 +43,7 @@ use crate::volume::Participating;
 use glam::DVec3;
 pub use stats::Stats;
 use std::ops::ControlFlow;
+use std::sync::Arc;
 
 pub use crate::math::{facing, offset};
 
@@ -60,13 +61,13 @@ pub struct Tracer<'a> {
     /// The medium the camera sits in (see [`Tracer::medium_containing`]).
     pub camera_medium: Option<MediumId>,
     /// Which light a vertex's light sample goes to.
-    pub light_sampler: LightSampler,
+    pub light_sampler: Arc<LightSampler>,
     /// How many lights a vertex's direct estimate samples (the integrator's choice:
     /// [`Tracer::sampling_lights`]; one unless it says).
     pub light_samples: LightSamples,
     /// The wavelength rays travel at, when it is not [`crate::spectrum::LAMBDA_D`] (see
     /// [`Tracer::at_wavelength`]).
-    wavelength: Option<Wavelength>,
+    wavelength: Option<f64>,
 }
 
 /// A gradient medium a march crosses: its index field and what it does to light's power.
@@ -109,7 +110,7 @@ impl<'a> Tracer<'a> {
             ball,
             world: Bounds::Ball { center, radius },
             camera_medium: scene.ambient(),
-            light_sampler: LightSampler::new(&scene.lights),
+            light_sampler: Arc::new(LightSampler::new(&scene.lights)),
             light_samples: LightSamples::One,
             wavelength: None,
         };
@@ -219,7 +220,8 @@ impl<'a> Tracer<'a> {
         path: Option<&mut dyn FnMut(DVec3)>,
     ) -> Event {
         let settings = &self.settings;
-        let medium = self.medium(i);
+        let at_wavelength = self.medium(i);
+        let medium: &dyn Medium = &*at_wavelength;
         let Some(start) = RayState::new(medium, origin, dir) else {
             stats.record_end(Termination::Captured);
             return Event::Lost;

@@ -6,19 +6,32 @@
 use super::Tracer;
 use crate::color::Rgb;
 use crate::ids::MediumId;
-use crate::media::Medium;
+use crate::media::{Medium, Parametric};
 use crate::scene::Surface;
 use crate::spectrum::{colour, Hero, LAMBDA_D};
 use crate::volume::{Participating, Scattering};
 use glam::DVec3;
+use std::borrow::Cow;
+use std::sync::Arc;
 
-/// A vacuum wavelength (nm) and the scene's dispersive media rebuilt at it (None where a
-/// medium is the same at every wavelength).
-pub(super) struct Wavelength {
-    nm: f64,
-    media: Vec<Option<Box<dyn Medium>>>,
-    /// Each medium's scattering at `nm`, where σs depends on wavelength.
-    scattering: Vec<Option<Scattering>>,
+/// A medium as a tracer's rays see it: the scene's own, or a dispersive one evaluated at
+/// their wavelength (made where it is asked for, on the stack).
+pub enum MediumAt<'a> {
+    /// The scene's medium, the same at the rays' wavelength as at every other.
+    Scene(&'a (dyn Medium + 'static)),
+    /// A dispersive medium at the rays' wavelength.
+    Dispersed(Parametric),
+}
+
+impl std::ops::Deref for MediumAt<'_> {
+    type Target = dyn Medium;
+
+    fn deref(&self) -> &Self::Target {
+        match self {
+            Self::Scene(m) => *m,
+            Self::Dispersed(p) => p.as_medium(),
+        }
+    }
 }
 
 /// A hero wavelength ready for the paths of one camera sample or one photon to take on where
@@ -69,40 +82,27 @@ impl<'a> Tracer<'a> {
     /// one at that wavelength, and so is each scattering coefficient over wavelength. Rays of
     /// a tracer from [`Tracer::new`] see every medium at [`LAMBDA_D`].
     pub fn at_wavelength(&self, nm: f64) -> Self {
-        let media = self.scene.media();
         Self {
             scene: self.scene,
             settings: self.settings,
             ball: self.ball,
             world: self.world,
             camera_medium: self.camera_medium,
-            light_sampler: self.light_sampler.clone(),
+            light_sampler: Arc::clone(&self.light_sampler),
             light_samples: self.light_samples,
-            wavelength: Some(Wavelength {
-                nm,
-                media: media.ids().map(|i| media.at_wavelength(i, nm)).collect(),
-                scattering: media
-                    .ids()
-                    .map(|i| {
-                        media
-                            .scattering(i)
-                            .filter(|s| s.is_spectral())
-                            .map(|s| s.at_wavelength(nm))
-                    })
-                    .collect(),
-            }),
+            wavelength: Some(nm),
         }
     }
 
     /// The one vacuum wavelength rays travel at, nm, when the tracer was made at one
     /// ([`Tracer::at_wavelength`]; None: RGB rays, every medium at [`LAMBDA_D`]).
     pub fn single_wavelength(&self) -> Option<f64> {
-        self.wavelength.as_ref().map(|w| w.nm)
+        self.wavelength
     }
 
     /// The vacuum wavelength rays travel at, nm.
     pub fn wavelength(&self) -> f64 {
-        self.wavelength.as_ref().map_or(LAMBDA_D, |w| w.nm)
+        self.wavelength.unwrap_or(LAMBDA_D)
     }
 
     /// Whether a ray in `medium` travels a path that depends on its wavelength.
@@ -126,9 +126,9 @@ impl<'a> Tracer<'a> {
     /// A radiance, irradiance or intensity of emitted light likewise: the RGB itself, or its
     /// spectral value (per nm) at the tracer's wavelength ([`colour::illuminant`]).
     pub fn radiance(&self, rgb: Rgb) -> Rgb {
-        match &self.wavelength {
+        match self.wavelength {
             None => rgb,
-            Some(w) => Rgb::splat(colour::illuminant(rgb, w.nm)),
+            Some(nm) => Rgb::splat(colour::illuminant(rgb, nm)),
         }
     }
 
@@ -140,30 +140,28 @@ impl<'a> Tracer<'a> {
     /// noisy colour would be biased: its negative channels clip), and its expectation over
     /// wavelengths is the RGB itself wherever the rest of the path is grey.
     pub fn photon_irradiance(&self, rgb: Rgb) -> Rgb {
-        match &self.wavelength {
+        match self.wavelength {
             None => rgb,
-            Some(w) => rgb * colour::d65(w.nm),
+            Some(nm) => rgb * colour::d65(nm),
         }
     }
 
     /// Medium `i` at the tracer's wavelength.
-    pub fn medium(&self, i: MediumId) -> &dyn Medium {
-        match self
-            .wavelength
-            .as_ref()
-            .and_then(|w| w.media[i.index()].as_deref())
-        {
-            Some(m) => m,
-            None => self.scene.medium_at(i),
+    pub fn medium(&self, i: MediumId) -> MediumAt<'a> {
+        let media = self.scene.media();
+        match self.wavelength.and_then(|nm| media.at_wavelength(i, nm)) {
+            Some(p) => MediumAt::Dispersed(p),
+            None => MediumAt::Scene(media.at(i)),
         }
     }
 
     /// How medium `i` scatters at the tracer's wavelength (None: it does not).
-    pub fn scattering(&self, i: MediumId) -> Option<&Scattering> {
-        self.wavelength
-            .as_ref()
-            .and_then(|w| w.scattering[i.index()].as_ref())
-            .or_else(|| self.scene.media().scattering(i))
+    pub fn scattering(&self, i: MediumId) -> Option<Cow<'a, Scattering>> {
+        let scattering = self.scene.media().scattering(i)?;
+        Some(match self.wavelength {
+            Some(nm) if scattering.is_spectral() => Cow::Owned(scattering.at_wavelength(nm)),
+            _ => Cow::Borrowed(scattering),
+        })
     }
 
     /// What medium `i` does to light's power: its absorption and emission (its scattering at

@@ -1,0 +1,52 @@
+//! The index profiles fixed by a few constants (an index n or n0, a fiber's shape constant),
+//! as one value type: a dispersive medium is one of these evaluated at a path's wavelength,
+//! made on the stack where the path needs it, never allocated.
+
+use super::{
+    ExponentialMedium, FishEye, HyperbolicMedium, LinearMedium, Medium, ParabolicFiber, SechFiber,
+    UniformMedium,
+};
+
+/// Declares [`Parametric`] with one variant per profile, and its two views.
+macro_rules! parametric {
+    ($($(#[$doc:meta])* $variant:ident($profile:ty),)+) => {
+        /// An index profile given by a formula and its constants.
+        #[derive(Clone, Debug)]
+        pub enum Parametric {
+            $($(#[$doc])* $variant($profile),)+
+        }
+
+        impl Parametric {
+            /// The profile as the index-field interface.
+            pub fn as_medium(&self) -> &(dyn Medium + 'static) {
+                match self {
+                    $(Self::$variant(m) => m,)+
+                }
+            }
+
+            /// The profile as an owned index field.
+            pub fn boxed(self) -> Box<dyn Medium> {
+                match self {
+                    $(Self::$variant(m) => Box::new(m),)+
+                }
+            }
+        }
+    };
+}
+
+parametric! {
+    /// n constant.
+    Uniform(UniformMedium),
+    /// n linear in position.
+    Linear(LinearMedium),
+    /// ln n linear in position.
+    Exponential(ExponentialMedium),
+    /// A parabolic GRIN rod.
+    Parabolic(ParabolicFiber),
+    /// A sech fiber.
+    Sech(SechFiber),
+    /// Maxwell's fish-eye.
+    FishEye(FishEye),
+    /// The Poincaré ball.
+    Hyperbolic(HyperbolicMedium),
+}
