@@ -41,7 +41,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let row = camera.height / 2;
     let t = std::time::Instant::now();
     for px in camera.width / 2..camera.width {
-        let (o, d) = camera.ray(px, row, 0.5, 0.5, (0.5, 0.5));
+        let grinlight::camera::PrimaryRay {
+            origin: o,
+            direction: d,
+        } = camera.ray(grinlight::camera::FilmPoint::pixel_centre(px, row));
         let r0 = (o - center).length();
         let sin_psi = (o - center).normalize().cross(d).length();
         let n0 = medium.sample(o).ok_or("camera inside the horizon")?.n;
@@ -148,7 +151,10 @@ fn exact_row() -> Result<(Curve, Curve), Box<dyn std::error::Error>> {
     let mut worst: f64 = 0.0;
     let row = camera.height / 2;
     for px in camera.width / 2..camera.width {
-        let (o, d) = camera.ray(px, row, 0.5, 0.5, (0.5, 0.5));
+        let grinlight::camera::PrimaryRay {
+            origin: o,
+            direction: d,
+        } = camera.ray(grinlight::camera::FilmPoint::pixel_centre(px, row));
         let n0 = hole.sample(o).ok_or("camera inside the horizon")?.n;
         let b = n0 * o.length() * o.normalize().cross(d).length();
         let Event::Escaped {

@@ -385,7 +385,10 @@ fn paraxial_view() {
     let mut entries = Vec::new();
     for py in 0..camera.height {
         for px in 0..camera.width {
-            let (o, d) = camera.ray(px, py, 0.5, 0.5, (0.5, 0.5));
+            let grinlight::camera::PrimaryRay {
+                origin: o,
+                direction: d,
+            } = camera.ray(grinlight::camera::FilmPoint::pixel_centre(px, py));
             let p = o + d * ((front - o.z) / d.z);
             if p.x.abs() <= 0.5 && p.y.abs() <= 0.5 {
                 let inside = refract(d, DVec3::Z, 1.0, n_front).expect("into denser glass");

@@ -4,7 +4,7 @@
 //! x = (2(px+u)/W − 1)·tan(fov_y/2)·W/H, y = (1 − 2(py+v)/H)·tan(fov_y/2),
 //! dir = normalize(f + x r + y u′).
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 
 /// The point of the film and of the lens a camera ray is drawn through.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -19,10 +19,21 @@ pub struct FilmPoint {
     /// Sub-pixel position down, in pixels from the pixel's top edge.
     pub v: f64,
     /// The point of the lens, in [0, 1)² ([`Camera::ray`]).
-    pub lens: (f64, f64),
+    pub lens: DVec2,
 }
 
 impl FilmPoint {
+    /// The centre of pixel (`px`, `py`), through the lens's centre.
+    pub fn pixel_centre(px: u32, py: u32) -> Self {
+        Self {
+            px,
+            py,
+            u: 0.5,
+            v: 0.5,
+            lens: DVec2::splat(0.5),
+        }
+    }
+
     /// The point `du` pixels to the right and `dv` pixels down, through the same point of the
     /// lens.
     pub fn moved(self, du: f64, dv: f64) -> Self {
@@ -32,6 +43,24 @@ impl FilmPoint {
             ..self
         }
     }
+}
+
+/// A thin lens: the aperture a camera ray leaves from, and the depth it focuses at.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ThinLens {
+    /// Aperture radius (scene units, > 0).
+    pub radius: f64,
+    /// Distance along the view axis of the plane in focus (scene units, > 0).
+    pub focus: f64,
+}
+
+/// A primary ray: where it leaves the camera and its unit direction.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PrimaryRay {
+    /// Where it starts (the eye, or a point of the lens).
+    pub origin: DVec3,
+    /// Unit direction.
+    pub direction: DVec3,
 }
 
 /// A camera producing primary rays.
@@ -47,8 +76,8 @@ pub struct Camera {
     pub width: u32,
     /// Image height in pixels.
     pub height: u32,
-    /// Thin lens: aperture radius and focus distance (scene units); `None` for a pinhole.
-    pub lens: Option<(f64, f64)>,
+    /// The thin lens; `None` for a pinhole.
+    pub lens: Option<ThinLens>,
 }
 
 impl Camera {
@@ -101,25 +130,26 @@ impl Camera {
         (self.forward + x * self.right + y * self.up).normalize()
     }
 
-    /// Origin and unit direction of a primary ray; `lens_uv` ∈ [0,1)² samples the aperture.
-    pub fn ray(&self, px: u32, py: u32, u: f64, v: f64, lens_uv: (f64, f64)) -> (DVec3, DVec3) {
-        let d = self.direction(px, py, u, v);
+    /// The primary ray through `film` (its lens point samples the aperture uniformly).
+    pub fn ray(&self, film: FilmPoint) -> PrimaryRay {
+        let d = self.direction(film.px, film.py, film.u, film.v);
         match self.lens {
-            None => (self.position, d),
-            Some((radius, focus)) => {
+            None => PrimaryRay {
+                origin: self.position,
+                direction: d,
+            },
+            Some(ThinLens { radius, focus }) => {
                 // The pinhole ray's point at depth `focus` along the view axis stays sharp.
                 let focal_point = self.position + d * (focus / d.dot(self.forward));
-                let r = radius * lens_uv.0.sqrt();
-                let phi = std::f64::consts::TAU * lens_uv.1;
+                let r = radius * film.lens.x.sqrt();
+                let phi = std::f64::consts::TAU * film.lens.y;
                 let origin = self.position + r * (phi.cos() * self.right + phi.sin() * self.up);
-                (origin, (focal_point - origin).normalize())
+                PrimaryRay {
+                    origin,
+                    direction: (focal_point - origin).normalize(),
+                }
             }
         }
-    }
-
-    /// Origin and unit direction of the primary ray through `film`.
-    pub fn ray_through(&self, film: FilmPoint) -> (DVec3, DVec3) {
-        self.ray(film.px, film.py, film.u, film.v, film.lens)
     }
 
     /// The angle (rad) between the pinhole rays through the centre pixel and its right-hand

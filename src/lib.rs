@@ -49,6 +49,7 @@ pub mod receiver;
 pub mod render;
 pub mod report;
 pub mod resources;
+pub mod sample_stream;
 pub mod sampling;
 pub mod scene;
 pub mod settings;

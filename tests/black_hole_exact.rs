@@ -352,12 +352,16 @@ fn worst_table_error(
     tracer: &grinlight::transport::Tracer,
     what: &str,
 ) -> f64 {
+    use grinlight::camera::{FilmPoint, PrimaryRay};
     use grinlight::transport::{Event, Stats};
     let camera = tracer.scene.camera.as_ref().unwrap();
     let mut worst: f64 = 0.0;
     for py in 0..camera.height {
         for px in 0..camera.width {
-            let (origin, dir) = camera.ray(px, py, 0.5, 0.5, (0.5, 0.5));
+            let PrimaryRay {
+                origin,
+                direction: dir,
+            } = camera.ray(FilmPoint::pixel_centre(px, py));
             let traced =
                 match tracer.next_event(origin, dir, tracer.camera_medium, &mut Stats::default()) {
                     Event::Escaped { direction, .. } => Some(direction),

@@ -2,7 +2,7 @@
 //! noise of known variance, against a long reference render with both integrators, and as the
 //! stopping rule of `target_error`.
 
-use grinlight::film::{Film, Layer, ERROR};
+use grinlight::film::{Film, FilmError, Layer, ERROR};
 use grinlight::render::MIN_PASSES_FOR_ERROR;
 use grinlight::scene::{load_scene, Scene};
 use grinlight::settings::{IntegratorKind, Settings};
@@ -103,14 +103,38 @@ fn render((scene, settings): &(Scene, Settings)) -> Film {
     grinlight::render::render(scene, settings, &()).unwrap().0
 }
 
-/// Each render's 95 % t-intervals (its own standard error and the reference's, combined)
-/// against a path-traced reference of 1024 passes from another seed hold the reference in at
-/// least 90 % of pixel-channels, for the path tracer at 16 and 64 passes and for the photon
-/// mapper at 16 (measured: 0.936, 0.945, 0.945); and at 64 passes, where the variance
-/// estimates have 63 degrees of freedom, the estimated relative RMSE is within 15 % of the one
-/// measured against the reference, the reference's own taken out (measured 0.1004 against
-/// 0.0997). At 16 passes a few pixels on the light's edge dominate both (measured 0.197
-/// against 0.158), so only the coverage is asked there.
+/// How a film's error estimate `e` (over `passes` passes) meets a reference's `r`: the share
+/// of pixel-channels whose 95 % t-interval (its own standard error and the reference's,
+/// combined) holds the reference, and the relative RMSE measured against the reference with
+/// the reference's own noise taken out.
+fn against_reference(e: &FilmError, r: &FilmError, passes: u32, pixels: usize) -> (f64, f64) {
+    let t = t975(passes - 1);
+    let (mut covered, mut squares, mut reference_noise, mut mean) = (0, 0.0, 0.0, 0.0);
+    for i in 0..pixels {
+        let (m, v, rm, rv) = (e.mean(i), e.variance(i), r.mean(i), r.variance(i));
+        for c in 0..3 {
+            covered += usize::from((m[c] - rm[c]).abs() <= t * (v[c] + rv[c]).sqrt());
+            squares += (m[c] - rm[c]).powi(2);
+            reference_noise += rv[c];
+            mean += rm[c];
+        }
+    }
+    let values = (3 * pixels) as f64;
+    let measured = ((squares - reference_noise) / values).sqrt() / (mean / values);
+    (covered as f64 / values, measured)
+}
+
+/// Each render's 95 % t-intervals against a path-traced reference of 1024 passes from another
+/// seed hold the reference in at least 90 % of pixel-channels, for the path tracer at 16 and
+/// 64 passes and for the photon mapper at 16 (measured: 0.935, 0.942, 0.953). At 64 passes,
+/// where the variance estimates have 63 degrees of freedom, the root mean square over 40 seeds
+/// of the estimated relative RMSE is within 15 % of that of the one measured against the
+/// reference (measured: 1.037). One seed's measured error is dominated by a few pixels on the
+/// light's edge and scatters from 0.054 to 0.122 over the 40 seeds, skewed (a rare large
+/// value), while each film's estimate from its 64 passes scatters by a few per cent
+/// (0.091–0.097); so the comparison is of means over many seeds (over 8 its ratio read 1.18,
+/// over 40 more seeds 0.976). At 16 passes those few pixels dominate both, so only the
+/// coverage is asked.
 #[test]
 fn the_estimate_covers_the_error_against_a_long_reference() {
     let reference = render(&cornell(IntegratorKind::Path, 1024, 99));
@@ -122,33 +146,32 @@ fn the_estimate_covers_the_error_against_a_long_reference() {
         (IntegratorKind::PhotonMap, 16),
     ] {
         let film = render(&cornell(integrator, passes, 1));
-        let e = film.error().unwrap();
-        let t = t975(passes - 1);
-        let (mut covered, mut squares, mut reference_noise, mut mean) = (0, 0.0, 0.0, 0.0);
-        for i in 0..pixels {
-            let (m, v, rm, rv) = (e.mean(i), e.variance(i), r.mean(i), r.variance(i));
-            for c in 0..3 {
-                covered += usize::from((m[c] - rm[c]).abs() <= t * (v[c] + rv[c]).sqrt());
-                squares += (m[c] - rm[c]).powi(2);
-                reference_noise += rv[c];
-                mean += rm[c];
-            }
-        }
-        let values = (3 * pixels) as f64;
-        let coverage = covered as f64 / values;
+        let (coverage, _) = against_reference(&film.error().unwrap(), &r, passes, pixels);
+        println!("{integrator:?}, {passes} passes: coverage {coverage:.3}");
         assert!(
             coverage >= 0.90,
             "{integrator:?}, {passes} passes: 95 % intervals hold the reference in {coverage}"
         );
-        if passes == 64 {
-            let measured = ((squares - reference_noise) / values).sqrt() / (mean / values);
-            let estimated = e.relative_rmse();
-            assert!(
-                (estimated / measured - 1.0).abs() < 0.15,
-                "estimated {estimated} against {measured} measured"
-            );
-        }
     }
+    let (mut estimated, mut measured) = (0.0, 0.0);
+    let seeds = 1..=40;
+    for seed in seeds.clone() {
+        let film = render(&cornell(IntegratorKind::Path, 64, seed));
+        let e = film.error().unwrap();
+        let (_, m) = against_reference(&e, &r, 64, pixels);
+        println!(
+            "seed {seed}: estimated {:.4}, measured {m:.4}",
+            e.relative_rmse()
+        );
+        estimated += e.relative_rmse().powi(2);
+        measured += m * m;
+    }
+    let ratio = (estimated / measured).sqrt();
+    println!(
+        "64 passes over {} seeds: estimated / measured {ratio:.3}",
+        seeds.count()
+    );
+    assert!((ratio - 1.0).abs() < 0.15, "estimated / measured {ratio}");
 }
 
 /// `target_error` renders until the estimate reaches it (after at least

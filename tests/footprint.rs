@@ -41,7 +41,7 @@ fn measure(text: &str) -> Option<(f64, Way)> {
     let (scene, settings) = parse_scene(Path::new("footprint.toml"), text.to_string()).unwrap();
     let tracer = Tracer::new(&scene, &settings.trace);
     let camera = scene.camera.as_ref().unwrap();
-    let (origin, direction) = camera.ray_through(film);
+    let grinlight::camera::PrimaryRay { origin, direction } = camera.ray(film);
     let ray = CameraRay {
         origin,
         direction,
@@ -50,7 +50,7 @@ fn measure(text: &str) -> Option<(f64, Way)> {
         film,
     };
     let carried = Carried::on(&tracer);
-    let rng = rand_pcg::Pcg64Mcg::new(7);
+    let rng = grinlight::sample_stream::SampleStream::Independent(rand_pcg::Pcg64Mcg::new(7));
     let mut stats = Stats::default();
     let mut beams = Default::default();
     let c = camera_path(carried, ray, &mut beams, &mut rng.clone(), &mut stats);
@@ -79,13 +79,7 @@ fn assert_footprint(text: &str, bounces: u32, distance: f64, tolerance: f64) {
 
 /// The centre of the centre pixel: its ray runs along the axis.
 fn centre() -> FilmPoint {
-    FilmPoint {
-        px: RES / 2,
-        py: RES / 2,
-        u: 0.5,
-        v: 0.5,
-        lens: (0.5, 0.5),
-    }
+    FilmPoint::pixel_centre(RES / 2, RES / 2)
 }
 
 /// Seen straight on, a pixel spans its width times the distance: half of it at distance 5

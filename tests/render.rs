@@ -326,7 +326,7 @@ fn textures_put_their_texels_where_the_surface_coordinates_say() {
 /// independently a 16-sample pixel would scatter about it by √(R(1 − R)/16) ≈ 0.11; the
 /// first choices are stratified over the pixel, so the first split is exact and the later
 /// ones (each stratified alone, not jointly) scatter less. Bars: the 64 × 64 pixels' RMS
-/// deviation below 0.6 of the independent one (measured 0.48; independent choices would give
+/// deviation below 0.6 of the independent one (measured 0.46; independent choices would give
 /// 1 ± 0.02 of it), and their mean within three standard errors (RMS / 64) of 2F/(1 + F).
 #[test]
 fn a_pixel_splits_at_a_dielectric_in_proportion_to_its_reflectance() {

@@ -20,10 +20,11 @@
 //! ([`TableCheck::accepts`]), and traces every ray otherwise, saying so.
 
 use super::{CameraRay, Integrator, Sample};
+use crate::camera::{FilmPoint, PrimaryRay};
 use crate::color::Rgb;
 use crate::report::Report;
 use crate::transport::{Event, Stats, Tracer};
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 use std::f64::consts::PI;
 use std::time::Instant;
 
@@ -333,8 +334,16 @@ impl<'a> DeflectionTable<'a> {
                 // Pixel centres on a side × side lattice over the film, off its symmetry lines.
                 let px = ((k % side) as f64 + 0.37) / side as f64 * camera.width as f64;
                 let py = ((k / side) as f64 + 0.61) / side as f64 * camera.height as f64;
-                let (origin, dir) =
-                    camera.ray(px as u32, py as u32, px.fract(), py.fract(), (0.5, 0.5));
+                let PrimaryRay {
+                    origin,
+                    direction: dir,
+                } = camera.ray(FilmPoint {
+                    px: px as u32,
+                    py: py as u32,
+                    u: px.fract(),
+                    v: py.fract(),
+                    lens: DVec2::splat(0.5),
+                });
                 let table = self.escape_direction(dir);
                 let medium = self.tracer.camera_medium;
                 let traced =

@@ -11,12 +11,12 @@
 use super::beam::Beams;
 use super::direct::camera_path;
 use super::CameraRay;
-use crate::camera::Camera;
+use crate::camera::{Camera, PrimaryRay};
 use crate::ids::PrimId;
+use crate::sample_stream::SampleStream;
 use crate::transport::chain::Carried;
 use crate::transport::{Stats, SurfaceVertex, Vertex};
 use glam::DVec3;
-use rand_pcg::Pcg64Mcg;
 
 /// How many times wider than seen straight on at the same distance a footprint may be for it
 /// to be looked for ([`Eye::may_exceed`]): behind a lens or a convex mirror that widens the
@@ -87,14 +87,14 @@ impl<'a> Eye<'a> {
         &self,
         ray: &CameraRay,
         carried: Carried,
-        rng: &Pcg64Mcg,
+        rng: &SampleStream,
         v: &SurfaceVertex,
         way: Way,
         stats: &mut Stats,
     ) -> Option<f64> {
         let offset = |du: f64, dv: f64, stats: &mut Stats| -> Option<DVec3> {
             let film = ray.film.moved(du, dv);
-            let (origin, direction) = self.camera.ray_through(film);
+            let PrimaryRay { origin, direction } = self.camera.ray(film);
             let step = du.abs().max(dv.abs());
             if way.is_straight() {
                 // Where the neighbouring ray meets the tangent plane at `v`.

@@ -32,16 +32,16 @@ use crate::camera::FilmPoint;
 use crate::color::Rgb;
 use crate::film::Layer;
 use crate::report::Report;
+use crate::sample_stream::SampleStream;
 use crate::transport::chain::Choices;
 use crate::transport::Stats;
 use glam::DVec3;
-use rand_pcg::Pcg64Mcg;
 
 /// One camera sample being estimated: its random stream, the statistics it adds to, and its
 /// value for each of the integrator's layers `L` (zero on entry; in [`Layers::FILM`] order).
 pub struct Sample<'a, L> {
     /// The sample's random stream.
-    pub rng: &'a mut Pcg64Mcg,
+    pub rng: &'a mut SampleStream,
     /// Transport statistics.
     pub stats: &'a mut Stats,
     /// Values per layer.
@@ -51,7 +51,7 @@ pub struct Sample<'a, L> {
 
 impl<'a, L: Layers> Sample<'a, L> {
     /// A sample writing into `values` (one per layer of `L`).
-    pub fn new(rng: &'a mut Pcg64Mcg, stats: &'a mut Stats, values: &'a mut [Rgb]) -> Self {
+    pub fn new(rng: &'a mut SampleStream, stats: &'a mut Stats, values: &'a mut [Rgb]) -> Self {
         Self {
             rng,
             stats,

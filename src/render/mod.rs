@@ -8,31 +8,27 @@
 //! Also here: the receivers' measurement ([`measure`], [`Books`]: `render/measurement.rs`) and what a render will need of the
 //! machine ([`memory_needed`]).
 
-use crate::camera::FilmPoint;
+use crate::camera::PrimaryRay;
 use crate::color::Rgb;
 use crate::error::{Error, Result};
 use crate::film::{ErrorTotals, Film};
-use crate::integrator::{
-    CameraRay, DeflectionTable, FirstVertex, Integrator, PathTracer, PhotonMapper, Sample,
-};
+use crate::integrator::{CameraRay, DeflectionTable, Integrator, PathTracer, PhotonMapper, Sample};
 use crate::lights::LightSamples;
 pub use crate::report::Report;
-use crate::sampling::{in_stratum, stream, Given, Purpose, Strata, Strata2};
 use crate::scene::Scene;
 use crate::settings::IntegratorKind as Kind;
+use crate::settings::SamplerKind;
 use crate::settings::Settings;
-use crate::transport::chain::Choices;
-use crate::transport::lighting::LightNumbers;
-use crate::transport::BsdfNumbers;
 use crate::transport::{Stats, Tracer};
-use rand::Rng;
 use rayon::prelude::*;
 use std::time::Instant;
 
 mod measurement;
 mod progress;
+pub mod sampler;
 pub use measurement::{measure, trace_receivers, Books};
 pub use progress::{Observer, Progress};
+use sampler::{PixelPass, PixelSampler, SampleStart, Sampling, Sobol, Stratified};
 
 /// Tile edge in pixels.
 const TILE: usize = 16;
@@ -254,8 +250,9 @@ pub fn render_with<I: Integrator>(
         let t0 = Instant::now();
         let sampling = Sampling {
             seed: settings.seed,
-            spp: settings.spp,
+            spp: settings.spp.max(1),
             pass,
+            kind: settings.sampler,
         };
         let done = pool.install(|| {
             camera_pass(
@@ -449,15 +446,7 @@ fn camera_pass<I: Integrator>(
         .collect()
 }
 
-/// Which camera samples a pass takes.
-#[derive(Clone, Copy)]
-struct Sampling {
-    seed: u64,
-    spp: u32,
-    pass: u32,
-}
-
-/// One pass of camera samples over a tile, added to its film.
+/// One pass of camera samples over a tile, added to its film, with the pass's sampler.
 fn camera_tile<I: Integrator>(
     integrator: &I,
     prepared: &I::Pass,
@@ -466,58 +455,65 @@ fn camera_tile<I: Integrator>(
     tile: &mut Tile,
     stats: &mut Stats,
 ) {
+    match sampling.kind {
+        SamplerKind::Stratified => tile_with(
+            integrator,
+            prepared,
+            tracer,
+            Stratified::new(sampling),
+            tile,
+            stats,
+        ),
+        SamplerKind::Sobol => tile_with(
+            integrator,
+            prepared,
+            tracer,
+            Sobol::new(sampling),
+            tile,
+            stats,
+        ),
+    }
+}
+
+/// [`camera_tile`] with `sampler`.
+fn tile_with<I: Integrator>(
+    integrator: &I,
+    prepared: &I::Pass,
+    tracer: &Tracer,
+    mut sampler: impl PixelSampler,
+    tile: &mut Tile,
+    stats: &mut Stats,
+) {
     let camera = tracer
         .scene
         .camera
         .as_ref()
         .expect("render_with() checked the camera");
-    let (w, h) = (camera.width as u64, camera.height as u64);
-    let Sampling { seed, spp, pass } = sampling;
-    let spp = spp.max(1);
-    let strata = spp.isqrt();
+    let spp = sampler.samples();
     let layers = integrator.layers().len();
     let mut sum = vec![Rgb::ZERO; layers];
     let (tile, film) = (&mut tile.pass, &mut tile.film);
     let pixels = film.film.width * film.film.height;
     let mut record = PassRecord::new(layers, spp as u64, film.film.planes_held());
     let mut values = vec![Rgb::ZERO; layers];
-    let mut choices: [Strata; Choices::COUNT] = Default::default();
-    let mut first = FirstStrata::default();
     for ty in 0..film.film.height {
         for tx in 0..film.film.width {
-            let (x, y) = (film.x0 + tx, film.y0 + ty);
-            let pixel = y as u64 * w + x as u64;
             let mut state = I::Pixel::default();
             sum.fill(Rgb::ZERO);
-            let key = pass as u64 * w * h + pixel;
-            let mut strata_rng = stream(seed, Purpose::PixelStrata, key, 0);
-            for dimension in &mut choices {
-                dimension.draw(spp, &mut strata_rng);
-            }
-            first.draw(spp, &mut strata_rng);
+            sampler.start_pixel(PixelPass {
+                x: (film.x0 + tx) as u32,
+                y: (film.y0 + ty) as u32,
+                width: camera.width,
+                height: camera.height,
+            });
             for s in 0..spp {
-                let mut rng = stream(seed, Purpose::Camera, key, s as u64);
-                // Stratified over the pixel: sample s of the first n² lies in cell (s mod n,
-                // s div n) of an n × n grid, n = ⌊√spp⌋ (sharp edges such as an emitter's
-                // converge much faster); any further samples are uniform.
-                let (mut u, mut v) = (rng.gen::<f64>(), rng.gen::<f64>());
-                if s < strata * strata {
-                    u = in_stratum(s % strata, strata, u);
-                    v = in_stratum(s / strata, strata, v);
-                }
-                let film = FilmPoint {
-                    px: x as u32,
-                    py: y as u32,
-                    u,
-                    v,
-                    lens: (rng.gen(), rng.gen()),
-                };
-                let (origin, direction) = camera.ray_through(film);
-                let picks = Choices::new(
-                    choices
-                        .each_ref()
-                        .map(|d| d.get(s).unwrap_or_else(|| rng.gen())),
-                );
+                let SampleStart {
+                    film: film_point,
+                    choices,
+                    first,
+                    mut rng,
+                } = sampler.sample(s);
+                let PrimaryRay { origin, direction } = camera.ray(film_point);
                 stats.camera_rays += 1;
                 values.fill(Rgb::ZERO);
                 let mut sample = Sample::new(&mut rng, stats, &mut values);
@@ -527,9 +523,9 @@ fn camera_tile<I: Integrator>(
                     CameraRay {
                         origin,
                         direction,
-                        choices: picks,
-                        first: first.get(s),
-                        film,
+                        choices,
+                        first,
+                        film: film_point,
                     },
                     &mut sample,
                 );
@@ -543,40 +539,6 @@ fn camera_tile<I: Integrator>(
         }
     }
     *tile = Some(record);
-}
-
-/// A pixel's stratified dimensions of its samples' first scattering vertex ([`FirstVertex`]).
-#[derive(Default)]
-struct FirstStrata {
-    light: Strata2,
-    pick: Strata,
-    direction: Strata2,
-    choice: Strata,
-}
-
-impl FirstStrata {
-    /// Draws the numbers of `n` samples from `rng`.
-    fn draw(&mut self, n: u32, rng: &mut impl Rng) {
-        self.light.draw(n, rng);
-        self.pick.draw(n, rng);
-        self.direction.draw(n, rng);
-        self.choice.draw(n, rng);
-    }
-
-    /// Sample `s`'s numbers.
-    fn get(&self, s: u32) -> FirstVertex {
-        let one = |strata: &Strata| Given(strata.get(s).map(|u| [u]));
-        FirstVertex {
-            light: LightNumbers {
-                uv: self.light.get(s),
-                pick: one(&self.pick),
-            },
-            bsdf: BsdfNumbers {
-                direction: self.direction.get(s),
-                choice: one(&self.choice),
-            },
-        }
-    }
 }
 
 /// Bytes a render of `scene` needs at its peak, estimated from above for typical scenes: the

@@ -6,7 +6,7 @@
 //! with the same words wherever it is given: only the place named before them differs
 //! (`file:line:col: [render]: key `spp``, `--spp`, `spp`).
 
-use super::{IntegratorKind, Settings};
+use super::{IntegratorKind, SamplerKind, Settings};
 use crate::camera::Camera;
 use crate::error::{number, MAX_MAGNITUDE};
 
@@ -335,6 +335,17 @@ pub const INTEGRATOR: Key = Key {
         set: |t, i| t.settings.integrator = IntegratorKind::ALL[i],
     },
 };
+/// Where camera samples' numbers come from.
+pub const SAMPLER: Key = Key {
+    name: "sampler",
+    table: Table::Render,
+    default: "sobol",
+    doc: "Where camera samples' random numbers come from: sobol (Owen-scrambled Sobol points: every dimension stratified over a pixel's samples of a pass) or stratified (independent numbers; the film point and the first vertex's numbers stratified over a pass's samples)",
+    kind: Kind::Choice {
+        names: &SamplerKind::NAMES,
+        set: |t, i| t.settings.sampler = SamplerKind::ALL[i],
+    },
+};
 /// Whether a deflection table may stand in for traced camera rays.
 pub const DEFLECTION_TABLE: Key = Key {
     name: "deflection_table",
@@ -551,8 +562,9 @@ pub const HEIGHT: Key = Key {
 };
 
 /// Every setting of the table, in the order help and documentation list them.
-pub const KEYS: [&Key; 19] = [
+pub const KEYS: [&Key; 20] = [
     &INTEGRATOR,
+    &SAMPLER,
     &DEFLECTION_TABLE,
     &SPP,
     &SEED,

@@ -37,6 +37,8 @@ pub struct Settings {
     pub target_error: Option<f64>,
     /// How the camera's view is estimated.
     pub integrator: IntegratorKind,
+    /// Where camera samples' random numbers come from.
+    pub sampler: SamplerKind,
     /// Let the photon mapper's place be taken by a deflection table where one applies
     /// ([`crate::integrator::DeflectionTable`]); false traces every camera ray.
     pub deflection_table: bool,
@@ -105,6 +107,7 @@ impl Default for Settings {
             time_budget: None,
             target_error: None,
             integrator: IntegratorKind::PhotonMap,
+            sampler: SamplerKind::default(),
             deflection_table: true,
             trace: TraceSettings::default(),
             photons: PhotonSettings::default(),
@@ -144,6 +147,35 @@ impl Default for OutputSettings {
             path: None,
             png: true,
             exposure: 1.0,
+        }
+    }
+}
+
+/// Where a camera sample's random numbers come from (`[render] sampler`; see
+/// [`crate::render::sampler`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub enum SamplerKind {
+    /// Independent numbers, with the film point and the first vertex's numbers stratified
+    /// over the pixel's samples of a pass.
+    Stratified,
+    /// Owen-scrambled Sobol points, padded in sets of four dimensions, over a pixel's samples
+    /// of a pass (each pass scrambled anew).
+    #[default]
+    Sobol,
+}
+
+impl SamplerKind {
+    /// Every sampler, in the order its names are listed.
+    pub const ALL: [SamplerKind; 2] = [SamplerKind::Sobol, SamplerKind::Stratified];
+
+    /// Every sampler's name, in the order of [`SamplerKind::ALL`].
+    pub const NAMES: [&'static str; 2] = [Self::ALL[0].name(), Self::ALL[1].name()];
+
+    /// Its name in a scene file, on the command line and in Python.
+    pub const fn name(self) -> &'static str {
+        match self {
+            SamplerKind::Stratified => "stratified",
+            SamplerKind::Sobol => "sobol",
         }
     }
 }

@@ -27,7 +27,7 @@ use crate::error::{Error, Result};
 use crate::film::Film;
 use crate::render::Books;
 use crate::scene::Scene;
-use crate::settings::{IntegratorKind, PhotonSettings, Settings, TraceSettings};
+use crate::settings::{IntegratorKind, PhotonSettings, SamplerKind, Settings, TraceSettings};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
@@ -97,6 +97,8 @@ pub struct Shaping {
     pub spp: u32,
     /// The integrator.
     pub integrator: IntegratorKind,
+    /// Where camera samples' numbers come from.
+    pub sampler: SamplerKind,
     /// Whether a deflection table may stand in for traced camera rays.
     pub deflection_table: bool,
     /// How rays travel.
@@ -120,6 +122,7 @@ impl Shaping {
         differ("seed", &self.seed, &other.seed)
             .or_else(|| differ("spp", &self.spp, &other.spp))
             .or_else(|| differ("integrator", &self.integrator, &other.integrator))
+            .or_else(|| differ("sampler", &self.sampler, &other.sampler))
             .or_else(|| {
                 differ(
                     "deflection_table",
@@ -168,6 +171,7 @@ impl Header {
             settings: Shaping {
                 seed: settings.seed,
                 spp: settings.spp,
+                sampler: settings.sampler,
                 integrator: settings.integrator,
                 deflection_table: settings.deflection_table,
                 trace: settings.trace,

@@ -1,6 +1,6 @@
 //! `[camera]`: the view. Every key's unit and default is in `docs/scene-format.md`.
 
-use crate::camera::Camera;
+use crate::camera::{Camera, ThinLens};
 use crate::error::Result;
 use crate::scene::table::TableReader;
 use crate::settings;
@@ -43,7 +43,10 @@ pub fn read_camera(t: &mut TableReader) -> Result<Camera> {
     t.check("aperture_radius", aperture >= 0.0, "must be ≥ 0")?;
     if aperture > 0.0 {
         let focus = t.positive("focus_distance")?;
-        camera.lens = Some((aperture, focus));
+        camera.lens = Some(ThinLens {
+            radius: aperture,
+            focus,
+        });
     }
     Ok(camera)
 }
