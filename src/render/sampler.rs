@@ -47,6 +47,17 @@ impl PixelPass {
         u64::from(self.y) * u64::from(self.width) + u64::from(self.x)
     }
 
+    /// The point (`u`, `v`) of the pixel, through the lens at `lens`.
+    fn film_point(self, u: f64, v: f64, lens: DVec2) -> FilmPoint {
+        FilmPoint {
+            px: self.x,
+            py: self.y,
+            u,
+            v,
+            lens,
+        }
+    }
+
     /// The pixel's key in `pass`: unique over every pixel of every pass.
     fn key(self, pass: u32) -> u64 {
         u64::from(pass) * u64::from(self.width) * u64::from(self.height) + self.index()
@@ -148,13 +159,7 @@ impl PixelSampler for Stratified {
         );
         let one = |strata: &Strata| Given(strata.get(s).map(|u| [u]));
         SampleStart {
-            film: FilmPoint {
-                px: pixel.x,
-                py: pixel.y,
-                u,
-                v,
-                lens,
-            },
+            film: pixel.film_point(u, v, lens),
             choices,
             first: FirstVertex {
                 light: LightNumbers {
@@ -219,13 +224,7 @@ impl PixelSampler for Sobol {
         let choice = Given(Some([rng.gen()]));
         let choices = Choices::new(std::array::from_fn(|_| rng.gen()));
         SampleStart {
-            film: FilmPoint {
-                px: pixel.x,
-                py: pixel.y,
-                u,
-                v,
-                lens,
-            },
+            film: pixel.film_point(u, v, lens),
             choices,
             first: FirstVertex {
                 light: LightNumbers { uv: light, pick },
