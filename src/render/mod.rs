@@ -17,7 +17,6 @@ use crate::lights::LightSamples;
 pub use crate::report::Report;
 use crate::scene::Scene;
 use crate::settings::IntegratorKind as Kind;
-use crate::settings::SamplerKind;
 use crate::settings::Settings;
 use crate::transport::{Stats, Tracer};
 use rayon::prelude::*;
@@ -28,7 +27,7 @@ mod progress;
 pub mod sampler;
 pub use measurement::{measure, trace_receivers, Books};
 pub use progress::{Observer, Progress};
-use sampler::{PixelPass, PixelSampler, SampleStart, Sampling, Sobol, Stratified};
+use sampler::{PixelPass, SampleStart, Sampling};
 
 /// Tile edge in pixels.
 const TILE: usize = 16;
@@ -455,35 +454,7 @@ fn camera_tile<I: Integrator>(
     tile: &mut Tile,
     stats: &mut Stats,
 ) {
-    match sampling.kind {
-        SamplerKind::Stratified => tile_with(
-            integrator,
-            prepared,
-            tracer,
-            Stratified::new(sampling),
-            tile,
-            stats,
-        ),
-        SamplerKind::Sobol => tile_with(
-            integrator,
-            prepared,
-            tracer,
-            Sobol::new(sampling),
-            tile,
-            stats,
-        ),
-    }
-}
-
-/// [`camera_tile`] with `sampler`.
-fn tile_with<I: Integrator>(
-    integrator: &I,
-    prepared: &I::Pass,
-    tracer: &Tracer,
-    mut sampler: impl PixelSampler,
-    tile: &mut Tile,
-    stats: &mut Stats,
-) {
+    let mut sampler = sampling.sampler();
     let camera = tracer
         .scene
         .camera

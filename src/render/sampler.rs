@@ -28,6 +28,16 @@ pub struct Sampling {
     pub kind: SamplerKind,
 }
 
+impl Sampling {
+    /// The pass's sampler, of its kind.
+    pub fn sampler(self) -> Box<dyn PixelSampler> {
+        match self.kind {
+            SamplerKind::Stratified => Box::new(Stratified::new(self)),
+            SamplerKind::Sobol => Box::new(Sobol::new(self)),
+        }
+    }
+}
+
 /// A pixel of the image in one pass.
 #[derive(Clone, Copy, Debug)]
 pub struct PixelPass {
@@ -239,14 +249,6 @@ impl PixelSampler for Sobol {
 mod tests {
     use super::*;
 
-    /// The sampler of `kind` for a pass.
-    fn sampler(kind: SamplerKind, sampling: Sampling) -> Box<dyn PixelSampler> {
-        match kind {
-            SamplerKind::Stratified => Box::new(Stratified::new(sampling)),
-            SamplerKind::Sobol => Box::new(Sobol::new(sampling)),
-        }
-    }
-
     /// The film points' horizontal offsets of a pixel's samples over `passes` passes of `spp`.
     fn film_u(kind: SamplerKind, passes: u32, spp: u32) -> Vec<f64> {
         let pixel = PixelPass {
@@ -263,7 +265,7 @@ mod tests {
                     pass,
                     kind,
                 };
-                let mut sampler = sampler(kind, sampling);
+                let mut sampler = sampling.sampler();
                 sampler.start_pixel(pixel);
                 (0..spp)
                     .map(move |s| sampler.sample(s).film.u)
@@ -303,7 +305,7 @@ mod tests {
                 pass: 2,
                 kind,
             };
-            let mut a = sampler(kind, sampling);
+            let mut a = sampling.sampler();
             let pixel = PixelPass {
                 x: 1,
                 y: 2,

@@ -140,9 +140,9 @@ pub fn read_profile(t: &mut TableReader) -> Result<Profile> {
         "linear" => {
             let n0 = t.dispersion("n0")?;
             let (gradient, origin) = (t.vec3("gradient")?, t.vec3_or("origin", DVec3::ZERO)?);
-            by_wavelength(vec![n0], move |v| {
+            by_wavelength([n0], move |[n0]| {
                 Parametric::Linear(LinearMedium {
-                    n0: v[0],
+                    n0,
                     gradient,
                     origin,
                 })
@@ -151,9 +151,9 @@ pub fn read_profile(t: &mut TableReader) -> Result<Profile> {
         "exponential" => {
             let n0 = t.dispersion("n0")?;
             let (gradient, origin) = (t.vec3("gradient")?, t.vec3_or("origin", DVec3::ZERO)?);
-            by_wavelength(vec![n0], move |v| {
+            by_wavelength([n0], move |[n0]| {
                 Parametric::Exponential(ExponentialMedium {
-                    n0: v[0],
+                    n0,
                     gradient,
                     origin,
                 })
@@ -163,10 +163,10 @@ pub fn read_profile(t: &mut TableReader) -> Result<Profile> {
             let n0 = t.dispersion("n0")?;
             let (shape, is_g) = read_parabolic_shape(t)?;
             let axis = fiber_axis(t)?;
-            by_wavelength(vec![n0, shape], move |v| {
+            by_wavelength([n0, shape], move |[n0, shape]| {
                 Parametric::Parabolic(ParabolicFiber {
-                    n0: v[0],
-                    a: if is_g { v[1] * v[1] } else { v[1] },
+                    n0,
+                    a: if is_g { shape * shape } else { shape },
                     axis,
                 })
             })
@@ -175,12 +175,8 @@ pub fn read_profile(t: &mut TableReader) -> Result<Profile> {
             let n0 = t.dispersion("n0")?;
             let g = t.dispersion("g")?;
             let axis = fiber_axis(t)?;
-            by_wavelength(vec![n0, g], move |v| {
-                Parametric::Sech(SechFiber {
-                    n0: v[0],
-                    g: v[1],
-                    axis,
-                })
+            by_wavelength([n0, g], move |[n0, g]| {
+                Parametric::Sech(SechFiber { n0, g, axis })
             })
         }
         // The two constant-curvature media: n0 / (1 ± (r/R)²).
@@ -189,8 +185,7 @@ pub fn read_profile(t: &mut TableReader) -> Result<Profile> {
             let center = t.vec3_or("center", DVec3::ZERO)?;
             let radius = t.positive("radius")?;
             let hyperbolic = profile == "hyperbolic";
-            by_wavelength(vec![n0], move |v| {
-                let n0 = v[0];
+            by_wavelength([n0], move |[n0]| {
                 if hyperbolic {
                     Parametric::Hyperbolic(HyperbolicMedium { n0, center, radius })
                 } else {
@@ -210,27 +205,14 @@ pub fn read_profile(t: &mut TableReader) -> Result<Profile> {
     })
 }
 
-/// The most constants a [`Parametric`] profile has that may depend on wavelength.
-const MOST_CONSTANTS: usize = 2;
-
-/// The medium `make` builds from `values` (at most [`MOST_CONSTANTS`]) evaluated at each
-/// wavelength: fixed (built once at [`LAMBDA_D`]) when none of them depends on wavelength.
-fn by_wavelength(
-    values: Vec<Dispersion>,
-    make: impl Fn(&[f64]) -> Parametric + Send + Sync + 'static,
+/// The medium `make` builds from `values` evaluated at each wavelength: fixed (built once at
+/// [`LAMBDA_D`]) when none of them depends on wavelength.
+fn by_wavelength<const N: usize>(
+    values: [Dispersion; N],
+    make: impl Fn([f64; N]) -> Parametric + Send + Sync + 'static,
 ) -> Profile {
-    assert!(
-        values.len() <= MOST_CONSTANTS,
-        "a profile has at most two constants"
-    );
     let dispersive = values.iter().any(Dispersion::is_dispersive);
-    let at = move |nm: f64| {
-        let mut at_nm = [0.0; MOST_CONSTANTS];
-        for (v, d) in at_nm.iter_mut().zip(&values) {
-            *v = d.at(nm);
-        }
-        make(&at_nm[..values.len()])
-    };
+    let at = move |nm: f64| make(values.each_ref().map(|d| d.at(nm)));
     if dispersive {
         Profile::Dispersive(Box::new(at))
     } else {
@@ -240,7 +222,7 @@ fn by_wavelength(
 
 /// A uniform medium of index `n` (a dielectric's `ior`, or `profile = "uniform"`).
 pub fn uniform(n: Dispersion) -> Profile {
-    by_wavelength(vec![n], |v| Parametric::Uniform(UniformMedium { n: v[0] }))
+    by_wavelength([n], |[n]| Parametric::Uniform(UniformMedium { n }))
 }
 
 /// The parabolic profile's gradient constant: `a` (1/length²), or `g` (1/length) with
