@@ -405,14 +405,8 @@ impl<'a> Sources<'a> {
             return e;
         }
         let from = e.origin - e.direction * back;
-        let absorbed = tracer
-            .participating(m)
-            .optical_depth(from, e.direction, back);
-        let scattered = tracer.scattering(m).map_or(Rgb::ONE, |sc| {
-            sc.transmittance(sc.column(from, e.direction, back))
-        });
         Emission {
-            power: e.power * scattered * (-absorbed).exp(),
+            power: e.power * tracer.transmittance(Some(m), from, e.direction, back),
             ..e
         }
     }

@@ -66,9 +66,8 @@ fn straight_light(
     }
     let medium = vertex.medium();
     let kept = visibility::transmittance(tracer, origin, medium, inc.wi, reach);
-    let unscattered = visibility::unscattered(tracer, origin, medium, inc.wi, reach);
     let weight = power_heuristic(inc.pdf * chosen, vertex.pdf(inc.wi));
-    f * tracer.radiance(inc.irradiance) * (cos * weight * kept) * unscattered
+    f * tracer.radiance(inc.irradiance) * (cos * weight) * kept
 }
 
 /// A point, spot, LED or parallel light at a scattering vertex in gradient medium `m`,

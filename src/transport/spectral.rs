@@ -184,6 +184,27 @@ impl<'a> Tracer<'a> {
         })
     }
 
+    /// The fraction of light per channel that `medium` lets through along the straight piece
+    /// from `from` along unit `dir` over `length`, at the tracer's wavelength: what it neither
+    /// absorbs nor scatters out of the line, exp(−∫σa ds)·exp(−σs C) with C the scattering
+    /// column (1 in vacuum). Surfaces on the way are the caller's ([`super::visibility`]).
+    pub fn transmittance(
+        &self,
+        medium: Option<MediumId>,
+        from: DVec3,
+        dir: DVec3,
+        length: f64,
+    ) -> Rgb {
+        let Some(i) = medium else {
+            return Rgb::ONE;
+        };
+        let absorbed = (-self.participating(i).optical_depth(from, dir, length)).exp();
+        let unscattered = self.scattering(i).map_or(Rgb::ONE, |sc| {
+            sc.transmittance(sc.column(from, dir, length))
+        });
+        unscattered * absorbed
+    }
+
     /// The refractive index at `p` in `medium` (None: vacuum, n = 1); None where the medium
     /// captures rays (a horizon).
     pub fn index(&self, medium: Option<MediumId>, p: DVec3) -> Option<f64> {

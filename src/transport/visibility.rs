@@ -10,48 +10,36 @@ use crate::math::Bounds3;
 use glam::DVec3;
 use std::cell::OnceCell;
 
-/// The fraction of light kept along the straight segment from `from` along unit `dir` over
-/// `reach` (∞: to the world sphere) in `medium`: 0 if a surface other than a detector lies
-/// on it, else exp(−∫σa ds). (What a scattering medium scatters out of it: [`unscattered`].)
+/// The fraction of light per channel kept along the straight segment from `from` along
+/// unit `dir` over `reach` (∞: to the world sphere) in `medium`: 0 if a surface other than a
+/// detector lies on it ([`blocked`]), else what the medium lets through
+/// ([`Tracer::transmittance`]: neither absorbed nor scattered out of the line).
 pub fn transmittance(
     tracer: &Tracer,
     from: DVec3,
     medium: Option<MediumId>,
     dir: DVec3,
     reach: f64,
-) -> f64 {
-    let scene = tracer.scene;
-    if scene.accel.blocked(from, dir, 0.0, reach, |prim| {
-        scene.surface(prim).is_detector()
-    }) {
-        return 0.0;
-    }
-    match medium.and_then(|m| tracer.participating(m).absorption.as_ref()) {
-        Some(absorption) => {
-            let length = reach.min(tracer.world.exit_distance(from, dir));
-            (-absorption.optical_depth(from, dir, length)).exp()
-        }
-        None => 1.0,
-    }
-}
-
-/// The fraction exp(−σs C) of light per channel that a scattering `medium` leaves unscattered
-/// along the straight segment of [`transmittance`], C its column (its length in a homogeneous
-/// medium; 1 in a medium that does not scatter).
-pub fn unscattered(
-    tracer: &Tracer,
-    from: DVec3,
-    medium: Option<MediumId>,
-    dir: DVec3,
-    reach: f64,
 ) -> Rgb {
-    match medium.and_then(|m| tracer.scattering(m)) {
-        Some(sc) => {
+    if blocked(tracer, from, dir, reach) {
+        return Rgb::ZERO;
+    }
+    match medium {
+        Some(_) => {
             let length = reach.min(tracer.world.exit_distance(from, dir));
-            sc.transmittance(sc.column(from, dir, length))
+            tracer.transmittance(medium, from, dir, length)
         }
         None => Rgb::ONE,
     }
+}
+
+/// Whether a surface other than a detector lies on the straight segment from `from` along
+/// unit `dir` over `reach`.
+pub fn blocked(tracer: &Tracer, from: DVec3, dir: DVec3, reach: f64) -> bool {
+    let scene = tracer.scene;
+    scene.accel.blocked(from, dir, 0.0, reach, |prim| {
+        scene.surface(prim).is_detector()
+    })
 }
 
 /// The surfaces that may stand between a point on a surface and the photons a density
@@ -145,7 +133,7 @@ impl<'a> Occluders<'a> {
                     .intersect_ray(origin, dir, 0.0, reach)
                     .is_some()
             }),
-            false => transmittance(self.tracer, origin, None, dir, reach) == 0.0,
+            false => blocked(self.tracer, origin, dir, reach),
         }
     }
 }
