@@ -6,7 +6,7 @@ mod coaxial;
 
 use coaxial::CoaxialStack;
 
-use crate::bvh::build_bvh;
+use crate::bvh::{build_bvh, Tuning};
 use crate::curve::{ArcHull, Path};
 use crate::ids::PrimId;
 use crate::math::Bounds3;
@@ -47,6 +47,7 @@ impl Accel {
             in_bvh
                 .par_iter()
                 .map(|&i| padded(primitives[i.index()].bounds())),
+            Tuning::Speed,
         );
         Self {
             primitives,

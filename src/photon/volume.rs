@@ -11,7 +11,7 @@
 //! in-scattered along the whole stretch, with no distance drawn.
 
 use super::Photon;
-use crate::bvh::build_bvh;
+use crate::bvh::{build_bvh, Tuning};
 use crate::math::Bounds3;
 use crate::math::Segment;
 use crate::shapes::padded_box;
@@ -90,10 +90,13 @@ impl VolumeMap {
                 kth * shrink
             })
             .collect();
-        let bvh = build_bvh(photons.par_iter().zip(&r2).map(|(p, &r2)| {
-            let r = DVec3::splat(r2.sqrt());
-            padded_box(Bounds3::new(p.position - r, p.position + r))
-        }));
+        let bvh = build_bvh(
+            photons.par_iter().zip(&r2).map(|(p, &r2)| {
+                let r = DVec3::splat(r2.sqrt());
+                padded_box(Bounds3::new(p.position - r, p.position + r))
+            }),
+            Tuning::Memory,
+        );
         let order = &bvh.primitive_indices;
         let mean_radius = r2.iter().map(|r2| r2.sqrt()).sum::<f64>() / r2.len() as f64;
         Self {

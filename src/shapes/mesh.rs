@@ -5,7 +5,7 @@
 
 use super::hit::{padded_box, Hit, SegmentHits};
 use super::triangle::Triangle;
-use crate::bvh::build_bvh;
+use crate::bvh::{build_bvh, Tuning};
 use crate::curve::{ArcHull, Path};
 use crate::math::Ball;
 use crate::math::Bounds3;
@@ -92,6 +92,7 @@ impl TriangleMesh {
             triangles
                 .par_iter()
                 .map(|t| padded_box(Bounds3::of_points(t.iter().map(|&i| vertex(i))))),
+            Tuning::Memory,
         );
         let bounds = Bounds3::of_points(vertices.iter().map(|v| DVec3::from(v.map(f64::from))));
         let centre = bounds.center();
