@@ -182,6 +182,42 @@ fn local(n: DVec3, v: DVec3) -> (Frame, DVec3) {
     (f, l)
 }
 
+/// The two directions of an evaluation about the unit normal: their cosines, and their
+/// local coordinates ([`local`]'s frame) made only for a lobe that reads more than the
+/// cosines (a Lambertian surface does not).
+struct Pair {
+    n: DVec3,
+    wo: DVec3,
+    wi: DVec3,
+    /// ωo · n, ωi · n: the local coordinates' z.
+    cos_o: f64,
+    cos_i: f64,
+}
+
+impl Pair {
+    fn of(n: DVec3, wo: DVec3, wi: DVec3) -> Self {
+        let n = n.normalize();
+        Self {
+            n,
+            wo,
+            wi,
+            cos_o: wo.dot(n),
+            cos_i: wi.dot(n),
+        }
+    }
+
+    /// Both directions on the normal's side.
+    fn above(&self) -> bool {
+        self.cos_o > 0.0 && self.cos_i > 0.0
+    }
+
+    /// ωo and ωi in the local frame (z along n).
+    fn local(&self) -> (DVec3, DVec3) {
+        let frame = Frame::new(self.n);
+        (frame.to_local(self.wo), frame.to_local(self.wi))
+    }
+}
+
 /// A sample drawn by `sample` in the local frame of `n` from ωo = `wo` there (None where
 /// `wo` is not above the surface), its direction turned to world coordinates; None when its
 /// weight or pdf is not finite and positive.
@@ -330,9 +366,8 @@ impl Bsdf<'_> {
 
     /// f(wo, wi) (1/sr) of the non-delta lobes: 0 for directions only a delta reaches.
     pub fn eval(&self, wo: DVec3, wi: DVec3, n: DVec3) -> Rgb {
-        let (frame, o) = local(n, wo);
-        let i = frame.to_local(wi);
-        let above = o.z > 0.0 && i.z > 0.0;
+        let pair = Pair::of(n, wo, wi);
+        let above = pair.above();
         match *self {
             Bsdf::Conductor { ggx: None, .. } | Bsdf::Dielectric { ggx: None, .. } => Rgb::ZERO,
             Bsdf::Lambert { albedo } => match above {
@@ -344,6 +379,7 @@ impl Bsdf<'_> {
                 ggx: Some(g),
             } => match above {
                 true => {
+                    let (o, i) = pair.local();
                     let m = (i + o).normalize();
                     fresnel.at(o.dot(m)) * (g.d(m) * g.g2(i, o) / (4.0 * i.z * o.z))
                 }
@@ -353,12 +389,18 @@ impl Bsdf<'_> {
                 n1,
                 n2,
                 ggx: Some(g),
-            } => match o.z > 0.0 && i.z != 0.0 {
-                true => Rgb::splat(rough_dielectric_f(&g, n1, n2, o, i)),
+            } => match pair.cos_o > 0.0 && pair.cos_i != 0.0 {
+                true => {
+                    let (o, i) = pair.local();
+                    Rgb::splat(rough_dielectric_f(&g, n1, n2, o, i))
+                }
                 false => Rgb::ZERO,
             },
             Bsdf::Plastic { albedo, coat } => match above {
-                true => coat.f(o, i, albedo),
+                true => {
+                    let (o, i) = pair.local();
+                    coat.f(o, i, albedo)
+                }
                 false => Rgb::ZERO,
             },
         }
@@ -367,17 +409,17 @@ impl Bsdf<'_> {
     /// The solid-angle pdf with which [`Bsdf::sample`] draws `wi` (0 for directions only a
     /// delta lobe reaches).
     pub fn pdf(&self, wo: DVec3, wi: DVec3, n: DVec3) -> f64 {
-        let (frame, o) = local(n, wo);
-        let i = frame.to_local(wi);
-        let above = o.z > 0.0 && i.z > 0.0;
+        let pair = Pair::of(n, wo, wi);
+        let above = pair.above();
         match *self {
             Bsdf::Conductor { ggx: None, .. } | Bsdf::Dielectric { ggx: None, .. } => 0.0,
-            Bsdf::Lambert { .. } => match o.z > 0.0 {
-                true => i.z.max(0.0) * FRAC_1_PI,
+            Bsdf::Lambert { .. } => match pair.cos_o > 0.0 {
+                true => pair.cos_i.max(0.0) * FRAC_1_PI,
                 false => 0.0,
             },
             Bsdf::Conductor { ggx: Some(g), .. } => match above {
                 true => {
+                    let (o, i) = pair.local();
                     let m = (i + o).normalize();
                     g.visible_d(o, m) / (4.0 * o.dot(m))
                 }
@@ -387,12 +429,18 @@ impl Bsdf<'_> {
                 n1,
                 n2,
                 ggx: Some(g),
-            } => match o.z > 0.0 && i.z != 0.0 {
-                true => rough_dielectric_pdf(&g, n1, n2, o, i),
+            } => match pair.cos_o > 0.0 && pair.cos_i != 0.0 {
+                true => {
+                    let (o, i) = pair.local();
+                    rough_dielectric_pdf(&g, n1, n2, o, i)
+                }
                 false => 0.0,
             },
             Bsdf::Plastic { albedo, coat } => match above {
-                true => coat.pdf(o, i, coat.specular_probability(o.z, albedo)),
+                true => {
+                    let (o, i) = pair.local();
+                    coat.pdf(o, i, coat.specular_probability(o.z, albedo))
+                }
                 false => 0.0,
             },
         }
