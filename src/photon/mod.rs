@@ -510,12 +510,12 @@ impl Photons {
                 Batch::Receivers if sources.spectral => launch.at_wavelength(spectrum, rng.gen()),
                 Batch::Receivers => launch.radiometric(spectrum),
                 // A shell photon in a medium whose σs depends on wavelength has its own.
-                _ if launch.hero.is_some() => launch,
-                _ if sources.dispersive => Launch {
+                Batch::Caustic | Batch::Global if launch.hero.is_some() => launch,
+                Batch::Caustic | Batch::Global if sources.dispersive => Launch {
                     hero: Some(launch.draw_wavelength(spectrum, rng.gen())),
                     ..launch
                 },
-                _ => launch,
+                Batch::Caustic | Batch::Global => launch,
             });
         (rng, launch)
     }
