@@ -83,8 +83,9 @@ impl Accel {
             Vec3A::from(o.as_vec3()),
             Vec3A::from(d.as_vec3()),
             0.0,
-            // A stack's hit bounds the search (rounded up, as below).
-            best.map_or(f32::INFINITY, |b| (b.hit.t as f32).next_up()),
+            // The search ends at t_max or a stack's hit (rounded up, as below): nodes beyond
+            // it are not visited (a free flight in fog ends long before the walls).
+            (best.map_or(t_max, |b| b.hit.t) as f32).next_up(),
         );
         let mut found = RayHit::none();
         self.bvh.ray_traverse(ray, &mut found, |_, i| {
