@@ -95,6 +95,41 @@ impl Moments {
     }
 }
 
+/// One photon's flux summed over its consecutive detections with the same key (a bin, or `()`
+/// for the whole receiver): a photon's crossings of one place are added before squaring.
+#[derive(Clone, Copy, Debug)]
+struct Run<K> {
+    photon: u64,
+    key: K,
+    flux: f64,
+}
+
+/// The run under way, of detections in photon order.
+#[derive(Debug)]
+struct Runs<K> {
+    current: Option<Run<K>>,
+}
+
+impl<K> Default for Runs<K> {
+    fn default() -> Self {
+        Self { current: None }
+    }
+}
+
+impl<K: PartialEq + Copy> Runs<K> {
+    /// Adds a detection of `flux` by `photon` at `key`; returns the run it ends (another
+    /// photon, or another key).
+    fn add(&mut self, photon: u64, key: K, flux: f64) -> Option<Run<K>> {
+        match &mut self.current {
+            Some(run) if run.photon == photon && run.key == key => {
+                run.flux += flux;
+                None
+            }
+            _ => self.current.replace(Run { photon, key, flux }),
+        }
+    }
+}
+
 /// What one receiver's crossings add up to, per bin (those crossed) and in all, and the same
 /// for each of its wavelength bands: exact sums, so tallies of disjoint sets of photons (other
 /// ranges, other machines) merge into bit for bit the tally of all of them.
@@ -121,36 +156,25 @@ impl Tally {
             *s as usize
         };
         let mut total = Moments::default();
-        let mut bin: Option<(u64, u32, f64)> = None;
-        let mut photon: Option<(u64, f64)> = None;
+        let (mut in_bin, mut in_receiver) = (Runs::default(), Runs::default());
         for d in detections {
             let i = at(d.bin, &mut crossed);
             crossed[i].1.sum.add(d.flux);
             total.sum.add(d.flux);
-            match &mut bin {
-                Some((p, b, x)) if *p == d.photon && *b == d.bin => *x += d.flux,
-                _ => {
-                    if let Some((_, b, x)) = bin.replace((d.photon, d.bin, d.flux)) {
-                        let j = at(b, &mut crossed);
-                        crossed[j].1.squares.add(x * x);
-                    }
-                }
+            if let Some(done) = in_bin.add(d.photon, d.bin, d.flux) {
+                let j = at(done.key, &mut crossed);
+                crossed[j].1.squares.add(done.flux * done.flux);
             }
-            match &mut photon {
-                Some((p, x)) if *p == d.photon => *x += d.flux,
-                _ => {
-                    if let Some((_, x)) = photon.replace((d.photon, d.flux)) {
-                        total.squares.add(x * x);
-                    }
-                }
+            if let Some(done) = in_receiver.add(d.photon, (), d.flux) {
+                total.squares.add(done.flux * done.flux);
             }
         }
-        if let Some((_, b, x)) = bin {
-            let j = at(b, &mut crossed);
-            crossed[j].1.squares.add(x * x);
+        if let Some(done) = in_bin.current {
+            let j = at(done.key, &mut crossed);
+            crossed[j].1.squares.add(done.flux * done.flux);
         }
-        if let Some((_, x)) = photon {
-            total.squares.add(x * x);
+        if let Some(done) = in_receiver.current {
+            total.squares.add(done.flux * done.flux);
         }
         Tally {
             bins: crossed.into_iter().collect(),
