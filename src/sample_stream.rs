@@ -108,7 +108,7 @@ impl SobolStream {
 /// Dimensions 0–3 of point `index` of the Sobol sequence scrambled and shuffled by `seed`, as
 /// 23-bit integers: exactly `sobol_burley::sample_4d(index, 0, seed)` times 2²³ (tested),
 /// computed from the crate's parts with the Sobol matrices' product read from a table
-/// ([`SOBOL_PIECES`]) instead of a loop over the index's bits (a quarter of the time).
+/// ([`SOBOL_PIECES`]) instead of a loop over the index's bits (19.2 ns a set against 44.7).
 fn first_dimensions(index: u32, seed: u32) -> [u32; 4] {
     use sobol_burley::parts::{hash, hash_int4, owen_scramble_int4_rev, owen_scramble_rev, Int4};
     // sample_4d's steps and constants for dimension set 0: the index shuffled by the seed ...
