@@ -233,6 +233,171 @@ fn bvh_equals_a_loop_over_all_primitives() {
     }
 }
 
+/// Straight rays through scenes of every size find what a loop over the primitives finds,
+/// nearest hit and any hit: one primitive (a tree of one leaf) to 600, 80 nested balls, the
+/// whole scene 30 000 units from the origin, and rays starting on a surface (where the next
+/// surface can be 1e-6 away).
+#[test]
+fn straight_rays_find_what_a_loop_finds_in_scenes_of_every_size() {
+    let mut rng = Pcg64Mcg::seed_from_u64(23);
+    let mut scenes: Vec<Vec<Primitive>> = [1, 2, 3, 9, 40, 600]
+        .into_iter()
+        .map(|n| {
+            let mut all = Vec::new();
+            while all.len() < n {
+                all.extend(primitives(&mut rng));
+            }
+            all.truncate(n);
+            all
+        })
+        .collect();
+    scenes.push(
+        (0..80)
+            .map(|i| {
+                let radius = 1.07f64.powi(i) * 0.01;
+                Primitive::Sphere {
+                    center: DVec3::new(radius, 0.0, 0.0),
+                    radius,
+                }
+            })
+            .collect(),
+    );
+    let far = DVec3::new(3e4, -1e4, 2e4);
+    scenes.push(
+        scenes[4]
+            .iter()
+            .map(|p| match p {
+                Primitive::Sphere { center, radius } => Primitive::Sphere {
+                    center: *center + far,
+                    radius: *radius,
+                },
+                _ => Primitive::Sphere {
+                    center: far + rv(&mut rng),
+                    radius: 0.3,
+                },
+            })
+            .collect(),
+    );
+    for (k, prims) in scenes.iter().enumerate() {
+        let accel = Accel::new(prims.clone());
+        let centre = match k {
+            7 => far,
+            _ => DVec3::ZERO,
+        };
+        let nearest = |f: &dyn Fn(&Primitive) -> Option<f64>| nearest_of(prims, f);
+        let (mut hits, mut near) = (0, 0);
+        for case in 0..2000 {
+            let mut o = centre + rv(&mut rng) * 2.0;
+            // Half the rays aimed into a primitive's box.
+            let d = match case % 4 < 2 {
+                true => rv(&mut rng).normalize(),
+                false => {
+                    let b = prims[rng.gen_range(0..prims.len())].bounds();
+                    let u = DVec3::new(rng.gen(), rng.gen(), rng.gen());
+                    (b.lo + (b.hi - b.lo) * u - o).normalize()
+                }
+            };
+            if case % 2 == 1 {
+                // From a surface: where a ray met one, leaving it in a new direction.
+                let e = rv(&mut rng).normalize();
+                match nearest(&|p| p.intersect_ray(o, e, 0.0, 10.0).map(|h| h.t)) {
+                    Some((_, t)) => o += e * t,
+                    None => continue,
+                }
+            }
+            let t_min = 1e-9;
+            let want = nearest(&|p| p.intersect_ray(o, d, t_min, 10.0).map(|h| h.t));
+            let got = accel
+                .intersect_ray(o, d, t_min, 10.0)
+                .map(|b| (b.prim.index(), b.hit.t));
+            assert_eq!(got, want, "scene {k}, case {case}");
+            assert_eq!(
+                accel.blocked(o, d, t_min, 10.0, |_| false),
+                want.is_some(),
+                "scene {k}, case {case}"
+            );
+            hits += usize::from(want.is_some());
+            near += usize::from(want.is_some_and(|(_, t)| t < 1e-3));
+        }
+        assert!(hits > 300, "scene {k}: {hits} hits");
+        if k >= 4 {
+            assert!(near > 0, "scene {k}: no hit nearer than 1e-3");
+        }
+    }
+}
+
+/// A ray that nearly parallels a wall's plane (its x component 1e-9) and starts just inside
+/// the wall's box along x (3e-6 from the padded face) meets the wall 100 units on. A box test
+/// taking 1/d_x as 1/1.2e-7 (a safe inverse's floor) has it leave the box's x slab after 25
+/// units, and would miss. The wall as a quad alone (a tree of one leaf), beside another, and
+/// as a mesh of two triangles (its own BVH).
+#[test]
+fn a_ray_nearly_parallel_to_a_box_face_still_enters_it() {
+    use grinlight::shapes::TriangleMesh;
+    let wall = |z: f64| {
+        Primitive::Quad(Quad {
+            origin: DVec3::new(0.0, 0.0, z),
+            e1: DVec3::X,
+            e2: DVec3::Y,
+        })
+    };
+    let corners = vec![
+        [0.0, 0.0, 100.0],
+        [1.0, 0.0, 100.0],
+        [1.0, 1.0, 100.0],
+        [0.0, 1.0, 100.0],
+    ];
+    let mesh = TriangleMesh::new(corners, vec![[0, 1, 2], [0, 2, 3]], None, None).unwrap();
+    let mesh = Primitive::Mesh(std::sync::Arc::new(mesh));
+    for walls in [
+        vec![wall(100.0)],
+        vec![wall(100.0), wall(-5.0)],
+        vec![mesh, wall(-5.0)],
+    ] {
+        let accel = Accel::new(walls);
+        let o = DVec3::new(1.0 - 1e-6, 0.5, 0.0);
+        let d = DVec3::new(1e-9, 0.0, 1.0).normalize();
+        let hit = accel.intersect_ray(o, d, 0.0, 1e3).expect("the far wall");
+        assert_eq!(hit.prim.index(), 0);
+        assert!((hit.hit.t - 100.0).abs() < 1e-9, "{:?}", hit.hit);
+        assert!(accel.blocked(o, d, 0.0, 1e3, |_| false));
+    }
+}
+
+/// In a room's corner, a ray leaving the floor 1e-6 from the wall, towards it, meets the
+/// wall 1.4e-6 on: the traversal enters boxes at any distance (obvhs's wide BVH enters none
+/// nearer than 1e-4, and would let the ray through the wall). Rooms of size 1 and 1000,
+/// straight and shadow rays.
+#[test]
+fn a_ray_leaving_a_floor_meets_the_wall_beside_it() {
+    for size in [1.0, 1000.0] {
+        let quad = |origin: DVec3, e1: DVec3, e2: DVec3| {
+            Primitive::Quad(Quad {
+                origin: origin * size,
+                e1: e1 * size,
+                e2: e2 * size,
+            })
+        };
+        let room = vec![
+            quad(DVec3::ZERO, DVec3::X, DVec3::Y),
+            quad(DVec3::ZERO, DVec3::Y, DVec3::Z),
+            quad(DVec3::X, DVec3::Y, DVec3::Z),
+            quad(DVec3::ZERO, DVec3::X, DVec3::Z),
+            quad(DVec3::Y, DVec3::X, DVec3::Z),
+            quad(DVec3::Z, DVec3::X, DVec3::Y),
+        ];
+        let accel = Accel::new(room);
+        let o = DVec3::new(1e-6, 0.5 * size, 0.0);
+        let d = DVec3::new(-1.0, 0.0, 1.0).normalize();
+        let hit = accel
+            .intersect_ray(o, d, 1e-9, 10.0 * size)
+            .expect("the wall");
+        assert_eq!(hit.prim.index(), 1, "size {size}: {hit:?}");
+        assert!((hit.hit.t - 2f64.sqrt() * 1e-6).abs() < 1e-15, "{hit:?}");
+        assert!(accel.blocked(o, d, 1e-9, 10.0 * size, |_| false));
+    }
+}
+
 /// A mesh of 12 000 small triangles scattered through a cube (its BVH's top built first,
 /// then its subtrees in parallel) finds the nearest hit a loop over its triangles finds, one
 /// `Primitive::triangle` each: straight rays the same distance bit for bit (the same f64

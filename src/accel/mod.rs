@@ -10,10 +10,10 @@ use crate::bvh::{build_bvh, Tuning};
 use crate::curve::{ArcHull, Path};
 use crate::ids::PrimId;
 use crate::math::Bounds3;
-use crate::shapes::{padded_box as padded, Hit, Primitive, SegmentHits};
-use glam::{DVec3, Vec3A};
+use crate::shapes::{padded_box as padded, Hit, Primitive, SegmentHits, TraversalRay};
+use glam::DVec3;
 use obvhs::bvh2::Bvh2;
-use obvhs::ray::{Ray, RayHit};
+use obvhs::ray::RayHit;
 use rayon::prelude::*;
 
 /// A primitive met by a ray or a curved path, and where.
@@ -79,23 +79,17 @@ impl Accel {
         if self.in_bvh.is_empty() {
             return best;
         }
-        let ray = Ray::new(
-            Vec3A::from(o.as_vec3()),
-            Vec3A::from(d.as_vec3()),
-            0.0,
-            // The search ends at t_max or a stack's hit (rounded up, as below): nodes beyond
-            // it are not visited (a free flight in fog ends long before the walls).
-            (best.map_or(t_max, |b| b.hit.t) as f32).next_up(),
-        );
+        // The search ends at t_max or a stack's hit: nodes beyond it are not visited (a free
+        // flight in fog ends long before the walls).
+        let ray = TraversalRay::new(o, d, best.map_or(t_max, |b| b.hit.t));
         let mut found = RayHit::none();
-        self.bvh.ray_traverse(ray, &mut found, |_, i| {
+        self.bvh.ray_traverse(ray.ray, &mut found, |_, i| {
             let prim = self.in_bvh[self.bvh.primitive_indices[i] as usize];
             let limit = best.map_or(t_max, |b| b.hit.t);
             match self.primitive(prim).intersect_ray(o, d, t_min, limit) {
                 Some(hit) => {
                     best = Some(PrimHit { prim, hit });
-                    // Round up: the f32 bound must not cull a node holding an f64 tie.
-                    (hit.t as f32).next_up()
+                    TraversalRay::bound(hit.t)
                 }
                 None => f32::INFINITY,
             }
@@ -126,14 +120,8 @@ impl Accel {
         if self.in_bvh.is_empty() {
             return false;
         }
-        let ray = Ray::new(
-            Vec3A::from(o.as_vec3()),
-            Vec3A::from(d.as_vec3()),
-            0.0,
-            // Rounded up: the f32 bound must not cull a node holding a hit short of t_max.
-            (t_max as f32).next_up(),
-        );
-        let missed = self.bvh.ray_traverse_miss(ray, |_, i| {
+        let ray = TraversalRay::new(o, d, t_max);
+        let missed = self.bvh.ray_traverse_miss(ray.ray, |_, i| {
             let id = self.in_bvh[self.bvh.primitive_indices[i] as usize];
             match self.primitive(id).intersect_ray(o, d, t_min, t_max) {
                 // Any value below the ray's bound ends the traversal.

@@ -14,12 +14,12 @@ use super::Photon;
 use crate::bvh::{build_bvh, Tuning};
 use crate::math::Bounds3;
 use crate::math::Segment;
-use crate::shapes::padded_box;
-use glam::{DVec3, Vec3A};
+use crate::shapes::{padded_box, TraversalRay};
+use glam::DVec3;
 use kiddo::immutable::float::kdtree::ImmutableKdTree;
 use kiddo::SquaredEuclidean;
 use obvhs::bvh2::Bvh2;
-use obvhs::ray::{Ray, RayHit};
+use obvhs::ray::RayHit;
 use rayon::prelude::*;
 use std::f64::consts::PI;
 use std::num::NonZero;
@@ -129,15 +129,9 @@ impl VolumeMap {
         if self.photons.is_empty() || length.is_nan() || length <= 0.0 {
             return;
         }
-        let ray = Ray::new(
-            Vec3A::from(origin.as_vec3()),
-            Vec3A::from(dir.as_vec3()),
-            0.0,
-            // Rounded up: the f32 bound must not cull a ball the f64 stretch reaches.
-            (length as f32).next_up(),
-        );
+        let ray = TraversalRay::new(origin, dir, length);
         let mut unused = RayHit::none();
-        self.bvh.ray_traverse(ray, &mut unused, |_, i| {
+        self.bvh.ray_traverse(ray.ray, &mut unused, |_, i| {
             let photon = &self.photons[i];
             if let Some(along) = chord(photon.position - origin, dir, length, self.r2[i]) {
                 visit(photon, along);

@@ -1,9 +1,10 @@
-//! Where a ray meets a surface, and the boxes BVHs hold.
+//! Where a ray meets a surface, and the boxes and rays BVHs take.
 
 use crate::curve::{ArcHull, Path};
 use crate::math::Bounds3;
 use glam::{DVec2, DVec3, Vec3A};
 use obvhs::aabb::Aabb;
+use obvhs::ray::Ray;
 
 /// Where a ray meets a primitive.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -60,4 +61,36 @@ pub trait SegmentHits {
         s_min: f64,
         length: f64,
     ) -> Option<Self::Found>;
+}
+
+/// A straight ray o + t d as the BVHs' f32 traversals take it, conservatively: no node
+/// holding a hit the f64 test would find is skipped.
+///
+/// Its inverse direction is 1/d, with ±K = ±10²⁰ only where a component is below 1/K.
+/// obvhs's `Ray::new` takes K = 1/ε (ε = 1.2e-7) below ε, so a ray nearly parallel to a
+/// slab's faces leaves the slab, in the box test, before it truly does. A hit at t inside a
+/// primitive's box, which the node's box holds with a padding p ≥ 10⁻⁶ ([`padded_box`]), puts
+/// the origin at least p − t |d_i| inside the node's face; the test has the ray leave after
+/// (p − t |d_i|) K ≥ pK − t, so it keeps every hit at t ≤ pK/2: 4 units with obvhs's K and
+/// p = 10⁻⁶ (a ray along a wall missed the far wall 100 units on, `tests/shapes.rs`), 5·10¹³
+/// with 10²⁰. And |b − o| K stays finite for |b − o| up to 3·10¹⁸.
+pub(crate) struct TraversalRay {
+    /// The f32 ray, its bound `t_max` rounded up.
+    pub(crate) ray: Ray,
+}
+
+impl TraversalRay {
+    /// The ray o + t d (d unit) for t up to `t_max`.
+    pub(crate) fn new(o: DVec3, d: DVec3, t_max: f64) -> Self {
+        let direction = Vec3A::from(d.as_vec3());
+        let mut ray = Ray::new(Vec3A::from(o.as_vec3()), direction, 0.0, Self::bound(t_max));
+        ray.inv_direction = direction.signum() / direction.abs().max(Vec3A::splat(1e-20));
+        Self { ray }
+    }
+
+    /// The f32 bound of the ray's parameter t: rounded up, so that it never culls a node
+    /// holding a hit at t (an f64 tie included).
+    pub(crate) fn bound(t: f64) -> f32 {
+        (t as f32).next_up()
+    }
 }

@@ -3,15 +3,15 @@
 //! independent triangles"). The f32 vertices *are* the geometry; every test converts them to
 //! f64 exactly and runs in f64, as for any other primitive.
 
-use super::hit::{padded_box, Hit, SegmentHits};
+use super::hit::{padded_box, Hit, SegmentHits, TraversalRay};
 use super::triangle::Triangle;
 use crate::bvh::{build_bvh, Tuning};
 use crate::curve::{ArcHull, Path};
 use crate::math::Ball;
 use crate::math::Bounds3;
-use glam::{DVec2, DVec3, Vec3A};
+use glam::{DVec2, DVec3};
 use obvhs::bvh2::Bvh2;
-use obvhs::ray::{Ray, RayHit};
+use obvhs::ray::RayHit;
 use rayon::prelude::*;
 
 /// Triangles over shared vertices, with a BVH over the triangles; with vertex normals, a
@@ -211,22 +211,16 @@ impl TriangleMesh {
 
     /// Nearest hit of the straight ray o + t d (d unit) with t ∈ (t_min, t_max).
     pub fn intersect_ray(&self, o: DVec3, d: DVec3, t_min: f64, t_max: f64) -> Option<Hit> {
-        let ray = Ray::new(
-            Vec3A::from(o.as_vec3()),
-            Vec3A::from(d.as_vec3()),
-            0.0,
-            (t_max as f32).next_up(),
-        );
+        let ray = TraversalRay::new(o, d, t_max);
         let mut best: Option<(usize, Hit)> = None;
         let mut hit = RayHit::none();
-        self.bvh.ray_traverse(ray, &mut hit, |_, i| {
+        self.bvh.ray_traverse(ray.ray, &mut hit, |_, i| {
             let id = self.bvh.primitive_indices[i] as usize;
             let limit = best.map_or(t_max, |(_, h)| h.t);
             match self.triangle(id).intersect_ray(o, d, t_min, limit) {
                 Some(h) => {
                     best = Some((id, h));
-                    // Round up: the f32 bound must not cull a node holding an f64 tie.
-                    (h.t as f32).next_up()
+                    TraversalRay::bound(h.t)
                 }
                 None => f32::INFINITY,
             }

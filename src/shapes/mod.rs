@@ -9,7 +9,7 @@ mod primitive;
 mod triangle;
 
 pub use curved::{round_roots, segment_roots};
-pub(crate) use hit::padded_box;
+pub(crate) use hit::{padded_box, TraversalRay};
 pub use hit::{Hit, SegmentHits};
 pub use mesh::TriangleMesh;
 pub use primitive::{Disk, Primitive, Quad};
