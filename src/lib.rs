@@ -45,6 +45,7 @@ pub mod output;
 pub mod photometry;
 pub mod photon;
 pub mod plot;
+pub mod polarization;
 pub mod receiver;
 pub mod render;
 pub(crate) mod report;

@@ -375,6 +375,7 @@ fn a_trace_holds_bounded_memory_and_stops_on_an_interrupt() {
         stepper: RayTrace::STEPPER,
         control: TraceControl::Fixed { step: Some(1e-9) },
         max_steps: 1 << 40,
+        polarization: None,
     };
     let e = trace_ray(&scene, &ray, &())
         .expect_err("refused")

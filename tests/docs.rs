@@ -241,7 +241,7 @@ fn the_readme_scene_loads() {
     assert!(description.camera.is_some() && description.shapes.len() == 2);
 }
 
-/// Every `$ grinlight trace …` example in docs/guide.md prints, run here, the line the guide
+/// Every `$ grinlight trace …` example in docs/guide.md prints, run here, the lines the guide
 /// shows under it.
 #[test]
 fn the_guides_trace_examples_print_what_it_shows() {
@@ -261,12 +261,14 @@ fn the_guides_trace_examples_print_what_it_shows() {
             .expect("run grinlight");
         assert!(out.status.success(), "{command}");
         let printed = String::from_utf8(out.stdout).unwrap();
-        assert_eq!(
-            printed.trim_end(),
-            lines[i + 1],
-            "docs/guide.md line {}",
-            i + 2
-        );
+        for (k, printed) in printed.trim_end().lines().enumerate() {
+            assert_eq!(
+                printed,
+                lines[i + 1 + k],
+                "docs/guide.md line {}",
+                i + 2 + k
+            );
+        }
         checked += 1;
     }
     assert!(checked > 0, "no trace example in docs/guide.md");

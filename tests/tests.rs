@@ -23,6 +23,7 @@ mod media;
 mod photon_map;
 mod plane;
 mod ply;
+mod polarization;
 mod radiometry;
 mod render;
 mod repository;

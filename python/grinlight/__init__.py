@@ -127,7 +127,11 @@ class Ray:
     """A traced ray: per accepted point (the start first) ``s`` (arclength), ``opl``
     (optical path length), ``points`` and ``directions`` (N × 3) and the index ``n``; how it
     ended (``reason``: "length reached", "left bounds", ...) after ``steps`` accepted steps
-    of ``attempts``; its total ``arclength``, ``optical_path`` and ``optical_depth``."""
+    of ``attempts``; its total ``arclength``, ``optical_path`` and ``optical_depth``; with
+    ``polarization`` asked, the ``field`` carried to the end (3 numbers, unit, perpendicular to
+    the ray) and the geometric ``phase`` (radians: the solid angle the direction swept, closed
+    by the shortest arc back to its start's, by which the field turned about the ray), else
+    None."""
 
     s: np.ndarray
     opl: np.ndarray
@@ -140,6 +144,8 @@ class Ray:
     arclength: float
     optical_path: float
     optical_depth: float
+    field: Optional[np.ndarray] = None
+    phase: Optional[float] = None
 
 
 def _progress_bar(progress: Progress) -> Tuple[Optional[Callable[[int, int, str], None]], Callable[[], None]]:
@@ -361,7 +367,9 @@ def trace(
     ``stepper`` rkn, rk4, arc, snell or linearize (the default); ``tolerance`` of the adaptive control;
     ``wavelength`` in nm for a dispersive medium; ``control`` ("adaptive", "fixed",
     "tessendorf"), ``step``, ``t_max``, ``t_min``, ``seed``, ``max_steps`` as the command's
-    options."""
+    options; ``polarization`` (three numbers): the field's direction at the start (its part
+    perpendicular to ``direction``), carried along the ray by Rytov's law (the result's
+    ``field`` and ``phase``)."""
     if not isinstance(scene, Scene):
         scene = load_dict(scene) if isinstance(scene, Mapping) else load(scene)
     if medium is None:

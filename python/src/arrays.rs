@@ -132,5 +132,12 @@ pub fn traced<'py>(py: Python<'py>, t: &Traced) -> PyResult<Bound<'py, PyDict>> 
         "optical_depth",
         t.points.last().map_or(0.0, |p| p.optical_depth),
     )?;
+    if let Some(p) = &t.polarization {
+        d.set_item(
+            "field",
+            Array1::from(p.field.to_array().to_vec()).into_pyarray(py),
+        )?;
+        d.set_item("phase", p.phase)?;
+    }
     Ok(d)
 }

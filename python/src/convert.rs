@@ -209,7 +209,7 @@ fn vector(v: &Bound<'_, PyAny>, key: &str) -> PyResult<DVec3> {
 }
 
 /// The keyword arguments a trace takes besides the ray.
-pub const TRACE_OPTIONS: [&str; 9] = [
+pub const TRACE_OPTIONS: [&str; 10] = [
     "stepper",
     "control",
     "tolerance",
@@ -219,6 +219,7 @@ pub const TRACE_OPTIONS: [&str; 9] = [
     "seed",
     "wavelength",
     "max_steps",
+    "polarization",
 ];
 
 /// A traced ray's request, as `grinlight trace`'s options give it (the same defaults).
@@ -294,5 +295,8 @@ pub fn ray_trace(
             .map(|v| count(&v, "max_steps"))
             .transpose()?
             .unwrap_or(RayTrace::MAX_STEPS),
+        polarization: get("polarization")?
+            .map(|v| vector(&v, "polarization"))
+            .transpose()?,
     })
 }

@@ -87,6 +87,27 @@ def test_trace_gives_the_command_lines_csv(cli, scenes, tmp_path):
     assert np.all(np.diff(traced.opl) > 0)
 
 
+def test_trace_carries_the_field_as_the_command_line_does(cli, scenes, tmp_path):
+    """The field and geometric phase of a skew ray in a GRIN rod: the command line's numbers
+    (printed to 12 decimals), None without ``polarization``, a field along the ray refused."""
+    scene = scenes / "media.toml"
+    done = run(
+        cli, "trace", scene, "--medium", "grin_rod", "--from", "0.5,0,0", "--dir", "0,0.2,1",
+        "--length", "30", "--polarization", "1,0,0", cwd=tmp_path,
+    )
+    line = next(l for l in done.stdout.splitlines() if "geometric phase" in l)
+    traced = grinlight.trace(
+        scene, [0.5, 0, 0], [0, 0.2, 1], 30.0, medium="grin_rod", polarization=[1, 0, 0]
+    )
+    assert f"geometric phase {traced.phase:.12f} rad" in line
+    assert "field ({:.12f}, {:.12f}, {:.12f})".format(*traced.field) in line
+    assert abs(np.dot(traced.field, traced.directions[-1])) < 1e-12
+    plain = grinlight.trace(scene, [0.5, 0, 0], [0, 0.2, 1], 30.0, medium="grin_rod")
+    assert plain.field is None and plain.phase is None
+    with pytest.raises(ValueError, match="polarization"):
+        grinlight.trace(scene, [0.5, 0, 0], [0, 0.2, 1], 30.0, medium="grin_rod", polarization=[0, 0.4, 2])
+
+
 def test_measure_gives_the_receivers_csv(cli, scenes, tmp_path):
     settings = dict(receiver_photons=30000, seed=3)
     run(cli, "render", scenes / "fiber_led.toml", "-o", tmp_path / "fiber.exr", *cli_flags(settings), cwd=tmp_path)

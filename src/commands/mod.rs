@@ -15,7 +15,9 @@ pub use merge::{merge, MergeJob};
 pub use render::{
     render, render_in_memory, shard_partial, Overrides, RenderJob, RenderOutcome, Rendered,
 };
-pub use trace::{trace, trace_ray, PathPoint, RayTrace, TraceControl, TraceJob, Traced};
+pub use trace::{
+    trace, trace_ray, FieldAtEnd, Followed, PathPoint, RayTrace, TraceControl, TraceJob, Traced,
+};
 pub use validate::{validate, ValidateJob};
 
 pub use crate::render::{Observer, Progress};

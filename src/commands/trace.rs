@@ -8,6 +8,7 @@ use crate::error::{Error, Result};
 use crate::media::Medium;
 use crate::output::{Kind, Outputs};
 use crate::plot::{self, Labels, Panel};
+use crate::polarization::RytovTransport;
 use crate::scene::Scene;
 use crate::spectrum::{LAMBDA_MAX, LAMBDA_MIN};
 use glam::DVec3;
@@ -74,6 +75,9 @@ pub struct RayTrace {
     pub control: TraceControl,
     /// Maximum number of step attempts (N_max).
     pub max_steps: u64,
+    /// The field's direction at the start (its part perpendicular to `dir`), to be carried
+    /// along the ray by Rytov's law ([`crate::polarization`]); None: no field is followed.
+    pub polarization: Option<DVec3>,
 }
 
 impl RayTrace {
@@ -90,6 +94,30 @@ pub struct Traced {
     pub outcome: MarchOutcome,
     /// Every accepted point.
     pub points: Vec<PathPoint>,
+    /// The field at the end, where one was asked for ([`RayTrace::polarization`]).
+    pub polarization: Option<FieldAtEnd>,
+}
+
+/// How one ray's march ended, and the field it carried to its end if asked.
+#[derive(Clone, Copy, Debug)]
+pub struct Followed {
+    /// How the march ended.
+    pub outcome: MarchOutcome,
+    /// The field at the end ([`RayTrace::polarization`]).
+    pub polarization: Option<FieldAtEnd>,
+}
+
+/// The field carried along a traced ray by Rytov's law, at the ray's end
+/// ([`crate::polarization::RytovTransport`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FieldAtEnd {
+    /// The field's direction (unit, perpendicular to the ray's direction there).
+    pub field: DVec3,
+    /// The geometric phase Γ (radians): the solid angle the ray's direction swept, closed by
+    /// the shortest arc back to its start's; the field is the start's carried by the shortest
+    /// turn of the start's direction into the end's, then turned by Γ counterclockwise about
+    /// the end's direction.
+    pub phase: f64,
 }
 
 impl TraceControl {
@@ -213,14 +241,17 @@ pub fn trace(job: &TraceJob, observer: &dyn Observer) -> Result<MarchOutcome> {
         Some(path) => Some(plot_path(medium, &drawn.points, path)?),
         None => None,
     };
-    observer.line(&summary(&outcome));
+    observer.line(&summary(&outcome.outcome));
+    if let Some(p) = &outcome.polarization {
+        observer.line(&field_summary(p));
+    }
     if let Some(path) = &job.csv {
         observer.line(&format!("wrote {} ({rows} rows)", path.display()));
     }
     if let (Some(path), Some(legend)) = (&job.plot, legend) {
         observer.line(&format!("wrote {}: {legend}", path.display()));
     }
-    Ok(outcome)
+    Ok(outcome.outcome)
 }
 
 /// The most points a traced ray's plot draws.
@@ -268,11 +299,15 @@ pub fn trace_ray(scene: &Scene, job: &RayTrace, observer: &dyn Observer) -> Resu
         ),
     )?;
     let mut points = Vec::new();
-    let outcome = follow(scene, job, observer, &mut |p| {
+    let followed = follow(scene, job, observer, &mut |p| {
         points.push(*p);
         Ok(())
     })?;
-    Ok(Traced { outcome, points })
+    Ok(Traced {
+        outcome: followed.outcome,
+        points,
+        polarization: followed.polarization,
+    })
 }
 
 /// Follows one ray as [`trace_ray`] says, showing `visit` each accepted point (the start
@@ -282,7 +317,7 @@ fn follow(
     job: &RayTrace,
     observer: &dyn Observer,
     visit: &mut dyn FnMut(&PathPoint) -> Result<()>,
-) -> Result<MarchOutcome> {
+) -> Result<Followed> {
     let reference = scene.medium(&job.medium)?;
     let dispersed = match job.wavelength {
         None => None,
@@ -336,6 +371,18 @@ fn follow(
     let control = job
         .control
         .resolve(job.stepper, medium, job.from, start.direction, length)?;
+    let mut rytov = job
+        .polarization
+        .map(|field| {
+            RytovTransport::new(start.direction, field).ok_or_else(|| Error::Setting {
+                key: "polarization",
+                message: format!(
+                    "{}: must be finite and not parallel to the direction",
+                    field.to_array().map(crate::error::number).join(", ")
+                ),
+            })
+        })
+        .transpose()?;
     if job.stepper == StepperKind::Snell && at_turning_point(&start) {
         observer.warning(
             "--dir is perpendicular to ∇n at --from (a turning point): Snell steps cannot bend a ray there and it will run straight; use --stepper rk4, rkn or arc",
@@ -363,6 +410,9 @@ fn follow(
             optical_depth += r.step_depth(last, st.state.position, st.length);
         }
         last = st.state.position;
+        if let Some(r) = &mut rytov {
+            r.push(st.state.direction);
+        }
         let point = PathPoint {
             s,
             opl,
@@ -380,7 +430,13 @@ fn follow(
     });
     match failed {
         Some(e) => Err(e),
-        None => Ok(outcome),
+        None => Ok(Followed {
+            outcome,
+            polarization: rytov.map(|r| FieldAtEnd {
+                field: r.field(),
+                phase: r.phase(),
+            }),
+        }),
     }
 }
 
@@ -413,6 +469,16 @@ pub fn summary(out: &MarchOutcome) -> String {
     format!(
         "end ({:.12}, {:.12}, {:.12}) dir ({:.12}, {:.12}, {:.12}) s {:.12} opl {:.12} steps {} attempts {} reason: {}",
         p.x, p.y, p.z, d.x, d.y, d.z, out.arclength, out.optical_path, out.steps, out.attempts, out.reason.name()
+    )
+}
+
+/// The line `grinlight trace --polarization` prints: the field at the end and the geometric
+/// phase.
+pub fn field_summary(p: &FieldAtEnd) -> String {
+    let e = p.field;
+    format!(
+        "field ({:.12}, {:.12}, {:.12}) geometric phase {:.12} rad",
+        e.x, e.y, e.z, p.phase
     )
 }
 

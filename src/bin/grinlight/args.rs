@@ -206,6 +206,12 @@ pub struct TraceArgs {
     /// Maximum number of step attempts (N_max, ≥ 1).
     #[arg(long, default_value_t = RayTrace::MAX_STEPS)]
     max_steps: u64,
+    /// Carry a field (polarization) along the ray, starting along X,Y,Z (its part
+    /// perpendicular to --dir), by Rytov's law, and print it at the end with the geometric
+    /// phase: the solid angle the ray's direction swept (closed by the shortest arc back to
+    /// its start's), by which the field turned about the ray.
+    #[arg(long, allow_hyphen_values = true, value_parser = parse_vec)]
+    polarization: Option<DVec3>,
     /// Write every accepted step as CSV (step,s,x,y,z,dx,dy,dz,n).
     #[arg(long)]
     csv: Option<PathBuf>,
@@ -374,6 +380,7 @@ impl From<TraceArgs> for TraceJob {
                 stepper: a.stepper,
                 control,
                 max_steps: a.max_steps,
+                polarization: a.polarization,
             },
             csv: a.csv,
             plot: a.plot,
