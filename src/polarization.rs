@@ -41,7 +41,8 @@ pub struct RytovTransport {
 impl RytovTransport {
     /// Starts at direction `start` with the field along `field` (any vector not parallel to
     /// `start`: its part perpendicular to `start` is taken). None where either is not finite,
-    /// `start` is zero, or `field` has no part perpendicular to it.
+    /// `start` is zero, or `field` is parallel to it (its perpendicular part, normalised, still
+    /// more than 1e-9 along `start`: lost to rounding).
     pub fn new(start: DVec3, field: DVec3) -> Option<Self> {
         let start = start.try_normalize()?;
         let field = (field - field.dot(start) * start).try_normalize()?;

@@ -16,7 +16,7 @@ pub use render::{
     render, render_in_memory, shard_partial, Overrides, RenderJob, RenderOutcome, Rendered,
 };
 pub use trace::{
-    trace, trace_ray, FieldAtEnd, Followed, PathPoint, RayTrace, TraceControl, TraceJob, Traced,
+    trace, trace_ray, FieldAtEnd, PathPoint, RayTrace, TraceControl, TraceJob, Traced,
 };
 pub use validate::{validate, ValidateJob};
 

@@ -99,12 +99,11 @@ pub struct Traced {
 }
 
 /// How one ray's march ended, and the field it carried to its end if asked.
-#[derive(Clone, Copy, Debug)]
-pub struct Followed {
+struct Followed {
     /// How the march ended.
-    pub outcome: MarchOutcome,
+    outcome: MarchOutcome,
     /// The field at the end ([`RayTrace::polarization`]).
-    pub polarization: Option<FieldAtEnd>,
+    polarization: Option<FieldAtEnd>,
 }
 
 /// The field carried along a traced ray by Rytov's law, at the ray's end
@@ -203,7 +202,7 @@ pub fn trace(job: &TraceJob, observer: &dyn Observer) -> Result<MarchOutcome> {
     }
     let mut drawn = Decimated::default();
     let mut rows = 0u64;
-    let outcome = match &job.csv {
+    let followed = match &job.csv {
         None => follow(&scene, &job.ray, observer, &mut |p| {
             if job.plot.is_some() {
                 drawn.push(*p);
@@ -211,13 +210,13 @@ pub fn trace(job: &TraceJob, observer: &dyn Observer) -> Result<MarchOutcome> {
             Ok(())
         })?,
         Some(path) => {
-            let mut outcome = None;
+            let mut followed = None;
             crate::output::write_atomic(path, |tmp| {
                 let io = |e| Error::io(path, e);
                 let mut w = std::io::BufWriter::new(std::fs::File::create(tmp).map_err(io)?);
                 writeln!(w, "# {}: a traced ray's path", crate::output::signature()).map_err(io)?;
                 writeln!(w, "step,s,x,y,z,dx,dy,dz,n").map_err(io)?;
-                outcome = Some(follow(&scene, &job.ray, observer, &mut |p| {
+                followed = Some(follow(&scene, &job.ray, observer, &mut |p| {
                     let (x, d) = (p.state.position, p.state.direction);
                     writeln!(
                         w,
@@ -233,7 +232,7 @@ pub fn trace(job: &TraceJob, observer: &dyn Observer) -> Result<MarchOutcome> {
                 })?);
                 w.flush().map_err(io)
             })?;
-            outcome.expect("followed while writing")
+            followed.expect("followed while writing")
         }
     };
     let medium = scene.medium(&job.ray.medium)?;
@@ -241,8 +240,8 @@ pub fn trace(job: &TraceJob, observer: &dyn Observer) -> Result<MarchOutcome> {
         Some(path) => Some(plot_path(medium, &drawn.points, path)?),
         None => None,
     };
-    observer.line(&summary(&outcome.outcome));
-    if let Some(p) = &outcome.polarization {
+    observer.line(&summary(&followed.outcome));
+    if let Some(p) = &followed.polarization {
         observer.line(&field_summary(p));
     }
     if let Some(path) = &job.csv {
@@ -251,7 +250,7 @@ pub fn trace(job: &TraceJob, observer: &dyn Observer) -> Result<MarchOutcome> {
     if let (Some(path), Some(legend)) = (&job.plot, legend) {
         observer.line(&format!("wrote {}: {legend}", path.display()));
     }
-    Ok(outcome.outcome)
+    Ok(followed.outcome)
 }
 
 /// The most points a traced ray's plot draws.
