@@ -83,8 +83,14 @@ impl TraversalRay {
     /// The ray o + t d (d unit) for t up to `t_max`.
     pub(crate) fn new(o: DVec3, d: DVec3, t_max: f64) -> Self {
         let direction = Vec3A::from(d.as_vec3());
-        let mut ray = Ray::new(Vec3A::from(o.as_vec3()), direction, 0.0, Self::bound(t_max));
-        ray.inv_direction = direction.signum() / direction.abs().max(Vec3A::splat(1e-20));
+        // Built field by field: `Ray::new` would invert the direction its own way first.
+        let ray = Ray {
+            origin: Vec3A::from(o.as_vec3()),
+            direction,
+            inv_direction: direction.signum() / direction.abs().max(Vec3A::splat(1e-20)),
+            tmin: 0.0,
+            tmax: Self::bound(t_max),
+        };
         Self { ray }
     }
 
