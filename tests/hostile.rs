@@ -36,6 +36,26 @@ fn xml_case(name: &'static str, body: &str, expect: Expect) -> Case {
     }
 }
 
+/// A pbrt scene of an 8 × 8 box-filtered view, 1 sample, a point light and a world `body`.
+fn pbrt(body: &str) -> Vec<u8> {
+    format!(
+        "Scale -1 1 1\nLookAt 0 0 5 0 0 0 0 1 0\nCamera \"perspective\"\nSampler \"independent\" \"integer pixelsamples\" 1\n\
+         Film \"rgb\" \"integer xresolution\" 8 \"integer yresolution\" 8\nPixelFilter \"box\"\nWorldBegin\n\
+         LightSource \"point\" \"point3 from\" [0 0 5]\n{body}\n"
+    )
+    .into_bytes()
+}
+
+/// A pbrt scene case: `s.pbrt` of [`pbrt`]`(body)`, rendered.
+fn pbrt_case(name: &'static str, body: &str, expect: Expect) -> Case {
+    Case {
+        name,
+        files: vec![("s.pbrt", pbrt(body))],
+        args: args("render s.pbrt"),
+        expect,
+    }
+}
+
 /// What a case must end in.
 enum Expect {
     /// Failure whose standard error contains this.
@@ -457,6 +477,21 @@ fn cases() -> Vec<Case> {
             args: args("render s.xml"),
             expect: Error("a cycle"),
         },
+        pbrt_case("pbrt: a sphere", "Shape \"sphere\"", Finite("wrote")),
+        pbrt_case("pbrt: a NaN translation", "Translate nan 0 0\nShape \"sphere\"", Error("s.pbrt:9:11: Translate: expected 3 numbers, found 'nan'")),
+        pbrt_case("pbrt: an infinite radius", "Shape \"sphere\" \"float radius\" inf", Error("s.pbrt:9:31: expected a number, found 'inf'")),
+        pbrt_case("pbrt: a huge radius", "Shape \"sphere\" \"float radius\" 1e300", Error("as converted, shape[0].radius")),
+        pbrt_case("pbrt: a flat mesh", "Scale 1 0 1\nShape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0]", Error("flattens the mesh")),
+        pbrt_case("pbrt: an index past the points", "Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0] \"integer indices\" [0 1 99]", Error("whole numbers from 0 to 2")),
+        pbrt_case("pbrt: a zero rotation axis", "Rotate 30 0 0 0\nShape \"sphere\"", Error("the axis has no length")),
+        pbrt_case("pbrt: a flat sphere", "Scale 0 0 0\nShape \"sphere\"", Error("scales unevenly or shears the sphere")),
+        pbrt_case("pbrt: an unknown directive", "Sphere 1", Error("'Sphere' is not a pbrt-v4 directive")),
+        pbrt_case("pbrt: a parameter without a value", "Shape \"sphere\" \"float radius\"", Error("no value follows")),
+        pbrt_case("pbrt: AttributeEnd alone", "AttributeEnd", Error("AttributeEnd without AttributeBegin")),
+        Case { name: "pbrt: an empty file", files: vec![("s.pbrt", Vec::new())], args: args("render s.pbrt"), expect: Error("no WorldBegin") },
+        Case { name: "pbrt: binary junk", files: vec![("s.pbrt", vec![0xff, 0xfe, 0x00, 0x9c])], args: args("render s.pbrt"), expect: Error("not UTF-8 text") },
+        Case { name: "pbrt: gzipped", files: vec![("s.pbrt", vec![0x1f, 0x8b, 0x08, 0x00])], args: args("render s.pbrt"), expect: Error("gzip-compressed") },
+        Case { name: "pbrt: -D", files: vec![("s.pbrt", pbrt(""))], args: args("render s.pbrt -D r=1"), expect: Error("a pbrt scene has no $parameters") },
         Case { name: "convert over a user's file", files: vec![("s.xml", mitsuba("")), ("out.toml", b"mine".to_vec())], args: args("convert s.xml -o out.toml"), expect: Error("out.toml") },
         Case { name: "convert to its own input", files: vec![("s.xml", mitsuba(""))], args: args("convert s.xml -o s.xml"), expect: Error("should end in .toml") },
         Case { name: "-D without =", files: vec![("s.xml", mitsuba(""))], args: args("render s.xml -D r"), expect: Error("expected NAME=VALUE") },

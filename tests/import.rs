@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 use toml::Value;
 
 /// A directory of its own for a test's files.
-fn dir(name: &str) -> PathBuf {
+pub(super) fn dir(name: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("grinlight-import-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&d);
     std::fs::create_dir_all(&d).unwrap();
@@ -36,26 +36,26 @@ fn scene(sensor: &str, body: &str) -> String {
     )
 }
 
-fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
+pub(super) fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
     let p = dir.join(name);
     std::fs::write(&p, text).unwrap();
     p
 }
 
-fn convert(path: &Path, options: &ImportOptions) -> Result<toml::Table, Error> {
+pub(super) fn convert(path: &Path, options: &ImportOptions) -> Result<toml::Table, Error> {
     import(path, options).map(|i| i.table)
 }
 
-fn f(v: &Value) -> f64 {
+pub(super) fn f(v: &Value) -> f64 {
     v.as_float().unwrap()
 }
 
-fn vec3(v: &Value) -> [f64; 3] {
+pub(super) fn vec3(v: &Value) -> [f64; 3] {
     let a = v.as_array().unwrap();
     [f(&a[0]), f(&a[1]), f(&a[2])]
 }
 
-fn tables<'a>(t: &'a toml::Table, key: &str) -> Vec<&'a toml::Table> {
+pub(super) fn tables<'a>(t: &'a toml::Table, key: &str) -> Vec<&'a toml::Table> {
     t.get(key)
         .and_then(Value::as_array)
         .map(|a| a.iter().filter_map(Value::as_table).collect())
@@ -363,12 +363,12 @@ fn a_converted_file_renders_as_its_xml_does() {
 }
 
 /// Block means of the reference (8 × 8 blocks) and their standard errors, per channel.
-struct Blocks {
+pub(super) struct Blocks {
     mean: Vec<[f64; 3]>,
     se: Vec<[f64; 3]>,
 }
 
-fn reference(case: &str) -> Blocks {
+pub(super) fn reference(case: &str) -> Blocks {
     let text = std::fs::read_to_string(format!("tests/data/mitsuba/{case}.csv")).unwrap();
     let mut b = Blocks {
         mean: Vec::new(),
@@ -385,9 +385,14 @@ fn reference(case: &str) -> Blocks {
     b
 }
 
-/// grinlight's renders of `scenes/mitsuba/<scene>` (`runs` seeds of `spp`), converted exactly,
+/// grinlight's renders of the scene file `scene` (`runs` seeds of `spp`), converted exactly,
 /// as block means over runs with their standard errors.
-fn grinlight_blocks(scene: &str, defines: &[(&str, &str)], runs: u64, spp: u32) -> Blocks {
+pub(super) fn grinlight_blocks(
+    scene: &Path,
+    defines: &[(&str, &str)],
+    runs: u64,
+    spp: u32,
+) -> Blocks {
     let options = ImportOptions {
         defines: defines
             .iter()
@@ -395,8 +400,7 @@ fn grinlight_blocks(scene: &str, defines: &[(&str, &str)], runs: u64, spp: u32) 
             .collect(),
         approximate: false,
     };
-    let (description, mut settings) =
-        load_description(&Path::new("scenes/mitsuba").join(scene), &options).unwrap();
+    let (description, mut settings) = load_description(scene, &options).unwrap();
     let scene = description.build();
     let (w, h) = (64, 64);
     let mut per_run = Vec::new();
@@ -442,7 +446,7 @@ fn grinlight_blocks(scene: &str, defines: &[(&str, &str)], runs: u64, spp: u32) 
 /// The largest block z-score |Δ|/σ — σ = √(se₁² + se₂²) plus 1e-5 of the value, the
 /// resolution of Mitsuba's f32 sums (its noiseless sky reads 0.9000085 for 0.9) — and the
 /// ratio of the image means.
-fn compare(ours: &Blocks, theirs: &Blocks) -> (f64, f64) {
+pub(super) fn compare(ours: &Blocks, theirs: &Blocks) -> (f64, f64) {
     let mut worst: f64 = 0.0;
     for i in 0..ours.mean.len() {
         for c in 0..3 {
@@ -486,7 +490,7 @@ fn the_mitsuba_scenes_render_as_mitsuba_renders_them() {
         // An image texture on a rectangle and on an OBJ quad: Mitsuba's (u, v) and rows.
         ("textures", "textures.xml", vec![], 16),
     ] {
-        let ours = grinlight_blocks(scene, &defines, 32, spp);
+        let ours = grinlight_blocks(&Path::new("scenes/mitsuba").join(scene), &defines, 32, spp);
         let (worst, ratio) = compare(&ours, &reference(case));
         eprintln!("{case}: largest block z {worst:.2}, mean ratio {ratio:.5}");
         assert!(

@@ -151,6 +151,11 @@ const BAD: &[(&str, usize, usize, &str)] = &[
     ("[[shape]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"nope\"\n", 5, 1, "no material named 'nope'"),
     ("[[shape]]\ntype = \"mesh\"\nfile = \"no_such_mesh.obj\"\nmaterial = \"m\"\n", 3, 1, "cannot read scenes/no_such_mesh.obj"),
     ("[[shape]]\ntype = \"quad\"\nvertices = [[0,0,0],[1,0,0],[1,2,0],[0,1,0]]\nmaterial = \"m\"\n", 3, 1, "not a parallelogram"),
+    // A mesh given by its points: an index naming no point, points not in threes, both a file and points.
+    ("[[shape]]\ntype = \"mesh\"\npoints = [0, 0, 0, 1, 0, 0, 0, 1, 0]\nindices = [0, 1, 3]\nmaterial = \"m\"\n", 4, 1, "key `indices`: triangle 1 names vertex 3: indices are whole numbers from 0 to 2"),
+    ("[[shape]]\ntype = \"mesh\"\npoints = [0, 0, 0, 1, 0, 0, 0, 1]\nindices = [0, 1, 2]\nmaterial = \"m\"\n", 3, 1, "key `points`: expected 3 numbers a vertex, got 8 numbers"),
+    ("[[shape]]\ntype = \"mesh\"\nfile = \"a.obj\"\npoints = [0, 0, 0, 1, 0, 0, 0, 1, 0]\nindices = [0, 1, 2]\nmaterial = \"m\"\n", 3, 1, "give either `file` or `points` and `indices`"),
+    ("[[shape]]\ntype = \"mesh\"\npoints = [0, 0, 0, 1, 0, 0, 0, 1, 0]\nindices = [0, 1, 2]\nuv = [0, 0, 1, 0]\nmaterial = \"m\"\n", 5, 1, "key `uv`: expected 2 numbers for each of the 3 points, got 4 numbers"),
     // Light: zero-area quad, missing environment file, LED with negative power, unknown type.
     ("[[light]]\ntype = \"quad\"\nvertices = [[0,0,0],[1,0,0],[2,0,0],[1,0,0]]\nradiance = [1, 1, 1]\n", 3, 1, "zero area"),
     ("[[light]]\ntype = \"environment\"\nfile = \"no_such_sky.exr\"\n", 3, 1, "cannot read"),
@@ -279,4 +284,40 @@ fn a_phase_without_scattering_is_a_warning_and_a_zero_table_is_no_scattering() {
         .unwrap()
         .to_string();
     assert!(e.contains("key `n`") && e.contains("> 0"), "{e}");
+}
+
+/// A mesh given in the scene by its points and indices (as a converted pbrt scene writes it)
+/// is the mesh of the OBJ file with the same vertices and faces: the same image, byte for byte.
+#[test]
+fn a_mesh_given_by_its_points_renders_as_its_obj_file() {
+    let dir = std::env::temp_dir().join(format!("grinlight-inline-mesh-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let obj = dir.join("tetra.obj");
+    std::fs::write(
+        &obj,
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nvt 0 0\nvt 1 0\nvt 0 1\nvt 1 1\n\
+         f 1/1 3/3 2/2\nf 1/1 2/2 4/4\nf 1/1 4/4 3/3\nf 2/2 3/3 4/4\n",
+    )
+    .unwrap();
+    let head = "[camera]\nposition = [2, 1.5, 3]\nlook_at = [0.3, 0.3, 0.3]\nfov_x_deg = 40\nwidth = 24\nheight = 16\n\
+                [render]\nintegrator = \"path\"\nspp = 4\nthreads = 1\n\
+                [[light]]\ntype = \"point\"\nposition = [2, 3, 2]\nintensity = [20, 20, 20]\n\
+                [[material]]\nname = \"m\"\ntype = \"diffuse\"\nalbedo = [0.7, 0.5, 0.3]\n\
+                [[shape]]\ntype = \"mesh\"\nmaterial = \"m\"\nmatrix = [1, 0, 0, 0.1, 0, 2, 0, 0, 0, 0, 1, -0.2]\n";
+    let from_file = format!("{head}file = \"{}\"\n", obj.display());
+    let inline = format!(
+        "{head}points = [0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1]\nindices = [0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3]\n\
+         uv = [0, 0, 1, 0, 0, 1, 1, 1]\n"
+    );
+    let render = |text: String| {
+        let (scene, settings) = parse_scene(Path::new("mesh.toml"), text).expect("loads");
+        grinlight::render::render(&scene, &settings, &())
+            .unwrap()
+            .0
+            .layer("beauty")
+            .unwrap()
+    };
+    let (a, b) = (render(from_file), render(inline));
+    assert!(a.iter().any(|p| p[0] > 0.0), "the mesh is seen");
+    assert_eq!(a, b);
 }

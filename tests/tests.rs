@@ -16,6 +16,7 @@ mod furnace;
 mod glossy;
 mod hostile;
 mod import;
+mod import_pbrt;
 mod integrators;
 mod linearize;
 mod luminaire;

@@ -329,9 +329,10 @@ def load(
     approximate: bool = False,
     **overrides: Any,
 ) -> Scene:
-    """Reads the scene file at ``path``: grinlight's TOML, or a Mitsuba 3 scene (``.xml``,
-    converted as ``grinlight convert`` does: docs/import.md), whose ``$parameters`` take the
-    values ``defines`` gives (as ``-D``) and whose approximations are made (and listed among
+    """Reads the scene file at ``path``: grinlight's TOML, a Mitsuba 3 scene (``.xml``) or a
+    pbrt-v4 scene (``.pbrt``), converted as ``grinlight convert`` does (docs/import.md); a
+    Mitsuba scene's ``$parameters`` take the values ``defines`` gives (as ``-D``). Approximations
+    are made (and listed among
     a render's warnings) only when ``approximate``. ``overrides`` replace its ``[render]`` and
     ``[camera]`` keys for every render (as the command line's options do). Errors raise
     ``ValueError`` naming the file, line, column and key (``OSError`` for an unreadable

@@ -104,8 +104,9 @@ impl Scene {
     }
 }
 
-/// Reads the scene file at `path` (grinlight's TOML, or a Mitsuba 3 scene ending in `.xml`,
-/// its `$parameters` given `defines`, approximated where `approximate`), checked now with the
+/// Reads the scene file at `path` (grinlight's TOML, a Mitsuba 3 scene ending in `.xml` — its
+/// `$parameters` given `defines` — or a pbrt-v4 scene ending in `.pbrt`, approximated where
+/// `approximate`), checked now with the
 /// render settings `overrides`: an error names its file, line, column and key.
 #[pyfunction]
 #[pyo3(signature = (path, overrides, defines=Vec::new(), approximate=false))]
@@ -124,8 +125,8 @@ fn load(
     }
     if options != ImportOptions::default() {
         return Err(PyValueError::new_err(format!(
-            "{}: defines and approximate apply to scenes of other renderers (.xml), not to a \
-             grinlight scene",
+            "{}: defines and approximate apply to scenes of other renderers (.xml, .pbrt), not \
+             to a grinlight scene",
             path.display()
         )));
     }

@@ -1,6 +1,6 @@
-"""Mitsuba 3 scenes from Python: ``grinlight.load("scene.xml")`` renders what
-``grinlight render scene.xml`` renders; its parameters and approximations are keywords; what
-cannot be converted raises ValueError naming the file and line."""
+"""Mitsuba 3 and pbrt-v4 scenes from Python: ``grinlight.load("scene.xml")`` (or
+``"scene.pbrt"``) renders what ``grinlight render`` renders; parameters and approximations are
+keywords; what cannot be converted raises ValueError naming the file and line."""
 
 from pathlib import Path
 
@@ -49,3 +49,24 @@ def test_an_approximation_is_made_only_when_asked(tmp_path):
 def test_defines_belong_to_other_renderers_scenes():
     with pytest.raises(ValueError, match="other renderers"):
         grinlight.load(ROOT / "scenes" / "cornell_caustic.toml", defines={"a": 1})
+
+
+PBRT_BOX = ROOT / "scenes" / "pbrt" / "cornell_box.pbrt"
+
+
+def test_a_pbrt_scene_loads_and_renders():
+    scene = grinlight.load(PBRT_BOX, width=16, height=16, spp=2)
+    assert scene.camera == (16, 16)
+    beauty = scene.render(threads=1)["beauty"]
+    assert beauty.shape == (16, 16, 3)
+    assert np.all(np.isfinite(beauty)) and beauty.mean() > 0
+
+
+def test_a_pbrt_scene_is_refused_by_line_and_column(tmp_path):
+    pbrt = tmp_path / "s.pbrt"
+    pbrt.write_text('Camera "perspective"\nPixelFilter "box"\nWorldBegin\nMaterial "hair"\n')
+    with pytest.raises(ValueError) as e:
+        grinlight.load(pbrt)
+    assert "s.pbrt:4:1:" in str(e.value) and 'the material "hair" is not supported' in str(e.value)
+    with pytest.raises(ValueError, match="no \\$parameters"):
+        grinlight.load(PBRT_BOX, defines={"spp": 4})

@@ -23,7 +23,7 @@ pub struct ConvertJob {
 pub fn convert(job: &ConvertJob) -> Result<Vec<String>> {
     if Format::of(&job.scene) == Format::Grinlight {
         return Err(Error::Usage(format!(
-            "{}: convert reads a Mitsuba 3 scene (.xml)",
+            "{}: convert reads a Mitsuba 3 scene (.xml) or a pbrt-v4 scene (.pbrt)",
             job.scene.display()
         )));
     }

@@ -40,7 +40,7 @@ pub struct RenderJob {
     pub shard: Option<Shard>,
     /// Continue the partial a killed or interrupted run of the same job saved.
     pub resume: bool,
-    /// How a scene of another renderer (`.xml`) is read.
+    /// How a scene of another renderer (`.xml`, `.pbrt`) is read.
     pub import: crate::import::ImportOptions,
 }
 

@@ -1,15 +1,19 @@
-//! Scenes written for other renderers, brought in: a Mitsuba 3 XML scene ([`mitsuba`])
-//! converted to grinlight's scene schema and read as any scene is — rendered as it is
+//! Scenes written for other renderers, brought in: a Mitsuba 3 XML scene ([`mitsuba`]) or a
+//! pbrt-v4 scene ([`pbrt`]) converted to grinlight's scene schema and read as any scene is — rendered as it is
 //! (`grinlight render scene.xml`) or written out as a grinlight scene file (`grinlight
 //! convert`) to which a GRIN medium can be added. What cannot be converted exactly is refused
 //! by file, line and element, or — asked for — approximated and listed.
 
+pub mod geometry;
 pub mod mitsuba;
+pub mod pbrt;
+pub mod table;
 
 use crate::error::{Error, Result};
 use crate::scene::Description;
 use crate::settings::Settings;
 use std::path::{Path, PathBuf};
+use std::rc::Rc;
 
 /// How a scene written for another renderer is read.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -29,14 +33,94 @@ pub enum Format {
     Grinlight,
     /// Mitsuba 3's XML (`.xml`).
     Mitsuba,
+    /// pbrt-v4's scene format (`.pbrt`).
+    Pbrt,
 }
 
 impl Format {
-    /// The format of `path`: Mitsuba for `.xml`, else grinlight's.
+    /// The format of `path`: Mitsuba for `.xml`, pbrt for `.pbrt`, else grinlight's.
     pub fn of(path: &Path) -> Format {
         match path.extension().and_then(|e| e.to_str()) {
             Some(e) if e.eq_ignore_ascii_case("xml") => Format::Mitsuba,
+            Some(e) if e.eq_ignore_ascii_case("pbrt") => Format::Pbrt,
             _ => Format::Grinlight,
+        }
+    }
+}
+
+/// Where something was written: file, line and column (1-based).
+#[derive(Clone, Debug)]
+pub struct Place {
+    /// The scene file.
+    pub file: Rc<PathBuf>,
+    /// Line, 1-based.
+    pub line: usize,
+    /// Column, 1-based.
+    pub col: usize,
+}
+
+impl Place {
+    /// An error at this place.
+    pub fn error(&self, message: impl Into<String>) -> Error {
+        Error::Scene {
+            path: self.file.as_ref().clone(),
+            line: self.line,
+            col: self.col,
+            message: message.into(),
+        }
+    }
+}
+
+impl std::fmt::Display for Place {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}:{}:{}", self.file.display(), self.line, self.col)
+    }
+}
+
+/// What a conversion tells the user besides the scene: what it approximated (only when
+/// allowed; otherwise an approximation is refused) and what converts exactly but is worth
+/// knowing.
+pub struct Told {
+    approximate: bool,
+    approximations: Vec<String>,
+    notes: Vec<String>,
+}
+
+impl Told {
+    /// Nothing told yet; `approximate`: whether approximations are allowed.
+    pub fn new(approximate: bool) -> Told {
+        Told {
+            approximate,
+            approximations: Vec::new(),
+            notes: Vec::new(),
+        }
+    }
+
+    /// An approximation: listed if allowed, else refused at `place`.
+    pub fn approximate(&mut self, place: &Place, what: impl std::fmt::Display) -> Result<()> {
+        if self.approximate {
+            self.approximations.push(format!("{place}: {what}"));
+            Ok(())
+        } else {
+            Err(place.error(format!(
+                "{what} — grinlight cannot convert this exactly; `--approximate` accepts it \
+                 and lists it"
+            )))
+        }
+    }
+
+    /// Something the user should know, though it converts exactly.
+    pub fn note(&mut self, place: &Place, what: impl std::fmt::Display) {
+        self.notes.push(format!("{place}: {what}"));
+    }
+
+    /// The converted scene `table`, read from `files`, with what was told.
+    pub fn into_imported(self, table: toml::Table, files: Vec<PathBuf>) -> Imported {
+        Imported {
+            table,
+            approximations: self.approximations,
+            notes: self.notes,
+            files,
         }
     }
 }
@@ -59,13 +143,16 @@ pub fn import(path: &Path, options: &ImportOptions) -> Result<Imported> {
     match Format::of(path) {
         Format::Mitsuba => {
             let doc = mitsuba::xml::read(path, &options.defines)?;
-            let c = mitsuba::convert(&doc, options.approximate)?;
-            Ok(Imported {
-                table: c.table,
-                approximations: c.approximations,
-                notes: c.notes,
-                files: c.files,
-            })
+            mitsuba::convert(&doc, options.approximate)
+        }
+        Format::Pbrt => {
+            if let Some((name, _)) = options.defines.first() {
+                return Err(Error::Usage(format!(
+                    "{}: -D {name}=…: a pbrt scene has no $parameters (Mitsuba's XML has)",
+                    path.display()
+                )));
+            }
+            pbrt::convert(&pbrt::parse::read(path)?, options.approximate)
         }
         Format::Grinlight => Err(Error::Usage(format!(
             "{}: a grinlight scene needs no conversion",
@@ -82,14 +169,14 @@ pub fn load_description(path: &Path, options: &ImportOptions) -> Result<(Descrip
         Format::Grinlight => {
             if *options != ImportOptions::default() {
                 return Err(Error::Usage(format!(
-                    "{}: -D and --approximate apply to scenes of other renderers (.xml), not to \
-                     a grinlight scene",
+                    "{}: -D and --approximate apply to scenes of other renderers (.xml, .pbrt), \
+                     not to a grinlight scene",
                     path.display()
                 )));
             }
             crate::scene::load_description(path)
         }
-        Format::Mitsuba => {
+        Format::Mitsuba | Format::Pbrt => {
             let imported = import(path, options)?;
             let dir = path.parent().unwrap_or(Path::new("."));
             // The converted table's own errors (a value grinlight refuses) name its key.

@@ -38,7 +38,7 @@ pub enum Control {
 #[derive(Subcommand)]
 pub enum Command {
     /// Render a scene's camera view to a multi-layer EXR and a PNG preview, and measure its
-    /// receivers. A Mitsuba 3 scene (.xml) is converted as `convert` does. Ctrl-C writes what is done so far (marked partial) and exits with 130;
+    /// receivers. A Mitsuba 3 (.xml) or pbrt-v4 (.pbrt) scene is converted as `convert` does. Ctrl-C writes what is done so far (marked partial) and exits with 130;
     /// a second Ctrl-C quits at once.
     Render(RenderArgs),
     /// Compare a scene's GRIN fiber with its layered twin (concentric homogeneous cylinders)
@@ -46,7 +46,7 @@ pub enum Command {
     Validate(ValidateArgs),
     /// Trace one ray through a medium of a scene (unbounded) and print where it ends.
     Trace(TraceArgs),
-    /// Convert a Mitsuba 3 scene (.xml) to a grinlight scene file (TOML), to render or to
+    /// Convert a Mitsuba 3 (.xml) or pbrt-v4 (.pbrt) scene to a grinlight scene file (TOML), to render or to
     /// edit (add a GRIN medium); what converts only approximately is refused unless
     /// --approximate, then listed.
     Convert(ConvertArgs),
@@ -86,7 +86,7 @@ fn parse_define(s: &str) -> std::result::Result<(String, String), String> {
 /// `grinlight convert` options.
 #[derive(clap::Args)]
 pub struct ConvertArgs {
-    /// The Mitsuba 3 scene (.xml).
+    /// The Mitsuba 3 (.xml) or pbrt-v4 (.pbrt) scene.
     scene: PathBuf,
     /// The grinlight scene file to write (.toml); it may replace only a file convert wrote.
     #[arg(short, long)]
@@ -225,7 +225,7 @@ pub struct TraceArgs {
 // A negative number is a value (refused by its range, named), not an unknown option.
 #[command(allow_negative_numbers = true)]
 pub struct RenderArgs {
-    /// Scene file: grinlight's TOML, or a Mitsuba 3 scene (.xml).
+    /// Scene file: grinlight's TOML, a Mitsuba 3 scene (.xml) or a pbrt-v4 scene (.pbrt).
     scene: PathBuf,
     #[command(flatten)]
     import: ImportArgs,

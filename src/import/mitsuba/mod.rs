@@ -5,25 +5,16 @@
 
 pub mod xml;
 
+use super::geometry::{linear, parallelogram, similarity};
+use super::table::{free_name, string, table, vec3};
+use super::{Imported, Place, Told};
 use crate::error::{cut, Result};
 use glam::{DMat3, DMat4, DVec3};
 use std::collections::HashMap;
 use std::path::PathBuf;
 use std::rc::Rc;
 use toml::{Table, Value as Toml};
-use xml::{Document, Object, Place};
-
-/// A Mitsuba scene as a grinlight scene table.
-pub struct Converted {
-    /// The scene, in the schema of `docs/scene-format.md`.
-    pub table: Table,
-    /// What was approximated (file:line: what), empty unless approximations were allowed.
-    pub approximations: Vec<String>,
-    /// What the user should know though it converts exactly (file:line: what).
-    pub notes: Vec<String>,
-    /// The XML files read.
-    pub files: Vec<PathBuf>,
-}
+use xml::{Document, Object};
 
 /// Mitsuba's named indices of refraction (its `ior.h`, read back from Mitsuba 3.9.1).
 const NAMED_IOR: [(&str, f64); 23] = [
@@ -60,12 +51,10 @@ const FILM_DIAGONAL_MM: f64 = 43.266_615_305_567_87;
 
 /// Converts the scene read from `doc`; `approximate` lets what converts only approximately
 /// through (each one listed).
-pub fn convert(doc: &Document, approximate: bool) -> Result<Converted> {
+pub fn convert(doc: &Document, approximate: bool) -> Result<Imported> {
     let mut c = Converter {
         doc,
-        approximate,
-        approximations: Vec::new(),
-        notes: Vec::new(),
+        told: Told::new(approximate),
         materials: Vec::new(),
         material_names: HashMap::new(),
         media: Vec::new(),
@@ -119,7 +108,7 @@ pub fn convert(doc: &Document, approximate: bool) -> Result<Converted> {
     if !c.one_sided.is_empty() {
         let place = scene.place.clone();
         let list = c.one_sided.join(", ");
-        c.note(
+        c.told.note(
             &place,
             format!(
                 "{list}: one-sided in Mitsuba (black from behind), two-sided in grinlight — \
@@ -147,12 +136,7 @@ pub fn convert(doc: &Document, approximate: bool) -> Result<Converted> {
             );
         }
     }
-    Ok(Converted {
-        table,
-        approximations: c.approximations,
-        notes: c.notes,
-        files: doc.files.clone(),
-    })
+    Ok(c.told.into_imported(table, doc.files.clone()))
 }
 
 /// What a shape's BSDF became.
@@ -171,9 +155,7 @@ enum Surface {
 
 struct Converter<'d> {
     doc: &'d Document,
-    approximate: bool,
-    approximations: Vec<String>,
-    notes: Vec<String>,
+    told: Told,
     materials: Vec<Table>,
     /// Each BSDF object converted, by address (one material however often it is used).
     material_names: HashMap<*const Object, Surface>,
@@ -199,71 +181,7 @@ enum Made {
     IndexMatched,
 }
 
-/// A name no table of `tables` has: `wanted` itself where it is free, else `wanted-1`,
-/// `wanted-2`, ….
-fn free_name(tables: &[Table], wanted: &str) -> String {
-    let taken = |n: &str| {
-        tables
-            .iter()
-            .any(|t| t.get("name").and_then(Toml::as_str) == Some(n))
-    };
-    std::iter::once(wanted.to_string())
-        .chain((1..).map(|i| format!("{wanted}-{i}")))
-        .find(|n| !taken(n))
-        .expect("a free name")
-}
-
-/// A vector as a TOML array.
-fn vec3(v: DVec3) -> Toml {
-    Toml::Array(v.to_array().iter().map(|&x| Toml::Float(x)).collect())
-}
-
-/// A table from key–value pairs.
-fn table<const N: usize>(pairs: [(&str, Toml); N]) -> Table {
-    pairs.into_iter().map(|(k, v)| (k.to_string(), v)).collect()
-}
-
-fn string(s: &str) -> Toml {
-    Toml::String(s.to_string())
-}
-
-/// The linear part of an affine map.
-fn linear(m: &DMat4) -> DMat3 {
-    DMat3::from_mat4(*m)
-}
-
-/// The uniform scale s of a map whose linear part is s times a rotation (None: it shears or
-/// scales unevenly, beyond a relative 1e-6).
-fn similarity(m: &DMat4) -> Option<f64> {
-    let l = linear(m);
-    let s = [l.x_axis.length(), l.y_axis.length(), l.z_axis.length()];
-    let scale = s[0];
-    let even = s.iter().all(|&x| (x - scale).abs() <= 1e-6 * scale);
-    let square = (l.x_axis.dot(l.y_axis).abs()
-        + l.y_axis.dot(l.z_axis).abs()
-        + l.x_axis.dot(l.z_axis).abs())
-        <= 1e-6 * scale * scale;
-    (scale > 0.0 && even && square).then_some(scale)
-}
-
 impl Converter<'_> {
-    /// An approximation: listed if allowed, else refused at `place`.
-    fn approximate(&mut self, place: &Place, what: impl std::fmt::Display) -> Result<()> {
-        if self.approximate {
-            self.approximations.push(format!("{place}: {what}"));
-            Ok(())
-        } else {
-            Err(place.error(format!(
-                "{what} — grinlight cannot convert this exactly; `--approximate` accepts it \
-                 and lists it"
-            )))
-        }
-    }
-
-    fn note(&mut self, place: &Place, what: impl std::fmt::Display) {
-        self.notes.push(format!("{place}: {what}"));
-    }
-
     /// A colour parameter: an `<rgb>`, a `<float>` or a uniform `<spectrum>` (as Mitsuba's RGB
     /// variants read them); a texture or a spectrum over wavelength is refused.
     fn colour(&mut self, obj: &Object, name: &str, default: f64) -> Result<DVec3> {
@@ -407,7 +325,7 @@ impl Converter<'_> {
     /// dielectric keeps every order of scattering on the microsurface).
     fn roughness(&mut self, obj: &Object) -> Result<f64> {
         let place = obj.place.clone();
-        self.note(
+        self.told.note(
             &place,
             format!(
                 "{}: grinlight's microfacet model masks with correlated heights (Mitsuba: \
@@ -434,7 +352,7 @@ impl Converter<'_> {
             "ggx" => {}
             "beckmann" => {
                 let place = obj.place.clone();
-                self.approximate(
+                self.told.approximate(
                     &place,
                     format!(
                         "{}: a Beckmann microfacet distribution (Mitsuba's default) taken as \
@@ -545,7 +463,7 @@ impl Converter<'_> {
                 // coat's inner side, ρ/(1 − ρ F̄ᵢ): Mitsuba's `nonlinear = true`.
                 if !b.boolean_or("nonlinear", false)? {
                     let place = b.place.clone();
-                    self.approximate(
+                    self.told.approximate(
                         &place,
                         format!(
                             "{}: Mitsuba's linear base (nonlinear = false, its default) taken as \
@@ -559,7 +477,7 @@ impl Converter<'_> {
                     "roughplastic" => self.roughness(b)?.max(1e-3),
                     _ => {
                         let place = b.place.clone();
-                        self.approximate(
+                        self.told.approximate(
                             &place,
                             format!(
                                 "{}: a smooth coat taken as GGX α = 0.001, grinlight's smoothest",
@@ -734,7 +652,8 @@ impl Converter<'_> {
         for clip in ["near_clip", "far_clip"] {
             if s.float(clip)?.is_some() {
                 let place = s.place.clone();
-                self.note(&place, format!("{clip} read past: grinlight does not clip"));
+                self.told
+                    .note(&place, format!("{clip} read past: grinlight does not clip"));
             }
         }
         let mut camera = table([
@@ -814,7 +733,7 @@ impl Converter<'_> {
             .map_or("gaussian".to_string(), |r| r.kind.clone());
         if kind != "box" {
             let place = filter.as_ref().map_or(f.place.clone(), |r| r.place.clone());
-            self.approximate(
+            self.told.approximate(
                 &place,
                 format!(
                     "the pixel filter '{kind}'{} taken as a box (grinlight's pixels are \
@@ -851,7 +770,7 @@ impl Converter<'_> {
             if i.kind == "aov" {
                 i.ignore("aovs");
                 let place = i.place.clone();
-                self.note(&place, "<integrator type=\"aov\">: its AOVs are not written (grinlight writes albedo and normal layers)");
+                self.told.note(&place, "<integrator type=\"aov\">: its AOVs are not written (grinlight writes albedo and normal layers)");
             }
             let inner = i.child("integrator")?.map(|c| c.object().clone());
             i.finish()?;
@@ -936,7 +855,7 @@ impl Converter<'_> {
                 }
             };
             if !black {
-                self.approximate(
+                self.told.approximate(
                     &place,
                     format!(
                         "{}'s surface reflects light in Mitsuba; grinlight's area lights \
@@ -976,7 +895,7 @@ impl Converter<'_> {
         match (&surface, &interior) {
             (Surface::Null, None) => {
                 let place = shape.place.clone();
-                self.note(
+                self.told.note(
                     &place,
                     format!(
                         "{} has a null BSDF and no medium: it is invisible, left out",
@@ -1015,7 +934,7 @@ impl Converter<'_> {
             // Mitsuba's ray leaving this surface outward is in the medium it names there:
             // none, vacuum — where grinlight's goes on in the medium around the camera.
             let (ambient, place) = (ambient.clone(), shape.place.clone());
-            self.approximate(
+            self.told.approximate(
                 &place,
                 format!(
                     "{} names no exterior medium: Mitsuba's light leaves it in vacuum, \
@@ -1501,37 +1420,6 @@ fn disk(shape: &Object, m: &DMat4, flip: bool) -> Result<(DVec3, DVec3, f64)> {
         if flip { -normal } else { normal },
         a.length(),
     ))
-}
-
-/// The four corners of two triangles that form one parallelogram, ordered v0..v3 around it
-/// with its normal on the triangles' side (the other side if flipped).
-fn parallelogram(triangles: [[DVec3; 3]; 2], flip: bool) -> Option<[DVec3; 4]> {
-    let [t, u] = triangles;
-    let normal = (t[1] - t[0]).cross(t[2] - t[0]);
-    let scale = normal.length().sqrt();
-    let same = |p: DVec3, q: DVec3| (p - q).length() <= 1e-9 * scale.max(1e-300);
-    // The corner of u not in t.
-    let far = u.into_iter().find(|p| !t.iter().any(|q| same(*p, *q)))?;
-    if u.iter().filter(|p| t.iter().any(|q| same(**p, *q))).count() != 2 {
-        return None;
-    }
-    // The corner of t opposite the shared edge: the one u lacks.
-    let i = (0..3).find(|&i| !u.iter().any(|p| same(*p, t[i])))?;
-    let (v0, v1, v3) = (t[i], t[(i + 1) % 3], t[(i + 2) % 3]);
-    let v2 = far;
-    if !same(v1 + v3 - v0, v2) {
-        return None;
-    }
-    let order = [v0, v1, v2, v3];
-    let along = (v1 - v0).cross(v3 - v0).dot(normal) > 0.0;
-    let order = if along != flip {
-        order
-    } else {
-        [v0, v3, v2, v1]
-    };
-    // Both triangles must face the same way.
-    let agree = (u[1] - u[0]).cross(u[2] - u[0]).dot(normal) > 0.0;
-    agree.then_some(order)
 }
 
 /// Mitsuba's cube [−1, 1]³ placed by `m` as six parallelograms, normals outward.

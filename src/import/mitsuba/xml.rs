@@ -5,40 +5,12 @@
 //! what it does not read can be refused by name ([`Object::finish`]).
 
 use crate::error::{cut, Error, Result};
+pub use crate::import::Place;
 use glam::{DMat4, DVec3};
 use std::cell::Cell;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
-
-/// Where something was written: file, line and column (1-based).
-#[derive(Clone, Debug)]
-pub struct Place {
-    /// The XML file.
-    pub file: Rc<PathBuf>,
-    /// Line, 1-based.
-    pub line: usize,
-    /// Column, 1-based.
-    pub col: usize,
-}
-
-impl Place {
-    /// An error at this place.
-    pub fn error(&self, message: impl Into<String>) -> Error {
-        Error::Scene {
-            path: self.file.as_ref().clone(),
-            line: self.line,
-            col: self.col,
-            message: message.into(),
-        }
-    }
-}
-
-impl std::fmt::Display for Place {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "{}:{}:{}", self.file.display(), self.line, self.col)
-    }
-}
 
 /// A property's value, as its element's name types it.
 #[derive(Clone, Debug, PartialEq)]

@@ -1,6 +1,7 @@
 //! `[[shape]]`: primitives, boxes and OBJ meshes placed in the scene. Every key's unit and default is in `docs/scene-format.md`.
 
 use crate::error::Result;
+use crate::scene::mesh::ObjTriangles;
 use crate::scene::table::{TableReader, MAX_MAGNITUDE};
 use crate::shapes::{Disk, Primitive, Quad, TriangleMesh};
 use glam::{DMat3, DVec3};
@@ -152,8 +153,114 @@ fn box_faces(lo: DVec3, hi: DVec3) -> Vec<Primitive> {
     ]
 }
 
+/// Where a mesh's triangles come from: a file, or the scene's own lists.
+enum MeshSource {
+    File(std::path::PathBuf),
+    Inline,
+}
+
+impl MeshSource {
+    /// The key that gives the triangles, named in errors.
+    fn key(&self) -> &'static str {
+        match self {
+            MeshSource::File(_) => "file",
+            MeshSource::Inline => "points",
+        }
+    }
+
+    /// What errors call the triangles' source.
+    fn label(&self) -> String {
+        match self {
+            MeshSource::File(path) => path.display().to_string(),
+            MeshSource::Inline => "the mesh's points".into(),
+        }
+    }
+}
+
+/// A mesh given in the scene: `points` (3 numbers a vertex), `indices` (3 vertex indices a
+/// triangle, from 0), and optionally `normals` (3 numbers a vertex) and `uv` (2 a vertex).
+fn inline_triangles(t: &mut TableReader) -> Result<ObjTriangles> {
+    let per_vertex = |t: &mut TableReader, key: &str, n: usize| -> Result<Option<Vec<f64>>> {
+        let Some(v) = t.f64_list_opt(key)? else {
+            return Ok(None);
+        };
+        t.check(
+            key,
+            !v.is_empty() && v.len() % n == 0,
+            format!("expected {n} numbers a vertex, got {} numbers", v.len()),
+        )?;
+        Ok(Some(v))
+    };
+    let points = per_vertex(t, "points", 3)?.ok_or_else(|| t.error("points", "is missing"))?;
+    let vertices = points.len() / 3;
+    let indices = t.f64_list("indices")?;
+    t.check(
+        "indices",
+        !indices.is_empty() && indices.len() % 3 == 0,
+        format!(
+            "expected 3 indices a triangle, got {} numbers",
+            indices.len()
+        ),
+    )?;
+    let mut triangles = Vec::with_capacity(indices.len() / 3);
+    for (k, corner) in indices.chunks_exact(3).enumerate() {
+        let mut tri = [0u32; 3];
+        for (slot, &i) in tri.iter_mut().zip(corner) {
+            t.check(
+                "indices",
+                i >= 0.0 && i.fract() == 0.0 && i < vertices as f64,
+                format_args!(
+                    "triangle {} names vertex {i}: indices are whole numbers from 0 to {}",
+                    k + 1,
+                    vertices - 1
+                ),
+            )?;
+            *slot = i as u32;
+        }
+        triangles.push(tri);
+    }
+    let f32s = |v: Vec<f64>| v.into_iter().map(|x| x as f32).collect::<Vec<f32>>();
+    let mut attribute = |key: &str, n: usize| -> Result<Option<Vec<f32>>> {
+        let Some(v) = per_vertex(t, key, n)? else {
+            return Ok(None);
+        };
+        t.check(
+            key,
+            v.len() == n * vertices,
+            format!(
+                "expected {n} numbers for each of the {vertices} points, got {} numbers",
+                v.len()
+            ),
+        )?;
+        Ok(Some(f32s(v)))
+    };
+    let normals =
+        attribute("normals", 3)?.map(|n| n.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect());
+    let texcoords = attribute("uv", 2)?.map(|n| n.chunks_exact(2).map(|c| [c[0], c[1]]).collect());
+    Ok(ObjTriangles {
+        positions: f32s(points)
+            .chunks_exact(3)
+            .map(|c| [c[0], c[1], c[2]])
+            .collect(),
+        triangles,
+        normals,
+        texcoords,
+    })
+}
+
 fn read_mesh(t: &mut TableReader) -> Result<Vec<Primitive>> {
-    let path = t.input_file("file")?;
+    let source = match t.has("points") {
+        true => {
+            t.check(
+                "file",
+                !t.has("file"),
+                "give either `file` or `points` and `indices`",
+            )?;
+            MeshSource::Inline
+        }
+        false => MeshSource::File(t.input_file("file")?),
+    };
+    let (key, label) = (source.key(), source.label());
     let Placement {
         linear,
         scale,
@@ -161,14 +268,17 @@ fn read_mesh(t: &mut TableReader) -> Result<Vec<Primitive>> {
         translate,
         key: placed_by,
     } = read_placement(t)?;
-    let is_ply = path
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("ply"));
-    let obj = match is_ply {
-        true => crate::scene::ply::load_ply(&path),
-        false => crate::scene::mesh::load_triangles(&path),
-    }
-    .map_err(|e| t.error("file", e))?;
+    let obj = match &source {
+        MeshSource::Inline => inline_triangles(t)?,
+        MeshSource::File(path) => match path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("ply"))
+        {
+            true => crate::scene::ply::load_ply(path),
+            false => crate::scene::mesh::load_triangles(path),
+        }
+        .map_err(|e| t.error("file", e))?,
+    };
     let smooth = t.bool_or("smooth", obj.normals.is_some())?;
     // Whether any face has an area as the file gives it (else a scale is not to blame).
     let given = |i: u32| DVec3::from(obj.positions[i as usize].map(f64::from));
@@ -184,11 +294,10 @@ fn read_mesh(t: &mut TableReader) -> Result<Vec<Primitive>> {
         let given = DVec3::from(v.map(f64::from));
         // The messages are formatted only if a check fails (a million vertices each).
         t.check(
-            "file",
+            key,
             given.abs().max_element() <= MAX_MAGNITUDE,
             format_args!(
-                "{}: vertex {} lies at {:?}, beyond ±{MAX_MAGNITUDE:e}",
-                path.display(),
+                "{label}: vertex {} lies at {:?}, beyond ±{MAX_MAGNITUDE:e}",
                 i + 1,
                 v
             ),
@@ -197,10 +306,7 @@ fn read_mesh(t: &mut TableReader) -> Result<Vec<Primitive>> {
         t.check(
             placed_by,
             p.abs().max_element() <= MAX_MAGNITUDE,
-            format_args!(
-                "{}: scaled and moved, a vertex lies beyond ±{MAX_MAGNITUDE:e}",
-                path.display()
-            ),
+            format_args!("{label}: scaled and moved, a vertex lies beyond ±{MAX_MAGNITUDE:e}"),
         )?;
         *v = p.as_vec3().to_array();
     }
@@ -210,35 +316,34 @@ fn read_mesh(t: &mut TableReader) -> Result<Vec<Primitive>> {
     triangles.retain(|&[a, b, c]| (at(b) - at(a)).cross(at(c) - at(a)).length_squared() > 0.0);
     if triangles.is_empty() {
         // A file with an unusable line says so rather than "zero area" (read again: only here).
-        let problem = std::fs::read(&path)
-            .ok()
-            .and_then(|b| crate::scene::mesh::diagnose(&b));
+        let problem = match &source {
+            MeshSource::File(path) => std::fs::read(path)
+                .ok()
+                .and_then(|b| crate::scene::mesh::diagnose(&b)),
+            MeshSource::Inline => None,
+        };
         return Err(match (problem, any_area) {
-            (Some(p), _) => t.error("file", format!("{}: {p}", path.display())),
+            (Some(p), _) => t.error(key, format!("{label}: {p}")),
             (None, false) => t.error(
-                "file",
+                key,
                 format!(
-                    "{}: all {faces} triangles have zero area (each face's corners lie on a \
-                     line)",
-                    path.display()
+                    "{label}: all {faces} triangles have zero area (each face's corners lie on \
+                     a line)"
                 ),
             ),
             (None, true) => t.error(
                 placed_by,
-                format!(
-                    "{}: all {faces} triangles have zero area at this scale",
-                    path.display()
-                ),
+                format!("{label}: all {faces} triangles have zero area at this scale"),
             ),
         });
     }
     let duplicates = crate::scene::mesh::drop_duplicate_triangles(&vertices, &mut triangles);
     if duplicates > 0 {
         t.warn(
-            "file",
+            key,
             format!(
-                "{}: {duplicates} triangle(s) repeat an earlier one's corners and were left out",
-                path.display()
+                "{label}: {duplicates} triangle(s) repeat an earlier one's corners and were left \
+                 out"
             ),
         );
     }
@@ -255,7 +360,7 @@ fn read_mesh(t: &mut TableReader) -> Result<Vec<Primitive>> {
         (true, None) => Some(vertex_normals(&vertices, &triangles)),
     };
     let mesh = TriangleMesh::new(vertices, triangles, normals, obj.texcoords)
-        .map_err(|e| t.error("file", e))?;
+        .map_err(|e| t.error(key, e))?;
     Ok(vec![Primitive::Mesh(std::sync::Arc::new(mesh))])
 }
 

@@ -1,0 +1,54 @@
+//! Geometry a converter reads from another renderer's scene: affine maps' linear parts and
+//! whether they keep shapes' proportions, and parallelograms found in pairs of triangles.
+
+use glam::{DMat3, DMat4, DVec3};
+
+/// The linear part of an affine map.
+pub fn linear(m: &DMat4) -> DMat3 {
+    DMat3::from_mat4(*m)
+}
+
+/// The uniform scale s of a map whose linear part is s times a rotation (None: it shears or
+/// scales unevenly, beyond a relative 1e-6).
+pub fn similarity(m: &DMat4) -> Option<f64> {
+    let l = linear(m);
+    let s = [l.x_axis.length(), l.y_axis.length(), l.z_axis.length()];
+    let scale = s[0];
+    let even = s.iter().all(|&x| (x - scale).abs() <= 1e-6 * scale);
+    let square = (l.x_axis.dot(l.y_axis).abs()
+        + l.y_axis.dot(l.z_axis).abs()
+        + l.x_axis.dot(l.z_axis).abs())
+        <= 1e-6 * scale * scale;
+    (scale > 0.0 && even && square).then_some(scale)
+}
+
+/// The four corners of two triangles that form one parallelogram, ordered v0..v3 around it
+/// with its normal on the triangles' side (the other side if flipped).
+pub fn parallelogram(triangles: [[DVec3; 3]; 2], flip: bool) -> Option<[DVec3; 4]> {
+    let [t, u] = triangles;
+    let normal = (t[1] - t[0]).cross(t[2] - t[0]);
+    let scale = normal.length().sqrt();
+    let same = |p: DVec3, q: DVec3| (p - q).length() <= 1e-9 * scale.max(1e-300);
+    // The corner of u not in t.
+    let far = u.into_iter().find(|p| !t.iter().any(|q| same(*p, *q)))?;
+    if u.iter().filter(|p| t.iter().any(|q| same(**p, *q))).count() != 2 {
+        return None;
+    }
+    // The corner of t opposite the shared edge: the one u lacks.
+    let i = (0..3).find(|&i| !u.iter().any(|p| same(*p, t[i])))?;
+    let (v0, v1, v3) = (t[i], t[(i + 1) % 3], t[(i + 2) % 3]);
+    let v2 = far;
+    if !same(v1 + v3 - v0, v2) {
+        return None;
+    }
+    let order = [v0, v1, v2, v3];
+    let along = (v1 - v0).cross(v3 - v0).dot(normal) > 0.0;
+    let order = if along != flip {
+        order
+    } else {
+        [v0, v3, v2, v1]
+    };
+    // Both triangles must face the same way.
+    let agree = (u[1] - u[0]).cross(u[2] - u[0]).dot(normal) > 0.0;
+    agree.then_some(order)
+}

@@ -1,0 +1,1654 @@
+//! pbrt-v4 scenes converted to grinlight's scene schema: each directive and parameter either
+//! converted exactly, approximated (only when asked, each approximation listed), or refused
+//! naming its file, line and column. `docs/import.md` lists every conversion and its
+//! conventions; the numbers pbrt-v4 uses (its defaults, its light normalisation, its
+//! roughness remapping) are read from its source, `src/pbrt/{lights,materials,cameras,
+//! film}.cpp`.
+//!
+//! pbrt's camera is left-handed (the image's right is the camera's +x, with +y up and +z
+//! forward): a camera whose frame is a rotation sees the world mirrored, as grinlight's never
+//! does. Such a scene is converted with x negated throughout (a point (x, y, z) of the file is
+//! at (−x, y, z) in grinlight's scene), which renders the image pbrt renders; a scene whose
+//! camera transform mirrors (the usual `Scale -1 1 1` before `LookAt`) keeps its coordinates.
+
+pub mod parse;
+
+use super::geometry::{linear, parallelogram, similarity};
+use super::table::{free_name, string, table, vec3};
+use super::{Imported, Place, Told};
+use crate::error::{cut, Result};
+use glam::{DMat4, DVec3};
+use parse::{Params, Scene, Statement};
+use std::collections::{HashMap, HashSet};
+use std::f64::consts::PI;
+use toml::{Table, Value as Toml};
+
+/// pbrt-v4's tabulated metals that grinlight has measured data for (`metal-X-eta`,
+/// `metal-X-k`).
+const METALS: [&str; 4] = ["Ag", "Al", "Au", "Cu"];
+
+/// Converts the statements of `scene`; `approximate` lets what converts only approximately
+/// through (each one listed).
+pub fn convert(scene: &Scene, approximate: bool) -> Result<Imported> {
+    let mut c = Converter {
+        scene,
+        told: Told::new(approximate),
+        graphics: Graphics::default(),
+        stack: Vec::new(),
+        named_frames: HashMap::new(),
+        camera_at: None,
+        camera: None,
+        film: None,
+        sampler: None,
+        filter_seen: false,
+        render: Table::new(),
+        mirror: false,
+        world: false,
+        materials: Vec::new(),
+        named_materials: HashMap::new(),
+        converted_materials: HashMap::new(),
+        used_materials: HashSet::new(),
+        default_material: None,
+        index_matched: None,
+        media: Vec::new(),
+        named_media: HashMap::new(),
+        medium_tables: HashMap::new(),
+        ambient: None,
+        ambient_pbrt: None,
+        shapes: Vec::new(),
+        lights: Vec::new(),
+        environment: None,
+    };
+    c.render.insert("integrator".into(), string("path"));
+    // pbrt-v4's default integrator, volpath, with its default depth; its default seed.
+    c.render.insert("max_depth".into(), Toml::Integer(5));
+    c.render.insert("seed".into(), Toml::Integer(0));
+    for s in &scene.statements {
+        c.statement(s)?;
+    }
+    if !c.world {
+        let place = scene
+            .statements
+            .last()
+            .map(|s| s.place.clone())
+            .unwrap_or_else(|| Place {
+                file: std::rc::Rc::new(scene.files[0].clone()),
+                line: 1,
+                col: 1,
+            });
+        return Err(place.error("the scene has no WorldBegin: nothing to render"));
+    }
+    for s in &scene.statements {
+        let defines_material = matches!(s.directive.as_str(), "Material" | "MakeNamedMaterial");
+        if defines_material && !c.used_materials.contains(&(s as *const Statement)) {
+            c.told.note(
+                &s.place,
+                format!("{} is used by no shape: left out", s.what()),
+            );
+        }
+    }
+    let mut table = Table::new();
+    table.insert(
+        "camera".into(),
+        Toml::Table(c.camera.take().expect("made at WorldBegin")),
+    );
+    if let Some(env) = c.environment.take() {
+        c.lights.push(env);
+    }
+    if let Some(ambient) = &c.ambient {
+        table.insert("ambient".into(), string(ambient));
+    }
+    table.insert("render".into(), Toml::Table(std::mem::take(&mut c.render)));
+    for (key, list) in [
+        ("medium", std::mem::take(&mut c.media)),
+        ("material", std::mem::take(&mut c.materials)),
+        ("shape", std::mem::take(&mut c.shapes)),
+        ("light", std::mem::take(&mut c.lights)),
+    ] {
+        if !list.is_empty() {
+            table.insert(
+                key.into(),
+                Toml::Array(list.into_iter().map(Toml::Table).collect()),
+            );
+        }
+    }
+    Ok(c.told.into_imported(table, scene.files.clone()))
+}
+
+/// pbrt's graphics state: what `AttributeBegin` saves and `AttributeEnd` restores.
+#[derive(Clone)]
+struct Graphics<'s> {
+    /// The current transform (object to world), f64.
+    ctm: DMat4,
+    /// `ReverseOrientation` toggled an odd number of times.
+    reverse: bool,
+    /// The statement of the current material (None: pbrt's default, diffuse of reflectance
+    /// 0.5), converted when a shape first uses it.
+    material: Option<&'s Statement>,
+    /// The current area light.
+    area: Option<AreaLight>,
+    /// `MediumInterface`: the media inside and outside the shapes that follow.
+    inside: Option<String>,
+    outside: Option<String>,
+}
+
+impl Default for Graphics<'_> {
+    fn default() -> Self {
+        Graphics {
+            ctm: DMat4::IDENTITY,
+            reverse: false,
+            material: None,
+            area: None,
+            inside: None,
+            outside: None,
+        }
+    }
+}
+
+/// What a material became.
+#[derive(Clone)]
+enum Surface {
+    /// A grinlight material, its name; a dielectric's relative index.
+    Material { name: String, ior: Option<f64> },
+    /// pbrt's `interface`: no surface, a medium's boundary only.
+    Interface,
+}
+
+/// `AreaLightSource "diffuse"`: the radiance of the shapes that follow.
+#[derive(Clone)]
+struct AreaLight {
+    /// L × scale (RGB).
+    radiance: DVec3,
+    /// `power`, if given: the radiance is then scaled to emit it from each shape.
+    power: Option<f64>,
+    place: Place,
+}
+
+struct Converter<'s> {
+    scene: &'s Scene,
+    told: Told,
+    graphics: Graphics<'s>,
+    stack: Vec<Graphics<'s>>,
+    /// `CoordinateSystem` names (and `camera`).
+    named_frames: HashMap<String, DMat4>,
+    /// The `Camera` statement, its world-from-camera map and the medium it is in.
+    camera_at: Option<(&'s Statement, DMat4, Option<String>)>,
+    /// The `[camera]` table, made at `WorldBegin`.
+    camera: Option<Table>,
+    /// `Film`, `Sampler` as read (converted at `WorldBegin`, when the camera is).
+    film: Option<(i64, i64)>,
+    sampler: Option<i64>,
+    filter_seen: bool,
+    render: Table,
+    /// Whether x is negated (pbrt's camera frame is a rotation).
+    mirror: bool,
+    /// After `WorldBegin`.
+    world: bool,
+    materials: Vec<Table>,
+    /// `MakeNamedMaterial` statements by name.
+    named_materials: HashMap<String, &'s Statement>,
+    /// Each material statement converted, by address (one material however often used).
+    converted_materials: HashMap<*const Statement, Surface>,
+    /// The material statements a shape or an area light's shape used.
+    used_materials: HashSet<*const Statement>,
+    default_material: Option<String>,
+    index_matched: Option<String>,
+    media: Vec<Table>,
+    /// `MakeNamedMedium` statements by name.
+    named_media: HashMap<String, &'s Statement>,
+    /// Each medium converted at an index (bits of n), by name.
+    medium_tables: HashMap<(String, u64), String>,
+    /// The grinlight medium around the camera, and its pbrt name.
+    ambient: Option<String>,
+    ambient_pbrt: Option<String>,
+    shapes: Vec<Table>,
+    lights: Vec<Table>,
+    environment: Option<Table>,
+}
+
+/// The reflection x ↦ −x, or the identity.
+fn mirror_map(mirror: bool) -> DMat4 {
+    match mirror {
+        true => DMat4::from_scale(DVec3::new(-1.0, 1.0, 1.0)),
+        false => DMat4::IDENTITY,
+    }
+}
+
+/// pbrt-v4's microfacet α of a roughness: √r when remapped (its default), else r.
+fn alpha(p: &Params, place: &Place) -> Result<f64> {
+    let r = p.float("roughness", 0.0)?;
+    let u = p.float("uroughness", r)?;
+    let v = p.float("vroughness", r)?;
+    if u != v {
+        return Err(place.error(format!(
+            "an anisotropic roughness (uroughness {u} ≠ vroughness {v}) is not supported"
+        )));
+    }
+    let a = match p.boolean("remaproughness", true)? {
+        true => u.max(0.0).sqrt(),
+        false => u,
+    };
+    if !(0.0..=1.0).contains(&a) {
+        return Err(place.error(format!(
+            "the roughness gives α = {a}, outside grinlight's [0, 1]"
+        )));
+    }
+    Ok(a)
+}
+
+impl<'s> Converter<'s> {
+    /// An RGB colour parameter (`rgb`; `default` when absent); spectra, blackbodies and
+    /// textures are refused by name.
+    fn rgb(&self, p: &Params, name: &str, default: DVec3, owner: &str) -> Result<DVec3> {
+        let Some(param) = p.take(name) else {
+            return Ok(default);
+        };
+        match param.ty.as_str() {
+            "rgb" => match p.numbers(name, &["rgb"])?.expect("taken").0[..] {
+                [r, g, b] => Ok(DVec3::new(r, g, b)),
+                ref v => Err(param.place.error(format!(
+                    "{}: expected 3 numbers, got {}",
+                    param.what(),
+                    v.len()
+                ))),
+            },
+            other => Err(param.place.error(format!(
+                "{owner}: {} — a {} is not supported by grinlight's import (give an rgb)",
+                param.what(),
+                cut(other)
+            ))),
+        }
+    }
+
+    /// A point of the file in grinlight's world.
+    fn point(&self, m: &DMat4, p: DVec3) -> DVec3 {
+        (mirror_map(self.mirror) * *m).transform_point3(p)
+    }
+
+    /// A direction of the file in grinlight's world (not normalised).
+    fn vector(&self, m: &DMat4, v: DVec3) -> DVec3 {
+        (mirror_map(self.mirror) * *m).transform_vector3(v)
+    }
+
+    /// A normal of the file (object space) in grinlight's world, unit.
+    fn normal(&self, m: &DMat4, n: DVec3) -> DVec3 {
+        let l = linear(&(mirror_map(self.mirror) * *m));
+        (l.inverse().transpose() * n).normalize()
+    }
+
+    fn statement(&mut self, s: &'s Statement) -> Result<()> {
+        let p = &s.params;
+        let numbers = s.numbers();
+        let before_world = |what: &str| -> Result<()> {
+            match self.world {
+                false => Ok(()),
+                true => Err(s.place.error(format!("{what} belongs before WorldBegin"))),
+            }
+        };
+        match s.directive.as_str() {
+            "Identity" => self.graphics.ctm = DMat4::IDENTITY,
+            "Translate" => {
+                self.graphics.ctm *= DMat4::from_translation(DVec3::from_slice(&numbers))
+            }
+            "Scale" => self.graphics.ctm *= DMat4::from_scale(DVec3::from_slice(&numbers)),
+            "Rotate" => {
+                let axis = DVec3::from_slice(&numbers[1..]);
+                let axis = axis
+                    .try_normalize()
+                    .ok_or_else(|| s.place.error("Rotate: the axis has no length"))?;
+                self.graphics.ctm *= DMat4::from_axis_angle(axis, numbers[0].to_radians());
+            }
+            "LookAt" => {
+                let [ex, ey, ez, lx, ly, lz, ux, uy, uz] = numbers[..] else {
+                    unreachable!("the parser reads 9 numbers")
+                };
+                self.graphics.ctm *= look_at(
+                    DVec3::new(ex, ey, ez),
+                    DVec3::new(lx, ly, lz),
+                    DVec3::new(ux, uy, uz),
+                )
+                .ok_or_else(|| {
+                    s.place
+                        .error("LookAt: the eye is at the target, or up is along the view")
+                })?;
+            }
+            // pbrt reads a matrix column by column.
+            "Transform" => self.graphics.ctm = DMat4::from_cols_slice(&numbers),
+            "ConcatTransform" => self.graphics.ctm *= DMat4::from_cols_slice(&numbers),
+            "CoordinateSystem" => {
+                self.named_frames
+                    .insert(s.text(0).to_string(), self.graphics.ctm);
+            }
+            "CoordSysTransform" => {
+                self.graphics.ctm = *self.named_frames.get(s.text(0)).ok_or_else(|| {
+                    s.place.error(format!(
+                        "no coordinate system is named \"{}\"",
+                        cut(s.text(0))
+                    ))
+                })?
+            }
+            "ReverseOrientation" => self.graphics.reverse = !self.graphics.reverse,
+            "AttributeBegin" => self.stack.push(self.graphics.clone()),
+            "AttributeEnd" => {
+                self.graphics = self
+                    .stack
+                    .pop()
+                    .ok_or_else(|| s.place.error("AttributeEnd without AttributeBegin"))?
+            }
+            // pbrt-v4 still reads these (deprecated): they save and restore the transform.
+            "TransformBegin" => self.stack.push(self.graphics.clone()),
+            "TransformEnd" => {
+                let saved = self
+                    .stack
+                    .pop()
+                    .ok_or_else(|| s.place.error("TransformEnd without TransformBegin"))?;
+                self.graphics.ctm = saved.ctm;
+            }
+            "Camera" => {
+                before_world("Camera")?;
+                self.camera_statement(s)?;
+            }
+            "Film" => {
+                before_world("Film")?;
+                self.film = Some(film(s)?);
+            }
+            "Sampler" => {
+                before_world("Sampler")?;
+                self.sampler = Some(sampler(s)?);
+            }
+            "PixelFilter" => {
+                before_world("PixelFilter")?;
+                self.filter_seen = true;
+                let exact = s.text(0) == "box"
+                    && p.float("xradius", 0.5)? == 0.5
+                    && p.float("yradius", 0.5)? == 0.5;
+                if !exact {
+                    for name in ["xradius", "yradius", "sigma", "alpha", "B", "C", "tau"] {
+                        p.ignore(name);
+                    }
+                    self.told.approximate(
+                        &s.place,
+                        format!(
+                            "{}: taken as a box of one pixel (each sample in its own pixel)",
+                            s.what()
+                        ),
+                    )?;
+                }
+                p.finish(&s.what())?;
+            }
+            "Integrator" => {
+                before_world("Integrator")?;
+                self.integrator(s)?;
+            }
+            // The acceleration structure changes the speed, not the image.
+            "Accelerator" => {
+                for name in [
+                    "maxnodeprims",
+                    "splitmethod",
+                    "intersectcost",
+                    "traversalcost",
+                ] {
+                    p.ignore(name);
+                }
+                p.finish(&s.what())?;
+            }
+            "ColorSpace" => {
+                if s.text(0) != "srgb" {
+                    return Err(s.place.error(format!(
+                        "the colour space \"{}\": grinlight's RGB is sRGB's (\"srgb\")",
+                        cut(s.text(0))
+                    )));
+                }
+            }
+            "Option" => {
+                // The seed of pbrt's samplers; the coordinates pbrt renders in change no pixel.
+                if p.has("seed") {
+                    let seed = p.integer("seed", 0)?.max(0);
+                    self.render.insert("seed".into(), Toml::Integer(seed));
+                }
+                p.ignore("rendercoordsys");
+                p.finish("Option")?;
+            }
+            "WorldBegin" => {
+                before_world("WorldBegin")?;
+                self.world_begin(s)?;
+            }
+            "Material" => {
+                supported_material(s)?;
+                self.graphics.material = Some(s);
+            }
+            "MakeNamedMaterial" => {
+                supported_material(s)?;
+                self.named_materials.insert(s.text(0).to_string(), s);
+            }
+            "NamedMaterial" => {
+                let made = self.named_materials.get(s.text(0)).ok_or_else(|| {
+                    s.place
+                        .error(format!("no material is named \"{}\"", cut(s.text(0))))
+                })?;
+                self.graphics.material = Some(made);
+            }
+            "MakeNamedMedium" => {
+                self.named_media.insert(s.text(0).to_string(), s);
+            }
+            "MediumInterface" => {
+                let name = |t: &str| -> Result<Option<String>> {
+                    match t {
+                        "" => Ok(None),
+                        t if self.named_media.contains_key(t) => Ok(Some(t.to_string())),
+                        t => Err(s.place.error(format!("no medium is named \"{}\"", cut(t)))),
+                    }
+                };
+                let inside = name(s.text(0))?;
+                let outside = match s.args.len() {
+                    1 => inside.clone(),
+                    _ => name(s.text(1))?,
+                };
+                self.graphics.inside = inside;
+                self.graphics.outside = outside;
+            }
+            "AreaLightSource" => self.area_light(s)?,
+            "LightSource" => self.light(s)?,
+            "Shape" => {
+                if !self.world {
+                    return Err(s.place.error("Shape belongs after WorldBegin"));
+                }
+                self.shape(s)?;
+            }
+            "Texture" => {
+                return Err(s.place.error(format!(
+                    "{}: textures are not supported by grinlight's pbrt import",
+                    s.what()
+                )))
+            }
+            "ObjectBegin" | "ObjectEnd" | "ObjectInstance" => {
+                return Err(s.place.error(format!(
+                    "{}: object instancing is not supported by grinlight's import",
+                    s.directive
+                )))
+            }
+            "Attribute" => {
+                return Err(s.place.error(
+                    "Attribute (default parameters for what follows) is not supported by \
+                     grinlight's import: give the parameters where they are used",
+                ))
+            }
+            "ActiveTransform" | "TransformTimes" => {
+                return Err(s.place.error(format!(
+                    "{}: moving geometry (motion blur) is not supported",
+                    s.directive
+                )))
+            }
+            "WorldEnd" => {
+                return Err(s.place.error(
+                    "WorldEnd is pbrt-v3's: grinlight reads pbrt-v4 scenes (pbrt --upgrade \
+                     converts a v3 scene)",
+                ))
+            }
+            other => unreachable!("the parser admits only pbrt-v4's directives, not {other}"),
+        }
+        Ok(())
+    }
+
+    fn camera_statement(&mut self, s: &'s Statement) -> Result<()> {
+        if s.text(0) != "perspective" {
+            return Err(s.place.error(format!(
+                "the camera \"{}\" is not supported (perspective is)",
+                cut(s.text(0))
+            )));
+        }
+        let world_from_camera = self.graphics.ctm.inverse();
+        if !world_from_camera.is_finite() {
+            return Err(s.place.error("the camera's transform has no inverse"));
+        }
+        self.named_frames.insert("camera".into(), world_from_camera);
+        self.camera_at = Some((s, world_from_camera, self.graphics.outside.clone()));
+        Ok(())
+    }
+}
+
+/// The material types the import converts.
+const MATERIALS: [&str; 5] = [
+    "diffuse",
+    "dielectric",
+    "conductor",
+    "coateddiffuse",
+    "interface",
+];
+
+/// Refuses a material statement of a type the import does not convert, where it is written
+/// (it is converted where a shape first uses it).
+fn supported_material(s: &Statement) -> Result<()> {
+    let kind = match s.directive.as_str() {
+        "Material" => s.text(0).to_string(),
+        _ => s.params.string("type")?.ok_or_else(|| {
+            s.place
+                .error(format!("{}: \"string type\" is missing", s.what()))
+        })?,
+    };
+    match MATERIALS.contains(&kind.as_str()) {
+        true => Ok(()),
+        false => Err(s.place.error(format!(
+            "the material \"{}\" is not supported by grinlight's import ({} are)",
+            cut(&kind),
+            MATERIALS.join(", ")
+        ))),
+    }
+}
+
+/// pbrt's `LookAt`: the camera-from-world map of an eye at `eye` looking at `target`.
+fn look_at(eye: DVec3, target: DVec3, up: DVec3) -> Option<DMat4> {
+    let dir = (target - eye).try_normalize()?;
+    let right = up.try_normalize()?.cross(dir).try_normalize()?;
+    let new_up = dir.cross(right);
+    let world_from_camera = DMat4::from_cols(
+        right.extend(0.0),
+        new_up.extend(0.0),
+        dir.extend(0.0),
+        eye.extend(1.0),
+    );
+    Some(world_from_camera.inverse())
+}
+
+/// `Film "rgb"` (or `"gbuffer"`): its size.
+fn film(s: &Statement) -> Result<(i64, i64)> {
+    let p = &s.params;
+    if !matches!(s.text(0), "rgb" | "gbuffer") {
+        return Err(s.place.error(format!(
+            "the film \"{}\" is not supported (rgb and gbuffer are)",
+            cut(s.text(0))
+        )));
+    }
+    let (w, h) = (
+        p.integer("xresolution", 1280)?,
+        p.integer("yresolution", 720)?,
+    );
+    if w < 1 || h < 1 {
+        return Err(s.place.error("the resolution must be at least 1 × 1"));
+    }
+    // What pbrt writes where changes no pixel.
+    for name in ["filename", "savefp16", "diagonal", "writefp16"] {
+        p.ignore(name);
+    }
+    // pbrt's pass-through sensor: its imaging ratio is 1 at ISO 100, no white balance.
+    if p.float("iso", 100.0)? != 100.0 {
+        return Err(s
+            .place
+            .error("iso ≠ 100 scales pbrt's pixels: not supported"));
+    }
+    if p.float("whitebalance", 0.0)? != 0.0 {
+        return Err(s.place.error("a white balance is not supported"));
+    }
+    if p.string("sensor")?.is_some_and(|n| n != "cie1931") {
+        return Err(s
+            .place
+            .error("a camera sensor other than cie1931 is not supported"));
+    }
+    if p.float("maxcomponentvalue", f64::INFINITY)? != f64::INFINITY {
+        return Err(s
+            .place
+            .error("maxcomponentvalue clamps pbrt's samples (a biased estimate): not supported"));
+    }
+    p.finish(&s.what())?;
+    Ok((w, h))
+}
+
+/// A `Sampler`'s samples a pixel (pbrt-v4's default 16; `stratified`: xsamples × ysamples).
+fn sampler(s: &Statement) -> Result<i64> {
+    let p = &s.params;
+    // The pattern of the points changes the noise, not what they estimate.
+    for name in ["randomization", "jitter", "seed"] {
+        p.ignore(name);
+    }
+    let spp = match s.text(0) {
+        "stratified" => p.integer("xsamples", 4)? * p.integer("ysamples", 4)?,
+        "halton" | "independent" | "sobol" | "paddedsobol" | "zsobol" | "pmj02bn" => {
+            p.integer("pixelsamples", 16)?
+        }
+        other => {
+            return Err(s
+                .place
+                .error(format!("the sampler \"{}\" is not pbrt-v4's", cut(other))))
+        }
+    };
+    if spp < 1 {
+        return Err(s.place.error("the samples a pixel must be at least 1"));
+    }
+    p.finish(&s.what())?;
+    Ok(spp)
+}
+
+/// A parameter's single point (`point3`, `point`), `default` when absent.
+fn point_param(p: &Params, name: &str, default: DVec3) -> Result<DVec3> {
+    match p.numbers(name, &["point3", "point"])? {
+        None => Ok(default),
+        Some((v, _)) if v.len() == 3 => Ok(DVec3::from_slice(&v)),
+        Some((_, param)) => Err(param
+            .place
+            .error(format!("{}: expected one point (3 numbers)", param.what()))),
+    }
+}
+
+/// An affine map's 3 rows [a b c t] as the 12 numbers of a mesh's `matrix`.
+fn rows(m: &DMat4) -> Toml {
+    let c = m.to_cols_array_2d();
+    Toml::Array(
+        (0..3)
+            .flat_map(|i| (0..4).map(move |j| Toml::Float(c[j][i])))
+            .collect(),
+    )
+}
+
+/// Four corners ordered so that grinlight's quad normal, (v1 − v0) × (v3 − v0), points along
+/// `normal`.
+fn facing(v: [DVec3; 4], normal: DVec3) -> [DVec3; 4] {
+    match (v[1] - v[0]).cross(v[3] - v[0]).dot(normal) >= 0.0 {
+        true => v,
+        false => [v[0], v[3], v[2], v[1]],
+    }
+}
+
+/// A list of numbers as a TOML array.
+fn floats(v: &[f64]) -> Toml {
+    Toml::Array(v.iter().map(|&x| Toml::Float(x)).collect())
+}
+
+/// What an area light is made on.
+enum Emitter {
+    Quad {
+        corners: [DVec3; 4],
+        /// The area of each of the lights pbrt makes of the shape (one per triangle).
+        each: f64,
+    },
+    Disk {
+        center: DVec3,
+        normal: DVec3,
+        radius: f64,
+    },
+}
+
+impl<'s> Converter<'s> {
+    /// The camera, film, sampler and filter, converted now that all are known.
+    fn world_begin(&mut self, s: &Statement) -> Result<()> {
+        let (w, h) = self.film.unwrap_or((1280, 720));
+        if !self.filter_seen {
+            self.told.approximate(
+                &s.place,
+                "pbrt's default pixel filter (a Gaussian of radius 1.5) taken as a box of one \
+                 pixel",
+            )?;
+        }
+        self.render
+            .insert("spp".into(), Toml::Integer(self.sampler.unwrap_or(16)));
+        let (camera, world_from_camera, medium) = match self.camera_at.take() {
+            Some((c, m, medium)) => (Some(c), m, medium),
+            // pbrt's default camera: perspective, fov 90, at the origin looking along +z.
+            None => (None, DMat4::IDENTITY, None),
+        };
+        let empty = Params::default();
+        let p = camera.map(|c| &c.params).unwrap_or(&empty);
+        let place = camera.map(|c| c.place.clone()).unwrap_or(s.place.clone());
+        if similarity(&world_from_camera).is_none() {
+            return Err(place.error(
+                "the camera's transform scales unevenly or shears: a camera's frame is turned \
+                 and moved only",
+            ));
+        }
+        let l = linear(&world_from_camera);
+        // pbrt's image right is the camera's +x; grinlight's is forward × up.
+        self.mirror = l.x_axis.dot(l.z_axis.cross(l.y_axis)) < 0.0;
+        if self.mirror {
+            self.told.note(
+                &place,
+                "pbrt's camera sees the world mirrored (its frame is a rotation, and pbrt's \
+                 camera is left-handed): x is negated throughout, a point (x, y, z) of the file \
+                 is at (−x, y, z) in the converted scene",
+            );
+        }
+        let origin = self.point(&world_from_camera, DVec3::ZERO);
+        let forward = self.vector(&world_from_camera, DVec3::Z).normalize();
+        let up = self.vector(&world_from_camera, DVec3::Y).normalize();
+        let fov = p.float("fov", 90.0)?;
+        if !(fov > 0.0 && fov < 180.0) {
+            return Err(place.error(format!("fov {fov}° is outside (0°, 180°)")));
+        }
+        // pbrt's fov spans the image's shorter side.
+        let tan_x = (0.5 * fov.to_radians()).tan() * (w as f64 / h as f64).max(1.0);
+        let mut table = table([
+            ("position", vec3(origin)),
+            ("look_at", vec3(origin + forward)),
+            ("up", vec3(up)),
+            ("width", Toml::Integer(w)),
+            ("height", Toml::Integer(h)),
+            ("fov_x_deg", Toml::Float(2.0 * tan_x.atan().to_degrees())),
+        ]);
+        let lens = p.float("lensradius", 0.0)?;
+        let focus = p.float("focaldistance", 1e6)?;
+        if lens > 0.0 {
+            table.insert("aperture_radius".into(), Toml::Float(lens));
+            table.insert("focus_distance".into(), Toml::Float(focus));
+        }
+        // The exposure scales pbrt's pixels: 1 (its default shutter) is grinlight's.
+        let exposure = p.float("shutterclose", 1.0)? - p.float("shutteropen", 0.0)?;
+        if exposure != 1.0 {
+            return Err(place.error(format!(
+                "an exposure (shutterclose − shutteropen) of {exposure} scales pbrt's pixels: \
+                 grinlight's is 1"
+            )));
+        }
+        if let Some(c) = camera {
+            p.finish(&c.what())?;
+        }
+        if let Some(medium) = medium {
+            let name = self.medium(&medium, 1.0)?;
+            self.ambient = Some(name);
+            self.ambient_pbrt = Some(medium);
+        }
+        self.camera = Some(table);
+        self.world = true;
+        self.graphics.ctm = DMat4::IDENTITY;
+        self.named_frames.insert("world".into(), DMat4::IDENTITY);
+        Ok(())
+    }
+
+    fn integrator(&mut self, s: &Statement) -> Result<()> {
+        let p = &s.params;
+        if !matches!(s.text(0), "path" | "volpath") {
+            return Err(s.place.error(format!(
+                "the integrator \"{}\" is not supported (path and volpath are, as grinlight's \
+                 path tracer)",
+                cut(s.text(0))
+            )));
+        }
+        // pbrt's maxdepth counts scattering events, as grinlight's max_depth does.
+        let depth = p.integer("maxdepth", 5)?;
+        if depth < 1 {
+            return Err(s.place.error(format!(
+                "maxdepth {depth}: grinlight renders paths with at least one scattering"
+            )));
+        }
+        self.render.insert("max_depth".into(), Toml::Integer(depth));
+        // How lights are chosen changes the noise, not the estimate.
+        p.ignore("lightsampler");
+        if p.boolean("regularize", false)? {
+            return Err(s
+                .place
+                .error("regularize = true roughens surfaces (a biased estimate): not supported"));
+        }
+        p.finish(&s.what())
+    }
+
+    /// pbrt's index of a dielectric: a `float eta` (1.5); a spectrum over wavelength refused.
+    fn eta(&self, p: &Params, what: &str) -> Result<f64> {
+        match p.take("eta") {
+            None => Ok(1.5),
+            Some(param) if param.ty == "float" => p.float("eta", 1.5),
+            Some(param) => Err(param.place.error(format!(
+                "{what}: {} — an index over wavelength (a dispersive glass) is not supported \
+                 by grinlight's import; give a float eta",
+                param.what()
+            ))),
+        }
+    }
+
+    /// The grinlight material of a pbrt material of type `kind`, named `wanted` (or a free
+    /// name near it).
+    fn material(
+        &mut self,
+        kind: &str,
+        p: &Params,
+        what: &str,
+        place: &Place,
+        wanted: &str,
+    ) -> Result<Surface> {
+        let microsurface_note = |c: &mut Self| {
+            c.told.note(
+                place,
+                format!(
+                    "{what}: grinlight's microfacet model masks with correlated heights (pbrt: \
+                     separable) and a rough dielectric scatters on its microsurface more than \
+                     once (pbrt: once): grazing highlights differ by a few percent"
+                ),
+            )
+        };
+        let (grin_kind, mut m, ior) = match kind {
+            "interface" => {
+                p.finish(what)?;
+                return Ok(Surface::Interface);
+            }
+            "diffuse" => {
+                let r = self.rgb(p, "reflectance", DVec3::splat(0.5), what)?;
+                ("diffuse", table([("albedo", vec3(r))]), None)
+            }
+            "dielectric" => {
+                let eta = self.eta(p, what)?;
+                let a = alpha(p, place)?;
+                let mut m = table([("ior", Toml::Float(eta))]);
+                if a > 0.0 {
+                    m.insert("roughness".into(), Toml::Float(a));
+                    microsurface_note(self);
+                }
+                ("dielectric", m, Some(eta))
+            }
+            "conductor" => {
+                if let Some(param) = p.take("reflectance") {
+                    return Err(param.place.error(format!(
+                        "{what}: a conductor given by its reflectance is not supported (give \
+                         eta and k)"
+                    )));
+                }
+                let named = |name: &str| -> Result<Option<String>> {
+                    match p.take(name) {
+                        Some(param) if param.ty == "spectrum" => match &param.values[..] {
+                            [parse::Value::Text(s)] => Ok(Some(s.clone())),
+                            _ => Err(param.place.error(format!(
+                                "{what}: {} over wavelength is not supported (give a named \
+                                 metal's spectrum or an rgb)",
+                                param.what()
+                            ))),
+                        },
+                        _ => Ok(None),
+                    }
+                };
+                let (eta_name, k_name) = (named("eta")?, named("k")?);
+                let mut m = match (eta_name, k_name, p.has("eta") || p.has("k")) {
+                    (None, None, false) => table([("metal", string("Cu"))]),
+                    (Some(e), Some(k), _) => {
+                        let metal = e
+                            .strip_prefix("metal-")
+                            .and_then(|r| r.strip_suffix("-eta"))
+                            .filter(|m| METALS.contains(m) && k == format!("metal-{m}-k"))
+                            .ok_or_else(|| {
+                                place.error(format!(
+                                    "{what}: eta \"{}\" and k \"{}\": grinlight has the \
+                                     measured metals {} (metal-X-eta with metal-X-k)",
+                                    cut(&e),
+                                    cut(&k),
+                                    METALS.join(", ")
+                                ))
+                            })?;
+                        table([("metal", string(metal))])
+                    }
+                    (None, None, true) => table([
+                        ("eta", vec3(self.rgb(p, "eta", DVec3::ONE, what)?)),
+                        ("k", vec3(self.rgb(p, "k", DVec3::ZERO, what)?)),
+                    ]),
+                    _ => {
+                        return Err(place.error(format!(
+                            "{what}: give eta and k alike, both named metal spectra or both rgb"
+                        )))
+                    }
+                };
+                if m.contains_key("metal") {
+                    self.told.note(
+                        place,
+                        format!(
+                            "{what}: pbrt's tabulated metal taken as grinlight's measured one of \
+                             the same name (Palik's data)"
+                        ),
+                    );
+                }
+                let a = alpha(p, place)?;
+                if a > 0.0 {
+                    m.insert("roughness".into(), Toml::Float(a));
+                    microsurface_note(self);
+                }
+                ("conductor", m, None)
+            }
+            "coateddiffuse" => {
+                let base = self.rgb(p, "reflectance", DVec3::splat(0.5), what)?;
+                let eta = self.eta(p, what)?;
+                let a = alpha(p, place)?.max(1e-3);
+                if self.rgb(p, "albedo", DVec3::ZERO, what)? != DVec3::ZERO {
+                    return Err(place.error(format!(
+                        "{what}: a coat that absorbs or scatters (albedo ≠ 0) is not supported"
+                    )));
+                }
+                // With a clear coat the thickness changes nothing; the others set pbrt's
+                // stochastic estimate of the layers.
+                for name in ["thickness", "g", "maxdepth", "nsamples"] {
+                    p.ignore(name);
+                }
+                self.told.approximate(
+                    place,
+                    format!(
+                        "{what}: pbrt's stochastic layers taken as grinlight's plastic (a GGX coat \
+                         over a diffuse base, the light between them summed in closed form)"
+                    ),
+                )?;
+                let mut m = table([("albedo", vec3(base))]);
+                m.insert("ior".into(), Toml::Float(eta));
+                m.insert("roughness".into(), Toml::Float(a));
+                ("plastic", m, None)
+            }
+            other => unreachable!("refused where it was defined: {other}"),
+        };
+        p.ignore("type");
+        p.finish(what)?;
+        let name = free_name(&self.materials, wanted);
+        m.insert("name".into(), string(&name));
+        m.insert("type".into(), string(grin_kind));
+        self.materials.push(m);
+        Ok(Surface::Material { name, ior })
+    }
+
+    /// The grinlight medium the pbrt medium `name` becomes at (relative) index `n`.
+    fn medium(&mut self, name: &str, n: f64) -> Result<String> {
+        let key = (name.to_string(), n.to_bits());
+        if let Some(made) = self.medium_tables.get(&key) {
+            return Ok(made.clone());
+        }
+        let s = self.named_media[name];
+        let p = &s.params;
+        let kind = p.string("type")?.unwrap_or_default();
+        if kind != "homogeneous" {
+            return Err(s.place.error(format!(
+                "the medium \"{}\" is not supported by grinlight's import (homogeneous is)",
+                cut(&kind)
+            )));
+        }
+        let what = s.what();
+        let scale = p.float("scale", 1.0)?;
+        let sigma_a = self.rgb(p, "sigma_a", DVec3::new(0.0011, 0.0024, 0.014), &what)? * scale;
+        let sigma_s = self.rgb(p, "sigma_s", DVec3::new(2.55, 3.21, 3.77), &what)? * scale;
+        let g = p.float("g", 0.0)?;
+        if self.rgb(p, "Le", DVec3::ZERO, &what)? != DVec3::ZERO {
+            return Err(s.place.error(format!(
+                "{what}: an emitting medium (Le) is not supported by grinlight's import"
+            )));
+        }
+        p.ignore("Lescale");
+        if (sigma_a.max_element() - sigma_a.min_element()) > 1e-9 * sigma_a.max_element() {
+            return Err(s.place.error(format!(
+                "{what}: an absorption sigma_a × scale = {:?} that differs by channel: \
+                 grinlight's absorption is one number",
+                sigma_a.to_array()
+            )));
+        }
+        p.finish(&what)?;
+        let mut m = table([("profile", string("uniform")), ("n", Toml::Float(n))]);
+        if sigma_a.x > 0.0 {
+            m.insert("absorption".into(), Toml::Float(sigma_a.x));
+        }
+        if sigma_s.max_element() > 0.0 {
+            m.insert("scattering".into(), vec3(sigma_s));
+            if g != 0.0 {
+                m.insert("phase".into(), Toml::Table(table([("hg", Toml::Float(g))])));
+            }
+        }
+        let made = free_name(&self.media, name);
+        m.insert("name".into(), string(&made));
+        self.media.push(m);
+        self.medium_tables.insert(key, made.clone());
+        Ok(made)
+    }
+
+    fn area_light(&mut self, s: &Statement) -> Result<()> {
+        let p = &s.params;
+        let what = s.what();
+        if s.text(0) != "diffuse" {
+            return Err(s.place.error(format!(
+                "the area light \"{}\" is not pbrt-v4's (diffuse is)",
+                cut(s.text(0))
+            )));
+        }
+        // pbrt scales an RGB emission by its illuminant's luminance: the RGB is what is seen.
+        let radiance = self.rgb(p, "L", DVec3::ONE, &what)? * p.float("scale", 1.0)?;
+        if p.boolean("twosided", false)? {
+            return Err(s
+                .place
+                .error("a two-sided area light is not supported (grinlight's emit on one side)"));
+        }
+        let power = p.float("power", -1.0)?;
+        p.finish(&what)?;
+        self.graphics.area = Some(AreaLight {
+            radiance,
+            power: (power > 0.0).then_some(power),
+            place: s.place.clone(),
+        });
+        Ok(())
+    }
+
+    fn light(&mut self, s: &Statement) -> Result<()> {
+        let p = &s.params;
+        let what = s.what();
+        let m = self.graphics.ctm;
+        let scale = p.float("scale", 1.0)?;
+        // pbrt scales an RGB emission by its illuminant's luminance: the RGB is what is seen;
+        // a `power` then sets the flux of that illuminant.
+        let light = match s.text(0) {
+            "point" => {
+                let mut intensity = self.rgb(p, "I", DVec3::ONE, &what)? * scale;
+                let power = p.float("power", -1.0)?;
+                if power > 0.0 {
+                    intensity *= power / (4.0 * PI);
+                }
+                let from = point_param(p, "from", DVec3::ZERO)?;
+                table([
+                    ("type", string("point")),
+                    ("position", vec3(self.point(&m, from))),
+                    ("intensity", vec3(intensity)),
+                ])
+            }
+            "spot" => {
+                if similarity(&m).is_none() {
+                    return Err(s
+                        .place
+                        .error("the transform scales unevenly or shears the spot light's cone"));
+                }
+                let mut intensity = self.rgb(p, "I", DVec3::ONE, &what)? * scale;
+                let cone = p.float("coneangle", 30.0)?;
+                let delta = p.float("conedeltaangle", 5.0)?;
+                if !(cone > 0.0 && cone <= 180.0 && delta >= 0.0 && delta <= cone) {
+                    return Err(s.place.error(format!(
+                        "coneangle {cone}° and conedeltaangle {delta}°: the cone must lie in \
+                         (0°, 180°] and its falloff within it"
+                    )));
+                }
+                let power = p.float("power", -1.0)?;
+                if power > 0.0 {
+                    let (end, start) = (cone.to_radians().cos(), (cone - delta).to_radians().cos());
+                    intensity *= power / (2.0 * PI * ((1.0 - start) + 0.5 * (start - end)));
+                }
+                let from = point_param(p, "from", DVec3::ZERO)?;
+                let to = point_param(p, "to", DVec3::Z)?;
+                let direction = self.vector(&m, to - from).try_normalize().ok_or_else(|| {
+                    s.place
+                        .error("the spot light's from and to are the same point")
+                })?;
+                // pbrt's falloff: smoothstep in cos θ, grinlight's default.
+                table([
+                    ("type", string("spot")),
+                    ("position", vec3(self.point(&m, from))),
+                    ("direction", vec3(direction)),
+                    ("intensity", vec3(intensity)),
+                    ("cone_deg", Toml::Float(cone)),
+                    ("falloff_deg", Toml::Float(cone - delta)),
+                    ("falloff_curve", string("smoothstep")),
+                ])
+            }
+            "distant" => {
+                let mut irradiance = self.rgb(p, "L", DVec3::ONE, &what)? * scale;
+                let illuminance = p.float("illuminance", -1.0)?;
+                if illuminance > 0.0 {
+                    irradiance *= illuminance;
+                }
+                let from = point_param(p, "from", DVec3::ZERO)?;
+                let to = point_param(p, "to", DVec3::Z)?;
+                let direction = self.vector(&m, to - from).try_normalize().ok_or_else(|| {
+                    s.place
+                        .error("the distant light's from and to are the same point")
+                })?;
+                table([
+                    ("type", string("directional")),
+                    ("direction", vec3(direction)),
+                    ("irradiance", vec3(irradiance)),
+                ])
+            }
+            "infinite" => {
+                if let Some(param) = p.take("filename") {
+                    return Err(param.place.error(
+                        "an environment image (pbrt's equal-area octahedral map) is not \
+                         supported by grinlight's import",
+                    ));
+                }
+                let mut radiance = self.rgb(p, "L", DVec3::ONE, &what)? * scale;
+                let illuminance = p.float("illuminance", -1.0)?;
+                if illuminance > 0.0 {
+                    radiance *= illuminance / PI;
+                }
+                p.finish(&what)?;
+                if self.environment.is_some() {
+                    return Err(s
+                        .place
+                        .error("a second infinite light: grinlight has one environment"));
+                }
+                self.environment = Some(table([
+                    ("type", string("environment")),
+                    ("sky", string("uniform")),
+                    ("radiance", vec3(radiance)),
+                ]));
+                return Ok(());
+            }
+            other => {
+                return Err(s.place.error(format!(
+                    "the light \"{}\" is not supported by grinlight's import (point, spot, \
+                     distant, infinite are)",
+                    cut(other)
+                )))
+            }
+        };
+        p.finish(&what)?;
+        self.lights.push(light);
+        Ok(())
+    }
+
+    /// A material statement's type and the name its grinlight material is given.
+    fn material_kind(s: &Statement) -> (String, &str) {
+        match s.directive.as_str() {
+            "Material" => (s.text(0).to_string(), "material"),
+            _ => (
+                s.params.string("type").ok().flatten().unwrap_or_default(),
+                s.text(0),
+            ),
+        }
+    }
+
+    /// Whether the current material reflects nothing (a black diffuse one).
+    fn is_black(&mut self) -> Result<bool> {
+        let Some(s) = self.graphics.material else {
+            return Ok(false);
+        };
+        self.used_materials.insert(s);
+        Ok(Self::material_kind(s).0 == "diffuse"
+            && self.rgb(&s.params, "reflectance", DVec3::splat(0.5), &s.what())? == DVec3::ZERO)
+    }
+
+    /// The current material, converted the first time a shape uses it; pbrt's default
+    /// (diffuse, reflectance 0.5) if none was set.
+    fn surface(&mut self) -> Result<Surface> {
+        if let Some(s) = self.graphics.material {
+            let key = s as *const Statement;
+            self.used_materials.insert(key);
+            if let Some(made) = self.converted_materials.get(&key) {
+                return Ok(made.clone());
+            }
+            let (kind, wanted) = Self::material_kind(s);
+            let made = self.material(&kind, &s.params, &s.what(), &s.place, wanted)?;
+            self.converted_materials.insert(key, made.clone());
+            return Ok(made);
+        }
+        let name = match &self.default_material {
+            Some(n) => n.clone(),
+            None => {
+                let name = free_name(&self.materials, "default-diffuse");
+                let mut t = table([
+                    ("type", string("diffuse")),
+                    ("albedo", vec3(DVec3::splat(0.5))),
+                ]);
+                t.insert("name".into(), string(&name));
+                self.materials.push(t);
+                self.default_material = Some(name.clone());
+                name
+            }
+        };
+        Ok(Surface::Material { name, ior: None })
+    }
+
+    /// A dielectric of relative index 1: the boundary of a medium behind an `interface`.
+    fn index_matched(&mut self) -> String {
+        if let Some(n) = &self.index_matched {
+            return n.clone();
+        }
+        let name = free_name(&self.materials, "index-matched");
+        let mut t = table([("type", string("dielectric")), ("ior", Toml::Float(1.0))]);
+        t.insert("name".into(), string(&name));
+        self.materials.push(t);
+        self.index_matched = Some(name.clone());
+        name
+    }
+}
+
+impl<'s> Converter<'s> {
+    fn shape(&mut self, s: &'s Statement) -> Result<()> {
+        let p = &s.params;
+        let what = s.what();
+        if p.float("alpha", 1.0)? != 1.0 {
+            return Err(s
+                .place
+                .error(format!("{what}: an alpha cut-out is not supported")));
+        }
+        let g = self.graphics.clone();
+        if let Some(area) = &g.area {
+            return self.emitter(s, &g, area);
+        }
+        let surface = self.surface()?;
+        let mut out = Table::new();
+        // pbrt's shape changes the ray's medium only where its inside and outside differ.
+        let transition = g.inside != g.outside;
+        match (&surface, &g.inside) {
+            (Surface::Interface, inside) if !transition || inside.is_none() => {
+                self.told.note(
+                    &s.place,
+                    format!("{what} is an interface with no medium inside: invisible, left out"),
+                );
+                self.geometry(s, &g, false)?;
+                return p.finish(&what);
+            }
+            (Surface::Interface, inside) => {
+                let inside = inside.as_deref().expect("matched above");
+                let name = self.medium(inside, 1.0)?;
+                out.insert("material".into(), string(&self.index_matched()));
+                out.insert("interior".into(), string(&name));
+            }
+            (Surface::Material { name, ior, .. }, inside) => {
+                out.insert("material".into(), string(name));
+                match (ior, inside) {
+                    (_, _) if !transition => {}
+                    (Some(eta), Some(inside)) => {
+                        let name = self.medium(inside, *eta)?;
+                        out.insert("interior".into(), string(&name));
+                    }
+                    (None, Some(_)) => {
+                        return Err(s.place.error(format!(
+                            "{what} has a medium inside but its material lets no light in"
+                        )))
+                    }
+                    (_, None) => {}
+                }
+            }
+        }
+        if transition && g.outside != self.ambient_pbrt {
+            match &g.outside {
+                Some(outside) => {
+                    let name = self.medium(outside, 1.0)?;
+                    out.insert("exterior".into(), string(&name));
+                }
+                None => {
+                    let ambient = self.ambient.clone().unwrap_or_default();
+                    self.told.approximate(
+                        &s.place,
+                        format!(
+                            "{what} names no outside medium: pbrt's light leaves it in vacuum, \
+                             grinlight's in '{ambient}', the camera's medium"
+                        ),
+                    )?;
+                }
+            }
+        }
+        let dielectric = matches!(surface, Surface::Material { ior: Some(_), .. });
+        for (k, v) in self.geometry(s, &g, dielectric)? {
+            out.insert(k, v);
+        }
+        p.finish(&what)?;
+        self.shapes.push(out);
+        Ok(())
+    }
+
+    /// Whether a mesh's triangles must be wound the other way for grinlight's normal
+    /// (the winding's) to be pbrt's: its `ReverseOrientation`, a mirroring transform, and
+    /// the scene's negated x each turn it over.
+    fn turned(&self, g: &Graphics) -> bool {
+        g.reverse ^ (linear(&g.ctm).determinant() < 0.0) ^ self.mirror
+    }
+
+    /// The geometry keys of a shape; `oriented`: its inside and outside differ in grinlight
+    /// (a dielectric), so its orientation must be kept.
+    fn geometry(&mut self, s: &Statement, g: &Graphics, oriented: bool) -> Result<Table> {
+        let p = &s.params;
+        let m = g.ctm;
+        let uniform = |what: &str| -> Result<f64> {
+            similarity(&m).ok_or_else(|| {
+                s.place.error(format!(
+                    "the transform scales unevenly or shears the {what}: not supported"
+                ))
+            })
+        };
+        let full = |name: &str, value: f64, default: f64| -> Result<()> {
+            match value == default {
+                true => Ok(()),
+                false => Err(s.place.error(format!(
+                    "{}: a partial shape ({name} {value}) is not supported",
+                    s.what()
+                ))),
+            }
+        };
+        Ok(match s.text(0) {
+            "sphere" => {
+                let radius = p.float("radius", 1.0)?;
+                full("zmin", p.float("zmin", -radius)?, -radius)?;
+                full("zmax", p.float("zmax", radius)?, radius)?;
+                full("phimax", p.float("phimax", 360.0)?, 360.0)?;
+                let k = uniform("sphere")?;
+                table([
+                    ("type", string("sphere")),
+                    ("center", vec3(self.point(&m, DVec3::ZERO))),
+                    ("radius", Toml::Float(radius * k)),
+                ])
+            }
+            "disk" => {
+                let (height, radius) = (p.float("height", 0.0)?, p.float("radius", 1.0)?);
+                let inner = p.float("innerradius", 0.0)?;
+                full("phimax", p.float("phimax", 360.0)?, 360.0)?;
+                let k = uniform("disk")?;
+                let mut t = table([
+                    ("type", string("disk")),
+                    ("center", vec3(self.point(&m, DVec3::new(0.0, 0.0, height)))),
+                    ("normal", vec3(self.normal(&m, DVec3::Z))),
+                    ("radius", Toml::Float(radius * k)),
+                ]);
+                if inner > 0.0 {
+                    t.insert("inner_radius".into(), Toml::Float(inner * k));
+                }
+                t
+            }
+            "cylinder" => {
+                let radius = p.float("radius", 1.0)?;
+                let (zmin, zmax) = (p.float("zmin", -1.0)?, p.float("zmax", 1.0)?);
+                full("phimax", p.float("phimax", 360.0)?, 360.0)?;
+                let k = uniform("cylinder")?;
+                let (lo, hi) = (zmin.min(zmax), zmin.max(zmax));
+                if hi <= lo {
+                    return Err(s.place.error("the cylinder has no height (zmin = zmax)"));
+                }
+                let axis = self.vector(&m, DVec3::Z).normalize();
+                table([
+                    ("type", string("cylinder")),
+                    ("base", vec3(self.point(&m, DVec3::new(0.0, 0.0, lo)))),
+                    ("axis", vec3(axis)),
+                    ("radius", Toml::Float(radius * k)),
+                    ("height", Toml::Float((hi - lo) * k)),
+                    // pbrt's cylinder is open.
+                    ("capped", Toml::Boolean(false)),
+                ])
+            }
+            "trianglemesh" => {
+                let mesh = TriangleMesh::read(s)?;
+                let mut indices = mesh.indices.clone();
+                if self.turned(g) {
+                    for t in indices.chunks_exact_mut(3) {
+                        t.swap(1, 2);
+                    }
+                }
+                let placed = mirror_map(self.mirror) * m;
+                let mut t = table([
+                    ("type", string("mesh")),
+                    ("points", floats(&mesh.points)),
+                    (
+                        "indices",
+                        Toml::Array(indices.iter().map(|&i| Toml::Integer(i as i64)).collect()),
+                    ),
+                    ("matrix", rows(&placed)),
+                    ("smooth", Toml::Boolean(mesh.normals.is_some())),
+                ]);
+                if let Some(n) = &mesh.normals {
+                    t.insert("normals".into(), floats(n));
+                }
+                if let Some(uv) = &mesh.uv {
+                    t.insert("uv".into(), floats(uv));
+                }
+                t
+            }
+            "plymesh" => {
+                let name = p.string("filename")?.ok_or_else(|| {
+                    s.place
+                        .error(format!("{}: \"string filename\" is missing", s.what()))
+                })?;
+                let path = self.scene.find(&name, &s.place)?;
+                if oriented && self.turned(g) {
+                    return Err(s.place.error(
+                        "a glass PLY mesh turned inside out (ReverseOrientation, a mirroring \
+                         transform or the scene's negated x): grinlight takes a mesh's inside \
+                         from its file's winding",
+                    ));
+                }
+                let file = std::fs::canonicalize(&path).unwrap_or(path);
+                table([
+                    ("type", string("mesh")),
+                    ("file", string(&file.to_string_lossy())),
+                    ("matrix", rows(&(mirror_map(self.mirror) * m))),
+                ])
+            }
+            "bilinearmesh" => {
+                let (corners, _) = self.bilinear_quad(s, g)?;
+                table([
+                    ("type", string("quad")),
+                    (
+                        "vertices",
+                        Toml::Array(corners.into_iter().map(vec3).collect()),
+                    ),
+                ])
+            }
+            other => {
+                return Err(s.place.error(format!(
+                    "the shape \"{}\" is not supported by grinlight's import (sphere, disk, \
+                     cylinder, trianglemesh, plymesh, bilinearmesh are)",
+                    cut(other)
+                )))
+            }
+        })
+    }
+
+    /// A `bilinearmesh` of one flat parallelogram patch: its corners in grinlight's world,
+    /// ordered to face pbrt's normal, and that normal.
+    fn bilinear_quad(&self, s: &Statement, g: &Graphics) -> Result<([DVec3; 4], DVec3)> {
+        let p = &s.params;
+        let points = p
+            .numbers("P", &["point3", "point"])?
+            .map(|(v, _)| v)
+            .unwrap_or_default();
+        let indices = match p.numbers("indices", &["integer"])? {
+            Some((v, _)) => v,
+            None => vec![0.0, 1.0, 2.0, 3.0],
+        };
+        if points.len() != 12 || indices != [0.0, 1.0, 2.0, 3.0] {
+            return Err(s.place.error(
+                "a bilinear mesh of more than one patch is not supported (one patch of 4 \
+                 points)",
+            ));
+        }
+        let at = |i: usize| self.point(&g.ctm, DVec3::from_slice(&points[3 * i..3 * i + 3]));
+        // pbrt's patch: p00, p10, p01, p11.
+        let (p00, p10, p01, p11) = (at(0), at(1), at(2), at(3));
+        let size = (p10 - p00).length() + (p01 - p00).length();
+        if (p10 + p01 - p00 - p11).length() > 1e-9 * size {
+            return Err(s
+                .place
+                .error("the bilinear patch is not a flat parallelogram (grinlight's quads are)"));
+        }
+        // pbrt's normal ∂p/∂u × ∂p/∂v in its world, turned by ReverseOrientation and a
+        // mirroring transform; in grinlight's world it is turned again by the negated x.
+        let at_pbrt = |i: usize| {
+            g.ctm
+                .transform_point3(DVec3::from_slice(&points[3 * i..3 * i + 3]))
+        };
+        let mut n = (at_pbrt(1) - at_pbrt(0)).cross(at_pbrt(2) - at_pbrt(0));
+        if g.reverse ^ (linear(&g.ctm).determinant() < 0.0) {
+            n = -n;
+        }
+        let normal = (linear(&mirror_map(self.mirror)) * n).normalize();
+        if !normal.is_finite() {
+            return Err(s.place.error("the bilinear patch has no area"));
+        }
+        Ok((facing([p00, p10, p11, p01], normal), normal))
+    }
+
+    /// A shape under an `AreaLightSource`: a quad or disk light.
+    fn emitter(&mut self, s: &Statement, g: &Graphics, area: &AreaLight) -> Result<()> {
+        let p = &s.params;
+        let what = s.what();
+        let emitter = match s.text(0) {
+            "trianglemesh" => {
+                let mesh = TriangleMesh::read(s)?;
+                let corner = |i: u32| {
+                    let i = i as usize;
+                    g.ctm
+                        .transform_point3(DVec3::from_slice(&mesh.points[3 * i..3 * i + 3]))
+                };
+                let tri = |t: usize| [0, 1, 2].map(|k| corner(mesh.indices[3 * t + k]));
+                let quad = match mesh.indices.len() {
+                    6 => parallelogram([tri(0), tri(1)], false),
+                    _ => None,
+                }
+                .ok_or_else(|| {
+                    s.place.error(
+                        "an area light on a triangle mesh other than two triangles forming a \
+                         parallelogram: grinlight's area lights are quads and disks",
+                    )
+                })?;
+                // pbrt's normal: the first triangle's winding, turned by ReverseOrientation
+                // and a mirroring transform, or toward the shading normal where one is given.
+                let [a, b, c] = tri(0);
+                let mut n = (b - a).cross(c - a);
+                match &mesh.normals {
+                    Some(normals) => {
+                        let i = 3 * mesh.indices[0] as usize;
+                        let ns = linear(&g.ctm).inverse().transpose()
+                            * DVec3::from_slice(&normals[i..i + 3]);
+                        if n.dot(ns) < 0.0 {
+                            n = -n;
+                        }
+                    }
+                    None if g.reverse ^ (linear(&g.ctm).determinant() < 0.0) => n = -n,
+                    None => {}
+                }
+                let r = linear(&mirror_map(self.mirror));
+                let normal = (r * n).normalize();
+                let corners = quad.map(|v| r * v);
+                Emitter::Quad {
+                    corners: facing(corners, normal),
+                    each: 0.5 * (quad[1] - quad[0]).cross(quad[3] - quad[0]).length(),
+                }
+            }
+            "bilinearmesh" => {
+                let (corners, _) = self.bilinear_quad(s, g)?;
+                Emitter::Quad {
+                    corners,
+                    each: (corners[1] - corners[0])
+                        .cross(corners[3] - corners[0])
+                        .length(),
+                }
+            }
+            "disk" => {
+                if linear(&g.ctm).determinant() < 0.0 {
+                    return Err(s.place.error(
+                        "a disk light under a mirroring transform: pbrt-v4 emits it on one side \
+                         when hit and samples it on the other",
+                    ));
+                }
+                let (height, radius) = (p.float("height", 0.0)?, p.float("radius", 1.0)?);
+                if p.float("innerradius", 0.0)? != 0.0 || p.float("phimax", 360.0)? != 360.0 {
+                    return Err(s.place.error("a disk light must be a whole disk"));
+                }
+                let k = similarity(&g.ctm).ok_or_else(|| {
+                    s.place
+                        .error("the transform scales unevenly or shears the disk light")
+                })?;
+                let mut normal = self.normal(&g.ctm, DVec3::Z);
+                if g.reverse {
+                    normal = -normal;
+                }
+                Emitter::Disk {
+                    center: self.point(&g.ctm, DVec3::new(0.0, 0.0, height)),
+                    normal,
+                    radius: radius * k,
+                }
+            }
+            other => {
+                return Err(s.place.error(format!(
+                    "an area light on a \"{}\": grinlight's area lights are quads (two \
+                     triangles, one bilinear patch) and disks",
+                    cut(other)
+                )))
+            }
+        };
+        p.finish(&what)?;
+        if !self.is_black()? {
+            self.told.approximate(
+                &area.place,
+                format!(
+                    "{what}'s surface reflects light in pbrt; grinlight's area lights reflect \
+                     nothing (exact for a black diffuse material)"
+                ),
+            )?;
+        }
+        // pbrt's `power` is the flux of each light it makes: one per triangle, patch or disk.
+        let each = match &emitter {
+            Emitter::Quad { each, .. } => *each,
+            Emitter::Disk { radius, .. } => PI * radius * radius,
+        };
+        let radiance = match area.power {
+            Some(power) => area.radiance * power / (PI * each),
+            None => area.radiance,
+        };
+        self.lights.push(match emitter {
+            Emitter::Quad { corners, .. } => table([
+                ("type", string("quad")),
+                (
+                    "vertices",
+                    Toml::Array(corners.into_iter().map(vec3).collect()),
+                ),
+                ("radiance", vec3(radiance)),
+            ]),
+            Emitter::Disk {
+                center,
+                normal,
+                radius,
+            } => table([
+                ("type", string("disk")),
+                ("center", vec3(center)),
+                ("normal", vec3(normal)),
+                ("radius", Toml::Float(radius)),
+                ("radiance", vec3(radiance)),
+            ]),
+        });
+        Ok(())
+    }
+}
+
+/// A `trianglemesh`'s lists as written.
+struct TriangleMesh {
+    /// `P`, 3 numbers a vertex.
+    points: Vec<f64>,
+    /// `indices`, 3 a triangle.
+    indices: Vec<u32>,
+    /// `N`, 3 numbers a vertex.
+    normals: Option<Vec<f64>>,
+    /// `uv`, 2 numbers a vertex.
+    uv: Option<Vec<f64>>,
+}
+
+impl TriangleMesh {
+    fn read(s: &Statement) -> Result<TriangleMesh> {
+        let p = &s.params;
+        let what = s.what();
+        let (points, _) = p
+            .numbers("P", &["point3", "point"])?
+            .ok_or_else(|| s.place.error(format!("{what}: \"point3 P\" is missing")))?;
+        if points.is_empty() || points.len() % 3 != 0 {
+            return Err(s
+                .place
+                .error(format!("{what}: P must hold 3 numbers a vertex")));
+        }
+        let vertices = points.len() / 3;
+        let indices = match p.numbers("indices", &["integer"])? {
+            Some((v, _)) => v,
+            None if vertices == 3 => vec![0.0, 1.0, 2.0],
+            None => {
+                return Err(s.place.error(format!(
+                    "{what}: \"integer indices\" is missing (only a single triangle may leave \
+                     it out)"
+                )))
+            }
+        };
+        if indices.is_empty()
+            || indices.len() % 3 != 0
+            || indices
+                .iter()
+                .any(|&i| i < 0.0 || i.fract() != 0.0 || i >= vertices as f64)
+        {
+            return Err(s.place.error(format!(
+                "{what}: indices must be 3 a triangle, whole numbers from 0 to {}",
+                vertices - 1
+            )));
+        }
+        let per_vertex = |name: &str, types: &[&str], n: usize| -> Result<Option<Vec<f64>>> {
+            match p.numbers(name, types)? {
+                None => Ok(None),
+                Some((v, _)) if v.len() == n * vertices => Ok(Some(v)),
+                Some((_, param)) => Err(param.place.error(format!(
+                    "{}: expected {n} numbers for each of the {vertices} vertices",
+                    param.what()
+                ))),
+            }
+        };
+        let normals = per_vertex("N", &["normal", "normal3"], 3)?;
+        let uv = per_vertex("uv", &["point2", "float"], 2)?;
+        Ok(TriangleMesh {
+            points,
+            indices: indices.into_iter().map(|i| i as u32).collect(),
+            normals,
+            uv,
+        })
+    }
+}

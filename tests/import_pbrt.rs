@@ -1,0 +1,475 @@
+//! pbrt-v4 scenes brought in: the Cornell box written for pbrt (`scenes/pbrt/`) rendered from
+//! its file against Mitsuba 3's render of its XML twin, the two converted to the same camera,
+//! light and materials; pbrt's left-handed camera, its field of view, its light units and
+//! `power`, its materials' defaults and roughness as pbrt-v4's source computes them; what
+//! cannot be converted exactly refused by file, line and column.
+
+use super::import::{compare, convert, dir, f, grinlight_blocks, reference, tables, vec3, write};
+use grinlight::import::{import, ImportOptions};
+use std::f64::consts::PI;
+use std::path::Path;
+use toml::Value;
+
+/// A pbrt scene of a camera (`camera`: statements before `Camera`, which follows; a box
+/// filter; a film of 200 × 100) and a world `body`.
+fn scene(camera: &str, body: &str) -> String {
+    format!(
+        "{camera}\nCamera \"perspective\" \"float fov\" [ 30 ]\nFilm \"rgb\" \"integer xresolution\" [ 200 ] \
+         \"integer yresolution\" [ 100 ]\nPixelFilter \"box\"\nWorldBegin\n{body}\n"
+    )
+}
+
+/// The converted table of `body` under the camera `camera`.
+fn converted(name: &str, camera: &str, body: &str) -> toml::Table {
+    let d = dir(&format!("pbrt-{name}"));
+    let p = write(&d, "s.pbrt", &scene(camera, body));
+    convert(&p, &ImportOptions::default()).unwrap_or_else(|e| panic!("{name}: {e}"))
+}
+
+fn close(a: [f64; 3], b: [f64; 3], tol: f64) -> bool {
+    (0..3).all(|i| (a[i] - b[i]).abs() <= tol)
+}
+
+#[test]
+fn the_pbrt_cornell_box_renders_as_mitsuba_renders_its_xml_twin() {
+    // The test of the Mitsuba scenes, on the pbrt twin: 192 block-channels, 32 runs (P(|t| >
+    // 5) ≈ 0.4 % for the image), image means within 1 %.
+    let ours = grinlight_blocks(Path::new("scenes/pbrt/cornell_box.pbrt"), &[], 32, 16);
+    let (worst, ratio) = compare(&ours, &reference("cornell_box"));
+    eprintln!("pbrt cornell_box: largest block z {worst:.2}, mean ratio {ratio:.5}");
+    assert!(worst < 5.0, "a block differs by {worst:.2} standard errors");
+    assert!((ratio - 1.0).abs() < 0.01, "mean ratio {ratio}");
+}
+
+#[test]
+fn the_pbrt_and_mitsuba_cornell_boxes_convert_to_the_same_camera_light_and_materials() {
+    let options = ImportOptions::default();
+    let pbrt = convert(Path::new("scenes/pbrt/cornell_box.pbrt"), &options).unwrap();
+    let xml = convert(Path::new("scenes/mitsuba/cornell_box.xml"), &options).unwrap();
+    for key in ["camera", "render"] {
+        let (a, b) = (pbrt[key].as_table().unwrap(), xml[key].as_table().unwrap());
+        assert_eq!(
+            a.keys().collect::<Vec<_>>(),
+            b.keys().collect::<Vec<_>>(),
+            "{key}"
+        );
+        for (k, v) in a {
+            match v {
+                Value::Array(_) => assert!(close(vec3(v), vec3(&b[k]), 1e-12), "{key}.{k}"),
+                Value::Float(x) => assert!((x - f(&b[k])).abs() <= 1e-12, "{key}.{k}"),
+                other => assert_eq!(other, &b[k], "{key}.{k}"),
+            }
+        }
+    }
+    assert_eq!(tables(&pbrt, "material"), tables(&xml, "material"));
+    // The light: the same radiance, corners and facing (its corners may start elsewhere).
+    let (a, b) = (tables(&pbrt, "light"), tables(&xml, "light"));
+    assert_eq!((a.len(), b.len()), (1, 1));
+    assert_eq!(a[0]["radiance"], b[0]["radiance"]);
+    let corners = |t: &toml::Table| -> Vec<[f64; 3]> {
+        t["vertices"].as_array().unwrap().iter().map(vec3).collect()
+    };
+    let normal = |v: &[[f64; 3]]| {
+        let (e1, e2) = (
+            glam::DVec3::from(v[1]) - glam::DVec3::from(v[0]),
+            glam::DVec3::from(v[3]) - glam::DVec3::from(v[0]),
+        );
+        e1.cross(e2).normalize()
+    };
+    let (ca, cb) = (corners(a[0]), corners(b[0]));
+    for c in &ca {
+        assert!(cb.iter().any(|d| close(*c, *d, 1e-12)), "corner {c:?}");
+    }
+    assert!((normal(&ca) - normal(&cb)).length() < 1e-12);
+    assert!(normal(&ca).y < -0.999, "the light faces down");
+}
+
+#[test]
+fn pbrts_left_handed_camera_is_converted_with_x_negated() {
+    // pbrt shows the camera's +x, cross(up, forward), on the image's right: for this LookAt
+    // that is the world's −x. Converted with x negated, the sphere the file puts at x = −1 is
+    // at x = +1, right of centre in grinlight's view as in pbrt's.
+    let body =
+        "AttributeBegin\nTranslate -1 0 0\nShape \"sphere\" \"float radius\" [ 0.5 ]\nAttributeEnd";
+    let plain = converted("plain", "LookAt 0 0 5  0 0 0  0 1 0", body);
+    let shapes = tables(&plain, "shape");
+    assert!(close(vec3(&shapes[0]["center"]), [1.0, 0.0, 0.0], 1e-12));
+    let camera = plain["camera"].as_table().unwrap();
+    assert!(close(vec3(&camera["position"]), [0.0, 0.0, 5.0], 1e-12));
+    assert!(close(vec3(&camera["look_at"]), [0.0, 0.0, 4.0], 1e-12));
+    // pbrt's fov spans the shorter side: here the height of a 2 : 1 image.
+    let fov_x = 2.0 * (2.0 * (15f64).to_radians().tan()).atan().to_degrees();
+    assert!((f(&camera["fov_x_deg"]) - fov_x).abs() < 1e-12);
+    let d = dir("pbrt-plain-note");
+    let p = write(&d, "s.pbrt", &scene("LookAt 0 0 5  0 0 0  0 1 0", body));
+    let told = import(&p, &ImportOptions::default())
+        .unwrap()
+        .notes
+        .join("\n");
+    assert!(told.contains("x is negated"), "{told}");
+    // The usual `Scale -1 1 1` makes pbrt's camera right-handed: coordinates are kept.
+    let mirrored = converted("mirrored", "Scale -1 1 1\nLookAt 0 0 5  0 0 0  0 1 0", body);
+    assert!(close(
+        vec3(&tables(&mirrored, "shape")[0]["center"]),
+        [-1.0, 0.0, 0.0],
+        1e-12
+    ));
+    // Rendered: the sphere (lit by a light at the camera) is right of centre.
+    let d = dir("pbrt-handed");
+    let p = write(
+        &d,
+        "s.pbrt",
+        &format!(
+            "LookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" [ 30 ]\nFilm \"rgb\" \
+             \"integer xresolution\" [ 16 ] \"integer yresolution\" [ 8 ]\nPixelFilter \"box\"\n\
+             Sampler \"independent\" \"integer pixelsamples\" [ 4 ]\nWorldBegin\nLightSource \"point\" \
+             \"point3 from\" [ 0 0 5 ] \"rgb I\" [ 20 20 20 ]\n{body}\n"
+        ),
+    );
+    let (description, mut settings) =
+        grinlight::import::load_description(&p, &ImportOptions::default()).unwrap();
+    settings.threads = 1;
+    let image = grinlight::render::render(&description.build(), &settings, &())
+        .unwrap()
+        .0
+        .layer("beauty")
+        .unwrap();
+    let half = |right: bool| -> f64 {
+        image
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| (i % 16 >= 8) == right)
+            .map(|(_, p)| p[0] as f64)
+            .sum()
+    };
+    assert!(
+        half(true) > 0.0 && half(false) == 0.0,
+        "{} left, {} right",
+        half(false),
+        half(true)
+    );
+}
+
+#[test]
+fn pbrts_light_units_and_power_convert_as_pbrt_v4_computes_them() {
+    let camera = "Scale -1 1 1\nLookAt 0 0 5  0 0 0  0 1 0";
+    let t = converted(
+        "lights",
+        camera,
+        "LightSource \"point\" \"rgb I\" [ 1 2 3 ] \"float scale\" 2 \"point3 from\" [ 1 2 3 ]\n\
+         LightSource \"point\" \"rgb I\" [ 1 1 1 ] \"float power\" 100\n\
+         LightSource \"spot\" \"rgb I\" [ 1 1 1 ] \"float power\" 10 \"float coneangle\" 40 \
+         \"float conedeltaangle\" 10 \"point3 from\" [ 0 1 0 ] \"point3 to\" [ 0 0 0 ]\n\
+         LightSource \"distant\" \"rgb L\" [ 1 1 1 ] \"float illuminance\" 5 \"point3 from\" [ 0 1 0 ] \
+         \"point3 to\" [ 0 0 0 ]\n\
+         LightSource \"infinite\" \"rgb L\" [ 1 1 1 ] \"float illuminance\" 3\n\
+         AttributeBegin\nMaterial \"diffuse\" \"rgb reflectance\" [ 0 0 0 ]\n\
+         AreaLightSource \"diffuse\" \"rgb L\" [ 1 1 1 ] \"float power\" 6\n\
+         Shape \"trianglemesh\" \"point3 P\" [ 0 0 0  2 0 0  2 3 0  0 3 0 ] \"integer indices\" [ 0 1 2  0 2 3 ]\n\
+         Shape \"bilinearmesh\" \"point3 P\" [ 0 0 1  2 0 1  0 3 1  2 3 1 ]\n\
+         Translate 0 0 2\nShape \"disk\" \"float radius\" 0.5\nAttributeEnd",
+    );
+    let lights = tables(&t, "light");
+    let value = |i: usize, key: &str| vec3(&lights[i][key]);
+    assert!(close(value(0, "intensity"), [2.0, 4.0, 6.0], 1e-12));
+    assert!(close(value(0, "position"), [1.0, 2.0, 3.0], 1e-12));
+    // A point light's power: I = Φ/4π.
+    assert!(close(value(1, "intensity"), [100.0 / (4.0 * PI); 3], 1e-12));
+    // A spot light's: Φ/(2π((1 − cos start) + (cos start − cos end)/2)); the smoothstep falloff.
+    let (end, start) = (40f64.to_radians().cos(), 30f64.to_radians().cos());
+    let spot = 10.0 / (2.0 * PI * ((1.0 - start) + 0.5 * (start - end)));
+    assert!(close(value(2, "intensity"), [spot; 3], 1e-12));
+    assert!(close(value(2, "direction"), [0.0, -1.0, 0.0], 1e-12));
+    assert_eq!(
+        (f(&lights[2]["cone_deg"]), f(&lights[2]["falloff_deg"])),
+        (40.0, 30.0)
+    );
+    assert_eq!(lights[2]["falloff_curve"].as_str(), Some("smoothstep"));
+    // A distant light's illuminance multiplies its L; it travels from `from` to `to`.
+    assert!(close(value(3, "irradiance"), [5.0; 3], 1e-12));
+    assert!(close(value(3, "direction"), [0.0, -1.0, 0.0], 1e-12));
+    // An area light's power is each triangle's: L = Φ/(π A) with A half the rectangle's 6.
+    assert!(close(value(4, "radiance"), [6.0 / (PI * 3.0); 3], 1e-12));
+    // One bilinear patch is one light: A = 6.
+    assert!(close(value(5, "radiance"), [6.0 / (PI * 6.0); 3], 1e-12));
+    // A disk: A = π r², facing +z (its winding's side).
+    assert!(close(
+        value(6, "radiance"),
+        [6.0 / (PI * PI * 0.25); 3],
+        1e-12
+    ));
+    assert!(close(value(6, "normal"), [0.0, 0.0, 1.0], 1e-12));
+    assert!(close(value(6, "center"), [0.0, 0.0, 2.0], 1e-12));
+    // The quads face their triangles' and patch's +z.
+    for i in [4, 5] {
+        let v: Vec<glam::DVec3> = lights[i]["vertices"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| glam::DVec3::from(vec3(x)))
+            .collect();
+        assert!((v[1] - v[0]).cross(v[3] - v[0]).z > 0.0, "light {i}");
+    }
+    // The infinite light's illuminance E: L = E/π.
+    assert!(close(value(7, "radiance"), [3.0 / PI; 3], 1e-12));
+}
+
+#[test]
+fn pbrts_materials_media_and_settings_take_pbrt_v4s_defaults() {
+    let camera = "Scale -1 1 1\nLookAt 0 0 5  0 0 0  0 1 0";
+    let t = converted(
+        "materials",
+        camera,
+        "Shape \"sphere\"\n\
+         Material \"dielectric\" \"float roughness\" 0.09\nShape \"sphere\"\n\
+         Material \"dielectric\" \"float roughness\" 0.09 \"bool remaproughness\" false\nShape \"sphere\"\n\
+         Material \"conductor\"\nShape \"sphere\"\n\
+         Material \"conductor\" \"spectrum eta\" \"metal-Au-eta\" \"spectrum k\" \"metal-Au-k\"\nShape \"sphere\"\n\
+         Material \"conductor\" \"rgb eta\" [ 0.2 0.3 0.4 ] \"rgb k\" [ 3 2 1 ]\nShape \"sphere\"\n\
+         MakeNamedMedium \"smoke\" \"string type\" \"homogeneous\" \"rgb sigma_a\" [ 0.5 0.5 0.5 ] \
+         \"rgb sigma_s\" [ 1 2 3 ] \"float scale\" 2 \"float g\" 0.3\n\
+         Material \"dielectric\" \"float eta\" 1.33\nMediumInterface \"smoke\" \"\"\nShape \"sphere\"",
+    );
+    let render = t["render"].as_table().unwrap();
+    assert_eq!(render["spp"].as_integer(), Some(16));
+    assert_eq!(render["max_depth"].as_integer(), Some(5));
+    let materials = tables(&t, "material");
+    let get = |name: &str| -> &toml::Table {
+        materials
+            .iter()
+            .find(|m| m["name"].as_str() == Some(name))
+            .unwrap_or_else(|| panic!("{name} in {materials:?}"))
+    };
+    let shapes = tables(&t, "shape");
+    let of = |i: usize| get(shapes[i]["material"].as_str().unwrap());
+    assert_eq!(of(0)["type"].as_str(), Some("diffuse"));
+    assert!(close(vec3(&of(0)["albedo"]), [0.5; 3], 0.0));
+    // pbrt's default index 1.5; its roughness r is α = √r unless remaproughness is false.
+    assert_eq!(f(&of(1)["ior"]), 1.5);
+    assert!((f(&of(1)["roughness"]) - 0.3).abs() < 1e-15);
+    assert_eq!(f(&of(2)["roughness"]), 0.09);
+    assert_eq!(of(3)["metal"].as_str(), Some("Cu"));
+    assert_eq!(of(4)["metal"].as_str(), Some("Au"));
+    assert!(close(vec3(&of(5)["eta"]), [0.2, 0.3, 0.4], 0.0));
+    assert!(close(vec3(&of(5)["k"]), [3.0, 2.0, 1.0], 0.0));
+    // A glass sphere holding smoke: the medium at the glass's index, σ × scale.
+    let media = tables(&t, "medium");
+    let smoke = media
+        .iter()
+        .find(|m| Some(m["name"].as_str().unwrap()) == shapes[6]["interior"].as_str())
+        .unwrap();
+    assert_eq!(f(&smoke["n"]), 1.33);
+    assert_eq!(f(&smoke["absorption"]), 1.0);
+    assert!(close(vec3(&smoke["scattering"]), [2.0, 4.0, 6.0], 0.0));
+    assert_eq!(f(&smoke["phase"]["hg"]), 0.3);
+}
+
+/// The message of a scene that does not convert.
+fn refusal(name: &str, text: &str, options: &ImportOptions) -> String {
+    let d = dir(&format!("pbrt-refuse-{name}"));
+    let p = write(&d, "s.pbrt", text);
+    match convert(&p, options) {
+        Ok(_) => panic!("{name}: converted"),
+        Err(e) => e.to_string(),
+    }
+}
+
+#[test]
+fn what_pbrt_cannot_convert_is_refused_by_file_line_and_column() {
+    let exact = ImportOptions::default();
+    let camera = "Scale -1 1 1\nLookAt 0 0 5  0 0 0  0 1 0";
+    // The world starts on line 7: a body's first line is line 7.
+    let in_world = |body: &str| scene(camera, body);
+    for (name, text, words) in [
+        (
+            "directive",
+            in_world("Shpe \"sphere\""),
+            "s.pbrt:7:1: 'Shpe' is not a pbrt-v4 directive",
+        ),
+        (
+            "parameter",
+            in_world("Shape \"sphere\" \"float radiuss\" 1"),
+            "s.pbrt:7:16: Shape \"sphere\": the parameter \"float radiuss\" is not supported",
+        ),
+        (
+            "texture",
+            in_world("Texture \"t\" \"spectrum\" \"checkerboard\""),
+            "s.pbrt:7:1: Texture \"t\": textures are not supported",
+        ),
+        (
+            "instance",
+            in_world("ObjectBegin \"o\""),
+            "object instancing is not supported",
+        ),
+        ("v3", in_world("WorldEnd"), "WorldEnd is pbrt-v3's"),
+        (
+            "sphere light",
+            in_world("AreaLightSource \"diffuse\"\nShape \"sphere\""),
+            "s.pbrt:8:1: an area light on a \"sphere\"",
+        ),
+        (
+            "thin glass",
+            in_world("Material \"thindielectric\""),
+            "the material \"thindielectric\" is not supported",
+        ),
+        (
+            "anisotropic",
+            in_world("Material \"conductor\" \"float uroughness\" 0.1 \"float vroughness\" 0.2\nShape \"sphere\""),
+            "an anisotropic roughness",
+        ),
+        (
+            "dispersive",
+            in_world("Material \"dielectric\" \"spectrum eta\" \"glass-BK7\"\nShape \"sphere\""),
+            "s.pbrt:7:23: Material \"dielectric\": \"spectrum eta\" — an index over wavelength",
+        ),
+        (
+            "blackbody",
+            in_world("LightSource \"point\" \"blackbody I\" 3000"),
+            "a blackbody is not supported by grinlight's import (give an rgb)",
+        ),
+        (
+            "partial sphere",
+            in_world("Shape \"sphere\" \"float zmax\" 0.5"),
+            "a partial shape (zmax 0.5)",
+        ),
+        (
+            "string",
+            in_world("Shape \"sphere"),
+            "s.pbrt:7:7: a string runs past the end of its line",
+        ),
+        (
+            "bracket",
+            in_world("Shape \"sphere\" \"float radius\" [ 1"),
+            "s.pbrt:7:16: \"float radius\": the list is not closed",
+        ),
+        (
+            "include",
+            in_world("Include \"missing.pbrt\""),
+            "s.pbrt:7:1: the file \"missing.pbrt\" is not found",
+        ),
+        (
+            "filter",
+            "LookAt 0 0 5 0 0 0 0 1 0\nCamera \"perspective\"\nWorldBegin\n".into(),
+            "s.pbrt:3:1: pbrt's default pixel filter (a Gaussian of radius 1.5) taken as a box",
+        ),
+        (
+            "twice",
+            in_world("Shape \"sphere\" \"float radius\" 1 \"float radius\" 2"),
+            "the parameter 'radius' is given twice",
+        ),
+        (
+            "fraction",
+            "Film \"rgb\" \"integer xresolution\" 10.5\n".into(),
+            "\"integer xresolution\": 10.5 is not a whole number",
+        ),
+        (
+            "order",
+            "Shape \"sphere\"\n".into(),
+            "s.pbrt:1:1: Shape belongs after WorldBegin",
+        ),
+        (
+            "camera",
+            "Camera \"orthographic\"\n".into(),
+            "the camera \"orthographic\" is not supported",
+        ),
+        (
+            "goniometric",
+            in_world("LightSource \"goniometric\""),
+            "the light \"goniometric\" is not supported",
+        ),
+        (
+            "image sky",
+            in_world("LightSource \"infinite\" \"string filename\" \"sky.exr\""),
+            "equal-area octahedral map",
+        ),
+        (
+            "no world",
+            "Camera \"perspective\"\n".into(),
+            "the scene has no WorldBegin",
+        ),
+        (
+            "reflecting light",
+            in_world("AreaLightSource \"diffuse\"\nShape \"disk\""),
+            "s.pbrt:7:1: Shape \"disk\"'s surface reflects light in pbrt",
+        ),
+        (
+            "one-sided medium",
+            in_world(
+                "MakeNamedMedium \"m\" \"string type\" \"homogeneous\"\nMediumInterface \"m\" \"\"\nShape \"sphere\"",
+            ),
+            "s.pbrt:9:1: Shape \"sphere\" has a medium inside but its material lets no light in",
+        ),
+        (
+            "grey absorption",
+            in_world(
+                "MakeNamedMedium \"m\" \"string type\" \"homogeneous\"\nMaterial \"dielectric\"\nMediumInterface \"m\" \"\"\nShape \"sphere\"",
+            ),
+            "s.pbrt:7:1: MakeNamedMedium \"m\": an absorption sigma_a × scale",
+        ),
+    ] {
+        let message = refusal(name, &text, &exact);
+        assert!(message.contains(words), "{name}: {message}");
+    }
+    // An approximation accepted with --approximate, and listed.
+    let d = dir("pbrt-approximate");
+    let p = write(
+        &d,
+        "s.pbrt",
+        "LookAt 0 0 5 0 0 0 0 1 0\nCamera \"perspective\"\nWorldBegin\nMaterial \"coateddiffuse\"\nShape \"sphere\"\n",
+    );
+    let imported = import(
+        &p,
+        &ImportOptions {
+            defines: Vec::new(),
+            approximate: true,
+        },
+    )
+    .unwrap();
+    let told = imported.approximations.join("\n");
+    assert!(
+        told.contains("s.pbrt:3:1: pbrt's default pixel filter"),
+        "{told}"
+    );
+    assert!(
+        told.contains("s.pbrt:4:1: Material \"coateddiffuse\""),
+        "{told}"
+    );
+    assert_eq!(
+        tables(&imported.table, "material")[0]["type"].as_str(),
+        Some("plastic")
+    );
+}
+
+#[test]
+fn a_pbrt_include_cycle_is_refused_and_includes_are_read_in_place() {
+    let d = dir("pbrt-include");
+    write(&d, "a.pbrt", "Include \"b.pbrt\"\n");
+    write(&d, "b.pbrt", "Include \"a.pbrt\"\n");
+    let p = write(&d, "s.pbrt", "Include \"a.pbrt\"\n");
+    let message = convert(&p, &ImportOptions::default())
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(
+        message.contains("b.pbrt:1:1") && message.contains("includes itself"),
+        "{message}"
+    );
+    write(
+        &d,
+        "camera.pbrt",
+        "Scale -1 1 1\nLookAt 0 0 5  0 0 0  0 1 0\n",
+    );
+    write(&d, "ball.pbrt", "Shape \"sphere\" \"float radius\" 2\n");
+    let p = write(
+        &d,
+        "main.pbrt",
+        "Include \"camera.pbrt\"\nCamera \"perspective\"\nPixelFilter \"box\"\nWorldBegin\nImport \"ball.pbrt\"\n",
+    );
+    let t = convert(&p, &ImportOptions::default()).unwrap();
+    assert_eq!(f(&tables(&t, "shape")[0]["radius"]), 2.0);
+    assert!(close(
+        vec3(&t["camera"]["position"]),
+        [0.0, 0.0, 5.0],
+        1e-12
+    ));
+}
