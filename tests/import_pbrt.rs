@@ -383,6 +383,11 @@ fn what_pbrt_cannot_convert_is_refused_by_file_line_and_column() {
             "equal-area octahedral map",
         ),
         (
+            "gzipped mesh",
+            in_world("Shape \"plymesh\" \"string filename\" \"m.ply.gz\""),
+            "s.pbrt:7:1: \"m.ply.gz\": a gzip-compressed PLY file",
+        ),
+        (
             "no world",
             "Camera \"perspective\"\n".into(),
             "the scene has no WorldBegin",

@@ -508,12 +508,15 @@ impl<'s> Converter<'s> {
 }
 
 /// The material types the import converts.
-const MATERIALS: [&str; 5] = [
+const MATERIALS: [&str; 7] = [
     "diffuse",
     "dielectric",
     "conductor",
     "coateddiffuse",
     "interface",
+    // pbrt-v4 reads these as `interface` (deprecated names).
+    "none",
+    "",
 ];
 
 /// Refuses a material statement of a type the import does not convert, where it is written
@@ -812,7 +815,7 @@ impl<'s> Converter<'s> {
             )
         };
         let (grin_kind, mut m, ior) = match kind {
-            "interface" => {
+            "interface" | "none" | "" => {
                 p.finish(what)?;
                 return Ok(Surface::Interface);
             }
@@ -1199,8 +1202,18 @@ impl<'s> Converter<'s> {
                 .error(format!("{what}: an alpha cut-out is not supported")));
         }
         let g = self.graphics.clone();
-        if let Some(area) = &g.area {
-            return self.emitter(s, &g, area);
+        let interface = g.material.is_some_and(|m| {
+            matches!(Self::material_kind(m).0.as_str(), "interface" | "none" | "")
+        });
+        match (&g.area, interface) {
+            (Some(area), false) => return self.emitter(s, &g, area),
+            (Some(area), true) => self.told.note(
+                &area.place,
+                format!(
+                    "{what}: pbrt ignores an area light on an interface, and so does the import"
+                ),
+            ),
+            (None, _) => {}
         }
         let surface = self.surface()?;
         let mut out = Table::new();
@@ -1374,6 +1387,13 @@ impl<'s> Converter<'s> {
                     s.place
                         .error(format!("{}: \"string filename\" is missing", s.what()))
                 })?;
+                if name.ends_with(".gz") {
+                    return Err(s.place.error(format!(
+                        "\"{}\": a gzip-compressed PLY file; decompress it (gunzip) and name the \
+                         .ply",
+                        cut(&name)
+                    )));
+                }
                 let path = self.scene.find(&name, &s.place)?;
                 if oriented && self.turned(g) {
                     return Err(s.place.error(

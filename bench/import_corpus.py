@@ -1,12 +1,15 @@
 #!/usr/bin/env python3
-"""Every Mitsuba scene of a directory through `grinlight convert`: converted exactly, converted
-with --approximate (and what was approximated), or refused — by which message. None may panic.
+"""Every scene file of another renderer in a directory through `grinlight convert`: converted
+exactly, converted with --approximate (and what was approximated), or refused — by which
+message. None may panic.
 
-    python3 bench/mitsuba_corpus.py DIR
+    python3 bench/import_corpus.py DIR [xml|pbrt]
 
-The corpus used for docs/import.md is the mitsuba-data repository (Mitsuba 3's test and
-documentation scenes, with its meshes and images): `git clone
-https://github.com/mitsuba-renderer/mitsuba-data` and give its directory.
+The corpora used for docs/import.md: the mitsuba-data repository (Mitsuba 3's test and
+documentation scenes, with its meshes and images: `git clone
+https://github.com/mitsuba-renderer/mitsuba-data`), and pbrt-v4's scenes (`git clone
+https://github.com/mmp/pbrt-v4-scenes`, `pbrt`; its files that are scenes of their own, with a
+camera: files only included by others are left out). Give the directory.
 """
 import collections
 import os
@@ -33,12 +36,17 @@ def reason(stderr):
     line = re.sub(r"^error: \S+:\d+:\d+: ", "", line)
     line = re.sub(r"'[^']*'", "'…'", line)
     line = re.sub(r'id="[^"]*"', 'id="…"', line)
+    line = re.sub(r'(MakeNamed\w+|NamedMaterial|Texture) "[^"]*"', r'\1 "…"', line)
     return line[:150]
 
 
 def main():
     root = sys.argv[1]
-    files = sorted(os.path.join(d, f) for d, _, fs in os.walk(root) for f in fs if f.endswith(".xml"))
+    ext = "." + (sys.argv[2] if len(sys.argv) > 2 else "xml")
+    files = sorted(os.path.join(d, f) for d, _, fs in os.walk(root) for f in fs if f.endswith(ext))
+    if ext == ".pbrt":
+        # A pbrt file included by others (geometry, materials) is no scene of its own.
+        files = [f for f in files if re.search(r"^\s*Camera\b", open(f, errors="replace").read(), re.M)]
     outcome = collections.Counter()
     refusals = collections.Counter()
     approximations = collections.Counter()
