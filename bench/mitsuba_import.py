@@ -35,6 +35,8 @@ CASES = {
     "spheres_envmap": ("spheres_envmap.xml", {}),
     # An image texture on a rectangle and on an OBJ quad.
     "textures": ("textures.xml", {}),
+    # Two emitting spheres over two diffuse balls and a floor.
+    "sphere_lights": ("sphere_lights.xml", {}),
 }
 
 

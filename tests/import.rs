@@ -222,8 +222,8 @@ fn what_cannot_be_converted_is_refused_by_file_line_and_element() {
         ),
         (
             "mesh light",
-            "<shape type=\"sphere\"><emitter type=\"area\"/><bsdf type=\"diffuse\"><rgb name=\"reflectance\" value=\"0\"/></bsdf></shape>",
-            "an area emitter on a 'sphere'",
+            "<shape type=\"cylinder\"><emitter type=\"area\"/><bsdf type=\"diffuse\"><rgb name=\"reflectance\" value=\"0\"/></bsdf></shape>",
+            "an area emitter on a 'cylinder'",
         ),
         (
             "beckmann",
@@ -489,6 +489,8 @@ fn the_mitsuba_scenes_render_as_mitsuba_renders_them() {
         ("spheres_envmap", "spheres_envmap.xml", vec![], 16),
         // An image texture on a rectangle and on an OBJ quad: Mitsuba's (u, v) and rows.
         ("textures", "textures.xml", vec![], 16),
+        // Two emitting spheres: grinlight's sphere lights, seen and lighting.
+        ("sphere_lights", "sphere_lights.xml", vec![], 16),
     ] {
         let ours = grinlight_blocks(&Path::new("scenes/mitsuba").join(scene), &defines, 32, spp);
         let (worst, ratio) = compare(&ours, &reference(case));

@@ -167,7 +167,8 @@ fn pbrts_light_units_and_power_convert_as_pbrt_v4_computes_them() {
          AreaLightSource \"diffuse\" \"rgb L\" [ 1 1 1 ] \"float power\" 6\n\
          Shape \"trianglemesh\" \"point3 P\" [ 0 0 0  2 0 0  2 3 0  0 3 0 ] \"integer indices\" [ 0 1 2  0 2 3 ]\n\
          Shape \"bilinearmesh\" \"point3 P\" [ 0 0 1  2 0 1  0 3 1  2 3 1 ]\n\
-         Translate 0 0 2\nShape \"disk\" \"float radius\" 0.5\nAttributeEnd",
+         Translate 0 0 2\nShape \"disk\" \"float radius\" 0.5\n\
+         Translate 0 0 3\nShape \"sphere\" \"float radius\" 0.25\nAttributeEnd",
     );
     let lights = tables(&t, "light");
     let value = |i: usize, key: &str| vec3(&lights[i][key]);
@@ -210,8 +211,17 @@ fn pbrts_light_units_and_power_convert_as_pbrt_v4_computes_them() {
             .collect();
         assert!((v[1] - v[0]).cross(v[3] - v[0]).z > 0.0, "light {i}");
     }
+    // A sphere: A = 4π r², emitting outward.
+    assert_eq!(lights[7]["type"].as_str(), Some("sphere"));
+    assert!(close(
+        value(7, "radiance"),
+        [6.0 / (PI * 4.0 * PI * 0.0625); 3],
+        1e-12
+    ));
+    assert!(close(value(7, "center"), [0.0, 0.0, 5.0], 1e-12));
+    assert_eq!(f(&lights[7]["radius"]), 0.25);
     // The infinite light's illuminance E: L = E/π.
-    assert!(close(value(7, "radiance"), [3.0 / PI; 3], 1e-12));
+    assert!(close(value(8, "radiance"), [3.0 / PI; 3], 1e-12));
 }
 
 #[test]
@@ -303,9 +313,14 @@ fn what_pbrt_cannot_convert_is_refused_by_file_line_and_column() {
         ),
         ("v3", in_world("WorldEnd"), "WorldEnd is pbrt-v3's"),
         (
-            "sphere light",
-            in_world("AreaLightSource \"diffuse\"\nShape \"sphere\""),
-            "s.pbrt:8:1: an area light on a \"sphere\"",
+            "cylinder light",
+            in_world("Material \"diffuse\" \"rgb reflectance\" [0 0 0]\nAreaLightSource \"diffuse\"\nShape \"cylinder\""),
+            "s.pbrt:9:1: an area light on a \"cylinder\"",
+        ),
+        (
+            "inward sphere light",
+            in_world("Material \"diffuse\" \"rgb reflectance\" [0 0 0]\nAreaLightSource \"diffuse\"\nReverseOrientation\nShape \"sphere\""),
+            "s.pbrt:10:1: a sphere light turned inside out",
         ),
         (
             "thin glass",

@@ -20,7 +20,8 @@ fn render(
 
 /// A black (albedo 0) disk of radius R at distance h below a source: photons are stored at
 /// their first hit only, so the stored flux is the flux onto the disk. Point light of
-/// intensity I: I·2π(1 − cos θ), tan θ = R/h. LED of power P with I ∝ cos^m θ (a 1 µm disk,
+/// intensity I: I·2π(1 − cos θ), tan θ = R/h; a sphere light of radiance L and radius a, all
+/// of it above the disk's plane: the same with I = π L a². LED of power P with I ∝ cos^m θ (a 1 µm disk,
 /// facing the receiver): P(1 − cos^{m+1} θ). Binomial noise of 2·10⁵ photons with a hit
 /// fraction f ≥ 0.2 is ≤ 0.5 % relative; tolerance 2 %.
 #[test]
@@ -34,6 +35,12 @@ fn photon_flux_onto_a_disk_matches_the_closed_form() {
         (
             "[[light]]\ntype = \"point\"\nposition = [0, 1.5, 0]\nintensity = [1, 2, 3]\n",
             [1.0, 2.0, 3.0].map(|i| i * 2.0 * PI * (1.0 - cos_t)),
+        ),
+        // A Lambertian sphere of radiance L and radius a lights every point that sees all of
+        // it as a point of intensity π L a² at its centre does.
+        (
+            "[[light]]\ntype = \"sphere\"\ncenter = [0, 1.5, 0]\nradius = 0.2\nradiance = [1, 2, 3]\n",
+            [1.0, 2.0, 3.0].map(|l| PI * l * 0.04 * 2.0 * PI * (1.0 - cos_t)),
         ),
         (
             "[[light]]\ntype = \"led\"\ncenter = [0, 1.5, 0]\nnormal = [0, -1, 0]\nradius = 1e-6\npower = 0.5\nm = 2.0\n",

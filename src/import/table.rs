@@ -31,3 +31,66 @@ pub fn table<const N: usize>(pairs: [(&str, Toml); N]) -> Table {
 pub fn string(s: &str) -> Toml {
     Toml::String(s.to_string())
 }
+
+/// The surface of an area light a converter found: a parallelogram (corners v0..v3, emitting
+/// on the side of (v1 − v0) × (v3 − v0)), a disk emitting on its normal's side, or a sphere
+/// emitting outward.
+#[derive(Clone, Copy, Debug)]
+pub enum AreaEmitter {
+    /// A parallelogram's corners v0..v3.
+    Quad([DVec3; 4]),
+    /// A disk.
+    Disk {
+        /// Its centre.
+        center: DVec3,
+        /// The unit normal of its emitting side.
+        normal: DVec3,
+        /// Its radius.
+        radius: f64,
+    },
+    /// A sphere.
+    Sphere {
+        /// Its centre.
+        center: DVec3,
+        /// Its radius.
+        radius: f64,
+    },
+}
+
+impl AreaEmitter {
+    /// Its area (length²).
+    pub fn area(&self) -> f64 {
+        match *self {
+            AreaEmitter::Quad(v) => (v[1] - v[0]).cross(v[3] - v[0]).length(),
+            AreaEmitter::Disk { radius, .. } => std::f64::consts::PI * radius * radius,
+            AreaEmitter::Sphere { radius, .. } => 4.0 * std::f64::consts::PI * radius * radius,
+        }
+    }
+
+    /// The `[[light]]` table of this surface emitting `radiance`.
+    pub fn light(self, radiance: DVec3) -> Table {
+        let mut t = match self {
+            AreaEmitter::Quad(v) => table([
+                ("type", string("quad")),
+                ("vertices", Toml::Array(v.into_iter().map(vec3).collect())),
+            ]),
+            AreaEmitter::Disk {
+                center,
+                normal,
+                radius,
+            } => table([
+                ("type", string("disk")),
+                ("center", vec3(center)),
+                ("normal", vec3(normal)),
+                ("radius", Toml::Float(radius)),
+            ]),
+            AreaEmitter::Sphere { center, radius } => table([
+                ("type", string("sphere")),
+                ("center", vec3(center)),
+                ("radius", Toml::Float(radius)),
+            ]),
+        };
+        t.insert("radiance".into(), vec3(radiance));
+        t
+    }
+}

@@ -226,11 +226,11 @@ pub fn bsdf_sample_weight(tracer: &Tracer, vertex: &Vertex, s: &Scattered, chain
                 let choice = tracer.light_sampler.at(vertex.origin());
                 power_heuristic(
                     s.sample.pdf,
-                    tracer
-                        .scene
-                        .light(l)
-                        .pdf_incident(direction, (position - vertex.origin()).length())
-                        * choice.chance(tracer.light_samples, l),
+                    tracer.scene.light(l).pdf_incident(
+                        vertex.origin(),
+                        direction,
+                        (position - vertex.origin()).length(),
+                    ) * choice.chance(tracer.light_samples, l),
                 )
             }
             // A path ends at an emitter only on an emitter's surface.

@@ -6,7 +6,7 @@
 pub mod xml;
 
 use super::geometry::{linear, parallelogram, similarity};
-use super::table::{free_name, string, table, vec3};
+use super::table::{free_name, string, table, vec3, AreaEmitter};
 use super::{Imported, Place, Told};
 use crate::error::{cut, Result};
 use glam::{DMat3, DMat4, DVec3};
@@ -864,26 +864,9 @@ impl Converter<'_> {
                     ),
                 )?;
             }
-            let quad = self.emitting_quad(shape, &m, flip)?;
+            let emitting = self.emitting_surface(shape, &m, flip)?;
             shape.finish()?;
-            let light = match quad {
-                Emitting::Quad(v) => table([
-                    ("type", string("quad")),
-                    ("vertices", Toml::Array(v.into_iter().map(vec3).collect())),
-                    ("radiance", vec3(radiance)),
-                ]),
-                Emitting::Disk {
-                    center,
-                    normal,
-                    radius,
-                } => table([
-                    ("type", string("disk")),
-                    ("center", vec3(center)),
-                    ("normal", vec3(normal)),
-                    ("radius", Toml::Float(radius)),
-                    ("radiance", vec3(radiance)),
-                ]),
-            };
+            let light = emitting.light(radiance);
             self.lights.push(light);
             return Ok(());
         }
@@ -1065,15 +1048,11 @@ impl Converter<'_> {
             }
             "sphere" => {
                 refuse_flip("sphere")?;
-                let center = shape.vector("center")?.unwrap_or(DVec3::ZERO);
-                let radius = shape.float_or("radius", 1.0)?;
-                let s = similarity(m).ok_or_else(|| {
-                    shape.error("to_world scales unevenly or shears: an ellipsoid is not supported")
-                })?;
+                let (center, radius) = sphere(shape, m)?;
                 table([
                     ("type", string("sphere")),
-                    ("center", vec3(m.transform_point3(center))),
-                    ("radius", Toml::Float(radius * s)),
+                    ("center", vec3(center)),
+                    ("radius", Toml::Float(radius)),
                 ])
             }
             "rectangle" => {
@@ -1193,16 +1172,26 @@ impl Converter<'_> {
 
     /// The light an emitting shape becomes: a rectangle, a disk, or a mesh that is one
     /// parallelogram (two triangles).
-    fn emitting_quad(&mut self, shape: &Object, m: &DMat4, flip: bool) -> Result<Emitting> {
+    fn emitting_surface(&mut self, shape: &Object, m: &DMat4, flip: bool) -> Result<AreaEmitter> {
         match shape.kind.as_str() {
-            "rectangle" => Ok(Emitting::Quad(rectangle(m, flip))),
+            "rectangle" => Ok(AreaEmitter::Quad(rectangle(m, flip))),
             "disk" => {
                 let (center, normal, radius) = disk(shape, m, flip)?;
-                Ok(Emitting::Disk {
+                Ok(AreaEmitter::Disk {
                     center,
                     normal,
                     radius,
                 })
+            }
+            "sphere" => {
+                if flip {
+                    return Err(shape.error(
+                        "an area emitter on a sphere with flip_normals (emitting inward) is not \
+                         supported",
+                    ));
+                }
+                let (center, radius) = sphere(shape, m)?;
+                Ok(AreaEmitter::Sphere { center, radius })
             }
             "obj" | "ply" => {
                 let path = self.mesh_file(shape)?;
@@ -1220,7 +1209,7 @@ impl Converter<'_> {
                     [a, b] => parallelogram([a.map(corner), b.map(corner)], flip),
                     _ => None,
                 };
-                quad.map(Emitting::Quad).ok_or_else(|| {
+                quad.map(AreaEmitter::Quad).ok_or_else(|| {
                     shape.error(format!(
                         "an area emitter on a mesh of {} triangles: grinlight's area lights are \
                          parallelograms and disks (a mesh of two triangles forming one is read)",
@@ -1229,8 +1218,8 @@ impl Converter<'_> {
                 })
             }
             other => Err(shape.error(format!(
-                "an area emitter on a '{}': grinlight's area lights are rectangles, disks and \
-                 two-triangle parallelogram meshes",
+                "an area emitter on a '{}': grinlight's area lights are rectangles, disks, \
+                 spheres and two-triangle parallelogram meshes",
                 cut(other)
             ))),
         }
@@ -1379,16 +1368,6 @@ impl Converter<'_> {
     }
 }
 
-/// An emitting shape as a grinlight area light.
-enum Emitting {
-    Quad([DVec3; 4]),
-    Disk {
-        center: DVec3,
-        normal: DVec3,
-        radius: f64,
-    },
-}
-
 /// Mitsuba's rectangle [−1, 1]² at z = 0 (normal +z) placed by `m`: v0..v3 with the normal
 /// (v1 − v0) × (v3 − v0), reversed when flipped.
 fn rectangle(m: &DMat4, flip: bool) -> [DVec3; 4] {
@@ -1401,6 +1380,17 @@ fn rectangle(m: &DMat4, flip: bool) -> [DVec3; 4] {
         false => v,
         true => [v[0], v[3], v[2], v[1]],
     }
+}
+
+/// Mitsuba's sphere (`center`, `radius`) placed by `m`: its centre and radius (the map must
+/// keep it round).
+fn sphere(shape: &Object, m: &DMat4) -> Result<(DVec3, f64)> {
+    let center = shape.vector("center")?.unwrap_or(DVec3::ZERO);
+    let radius = shape.float_or("radius", 1.0)?;
+    let s = similarity(m).ok_or_else(|| {
+        shape.error("to_world scales unevenly or shears: an ellipsoid is not supported")
+    })?;
+    Ok((m.transform_point3(center), radius * s))
 }
 
 /// Mitsuba's unit disk at z = 0 (normal +z) placed by `m`: its centre, normal and radius (the

@@ -14,7 +14,7 @@
 pub mod parse;
 
 use super::geometry::{linear, parallelogram, similarity};
-use super::table::{free_name, string, table, vec3};
+use super::table::{free_name, string, table, vec3, AreaEmitter};
 use super::{Imported, Place, Told};
 use crate::error::{cut, Result};
 use glam::{DMat4, DVec3};
@@ -656,20 +656,6 @@ fn floats(v: &[f64]) -> Toml {
     Toml::Array(v.iter().map(|&x| Toml::Float(x)).collect())
 }
 
-/// What an area light is made on.
-enum Emitter {
-    Quad {
-        corners: [DVec3; 4],
-        /// The area of each of the lights pbrt makes of the shape (one per triangle).
-        each: f64,
-    },
-    Disk {
-        center: DVec3,
-        normal: DVec3,
-        radius: f64,
-    },
-}
-
 impl<'s> Converter<'s> {
     /// The camera, film, sampler and filter, converted now that all are known.
     fn world_begin(&mut self, s: &Statement) -> Result<()> {
@@ -1308,15 +1294,11 @@ impl<'s> Converter<'s> {
         };
         Ok(match s.text(0) {
             "sphere" => {
-                let radius = p.float("radius", 1.0)?;
-                full("zmin", p.float("zmin", -radius)?, -radius)?;
-                full("zmax", p.float("zmax", radius)?, radius)?;
-                full("phimax", p.float("phimax", 360.0)?, 360.0)?;
-                let k = uniform("sphere")?;
+                let (center, radius) = self.sphere(s, g)?;
                 table([
                     ("type", string("sphere")),
-                    ("center", vec3(self.point(&m, DVec3::ZERO))),
-                    ("radius", Toml::Float(radius * k)),
+                    ("center", vec3(center)),
+                    ("radius", Toml::Float(radius)),
                 ])
             }
             "disk" => {
@@ -1429,6 +1411,29 @@ impl<'s> Converter<'s> {
         })
     }
 
+    /// A whole `sphere` (`radius` 1) in grinlight's world: its centre and radius.
+    fn sphere(&self, s: &Statement, g: &Graphics) -> Result<(DVec3, f64)> {
+        let p = &s.params;
+        let radius = p.float("radius", 1.0)?;
+        for (name, value, whole) in [
+            ("zmin", p.float("zmin", -radius)?, -radius),
+            ("zmax", p.float("zmax", radius)?, radius),
+            ("phimax", p.float("phimax", 360.0)?, 360.0),
+        ] {
+            if value != whole {
+                return Err(s.place.error(format!(
+                    "{}: a partial shape ({name} {value}) is not supported",
+                    s.what()
+                )));
+            }
+        }
+        let k = similarity(&g.ctm).ok_or_else(|| {
+            s.place
+                .error("the transform scales unevenly or shears the sphere: not supported")
+        })?;
+        Ok((self.point(&g.ctm, DVec3::ZERO), radius * k))
+    }
+
     /// A `bilinearmesh` of one flat parallelogram patch: its corners in grinlight's world,
     /// ordered to face pbrt's normal, and that normal.
     fn bilinear_quad(&self, s: &Statement, g: &Graphics) -> Result<([DVec3; 4], DVec3)> {
@@ -1477,7 +1482,8 @@ impl<'s> Converter<'s> {
     fn emitter(&mut self, s: &Statement, g: &Graphics, area: &AreaLight) -> Result<()> {
         let p = &s.params;
         let what = s.what();
-        let emitter = match s.text(0) {
+        // The surface, and how many lights pbrt makes of it (one per triangle).
+        let (emitter, lights) = match s.text(0) {
             "trianglemesh" => {
                 let mesh = TriangleMesh::read(s)?;
                 let corner = |i: u32| {
@@ -1515,19 +1521,18 @@ impl<'s> Converter<'s> {
                 let r = linear(&mirror_map(self.mirror));
                 let normal = (r * n).normalize();
                 let corners = quad.map(|v| r * v);
-                Emitter::Quad {
-                    corners: facing(corners, normal),
-                    each: 0.5 * (quad[1] - quad[0]).cross(quad[3] - quad[0]).length(),
-                }
+                (AreaEmitter::Quad(facing(corners, normal)), 2.0)
             }
-            "bilinearmesh" => {
-                let (corners, _) = self.bilinear_quad(s, g)?;
-                Emitter::Quad {
-                    corners,
-                    each: (corners[1] - corners[0])
-                        .cross(corners[3] - corners[0])
-                        .length(),
+            "bilinearmesh" => (AreaEmitter::Quad(self.bilinear_quad(s, g)?.0), 1.0),
+            "sphere" => {
+                if g.reverse || linear(&g.ctm).determinant() < 0.0 {
+                    return Err(s.place.error(
+                        "a sphere light turned inside out (ReverseOrientation or a mirroring \
+                         transform): grinlight's sphere lights emit outward",
+                    ));
                 }
+                let (center, radius) = self.sphere(s, g)?;
+                (AreaEmitter::Sphere { center, radius }, 1.0)
             }
             "disk" => {
                 if linear(&g.ctm).determinant() < 0.0 {
@@ -1548,16 +1553,20 @@ impl<'s> Converter<'s> {
                 if g.reverse {
                     normal = -normal;
                 }
-                Emitter::Disk {
-                    center: self.point(&g.ctm, DVec3::new(0.0, 0.0, height)),
-                    normal,
-                    radius: radius * k,
-                }
+                let center = self.point(&g.ctm, DVec3::new(0.0, 0.0, height));
+                (
+                    AreaEmitter::Disk {
+                        center,
+                        normal,
+                        radius: radius * k,
+                    },
+                    1.0,
+                )
             }
             other => {
                 return Err(s.place.error(format!(
                     "an area light on a \"{}\": grinlight's area lights are quads (two \
-                     triangles, one bilinear patch) and disks",
+                     triangles, one bilinear patch), disks and spheres",
                     cut(other)
                 )))
             }
@@ -1572,36 +1581,13 @@ impl<'s> Converter<'s> {
                 ),
             )?;
         }
-        // pbrt's `power` is the flux of each light it makes: one per triangle, patch or disk.
-        let each = match &emitter {
-            Emitter::Quad { each, .. } => *each,
-            Emitter::Disk { radius, .. } => PI * radius * radius,
-        };
+        // pbrt's `power` is the flux of each light it makes: one per triangle, patch, disk or
+        // sphere, L = Φ/(π A) with A that one's area.
         let radiance = match area.power {
-            Some(power) => area.radiance * power / (PI * each),
+            Some(power) => area.radiance * power / (PI * emitter.area() / lights),
             None => area.radiance,
         };
-        self.lights.push(match emitter {
-            Emitter::Quad { corners, .. } => table([
-                ("type", string("quad")),
-                (
-                    "vertices",
-                    Toml::Array(corners.into_iter().map(vec3).collect()),
-                ),
-                ("radiance", vec3(radiance)),
-            ]),
-            Emitter::Disk {
-                center,
-                normal,
-                radius,
-            } => table([
-                ("type", string("disk")),
-                ("center", vec3(center)),
-                ("normal", vec3(normal)),
-                ("radius", Toml::Float(radius)),
-                ("radiance", vec3(radiance)),
-            ]),
-        });
+        self.lights.push(emitter.light(radiance));
         Ok(())
     }
 }

@@ -5,6 +5,7 @@ use crate::color::Rgb;
 use crate::environment::{Environment, ImageFilter, Sky, Turn};
 use crate::error::Result;
 use crate::lights::{Emitter, Falloff, Light, Luminaire};
+use crate::math::Ball;
 use crate::scene::table::TableReader;
 use crate::shapes::{Disk, Quad};
 use crate::spectrum::emission::Shape;
@@ -118,6 +119,13 @@ pub fn read_light(t: &mut TableReader, kind: &str) -> Result<Light> {
             ));
             area(t, emitter)?
         }
+        "sphere" => {
+            let emitter = Emitter::Sphere(Ball {
+                center: t.vec3("center")?,
+                radius: t.positive("radius")?,
+            });
+            area(t, emitter)?
+        }
         "led" => {
             let emitter = Emitter::Disk(Disk::full(
                 t.vec3("center")?,
@@ -172,7 +180,7 @@ pub fn read_light(t: &mut TableReader, kind: &str) -> Result<Light> {
             }
         }
         "directional" => Light::Directional { direction: t.direction_or("direction", -DVec3::Y)?, irradiance: t.rgb_or("irradiance", None)? },
-        other => return Err(t.error("type", format!("unknown light type '{other}' (point, spot, quad, disk, led, goniometric, directional, environment)"))),
+        other => return Err(t.error("type", format!("unknown light type '{other}' (point, spot, quad, disk, sphere, led, goniometric, directional, environment)"))),
     })
 }
 
