@@ -9,6 +9,7 @@ pub mod mesh;
 pub mod model;
 pub mod ply;
 pub mod read;
+pub mod serialized;
 pub mod source;
 pub mod table;
 pub mod vdb;

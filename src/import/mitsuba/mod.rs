@@ -1017,7 +1017,7 @@ impl Converter<'_> {
             }
         };
         Ok(match shape.kind.as_str() {
-            "obj" | "ply" => {
+            "obj" | "ply" | "serialized" => {
                 refuse_flip("mesh")?;
                 let file = self.mesh_file(shape)?;
                 // Mitsuba interpolates vertex normals (the file's or its own) unless told not to.
@@ -1037,6 +1037,10 @@ impl Converter<'_> {
                     ("file", string(&file.to_string_lossy())),
                     ("smooth", Toml::Boolean(smooth)),
                 ]);
+                if shape.kind == "serialized" {
+                    let index = shape_index(shape)?;
+                    t.insert("shape_index".into(), Toml::Integer(index as i64));
+                }
                 if *m != DMat4::IDENTITY {
                     let rows = m.transpose().to_cols_array();
                     t.insert(
@@ -1143,8 +1147,8 @@ impl Converter<'_> {
             }
             other => {
                 return Err(shape.error(format!(
-                    "the shape '{}' is not supported by grinlight's import (obj, ply, sphere, \
-                     rectangle, disk, cube, cylinder are)",
+                    "the shape '{}' is not supported by grinlight's import (obj, ply, \
+                     serialized, sphere, rectangle, disk, cube, cylinder are)",
                     cut(other)
                 )))
             }
@@ -1193,12 +1197,15 @@ impl Converter<'_> {
                 let (center, radius) = sphere(shape, m)?;
                 Ok(AreaEmitter::Sphere { center, radius })
             }
-            "obj" | "ply" => {
+            "obj" | "ply" | "serialized" => {
                 let path = self.mesh_file(shape)?;
                 shape.ignore("face_normals");
                 shape.ignore("flip_tex_coords");
                 let mesh = match shape.kind.as_str() {
                     "ply" => crate::scene::ply::load_ply(&path),
+                    "serialized" => {
+                        crate::scene::serialized::load_serialized(&path, shape_index(shape)?)
+                    }
                     _ => crate::scene::mesh::load_triangles(&path),
                 }
                 .map_err(|e| shape.error(e))?;
@@ -1380,6 +1387,12 @@ fn rectangle(m: &DMat4, flip: bool) -> [DVec3; 4] {
         false => v,
         true => [v[0], v[3], v[2], v[1]],
     }
+}
+
+/// A `serialized` shape's `shape_index` (0: the file's first mesh).
+fn shape_index(shape: &Object) -> Result<usize> {
+    let index = shape.integer_or("shape_index", 0)?;
+    usize::try_from(index).map_err(|_| shape.error(format!("shape_index {index} is negative")))
 }
 
 /// Mitsuba's sphere (`center`, `radius`) placed by `m`: its centre and radius (the map must

@@ -270,14 +270,29 @@ fn read_mesh(t: &mut TableReader) -> Result<Vec<Primitive>> {
     } = read_placement(t)?;
     let obj = match &source {
         MeshSource::Inline => inline_triangles(t)?,
-        MeshSource::File(path) => match path
-            .extension()
-            .is_some_and(|e| e.eq_ignore_ascii_case("ply"))
-        {
-            true => crate::scene::ply::load_ply(path),
-            false => crate::scene::mesh::load_triangles(path),
+        MeshSource::File(path) => {
+            let ext = path
+                .extension()
+                .and_then(|e| e.to_str())
+                .map(str::to_ascii_lowercase);
+            let index = match ext.as_deref() {
+                Some("serialized") => t.natural_or("shape_index", 0)? as usize,
+                _ => {
+                    t.check(
+                        "shape_index",
+                        !t.has("shape_index"),
+                        "shape_index picks a mesh of a Mitsuba .serialized file",
+                    )?;
+                    0
+                }
+            };
+            match ext.as_deref() {
+                Some("ply") => crate::scene::ply::load_ply(path),
+                Some("serialized") => crate::scene::serialized::load_serialized(path, index),
+                _ => crate::scene::mesh::load_triangles(path),
+            }
+            .map_err(|e| t.error("file", e))?
         }
-        .map_err(|e| t.error("file", e))?,
     };
     let smooth = t.bool_or("smooth", obj.normals.is_some())?;
     // Whether any face has an area as the file gives it (else a scale is not to blame).
