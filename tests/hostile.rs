@@ -490,7 +490,7 @@ fn cases() -> Vec<Case> {
         pbrt_case("pbrt: AttributeEnd alone", "AttributeEnd", Error("AttributeEnd without AttributeBegin")),
         Case { name: "pbrt: an empty file", files: vec![("s.pbrt", Vec::new())], args: args("render s.pbrt"), expect: Error("no WorldBegin") },
         Case { name: "pbrt: binary junk", files: vec![("s.pbrt", vec![0xff, 0xfe, 0x00, 0x9c])], args: args("render s.pbrt"), expect: Error("not UTF-8 text") },
-        Case { name: "pbrt: gzipped", files: vec![("s.pbrt", vec![0x1f, 0x8b, 0x08, 0x00])], args: args("render s.pbrt"), expect: Error("gzip-compressed") },
+        Case { name: "pbrt: damaged gzip", files: vec![("s.pbrt", vec![0x1f, 0x8b, 0x08, 0x00])], args: args("render s.pbrt"), expect: Error("the gzip-compressed data is damaged") },
         Case { name: "pbrt: -D", files: vec![("s.pbrt", pbrt(""))], args: args("render s.pbrt -D r=1"), expect: Error("a pbrt scene has no $parameters") },
         Case { name: "convert over a user's file", files: vec![("s.xml", mitsuba("")), ("out.toml", b"mine".to_vec())], args: args("convert s.xml -o out.toml"), expect: Error("out.toml") },
         Case { name: "convert to its own input", files: vec![("s.xml", mitsuba(""))], args: args("convert s.xml -o s.xml"), expect: Error("should end in .toml") },
@@ -690,17 +690,28 @@ fn pipes_and_huge_files_are_refused_as_inputs() {
         ("vdb file", format!("{light}[[medium]]\nname = \"g\"\nprofile = \"grid\"\nfile = \"pipe\"\n"), render("")),
         ("scene", light.clone(), args("render pipe")),
         ("partial", light.clone(), args("merge pipe -o m.exr")),
+        // A pbrt scene that is a pipe, and one that includes a pipe.
+        ("pbrt scene", light.clone(), args("render pipe.pbrt")),
+        ("pbrt include", light.clone(), args("render s.pbrt")),
+        // A Mitsuba scene that is a pipe, and one that includes a pipe.
+        ("xml scene", light.clone(), args("render pipe.xml")),
+        ("xml include", light.clone(), args("render s.xml")),
     ];
     let mut failures = Vec::new();
     for (k, (what, scene_text, arguments)) in cases.iter().enumerate() {
         let dir = root.join(format!("case{k}"));
         std::fs::create_dir_all(&dir).unwrap();
         std::fs::write(dir.join("s.toml"), scene_text).unwrap();
-        let made = Command::new("mkfifo")
-            .arg(dir.join("pipe"))
-            .status()
-            .unwrap();
-        assert!(made.success(), "mkfifo");
+        std::fs::write(dir.join("s.pbrt"), "Include \"pipe.pbrt\"\n").unwrap();
+        std::fs::write(
+            dir.join("s.xml"),
+            "<scene version=\"3.0.0\"><include filename=\"pipe.xml\"/></scene>\n",
+        )
+        .unwrap();
+        for name in ["pipe", "pipe.pbrt", "pipe.xml"] {
+            let made = Command::new("mkfifo").arg(dir.join(name)).status().unwrap();
+            assert!(made.success(), "mkfifo");
+        }
         let (code, _, stderr, took) = run(&dir, arguments, Duration::from_secs(10));
         if took >= Duration::from_secs(10)
             || code != Some(1)

@@ -398,11 +398,6 @@ fn what_pbrt_cannot_convert_is_refused_by_file_line_and_column() {
             "equal-area octahedral map",
         ),
         (
-            "gzipped mesh",
-            in_world("Shape \"plymesh\" \"string filename\" \"m.ply.gz\""),
-            "s.pbrt:7:1: \"m.ply.gz\": a gzip-compressed PLY file",
-        ),
-        (
             "no world",
             "Camera \"perspective\"\n".into(),
             "the scene has no WorldBegin",
@@ -457,6 +452,23 @@ fn what_pbrt_cannot_convert_is_refused_by_file_line_and_column() {
     assert_eq!(
         tables(&imported.table, "material")[0]["type"].as_str(),
         Some("plastic")
+    );
+}
+
+/// A gzip-compressed pbrt file (`.pbrt.gz`) reads as its text does.
+#[test]
+fn a_gzipped_pbrt_file_converts_as_its_text() {
+    use std::io::Write;
+    let text = std::fs::read("scenes/pbrt/cornell_box.pbrt").unwrap();
+    let mut gz = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::default());
+    gz.write_all(&text).unwrap();
+    let d = dir("pbrt-gz");
+    let p = d.join("cornell_box.pbrt.gz");
+    std::fs::write(&p, gz.finish().unwrap()).unwrap();
+    let options = ImportOptions::default();
+    assert_eq!(
+        convert(&p, &options).unwrap(),
+        convert(Path::new("scenes/pbrt/cornell_box.pbrt"), &options).unwrap()
     );
 }
 

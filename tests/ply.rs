@@ -147,6 +147,35 @@ fn ply_in_every_format_reads_as_the_same_obj() {
     }
 }
 
+/// A gzip-compressed PLY file (`.ply.gz`, as pbrt's scenes ship them) reads as the PLY does,
+/// alone and as a scene's mesh; damaged compressed data is an error naming the file.
+#[test]
+fn a_gzipped_ply_file_reads_as_the_ply() {
+    use std::io::Write;
+    let plain = ply_binary(false);
+    let mut gz = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::default());
+    gz.write_all(&plain).unwrap();
+    let path = file("little.ply.gz", &gz.finish().unwrap());
+    let (a, b) = (
+        load_ply(&path).unwrap(),
+        load_ply(&file("plain.ply", &plain)).unwrap(),
+    );
+    assert_eq!((a.positions, a.triangles), (b.positions, b.triangles));
+    let text = format!(
+        "[[material]]\nname = \"m\"\ntype = \"diffuse\"\nalbedo = [0.5, 0.5, 0.5]\n\n[[shape]]\ntype = \"mesh\"\nfile = \
+         \"{}\"\nmaterial = \"m\"\n",
+        path.display()
+    );
+    grinlight::scene::load::parse_scene(Path::new("mesh.toml"), text).expect("loads");
+    let e = load_ply(&file("broken.ply.gz", &[0x1f, 0x8b, 8, 0, 1, 2]))
+        .err()
+        .unwrap();
+    assert!(
+        e.contains("broken.ply.gz: the gzip-compressed data is damaged"),
+        "{e}"
+    );
+}
+
 /// A scene's mesh may be a PLY file: it loads as the OBJ does.
 #[test]
 fn a_scene_mesh_may_be_a_ply_file() {

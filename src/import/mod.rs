@@ -38,11 +38,21 @@ pub enum Format {
 }
 
 impl Format {
-    /// The format of `path`: Mitsuba for `.xml`, pbrt for `.pbrt`, else grinlight's.
+    /// The format of `path`: Mitsuba for `.xml`, pbrt for `.pbrt` (or `.pbrt.gz`), else
+    /// grinlight's.
     pub fn of(path: &Path) -> Format {
         match path.extension().and_then(|e| e.to_str()) {
             Some(e) if e.eq_ignore_ascii_case("xml") => Format::Mitsuba,
             Some(e) if e.eq_ignore_ascii_case("pbrt") => Format::Pbrt,
+            Some(e)
+                if e.eq_ignore_ascii_case("gz")
+                    && path
+                        .to_string_lossy()
+                        .to_ascii_lowercase()
+                        .ends_with(".pbrt.gz") =>
+            {
+                Format::Pbrt
+            }
             _ => Format::Grinlight,
         }
     }

@@ -8,16 +8,30 @@
 use super::mesh::ObjTriangles;
 use std::path::Path;
 
-/// The triangles of a PLY file. The error names the file and what is wrong: the header line,
-/// or the element and record (1-based) where the data is not what the header says.
+/// The triangles of a PLY file (gzip-compressed when its name ends in `.gz`, as pbrt's scenes
+/// ship them). The error names the file and what is wrong: the header line, or the element
+/// and record (1-based) where the data is not what the header says.
 pub fn load_ply(path: &Path) -> Result<ObjTriangles, String> {
     let at = |why: String| format!("{}: {why}", path.display());
-    // The file is read whole, and its triangles take about as much again: refused at once where
-    // the machine has not the room.
+    let gzipped = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("gz"));
+    // The file is read whole, and its triangles take about as much again (a compressed one
+    // perhaps five times as much): refused at once where the machine has not the room.
     let size = std::fs::metadata(path).map_or(0, |m| m.len());
-    crate::resources::check_memory(size.saturating_mul(3), "reading this PLY file")
+    let factor = if gzipped { 12 } else { 3 };
+    crate::resources::check_memory(size.saturating_mul(factor), "reading this PLY file")
         .map_err(|e| at(e.to_string()))?;
     let bytes = std::fs::read(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    let bytes = match gzipped {
+        true => {
+            let mut plain = Vec::new();
+            std::io::Read::read_to_end(&mut flate2::read::GzDecoder::new(&bytes[..]), &mut plain)
+                .map_err(|e| at(format!("the gzip-compressed data is damaged ({e})")))?;
+            plain
+        }
+        false => bytes,
+    };
     parse(&bytes).map_err(at)
 }
 

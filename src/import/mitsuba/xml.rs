@@ -418,7 +418,8 @@ fn place_of(file: &Rc<PathBuf>, doc: &roxmltree::Document, node: roxmltree::Node
 impl Reader {
     /// Reads a file's `<scene>` into `into` (the scene, or the scene including it).
     fn file(&mut self, path: &Path, into: &mut Object) -> Result<()> {
-        let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+        let text =
+            crate::input::read_text(path, crate::input::MAX_SCENE_BYTES, "a Mitsuba scene file")?;
         let file = Rc::new(path.to_path_buf());
         let doc = roxmltree::Document::parse(&text).map_err(|e| {
             let pos = e.pos();

@@ -1369,13 +1369,6 @@ impl<'s> Converter<'s> {
                     s.place
                         .error(format!("{}: \"string filename\" is missing", s.what()))
                 })?;
-                if name.ends_with(".gz") {
-                    return Err(s.place.error(format!(
-                        "\"{}\": a gzip-compressed PLY file; decompress it (gunzip) and name the \
-                         .ply",
-                        cut(&name)
-                    )));
-                }
                 let path = self.scene.find(&name, &s.place)?;
                 if oriented && self.turned(g) {
                     return Err(s.place.error(

@@ -360,6 +360,9 @@ impl Scene {
     /// A file the scene names, found beside the first scene file (or as given, if absolute).
     pub fn find(&self, name: &str, place: &Place) -> Result<PathBuf> {
         let path = self.dir.join(name);
+        if let Some(why) = crate::input::not_regular(&path) {
+            return Err(place.error(format!("\"{}\" {why}", cut(name))));
+        }
         match path.is_file() {
             true => Ok(path),
             false => Err(place.error(format!(
@@ -406,14 +409,30 @@ fn read_file(
                 .join(" → ")
         )));
     }
-    let bytes =
-        std::fs::read(path).map_err(|e| cannot(format!("cannot read {}: {e}", path.display())))?;
-    if path.extension().is_some_and(|e| e == "gz") || bytes.starts_with(&[0x1f, 0x8b]) {
-        return Err(cannot(format!(
-            "{}: a gzip-compressed scene file; decompress it first",
-            path.display()
-        )));
+    if let Some(why) = crate::input::not_regular(path) {
+        return Err(cannot(format!("{}: {why}", path.display())));
     }
+    // Read whole; its tokens take a few times its bytes (a compressed file's several more).
+    let size = std::fs::metadata(path).map_or(0, |m| m.len());
+    crate::resources::check_memory(size.saturating_mul(24), "reading this pbrt file")
+        .map_err(|e| cannot(format!("{}: {e}", path.display())))?;
+    let raw =
+        std::fs::read(path).map_err(|e| cannot(format!("cannot read {}: {e}", path.display())))?;
+    // pbrt reads a gzip-compressed file (`.pbrt.gz`) as its text.
+    let bytes = match raw.starts_with(&[0x1f, 0x8b]) {
+        true => {
+            let mut plain = Vec::new();
+            std::io::Read::read_to_end(&mut flate2::read::GzDecoder::new(&raw[..]), &mut plain)
+                .map_err(|e| {
+                    cannot(format!(
+                        "{}: the gzip-compressed data is damaged ({e})",
+                        path.display()
+                    ))
+                })?;
+            plain
+        }
+        false => raw,
+    };
     let text = String::from_utf8(bytes)
         .map_err(|_| cannot(format!("{}: the file is not UTF-8 text", path.display())))?;
     let file = Rc::new(path.to_path_buf());

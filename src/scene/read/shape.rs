@@ -271,10 +271,14 @@ fn read_mesh(t: &mut TableReader) -> Result<Vec<Primitive>> {
     let obj = match &source {
         MeshSource::Inline => inline_triangles(t)?,
         MeshSource::File(path) => {
-            let ext = path
-                .extension()
-                .and_then(|e| e.to_str())
-                .map(str::to_ascii_lowercase);
+            let name = path.to_string_lossy().to_ascii_lowercase();
+            let ext = match name.ends_with(".ply.gz") {
+                true => Some("ply".to_string()),
+                false => path
+                    .extension()
+                    .and_then(|e| e.to_str())
+                    .map(str::to_ascii_lowercase),
+            };
             let index = match ext.as_deref() {
                 Some("serialized") => t.natural_or("shape_index", 0)? as usize,
                 _ => {
