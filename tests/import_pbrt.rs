@@ -338,9 +338,14 @@ fn what_pbrt_cannot_convert_is_refused_by_file_line_and_column() {
             "s.pbrt:7:23: Material \"dielectric\": \"spectrum eta\" — an index over wavelength",
         ),
         (
-            "blackbody",
-            in_world("LightSource \"point\" \"blackbody I\" 3000"),
-            "a blackbody is not supported by grinlight's import (give an rgb)",
+            "spectral light",
+            in_world("LightSource \"point\" \"spectrum I\" [ 400 1 700 1 ]"),
+            "a spectrum is not supported by grinlight's import (give an rgb)",
+        ),
+        (
+            "cold blackbody",
+            in_world("LightSource \"point\" \"blackbody I\" -5"),
+            "expected one temperature in kelvin, > 0",
         ),
         (
             "partial sphere",
@@ -504,4 +509,44 @@ fn a_pbrt_include_cycle_is_refused_and_includes_are_read_in_place() {
         [0.0, 0.0, 5.0],
         1e-12
     ));
+}
+
+/// pbrt's blackbody emission, normalised to unit luminance and scaled: converted to a light of
+/// Planck's spectrum whose luminance is the scale. CIE illuminant A is Planck's spectrum at
+/// 2856 K with c₂ = 1.435e-2 m·K, the same shape as at 2863.5 K with today's c₂ (1.438777e-2):
+/// its chromaticity (CIE 15:2004) x = 0.44757, y = 0.40745 is met to 1e-3 — grinlight's
+/// colours scale each sRGB channel by up to 1e-3 so that D65 is exactly white (measured:
+/// x 0.44697, y 0.40725) — and its luminance to 1e-3 (the four digits of sRGB's luminance
+/// row).
+#[test]
+fn a_blackbody_light_has_plancks_colour_and_its_scale_as_luminance() {
+    let kelvin = 2856.0 * 1.438_776_877 / 1.435;
+    let t = converted(
+        "blackbody",
+        "Scale -1 1 1\nLookAt 0 0 5  0 0 0  0 1 0",
+        &format!(
+            "LightSource \"point\" \"blackbody I\" [ {kelvin} ] \"float scale\" 3\n\
+             LightSource \"infinite\" \"blackbody L\" [ {kelvin} ] \"float scale\" 3"
+        ),
+    );
+    let lights = tables(&t, "light");
+    assert_eq!(f(&lights[0]["spectrum"]["blackbody"]), kelvin);
+    let spectrum =
+        grinlight::spectrum::Spectrum::new(grinlight::spectrum::emission::Shape::Blackbody {
+            kelvin,
+        })
+        .unwrap();
+    let point = spectrum.colour().0 * f(&lights[0]["intensity"]);
+    let sky = glam::DVec3::from(vec3(&lights[1]["radiance"]));
+    for rgb in [point, sky] {
+        let xyz = glam::DMat3::from_cols_array(&[
+            0.4124, 0.2126, 0.0193, 0.3576, 0.7152, 0.1192, 0.1805, 0.0722, 0.9505,
+        ]) * rgb;
+        let (x, y) = (xyz.x / xyz.element_sum(), xyz.y / xyz.element_sum());
+        assert!(
+            (x - 0.44757).abs() < 1e-3 && (y - 0.40745).abs() < 1e-3,
+            "x {x}, y {y}"
+        );
+        assert!((xyz.y / 3.0 - 1.0).abs() < 1e-3, "Y {}", xyz.y);
+    }
 }

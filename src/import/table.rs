@@ -67,9 +67,9 @@ impl AreaEmitter {
         }
     }
 
-    /// The `[[light]]` table of this surface emitting `radiance`.
-    pub fn light(self, radiance: DVec3) -> Table {
-        let mut t = match self {
+    /// The `[[light]]` table of this surface (its radiance to be added).
+    pub fn light(self) -> Table {
+        match self {
             AreaEmitter::Quad(v) => table([
                 ("type", string("quad")),
                 ("vertices", Toml::Array(v.into_iter().map(vec3).collect())),
@@ -89,8 +89,6 @@ impl AreaEmitter {
                 ("center", vec3(center)),
                 ("radius", Toml::Float(radius)),
             ]),
-        };
-        t.insert("radiance".into(), vec3(radiance));
-        t
+        }
     }
 }

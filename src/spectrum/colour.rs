@@ -32,6 +32,8 @@ const LAST: usize = 780;
 struct Tables {
     /// r̄(λ): linear sRGB response to unit power at λ (1/nm scale: see [`sensor`]).
     sensor: Vec<DVec3>,
+    /// ȳ(λ) over the luminance of unit-power D65 (see [`luminance_of`]).
+    luminance: Vec<f64>,
     /// D65 normalised to unit power, 1/nm.
     d65: Vec<f64>,
 }
@@ -55,8 +57,13 @@ static TABLES: LazyLock<Tables> = LazyLock::new(|| {
     // White balance: unit-power D65 → (1, 1, 1) (a scale per channel of ≈ 1e-3 relative
     // spread: the matrix is made for D65 already; this makes white exact at 1 nm sums).
     let white: DVec3 = rgb.iter().zip(&d65).map(|(r, s)| *r * *s).sum();
+    let ybar: Vec<f64> = (FIRST..=LAST)
+        .map(|nm| observer.xyz_at_wavelength(nm).expect("in range").to_array()[1])
+        .collect();
+    let white_y: f64 = ybar.iter().zip(&d65).map(|(y, s)| y * s).sum();
     Tables {
         sensor: rgb.iter().map(|r| *r / white).collect(),
+        luminance: ybar.iter().map(|y| y / white_y).collect(),
         d65,
     }
 });
@@ -99,6 +106,15 @@ pub fn colour_of(power: impl Fn(f64) -> f64) -> Rgb {
     (FIRST..=LAST)
         .map(|nm| sensor(nm as f64) * power(nm as f64))
         .fold(Rgb::ZERO, |a, b| a + b)
+}
+
+/// The luminance (CIE 1931 Y) of a spectral power distribution `power` (per nm) relative to
+/// unit-power D65's, by 1 nm sums over the observer's range: 1 for unit-power D65, whose
+/// colour is (1, 1, 1).
+pub fn luminance_of(power: impl Fn(f64) -> f64) -> f64 {
+    (FIRST..=LAST)
+        .map(|nm| lerp(&TABLES.luminance, nm as f64) * power(nm as f64))
+        .sum()
 }
 
 /// The value at `nm` of the smooth reflectance spectrum of `rgb` (Jakob and Hanika 2019): a

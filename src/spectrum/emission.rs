@@ -95,6 +95,8 @@ pub struct Spectrum {
     cdf: Vec<f64>,
     /// The linear sRGB in which a unit of its power appears (see [`Spectrum::colour`]).
     colour: Rgb,
+    /// The luminance of a unit of its power (see [`Spectrum::luminance`]).
+    luminance: f64,
 }
 
 impl Spectrum {
@@ -121,13 +123,24 @@ impl Spectrum {
             .map(|nm| node(nm as f64))
             .sum();
         let colour = super::colour::colour_of(|nm| node(nm) / nodes);
-        Ok(Self { shape, cdf, colour })
+        let luminance = super::colour::luminance_of(|nm| node(nm) / nodes);
+        Ok(Self {
+            shape,
+            cdf,
+            colour,
+            luminance,
+        })
     }
 
     /// The linear sRGB in which one unit of its power appears in an image (unit-power D65 is
     /// (1, 1, 1)); a narrow line outside sRGB's gamut has negative channels.
     pub fn colour(&self) -> Rgb {
         self.colour
+    }
+
+    /// The luminance (CIE 1931 Y) of one unit of its power, relative to unit-power D65's (1).
+    pub fn luminance(&self) -> f64 {
+        self.luminance
     }
 
     /// The wavelength (nm) for uniform `u` in [0, 1): inverse of the cumulative distribution

@@ -866,7 +866,8 @@ impl Converter<'_> {
             }
             let emitting = self.emitting_surface(shape, &m, flip)?;
             shape.finish()?;
-            let light = emitting.light(radiance);
+            let mut light = emitting.light();
+            light.insert("radiance".into(), vec3(radiance));
             self.lights.push(light);
             return Ok(());
         }

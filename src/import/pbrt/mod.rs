@@ -157,8 +157,8 @@ enum Surface {
 /// `AreaLightSource "diffuse"`: the radiance of the shapes that follow.
 #[derive(Clone)]
 struct AreaLight {
-    /// L × scale (RGB).
-    radiance: DVec3,
+    /// L × scale.
+    radiance: Emission,
     /// `power`, if given: the radiance is then scaled to emit it from each shape.
     power: Option<f64>,
     place: Place,
@@ -214,6 +214,85 @@ fn mirror_map(mirror: bool) -> DMat4 {
     }
 }
 
+/// What a pbrt light emits. pbrt scales an RGB emission by its illuminant's luminance, so the
+/// RGB given is the RGB seen, and a blackbody to unit luminance, so its luminance is its scale
+/// (`power` and `illuminance` then scale either).
+#[derive(Clone, Debug)]
+enum Emission {
+    /// Linear sRGB.
+    Rgb(DVec3),
+    /// Planck's spectrum at `kelvin`, of luminance `luminance` (relative to unit-power D65's:
+    /// a white of luminance 1 is (1, 1, 1)).
+    Blackbody {
+        kelvin: f64,
+        luminance: f64,
+        place: Place,
+    },
+}
+
+impl Emission {
+    /// The emission scaled by `k`.
+    fn times(self, k: f64) -> Emission {
+        match self {
+            Emission::Rgb(c) => Emission::Rgb(c * k),
+            Emission::Blackbody {
+                kelvin,
+                luminance,
+                place,
+            } => Emission::Blackbody {
+                kelvin,
+                luminance: luminance * k,
+                place,
+            },
+        }
+    }
+
+    /// grinlight's spectrum of a blackbody, one unit of whose power has luminance
+    /// `Spectrum::luminance`.
+    fn spectrum(kelvin: f64, place: &Place) -> Result<crate::spectrum::Spectrum> {
+        crate::spectrum::Spectrum::new(crate::spectrum::emission::Shape::Blackbody { kelvin })
+            .map_err(|e| place.error(format!("a blackbody of {kelvin} K: {e}")))
+    }
+
+    /// Writes the emission as the light's `key`: an RGB, or one number (the power of the
+    /// blackbody `spectrum` written beside it, whose unit has luminance `Spectrum::luminance`).
+    fn put(&self, light: &mut Table, key: &str) -> Result<()> {
+        match self {
+            Emission::Rgb(c) => {
+                light.insert(key.into(), vec3(*c));
+            }
+            Emission::Blackbody {
+                kelvin,
+                luminance,
+                place,
+            } => {
+                let spectrum = Self::spectrum(*kelvin, place)?;
+                light.insert(key.into(), Toml::Float(luminance / spectrum.luminance()));
+                light.insert(
+                    "spectrum".into(),
+                    Toml::Table(table([("blackbody", Toml::Float(*kelvin))])),
+                );
+            }
+        }
+        Ok(())
+    }
+
+    /// Its linear sRGB.
+    fn rgb(&self) -> Result<DVec3> {
+        match self {
+            Emission::Rgb(c) => Ok(*c),
+            Emission::Blackbody {
+                kelvin,
+                luminance,
+                place,
+            } => {
+                let spectrum = Self::spectrum(*kelvin, place)?;
+                Ok(spectrum.colour().0 * (luminance / spectrum.luminance()))
+            }
+        }
+    }
+}
+
 /// pbrt-v4's microfacet α of a roughness: √r when remapped (its default), else r.
 fn alpha(p: &Params, place: &Place) -> Result<f64> {
     let r = p.float("roughness", 0.0)?;
@@ -257,6 +336,27 @@ impl<'s> Converter<'s> {
                 param.what(),
                 cut(other)
             ))),
+        }
+    }
+
+    /// An emission parameter (`default` white when absent): an `rgb`, or a `blackbody`
+    /// temperature; spectra over wavelength and textures are refused by name.
+    fn emission(&self, p: &Params, name: &str, owner: &str) -> Result<Emission> {
+        match p.take(name) {
+            Some(param) if param.ty == "blackbody" => {
+                match p.numbers(name, &["blackbody"])?.expect("taken").0[..] {
+                    [kelvin] if kelvin > 0.0 => Ok(Emission::Blackbody {
+                        kelvin,
+                        luminance: 1.0,
+                        place: param.place.clone(),
+                    }),
+                    _ => Err(param.place.error(format!(
+                        "{owner}: {}: expected one temperature in kelvin, > 0",
+                        param.what()
+                    ))),
+                }
+            }
+            _ => Ok(Emission::Rgb(self.rgb(p, name, DVec3::ONE, owner)?)),
         }
     }
 
@@ -981,8 +1081,7 @@ impl<'s> Converter<'s> {
                 cut(s.text(0))
             )));
         }
-        // pbrt scales an RGB emission by its illuminant's luminance: the RGB is what is seen.
-        let radiance = self.rgb(p, "L", DVec3::ONE, &what)? * p.float("scale", 1.0)?;
+        let radiance = self.emission(p, "L", &what)?.times(p.float("scale", 1.0)?);
         if p.boolean("twosided", false)? {
             return Err(s
                 .place
@@ -1003,21 +1102,20 @@ impl<'s> Converter<'s> {
         let what = s.what();
         let m = self.graphics.ctm;
         let scale = p.float("scale", 1.0)?;
-        // pbrt scales an RGB emission by its illuminant's luminance: the RGB is what is seen;
-        // a `power` then sets the flux of that illuminant.
         let light = match s.text(0) {
             "point" => {
-                let mut intensity = self.rgb(p, "I", DVec3::ONE, &what)? * scale;
+                let mut intensity = self.emission(p, "I", &what)?.times(scale);
                 let power = p.float("power", -1.0)?;
                 if power > 0.0 {
-                    intensity *= power / (4.0 * PI);
+                    intensity = intensity.times(power / (4.0 * PI));
                 }
                 let from = point_param(p, "from", DVec3::ZERO)?;
-                table([
+                let mut t = table([
                     ("type", string("point")),
                     ("position", vec3(self.point(&m, from))),
-                    ("intensity", vec3(intensity)),
-                ])
+                ]);
+                intensity.put(&mut t, "intensity")?;
+                t
             }
             "spot" => {
                 if similarity(&m).is_none() {
@@ -1025,7 +1123,7 @@ impl<'s> Converter<'s> {
                         .place
                         .error("the transform scales unevenly or shears the spot light's cone"));
                 }
-                let mut intensity = self.rgb(p, "I", DVec3::ONE, &what)? * scale;
+                let mut intensity = self.emission(p, "I", &what)?.times(scale);
                 let cone = p.float("coneangle", 30.0)?;
                 let delta = p.float("conedeltaangle", 5.0)?;
                 if !(cone > 0.0 && cone <= 180.0 && delta >= 0.0 && delta <= cone) {
@@ -1037,7 +1135,8 @@ impl<'s> Converter<'s> {
                 let power = p.float("power", -1.0)?;
                 if power > 0.0 {
                     let (end, start) = (cone.to_radians().cos(), (cone - delta).to_radians().cos());
-                    intensity *= power / (2.0 * PI * ((1.0 - start) + 0.5 * (start - end)));
+                    intensity =
+                        intensity.times(power / (2.0 * PI * ((1.0 - start) + 0.5 * (start - end))));
                 }
                 let from = point_param(p, "from", DVec3::ZERO)?;
                 let to = point_param(p, "to", DVec3::Z)?;
@@ -1046,21 +1145,22 @@ impl<'s> Converter<'s> {
                         .error("the spot light's from and to are the same point")
                 })?;
                 // pbrt's falloff: smoothstep in cos θ, grinlight's default.
-                table([
+                let mut t = table([
                     ("type", string("spot")),
                     ("position", vec3(self.point(&m, from))),
                     ("direction", vec3(direction)),
-                    ("intensity", vec3(intensity)),
                     ("cone_deg", Toml::Float(cone)),
                     ("falloff_deg", Toml::Float(cone - delta)),
                     ("falloff_curve", string("smoothstep")),
-                ])
+                ]);
+                intensity.put(&mut t, "intensity")?;
+                t
             }
             "distant" => {
-                let mut irradiance = self.rgb(p, "L", DVec3::ONE, &what)? * scale;
+                let mut irradiance = self.emission(p, "L", &what)?.times(scale);
                 let illuminance = p.float("illuminance", -1.0)?;
                 if illuminance > 0.0 {
-                    irradiance *= illuminance;
+                    irradiance = irradiance.times(illuminance);
                 }
                 let from = point_param(p, "from", DVec3::ZERO)?;
                 let to = point_param(p, "to", DVec3::Z)?;
@@ -1068,11 +1168,12 @@ impl<'s> Converter<'s> {
                     s.place
                         .error("the distant light's from and to are the same point")
                 })?;
-                table([
+                let mut t = table([
                     ("type", string("directional")),
                     ("direction", vec3(direction)),
-                    ("irradiance", vec3(irradiance)),
-                ])
+                ]);
+                irradiance.put(&mut t, "irradiance")?;
+                t
             }
             "infinite" => {
                 if let Some(param) = p.take("filename") {
@@ -1081,10 +1182,10 @@ impl<'s> Converter<'s> {
                          supported by grinlight's import",
                     ));
                 }
-                let mut radiance = self.rgb(p, "L", DVec3::ONE, &what)? * scale;
+                let mut radiance = self.emission(p, "L", &what)?.times(scale);
                 let illuminance = p.float("illuminance", -1.0)?;
                 if illuminance > 0.0 {
-                    radiance *= illuminance / PI;
+                    radiance = radiance.times(illuminance / PI);
                 }
                 p.finish(&what)?;
                 if self.environment.is_some() {
@@ -1092,10 +1193,11 @@ impl<'s> Converter<'s> {
                         .place
                         .error("a second infinite light: grinlight has one environment"));
                 }
+                // An environment has no spectrum of its own: its RGB.
                 self.environment = Some(table([
                     ("type", string("environment")),
                     ("sky", string("uniform")),
-                    ("radiance", vec3(radiance)),
+                    ("radiance", vec3(radiance.rgb()?)),
                 ]));
                 return Ok(());
             }
@@ -1577,10 +1679,15 @@ impl<'s> Converter<'s> {
         // pbrt's `power` is the flux of each light it makes: one per triangle, patch, disk or
         // sphere, L = Φ/(π A) with A that one's area.
         let radiance = match area.power {
-            Some(power) => area.radiance * power / (PI * emitter.area() / lights),
-            None => area.radiance,
+            Some(power) => area
+                .radiance
+                .clone()
+                .times(power / (PI * emitter.area() / lights)),
+            None => area.radiance.clone(),
         };
-        self.lights.push(emitter.light(radiance));
+        let mut light = emitter.light();
+        radiance.put(&mut light, "radiance")?;
+        self.lights.push(light);
         Ok(())
     }
 }
