@@ -161,12 +161,10 @@ fn a_gzipped_ply_file_reads_as_the_ply() {
         load_ply(&file("plain.ply", &plain)).unwrap(),
     );
     assert_eq!((a.positions, a.triangles), (b.positions, b.triangles));
-    let text = format!(
-        "[[material]]\nname = \"m\"\ntype = \"diffuse\"\nalbedo = [0.5, 0.5, 0.5]\n\n[[shape]]\ntype = \"mesh\"\nfile = \
-         \"{}\"\nmaterial = \"m\"\n",
-        path.display()
+    assert_eq!(
+        mesh_triangles(&format!("file = \"{}\"\n", path.display())),
+        Ok(7)
     );
-    grinlight::scene::load::parse_scene(Path::new("mesh.toml"), text).expect("loads");
     let e = load_ply(&file("broken.ply.gz", &[0x1f, 0x8b, 8, 0, 1, 2]))
         .err()
         .unwrap();
@@ -176,18 +174,16 @@ fn a_gzipped_ply_file_reads_as_the_ply() {
     );
 }
 
-/// A scene's mesh may be a PLY file: it loads as the OBJ does.
-#[test]
-fn a_scene_mesh_may_be_a_ply_file() {
-    let ply = file("scene_mesh.ply", &ply_binary(false));
+/// The number of triangles of the one mesh of a scene of a diffuse material and a `mesh`
+/// shape with the keys `mesh` (or the scene's error).
+fn mesh_triangles(mesh: &str) -> Result<usize, String> {
     let text = format!(
-        "[[material]]\nname = \"m\"\ntype = \"diffuse\"\nalbedo = [0.5, 0.5, 0.5]\n\n[[shape]]\ntype = \"mesh\"\nfile = \
-         \"{}\"\nmaterial = \"m\"\n",
-        ply.display()
+        "[[material]]\nname = \"m\"\ntype = \"diffuse\"\nalbedo = [0.5, 0.5, 0.5]\n\n\
+         [[shape]]\ntype = \"mesh\"\nmaterial = \"m\"\n{mesh}"
     );
-    let (scene, _) =
-        grinlight::scene::load::parse_scene(Path::new("mesh.toml"), text).expect("loads");
-    let mesh = scene
+    let (scene, _) = grinlight::scene::load::parse_scene(Path::new("mesh.toml"), text)
+        .map_err(|e| e.to_string())?;
+    Ok(scene
         .accel
         .primitives()
         .iter()
@@ -195,8 +191,17 @@ fn a_scene_mesh_may_be_a_ply_file() {
             grinlight::shapes::Primitive::Mesh(m) => Some(m.len()),
             _ => None,
         })
-        .expect("a mesh");
-    assert_eq!(mesh, 7);
+        .expect("a mesh"))
+}
+
+/// A scene's mesh may be a PLY file: it loads as the OBJ does.
+#[test]
+fn a_scene_mesh_may_be_a_ply_file() {
+    let ply = file("scene_mesh.ply", &ply_binary(false));
+    assert_eq!(
+        mesh_triangles(&format!("file = \"{}\"\n", ply.display())),
+        Ok(7)
+    );
 }
 
 /// Damaged files are errors that name the file and where: data that ends early (the record
@@ -378,33 +383,17 @@ fn mitsuba_serialized_meshes_read_as_mitsuba_reads_them() {
 /// `shape_index` on another file is refused.
 #[test]
 fn a_scene_mesh_may_be_a_mesh_of_a_serialized_file() {
-    let head = "[[material]]\nname = \"m\"\ntype = \"diffuse\"\nalbedo = [0.5, 0.5, 0.5]\n\n[[shape]]\ntype = \"mesh\"\nmaterial = \"m\"\n";
-    let count = |text: String| -> Result<usize, String> {
-        let (scene, _) = grinlight::scene::load::parse_scene(Path::new("mesh.toml"), text)
-            .map_err(|e| e.to_string())?;
-        Ok(scene
-            .accel
-            .primitives()
-            .iter()
-            .find_map(|p| match p {
-                grinlight::shapes::Primitive::Mesh(m) => Some(m.len()),
-                _ => None,
-            })
-            .expect("a mesh"))
-    };
     let serialized = std::fs::canonicalize("tests/data/mitsuba/meshes_v4.serialized").unwrap();
-    let with = |extra: &str| format!("{head}file = \"{}\"\n{extra}", serialized.display());
-    assert_eq!(count(with("")), Ok(4));
-    assert_eq!(count(with("shape_index = 1\n")), Ok(2));
-    let e = count(with("shape_index = 5\n")).err().unwrap();
+    let with =
+        |extra: &str| mesh_triangles(&format!("file = \"{}\"\n{extra}", serialized.display()));
+    assert_eq!(with(""), Ok(4));
+    assert_eq!(with("shape_index = 1\n"), Ok(2));
+    let e = with("shape_index = 5\n").err().unwrap();
     assert!(e.contains("mesh 5: the file holds 2"), "{e}");
     let obj = file("serialized_obj.obj", obj_text().as_bytes());
-    let e = count(format!(
-        "{head}file = \"{}\"\nshape_index = 1\n",
-        obj.display()
-    ))
-    .err()
-    .unwrap();
+    let e = mesh_triangles(&format!("file = \"{}\"\nshape_index = 1\n", obj.display()))
+        .err()
+        .unwrap();
     assert!(
         e.contains("shape_index picks a mesh of a Mitsuba .serialized file"),
         "{e}"

@@ -27,6 +27,39 @@ pub fn table<const N: usize>(pairs: [(&str, Toml); N]) -> Table {
     pairs.into_iter().map(|(k, v)| (k.to_string(), v)).collect()
 }
 
+/// The arrays of tables a converter builds: `[[medium]]`, `[[material]]`, `[[shape]]` and
+/// `[[light]]`.
+#[derive(Debug, Default)]
+pub struct Lists {
+    /// `[[medium]]` tables.
+    pub media: Vec<Table>,
+    /// `[[material]]` tables.
+    pub materials: Vec<Table>,
+    /// `[[shape]]` tables.
+    pub shapes: Vec<Table>,
+    /// `[[light]]` tables.
+    pub lights: Vec<Table>,
+}
+
+impl Lists {
+    /// Each array into `table` under its key, when it is not empty.
+    pub fn insert_into(self, table: &mut Table) {
+        for (key, list) in [
+            ("medium", self.media),
+            ("material", self.materials),
+            ("shape", self.shapes),
+            ("light", self.lights),
+        ] {
+            if !list.is_empty() {
+                table.insert(
+                    key.into(),
+                    Toml::Array(list.into_iter().map(Toml::Table).collect()),
+                );
+            }
+        }
+    }
+}
+
 /// A string as a TOML value.
 pub fn string(s: &str) -> Toml {
     Toml::String(s.to_string())

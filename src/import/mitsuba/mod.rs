@@ -6,7 +6,7 @@
 pub mod xml;
 
 use super::geometry::{linear, parallelogram, similarity};
-use super::table::{free_name, string, table, vec3, AreaEmitter};
+use super::table::{free_name, string, table, vec3, AreaEmitter, Lists};
 use super::{Imported, Place, Told};
 use crate::error::{cut, Result};
 use glam::{DMat3, DMat4, DVec3};
@@ -55,12 +55,9 @@ pub fn convert(doc: &Document, approximate: bool) -> Result<Imported> {
     let mut c = Converter {
         doc,
         told: Told::new(approximate),
-        materials: Vec::new(),
+        lists: Lists::default(),
         material_names: HashMap::new(),
-        media: Vec::new(),
         medium_names: HashMap::new(),
-        shapes: Vec::new(),
-        lights: Vec::new(),
         environment: None,
         ambient: None,
         one_sided: Vec::new(),
@@ -117,25 +114,13 @@ pub fn convert(doc: &Document, approximate: bool) -> Result<Imported> {
         );
     }
     if let Some(env) = c.environment.take() {
-        c.lights.push(env);
+        c.lists.lights.push(env);
     }
     if let Some(ambient) = &c.ambient {
         table.insert("ambient".into(), Toml::String(ambient.clone()));
     }
     table.insert("render".into(), Toml::Table(render));
-    for (key, list) in [
-        ("medium", std::mem::take(&mut c.media)),
-        ("material", std::mem::take(&mut c.materials)),
-        ("shape", std::mem::take(&mut c.shapes)),
-        ("light", std::mem::take(&mut c.lights)),
-    ] {
-        if !list.is_empty() {
-            table.insert(
-                key.into(),
-                Toml::Array(list.into_iter().map(Toml::Table).collect()),
-            );
-        }
-    }
+    std::mem::take(&mut c.lists).insert_into(&mut table);
     Ok(c.told.into_imported(table, doc.files.clone()))
 }
 
@@ -156,14 +141,12 @@ enum Surface {
 struct Converter<'d> {
     doc: &'d Document,
     told: Told,
-    materials: Vec<Table>,
+    /// The scene's arrays of tables, as made.
+    lists: Lists,
     /// Each BSDF object converted, by address (one material however often it is used).
     material_names: HashMap<*const Object, Surface>,
-    media: Vec<Table>,
     /// Each medium converted at an index (bits of n), by address.
     medium_names: HashMap<(*const Object, u64), String>,
-    shapes: Vec<Table>,
-    lights: Vec<Table>,
     environment: Option<Table>,
     ambient: Option<String>,
     /// The BSDFs that are one-sided in Mitsuba (black from behind), two-sided here.
@@ -502,10 +485,13 @@ impl Converter<'_> {
         };
         b.finish()?;
         let textured = m.contains_key("texture") || m.contains_key("checkerboard");
-        let name = free_name(&self.materials, id.or(b.id.as_deref()).unwrap_or("bsdf"));
+        let name = free_name(
+            &self.lists.materials,
+            id.or(b.id.as_deref()).unwrap_or("bsdf"),
+        );
         m.insert("name".into(), string(&name));
         m.insert("type".into(), string(kind));
-        self.materials.push(m);
+        self.lists.materials.push(m);
         Ok(Surface::Material {
             name,
             ior,
@@ -565,9 +551,9 @@ impl Converter<'_> {
             medium.children("phase");
         }
         medium.finish()?;
-        let name = free_name(&self.media, medium.id.as_deref().unwrap_or("medium"));
+        let name = free_name(&self.lists.media, medium.id.as_deref().unwrap_or("medium"));
         m.insert("name".into(), string(&name));
-        self.media.push(m);
+        self.lists.media.push(m);
         self.medium_names.insert(key, name.clone());
         Ok(name)
     }
@@ -868,7 +854,7 @@ impl Converter<'_> {
             shape.finish()?;
             let mut light = emitting.light();
             light.insert("radiance".into(), vec3(radiance));
-            self.lights.push(light);
+            self.lists.lights.push(light);
             return Ok(());
         }
         let surface = match &bsdf {
@@ -950,10 +936,10 @@ impl Converter<'_> {
                 let mut quad = out.clone();
                 quad.insert("type".into(), string("quad"));
                 quad.insert("vertices".into(), face);
-                self.shapes.push(quad);
+                self.lists.shapes.push(quad);
             }
         } else {
-            self.shapes.push(out);
+            self.lists.shapes.push(out);
         }
     }
 
@@ -995,9 +981,9 @@ impl Converter<'_> {
                 table([("type", string("dielectric")), ("ior", Toml::Float(1.0))]),
             ),
         };
-        let name = free_name(&self.materials, wanted);
+        let name = free_name(&self.lists.materials, wanted);
         table.insert("name".into(), string(&name));
-        self.materials.push(table);
+        self.lists.materials.push(table);
         self.made.insert(made, name.clone());
         name
     }
@@ -1361,7 +1347,7 @@ impl Converter<'_> {
             }
         };
         e.finish()?;
-        self.lights.push(light);
+        self.lists.lights.push(light);
         Ok(())
     }
 

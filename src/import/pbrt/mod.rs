@@ -14,7 +14,7 @@
 pub mod parse;
 
 use super::geometry::{linear, parallelogram, similarity};
-use super::table::{free_name, string, table, vec3, AreaEmitter};
+use super::table::{free_name, string, table, vec3, AreaEmitter, Lists};
 use super::{Imported, Place, Told};
 use crate::error::{cut, Result};
 use glam::{DMat4, DVec3};
@@ -33,6 +33,7 @@ pub fn convert(scene: &Scene, approximate: bool) -> Result<Imported> {
     let mut c = Converter {
         scene,
         told: Told::new(approximate),
+        lists: Lists::default(),
         graphics: Graphics::default(),
         stack: Vec::new(),
         named_frames: HashMap::new(),
@@ -44,19 +45,15 @@ pub fn convert(scene: &Scene, approximate: bool) -> Result<Imported> {
         render: Table::new(),
         mirror: false,
         world: false,
-        materials: Vec::new(),
         named_materials: HashMap::new(),
         converted_materials: HashMap::new(),
         used_materials: HashSet::new(),
         default_material: None,
         index_matched: None,
-        media: Vec::new(),
         named_media: HashMap::new(),
         medium_tables: HashMap::new(),
         ambient: None,
         ambient_pbrt: None,
-        shapes: Vec::new(),
-        lights: Vec::new(),
         environment: None,
     };
     c.render.insert("integrator".into(), string("path"));
@@ -93,25 +90,13 @@ pub fn convert(scene: &Scene, approximate: bool) -> Result<Imported> {
         Toml::Table(c.camera.take().expect("made at WorldBegin")),
     );
     if let Some(env) = c.environment.take() {
-        c.lights.push(env);
+        c.lists.lights.push(env);
     }
     if let Some(ambient) = &c.ambient {
         table.insert("ambient".into(), string(ambient));
     }
     table.insert("render".into(), Toml::Table(std::mem::take(&mut c.render)));
-    for (key, list) in [
-        ("medium", std::mem::take(&mut c.media)),
-        ("material", std::mem::take(&mut c.materials)),
-        ("shape", std::mem::take(&mut c.shapes)),
-        ("light", std::mem::take(&mut c.lights)),
-    ] {
-        if !list.is_empty() {
-            table.insert(
-                key.into(),
-                Toml::Array(list.into_iter().map(Toml::Table).collect()),
-            );
-        }
-    }
+    std::mem::take(&mut c.lists).insert_into(&mut table);
     Ok(c.told.into_imported(table, scene.files.clone()))
 }
 
@@ -167,6 +152,8 @@ struct AreaLight {
 struct Converter<'s> {
     scene: &'s Scene,
     told: Told,
+    /// The scene's arrays of tables, as made.
+    lists: Lists,
     graphics: Graphics<'s>,
     stack: Vec<Graphics<'s>>,
     /// `CoordinateSystem` names (and `camera`).
@@ -184,7 +171,6 @@ struct Converter<'s> {
     mirror: bool,
     /// After `WorldBegin`.
     world: bool,
-    materials: Vec<Table>,
     /// `MakeNamedMaterial` statements by name.
     named_materials: HashMap<String, &'s Statement>,
     /// Each material statement converted, by address (one material however often used).
@@ -193,7 +179,6 @@ struct Converter<'s> {
     used_materials: HashSet<*const Statement>,
     default_material: Option<String>,
     index_matched: Option<String>,
-    media: Vec<Table>,
     /// `MakeNamedMedium` statements by name.
     named_media: HashMap<String, &'s Statement>,
     /// Each medium converted at an index (bits of n), by name.
@@ -201,8 +186,6 @@ struct Converter<'s> {
     /// The grinlight medium around the camera, and its pbrt name.
     ambient: Option<String>,
     ambient_pbrt: Option<String>,
-    shapes: Vec<Table>,
-    lights: Vec<Table>,
     environment: Option<Table>,
 }
 
@@ -221,13 +204,33 @@ fn mirror_map(mirror: bool) -> DMat4 {
 enum Emission {
     /// Linear sRGB.
     Rgb(DVec3),
-    /// Planck's spectrum at `kelvin`, of luminance `luminance` (relative to unit-power D65's:
-    /// a white of luminance 1 is (1, 1, 1)).
-    Blackbody {
-        kelvin: f64,
-        luminance: f64,
-        place: Place,
-    },
+    /// Planck's spectrum.
+    Blackbody(Blackbody),
+}
+
+/// Planck's spectrum at `kelvin`, of luminance `luminance` relative to unit-power D65's (a
+/// white of luminance 1 is (1, 1, 1)), written at `place`.
+#[derive(Clone, Debug)]
+struct Blackbody {
+    kelvin: f64,
+    luminance: f64,
+    place: Place,
+}
+
+impl Blackbody {
+    /// grinlight's spectrum of it, and the power (in units of that spectrum, one of which has
+    /// luminance `Spectrum::luminance`) that has its luminance.
+    fn spectrum_and_power(&self) -> Result<(crate::spectrum::Spectrum, f64)> {
+        let shape = crate::spectrum::emission::Shape::Blackbody {
+            kelvin: self.kelvin,
+        };
+        let spectrum = crate::spectrum::Spectrum::new(shape).map_err(|e| {
+            self.place
+                .error(format!("a blackbody of {} K: {e}", self.kelvin))
+        })?;
+        let power = self.luminance / spectrum.luminance();
+        Ok((spectrum, power))
+    }
 }
 
 impl Emission {
@@ -235,42 +238,26 @@ impl Emission {
     fn times(self, k: f64) -> Emission {
         match self {
             Emission::Rgb(c) => Emission::Rgb(c * k),
-            Emission::Blackbody {
-                kelvin,
-                luminance,
-                place,
-            } => Emission::Blackbody {
-                kelvin,
-                luminance: luminance * k,
-                place,
-            },
+            Emission::Blackbody(b) => Emission::Blackbody(Blackbody {
+                luminance: b.luminance * k,
+                ..b
+            }),
         }
     }
 
-    /// grinlight's spectrum of a blackbody, one unit of whose power has luminance
-    /// `Spectrum::luminance`.
-    fn spectrum(kelvin: f64, place: &Place) -> Result<crate::spectrum::Spectrum> {
-        crate::spectrum::Spectrum::new(crate::spectrum::emission::Shape::Blackbody { kelvin })
-            .map_err(|e| place.error(format!("a blackbody of {kelvin} K: {e}")))
-    }
-
     /// Writes the emission as the light's `key`: an RGB, or one number (the power of the
-    /// blackbody `spectrum` written beside it, whose unit has luminance `Spectrum::luminance`).
+    /// blackbody `spectrum` written beside it).
     fn put(&self, light: &mut Table, key: &str) -> Result<()> {
         match self {
             Emission::Rgb(c) => {
                 light.insert(key.into(), vec3(*c));
             }
-            Emission::Blackbody {
-                kelvin,
-                luminance,
-                place,
-            } => {
-                let spectrum = Self::spectrum(*kelvin, place)?;
-                light.insert(key.into(), Toml::Float(luminance / spectrum.luminance()));
+            Emission::Blackbody(b) => {
+                let (_, power) = b.spectrum_and_power()?;
+                light.insert(key.into(), Toml::Float(power));
                 light.insert(
                     "spectrum".into(),
-                    Toml::Table(table([("blackbody", Toml::Float(*kelvin))])),
+                    Toml::Table(table([("blackbody", Toml::Float(b.kelvin))])),
                 );
             }
         }
@@ -281,13 +268,9 @@ impl Emission {
     fn rgb(&self) -> Result<DVec3> {
         match self {
             Emission::Rgb(c) => Ok(*c),
-            Emission::Blackbody {
-                kelvin,
-                luminance,
-                place,
-            } => {
-                let spectrum = Self::spectrum(*kelvin, place)?;
-                Ok(spectrum.colour().0 * (luminance / spectrum.luminance()))
+            Emission::Blackbody(b) => {
+                let (spectrum, power) = b.spectrum_and_power()?;
+                Ok(spectrum.colour().0 * power)
             }
         }
     }
@@ -345,11 +328,11 @@ impl<'s> Converter<'s> {
         match p.take(name) {
             Some(param) if param.ty == "blackbody" => {
                 match p.numbers(name, &["blackbody"])?.expect("taken").0[..] {
-                    [kelvin] if kelvin > 0.0 => Ok(Emission::Blackbody {
+                    [kelvin] if kelvin > 0.0 => Ok(Emission::Blackbody(Blackbody {
                         kelvin,
                         luminance: 1.0,
                         place: param.place.clone(),
-                    }),
+                    })),
                     _ => Err(param.place.error(format!(
                         "{owner}: {}: expected one temperature in kelvin, > 0",
                         param.what()
@@ -358,6 +341,18 @@ impl<'s> Converter<'s> {
             }
             _ => Ok(Emission::Rgb(self.rgb(p, name, DVec3::ONE, owner)?)),
         }
+    }
+
+    /// A light's `from` (the origin) and its unit direction toward `to` (+z), both in
+    /// grinlight's world (`from` still in the light's frame `m`: place it with `self.point`).
+    fn aim(&self, s: &Statement, m: &DMat4) -> Result<(DVec3, DVec3)> {
+        let from = point_param(&s.params, "from", DVec3::ZERO)?;
+        let to = point_param(&s.params, "to", DVec3::Z)?;
+        let direction = self.vector(m, to - from).try_normalize().ok_or_else(|| {
+            s.place
+                .error(format!("{}: from and to are the same point", s.what()))
+        })?;
+        Ok((from, direction))
     }
 
     /// A point of the file in grinlight's world.
@@ -1014,10 +1009,10 @@ impl<'s> Converter<'s> {
         };
         p.ignore("type");
         p.finish(what)?;
-        let name = free_name(&self.materials, wanted);
+        let name = free_name(&self.lists.materials, wanted);
         m.insert("name".into(), string(&name));
         m.insert("type".into(), string(grin_kind));
-        self.materials.push(m);
+        self.lists.materials.push(m);
         Ok(Surface::Material { name, ior })
     }
 
@@ -1065,9 +1060,9 @@ impl<'s> Converter<'s> {
                 m.insert("phase".into(), Toml::Table(table([("hg", Toml::Float(g))])));
             }
         }
-        let made = free_name(&self.media, name);
+        let made = free_name(&self.lists.media, name);
         m.insert("name".into(), string(&made));
-        self.media.push(m);
+        self.lists.media.push(m);
         self.medium_tables.insert(key, made.clone());
         Ok(made)
     }
@@ -1138,12 +1133,7 @@ impl<'s> Converter<'s> {
                     intensity =
                         intensity.times(power / (2.0 * PI * ((1.0 - start) + 0.5 * (start - end))));
                 }
-                let from = point_param(p, "from", DVec3::ZERO)?;
-                let to = point_param(p, "to", DVec3::Z)?;
-                let direction = self.vector(&m, to - from).try_normalize().ok_or_else(|| {
-                    s.place
-                        .error("the spot light's from and to are the same point")
-                })?;
+                let (from, direction) = self.aim(s, &m)?;
                 // pbrt's falloff: smoothstep in cos θ, grinlight's default.
                 let mut t = table([
                     ("type", string("spot")),
@@ -1162,12 +1152,7 @@ impl<'s> Converter<'s> {
                 if illuminance > 0.0 {
                     irradiance = irradiance.times(illuminance);
                 }
-                let from = point_param(p, "from", DVec3::ZERO)?;
-                let to = point_param(p, "to", DVec3::Z)?;
-                let direction = self.vector(&m, to - from).try_normalize().ok_or_else(|| {
-                    s.place
-                        .error("the distant light's from and to are the same point")
-                })?;
+                let (_, direction) = self.aim(s, &m)?;
                 let mut t = table([
                     ("type", string("directional")),
                     ("direction", vec3(direction)),
@@ -1210,7 +1195,7 @@ impl<'s> Converter<'s> {
             }
         };
         p.finish(&what)?;
-        self.lights.push(light);
+        self.lists.lights.push(light);
         Ok(())
     }
 
@@ -1252,13 +1237,13 @@ impl<'s> Converter<'s> {
         let name = match &self.default_material {
             Some(n) => n.clone(),
             None => {
-                let name = free_name(&self.materials, "default-diffuse");
+                let name = free_name(&self.lists.materials, "default-diffuse");
                 let mut t = table([
                     ("type", string("diffuse")),
                     ("albedo", vec3(DVec3::splat(0.5))),
                 ]);
                 t.insert("name".into(), string(&name));
-                self.materials.push(t);
+                self.lists.materials.push(t);
                 self.default_material = Some(name.clone());
                 name
             }
@@ -1271,10 +1256,10 @@ impl<'s> Converter<'s> {
         if let Some(n) = &self.index_matched {
             return n.clone();
         }
-        let name = free_name(&self.materials, "index-matched");
+        let name = free_name(&self.lists.materials, "index-matched");
         let mut t = table([("type", string("dielectric")), ("ior", Toml::Float(1.0))]);
         t.insert("name".into(), string(&name));
-        self.materials.push(t);
+        self.lists.materials.push(t);
         self.index_matched = Some(name.clone());
         name
     }
@@ -1362,7 +1347,7 @@ impl<'s> Converter<'s> {
             out.insert(k, v);
         }
         p.finish(&what)?;
-        self.shapes.push(out);
+        self.lists.shapes.push(out);
         Ok(())
     }
 
@@ -1687,7 +1672,7 @@ impl<'s> Converter<'s> {
         };
         let mut light = emitter.light();
         radiance.put(&mut light, "radiance")?;
-        self.lights.push(light);
+        self.lists.lights.push(light);
         Ok(())
     }
 }
