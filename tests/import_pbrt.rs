@@ -403,6 +403,16 @@ fn what_pbrt_cannot_convert_is_refused_by_file_line_and_column() {
             "equal-area octahedral map",
         ),
         (
+            "two cameras",
+            "Camera \"perspective\"\nCamera \"perspective\"\n".into(),
+            "s.pbrt:2:1: a second Camera (the first at ",
+        ),
+        (
+            "two worlds",
+            in_world("WorldBegin"),
+            "s.pbrt:7:1: a second WorldBegin",
+        ),
+        (
             "no world",
             "Camera \"perspective\"\n".into(),
             "the scene has no WorldBegin",

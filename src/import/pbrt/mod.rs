@@ -441,6 +441,12 @@ impl<'s> Converter<'s> {
             }
             "Camera" => {
                 before_world("Camera")?;
+                if let Some((first, ..)) = &self.camera_at {
+                    return Err(s.place.error(format!(
+                        "a second Camera (the first at {}): grinlight renders one camera's view",
+                        first.place
+                    )));
+                }
                 self.camera_statement(s)?;
             }
             "Film" => {
@@ -505,7 +511,9 @@ impl<'s> Converter<'s> {
                 p.finish("Option")?;
             }
             "WorldBegin" => {
-                before_world("WorldBegin")?;
+                if self.world {
+                    return Err(s.place.error("a second WorldBegin"));
+                }
                 self.world_begin(s)?;
             }
             "Material" => {
