@@ -254,6 +254,49 @@ impl Emitter {
         crate::math::offset(on, self.normal_at(on))
     }
 
+    /// A direction from `p` toward the surface for `uv` uniform in [0,1)², the distance to the
+    /// surface along it and its solid-angle density (1/sr): a flat surface's point drawn
+    /// uniformly over its area (density d²/(cos θ · area), 0 from behind it); a sphere's
+    /// direction uniform over the cone it fills seen from `p` (density 1/Ω). None where no
+    /// direction reaches it (`p` on a flat surface, or inside a sphere).
+    pub fn sample_toward(&self, p: DVec3, uv: (f64, f64)) -> Option<(DVec3, f64, f64)> {
+        match self {
+            Emitter::Quad(_) | Emitter::Disk(_) => {
+                let v = self.sample(uv) - p;
+                let d = v.length();
+                (d > 0.0).then(|| (v / d, d, self.pdf_toward(p, v / d, d)))
+            }
+            Emitter::Sphere(ball) => {
+                let cone = Cone::toward(*ball, p)?;
+                let wi = cone.sample(uv);
+                // The nearer crossing of the ray with the sphere (the cone's edge grazes it).
+                let v = ball.center - p;
+                let along = v.dot(wi);
+                let half_chord2 =
+                    (ball.radius * ball.radius - (v.length_squared() - along * along)).max(0.0);
+                let distance = along - half_chord2.sqrt();
+                (distance > 0.0).then(|| (wi, distance, 1.0 / cone.solid_angle()))
+            }
+        }
+    }
+
+    /// The density (1/sr) with which [`Emitter::sample_toward`] at `from` draws the unit
+    /// direction `wi` that meets the surface at `distance`.
+    pub fn pdf_toward(&self, from: DVec3, wi: DVec3, distance: f64) -> f64 {
+        match self {
+            Emitter::Quad(_) | Emitter::Disk(_) => {
+                let cos_l = -wi.dot(self.normal_at(from + wi * distance));
+                match cos_l > 0.0 {
+                    true => distance * distance / (cos_l * self.area()),
+                    false => 0.0,
+                }
+            }
+            Emitter::Sphere(ball) => {
+                Cone::toward(*ball, from).map_or(0.0, |cone| 1.0 / cone.solid_angle())
+            }
+        }
+    }
+
     /// A point uniformly distributed over the surface for `uv` uniform in [0,1)².
     pub fn sample(&self, uv: (f64, f64)) -> DVec3 {
         match self {
@@ -417,17 +460,7 @@ impl Light {
     /// strategy can find (point, spot, LED, directional), which it draws with certainty.
     pub fn pdf_incident(&self, from: DVec3, wi: DVec3, distance: f64) -> f64 {
         match self {
-            Light::Area {
-                emitter: Emitter::Sphere(ball),
-                ..
-            } => Cone::toward(*ball, from).map_or(0.0, |cone| 1.0 / cone.solid_angle()),
-            Light::Area { emitter, .. } => {
-                let cos_l = -wi.dot(emitter.normal_at(from + wi * distance));
-                match cos_l > 0.0 {
-                    true => distance * distance / (cos_l * emitter.area()),
-                    false => 0.0,
-                }
-            }
+            Light::Area { emitter, .. } => emitter.pdf_toward(from, wi, distance),
             Light::Point { .. }
             | Light::Spot { .. }
             | Light::Led { .. }
@@ -444,34 +477,11 @@ impl Light {
             (d > 0.0).then(|| (v / d, d))
         };
         match self {
-            // Uniform over the cone the sphere fills seen from `p`.
-            Light::Area {
-                emitter: Emitter::Sphere(ball),
-                radiance,
-            } => {
-                let cone = Cone::toward(*ball, p)?;
-                let wi = cone.sample(uv);
-                // The nearer crossing of the ray with the sphere (the cone's edge grazes it).
-                let v = ball.center - p;
-                let along = v.dot(wi);
-                let half_chord2 =
-                    (ball.radius * ball.radius - (v.length_squared() - along * along)).max(0.0);
-                let distance = along - half_chord2.sqrt();
-                let pdf = 1.0 / cone.solid_angle();
-                (distance > 0.0).then(|| Incident {
-                    wi,
-                    distance,
-                    irradiance: *radiance / pdf,
-                    pdf,
-                })
-            }
             Light::Area { emitter, radiance } => {
-                let x = emitter.sample(uv);
-                let (wi, d) = toward(x)?;
-                let pdf = self.pdf_incident(p, wi, d);
+                let (wi, distance, pdf) = emitter.sample_toward(p, uv)?;
                 (pdf > 0.0).then(|| Incident {
                     wi,
-                    distance: d,
+                    distance,
                     irradiance: *radiance / pdf,
                     pdf,
                 })
@@ -605,11 +615,8 @@ impl Light {
                 cos_outer,
                 ..
             } => TAU * (1.0 - 0.5 * (cos_inner + cos_outer)),
-            Light::Area {
-                emitter: Emitter::Sphere(_),
-                ..
-            } => 4.0 * PI,
-            Light::Area { .. } => PI,
+            // A Lambertian surface's power π A L over its peak intensity: π flat, 4π a sphere.
+            Light::Area { emitter, .. } => PI * emitter.area() / emitter.largest_projected_area(),
             Light::Led { m, .. } => TAU / (m + 1.0),
             Light::Goniometric { table, .. } => match table.peak() > 0.0 {
                 true => table.power() / table.peak(),
