@@ -1,7 +1,23 @@
-//! Geometry a converter reads from another renderer's scene: affine maps' linear parts and
-//! whether they keep shapes' proportions, and parallelograms found in pairs of triangles.
+//! Geometry a converter reads from another renderer's scene: the look-at frame, affine maps'
+//! linear parts and whether they keep shapes' proportions, and parallelograms found in pairs
+//! of triangles.
 
 use glam::{DMat3, DMat4, DVec3};
+
+/// The look-at frame Mitsuba and pbrt both build (world from camera): columns x = up × dir,
+/// y = dir × x, dir, and the origin. Mitsuba's camera shows its +x on the image's left, pbrt's
+/// on the right. None when the target is the origin or up lies along the view.
+pub fn look_at(origin: DVec3, target: DVec3, up: DVec3) -> Option<DMat4> {
+    let dir = (target - origin).try_normalize()?;
+    let x = up.cross(dir).try_normalize()?;
+    let new_up = dir.cross(x);
+    Some(DMat4::from_cols(
+        x.extend(0.0),
+        new_up.extend(0.0),
+        dir.extend(0.0),
+        origin.extend(1.0),
+    ))
+}
 
 /// The linear part of an affine map.
 pub fn linear(m: &DMat4) -> DMat3 {

@@ -1,6 +1,6 @@
 //! The values of a grinlight scene table as converters write them (docs/scene-format.md).
 
-use glam::DVec3;
+use glam::{DMat4, DVec3};
 use toml::{Table, Value as Toml};
 
 /// A name no table of `tables` has: `wanted` itself where it is free, else `wanted-1`,
@@ -58,6 +58,12 @@ impl Lists {
             }
         }
     }
+}
+
+/// An affine map's 3 rows [a b c t] as the 12 numbers of a mesh's `matrix`.
+pub fn affine_rows(m: &DMat4) -> Toml {
+    let rows = m.transpose().to_cols_array();
+    Toml::Array(rows[..12].iter().map(|&x| Toml::Float(x)).collect())
 }
 
 /// A string as a TOML value.

@@ -6,7 +6,7 @@
 pub mod xml;
 
 use super::geometry::{linear, parallelogram, similarity};
-use super::table::{free_name, string, table, vec3, AreaEmitter, Lists};
+use super::table::{affine_rows, free_name, string, table, vec3, AreaEmitter, Lists};
 use super::{Imported, Place, Told};
 use crate::error::{cut, Result};
 use glam::{DMat3, DMat4, DVec3};
@@ -1029,11 +1029,7 @@ impl Converter<'_> {
                     t.insert("shape_index".into(), Toml::Integer(index as i64));
                 }
                 if *m != DMat4::IDENTITY {
-                    let rows = m.transpose().to_cols_array();
-                    t.insert(
-                        "matrix".into(),
-                        Toml::Array(rows[..12].iter().map(|&x| Toml::Float(x)).collect()),
-                    );
+                    t.insert("matrix".into(), affine_rows(m));
                 }
                 t
             }

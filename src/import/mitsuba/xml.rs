@@ -5,6 +5,7 @@
 //! what it does not read can be refused by name ([`Object::finish`]).
 
 use crate::error::{cut, Error, Result};
+use crate::import::geometry::look_at;
 pub use crate::import::Place;
 use glam::{DMat4, DVec3};
 use std::cell::Cell;
@@ -759,19 +760,6 @@ impl Reader {
         }
         Ok(m)
     }
-}
-
-/// Mitsuba's look-at frame: columns left = up × dir, up' = dir × left, dir, and the origin.
-pub fn look_at(origin: DVec3, target: DVec3, up: DVec3) -> Option<DMat4> {
-    let dir = (target - origin).try_normalize()?;
-    let left = up.cross(dir).try_normalize()?;
-    let new_up = dir.cross(left);
-    Some(DMat4::from_cols(
-        left.extend(0.0),
-        new_up.extend(0.0),
-        dir.extend(0.0),
-        origin.extend(1.0),
-    ))
 }
 
 /// A path to compare with the files being read (itself where it cannot be resolved).

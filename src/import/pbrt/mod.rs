@@ -13,8 +13,8 @@
 
 pub mod parse;
 
-use super::geometry::{linear, parallelogram, similarity};
-use super::table::{free_name, string, table, vec3, AreaEmitter, Lists};
+use super::geometry::{linear, look_at, parallelogram, similarity};
+use super::table::{affine_rows, free_name, string, table, vec3, AreaEmitter, Lists};
 use super::{Imported, Place, Told};
 use crate::error::{cut, Result};
 use glam::{DMat4, DVec3};
@@ -397,12 +397,13 @@ impl<'s> Converter<'s> {
                 let [ex, ey, ez, lx, ly, lz, ux, uy, uz] = numbers[..] else {
                     unreachable!("the parser reads 9 numbers")
                 };
-                self.graphics.ctm *= look_at(
+                // pbrt's LookAt is camera-from-world: the look-at frame inverted.
+                let frame = look_at(
                     DVec3::new(ex, ey, ez),
                     DVec3::new(lx, ly, lz),
                     DVec3::new(ux, uy, uz),
-                )
-                .ok_or_else(|| {
+                );
+                self.graphics.ctm *= frame.map(|f| f.inverse()).ok_or_else(|| {
                     s.place
                         .error("LookAt: the eye is at the target, or up is along the view")
                 })?;
@@ -642,20 +643,6 @@ fn supported_material(s: &Statement) -> Result<()> {
     }
 }
 
-/// pbrt's `LookAt`: the camera-from-world map of an eye at `eye` looking at `target`.
-fn look_at(eye: DVec3, target: DVec3, up: DVec3) -> Option<DMat4> {
-    let dir = (target - eye).try_normalize()?;
-    let right = up.try_normalize()?.cross(dir).try_normalize()?;
-    let new_up = dir.cross(right);
-    let world_from_camera = DMat4::from_cols(
-        right.extend(0.0),
-        new_up.extend(0.0),
-        dir.extend(0.0),
-        eye.extend(1.0),
-    );
-    Some(world_from_camera.inverse())
-}
-
 /// `Film "rgb"` (or `"gbuffer"`): its size.
 fn film(s: &Statement) -> Result<(i64, i64)> {
     let p = &s.params;
@@ -733,16 +720,6 @@ fn point_param(p: &Params, name: &str, default: DVec3) -> Result<DVec3> {
             .place
             .error(format!("{}: expected one point (3 numbers)", param.what()))),
     }
-}
-
-/// An affine map's 3 rows [a b c t] as the 12 numbers of a mesh's `matrix`.
-fn rows(m: &DMat4) -> Toml {
-    let c = m.to_cols_array_2d();
-    Toml::Array(
-        (0..3)
-            .flat_map(|i| (0..4).map(move |j| Toml::Float(c[j][i])))
-            .collect(),
-    )
 }
 
 /// Four corners ordered so that grinlight's quad normal, (v1 − v0) × (v3 − v0), points along
@@ -1448,7 +1425,7 @@ impl<'s> Converter<'s> {
                         "indices",
                         Toml::Array(indices.iter().map(|&i| Toml::Integer(i as i64)).collect()),
                     ),
-                    ("matrix", rows(&placed)),
+                    ("matrix", affine_rows(&placed)),
                     ("smooth", Toml::Boolean(mesh.normals.is_some())),
                 ]);
                 if let Some(n) = &mesh.normals {
@@ -1476,7 +1453,7 @@ impl<'s> Converter<'s> {
                 table([
                     ("type", string("mesh")),
                     ("file", string(&file.to_string_lossy())),
-                    ("matrix", rows(&(mirror_map(self.mirror) * m))),
+                    ("matrix", affine_rows(&(mirror_map(self.mirror) * m))),
                 ])
             }
             "bilinearmesh" => {
