@@ -1,4 +1,4 @@
-//! Polarization along a curved ray: the geometric phase.
+//! The field along a curved ray: the geometric phase.
 //!
 //! In a medium whose index varies slowly over a wavelength, the field of a ray stays
 //! perpendicular to the ray and is parallel-transported along it (Rytov 1938; Vladimirskii

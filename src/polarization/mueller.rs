@@ -1,0 +1,410 @@
+//! Stokes vectors and Mueller matrices: how much light there is and how it is polarized, and
+//! what a surface does to both.
+//!
+//! **Conventions** (Collett 2005; the same as Mitsuba 3's polarized variants, Jakob's notes on
+//! polarized rendering). Light travelling along unit k is described in a basis (x, y) of the
+//! plane perpendicular to k, right-handed about it: y = k × x. With the field's complex
+//! amplitudes (Ex, Ey) in that basis, time dependence e^(−iωt), its Stokes vector is
+//! S = (S0, S1, S2, S3) with S0 = |Ex|² + |Ey|², S1 = |Ex|² − |Ey|², S2 = 2 Re(Ex Ey*) and
+//! S3 = 2 Im(Ex* Ey): S1 > 0 is linear polarization along x, S2 > 0 along x + y (halfway from
+//! x to y), S3 > 0 a field turning from x toward y. Unpolarized light is (S0, 0, 0, 0).
+//!
+//! A Mueller matrix M takes the Stokes vector of light arriving (in the basis the element
+//! names) to that of the light leaving. An interface's matrix is written in its s/p basis:
+//! x = s, the unit normal of the plane of incidence (the same for the light arriving and
+//! leaving), and y = k × s for each. In these right-handed bases the amplitude coefficients are
+//! Born and Wolf's: r_s = (cos θi − η cos θt)/(cos θi + η cos θt),
+//! r_p = (η cos θi − cos θt)/(η cos θi + cos θt), so at normal incidence r_p = −r_s and a
+//! reflection turns S2 and S3 over (a circular polarization's sense flips on a mirror).
+
+use glam::{DMat4, DVec3, DVec4};
+use num_complex::Complex64;
+
+/// Light's Stokes vector in a basis: S0 (the intensity or power, in whatever unit the light
+/// carries), S1, S2, S3 (see the module's conventions).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Stokes {
+    /// (S0, S1, S2, S3).
+    pub vector: DVec4,
+    /// The basis's first axis x (unit, perpendicular to the light's direction).
+    pub x: DVec3,
+}
+
+impl Stokes {
+    /// Unpolarized light of intensity `s0` travelling along unit `k`, in any basis.
+    pub fn unpolarized(s0: f64, k: DVec3) -> Self {
+        Self {
+            vector: DVec4::new(s0, 0.0, 0.0, 0.0),
+            x: k.any_orthonormal_vector(),
+        }
+    }
+
+    /// The same light described in the basis whose first axis is `x` (projected onto the plane
+    /// perpendicular to unit `k`, the light's direction); itself where that projection is
+    /// within 1e-9 of zero (`x` along `k`, or not finite).
+    pub fn in_basis(&self, k: DVec3, x: DVec3) -> Self {
+        let across = x - x.dot(k) * k;
+        if !(across.length() > 1e-9 * x.length()) {
+            return *self;
+        }
+        let x = across.normalize();
+        let y = k.cross(self.x);
+        let angle = y.dot(x).atan2(self.x.dot(x));
+        Self {
+            vector: rotation(angle) * self.vector,
+            x,
+        }
+    }
+
+    /// The degree of polarization √(S1² + S2² + S3²)/S0 (0 for no light).
+    pub fn degree(&self) -> f64 {
+        let v = self.vector;
+        match v.x > 0.0 {
+            true => (v.y * v.y + v.z * v.z + v.w * v.w).sqrt() / v.x,
+            false => 0.0,
+        }
+    }
+
+    /// The degree of linear polarization √(S1² + S2²)/S0 (0 for no light).
+    pub fn degree_linear(&self) -> f64 {
+        let v = self.vector;
+        match v.x > 0.0 {
+            true => v.y.hypot(v.z) / v.x,
+            false => 0.0,
+        }
+    }
+}
+
+/// The matrix that re-expresses a Stokes vector in the basis turned by `angle` (radians) about
+/// the light's direction, from x toward y: (S1, S2) turn by −2·angle, S0 and S3 stay.
+pub fn rotation(angle: f64) -> DMat4 {
+    let (s, c) = (2.0 * angle).sin_cos();
+    DMat4::from_cols_array_2d(&[
+        [1.0, 0.0, 0.0, 0.0],
+        [0.0, c, -s, 0.0],
+        [0.0, s, c, 0.0],
+        [0.0, 0.0, 0.0, 1.0],
+    ])
+}
+
+/// Rows of a Mueller matrix as written on paper, into glam's column-major matrix.
+fn from_rows(rows: [[f64; 4]; 4]) -> DMat4 {
+    DMat4::from_cols_array_2d(&rows).transpose()
+}
+
+/// The element of Mueller matrix `m` written with `axis` at `angle` (radians, from x toward y)
+/// where `m` has it along x: m turned into the basis at `angle`, applied, and turned back.
+fn turned(m: DMat4, angle: f64) -> DMat4 {
+    rotation(-angle) * m * rotation(angle)
+}
+
+/// An ideal linear polarizer whose transmission axis lies at `angle` (radians) from x toward y:
+/// it passes half of unpolarized light and cos² of the angle to linear light (Malus's law).
+pub fn linear_polarizer(angle: f64) -> DMat4 {
+    let along_x = from_rows([
+        [0.5, 0.5, 0.0, 0.0],
+        [0.5, 0.5, 0.0, 0.0],
+        [0.0, 0.0, 0.0, 0.0],
+        [0.0, 0.0, 0.0, 0.0],
+    ]);
+    turned(along_x, angle)
+}
+
+/// An ideal linear retarder of retardance `retardance` (radians: the slow axis's phase lag)
+/// whose fast axis lies at `angle` (radians) from x toward y; a quarter-wave plate
+/// (retardance π/2) at 45° to a linear polarization makes it circular.
+pub fn linear_retarder(retardance: f64, angle: f64) -> DMat4 {
+    interface(
+        Complex64::new(1.0, 0.0),
+        Complex64::from_polar(1.0, retardance),
+        1.0,
+    )
+    .map_or(DMat4::IDENTITY, |m| turned(m, angle))
+}
+
+/// The Mueller matrix, in the s/p basis, of an element whose Jones matrix there is
+/// diag(`a_s`, `a_p`), times `scale` (the ratio of power densities across it, for a
+/// transmission): A = (|a_s|² + |a_p|²)/2, B = (|a_s|² − |a_p|²)/2, C + iS = a_s·a_p*.
+/// None where a coefficient is not finite.
+fn interface(a_s: Complex64, a_p: Complex64, scale: f64) -> Option<DMat4> {
+    let (ss, pp) = (a_s.norm_sqr(), a_p.norm_sqr());
+    let z = a_s * a_p.conj();
+    let (a, b, c, s) = (0.5 * (ss + pp), 0.5 * (ss - pp), z.re, z.im);
+    let m = from_rows([
+        [a, b, 0.0, 0.0],
+        [b, a, 0.0, 0.0],
+        [0.0, 0.0, c, s],
+        [0.0, 0.0, -s, c],
+    ]) * scale;
+    m.is_finite().then_some(m)
+}
+
+/// The Fresnel amplitude coefficients of the interface to relative index η (complex for a
+/// conductor, η + ik; below 1 toward a less dense dielectric) at cos θi = `cos_i` ∈ (0, 1].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Amplitudes {
+    /// r_s, r_p (module conventions).
+    pub reflected: [Complex64; 2],
+    /// t_s, t_p.
+    pub transmitted: [Complex64; 2],
+    /// η cos θt (imaginary beyond the critical angle: total internal reflection).
+    pub eta_cos_t: Complex64,
+}
+
+impl Amplitudes {
+    /// The coefficients at cos θi = `cos_i` for relative index `eta`.
+    pub fn new(cos_i: f64, eta: Complex64) -> Self {
+        let c = Complex64::new(cos_i, 0.0);
+        // η cos θt = √(η² − sin²θi); the principal root has Im ≥ 0: a wave that decays away
+        // from the interface in an absorbing or beyond-critical medium.
+        let g = (eta * eta - (1.0 - cos_i * cos_i)).sqrt();
+        let e2c = eta * eta * c;
+        Self {
+            reflected: [(c - g) / (c + g), (e2c - g) / (e2c + g)],
+            transmitted: [2.0 * c / (c + g), 2.0 * eta * c / (e2c + g)],
+            eta_cos_t: g,
+        }
+    }
+
+    /// The Mueller matrix of the reflection (module conventions).
+    pub fn reflection(&self) -> DMat4 {
+        let [rs, rp] = self.reflected;
+        interface(rs, rp, 1.0).unwrap_or(DMat4::ZERO)
+    }
+
+    /// The Mueller matrix of the transmission, power per unit area of the beam's cross section
+    /// (the factor η cos θt / cos θi; zero under total internal reflection and into a
+    /// conductor). For a dielectric its first element is 1 − R.
+    pub fn transmission(&self, cos_i: f64) -> DMat4 {
+        let g = self.eta_cos_t;
+        if g.re <= 0.0 || g.im.abs() > 1e-12 * g.re {
+            return DMat4::ZERO;
+        }
+        let [ts, tp] = self.transmitted;
+        interface(ts, tp, g.re / cos_i).unwrap_or(DMat4::ZERO)
+    }
+}
+
+/// The reflection's Mueller matrix of a dielectric interface from index `n1` (the light's
+/// side) to `n2` at cos θi = `cos_i`.
+pub fn dielectric_reflection(cos_i: f64, n1: f64, n2: f64) -> DMat4 {
+    Amplitudes::new(cos_i, Complex64::new(n2 / n1, 0.0)).reflection()
+}
+
+/// The transmission's Mueller matrix of a dielectric interface from `n1` to `n2`.
+pub fn dielectric_transmission(cos_i: f64, n1: f64, n2: f64) -> DMat4 {
+    Amplitudes::new(cos_i, Complex64::new(n2 / n1, 0.0)).transmission(cos_i)
+}
+
+/// The reflection's Mueller matrix of a conductor of complex index η + ik relative to the
+/// medium outside (`eta`, `k`) at cos θi = `cos_i`.
+pub fn conductor_reflection(cos_i: f64, eta: f64, k: f64) -> DMat4 {
+    Amplitudes::new(cos_i, Complex64::new(eta, k)).reflection()
+}
+
+/// The reflection's Mueller matrix of a perfect conductor (r_s = −1, r_p = 1: every state
+/// kept, S2 and S3 turned over as on any mirror at normal incidence).
+pub fn perfect_mirror() -> DMat4 {
+    from_rows([
+        [1.0, 0.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0, 0.0],
+        [0.0, 0.0, -1.0, 0.0],
+        [0.0, 0.0, 0.0, -1.0],
+    ])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::bsdf as fresnel;
+
+    const GLASS: f64 = 1.5;
+
+    fn unpolarized() -> DVec4 {
+        DVec4::new(1.0, 0.0, 0.0, 0.0)
+    }
+
+    /// Rs, Rp of a dielectric from the amplitudes' squares, against the textbook's power
+    /// formulas written out on their own.
+    fn rs_rp(cos_i: f64, n1: f64, n2: f64) -> (f64, f64) {
+        let sin_t = n1 / n2 * (1.0 - cos_i * cos_i).sqrt();
+        let cos_t = (1.0 - sin_t * sin_t).sqrt();
+        let rs = ((n1 * cos_i - n2 * cos_t) / (n1 * cos_i + n2 * cos_t)).powi(2);
+        let rp = ((n1 * cos_t - n2 * cos_i) / (n1 * cos_t + n2 * cos_i)).powi(2);
+        (rs, rp)
+    }
+
+    #[test]
+    fn reflected_light_is_polarized_as_fresnel_says_at_every_angle() {
+        for deg in 0..90 {
+            let cos_i = (deg as f64).to_radians().cos();
+            let m = dielectric_reflection(cos_i, 1.0, GLASS);
+            let out = m * unpolarized();
+            let (rs, rp) = rs_rp(cos_i, 1.0, GLASS);
+            let (r, _) = fresnel::dielectric(cos_i, 1.0, GLASS);
+            assert!((out.x - 0.5 * (rs + rp)).abs() < 1e-12, "{deg}°");
+            assert!(
+                (out.x - r).abs() < 1e-12,
+                "{deg}°: against the renderer's Fresnel"
+            );
+            // Degree of linear polarization (Rs − Rp)/(Rs + Rp), s (x) preferred.
+            let stokes = Stokes {
+                vector: out,
+                x: DVec3::X,
+            };
+            let dolp = (rs - rp) / (rs + rp);
+            assert!((stokes.degree_linear() - dolp).abs() < 1e-12, "{deg}°");
+            assert!(out.y >= -1e-15 && out.z == 0.0 && out.w == 0.0, "{deg}°");
+            // Transmission: what reflection leaves, its first element 1 − R.
+            let t = dielectric_transmission(cos_i, 1.0, GLASS) * unpolarized();
+            assert!((t.x - (1.0 - r)).abs() < 1e-12, "{deg}°");
+            assert!((t.y + out.y).abs() < 1e-12, "{deg}°: Ts − Tp = −(Rs − Rp)");
+        }
+    }
+
+    #[test]
+    fn brewsters_reflection_is_s_polarized_only() {
+        for (n1, n2) in [(1.0, GLASS), (GLASS, 1.0), (1.0, 2.4), (1.33, 1.7)] {
+            let brewster = (n2 / n1).atan();
+            let m = dielectric_reflection(brewster.cos(), n1, n2);
+            // p light (S1 = −1) is not reflected at all.
+            let p = m * DVec4::new(1.0, -1.0, 0.0, 0.0);
+            assert!(p.length() < 1e-12, "{n1} → {n2}: {p}");
+            // Unpolarized light comes back wholly s polarized.
+            let s = Stokes {
+                vector: m * unpolarized(),
+                x: DVec3::X,
+            };
+            assert!((s.degree_linear() - 1.0).abs() < 1e-12, "{n1} → {n2}");
+        }
+    }
+
+    #[test]
+    fn total_internal_reflection_keeps_all_light_and_retards_p_as_born_and_wolf_say() {
+        let (n1, n2) = (GLASS, 1.0);
+        let n = n2 / n1;
+        for deg in [42.0, 45.0, 50.0, 54.0, 60.0, 75.0, 89.0] {
+            let theta = f64::to_radians(deg);
+            let (sin, cos) = theta.sin_cos();
+            let m = dielectric_reflection(cos, n1, n2);
+            let total = m * unpolarized();
+            assert!(
+                (total.x - 1.0).abs() < 1e-12 && total.y.abs() < 1e-12,
+                "{deg}°"
+            );
+            // Born & Wolf (§1.5.4, eq. 60): tan(δ/2) = cos θ √(sin²θ − n²)/sin²θ, δ the
+            // phase of r_s less that of r_p (their r_p is ours).
+            let delta = 2.0 * (cos * (sin * sin - n * n).sqrt() / (sin * sin)).atan();
+            let a = Amplitudes::new(cos, Complex64::new(n, 0.0));
+            let [rs, rp] = a.reflected;
+            assert!((rs.norm() - 1.0).abs() < 1e-12 && (rp.norm() - 1.0).abs() < 1e-12);
+            let ours = (rs * rp.conj()).arg();
+            assert!((ours - delta).abs() < 1e-12, "{deg}°: {ours} {delta}");
+            // No light crosses.
+            assert_eq!(dielectric_transmission(cos, n1, n2), DMat4::ZERO, "{deg}°");
+            // The retardance shows in the matrix: +45° linear light leaves with S2 = cos δ
+            // and S3 = −sin δ.
+            let out = m * DVec4::new(1.0, 0.0, 1.0, 0.0);
+            let want = DVec4::new(1.0, 0.0, delta.cos(), -delta.sin());
+            assert!((out - want).length() < 1e-12, "{deg}°: {out}");
+        }
+    }
+
+    #[test]
+    fn the_conductors_matrix_averages_to_the_renderers_fresnel_and_reduces_to_a_dielectric() {
+        for (eta, k) in [(0.2, 3.0), (1.1, 2.5), (2.9, 3.1), (0.05, 8.0)] {
+            for deg in [0.0, 20.0, 45.0, 70.0, 85.0, 89.5] {
+                let cos = f64::to_radians(deg).cos();
+                let m = conductor_reflection(cos, eta, k);
+                let r = fresnel::conductor(cos, eta, k);
+                assert!((m.col(0).x - r).abs() < 1e-12, "{eta}+{k}i at {deg}°");
+                // Complex Fresnel's powers written out on their own (Born & Wolf §14.2; pbrt-v3's
+                // FrConductor).
+                let (c2, s2) = (cos * cos, 1.0 - cos * cos);
+                let t0 = eta * eta - k * k - s2;
+                let a2b2 = (t0 * t0 + 4.0 * eta * eta * k * k).sqrt();
+                let a = (0.5 * (a2b2 + t0)).sqrt();
+                let rs = (a2b2 + c2 - 2.0 * a * cos) / (a2b2 + c2 + 2.0 * a * cos);
+                let rp = rs * (c2 * a2b2 + s2 * s2 - 2.0 * a * cos * s2)
+                    / (c2 * a2b2 + s2 * s2 + 2.0 * a * cos * s2);
+                let out = m * unpolarized();
+                assert!(
+                    (out.y - 0.5 * (rs - rp)).abs() < 1e-12,
+                    "{eta}+{k}i at {deg}°"
+                );
+            }
+        }
+        // k = 0: the dielectric's.
+        let cos = 0.6;
+        let d = dielectric_reflection(cos, 1.0, 1.7);
+        let c = conductor_reflection(cos, 1.7, 0.0);
+        assert!((d - c).abs_diff_eq(DMat4::ZERO, 1e-15));
+    }
+
+    #[test]
+    fn a_mirror_at_normal_incidence_turns_circular_light_over() {
+        let m = dielectric_reflection(1.0, 1.0, GLASS);
+        let r = ((GLASS - 1.0) / (GLASS + 1.0)).powi(2);
+        let out = m * DVec4::new(1.0, 0.0, 0.0, 1.0);
+        assert!(
+            (out - DVec4::new(r, 0.0, 0.0, -r)).length() < 1e-15,
+            "{out}"
+        );
+        let out = perfect_mirror() * DVec4::new(1.0, 0.0, 1.0, 0.0);
+        assert_eq!(out, DVec4::new(1.0, 0.0, -1.0, 0.0));
+        // A perfect conductor is the limit of a conductor of large k.
+        let limit = conductor_reflection(1.0, 1.0, 1e9);
+        assert!(limit.abs_diff_eq(perfect_mirror(), 1e-8));
+    }
+
+    #[test]
+    fn malus_law_and_a_quarter_wave_plate() {
+        let first = linear_polarizer(0.0) * unpolarized();
+        assert!((first - DVec4::new(0.5, 0.5, 0.0, 0.0)).length() < 1e-15);
+        for deg in (0..=180).step_by(15) {
+            let theta = f64::to_radians(deg as f64);
+            let second = linear_polarizer(theta) * first;
+            let want = 0.5 * theta.cos().powi(2);
+            assert!((second.x - want).abs() < 1e-15, "{deg}°");
+            // What passes is polarized along the second axis.
+            let (sin2, cos2) = (2.0 * theta).sin_cos();
+            let along = DVec4::new(1.0, cos2, sin2, 0.0) * want;
+            assert!((second - along).length() < 1e-15, "{deg}°: {second}");
+        }
+        let quarter = std::f64::consts::FRAC_PI_2;
+        for (axis, sign) in [(45.0, -1.0), (-45.0, 1.0)] {
+            let circular = linear_retarder(quarter, f64::to_radians(axis)) * first;
+            assert!(
+                (circular.w / circular.x - sign).abs() < 1e-12,
+                "{axis}°: {circular}"
+            );
+            assert!(circular.y.abs() < 1e-12 && circular.z.abs() < 1e-12);
+        }
+        // A half-wave plate at 22.5° turns x-linear light to 45°.
+        let half = linear_retarder(std::f64::consts::PI, f64::to_radians(22.5)) * first;
+        assert!(
+            (half - DVec4::new(0.5, 0.0, 0.5, 0.0)).length() < 1e-12,
+            "{half}"
+        );
+    }
+
+    #[test]
+    fn a_basis_change_is_a_rotation_of_the_linear_part() {
+        let k = DVec3::new(0.3, -0.4, 0.5).normalize();
+        let light = Stokes {
+            vector: DVec4::new(1.0, 0.6, 0.0, 0.3),
+            x: k.any_orthonormal_vector(),
+        };
+        let y = k.cross(light.x);
+        let turned = light.in_basis(k, y);
+        // Linear along the old x is linear across the new x.
+        assert!((turned.vector - DVec4::new(1.0, -0.6, 0.0, 0.3)).length() < 1e-12);
+        let diagonal = light.in_basis(k, light.x + y);
+        assert!((diagonal.vector - DVec4::new(1.0, 0.0, -0.6, 0.3)).length() < 1e-12);
+        let back = diagonal.in_basis(k, light.x);
+        assert!((back.vector - light.vector).length() < 1e-12);
+        assert!((back.x - light.x).length() < 1e-12);
+        // Parallel to k: no basis, the light as it was.
+        assert_eq!(light.in_basis(k, k), light);
+    }
+}
