@@ -3,6 +3,7 @@
 
 use crate::bsdf::{Bsdf, Coat, Ggx, Lobes, Metal, Reflectance};
 use crate::color::Rgb;
+use crate::polarization::Sheet;
 use crate::spectrum::colour;
 use crate::texture::Texture;
 use glam::DVec2;
@@ -43,6 +44,9 @@ pub enum Material {
         /// The coat, with its tabulated albedo.
         coat: Arc<Coat>,
     },
+    /// A thin polarizer or retarder (`polarizer`, `retarder`), two-sided: light crosses it
+    /// without turning. Its scene is rendered with polarized transport.
+    Sheet(Sheet),
 }
 
 /// What a conductor's Fresnel reflectance is made from.
@@ -78,6 +82,19 @@ impl Material {
                 Lobes::SPECULAR_REFLECTION.with(Lobes::SPECULAR_TRANSMISSION)
             }
             Material::Plastic { .. } => Lobes::DIFFUSE_REFLECTION.with(Lobes::GLOSSY_REFLECTION),
+            Material::Sheet(_) => Lobes::SPECULAR_TRANSMISSION,
+        }
+    }
+
+    /// Whether light crosses it without changing medium (a thin sheet), rather than into the
+    /// shape's other side.
+    pub fn is_thin(&self) -> bool {
+        match self {
+            Material::Sheet(_) => true,
+            Material::Diffuse { .. }
+            | Material::Conductor { .. }
+            | Material::Dielectric { .. }
+            | Material::Plastic { .. } => false,
         }
     }
 
@@ -109,6 +126,7 @@ impl Material {
                 albedo: textured(*albedo, texture),
                 coat,
             },
+            Material::Sheet(sheet) => Bsdf::Sheet { sheet },
         })
     }
 }

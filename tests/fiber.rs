@@ -713,3 +713,43 @@ fn a_scattering_fibers_twin_scatters_and_absorbs_alike() {
         );
     }
 }
+
+/// A receiver is transparent also inside a gradient medium: a path crossing it goes on along
+/// the direction it arrived in, not the one its curved stretch started with. A parallel beam
+/// focused by a parabolic rod (n = n0(1 − a r²/2), quarter pitch π/(2√a)) puts the same flux
+/// on a small receiver at the focus whether or not a receiver stands across the rod halfway
+/// (4 combined standard errors); when the crossing restarted the path along the stretch's
+/// first direction, the beam past it went straight on and the focus lost most of its light.
+#[test]
+fn a_receiver_inside_a_gradient_medium_does_not_turn_the_path() {
+    let focus = std::f64::consts::PI / (2.0 * 0.1f64.sqrt());
+    let scene = |halfway: bool| {
+        let mut text = format!(
+            "[[medium]]\nname = \"rod\"\nprofile = \"parabolic\"\nn0 = 1.5\na = 0.1\naxis = [0, 0, 1]\n\
+             [[material]]\nname = \"wall\"\ntype = \"dielectric\"\ninterior = \"rod\"\n\
+             [[shape]]\ntype = \"cylinder\"\nbase = [0, 0, 0]\naxis = [0, 0, 1]\nradius = 1\n\
+             height = 6\nmaterial = \"wall\"\n\
+             [[light]]\ntype = \"directional\"\ndirection = [0, 0, 1]\nirradiance = [1, 1, 1]\n\
+             [[receiver]]\nname = \"focus\"\ncenter = [0, 0, {focus}]\nsize = [0.2, 0.2]\n\
+             bins = [1, 1]\n"
+        );
+        if halfway {
+            text += "[[receiver]]\nname = \"halfway\"\ncenter = [0, 0, 2]\nsize = [1.8, 1.8]\n\
+                     bins = [1, 1]\n";
+        }
+        let (scene, mut settings) =
+            grinlight::scene::load::parse_scene(Path::new("rod.toml"), text).unwrap();
+        settings.receiver_photons = 200_000;
+        grinlight::render::measure(&scene, &settings, 0, &())
+            .unwrap()
+            .0[0]
+            .flux
+    };
+    let (alone, crossed) = (scene(false), scene(true));
+    let z = (alone.0 - crossed.0).abs() / alone.1.hypot(crossed.1);
+    assert!(alone.0 > 20.0 * alone.1, "a focus to measure: {alone:?}");
+    assert!(
+        z < 4.0,
+        "focus alone {alone:?}, behind a receiver {crossed:?}: z {z}"
+    );
+}

@@ -1,4 +1,4 @@
-//! The field carried along traced rays (Rytov's law): the geometric phase of a helical ray in
+//! Polarization. The field carried along traced rays (Rytov's law): the geometric phase of a helical ray in
 //! a parabolic-index fiber against its closed form, and a meridional ray's, which is none.
 
 use glam::DVec3;
@@ -120,5 +120,248 @@ fn the_command_line_reports_the_phase_and_refuses_a_field_along_the_ray() {
     assert!(
         text.contains("polarization") && text.contains("parallel"),
         "{text}"
+    );
+}
+
+// Polarized transport (`[render] polarized`, or a polarizer or retarder in the scene): photons
+// carry Stokes vectors to receivers, camera paths a measurement row; each against its closed
+// form.
+
+use grinlight::receiver::Measurement;
+use grinlight::settings::Settings;
+
+/// Parses scene `text` (a test's own, at a made-up path).
+fn scene(text: &str) -> (grinlight::scene::Scene, Settings) {
+    grinlight::scene::load::parse_scene(std::path::Path::new("polarized.toml"), text.into())
+        .unwrap()
+}
+
+/// The receivers' measurements of `text` with `photons` receiver photons.
+fn measured(text: &str, photons: u64) -> Vec<Measurement> {
+    let (scene, mut settings) = scene(text);
+    settings.receiver_photons = photons;
+    grinlight::render::measure(&scene, &settings, 0, &())
+        .unwrap()
+        .0
+}
+
+/// A square of side 2·`half` across the z axis at height `z`, of material `material`.
+fn square(z: f64, half: f64, material: &str) -> String {
+    let h = half;
+    format!(
+        "[[shape]]\ntype = \"quad\"\nmaterial = \"{material}\"\n\
+         vertices = [[-{h}, -{h}, {z}], [{h}, -{h}, {z}], [{h}, {h}, {z}], [-{h}, {h}, {z}]]\n"
+    )
+}
+
+/// A unit parallel beam along +z, sheets across it at z = 1, 2, ... (materials given), and a
+/// receiver of one bin, 1 × 1, at z = 4 with u = x.
+fn beam_through(materials: &[String]) -> String {
+    let mut text = String::from(
+        "[[light]]\ntype = \"directional\"\ndirection = [0, 0, 1]\nirradiance = [1, 1, 1]\n\
+         [[receiver]]\nname = \"r\"\ncenter = [0, 0, 4]\nnormal = [0, 0, 1]\nup = [0, 1, 0]\n\
+         size = [1, 1]\nbins = [1, 1]\n",
+    );
+    for (i, m) in materials.iter().enumerate() {
+        text += &format!("[[material]]\nname = \"m{i}\"\n{m}");
+        text += &square(1.0 + i as f64, 2.0, &format!("m{i}"));
+    }
+    text
+}
+
+fn polarizer(deg: f64) -> String {
+    let t = deg.to_radians();
+    format!(
+        "type = \"polarizer\"\naxis = [{}, {}, 0]\n",
+        t.cos(),
+        t.sin()
+    )
+}
+
+/// The flux's gap from `want` in combined standard errors.
+fn z(m: &Measurement, want: (f64, f64)) -> f64 {
+    (m.flux.0 - want.0).abs() / m.flux.1.hypot(want.1)
+}
+
+/// Malus's law on a receiver: behind polarizers at 0° and θ a parallel beam keeps ½cos²θ of its
+/// flux (within 4 standard errors of the open beam's flux, itself the closed form 1 W), and what
+/// arrives is polarized along the second axis: S1/S0 = cos 2θ, S2/S0 = sin 2θ in the receiver's
+/// basis (u = x; every photon alike, so exact to the f32 a detection keeps, 1e-6).
+#[test]
+fn malus_law_on_a_receiver_behind_two_polarizers() {
+    let photons = 200_000;
+    let open = &measured(&beam_through(&[]), photons)[0];
+    assert!(z(open, (1.0, 0.0)) < 4.0, "open beam: {:?}", open.flux);
+    assert!(
+        open.stokes.is_empty(),
+        "unpolarized transport measures no Stokes components"
+    );
+    for deg in [0.0, 30.0, 60.0, 90.0] {
+        let m = &measured(&beam_through(&[polarizer(0.0), polarizer(deg)]), photons)[0];
+        if deg == 90.0 {
+            assert_eq!(m.flux.0, 0.0, "crossed polarizers pass nothing");
+            continue;
+        }
+        let share = 0.5 * f64::to_radians(deg).cos().powi(2);
+        let want = (share * open.flux.0, share * open.flux.1);
+        assert!(z(m, want) < 4.0, "{deg}°: {:?} against {want:?}", m.flux);
+        let [s1, s2, s3] = [0, 1, 2].map(|i| m.stokes[i].flux.0 / m.flux.0);
+        let t = f64::to_radians(2.0 * deg);
+        assert!((s1 - t.cos()).abs() < 1e-6, "{deg}°: S1/S0 {s1}");
+        assert!((s2 - t.sin()).abs() < 1e-6, "{deg}°: S2/S0 {s2}");
+        assert!(s3.abs() < 1e-6, "{deg}°: S3/S0 {s3}");
+    }
+}
+
+/// A quarter-wave plate with its fast axis at 45° to a linear polarization makes it circular
+/// (S3/S0 = −1 in the module's convention, +1 with the axis at −45°) and passes all of it; a
+/// half-wave plate at 22.5° turns it to 45°.
+#[test]
+fn wave_plates_turn_linear_light_circular_and_rotate_it() {
+    let retarder = |deg: f64, retardance: f64| {
+        let t = deg.to_radians();
+        format!(
+            "type = \"retarder\"\nfast_axis = [{}, {}, 0]\nretardance_deg = {retardance}\n",
+            t.cos(),
+            t.sin()
+        )
+    };
+    let photons = 50_000;
+    let linear = &measured(&beam_through(&[polarizer(0.0)]), photons)[0];
+    for (deg, retardance, want) in [
+        (45.0, 90.0, [0.0, 0.0, -1.0]),
+        (-45.0, 90.0, [0.0, 0.0, 1.0]),
+        (22.5, 180.0, [0.0, 1.0, 0.0]),
+    ] {
+        let m = &measured(
+            &beam_through(&[polarizer(0.0), retarder(deg, retardance)]),
+            photons,
+        )[0];
+        // The plate absorbs nothing and draws no numbers: the same photons arrive.
+        assert_eq!(m.flux, linear.flux, "{deg}°");
+        for i in 0..3 {
+            let s = m.stokes[i].flux.0 / m.flux.0;
+            assert!(
+                (s - want[i]).abs() < 1e-6,
+                "{deg}°, {retardance}°: S{} {s}",
+                i + 1
+            );
+        }
+    }
+}
+
+/// Light reflected by glass at Brewster's angle is wholly s polarized (S1/S0 = 1 in a basis
+/// whose first axis is the normal to the plane of incidence: every photon alike, 1e-6) — what
+/// is reflected inside the plate and leaves through its top is too, as the internal angle is
+/// Brewster's as well; a polarizer across s then passes nothing, one along s all of it (within
+/// 4 standard errors). A black shield keeps the falling beam off the receiver; it casts its
+/// shadow on the plate far from where the receiver's light is reflected.
+#[test]
+fn brewsters_reflection_is_s_polarized_and_a_crossed_polarizer_removes_it() {
+    let brewster = 1.5f64.atan();
+    let (s, c) = brewster.sin_cos();
+    // The beam comes down in the x–y plane onto the plate's top (y = 0); s is z.
+    let down = DVec3::new(s, -c, 0.0);
+    let reflected = DVec3::new(s, c, 0.0);
+    let at = 2.0 * reflected;
+    let up = reflected.cross(DVec3::Z);
+    let quad = |centre: DVec3, e1: DVec3, e2: DVec3| {
+        let v = [
+            centre - e1 - e2,
+            centre + e1 - e2,
+            centre + e1 + e2,
+            centre - e1 + e2,
+        ];
+        v.map(|q| format!("[{}, {}, {}]", q.x, q.y, q.z)).join(", ")
+    };
+    let shield = quad(at - down, 0.3 * down.cross(DVec3::Z), 0.3 * DVec3::Z);
+    let scene = |polarizer_axis: Option<DVec3>| {
+        let mut text = format!(
+            "[[light]]\ntype = \"directional\"\ndirection = [{}, {}, 0]\nirradiance = [1, 1, 1]\n\
+             [[material]]\nname = \"glass\"\ntype = \"dielectric\"\nior = 1.5\n\
+             [[shape]]\ntype = \"box\"\nmin = [-3, -1, -3]\nmax = [3, 0, 3]\nmaterial = \"glass\"\n\
+             [[material]]\nname = \"black\"\ntype = \"diffuse\"\nalbedo = [0, 0, 0]\n\
+             [[shape]]\ntype = \"quad\"\nmaterial = \"black\"\nvertices = [{shield}]\n\
+             [[receiver]]\nname = \"r\"\ncenter = [{}, {}, 0]\nnormal = [{s}, {c}, 0]\n\
+             up = [{}, {}, {}]\nsize = [0.5, 0.5]\nbins = [1, 1]\n",
+            down.x, down.y, at.x, at.y, up.x, up.y, up.z
+        );
+        match polarizer_axis {
+            Some(a) => {
+                text += &format!(
+                    "[[material]]\nname = \"p\"\ntype = \"polarizer\"\naxis = [{}, {}, {}]\n\
+                     [[shape]]\ntype = \"quad\"\nmaterial = \"p\"\nvertices = [{}]\n",
+                    a.x,
+                    a.y,
+                    a.z,
+                    quad(1.5 * reflected, 0.4 * up, 0.4 * DVec3::Z)
+                );
+            }
+            None => text += "[render]\npolarized = true\n",
+        }
+        text
+    };
+    let photons = 400_000;
+    let plain = &measured(&scene(None), photons)[0];
+    assert!(
+        plain.flux.0 > 10.0 * plain.flux.1,
+        "enough light: {:?}",
+        plain.flux
+    );
+    let [s1, s2, s3] = [0, 1, 2].map(|i| plain.stokes[i].flux.0 / plain.flux.0);
+    assert!(
+        (s1 - 1.0).abs() < 1e-6 && s2.abs() < 1e-6 && s3.abs() < 1e-6,
+        "{s1} {s2} {s3}"
+    );
+    let crossed = &measured(&scene(Some(up)), photons)[0];
+    assert_eq!(crossed.flux.0, 0.0);
+    let along = &measured(&scene(Some(DVec3::Z)), photons)[0];
+    assert!(
+        z(along, plain.flux) < 4.0,
+        "{:?} {:?}",
+        along.flux,
+        plain.flux
+    );
+}
+
+/// Along a curved path the basis is carried by Rytov's law. A beam enters square on a slab whose
+/// index rises along y and turns in the y–z plane; a polarizer in the slab 0.01 past its face
+/// (where the beam has turned 5e-4 rad) polarizes it at 45° between x and y, and the field
+/// turns with the beam (parallel transport in a plane), so on a receiver in the slab it arrives
+/// polarized at 45° between x and k × x: S2/S0 = 1 (1e-6), though its direction turned by more
+/// than 0.15 rad on the way. (A basis only projected across the new direction would read
+/// S1/S0 = cos 2·atan(cos 0.15) = 0.011.) A black sheet in the slab beyond the
+/// receiver takes the light before the far face can reflect it back across the receiver.
+#[test]
+fn a_bent_beam_carries_its_polarization_along_its_path() {
+    let axis = std::f64::consts::FRAC_1_SQRT_2;
+    let text = format!(
+        "[[medium]]\nname = \"slab\"\nprofile = \"linear\"\nn0 = 1.5\ngradient = [0, 0.075, 0]\n\
+         [[material]]\nname = \"wall\"\ntype = \"dielectric\"\ninterior = \"slab\"\n\
+         [[shape]]\ntype = \"box\"\nmin = [-4, -4, 2]\nmax = [4, 4, 8]\nmaterial = \"wall\"\n\
+         [[material]]\nname = \"black\"\ntype = \"diffuse\"\nalbedo = [0, 0, 0]\n\
+         [[shape]]\ntype = \"quad\"\nmaterial = \"black\"\n\
+         vertices = [[-4, -4, 7], [4, -4, 7], [4, 4, 7], [-4, 4, 7]]\n\
+         [[light]]\ntype = \"directional\"\ndirection = [0, 0, 1]\nirradiance = [1, 1, 1]\n\
+         [[material]]\nname = \"p\"\ntype = \"polarizer\"\naxis = [{axis}, {axis}, 0]\n{}\
+         [[receiver]]\nname = \"r\"\ncenter = [0, 0.8, 6]\nnormal = [0, 0, 1]\nup = [0, 1, 0]\n\
+         size = [1, 1]\nbins = [1, 1]\n",
+        square(2.01, 3.9, "p")
+    );
+    let (scene, settings) = scene(&text);
+    // How far a ray entering the slab at the receiver's x turns before it: the test is one of
+    // transport, not of a straight beam.
+    let tracer = grinlight::transport::Tracer::new(&scene, &settings.trace);
+    let mut stats = grinlight::transport::Stats::default();
+    let slab = Some(grinlight::ids::MediumId::new(0));
+    let event = tracer.next_event(DVec3::new(0.0, 0.0, 2.02), DVec3::Z, slab, &mut stats);
+    let turned = event.direction().unwrap().angle_between(DVec3::Z);
+    assert!(turned > 0.15, "the beam turns {turned} rad");
+    let m = &measured(&text, 100_000)[0];
+    assert!(m.flux.0 > 10.0 * m.flux.1, "{:?}", m.flux);
+    let [s1, s2, s3] = [0, 1, 2].map(|i| m.stokes[i].flux.0 / m.flux.0);
+    assert!(
+        s1.abs() < 1e-6 && (s2 - 1.0).abs() < 1e-6 && s3.abs() < 1e-6,
+        "{s1} {s2} {s3}"
     );
 }

@@ -383,7 +383,7 @@ fn tessendorf_draws_different_xi_for_different_rays() {
             DVec3::X,
             Some(grinlight::ids::MediumId::new(0)),
             &mut stats,
-            &mut |p| points.push(p.x),
+            &mut |p| points.push(p.position.x),
         );
         points.windows(2).map(|w| w[1] - w[0]).collect::<Vec<f64>>()
     };

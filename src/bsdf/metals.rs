@@ -6,6 +6,7 @@
 use super::fresnel::conductor;
 use crate::color::Rgb;
 use crate::spectrum::colour;
+use glam::DMat4;
 use std::sync::OnceLock;
 
 /// Nodes of the tables.
@@ -102,6 +103,19 @@ impl Metal {
             return self.colour_in_vacuum(cos);
         }
         self.banded_colour(cos, n_out)
+    }
+
+    /// The reflection's Mueller matrix per channel seen from a medium of index `n_out`, summed
+    /// band by band with the weights of [`Metal::colour`] (its first elements are the banded
+    /// colour).
+    pub fn mueller(&self, cos: f64, n_out: f64) -> [DMat4; 3] {
+        let b = bands();
+        (0..BANDS).fold([DMat4::ZERO; 3], |sum, j| {
+            let (eta, k) = self.index(b.centre[j]);
+            let m = crate::polarization::mueller::conductor_reflection(cos, eta / n_out, k / n_out);
+            let w = b.colour[j].0;
+            [sum[0] + m * w.x, sum[1] + m * w.y, sum[2] + m * w.z]
+        })
     }
 
     /// [`Metal::colour`] summed band by band.

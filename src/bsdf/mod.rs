@@ -31,8 +31,9 @@ pub use microfacet::{Ggx, SMOOTH_ALPHA};
 pub use plastic::Coat;
 
 use crate::color::Rgb;
+use crate::polarization::{mueller, Element, Sheet};
 use crate::sampling::{cosine_hemisphere, Frame};
-use glam::DVec3;
+use glam::{DMat4, DVec3};
 use std::f64::consts::FRAC_1_PI;
 
 /// The lobes of a BSDF, or the one lobe a sample came from: a set of flags.
@@ -112,6 +113,19 @@ impl Reflectance<'_> {
             Reflectance::Measured { metal, n_out } => metal.colour(cos, n_out),
         }
     }
+
+    /// The reflection's Mueller matrix per channel at cos θ = `cos` (module conventions of
+    /// [`crate::polarization::mueller`]): a constant reflectance's is a perfect conductor's
+    /// (its state kept) scaled by it; a measured metal's is summed band by band as its colour.
+    pub fn mueller(&self, cos: f64) -> [DMat4; 3] {
+        match *self {
+            Reflectance::Constant(r) => r.0.to_array().map(|c| mueller::perfect_mirror() * c),
+            Reflectance::Complex { eta, k } => {
+                std::array::from_fn(|c| mueller::conductor_reflection(cos, eta.0[c], k.0[c]))
+            }
+            Reflectance::Measured { metal, n_out } => metal.mueller(cos, n_out),
+        }
+    }
 }
 
 /// A scattering function at a surface point.
@@ -147,6 +161,12 @@ pub enum Bsdf<'a> {
         albedo: Rgb,
         /// The coat.
         coat: &'a Coat,
+    },
+    /// A thin polarizing or retarding sheet ([`Sheet`]): light crosses it without turning,
+    /// keeping [`Sheet::transmittance`] of its power when unpolarized.
+    Sheet {
+        /// The sheet.
+        sheet: &'a Sheet,
     },
 }
 
@@ -249,6 +269,7 @@ impl Bsdf<'_> {
             }
             Bsdf::Dielectric { .. } => Lobes::GLOSSY_REFLECTION.with(Lobes::GLOSSY_TRANSMISSION),
             Bsdf::Plastic { .. } => Lobes::DIFFUSE_REFLECTION.with(Lobes::GLOSSY_REFLECTION),
+            Bsdf::Sheet { .. } => Lobes::SPECULAR_TRANSMISSION,
         }
     }
 
@@ -258,7 +279,7 @@ impl Bsdf<'_> {
     /// numbers are read by every BSDF but a smooth one.
     pub fn draws_choice(&self) -> bool {
         match self {
-            Bsdf::Lambert { .. } | Bsdf::Conductor { .. } => false,
+            Bsdf::Lambert { .. } | Bsdf::Conductor { .. } | Bsdf::Sheet { .. } => false,
             Bsdf::Dielectric { .. } | Bsdf::Plastic { .. } => true,
         }
     }
@@ -361,6 +382,12 @@ impl Bsdf<'_> {
                     lobe,
                 })
             }),
+            Bsdf::Sheet { sheet } => Some(BsdfSample {
+                wi: -wo,
+                weight: Rgb::splat(sheet.transmittance()),
+                pdf: f64::INFINITY,
+                lobe: Lobes::SPECULAR_TRANSMISSION,
+            }),
         }
     }
 
@@ -369,7 +396,9 @@ impl Bsdf<'_> {
         let pair = Pair::of(n, wo, wi);
         let above = pair.above();
         match *self {
-            Bsdf::Conductor { ggx: None, .. } | Bsdf::Dielectric { ggx: None, .. } => Rgb::ZERO,
+            Bsdf::Conductor { ggx: None, .. }
+            | Bsdf::Dielectric { ggx: None, .. }
+            | Bsdf::Sheet { .. } => Rgb::ZERO,
             Bsdf::Lambert { albedo } => match above {
                 true => albedo * FRAC_1_PI,
                 false => Rgb::ZERO,
@@ -412,7 +441,9 @@ impl Bsdf<'_> {
         let pair = Pair::of(n, wo, wi);
         let above = pair.above();
         match *self {
-            Bsdf::Conductor { ggx: None, .. } | Bsdf::Dielectric { ggx: None, .. } => 0.0,
+            Bsdf::Conductor { ggx: None, .. }
+            | Bsdf::Dielectric { ggx: None, .. }
+            | Bsdf::Sheet { .. } => 0.0,
             Bsdf::Lambert { .. } => match pair.cos_o > 0.0 {
                 true => pair.cos_i.max(0.0) * FRAC_1_PI,
                 false => 0.0,
@@ -460,7 +491,7 @@ impl Bsdf<'_> {
         match *self {
             Bsdf::Lambert { .. } => 1.0,
             Bsdf::Plastic { coat, .. } => coat.entering(cos / n.length()),
-            Bsdf::Conductor { .. } | Bsdf::Dielectric { .. } => 0.0,
+            Bsdf::Conductor { .. } | Bsdf::Dielectric { .. } | Bsdf::Sheet { .. } => 0.0,
         }
     }
 
@@ -475,7 +506,7 @@ impl Bsdf<'_> {
         match *self {
             Bsdf::Lambert { albedo } => albedo * FRAC_1_PI,
             Bsdf::Plastic { albedo, coat } => coat.leaving(cos / n.length(), albedo),
-            Bsdf::Conductor { .. } | Bsdf::Dielectric { .. } => Rgb::ZERO,
+            Bsdf::Conductor { .. } | Bsdf::Dielectric { .. } | Bsdf::Sheet { .. } => Rgb::ZERO,
         }
     }
 
@@ -493,7 +524,9 @@ impl Bsdf<'_> {
         match *self {
             Bsdf::Lambert { .. } => None,
             Bsdf::Plastic { coat, .. } => in_local(n, wo, |o| coat.sample_lobe(o, u)),
-            Bsdf::Conductor { .. } | Bsdf::Dielectric { .. } => self.sample(wo, n, u),
+            Bsdf::Conductor { .. } | Bsdf::Dielectric { .. } | Bsdf::Sheet { .. } => {
+                self.sample(wo, n, u)
+            }
         }
     }
 
@@ -502,7 +535,10 @@ impl Bsdf<'_> {
     pub fn lambert_albedo(&self) -> Option<Rgb> {
         match self {
             Bsdf::Lambert { albedo } => Some(*albedo),
-            Bsdf::Conductor { .. } | Bsdf::Dielectric { .. } | Bsdf::Plastic { .. } => None,
+            Bsdf::Conductor { .. }
+            | Bsdf::Dielectric { .. }
+            | Bsdf::Plastic { .. }
+            | Bsdf::Sheet { .. } => None,
         }
     }
 
@@ -513,6 +549,42 @@ impl Bsdf<'_> {
             Bsdf::Lambert { albedo } | Bsdf::Plastic { albedo, .. } => *albedo,
             Bsdf::Conductor { fresnel, .. } => fresnel.at(1.0),
             Bsdf::Dielectric { .. } => Rgb::ONE,
+            Bsdf::Sheet { sheet } => Rgb::splat(sheet.transmittance()),
+        }
+    }
+
+    /// The Mueller matrices per channel of a specular sample's event, from the path's `wo` to
+    /// its `wi` about `n` ([`crate::polarization::carried`]), in the s/p basis of its plane of
+    /// incidence (any basis at normal incidence) or a sheet's axis; None for every other lobe
+    /// (they scatter, and polarized transport takes their light as depolarized). Either way
+    /// along the path the same matrices hold: a reflection's are the same both ways, and a
+    /// transmission's differ only in their scale, which the scalar transport carries.
+    pub fn mueller(&self, wo: DVec3, wi: DVec3, n: DVec3) -> Option<Element> {
+        let cos = wo.dot(n).abs().min(1.0);
+        let s = wo
+            .cross(n)
+            .try_normalize()
+            .unwrap_or_else(|| wo.any_orthonormal_vector());
+        match *self {
+            Bsdf::Dielectric { n1, n2, ggx: None } => {
+                let reflected = wi.dot(n) * wo.dot(n) > 0.0;
+                Some(Element::grey(
+                    match reflected {
+                        true => mueller::dielectric_reflection(cos, n1, n2),
+                        false => mueller::dielectric_transmission(cos, n1, n2),
+                    },
+                    s,
+                ))
+            }
+            Bsdf::Conductor { fresnel, ggx: None } => Some(Element {
+                mueller: fresnel.mueller(cos),
+                x: s,
+            }),
+            Bsdf::Sheet { sheet } => Some(sheet.element()),
+            Bsdf::Lambert { .. }
+            | Bsdf::Conductor { ggx: Some(_), .. }
+            | Bsdf::Dielectric { ggx: Some(_), .. }
+            | Bsdf::Plastic { .. } => None,
         }
     }
 }

@@ -30,7 +30,7 @@ use crate::bsdf::Lobes;
 use crate::color::Rgb;
 use crate::curve::Bounds;
 use crate::environment::Environment;
-use crate::ids::{MediumId, PrimId, ReceiverId};
+use crate::ids::{MediumId, PrimId};
 use crate::lights::{Aim, Cone, Emission, Entry, Light};
 use crate::math::Ball;
 use crate::receiver::Detection;
@@ -685,15 +685,29 @@ impl chain::ChainEvents for PhotonWalk<'_, '_> {
         self.path.is_some()
     }
 
-    fn detector(&mut self, receiver: ReceiverId, position: DVec3, weight: Rgb) -> ControlFlow<()> {
+    fn detector(&mut self, crossing: &chain::DetectorCrossing) -> ControlFlow<()> {
+        let receiver = &self.receivers[crossing.receiver.index()];
         if self.tag.batch == Batch::Receivers {
-            if let Some(bin) = self.receivers[receiver.index()].bin(position) {
+            if let Some(bin) = receiver.bin(crossing.position) {
+                let power = self.power * crossing.weight;
+                let stokes = crossing.polarization.and_then(|p| {
+                    let per_channel = p.stokes(crossing.direction, receiver.stokes_basis())?;
+                    let total = power.element_sum();
+                    Some(std::array::from_fn(|i| {
+                        let s: f64 = (0..3).map(|c| power.0[c] * per_channel[c][i + 1]).sum();
+                        match total > 0.0 {
+                            true => (s / total) as f32,
+                            false => 0.0,
+                        }
+                    }))
+                });
                 self.detections.push(Detection {
-                    receiver: receiver.index() as u32,
+                    receiver: crossing.receiver.index() as u32,
                     bin: bin as u32,
                     photon: self.tag.index,
-                    flux: (self.power * weight).element_sum() / 3.0,
+                    flux: power.element_sum() / 3.0,
                     wavelength: self.wavelength,
+                    stokes,
                 });
             }
         }

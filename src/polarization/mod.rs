@@ -1,7 +1,13 @@
-//! Polarization: the Stokes vector light carries, the Mueller matrices of what it meets
-//! ([`mueller`]), and the field carried along a curved ray by Rytov's law ([`rytov`]).
+//! Polarization: the Stokes vector light carries and the Mueller matrices of what it meets
+//! ([`mueller`]), what a specular chain carries of it ([`carried`]), the thin sheets that polarize and
+//! retard it ([`Sheet`]), and the field carried
+//! along a curved ray by Rytov's law ([`rytov`]).
 
+pub mod carried;
 pub mod mueller;
 pub mod rytov;
+mod sheet;
 
+pub use carried::{Element, Polarization, Sense};
 pub use rytov::RytovTransport;
+pub use sheet::Sheet;

@@ -43,16 +43,12 @@ impl Stokes {
     /// perpendicular to unit `k`, the light's direction); itself where that projection is
     /// within 1e-9 of zero (`x` along `k`, or not finite).
     pub fn in_basis(&self, k: DVec3, x: DVec3) -> Self {
-        let across = x - x.dot(k) * k;
-        if !(across.length() > 1e-9 * x.length()) {
-            return *self;
-        }
-        let x = across.normalize();
-        let y = k.cross(self.x);
-        let angle = y.dot(x).atan2(self.x.dot(x));
-        Self {
-            vector: rotation(angle) * self.vector,
-            x,
+        match basis_change(k, self.x, x) {
+            Some((turn, x)) => Self {
+                vector: turn * self.vector,
+                x,
+            },
+            None => *self,
         }
     }
 
@@ -72,6 +68,22 @@ impl Stokes {
             true => v.y.hypot(v.z) / v.x,
             false => 0.0,
         }
+    }
+}
+
+/// The change from the basis whose first axis is `from` (unit, across unit `k`, the light's
+/// direction) to the one whose first axis is `to` projected across `k`: the matrix that
+/// re-expresses a Stokes vector (or a measurement row) and that axis, normalised. None where
+/// the projection is within 1e-9 of zero (`to` along `k`, or not finite).
+pub fn basis_change(k: DVec3, from: DVec3, to: DVec3) -> Option<(DMat4, DVec3)> {
+    let across = to - to.dot(k) * k;
+    match across.length() > 1e-9 * to.length() {
+        true => {
+            let x = across.normalize();
+            let angle = k.cross(from).dot(x).atan2(from.dot(x));
+            Some((rotation(angle), x))
+        }
+        false => None,
     }
 }
 

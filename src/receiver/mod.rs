@@ -51,6 +51,9 @@ pub struct Detection {
     pub flux: f64,
     /// The photon's vacuum wavelength, nm.
     pub wavelength: f64,
+    /// Its Stokes vector's S1, S2, S3 over S0 in the receiver's basis ([`Receiver::stokes_basis`]),
+    /// where the transport is polarized (f32, as a photon's power: a share known to 1e-7).
+    pub stokes: Option<[f32; 3]>,
 }
 
 impl Receiver {
@@ -62,6 +65,14 @@ impl Receiver {
             e1: self.u * w,
             e2: self.v * h,
         })
+    }
+
+    /// The first axis of the basis its Stokes vectors are measured in: `u`, with the second
+    /// k × u for light crossing along k (`v` for light crossing along u × v). S1 > 0 is light
+    /// polarized along u, S2 > 0 along u + v (for light along u × v), S3 > 0 a field turning
+    /// from u toward the second axis ([`crate::polarization::mueller`]'s conventions).
+    pub fn stokes_basis(&self) -> DVec3 {
+        self.u
     }
 
     /// Local coordinates (along u, along v) of a point, relative to the centre.

@@ -15,12 +15,15 @@ pub fn write_csv(rec: &Receiver, m: &Measurement, path: &Path) -> Result<()> {
     for (lo, hi) in &rec.bands {
         out += &format!(",irradiance_{lo}_{hi},stderr_{lo}_{hi}");
     }
+    for s in ["S1", "S2", "S3"].iter().take(m.stokes.len()) {
+        out += &format!(",{s},stderr_{s}");
+    }
     out.push('\n');
     for (k, (e, se)) in m.irradiance.iter().zip(&m.stderr).enumerate() {
         let (x, y) = rec.bin_center(k);
         out += &format!("{x:.6e},{y:.6e},{e:.6e},{se:.6e}");
-        for band in &m.bands {
-            out += &format!(",{:.6e},{:.6e}", band.irradiance[k], band.stderr[k]);
+        for part in m.bands.iter().chain(&m.stokes) {
+            out += &format!(",{:.6e},{:.6e}", part.irradiance[k], part.stderr[k]);
         }
         out.push('\n');
     }

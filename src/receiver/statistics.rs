@@ -19,6 +19,10 @@ pub struct Measurement {
     /// The same from the photons in each of the receiver's wavelength bands, in order (their
     /// own `bands` empty).
     pub bands: Vec<Measurement>,
+    /// Where the transport is polarized, the same of the Stokes components S1, S2 and S3 in
+    /// the receiver's basis ([`Receiver::stokes_basis`]; "irradiance" their flux per area, of
+    /// either sign), each for all wavelengths; empty otherwise.
+    pub stokes: Vec<Measurement>,
 }
 
 impl Measurement {
@@ -36,18 +40,25 @@ impl Measurement {
 }
 
 /// The receivers' measurements from the detections of `photons` photons (each detection's
-/// flux already divided by `photons`, in photon order), with each receiver's bands.
-pub fn measure(receivers: &[Receiver], detections: &[Detection], photons: u64) -> Vec<Measurement> {
+/// flux already divided by `photons`, in photon order), with each receiver's bands (and Stokes
+/// components where `polarized`).
+pub fn measure(
+    receivers: &[Receiver],
+    detections: &[Detection],
+    photons: u64,
+    polarized: bool,
+) -> Vec<Measurement> {
     receivers
         .iter()
-        .zip(tally(receivers, detections))
+        .zip(tally(receivers, detections, polarized))
         .map(|(rec, t)| t.measurement(rec, photons, 1.0))
         .collect()
 }
 
-/// Each receiver's tally of `detections` (in photon order), with its bands: the detections
-/// grouped by receiver in one pass (keeping their order), the receivers tallied in parallel.
-pub fn tally(receivers: &[Receiver], detections: &[Detection]) -> Vec<Tally> {
+/// Each receiver's tally of `detections` (in photon order), with its bands and, where
+/// `polarized`, its Stokes components: the detections grouped by receiver in one pass
+/// (keeping their order), the receivers tallied in parallel.
+pub fn tally(receivers: &[Receiver], detections: &[Detection], polarized: bool) -> Vec<Tally> {
     let mut grouped: Vec<Vec<&Detection>> = vec![Vec::new(); receivers.len()];
     for d in detections {
         if let Some(g) = grouped.get_mut(d.receiver as usize) {
@@ -59,15 +70,25 @@ pub fn tally(receivers: &[Receiver], detections: &[Detection]) -> Vec<Tally> {
         .zip(grouped)
         .map(|(rec, mine)| {
             let bins = rec.bins.0 * rec.bins.1;
-            let mut t = Tally::of(mine.iter().copied(), bins);
+            let flux = |d: &Detection| d.flux;
+            let mut t = Tally::of(mine.iter().copied(), bins, flux);
             t.bands = rec
                 .bands
                 .iter()
                 .map(|&(lo, hi)| {
                     let inside = |d: &&Detection| (lo..hi).contains(&d.wavelength);
-                    Tally::of(mine.iter().copied().filter(inside), bins)
+                    Tally::of(mine.iter().copied().filter(inside), bins, flux)
                 })
                 .collect();
+            if polarized {
+                t.stokes = (0..3)
+                    .map(|i| {
+                        let component =
+                            |d: &Detection| d.flux * d.stokes.map_or(0.0, |s| f64::from(s[i]));
+                        Tally::of(mine.iter().copied(), bins, component)
+                    })
+                    .collect();
+            }
             t
         })
         .collect()
@@ -138,12 +159,18 @@ pub struct Tally {
     bins: BTreeMap<u32, Moments>,
     total: Moments,
     bands: Vec<Tally>,
+    /// S1, S2, S3 where the transport is polarized (their own `bands` and `stokes` empty).
+    stokes: Vec<Tally>,
 }
 
 impl Tally {
-    /// The tally of one receiver's detections, in photon order (a photon's crossings of one
-    /// bin are added before squaring).
-    fn of<'a>(detections: impl Iterator<Item = &'a Detection>, bins: usize) -> Tally {
+    /// The tally of what `flux` reads of one receiver's detections, in photon order (a
+    /// photon's crossings of one bin are added before squaring).
+    fn of<'a>(
+        detections: impl Iterator<Item = &'a Detection>,
+        bins: usize,
+        flux: impl Fn(&Detection) -> f64,
+    ) -> Tally {
         // The bins crossed, in the order first crossed, found through a table of all bins.
         let mut slot = vec![u32::MAX; bins];
         let mut crossed: Vec<(u32, Moments)> = Vec::new();
@@ -158,14 +185,15 @@ impl Tally {
         let mut total = Moments::default();
         let (mut in_bin, mut in_receiver) = (Runs::default(), Runs::default());
         for d in detections {
+            let x = flux(d);
             let i = at(d.bin, &mut crossed);
-            crossed[i].1.sum.add(d.flux);
-            total.sum.add(d.flux);
-            if let Some(done) = in_bin.add(d.photon, d.bin, d.flux) {
+            crossed[i].1.sum.add(x);
+            total.sum.add(x);
+            if let Some(done) = in_bin.add(d.photon, d.bin, x) {
                 let j = at(done.key, &mut crossed);
                 crossed[j].1.squares.add(done.flux * done.flux);
             }
-            if let Some(done) = in_receiver.add(d.photon, (), d.flux) {
+            if let Some(done) = in_receiver.add(d.photon, (), x) {
                 total.squares.add(done.flux * done.flux);
             }
         }
@@ -180,6 +208,7 @@ impl Tally {
             bins: crossed.into_iter().collect(),
             total,
             bands: Vec::new(),
+            stokes: Vec::new(),
         }
     }
 
@@ -189,11 +218,16 @@ impl Tally {
             self.bins.entry(*b).or_default().merge(m);
         }
         self.total.merge(&other.total);
-        if self.bands.is_empty() {
-            self.bands = vec![Tally::default(); other.bands.len()];
-        }
-        for (a, b) in self.bands.iter_mut().zip(&other.bands) {
-            a.merge(b);
+        for (mine, theirs) in [
+            (&mut self.bands, &other.bands),
+            (&mut self.stokes, &other.stokes),
+        ] {
+            if mine.is_empty() {
+                *mine = vec![Tally::default(); theirs.len()];
+            }
+            for (a, b) in mine.iter_mut().zip(theirs) {
+                a.merge(b);
+            }
         }
     }
 
@@ -223,11 +257,18 @@ impl Tally {
                 rec.bands.len()
             ));
         }
+        if !matches!(self.stokes.len(), 0 | 3) {
+            return Err(format!(
+                "{} Stokes components for receiver '{}' (0 or 3)",
+                self.stokes.len(),
+                rec.name
+            ));
+        }
         let flat = Receiver {
             bands: Vec::new(),
             ..rec.clone()
         };
-        self.bands.iter().try_for_each(|b| b.fits(&flat))
+        (self.bands.iter().chain(&self.stokes)).try_for_each(|b| b.fits(&flat))
     }
 
     /// The measurement of receiver `rec` from this tally of `photons` photons, every flux
@@ -249,6 +290,11 @@ impl Tally {
                 .bands
                 .iter()
                 .map(|b| b.measurement(rec, photons, scale))
+                .collect(),
+            stokes: self
+                .stokes
+                .iter()
+                .map(|s| s.measurement(rec, photons, scale))
                 .collect(),
         }
     }

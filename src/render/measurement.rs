@@ -141,7 +141,11 @@ pub fn trace_receivers(
         report.partial = Some(format!("{done} of {count} receiver photons"));
     }
     let books = Books {
-        tallies: receiver::tally(&scene.receivers, &sink.detections),
+        tallies: receiver::tally(
+            &scene.receivers,
+            &sink.detections,
+            tracer.settings.polarized,
+        ),
         ledger: sink.budget,
         traced: if sources.is_empty() { count } else { done },
     };

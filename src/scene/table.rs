@@ -237,6 +237,13 @@ impl<'a> TableReader<'a> {
         }
     }
 
+    /// A required non-zero 3-vector, normalised.
+    pub fn direction(&mut self, key: &str) -> Result<DVec3> {
+        let v = self.vec3(key)?;
+        v.try_normalize()
+            .ok_or_else(|| self.error(key, "must be a non-zero vector"))
+    }
+
     /// An optional non-zero 3-vector, normalised.
     pub fn direction_or(&mut self, key: &str, default: DVec3) -> Result<DVec3> {
         let v = self.vec3_or(key, default)?;

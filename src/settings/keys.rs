@@ -416,6 +416,16 @@ pub const MAX_STEPS: Key = Key {
         set: |t, n| t.settings.trace.max_steps = n,
     },
 };
+/// Whether specular chains carry polarization.
+pub const POLARIZED: Key = Key {
+    name: "polarized",
+    table: Table::Render,
+    default: "false",
+    doc: "Carry polarization along specular chains (Stokes vectors through Fresnel reflection and refraction, conductors, polarizer and retarder sheets, and the geometric phase along curved stretches; scattering vertices depolarize); a polarizer or retarder in the scene turns it on",
+    kind: Kind::Flag {
+        set: |t, b| t.settings.trace.polarized = b,
+    },
+};
 /// Where a ray in a gradient ambient medium has escaped.
 pub const WORLD_RADIUS: Key = Key {
     name: "world_radius",
@@ -562,7 +572,7 @@ pub const HEIGHT: Key = Key {
 };
 
 /// Every setting of the table, in the order help and documentation list them.
-pub const KEYS: [&Key; 20] = [
+pub const KEYS: [&Key; 21] = [
     &INTEGRATOR,
     &SAMPLER,
     &DEFLECTION_TABLE,
@@ -572,6 +582,7 @@ pub const KEYS: [&Key; 20] = [
     &THREADS,
     &MAX_STEPS,
     &WORLD_RADIUS,
+    &POLARIZED,
     &PHOTONS,
     &CAUSTIC_PHOTONS,
     &GATHER,

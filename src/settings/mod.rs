@@ -68,6 +68,9 @@ pub struct TraceSettings {
     /// Radius around the scene centre beyond which a ray in a gradient ambient medium counts
     /// as escaped (None: 10× the scene's extent including the camera).
     pub world_radius: Option<f64>,
+    /// Whether specular chains carry polarization ([`crate::polarization::carried`]); a scene
+    /// with a polarizer or retarder is rendered with it whatever this says.
+    pub polarized: bool,
 }
 
 /// The photon maps: how many photons per pass, and how the estimates read them.
@@ -125,6 +128,7 @@ impl Default for TraceSettings {
             control: StepControl::default_for(StepperKind::DEFAULT),
             max_steps: 1_000_000,
             world_radius: None,
+            polarized: false,
         }
     }
 }

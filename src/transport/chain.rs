@@ -13,8 +13,10 @@
 
 use super::{Event, HeroTracer, MediumVertex, Stats, SurfaceVertex, Tracer, Vertex};
 use crate::color::Rgb;
+use crate::curve::ArcPoint;
 use crate::ids::{MediumId, PrimId, ReceiverId};
 use crate::material::Material;
+use crate::polarization::{Polarization, RytovTransport, Sense};
 use crate::scene::Role;
 use crate::volume::{Flights, Scattering};
 use glam::DVec3;
@@ -110,6 +112,10 @@ pub struct Chain<'s> {
     /// (then `weight` counts from there, at the hero wavelength). The photon's power changes
     /// there in a way only it knows (its source's spectrum at the wavelength).
     pub dispersed: Option<Rgb>,
+    /// What it carries of the light's polarization, where the transport is polarized
+    /// ([`crate::polarization::carried`]): a photon's Stokes vector, or a camera path's
+    /// measurement row, which is folded into `weight` where the chain ends.
+    pub polarization: Option<Polarization>,
 }
 
 impl Chain<'_> {
@@ -144,6 +150,21 @@ pub struct Stretch {
     pub flights: Flights,
 }
 
+/// A chain crossing a receiver's detector.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DetectorCrossing {
+    /// The receiver.
+    pub receiver: ReceiverId,
+    /// Where it crosses.
+    pub position: DVec3,
+    /// The chain's unit direction there.
+    pub direction: DVec3,
+    /// The chain's weight there.
+    pub weight: Rgb,
+    /// What the chain carries of the light's polarization there (None: unpolarized transport).
+    pub polarization: Option<Polarization>,
+}
+
 /// Told of what a chain passes (all optional).
 pub trait ChainEvents {
     /// It sets off on a stretch.
@@ -156,14 +177,8 @@ pub trait ChainEvents {
     fn wants_points(&self) -> bool {
         true
     }
-    /// It crosses receiver `receiver`'s detector at `position` carrying `weight`; `Break`
-    /// ends the chain ([`End::Stopped`]).
-    fn detector(
-        &mut self,
-        _receiver: ReceiverId,
-        _position: DVec3,
-        _weight: Rgb,
-    ) -> ControlFlow<()> {
+    /// It crosses a receiver's detector; `Break` ends the chain ([`End::Stopped`]).
+    fn detector(&mut self, _crossing: &DetectorCrossing) -> ControlFlow<()> {
         ControlFlow::Continue(())
     }
     /// It was reflected or refracted at primitive `prim`, from medium `from` into `to`;
@@ -374,6 +389,17 @@ impl<'w> Walker<'w> {
         }
     }
 
+    /// Which way its chains carry polarization, where the transport is polarized: a camera
+    /// path's against the light, a photon's with it; None for unpolarized transport and for
+    /// the chains that stop at the first specular surface or ignore losses.
+    fn polarizes(&self) -> Option<Sense> {
+        match (self.tracer.settings.polarized, self.policy) {
+            (false, _) | (true, Policy::Principal | Policy::Unscattered) => None,
+            (true, Policy::Weighted) => Some(Sense::AgainstLight),
+            (true, Policy::Roulette) => Some(Sense::WithLight),
+        }
+    }
+
     /// Where the path meets dispersion (`disperses`) while it carries every wavelength, it
     /// takes on its hero's: the tracer at that wavelength from here on, and for a path from
     /// the camera the hero's sRGB weight r̄(λ)/p(λ) in its throughput — in expectation over
@@ -415,6 +441,9 @@ impl<'w> Walker<'w> {
             curved: false,
             emitted: Rgb::ZERO,
             dispersed: None,
+            polarization: self
+                .polarizes()
+                .map(|s| Polarization::unpolarized(s, ray.direction)),
         };
         self.meet_dispersion(self.tracer.disperses_in(ray.medium), &mut chain);
         let Some(n_start) = self.tracer.index(ray.medium, ray.origin) else {
@@ -428,6 +457,9 @@ impl<'w> Walker<'w> {
             }
         };
         chain.medium = at.medium;
+        if let Some(p) = &chain.polarization {
+            chain.weight *= p.closing();
+        }
         if !matches!(end, End::Escaped { .. }) {
             let p = match end {
                 End::Scatter(v) => v.position(),
@@ -456,7 +488,7 @@ impl<'w> Walker<'w> {
     fn fly<R: Rng>(
         &mut self,
         scattering: Option<&Scattering>,
-        chain: &Chain<'w>,
+        chain: &mut Chain<'w>,
         at: &Ray,
         lent: &mut Lent<R>,
         observer: &mut dyn ChainEvents,
@@ -480,57 +512,79 @@ impl<'w> Walker<'w> {
         };
         let (mut origin, mut dir) = (at.origin, at.direction);
         let (mut travelled, mut depth) = (0.0, 0.0);
+        // The polarization's basis, parallel-transported along a curved stretch.
+        let curved = at
+            .medium
+            .is_some_and(|m| !self.tracer.medium(m).is_uniform());
+        let mut rytov = (chain.polarization)
+            .filter(|_| curved)
+            .and_then(|p| RytovTransport::new(at.direction, p.x()));
         // Points between a step's ends cost a circle's worth of evaluations: computed only
-        // for a column or an observer that reads them.
-        let shown = column.scattering.is_some() || observer.wants_points();
-        for _ in 0..=MAX_NULL_COLLISIONS {
-            let mut show = |p| {
-                column.to(p);
-                observer.point(p)
-            };
-            let event = self.tracer.next_event_within(
-                origin,
-                dir,
-                at.medium,
-                flight.map_or(f64::INFINITY, |f| f.reach),
-                lent.stats,
-                shown.then_some(&mut show as &mut dyn FnMut(DVec3)),
-            );
-            match (event, tracks) {
-                (
-                    Event::Reached {
-                        position,
-                        direction,
-                        distance,
-                        optical_depth,
-                    },
-                    Some(sc),
-                ) if flight.is_some_and(|f| {
-                    !f.tentative || !sc.collides(position, f.majorant, lent.rng)
-                }) =>
-                {
-                    column.to(position);
-                    observer.point(position);
-                    (origin, dir) = (position, direction);
-                    travelled += distance;
-                    depth += optical_depth;
-                    flight = Some(Flight::from(position, sc, &mut self.flights, lent.rng));
-                }
-                _ => {
-                    if let Some(end) = event.position() {
-                        column.to(end);
+        // for a column, a polarization or an observer that reads them.
+        let shown = column.scattering.is_some() || rytov.is_some() || observer.wants_points();
+        let event = 'flight: {
+            for _ in 0..=MAX_NULL_COLLISIONS {
+                let mut show = |p: ArcPoint| {
+                    column.to(p.position);
+                    if let Some(r) = rytov.as_mut() {
+                        r.push(p.direction);
                     }
-                    let event = event.continuing(travelled, depth);
-                    let column = match column.scattering {
-                        Some(_) => column.total,
-                        None => event.distance(),
-                    };
-                    return (event, column);
+                    observer.point(p.position)
+                };
+                let event = self.tracer.next_event_within(
+                    origin,
+                    dir,
+                    at.medium,
+                    flight.map_or(f64::INFINITY, |f| f.reach),
+                    lent.stats,
+                    shown.then_some(&mut show as &mut dyn FnMut(ArcPoint)),
+                );
+                match (event, tracks) {
+                    (
+                        Event::Reached {
+                            position,
+                            direction,
+                            distance,
+                            optical_depth,
+                        },
+                        Some(sc),
+                    ) if flight.is_some_and(|f| {
+                        !f.tentative || !sc.collides(position, f.majorant, lent.rng)
+                    }) =>
+                    {
+                        column.to(position);
+                        if let Some(r) = rytov.as_mut() {
+                            r.push(direction);
+                        }
+                        observer.point(position);
+                        (origin, dir) = (position, direction);
+                        travelled += distance;
+                        depth += optical_depth;
+                        flight = Some(Flight::from(position, sc, &mut self.flights, lent.rng));
+                    }
+                    _ => {
+                        if let Some(end) = event.position() {
+                            column.to(end);
+                        }
+                        let event = event.continuing(travelled, depth);
+                        let column = match column.scattering {
+                            Some(_) => column.total,
+                            None => event.distance(),
+                        };
+                        break 'flight (event, column);
+                    }
                 }
             }
+            lent.stats.record_end(crate::curve::Termination::MaxSteps);
+            (Event::Lost, 0.0)
+        };
+        if let (Some(mut r), Some(p), Some(d)) =
+            (rytov, chain.polarization.as_mut(), event.0.direction())
+        {
+            r.push(d);
+            p.transported(r.field());
         }
-        lent.stats.record_end(crate::curve::Termination::MaxSteps);
-        (Event::Lost, 0.0)
+        event
     }
 
     /// Moves the chain to its next event: `Break` with how it ends, or `Continue` past a
@@ -628,13 +682,20 @@ impl<'w> Walker<'w> {
             }
             Role::Detector(_) | Role::Scatter(_) if exhausted => cut(lent),
             Role::Detector(receiver) => {
-                if observer
-                    .detector(receiver, hit.position, chain.weight)
-                    .is_break()
-                {
+                let crossing = DetectorCrossing {
+                    receiver,
+                    position: hit.position,
+                    direction: hit.incoming,
+                    weight: chain.weight,
+                    polarization: chain.polarization,
+                };
+                if observer.detector(&crossing).is_break() {
                     return ControlFlow::Break(End::Stopped);
                 }
+                // On from the crossing as it arrived there: along a curved stretch its
+                // direction is no longer the stretch's first.
                 at.origin = super::offset(hit.position, hit.incoming);
+                at.direction = hit.incoming;
                 ControlFlow::Continue(())
             }
             Role::Scatter(material) => {
@@ -703,7 +764,13 @@ impl<'w> Walker<'w> {
         let Some(b) = vertex.scatter((0.0, 0.0, u)) else {
             return ControlFlow::Break(End::Lost);
         };
-        let weight = b.sample.weight;
+        let mut weight = b.sample.weight;
+        if let Some(p) = chain.polarization.as_mut() {
+            match vertex.bsdf.mueller(vertex.wo, b.sample.wi, vertex.normal) {
+                Some(element) => weight *= p.meet(&element, -vertex.wo),
+                None => *p = Polarization::unpolarized(p.sense(), b.sample.wi),
+            }
+        }
         match self.policy {
             Policy::Weighted => chain.weight *= weight,
             Policy::Roulette => {
@@ -740,8 +807,8 @@ pub fn principal_ray(
 ) -> Option<(DVec3, u32)> {
     struct FirstDetector(Option<DVec3>);
     impl ChainEvents for FirstDetector {
-        fn detector(&mut self, _: ReceiverId, position: DVec3, _: Rgb) -> ControlFlow<()> {
-            self.0 = Some(position);
+        fn detector(&mut self, crossing: &DetectorCrossing) -> ControlFlow<()> {
+            self.0 = Some(crossing.position);
             ControlFlow::Break(())
         }
     }

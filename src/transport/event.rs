@@ -64,6 +64,15 @@ impl Event {
         }
     }
 
+    /// The ray's unit direction where the event happens (None when lost).
+    pub fn direction(&self) -> Option<DVec3> {
+        match *self {
+            Event::Surface { hit, .. } => Some(hit.incoming),
+            Event::Escaped { direction, .. } | Event::Reached { direction, .. } => Some(direction),
+            Event::Lost => None,
+        }
+    }
+
     /// Where the event happens (None when lost).
     pub fn position(&self) -> Option<DVec3> {
         match *self {

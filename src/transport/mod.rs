@@ -29,8 +29,8 @@ pub use vertex::{BsdfNumbers, MediumVertex, Scattered, SurfaceVertex, Vertex};
 
 use crate::accel::PrimHit;
 use crate::curve::{
-    march_with, Bounds, ExactPath, HermitePath, MarchLimits, MarchOutcome, Path, RayState,
-    StepControl, Termination,
+    march_with, ArcPoint, Bounds, ExactPath, HermitePath, MarchLimits, MarchOutcome, Path,
+    RayState, StepControl, Termination,
 };
 use crate::ids::{MediumId, PrimId};
 use crate::lights::{LightSampler, LightSamples};
@@ -104,9 +104,14 @@ impl<'a> Tracer<'a> {
             center,
             radius: extent.max(1e-9),
         };
+        let polarized = settings.polarized
+            || (scene.materials.iter()).any(|m| matches!(m, crate::material::Material::Sheet(_)));
         let mut tracer = Self {
             scene,
-            settings: *settings,
+            settings: TraceSettings {
+                polarized,
+                ..*settings
+            },
             ball,
             world: Bounds::Ball { center, radius },
             camera_medium: scene.ambient(),
@@ -140,7 +145,8 @@ impl<'a> Tracer<'a> {
         self.next_event_within(origin, dir, medium, f64::INFINITY, stats, None)
     }
 
-    /// [`Self::next_event`], showing `path` every accepted point of a curved path between
+    /// [`Self::next_event`], showing `path` every accepted point of a curved path (with its
+    /// unit direction) between
     /// the origin and the event (neither included; a straight ray has none), and on a step's
     /// exact circle points close enough that the chords between them follow it.
     pub fn next_event_along(
@@ -149,7 +155,7 @@ impl<'a> Tracer<'a> {
         dir: DVec3,
         medium: Option<MediumId>,
         stats: &mut Stats,
-        path: &mut dyn FnMut(DVec3),
+        path: &mut dyn FnMut(ArcPoint),
     ) -> Event {
         self.next_event_within(origin, dir, medium, f64::INFINITY, stats, Some(path))
     }
@@ -164,7 +170,7 @@ impl<'a> Tracer<'a> {
         medium: Option<MediumId>,
         reach: f64,
         stats: &mut Stats,
-        path: Option<&mut dyn FnMut(DVec3)>,
+        path: Option<&mut dyn FnMut(ArcPoint)>,
     ) -> Event {
         match medium {
             Some(i) if !self.medium(i).is_uniform() => {
@@ -217,7 +223,7 @@ impl<'a> Tracer<'a> {
         dir: DVec3,
         reach: f64,
         stats: &mut Stats,
-        path: Option<&mut dyn FnMut(DVec3)>,
+        path: Option<&mut dyn FnMut(ArcPoint)>,
     ) -> Event {
         let settings = &self.settings;
         let at_wavelength = self.medium(i);
@@ -267,7 +273,7 @@ impl<'a> Tracer<'a> {
         start: RayState,
         limits: &MarchLimits,
         reach: f64,
-        mut path: Option<&mut dyn FnMut(DVec3)>,
+        mut path: Option<&mut dyn FnMut(ArcPoint)>,
     ) -> Marched {
         let Along { medium, radiometry } = along;
         let mut prev = start;
@@ -326,7 +332,10 @@ impl<'a> Tracer<'a> {
                 }
                 show_circle(step.path.as_ref(), len, &mut path);
                 if let Some(path) = path.as_mut() {
-                    path(st.position);
+                    path(ArcPoint {
+                        position: st.position,
+                        direction: st.direction,
+                    });
                 }
                 prev_depth += radiometry.step_depth(prev.position, st.position, len);
                 prev = *st;
@@ -398,13 +407,13 @@ const SHOWN_TURN: f64 = 0.03;
 /// `upto` along it, at most [`SHOWN_TURN`] apart, neither end included: a step of the exact
 /// stepper may turn a right angle of its circle, and what follows a path by its chords (the
 /// beams of the volume caustic estimate, the columns of a density) needs them close to it.
-fn show_circle(exact: Option<&ExactPath>, upto: f64, path: &mut Option<&mut dyn FnMut(DVec3)>) {
+fn show_circle(exact: Option<&ExactPath>, upto: f64, path: &mut Option<&mut dyn FnMut(ArcPoint)>) {
     if let (Some(ExactPath::Circle(circle)), Some(path)) = (exact, path) {
         let pieces = (upto * circle.curvature.length() / SHOWN_TURN).ceil();
         if pieces > 1.0 && pieces.is_finite() {
             let pieces = pieces as usize;
             for i in 1..pieces {
-                path(circle.at(upto * i as f64 / pieces as f64).position);
+                path(circle.at(upto * i as f64 / pieces as f64));
             }
         }
     }

@@ -29,7 +29,9 @@ impl<'a> Tracer<'a> {
         } = hit;
         let side = facing(normals.geometric, incoming);
         let material = scene.material(surface)?;
-        let beyond = match material.lobes().transmits() {
+        // Light transmitted into the shape's other side: the interior from outside, the
+        // exterior from inside; a thin sheet's leaves into the medium it came from.
+        let beyond = match material.lobes().transmits() && !material.is_thin() {
             true => {
                 let inside = surface.interior?;
                 match side == normals.geometric {

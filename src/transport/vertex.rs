@@ -235,12 +235,13 @@ impl SurfaceVertex<'_> {
     fn frame(&self) -> DVec3 {
         match self.bsdf {
             Bsdf::Lambert { .. } => self.normal,
-            Bsdf::Conductor { .. } | Bsdf::Dielectric { .. } | Bsdf::Plastic { .. } => {
-                match self.wo.dot(self.shading) > 0.0 {
-                    true => self.shading,
-                    false => self.normal,
-                }
-            }
+            Bsdf::Conductor { .. }
+            | Bsdf::Dielectric { .. }
+            | Bsdf::Plastic { .. }
+            | Bsdf::Sheet { .. } => match self.wo.dot(self.shading) > 0.0 {
+                true => self.shading,
+                false => self.normal,
+            },
         }
     }
 
@@ -287,7 +288,8 @@ impl SurfaceVertex<'_> {
             Bsdf::Lambert { .. }
             | Bsdf::Conductor { .. }
             | Bsdf::Dielectric { .. }
-            | Bsdf::Plastic { .. } => 1.0,
+            | Bsdf::Plastic { .. }
+            | Bsdf::Sheet { .. } => 1.0,
         }
     }
 

@@ -5,6 +5,7 @@ use crate::bsdf::{Coat, Ggx, SMOOTH_ALPHA};
 use crate::color::Rgb;
 use crate::error::Result;
 use crate::material::{ConductorIndex, Material};
+use crate::polarization::Sheet;
 use crate::scene::table::TableReader;
 use crate::spectrum::Dispersion;
 use crate::texture::Texture;
@@ -219,12 +220,34 @@ pub fn read_material(t: &mut TableReader) -> Result<(Material, Option<Interior>)
             let ggx = microsurface(t)?;
             (Material::Dielectric { ggx }, Some(interior))
         }
+        "polarizer" => (
+            Material::Sheet(Sheet::Polarizer {
+                axis: t.direction("axis")?,
+            }),
+            None,
+        ),
+        "retarder" => {
+            let fast_axis = t.direction("fast_axis")?;
+            let degrees = t.f64("retardance_deg")?;
+            t.check(
+                "retardance_deg",
+                degrees.is_finite() && degrees.abs() <= 1e6,
+                format!("must be a number of degrees within ±1e6, got {degrees:?}"),
+            )?;
+            (
+                Material::Sheet(Sheet::Retarder {
+                    fast_axis,
+                    retardance: degrees.to_radians(),
+                }),
+                None,
+            )
+        }
         other => {
             return Err(t.error(
                 "type",
                 format!(
                     "unknown material type '{other}' (diffuse, mirror, conductor, dielectric, \
-                     plastic, emissive)"
+                     plastic, polarizer, retarder, emissive)"
                 ),
             ))
         }
