@@ -239,10 +239,10 @@ fn wave_plates_turn_linear_light_circular_and_rotate_it() {
         )[0];
         // The plate absorbs nothing and draws no numbers: the same photons arrive.
         assert_eq!(m.flux, linear.flux, "{deg}°");
-        for i in 0..3 {
-            let s = m.stokes[i].flux.0 / m.flux.0;
+        for (i, (component, want)) in m.stokes.iter().zip(want).enumerate() {
+            let s = component.flux.0 / m.flux.0;
             assert!(
-                (s - want[i]).abs() < 1e-6,
+                (s - want).abs() < 1e-6,
                 "{deg}°, {retardance}°: S{} {s}",
                 i + 1
             );
