@@ -30,7 +30,9 @@ fn bins(values: &[f64], r: &Receiver) -> Array2<f64> {
 
 /// One receiver's measurement: `irradiance` and `stderr` (W per scene unit², shape
 /// (ny, nx)), the bins' centres `x` (nx) and `y` (ny) in the receiver's plane, `flux` and
-/// `flux_stderr` (W), and `bands`, one such dict per wavelength band with its `nm` range.
+/// `flux_stderr` (W), `bands`, one such dict per wavelength band with its `nm` range, and
+/// `stokes`: where the transport is polarized, [S1, S2, S3] as such dicts (their irradiance
+/// the Stokes component's flux per area, in the receiver's basis with first axis u), else None.
 pub fn measurement<'py>(
     py: Python<'py>,
     r: &Receiver,
@@ -53,11 +55,29 @@ pub fn measurement<'py>(
         .map(|(nm, b)| {
             let band = measurement(py, r, b)?;
             band.del_item("bands")?;
+            band.del_item("stokes")?;
             band.set_item("nm", *nm)?;
             Ok(band)
         })
         .collect::<PyResult<Vec<_>>>()?;
     d.set_item("bands", bands)?;
+    // S1, S2, S3 where the transport is polarized: each a dict as this one (without bands
+    // or Stokes), in the receiver's basis (first axis u); None otherwise.
+    let stokes = match &m.stokes[..] {
+        [] => None,
+        parts => Some(
+            parts
+                .iter()
+                .map(|s| {
+                    let part = measurement(py, r, s)?;
+                    part.del_item("bands")?;
+                    part.del_item("stokes")?;
+                    Ok(part)
+                })
+                .collect::<PyResult<Vec<_>>>()?,
+        ),
+    };
+    d.set_item("stokes", stokes)?;
     Ok(d)
 }
 

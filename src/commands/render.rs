@@ -666,6 +666,16 @@ fn results(
                     b.flux.0, b.flux.1
                 ));
             }
+            if let [s1, s2, s3] = &m.stokes[..] {
+                let share = |s: &Measurement| s.flux.0 / m.flux.0;
+                observer.line(&format!(
+                    "  Stokes (basis u = {}): S1/S0 {:.4}, S2/S0 {:.4}, S3/S0 {:.4}",
+                    r.stokes_basis(),
+                    share(s1),
+                    share(s2),
+                    share(s3)
+                ));
+            }
         }
         let media: Vec<&str> = scene.medium_names().collect();
         observer.line(&budget.table(scene.accel.primitives(), &media));
