@@ -174,6 +174,14 @@ fn cases() -> Vec<Case> {
         |extra: &str| format!("{LIGHT}[[receiver]]\nname = \"r\"\ncenter = [0, 0, 0.5]\n{extra}");
     let mut v = vec![
         // Scene keys: numbers out of range, negative, NaN, infinite, zero.
+        // Polarization: sheets' axes and retardances, the switch.
+        scene_case("polarizer of a zero axis", "[[material]]\nname = \"p\"\ntype = \"polarizer\"\naxis = [0, 0, 0]\n", Error("must be a non-zero vector")),
+        scene_case("polarizer without an axis", "[[material]]\nname = \"p\"\ntype = \"polarizer\"\n", Error("axis")),
+        scene_case("retarder of a NaN retardance", "[[material]]\nname = \"p\"\ntype = \"retarder\"\nfast_axis = [1, 0, 0]\nretardance_deg = nan\n", Error("retardance_deg")),
+        scene_case("retarder of 1e300 degrees", "[[material]]\nname = \"p\"\ntype = \"retarder\"\nfast_axis = [1, 0, 0]\nretardance_deg = 1e300\n", Error("retardance_deg")),
+        scene_case("polarized as a word", "", Error("")).with_scene_replace("spp = 1", "spp = 1\npolarized = \"yes\"", "polarized"),
+        scene_case("a camera looking through a polarizer edge on", &format!("{LIGHT}[[material]]\nname = \"p\"\ntype = \"polarizer\"\naxis = [0, 0, 1]\n[[shape]]\ntype = \"quad\"\nmaterial = \"p\"\nvertices = [[-1, 0, -1], [1, 0, -1], [1, 0, 1], [-1, 0, 1]]\n"), Finite("wrote")),
+        scene_case("glass behind a retarder (polarized: photons and camera)", &format!("{LIGHT}[[material]]\nname = \"g\"\ntype = \"dielectric\"\nior = 1.5\n[[shape]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 0.5\nmaterial = \"g\"\n[[material]]\nname = \"p\"\ntype = \"retarder\"\nfast_axis = [1, 1, 0]\nretardance_deg = 90\n[[shape]]\ntype = \"quad\"\nmaterial = \"p\"\nvertices = [[-1, -1, 1], [1, -1, 1], [1, 1, 1], [-1, 1, 1]]\n"), Finite("wrote")),
         scene_case("luminaire without its file", "[[light]]\ntype = \"goniometric\"\nfile = \"no.ies\"\nposition = [0, 0, 1]\n", Error("s.toml:")),
         Case {
             files: vec![

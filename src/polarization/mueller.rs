@@ -1,8 +1,8 @@
 //! Stokes vectors and Mueller matrices: how much light there is and how it is polarized, and
 //! what a surface does to both.
 //!
-//! **Conventions** (Collett 2005; the same as Mitsuba 3's polarized variants, Jakob's notes on
-//! polarized rendering). Light travelling along unit k is described in a basis (x, y) of the
+//! **Conventions** (Collett 2005; Born & Wolf for the amplitudes; the scheme of Mitsuba 3's
+//! polarized variants, "Mitsuba 3 polarization" in docs/references.md). Light travelling along unit k is described in a basis (x, y) of the
 //! plane perpendicular to k, right-handed about it: y = k × x. With the field's complex
 //! amplitudes (Ex, Ey) in that basis, time dependence e^(−iωt), its Stokes vector is
 //! S = (S0, S1, S2, S3) with S0 = |Ex|² + |Ey|², S1 = |Ex|² − |Ey|², S2 = 2 Re(Ex Ey*) and
