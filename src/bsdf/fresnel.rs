@@ -98,6 +98,32 @@ mod tests {
         }
     }
 
+    /// The polarized transport's Mueller matrices pass unpolarized light as these scalar terms
+    /// do (their first elements), at every angle: a dielectric's reflection and transmission
+    /// both ways, and conductors'.
+    #[test]
+    fn the_mueller_matrices_first_elements_are_these_terms() {
+        use crate::polarization::mueller;
+        for i in 0..=1000 {
+            let cos = (i as f64 / 1000.0).max(1e-9);
+            for (n1, n2) in [(1.0, 1.5), (1.5, 1.0), (1.33, 2.4)] {
+                let (r, _) = dielectric(cos, n1, n2);
+                let m = mueller::dielectric_reflection(cos, n1, n2);
+                assert!((m.col(0).x - r).abs() < 1e-12, "{n1}→{n2} cos {cos}");
+                let t = mueller::dielectric_transmission(cos, n1, n2);
+                let want = dielectric_transmittance(cos, n1, n2);
+                assert!((t.col(0).x - want).abs() < 1e-12, "{n1}→{n2} cos {cos}");
+            }
+            for (eta, k) in [(0.2, 3.0), (1.1, 2.5), (2.9, 3.1), (0.05, 8.0)] {
+                let m = mueller::conductor_reflection(cos, eta, k);
+                assert!(
+                    (m.col(0).x - conductor(cos, eta, k)).abs() < 1e-12,
+                    "{eta}+{k}i"
+                );
+            }
+        }
+    }
+
     /// With k = 0 the conductor's formula is the dielectric's (an independent form of the
     /// same equations); at normal incidence it is ((η−1)² + k²)/((η+1)² + k²).
     #[test]
