@@ -18,6 +18,7 @@
 //! reflection and refraction.
 
 use super::mueller::basis_change;
+use super::RytovTransport;
 use crate::color::Rgb;
 use glam::{DMat4, DVec3, DVec4};
 
@@ -57,6 +58,8 @@ pub struct Polarization {
     channels: [DVec4; 3],
     /// The basis's first axis (unit, across the path).
     x: DVec3,
+    /// Rytov's transport of the basis along the curved stretch under way, if any.
+    curve: Option<RytovTransport>,
 }
 
 impl Polarization {
@@ -66,6 +69,7 @@ impl Polarization {
             sense,
             channels: [DVec4::X; 3],
             x: direction.any_orthonormal_vector(),
+            curve: None,
         }
     }
 
@@ -122,10 +126,26 @@ impl Polarization {
         Rgb::new(factor[0], factor[1], factor[2])
     }
 
-    /// The basis carried to the end of a curved stretch: its first axis there (across the
-    /// path, parallel-transported along it).
-    pub fn transported(&mut self, x: DVec3) {
-        self.x = x;
+    /// Sets off on a curved stretch along unit `direction`: from here the basis is carried
+    /// along the path by Rytov's law ([`RytovTransport`]) until [`Polarization::end_curve`].
+    pub fn begin_curve(&mut self, direction: DVec3) {
+        self.curve = RytovTransport::new(direction, self.x);
+    }
+
+    /// The path's direction at the curved stretch's next point (nothing off a curved stretch).
+    pub fn turn(&mut self, direction: DVec3) {
+        if let Some(r) = self.curve.as_mut() {
+            r.push(direction);
+        }
+    }
+
+    /// Ends the curved stretch with the path along `direction`: the basis's first axis is the
+    /// one carried there (across the path).
+    pub fn end_curve(&mut self, direction: DVec3) {
+        if let Some(mut r) = self.curve.take() {
+            r.push(direction);
+            self.x = r.field();
+        }
     }
 
     /// Which way its chain runs.

@@ -24,7 +24,7 @@ use glam::DVec3;
 
 /// The field's direction carried along a ray by Rytov's law, from its directions at the ray's
 /// accepted points in order (see the module's documentation).
-#[derive(Clone, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RytovTransport {
     /// The first direction (unit).
     start: DVec3,

@@ -16,7 +16,7 @@ use crate::color::Rgb;
 use crate::curve::ArcPoint;
 use crate::ids::{MediumId, PrimId, ReceiverId};
 use crate::material::Material;
-use crate::polarization::{Polarization, RytovTransport, Sense};
+use crate::polarization::{Polarization, Sense};
 use crate::scene::Role;
 use crate::volume::{Flights, Scattering};
 use glam::DVec3;
@@ -112,10 +112,6 @@ pub struct Chain<'s> {
     /// (then `weight` counts from there, at the hero wavelength). The photon's power changes
     /// there in a way only it knows (its source's spectrum at the wavelength).
     pub dispersed: Option<Rgb>,
-    /// What it carries of the light's polarization, where the transport is polarized
-    /// ([`crate::polarization::carried`]): a photon's Stokes vector, or a camera path's
-    /// measurement row, which is folded into `weight` where the chain ends.
-    pub polarization: Option<Polarization>,
 }
 
 impl Chain<'_> {
@@ -152,7 +148,7 @@ pub struct Stretch {
 
 /// A chain crossing a receiver's detector.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct DetectorCrossing {
+pub struct DetectorCrossing<'p> {
     /// The receiver.
     pub receiver: ReceiverId,
     /// Where it crosses.
@@ -162,7 +158,7 @@ pub struct DetectorCrossing {
     /// The chain's weight there.
     pub weight: Rgb,
     /// What the chain carries of the light's polarization there (None: unpolarized transport).
-    pub polarization: Option<Polarization>,
+    pub polarization: Option<&'p Polarization>,
 }
 
 /// Told of what a chain passes (all optional).
@@ -287,10 +283,16 @@ impl Choices {
     }
 }
 
-/// A random stream and the statistics a walk adds to.
+/// What one [`Walker::follow`] works with: the random stream and the statistics lent to it,
+/// and what the chain carries of the light's polarization where the transport is polarized
+/// ([`crate::polarization::carried`]: a photon's Stokes vector, or a camera path's measurement
+/// row, folded into the chain's weight where it ends). Kept beside the chain rather than in
+/// it: a [`Chain`] is returned by value at every bounce, and an unpolarized one should not
+/// carry the 4 × 4 numbers a channel.
 struct Lent<'a, R> {
     rng: &'a mut R,
     stats: &'a mut Stats,
+    polarization: Option<&'a mut Polarization>,
 }
 
 /// Events (surfaces and scattering in media) a camera path or a map photon meets before
@@ -430,7 +432,16 @@ impl<'w> Walker<'w> {
         stats: &mut Stats,
         observer: &mut dyn ChainEvents,
     ) -> Chain<'w> {
-        let mut lent = Lent { rng, stats };
+        // The polarization lives here and the walk holds a reference to it: an unpolarized
+        // walk moves no polarization state around.
+        let mut carried = None;
+        let mut lent = Lent {
+            rng,
+            stats,
+            polarization: self
+                .polarizes()
+                .map(|s| carried.insert(Polarization::unpolarized(s, ray.direction))),
+        };
         let mut chain = Chain {
             end: End::Lost,
             weight: Rgb::ONE,
@@ -441,9 +452,6 @@ impl<'w> Walker<'w> {
             curved: false,
             emitted: Rgb::ZERO,
             dispersed: None,
-            polarization: self
-                .polarizes()
-                .map(|s| Polarization::unpolarized(s, ray.direction)),
         };
         self.meet_dispersion(self.tracer.disperses_in(ray.medium), &mut chain);
         let Some(n_start) = self.tracer.index(ray.medium, ray.origin) else {
@@ -457,7 +465,7 @@ impl<'w> Walker<'w> {
             }
         };
         chain.medium = at.medium;
-        if let Some(p) = &chain.polarization {
+        if let Some(p) = &lent.polarization {
             chain.weight *= p.closing();
         }
         if !matches!(end, End::Escaped { .. }) {
@@ -488,7 +496,7 @@ impl<'w> Walker<'w> {
     fn fly<R: Rng>(
         &mut self,
         scattering: Option<&Scattering>,
-        chain: &mut Chain<'w>,
+        chain: &Chain<'w>,
         at: &Ray,
         lent: &mut Lent<R>,
         observer: &mut dyn ChainEvents,
@@ -513,78 +521,77 @@ impl<'w> Walker<'w> {
         let (mut origin, mut dir) = (at.origin, at.direction);
         let (mut travelled, mut depth) = (0.0, 0.0);
         // The polarization's basis, parallel-transported along a curved stretch.
-        let curved = at
-            .medium
-            .is_some_and(|m| !self.tracer.medium(m).is_uniform());
-        let mut rytov = (chain.polarization)
-            .filter(|_| curved)
-            .and_then(|p| RytovTransport::new(at.direction, p.x()));
+        let carried = (lent.polarization.as_deref_mut()).filter(|_| {
+            at.medium
+                .is_some_and(|m| !self.tracer.medium(m).is_uniform())
+        });
+        let follows_basis = carried.is_some();
+        if let Some(p) = carried {
+            p.begin_curve(at.direction);
+        }
         // Points between a step's ends cost a circle's worth of evaluations: computed only
         // for a column, a polarization or an observer that reads them.
-        let shown = column.scattering.is_some() || rytov.is_some() || observer.wants_points();
-        let event = 'flight: {
-            for _ in 0..=MAX_NULL_COLLISIONS {
-                let mut show = |p: ArcPoint| {
-                    column.to(p.position);
-                    if let Some(r) = rytov.as_mut() {
-                        r.push(p.direction);
+        let shown = column.scattering.is_some() || follows_basis || observer.wants_points();
+        for _ in 0..=MAX_NULL_COLLISIONS {
+            let polarization = &mut lent.polarization;
+            let mut show = |p: ArcPoint| {
+                column.to(p.position);
+                if let Some(carried) = polarization.as_deref_mut() {
+                    carried.turn(p.direction);
+                }
+                observer.point(p.position)
+            };
+            let event = self.tracer.next_event_within(
+                origin,
+                dir,
+                at.medium,
+                flight.map_or(f64::INFINITY, |f| f.reach),
+                lent.stats,
+                shown.then_some(&mut show as &mut dyn FnMut(ArcPoint)),
+            );
+            match (event, tracks) {
+                (
+                    Event::Reached {
+                        position,
+                        direction,
+                        distance,
+                        optical_depth,
+                    },
+                    Some(sc),
+                ) if flight.is_some_and(|f| {
+                    !f.tentative || !sc.collides(position, f.majorant, lent.rng)
+                }) =>
+                {
+                    column.to(position);
+                    if let Some(carried) = lent.polarization.as_deref_mut() {
+                        carried.turn(direction);
                     }
-                    observer.point(p.position)
-                };
-                let event = self.tracer.next_event_within(
-                    origin,
-                    dir,
-                    at.medium,
-                    flight.map_or(f64::INFINITY, |f| f.reach),
-                    lent.stats,
-                    shown.then_some(&mut show as &mut dyn FnMut(ArcPoint)),
-                );
-                match (event, tracks) {
-                    (
-                        Event::Reached {
-                            position,
-                            direction,
-                            distance,
-                            optical_depth,
-                        },
-                        Some(sc),
-                    ) if flight.is_some_and(|f| {
-                        !f.tentative || !sc.collides(position, f.majorant, lent.rng)
-                    }) =>
-                    {
-                        column.to(position);
-                        if let Some(r) = rytov.as_mut() {
-                            r.push(direction);
+                    observer.point(position);
+                    (origin, dir) = (position, direction);
+                    travelled += distance;
+                    depth += optical_depth;
+                    flight = Some(Flight::from(position, sc, &mut self.flights, lent.rng));
+                }
+                _ => {
+                    if let Some(end) = event.position() {
+                        column.to(end);
+                    }
+                    if let Some(carried) = lent.polarization.as_deref_mut() {
+                        if let Some(d) = event.direction() {
+                            carried.end_curve(d);
                         }
-                        observer.point(position);
-                        (origin, dir) = (position, direction);
-                        travelled += distance;
-                        depth += optical_depth;
-                        flight = Some(Flight::from(position, sc, &mut self.flights, lent.rng));
                     }
-                    _ => {
-                        if let Some(end) = event.position() {
-                            column.to(end);
-                        }
-                        let event = event.continuing(travelled, depth);
-                        let column = match column.scattering {
-                            Some(_) => column.total,
-                            None => event.distance(),
-                        };
-                        break 'flight (event, column);
-                    }
+                    let event = event.continuing(travelled, depth);
+                    let column = match column.scattering {
+                        Some(_) => column.total,
+                        None => event.distance(),
+                    };
+                    return (event, column);
                 }
             }
-            lent.stats.record_end(crate::curve::Termination::MaxSteps);
-            (Event::Lost, 0.0)
-        };
-        if let (Some(mut r), Some(p), Some(d)) =
-            (rytov, chain.polarization.as_mut(), event.0.direction())
-        {
-            r.push(d);
-            p.transported(r.field());
         }
-        event
+        lent.stats.record_end(crate::curve::Termination::MaxSteps);
+        (Event::Lost, 0.0)
     }
 
     /// Moves the chain to its next event: `Break` with how it ends, or `Continue` past a
@@ -687,7 +694,7 @@ impl<'w> Walker<'w> {
                     position: hit.position,
                     direction: hit.incoming,
                     weight: chain.weight,
-                    polarization: chain.polarization,
+                    polarization: lent.polarization.as_deref(),
                 };
                 if observer.detector(&crossing).is_break() {
                     return ControlFlow::Break(End::Stopped);
@@ -710,7 +717,7 @@ impl<'w> Walker<'w> {
                     return ControlFlow::Break(End::Lost);
                 };
                 match vertex.lobes().is_specular() {
-                    true => self.bounce(chain, at, &vertex, lent.rng, observer),
+                    true => self.bounce(chain, at, &vertex, lent, observer),
                     false => ControlFlow::Break(End::Scatter(Vertex::Surface(vertex))),
                 }
             }
@@ -751,7 +758,7 @@ impl<'w> Walker<'w> {
         chain: &mut Chain,
         at: &mut Ray,
         vertex: &SurfaceVertex,
-        rng: &mut impl Rng,
+        lent: &mut Lent<impl Rng>,
         observer: &mut dyn ChainEvents,
     ) -> ControlFlow<End<'w>> {
         let u = match self.policy {
@@ -759,13 +766,13 @@ impl<'w> Walker<'w> {
             // A mirror makes no choice and draws no number.
             _ if !vertex.bsdf.draws_choice() => 0.0,
             Policy::Principal => 0.5,
-            _ => self.choices.next().unwrap_or_else(|| rng.gen()),
+            _ => self.choices.next().unwrap_or_else(|| lent.rng.gen()),
         };
         let Some(b) = vertex.scatter((0.0, 0.0, u)) else {
             return ControlFlow::Break(End::Lost);
         };
         let mut weight = b.sample.weight;
-        if let Some(p) = chain.polarization.as_mut() {
+        if let Some(p) = lent.polarization.as_deref_mut() {
             match vertex.bsdf.mueller(vertex.wo, b.sample.wi, vertex.normal) {
                 Some(element) => weight *= p.meet(&element, -vertex.wo),
                 None => *p = Polarization::unpolarized(p.sense(), b.sample.wi),
@@ -775,7 +782,7 @@ impl<'w> Walker<'w> {
             Policy::Weighted => chain.weight *= weight,
             Policy::Roulette => {
                 let survive = weight.max_element();
-                if survive < 1.0 && rng.gen::<f64>() >= survive {
+                if survive < 1.0 && lent.rng.gen::<f64>() >= survive {
                     return ControlFlow::Break(End::Absorbed { medium: None });
                 }
                 chain.weight *= weight / survive.clamp(f64::MIN_POSITIVE, 1.0);
