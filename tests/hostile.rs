@@ -176,6 +176,7 @@ fn cases() -> Vec<Case> {
         // Scene keys: numbers out of range, negative, NaN, infinite, zero.
         // Polarization: sheets' axes and retardances, the switch.
         scene_case("polarizer of a zero axis", "[[material]]\nname = \"p\"\ntype = \"polarizer\"\naxis = [0, 0, 0]\n", Error("must be a non-zero vector")),
+        scene_case("polarizer of a NaN axis", "[[material]]\nname = \"p\"\ntype = \"polarizer\"\naxis = [nan, 1, 0]\n", Error("axis")),
         scene_case("polarizer without an axis", "[[material]]\nname = \"p\"\ntype = \"polarizer\"\n", Error("axis")),
         scene_case("retarder of a NaN retardance", "[[material]]\nname = \"p\"\ntype = \"retarder\"\nfast_axis = [1, 0, 0]\nretardance_deg = nan\n", Error("retardance_deg")),
         scene_case("retarder of 1e300 degrees", "[[material]]\nname = \"p\"\ntype = \"retarder\"\nfast_axis = [1, 0, 0]\nretardance_deg = 1e300\n", Error("retardance_deg")),

@@ -132,6 +132,57 @@ def test_measure_gives_the_receivers_csv(cli, scenes, tmp_path):
     assert booked == pytest.approx(budget["emitted"], rel=1e-9), "every photon's power is booked"
 
 
+POLARIZERS = """
+[[light]]
+type = "directional"
+direction = [0, 0, 1]
+irradiance = [1, 1, 1]
+[[receiver]]
+name = "r"
+center = [0, 0, 4]
+size = [1, 1]
+bins = [4, 4]
+[[material]]
+name = "first"
+type = "polarizer"
+axis = [1, 0, 0]
+[[material]]
+name = "second"
+type = "polarizer"
+axis = [0.8660254037844387, 0.5, 0]
+[[shape]]
+type = "quad"
+material = "first"
+vertices = [[-2, -2, 1], [2, -2, 1], [2, 2, 1], [-2, 2, 1]]
+[[shape]]
+type = "quad"
+material = "second"
+vertices = [[-2, -2, 2], [2, -2, 2], [2, 2, 2], [-2, 2, 2]]
+"""
+
+
+def test_a_polarized_measure_gives_the_receivers_stokes_columns(cli, tmp_path):
+    scene = tmp_path / "polarizers.toml"
+    scene.write_text(POLARIZERS)
+    run(cli, "render", scene, "-o", tmp_path / "p.exr", "--receiver-photons=20000", "--seed=2", cwd=tmp_path)
+    with open(tmp_path / "p.r.csv") as f:
+        f.readline()
+        rows = list(csv.DictReader(f))
+    r = grinlight.load(scene).measure(photons=20000, seed=2, progress=False).receivers["r"]
+    rounded = lambda a: np.array([float(f"{v:.6e}") for v in a.ravel()])
+    for name, part in zip(["S1", "S2", "S3"], r["stokes"]):
+        assert part["irradiance"].shape == (4, 4)
+        np.testing.assert_array_equal(rounded(part["irradiance"]), [float(row[name]) for row in rows])
+    # Through polarizers at 0° and 30° the light is polarized along the second: S1/S0 = cos 60°,
+    # S2/S0 = sin 60°, S3 = 0 (every photon alike; the shares are kept in f32).
+    s1, s2, s3 = (part["flux"] / r["flux"] for part in r["stokes"])
+    assert (s1, s2, s3) == pytest.approx((0.5, 0.8660254, 0.0), abs=1e-6)
+    # Without polarized transport a receiver measures no Stokes components.
+    plain = tmp_path / "plain.toml"
+    plain.write_text(POLARIZERS.split("[[material]]")[0])
+    assert grinlight.load(plain).measure(photons=2000, progress=False).receivers["r"]["stokes"] is None
+
+
 def test_shards_merge_to_the_whole_render(scenes, tmp_path):
     scene = grinlight.load(scenes / "cornell_caustic.toml")
     settings = dict(SMALL, passes=3)
