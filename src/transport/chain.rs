@@ -295,6 +295,16 @@ struct Lent<'a, R> {
     polarization: Option<&'a mut Polarization>,
 }
 
+/// The chain's weight as its start sees light that is unpolarized where the chain is now: with
+/// a camera's measurement row's share of it where the transport is polarized (light a medium
+/// scatters or emits toward the path, as any light at a chain's end, is unpolarized).
+fn seen<R>(chain: &Chain, lent: &Lent<R>) -> Rgb {
+    match lent.polarization.as_deref() {
+        Some(p) => chain.weight * p.closing(),
+        None => chain.weight,
+    }
+}
+
 /// Events (surfaces and scattering in media) a camera path or a map photon meets before
 /// Russian roulette may end it: past them each further event is survived with probability
 /// [`ROULETTE_SURVIVAL`], the survivors weighed by its reciprocal — unbiased, and a path
@@ -507,7 +517,7 @@ impl<'w> Walker<'w> {
         observer.stretch(&Stretch {
             origin: at.origin,
             medium: at.medium,
-            weight: chain.weight,
+            weight: seen(chain, lent),
             flights: self.flights,
         });
         let integrates = scattering.filter(|sc| {
@@ -638,7 +648,7 @@ impl<'w> Walker<'w> {
                 (Policy::Principal, _) => Rgb::ONE,
             };
         }
-        self.gather_emission(chain, at.medium, &event);
+        self.gather_emission(chain, seen(chain, lent), at.medium, &event);
         let hit = match event {
             Event::Lost => return ControlFlow::Break(End::Lost),
             _ if self.absorbed(chain, event.transmittance(), lent.rng) => {
@@ -726,16 +736,23 @@ impl<'w> Walker<'w> {
 
     /// Adds to a camera path's chain the light `medium` emitted along the stretch to `event`
     /// and did not absorb again: Le·(1 − e^(−τa)) as basic radiance, exact for any density and
-    /// any curved path ([`crate::volume::Emission`]), times the chain's weight at the
-    /// stretch's start (its free flight weighed in: the flight's survival stands for the
-    /// scattering along the way, as for anything met at its end).
-    fn gather_emission(&self, chain: &mut Chain, medium: Option<MediumId>, event: &Event) {
+    /// any curved path ([`crate::volume::Emission`]), times `weight`, the chain's weight at
+    /// the stretch's start as the camera sees it there ([`seen`]; its free flight weighed in:
+    /// the flight's survival stands for the scattering along the way, as for anything met at
+    /// its end).
+    fn gather_emission(
+        &self,
+        chain: &mut Chain,
+        weight: Rgb,
+        medium: Option<MediumId>,
+        event: &Event,
+    ) {
         let emission = medium.and_then(|m| self.tracer.participating(m).emission);
         if let (Policy::Weighted, Some(emission), false) =
             (self.policy, emission, *event == Event::Lost)
         {
             let basic = self.tracer.radiance(emission.along(event.optical_depth()));
-            chain.emitted += chain.weight * basic * (chain.n_start * chain.n_start);
+            chain.emitted += weight * basic * (chain.n_start * chain.n_start);
         }
     }
 
