@@ -153,11 +153,6 @@ impl Polarization {
         self.sense
     }
 
-    /// The basis's first axis.
-    pub fn x(&self) -> DVec3 {
-        self.x
-    }
-
     /// What the camera records of depolarized light where the chain ends, per channel (the
     /// first element of its measurement row; 1 with the light, whose power the weight holds).
     pub fn closing(&self) -> Rgb {

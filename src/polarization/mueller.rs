@@ -17,59 +17,8 @@
 //! r_p = (η cos θi − cos θt)/(η cos θi + cos θt), so at normal incidence r_p = −r_s and a
 //! reflection turns S2 and S3 over (a circular polarization's sense flips on a mirror).
 
-use glam::{DMat4, DVec3, DVec4};
+use glam::{DMat4, DVec3};
 use num_complex::Complex64;
-
-/// Light's Stokes vector in a basis: S0 (the intensity or power, in whatever unit the light
-/// carries), S1, S2, S3 (see the module's conventions).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Stokes {
-    /// (S0, S1, S2, S3).
-    pub vector: DVec4,
-    /// The basis's first axis x (unit, perpendicular to the light's direction).
-    pub x: DVec3,
-}
-
-impl Stokes {
-    /// Unpolarized light of intensity `s0` travelling along unit `k`, in any basis.
-    pub fn unpolarized(s0: f64, k: DVec3) -> Self {
-        Self {
-            vector: DVec4::new(s0, 0.0, 0.0, 0.0),
-            x: k.any_orthonormal_vector(),
-        }
-    }
-
-    /// The same light described in the basis whose first axis is `x` (projected onto the plane
-    /// perpendicular to unit `k`, the light's direction); itself where that projection is
-    /// within 1e-9 of zero (`x` along `k`, or not finite).
-    pub fn in_basis(&self, k: DVec3, x: DVec3) -> Self {
-        match basis_change(k, self.x, x) {
-            Some((turn, x)) => Self {
-                vector: turn * self.vector,
-                x,
-            },
-            None => *self,
-        }
-    }
-
-    /// The degree of polarization √(S1² + S2² + S3²)/S0 (0 for no light).
-    pub fn degree(&self) -> f64 {
-        let v = self.vector;
-        match v.x > 0.0 {
-            true => (v.y * v.y + v.z * v.z + v.w * v.w).sqrt() / v.x,
-            false => 0.0,
-        }
-    }
-
-    /// The degree of linear polarization √(S1² + S2²)/S0 (0 for no light).
-    pub fn degree_linear(&self) -> f64 {
-        let v = self.vector;
-        match v.x > 0.0 {
-            true => v.y.hypot(v.z) / v.x,
-            false => 0.0,
-        }
-    }
-}
 
 /// The change from the basis whose first axis is `from` (unit, across unit `k`, the light's
 /// direction) to the one whose first axis is `to` projected across `k`: the matrix that
@@ -228,11 +177,17 @@ pub fn perfect_mirror() -> DMat4 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use glam::DVec4;
 
     const GLASS: f64 = 1.5;
 
     fn unpolarized() -> DVec4 {
         DVec4::new(1.0, 0.0, 0.0, 0.0)
+    }
+
+    /// The degree of linear polarization √(S1² + S2²)/S0 of `v`.
+    fn degree_linear(v: DVec4) -> f64 {
+        v.y.hypot(v.z) / v.x
     }
 
     /// Rs, Rp of a dielectric from the amplitudes' squares, against the textbook's power
@@ -255,12 +210,8 @@ mod tests {
             let r = 0.5 * (rs + rp);
             assert!((out.x - r).abs() < 1e-12, "{deg}°");
             // Degree of linear polarization (Rs − Rp)/(Rs + Rp), s (x) preferred.
-            let stokes = Stokes {
-                vector: out,
-                x: DVec3::X,
-            };
             let dolp = (rs - rp) / (rs + rp);
-            assert!((stokes.degree_linear() - dolp).abs() < 1e-12, "{deg}°");
+            assert!((degree_linear(out) - dolp).abs() < 1e-12, "{deg}°");
             assert!(out.y >= -1e-15 && out.z == 0.0 && out.w == 0.0, "{deg}°");
             // Transmission: what reflection leaves, its first element 1 − R.
             let t = dielectric_transmission(cos_i, 1.0, GLASS) * unpolarized();
@@ -278,11 +229,8 @@ mod tests {
             let p = m * DVec4::new(1.0, -1.0, 0.0, 0.0);
             assert!(p.length() < 1e-12, "{n1} → {n2}: {p}");
             // Unpolarized light comes back wholly s polarized.
-            let s = Stokes {
-                vector: m * unpolarized(),
-                x: DVec3::X,
-            };
-            assert!((s.degree_linear() - 1.0).abs() < 1e-12, "{n1} → {n2}");
+            let s = m * unpolarized();
+            assert!((degree_linear(s) - 1.0).abs() < 1e-12, "{n1} → {n2}");
         }
     }
 
@@ -400,20 +348,23 @@ mod tests {
     #[test]
     fn a_basis_change_is_a_rotation_of_the_linear_part() {
         let k = DVec3::new(0.3, -0.4, 0.5).normalize();
-        let light = Stokes {
-            vector: DVec4::new(1.0, 0.6, 0.0, 0.3),
-            x: k.any_orthonormal_vector(),
+        let light = DVec4::new(1.0, 0.6, 0.0, 0.3);
+        let x = k.any_orthonormal_vector();
+        let y = k.cross(x);
+        let in_basis = |from: DVec3, to: DVec3, v: DVec4| {
+            let (turn, axis) = basis_change(k, from, to).unwrap();
+            (turn * v, axis)
         };
-        let y = k.cross(light.x);
-        let turned = light.in_basis(k, y);
         // Linear along the old x is linear across the new x.
-        assert!((turned.vector - DVec4::new(1.0, -0.6, 0.0, 0.3)).length() < 1e-12);
-        let diagonal = light.in_basis(k, light.x + y);
-        assert!((diagonal.vector - DVec4::new(1.0, 0.0, -0.6, 0.3)).length() < 1e-12);
-        let back = diagonal.in_basis(k, light.x);
-        assert!((back.vector - light.vector).length() < 1e-12);
-        assert!((back.x - light.x).length() < 1e-12);
-        // Parallel to k: no basis, the light as it was.
-        assert_eq!(light.in_basis(k, k), light);
+        let (turned, _) = in_basis(x, y, light);
+        assert!((turned - DVec4::new(1.0, -0.6, 0.0, 0.3)).length() < 1e-12);
+        let (diagonal, axis) = in_basis(x, x + y, light);
+        assert!((diagonal - DVec4::new(1.0, 0.0, -0.6, 0.3)).length() < 1e-12);
+        let (back, axis) = in_basis(axis, x, diagonal);
+        assert!((back - light).length() < 1e-12);
+        assert!((axis - x).length() < 1e-12);
+        // Along k, or not finite: no basis.
+        assert_eq!(basis_change(k, x, k), None);
+        assert_eq!(basis_change(k, x, DVec3::new(f64::NAN, 0.0, 0.0)), None);
     }
 }
