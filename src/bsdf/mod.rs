@@ -561,10 +561,12 @@ impl Bsdf<'_> {
     /// transmission's differ only in their scale, which the scalar transport carries.
     pub fn mueller(&self, wo: DVec3, wi: DVec3, n: DVec3) -> Option<Element> {
         let cos = wo.dot(n).abs().min(1.0);
-        let s = wo
-            .cross(n)
-            .try_normalize()
-            .unwrap_or_else(|| wo.any_orthonormal_vector());
+        // The s direction, across the plane of incidence (any across the ray square on).
+        let s = || {
+            wo.cross(n)
+                .try_normalize()
+                .unwrap_or_else(|| wo.any_orthonormal_vector())
+        };
         match *self {
             Bsdf::Dielectric { n1, n2, ggx: None } => {
                 let reflected = wi.dot(n) * wo.dot(n) > 0.0;
@@ -573,12 +575,12 @@ impl Bsdf<'_> {
                         true => mueller::dielectric_reflection(cos, n1, n2),
                         false => mueller::dielectric_transmission(cos, n1, n2),
                     },
-                    s,
+                    s(),
                 ))
             }
             Bsdf::Conductor { fresnel, ggx: None } => Some(Element {
                 mueller: fresnel.mueller(cos),
-                x: s,
+                x: s(),
             }),
             Bsdf::Sheet { sheet } => Some(sheet.element()),
             Bsdf::Lambert { .. }

@@ -148,9 +148,12 @@ impl Polarization {
         }
     }
 
-    /// Which way its chain runs.
-    pub fn sense(&self) -> Sense {
-        self.sense
+    /// Meets an ideal depolarizer (Mueller matrix diag(1, 0, 0, 0)): the light beyond it is
+    /// unpolarized, what the light's power or the camera's measurement of it was is kept.
+    pub fn depolarize(&mut self) {
+        for v in &mut self.channels {
+            *v = DVec4::new(v.x, 0.0, 0.0, 0.0);
+        }
     }
 
     /// What the camera records of depolarized light where the chain ends, per channel (the
@@ -168,9 +171,11 @@ impl Polarization {
     /// The light's Stokes vector per channel with S0 = 1, in the basis whose first axis is `x`,
     /// on a path along unit `direction` (with the light; None against it).
     pub fn stokes(&self, direction: DVec3, x: DVec3) -> Option<[DVec4; 3]> {
-        let mut turned = *self;
-        turned.rebase(direction, x);
-        (self.sense == Sense::WithLight).then_some(turned.channels)
+        (self.sense == Sense::WithLight).then(|| {
+            let mut turned = *self;
+            turned.rebase(direction, x);
+            turned.channels
+        })
     }
 }
 
@@ -210,6 +215,28 @@ mod tests {
             camera.meet(&Element::grey(linear_polarizer(0.0), first), -k);
             assert!((0.25 * camera.closing().0.x - want).abs() < 1e-12, "{deg}°");
         }
+    }
+
+    /// A depolarizer passes the power (or the camera's measurement) it is given: behind crossed
+    /// polarizers it stays dark, whichever way the chain runs.
+    #[test]
+    fn a_depolarizer_keeps_what_reaches_it() {
+        let k = DVec3::Z;
+        let crossed = [
+            Element::grey(linear_polarizer(0.0), DVec3::X),
+            Element::grey(linear_polarizer(0.0), DVec3::Y),
+        ];
+        let mut camera = Polarization::unpolarized(Sense::AgainstLight, -k);
+        for e in &crossed {
+            camera.meet(e, -k);
+        }
+        camera.depolarize();
+        assert_eq!(camera.closing(), Rgb::ZERO);
+        let mut photon = Polarization::unpolarized(Sense::WithLight, k);
+        let through = photon.meet(&crossed[0], k);
+        photon.depolarize();
+        assert_eq!(photon.stokes(k, DVec3::X), Some([DVec4::X; 3]));
+        assert_eq!(through, Rgb::ONE);
     }
 
     /// Against the light the chain's row reproduces what the light's own Stokes vector gives,

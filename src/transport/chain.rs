@@ -792,7 +792,7 @@ impl<'w> Walker<'w> {
         if let Some(p) = lent.polarization.as_deref_mut() {
             match vertex.bsdf.mueller(vertex.wo, b.sample.wi, vertex.normal) {
                 Some(element) => weight *= p.meet(&element, -vertex.wo),
-                None => *p = Polarization::unpolarized(p.sense(), b.sample.wi),
+                None => p.depolarize(),
             }
         }
         match self.policy {
