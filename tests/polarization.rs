@@ -367,11 +367,11 @@ fn a_bent_beam_carries_its_polarization_along_its_path() {
 }
 
 /// The beauty layer of `text` seen by a camera with keys `camera` rendered with `integrator` at
-/// `spp` samples a pixel (32 × 32).
-fn beauty(text: &str, camera: &str, integrator: &str, spp: u32) -> Vec<[f32; 3]> {
+/// `spp` samples a pixel (32 × 32) in `passes` passes.
+fn beauty(text: &str, camera: &str, integrator: &str, spp: u32, passes: u32) -> Vec<[f32; 3]> {
     let text = format!(
-        "{text}[render]\nintegrator = \"{integrator}\"\nspp = {spp}\ncaustic_photons = 1000000\n\
-         photons = 20000\n[camera]\nwidth = 32\nheight = 32\n{camera}"
+        "{text}[render]\nintegrator = \"{integrator}\"\nspp = {spp}\npasses = {passes}\n\
+         caustic_photons = 1000000\nphotons = 20000\n[camera]\nwidth = 32\nheight = 32\n{camera}"
     );
     let (scene, settings) = scene(&text);
     let film = grinlight::render::render(&scene, &settings, &()).unwrap().0;
@@ -380,8 +380,17 @@ fn beauty(text: &str, camera: &str, integrator: &str, spp: u32) -> Vec<[f32; 3]>
 
 /// The mean over the pixels of rows and columns `crop` of an image 32 wide, all channels.
 fn mean(image: &[[f32; 3]], crop: std::ops::Range<usize>) -> f64 {
-    let pixels: Vec<f64> = (crop.clone())
-        .flat_map(|y| crop.clone().map(move |x| y * 32 + x))
+    mean_of(image, crop.clone(), crop)
+}
+
+/// The mean over the pixels of `rows` and `columns` of an image 32 wide, all channels.
+fn mean_of(
+    image: &[[f32; 3]],
+    rows: std::ops::Range<usize>,
+    columns: std::ops::Range<usize>,
+) -> f64 {
+    let pixels: Vec<f64> = rows
+        .flat_map(|y| columns.clone().map(move |x| y * 32 + x))
         .map(|i| image[i].iter().map(|&c| f64::from(c)).sum::<f64>() / 3.0)
         .collect();
     pixels.iter().sum::<f64>() / pixels.len() as f64
@@ -412,12 +421,12 @@ fn a_view_through_two_polarizers_keeps_half_cos_squared_of_it() {
         text
     };
     for integrator in ["path", "photon_map"] {
-        let open = beauty(&with(&[]), camera, integrator, 4);
+        let open = beauty(&with(&[]), camera, integrator, 4, 1);
         let whole = 0..32;
         let reference = mean(&open, whole.clone());
         assert!(reference > 0.0);
         for (deg, share) in [(0.0, 0.5), (30.0, 0.375), (90.0, 0.0)] {
-            let seen = beauty(&with(&[0.0, deg]), camera, integrator, 4);
+            let seen = beauty(&with(&[0.0, deg]), camera, integrator, 4, 1);
             let ratio = mean(&seen, whole.clone()) / reference;
             assert!(
                 (ratio - share).abs() < 1e-6,
@@ -455,9 +464,9 @@ fn light_through_two_polarizers_lights_a_floor_alike_in_both_integrators() {
     let centre = 12..20;
     let mut through = Vec::new();
     for integrator in ["path", "photon_map"] {
-        let open = mean(&beauty(room, camera, integrator, 1024), centre.clone());
+        let open = mean(&beauty(room, camera, integrator, 1024, 1), centre.clone());
         let seen = mean(
-            &beauty(&(room.to_string() + &sheets), camera, integrator, 1024),
+            &beauty(&(room.to_string() + &sheets), camera, integrator, 1024, 1),
             centre.clone(),
         );
         let share = seen / open;
@@ -561,10 +570,10 @@ fn fog_and_glow_behind_polarizers_are_seen_through_them() {
         text
     };
     for (integrator, glow) in [("path", "emission = [0.2, 0.2, 0.2]\n"), ("photon_map", "")] {
-        let open = mean(&beauty(&with(&[], glow), camera, integrator, 2), 0..32);
+        let open = mean(&beauty(&with(&[], glow), camera, integrator, 2, 1), 0..32);
         assert!(open > 0.0, "{integrator}");
         let crossed = mean(
-            &beauty(&with(&[0.0, 90.0], glow), camera, integrator, 2),
+            &beauty(&with(&[0.0, 90.0], glow), camera, integrator, 2, 1),
             0..32,
         );
         // Not exactly 0: across a ray 2° off the sheets' normal their axes' projections are
@@ -575,7 +584,7 @@ fn fog_and_glow_behind_polarizers_are_seen_through_them() {
             crossed / open
         );
         let parallel = mean(
-            &beauty(&with(&[0.0, 0.0], glow), camera, integrator, 2),
+            &beauty(&with(&[0.0, 0.0], glow), camera, integrator, 2, 1),
             0..32,
         );
         println!(
@@ -588,4 +597,68 @@ fn fog_and_glow_behind_polarizers_are_seen_through_them() {
             parallel / open
         );
     }
+}
+
+/// In the open: the sky seen through polarizers, and the sun's light through them onto a
+/// floor. A uniform sky behind polarizers at 0° and θ is ½cos²θ of itself (both
+/// integrators, 1e-6: the sky is unpolarized and the chain escapes through the sheets); a floor
+/// lit by the sun (a directional light) through a polarizer pair at 0° and 60° sees ½cos²60° =
+/// 1/8 of its direct sunlight in the photon mapper (caustic photons, 8 passes of 10⁶)
+/// (the sun's light through a specular surface reaches a diffuse floor only as photons, which
+/// the path tracer cannot find: the photon mapper alone, 5 %; over seeds 0–4 it read 0.9997,
+/// 0.985, 0.999, 0.994, 1.015 of 1/8).
+#[test]
+fn the_sky_and_the_sun_through_polarizers() {
+    let sky = "[[light]]\ntype = \"environment\"\nsky = \"uniform\"\nradiance = [1, 1, 1]\n";
+    let camera = "position = [0, 0, 0]\nlook_at = [0, 0, 4]\nfov_y_deg = 4\n";
+    let with = |angles: &[f64]| {
+        let mut text = sky.to_string();
+        for (i, deg) in angles.iter().enumerate() {
+            text += &format!(
+                "[[material]]\nname = \"p{i}\"\n{}{}",
+                polarizer(*deg),
+                square(1.0 + 0.5 * i as f64, 3.0, &format!("p{i}"))
+            );
+        }
+        text
+    };
+    for integrator in ["path", "photon_map"] {
+        let open = mean(&beauty(&with(&[]), camera, integrator, 1, 1), 0..32);
+        assert!((open - 1.0).abs() < 1e-6, "{integrator}: the sky {open}");
+        for (deg, share) in [(0.0, 0.5), (60.0, 0.125)] {
+            let seen = mean(&beauty(&with(&[0.0, deg]), camera, integrator, 1, 1), 0..32);
+            assert!(
+                (seen / open - share).abs() < 1e-6,
+                "{integrator}, {deg}°: {}",
+                seen / open
+            );
+        }
+    }
+    let sun = "[[light]]\ntype = \"directional\"\ndirection = [0, -1, 0]\nirradiance = [1, 1, 1]\n\
+               [[material]]\nname = \"white\"\ntype = \"diffuse\"\nalbedo = [0.8, 0.8, 0.8]\n\
+               [[shape]]\ntype = \"quad\"\nmaterial = \"white\"\n\
+               vertices = [[-5, 0, -5], [-5, 0, 5], [5, 0, 5], [5, 0, -5]]\n";
+    let sheets = format!(
+        "[[material]]\nname = \"p0\"\ntype = \"polarizer\"\naxis = [1, 0, 0]\n\
+         [[material]]\nname = \"p1\"\ntype = \"polarizer\"\naxis = [0.5, 0, {}]\n\
+         [[shape]]\ntype = \"quad\"\nmaterial = \"p0\"\n\
+         vertices = [[-3, 2.5, -3], [3, 2.5, -3], [3, 2.5, 3], [-3, 2.5, 3]]\n\
+         [[shape]]\ntype = \"quad\"\nmaterial = \"p1\"\n\
+         vertices = [[-3, 2, -3], [3, 2, -3], [3, 2, 3], [-3, 2, 3]]\n",
+        0.75f64.sqrt()
+    );
+    let floor = "position = [0, 1, -3]\nlook_at = [0, 0, 0]\nfov_y_deg = 30\n";
+    // The floor under the sheets: the lower half of the view, its middle three quarters.
+    let open = mean_of(&beauty(sun, floor, "photon_map", 1, 8), 16..30, 4..28);
+    let through = beauty(&(sun.to_string() + &sheets), floor, "photon_map", 1, 8);
+    let through = mean_of(&through, 16..30, 4..28);
+    println!(
+        "sun through polarizers at 0° and 60°: {:.4} of 1/8",
+        through / open / 0.125
+    );
+    assert!(
+        (through / open / 0.125 - 1.0).abs() < 0.05,
+        "{}",
+        through / open
+    );
 }
