@@ -366,6 +366,20 @@ fn a_bent_beam_carries_its_polarization_along_its_path() {
     );
 }
 
+/// `scene` with polarizers at `angles` (degrees from x) across the z axis at z = 1, 1.5, …,
+/// squares of side 6 before a camera at the origin looking along z.
+fn behind_polarizers(scene: &str, angles: &[f64]) -> String {
+    let mut text = scene.to_string();
+    for (i, deg) in angles.iter().enumerate() {
+        text += &format!(
+            "[[material]]\nname = \"p{i}\"\n{}{}",
+            polarizer(*deg),
+            square(1.0 + 0.5 * i as f64, 3.0, &format!("p{i}"))
+        );
+    }
+    text
+}
+
 /// The beauty layer of `text` seen by a camera with keys `camera` rendered with `integrator` at
 /// `spp` samples a pixel (32 × 32) in `passes` passes.
 fn beauty(text: &str, camera: &str, integrator: &str, spp: u32, passes: u32) -> Vec<[f32; 3]> {
@@ -409,17 +423,7 @@ fn a_view_through_two_polarizers_keeps_half_cos_squared_of_it() {
                 vertices = [[-4, -4, 4], [-4, 4, 4], [4, 4, 4], [4, -4, 4]]\n\
                 [[light]]\ntype = \"point\"\nposition = [0, 0, 3]\nintensity = [1, 1, 1]\n";
     let camera = "position = [0, 0, 0]\nlook_at = [0, 0, 4]\nfov_y_deg = 4\n";
-    let with = |angles: &[f64]| {
-        let mut text = wall.to_string();
-        for (i, deg) in angles.iter().enumerate() {
-            text = format!(
-                "[[material]]\nname = \"p{i}\"\n{}{}{text}",
-                polarizer(*deg),
-                square(1.0 + 0.5 * i as f64, 3.0, &format!("p{i}"))
-            );
-        }
-        text
-    };
+    let with = |angles: &[f64]| behind_polarizers(wall, angles);
     for integrator in ["path", "photon_map"] {
         let open = beauty(&with(&[]), camera, integrator, 4, 1);
         let whole = 0..32;
@@ -558,17 +562,7 @@ fn fog_and_glow_behind_polarizers_are_seen_through_them() {
                vertices = [[-5, -5, 7], [-5, 5, 7], [5, 5, 7], [5, -5, 7]]\n")
     };
     let camera = "position = [0, 0, 0]\nlook_at = [0, 0, 4]\nfov_y_deg = 4\n";
-    let with = |angles: &[f64], glow: &str| {
-        let mut text = fog(glow);
-        for (i, deg) in angles.iter().enumerate() {
-            text += &format!(
-                "[[material]]\nname = \"p{i}\"\n{}{}",
-                polarizer(*deg),
-                square(1.0 + 0.5 * i as f64, 3.0, &format!("p{i}"))
-            );
-        }
-        text
-    };
+    let with = |angles: &[f64], glow: &str| behind_polarizers(&fog(glow), angles);
     for (integrator, glow) in [("path", "emission = [0.2, 0.2, 0.2]\n"), ("photon_map", "")] {
         let open = mean(&beauty(&with(&[], glow), camera, integrator, 2, 1), 0..32);
         assert!(open > 0.0, "{integrator}");
@@ -611,17 +605,7 @@ fn fog_and_glow_behind_polarizers_are_seen_through_them() {
 fn the_sky_and_the_sun_through_polarizers() {
     let sky = "[[light]]\ntype = \"environment\"\nsky = \"uniform\"\nradiance = [1, 1, 1]\n";
     let camera = "position = [0, 0, 0]\nlook_at = [0, 0, 4]\nfov_y_deg = 4\n";
-    let with = |angles: &[f64]| {
-        let mut text = sky.to_string();
-        for (i, deg) in angles.iter().enumerate() {
-            text += &format!(
-                "[[material]]\nname = \"p{i}\"\n{}{}",
-                polarizer(*deg),
-                square(1.0 + 0.5 * i as f64, 3.0, &format!("p{i}"))
-            );
-        }
-        text
-    };
+    let with = |angles: &[f64]| behind_polarizers(sky, angles);
     for integrator in ["path", "photon_map"] {
         let open = mean(&beauty(&with(&[]), camera, integrator, 1, 1), 0..32);
         assert!((open - 1.0).abs() < 1e-6, "{integrator}: the sky {open}");
