@@ -58,7 +58,9 @@ def mitsuba_runs(path, defines, runs, spp):
     return np.array(out)
 
 
-def grinlight_runs(path, defines, runs, spp):
+def grinlight_runs(path, defines, runs, spp, options=()):
+    """grinlight's renders of `path` (seeds 0..runs-1, `spp` samples a pixel, with its `defines`
+    and further command-line `options`): block means per run, as (runs, h/B, w/B, 3)."""
     import OpenEXR
 
     exe = os.path.join(ROOT, "target", "release", "grinlight")
@@ -67,7 +69,7 @@ def grinlight_runs(path, defines, runs, spp):
         for k in range(runs):
             exr = os.path.join(tmp, f"run{k}.exr")
             define = [arg for k_v in defines.items() for arg in ("-D", "=".join(k_v))]
-            subprocess.run([exe, "render", path, "-o", exr, "--seed", str(k), "--spp", str(spp)] + define,
+            subprocess.run([exe, "render", path, "-o", exr, "--seed", str(k), "--spp", str(spp)] + define + list(options),
                            check=True, capture_output=True)
             with OpenEXR.File(exr, separate_channels=True) as f:
                 part = next(p for p in f.parts if p.name() == "beauty")

@@ -101,27 +101,10 @@ def bsdf(m):
     raise SystemExit("material type %r is not converted" % kind)
 
 
-def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("scene")
-    ap.add_argument("out")
-    ap.add_argument("--spp", type=int, default=4096)
-    ap.add_argument("--rgb-metals")
-    ap.add_argument("--crop", type=int, nargs=4, metavar=("X0", "Y0", "X1", "Y1"))
-    ap.add_argument("--variant", default="llvm_ad_rgb")
-    ap.add_argument("--seed", type=int, default=0,
-                    help="the first pass's seed (passes take seed, seed + 1, ...)")
-    a = ap.parse_args()
-    with open(a.scene, "rb") as f:
-        scene = tomllib.load(f)
-    if a.rgb_metals:
-        text = open(a.scene).read()
-        for name, (eta, k) in RGB_METALS.items():
-            text = text.replace('metal = "%s"' % name, "eta = %r\nk = %r" % (eta, k))
-        with open(a.rgb_metals, "w") as f:
-            f.write(text)
-    import mitsuba as mi
-    mi.set_variant(a.variant)
+def mitsuba_scene(mi, scene, spp, crop=None):
+    """Mitsuba's scene dictionary for the grinlight scene table `scene` (read by tomllib), its
+    sensor drawing `spp` samples a pixel over the pixels `crop` (X0, Y0, X1, Y1) if given;
+    files its meshes need are written to a temporary directory."""
     materials = {m["name"]: m for m in scene["material"]}
     tmp = tempfile.mkdtemp()
     cam = scene["camera"]
@@ -155,11 +138,11 @@ def main():
                 origin=cam["position"], target=cam["look_at"], up=cam.get("up", [0, 1, 0])),
             "film": {"type": "hdrfilm", "width": cam["width"], "height": cam["height"],
                      "rfilter": {"type": "box"}, "pixel_format": "rgb"},
-            "sampler": {"type": "independent", "sample_count": a.spp},
+            "sampler": {"type": "independent", "sample_count": spp},
         },
     }
-    if a.crop:
-        x0, y0, x1, y1 = a.crop
+    if crop:
+        x0, y0, x1, y1 = crop
         d["sensor"]["film"].update(crop_offset_x=x0, crop_offset_y=y0,
                                    crop_width=x1 - x0, crop_height=y1 - y0)
     for i, s in enumerate(scene["shape"]):
@@ -197,6 +180,31 @@ def main():
         for key, value in d.items():
             if key.startswith(("shape", "light")) and value.get("type") != "constant":
                 value["exterior"] = fog
+    return d
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("scene")
+    ap.add_argument("out")
+    ap.add_argument("--spp", type=int, default=4096)
+    ap.add_argument("--rgb-metals")
+    ap.add_argument("--crop", type=int, nargs=4, metavar=("X0", "Y0", "X1", "Y1"))
+    ap.add_argument("--variant", default="llvm_ad_rgb")
+    ap.add_argument("--seed", type=int, default=0,
+                    help="the first pass's seed (passes take seed, seed + 1, ...)")
+    a = ap.parse_args()
+    with open(a.scene, "rb") as f:
+        scene = tomllib.load(f)
+    if a.rgb_metals:
+        text = open(a.scene).read()
+        for name, (eta, k) in RGB_METALS.items():
+            text = text.replace('metal = "%s"' % name, "eta = %r\nk = %r" % (eta, k))
+        with open(a.rgb_metals, "w") as f:
+            f.write(text)
+    import mitsuba as mi
+    mi.set_variant(a.variant)
+    d = mitsuba_scene(mi, scene, a.spp, a.crop)
     loaded = mi.load_dict(d)
     # Passes of 64 samples (fewer if fewer are asked) with their own seeds, averaged: the same
     # estimate as one render of N samples, in bounded memory. The time printed is the

@@ -78,6 +78,9 @@ pub struct Camera {
     pub height: u32,
     /// The thin lens; `None` for a pinhole.
     pub lens: Option<ThinLens>,
+    /// The transmission axis of an ideal linear polarizer in front of the lens, radians from
+    /// the image's right toward its up (`polarizer_deg`); `None` for none.
+    pub polarizer: Option<f64>,
 }
 
 impl Camera {
@@ -112,7 +115,16 @@ impl Camera {
             width,
             height,
             lens: None,
+            polarizer: None,
         })
+    }
+
+    /// The transmission axis of the polarizer in front of the lens, if any: a unit vector in
+    /// the image plane at [`Camera::polarizer`] (light along an oblique ray meets its part
+    /// across the ray, as at any polarizer sheet).
+    pub fn polarizer_axis(&self) -> Option<DVec3> {
+        self.polarizer
+            .map(|angle| angle.cos() * self.right + angle.sin() * self.up)
     }
 
     /// The full vertical field of view (degrees) that gives a horizontal one of `fov_x_deg`.

@@ -180,6 +180,13 @@ fn cases() -> Vec<Case> {
         scene_case("polarizer without an axis", "[[material]]\nname = \"p\"\ntype = \"polarizer\"\n", Error("axis")),
         scene_case("retarder of a NaN retardance", "[[material]]\nname = \"p\"\ntype = \"retarder\"\nfast_axis = [1, 0, 0]\nretardance_deg = nan\n", Error("retardance_deg")),
         scene_case("retarder of 1e300 degrees", "[[material]]\nname = \"p\"\ntype = \"retarder\"\nfast_axis = [1, 0, 0]\nretardance_deg = 1e300\n", Error("retardance_deg")),
+        scene_case("camera polarizer at NaN degrees", "", Error("")).with_scene_replace("height = 8\n", "height = 8\npolarizer_deg = nan\n", "polarizer_deg"),
+        scene_case("camera polarizer at 1e300 degrees", "", Error("")).with_scene_replace("height = 8\n", "height = 8\npolarizer_deg = 1e300\n", "polarizer_deg"),
+        scene_case("camera polarizer as a word", "", Error("")).with_scene_replace("height = 8\n", "height = 8\npolarizer_deg = \"up\"\n", "polarizer_deg"),
+        Case {
+            files: vec![("s.toml", String::from_utf8(scene(&format!("{LIGHT}[[material]]\nname = \"g\"\ntype = \"dielectric\"\nior = 1.5\n[[shape]]\ntype = \"sphere\"\ncenter = [0, 0, 0.5]\nradius = 0.5\nmaterial = \"g\"\n"))).unwrap().replacen("height = 8\n", "height = 8\npolarizer_deg = 30\n", 1).into_bytes())],
+            ..scene_case("a camera polarizer over glass (polarized: photons and camera)", "", Finite("wrote"))
+        },
         scene_case("polarized as a word", "", Error("")).with_scene_replace("spp = 1", "spp = 1\npolarized = \"yes\"", "polarized"),
         scene_case("a camera looking through a polarizer edge on", &format!("{LIGHT}[[material]]\nname = \"p\"\ntype = \"polarizer\"\naxis = [0, 0, 1]\n[[shape]]\ntype = \"quad\"\nmaterial = \"p\"\nvertices = [[-1, 0, -1], [1, 0, -1], [1, 0, 1], [-1, 0, 1]]\n"), Finite("wrote")),
         scene_case("glass behind a retarder (polarized: photons and camera)", &format!("{LIGHT}[[material]]\nname = \"g\"\ntype = \"dielectric\"\nior = 1.5\n[[shape]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 0.5\nmaterial = \"g\"\n[[material]]\nname = \"p\"\ntype = \"retarder\"\nfast_axis = [1, 1, 0]\nretardance_deg = 90\n[[shape]]\ntype = \"quad\"\nmaterial = \"p\"\nvertices = [[-1, -1, 1], [1, -1, 1], [1, 1, 1], [-1, 1, 1]]\n"), Finite("wrote")),

@@ -12,6 +12,7 @@ use super::beam::Beams;
 use super::single::single_scattering;
 use super::CameraRay;
 use crate::color::Rgb;
+use crate::polarization::Sheet;
 use crate::spectrum::Hero;
 use crate::transport::chain::{Carried, Chain, End, Policy, Ray, Walker};
 pub use crate::transport::lighting::emission_seen;
@@ -72,7 +73,12 @@ pub fn camera_path<'w>(
         direction: camera.direction,
         medium: carried.tracer.camera_medium,
     };
-    let mut walker = Walker::carrying(carried, Policy::Weighted).choosing(camera.choices);
+    let analyzer = (carried.tracer.scene.camera.as_ref())
+        .and_then(|c| c.polarizer_axis())
+        .map(|axis| Sheet::Polarizer { axis });
+    let mut walker = Walker::carrying(carried, Policy::Weighted)
+        .choosing(camera.choices)
+        .seeing_through(analyzer);
     let chain = walker.follow(ray, rng, stats, &mut beams.record(carried.tracer));
     record_cut(&chain, Rgb::ONE, stats);
     let mut out = Components {

@@ -73,6 +73,17 @@ impl Polarization {
         }
     }
 
+    /// A camera's measurement through the analyzer `element` it looks through, on a path
+    /// starting along unit `direction` (against the light): the first row of the element's
+    /// matrix, not divided by its first element — the camera records r·S of light S reaching
+    /// it, so ½ of unpolarized light through an ideal polarizer.
+    pub fn measured_through(element: &Element, direction: DVec3) -> Self {
+        let mut state = Self::unpolarized(Sense::AgainstLight, direction);
+        state.rebase(direction, element.x);
+        state.channels = element.mueller.map(|m| m.transpose() * DVec4::X);
+        state
+    }
+
     /// Which way the light travels where the path runs along `direction`.
     fn light(&self, direction: DVec3) -> DVec3 {
         match self.sense {

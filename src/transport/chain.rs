@@ -16,7 +16,7 @@ use crate::color::Rgb;
 use crate::curve::ArcPoint;
 use crate::ids::{MediumId, PrimId, ReceiverId};
 use crate::material::Material;
-use crate::polarization::{Polarization, Sense};
+use crate::polarization::{Polarization, Sense, Sheet};
 use crate::scene::Role;
 use crate::volume::{Flights, Scattering};
 use glam::DVec3;
@@ -250,6 +250,9 @@ pub struct Walker<'w> {
     /// Numbers its first choices between reflection and refraction take instead of numbers
     /// from the stream ([`Walker::choosing`]).
     choices: Choices,
+    /// The polarizer its first chain starts behind, where a camera looks through one
+    /// ([`Walker::seeing_through`]).
+    analyzer: Option<Sheet>,
 }
 
 /// Numbers in [0, 1) that a path's first choices between reflection and refraction take, in
@@ -382,6 +385,7 @@ impl<'w> Walker<'w> {
             depth: carried.depth,
             flights: carried.flights,
             choices: Choices::default(),
+            analyzer: None,
         }
     }
 
@@ -389,6 +393,13 @@ impl<'w> Walker<'w> {
     /// `choices`.
     pub fn choosing(self, choices: Choices) -> Self {
         Self { choices, ..self }
+    }
+
+    /// The walker whose first chain starts behind `analyzer` (a camera's polarizer): where the
+    /// transport is polarized, it measures the light through it
+    /// ([`Polarization::measured_through`]).
+    pub fn seeing_through(self, analyzer: Option<Sheet>) -> Self {
+        Self { analyzer, ..self }
     }
 
     /// What the path carries now (after the chains it followed).
@@ -445,12 +456,20 @@ impl<'w> Walker<'w> {
         // The polarization lives here and the walk holds a reference to it: an unpolarized
         // walk moves no polarization state around.
         let mut carried = None;
+        let analyzer = self.analyzer.take();
         let mut lent = Lent {
             rng,
             stats,
-            polarization: self
-                .polarizes()
-                .map(|s| carried.insert(Polarization::unpolarized(s, ray.direction))),
+            polarization: self.polarizes().map(|sense| {
+                carried.insert(match (sense, analyzer) {
+                    (Sense::AgainstLight, Some(sheet)) => {
+                        Polarization::measured_through(&sheet.element(), ray.direction)
+                    }
+                    (Sense::AgainstLight | Sense::WithLight, _) => {
+                        Polarization::unpolarized(sense, ray.direction)
+                    }
+                })
+            }),
         };
         let mut chain = Chain {
             end: End::Lost,
