@@ -44,6 +44,12 @@ pub enum Material {
         /// The coat, with its tabulated albedo.
         coat: Arc<Coat>,
     },
+    /// A thin dielectric pane (`thin_dielectric`, a window), two-sided: light is reflected or
+    /// crosses it without turning, into the medium it came from.
+    ThinDielectric {
+        /// The pane's index (relative to vacuum; to the medium around it where it stands).
+        ior: f64,
+    },
     /// A thin polarizer or retarder (`polarizer`, `retarder`), two-sided: light crosses it
     /// without turning. Its scene is rendered with polarized transport.
     Sheet(Sheet),
@@ -81,6 +87,9 @@ impl Material {
             Material::Dielectric { ggx: None } => {
                 Lobes::SPECULAR_REFLECTION.with(Lobes::SPECULAR_TRANSMISSION)
             }
+            Material::ThinDielectric { .. } => {
+                Lobes::SPECULAR_REFLECTION.with(Lobes::SPECULAR_TRANSMISSION)
+            }
             Material::Plastic { .. } => Lobes::DIFFUSE_REFLECTION.with(Lobes::GLOSSY_REFLECTION),
             Material::Sheet(_) => Lobes::SPECULAR_TRANSMISSION,
         }
@@ -90,7 +99,7 @@ impl Material {
     /// shape's other side.
     pub fn is_thin(&self) -> bool {
         match self {
-            Material::Sheet(_) => true,
+            Material::Sheet(_) | Material::ThinDielectric { .. } => true,
             Material::Diffuse { .. }
             | Material::Conductor { .. }
             | Material::Dielectric { .. }
@@ -125,6 +134,9 @@ impl Material {
             } => Bsdf::Plastic {
                 albedo: textured(*albedo, texture),
                 coat,
+            },
+            Material::ThinDielectric { ior } => Bsdf::ThinDielectric {
+                eta: ior / at.index_near()?,
             },
             Material::Sheet(sheet) => Bsdf::Sheet { sheet },
         })

@@ -338,3 +338,32 @@ fn many_lights_in_a_white_spherical_room_light_it_as_an_integrating_sphere_does(
         / (w * h) as f64;
     both_integrators_read("sixteen point lights", &text, expected);
 }
+
+/// A thin pane (a window of index 1.5, tilted 50° about x) filling the view under a uniform
+/// sky: whatever it reflects or passes is the sky, so every path reads 1 — exactly (1e-6, f32
+/// pixels) in vacuum, by both integrators — and in open conservative fog of index 1.33 around
+/// it (the pane's index relative to the fog's 1.128) n² within 1 %. Light the pane lost or
+/// made would show in every pixel.
+#[test]
+fn a_thin_pane_under_a_uniform_sky_keeps_its_radiance() {
+    let (s, c) = 50f64.to_radians().sin_cos();
+    let corner = |x: f64, y: f64| format!("[{x}, {}, {}]", y * c, 1.0 + y * s);
+    let pane = format!(
+        "[[material]]\nname = \"pane\"\ntype = \"thin_dielectric\"\nior = 1.5\n\
+         [[shape]]\ntype = \"quad\"\nmaterial = \"pane\"\nvertices = [{}, {}, {}, {}]\n\
+         [[light]]\ntype = \"environment\"\nsky = \"uniform\"\n\
+         [camera]\nposition = [0, 0, 0]\nlook_at = [0, 0, 1]\nfov_y_deg = 30\nwidth = 16\nheight = 16\n\
+         [render]\nspp = 4\npasses = 2\nphotons = 20000\ncaustic_photons = 20000\n",
+        corner(-2.0, -2.0),
+        corner(2.0, -2.0),
+        corner(2.0, 2.0),
+        corner(-2.0, 2.0),
+    );
+    for integrator in BOTH {
+        let values = pixels(&pane, integrator);
+        let worst = values.iter().map(|v| (v - 1.0).abs()).fold(0.0, f64::max);
+        assert!(worst < 1e-6, "{integrator:?}: a pixel off by {worst}");
+    }
+    let foggy = pane.replace("spp = 4\npasses = 2\nphotons = 20000", "spp = 16\npasses = 8\nphotons = 50000");
+    both_integrators_read("pane in fog", &format!("{}{foggy}", fog(1.33, 0.05)), 1.33 * 1.33);
+}

@@ -31,6 +31,23 @@ pub fn dielectric_transmittance(cos_i: f64, n1: f64, n2: f64) -> f64 {
     2.0 * n1 * n2 * cos_i * cos_t * (1.0 / (s * s) + 1.0 / (p * p))
 }
 
+/// Unpolarised reflectance of a thin dielectric pane of index `eta` relative to the medium
+/// around it at cos θi = `cos_i` ∈ (0, 1], its internal reflections summed for s and p light
+/// apart: ½(2R_s/(1 + R_s) + 2R_p/(1 + R_p)), each R the outer face's (1 where it reflects
+/// totally). pbrt-v4 and Mitsuba 3 sum them for the unpolarised R, 2R/(1 + R): the same square
+/// on, more than this obliquely (0.1638 against 0.1519 at 60° for η = 1.5).
+pub fn thin_dielectric(cos_i: f64, eta: f64) -> f64 {
+    let sin2_t = (1.0 - cos_i * cos_i).max(0.0) / (eta * eta);
+    if sin2_t >= 1.0 {
+        return 1.0;
+    }
+    let cos_t = (1.0 - sin2_t).sqrt();
+    let rs = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
+    let rp = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
+    let summed = |r: f64| 2.0 * r * r / (1.0 + r * r);
+    0.5 * (summed(rs) + summed(rp))
+}
+
 /// Unpolarised reflectance of a conductor of complex index `eta` + i`k` relative to the
 /// medium the light arrives in, at cos θi = `cos_i` ∈ [0, 1] (the exact form for a
 /// conductor: Born and Wolf §14.2; written as in Pharr, Jakob and Humphreys §8.2).

@@ -25,6 +25,7 @@ pub mod walk;
 
 pub use fresnel::{
     conductor, conductor_rgb, dielectric, dielectric_transmittance, reflect, refract,
+    thin_dielectric,
 };
 pub use metals::{named as metal, Metal, METALS, WAVELENGTHS};
 pub use microfacet::{Ggx, SMOOTH_ALPHA};
@@ -155,6 +156,13 @@ pub enum Bsdf<'a> {
         /// The microsurface (None: smooth).
         ggx: Option<Ggx>,
     },
+    /// A thin dielectric pane (a window) of index `eta` relative to the medium around it:
+    /// light is reflected specularly with its internal reflections summed
+    /// ([`thin_dielectric`]) or crosses it without turning, into the medium it came from.
+    ThinDielectric {
+        /// The pane's index relative to its surroundings.
+        eta: f64,
+    },
     /// A diffuse base under a rough dielectric coat ([`Coat`]).
     Plastic {
         /// The base's reflectance per channel.
@@ -268,6 +276,9 @@ impl Bsdf<'_> {
                 Lobes::SPECULAR_REFLECTION.with(Lobes::SPECULAR_TRANSMISSION)
             }
             Bsdf::Dielectric { .. } => Lobes::GLOSSY_REFLECTION.with(Lobes::GLOSSY_TRANSMISSION),
+            Bsdf::ThinDielectric { .. } => {
+                Lobes::SPECULAR_REFLECTION.with(Lobes::SPECULAR_TRANSMISSION)
+            }
             Bsdf::Plastic { .. } => Lobes::DIFFUSE_REFLECTION.with(Lobes::GLOSSY_REFLECTION),
             Bsdf::Sheet { .. } => Lobes::SPECULAR_TRANSMISSION,
         }
@@ -280,7 +291,7 @@ impl Bsdf<'_> {
     pub fn draws_choice(&self) -> bool {
         match self {
             Bsdf::Lambert { .. } | Bsdf::Conductor { .. } | Bsdf::Sheet { .. } => false,
-            Bsdf::Dielectric { .. } | Bsdf::Plastic { .. } => true,
+            Bsdf::Dielectric { .. } | Bsdf::ThinDielectric { .. } | Bsdf::Plastic { .. } => true,
         }
     }
 
@@ -316,6 +327,18 @@ impl Bsdf<'_> {
                     (reflect(-wo, n), Lobes::SPECULAR_REFLECTION)
                 } else {
                     (refract(-wo, n, n1, n2, cos_t), Lobes::SPECULAR_TRANSMISSION)
+                };
+                Some(BsdfSample {
+                    wi,
+                    weight: Rgb::ONE,
+                    pdf: f64::INFINITY,
+                    lobe,
+                })
+            }
+            Bsdf::ThinDielectric { eta } => {
+                let (wi, lobe) = match u.2 < thin_dielectric(wo.dot(n).abs().min(1.0), eta) {
+                    true => (reflect(-wo, n), Lobes::SPECULAR_REFLECTION),
+                    false => (-wo, Lobes::SPECULAR_TRANSMISSION),
                 };
                 Some(BsdfSample {
                     wi,
@@ -398,6 +421,7 @@ impl Bsdf<'_> {
         match *self {
             Bsdf::Conductor { ggx: None, .. }
             | Bsdf::Dielectric { ggx: None, .. }
+            | Bsdf::ThinDielectric { .. }
             | Bsdf::Sheet { .. } => Rgb::ZERO,
             Bsdf::Lambert { albedo } => match above {
                 true => albedo * FRAC_1_PI,
@@ -443,6 +467,7 @@ impl Bsdf<'_> {
         match *self {
             Bsdf::Conductor { ggx: None, .. }
             | Bsdf::Dielectric { ggx: None, .. }
+            | Bsdf::ThinDielectric { .. }
             | Bsdf::Sheet { .. } => 0.0,
             Bsdf::Lambert { .. } => match pair.cos_o > 0.0 {
                 true => pair.cos_i.max(0.0) * FRAC_1_PI,
@@ -491,7 +516,10 @@ impl Bsdf<'_> {
         match *self {
             Bsdf::Lambert { .. } => 1.0,
             Bsdf::Plastic { coat, .. } => coat.entering(cos / n.length()),
-            Bsdf::Conductor { .. } | Bsdf::Dielectric { .. } | Bsdf::Sheet { .. } => 0.0,
+            Bsdf::Conductor { .. }
+            | Bsdf::Dielectric { .. }
+            | Bsdf::ThinDielectric { .. }
+            | Bsdf::Sheet { .. } => 0.0,
         }
     }
 
@@ -506,7 +534,10 @@ impl Bsdf<'_> {
         match *self {
             Bsdf::Lambert { albedo } => albedo * FRAC_1_PI,
             Bsdf::Plastic { albedo, coat } => coat.leaving(cos / n.length(), albedo),
-            Bsdf::Conductor { .. } | Bsdf::Dielectric { .. } | Bsdf::Sheet { .. } => Rgb::ZERO,
+            Bsdf::Conductor { .. }
+            | Bsdf::Dielectric { .. }
+            | Bsdf::ThinDielectric { .. }
+            | Bsdf::Sheet { .. } => Rgb::ZERO,
         }
     }
 
@@ -524,9 +555,10 @@ impl Bsdf<'_> {
         match *self {
             Bsdf::Lambert { .. } => None,
             Bsdf::Plastic { coat, .. } => in_local(n, wo, |o| coat.sample_lobe(o, u)),
-            Bsdf::Conductor { .. } | Bsdf::Dielectric { .. } | Bsdf::Sheet { .. } => {
-                self.sample(wo, n, u)
-            }
+            Bsdf::Conductor { .. }
+            | Bsdf::Dielectric { .. }
+            | Bsdf::ThinDielectric { .. }
+            | Bsdf::Sheet { .. } => self.sample(wo, n, u),
         }
     }
 
@@ -537,6 +569,7 @@ impl Bsdf<'_> {
             Bsdf::Lambert { albedo } => Some(*albedo),
             Bsdf::Conductor { .. }
             | Bsdf::Dielectric { .. }
+            | Bsdf::ThinDielectric { .. }
             | Bsdf::Plastic { .. }
             | Bsdf::Sheet { .. } => None,
         }
@@ -548,7 +581,7 @@ impl Bsdf<'_> {
         match self {
             Bsdf::Lambert { albedo } | Bsdf::Plastic { albedo, .. } => *albedo,
             Bsdf::Conductor { fresnel, .. } => fresnel.at(1.0),
-            Bsdf::Dielectric { .. } => Rgb::ONE,
+            Bsdf::Dielectric { .. } | Bsdf::ThinDielectric { .. } => Rgb::ONE,
             Bsdf::Sheet { sheet } => Rgb::splat(sheet.transmittance()),
         }
     }
@@ -582,6 +615,17 @@ impl Bsdf<'_> {
                 mueller: fresnel.mueller(cos),
                 x: s(),
             }),
+            Bsdf::ThinDielectric { eta } => {
+                let [reflection, transmission] = mueller::thin_pane(cos, eta);
+                let reflected = wi.dot(n) * wo.dot(n) > 0.0;
+                Some(Element::grey(
+                    match reflected {
+                        true => reflection,
+                        false => transmission,
+                    },
+                    s(),
+                ))
+            }
             Bsdf::Sheet { sheet } => Some(sheet.element()),
             Bsdf::Lambert { .. }
             | Bsdf::Conductor { ggx: Some(_), .. }

@@ -157,6 +157,49 @@ pub fn dielectric_transmission(cos_i: f64, n1: f64, n2: f64) -> DMat4 {
     Amplitudes::new(cos_i, Complex64::new(n2 / n1, 0.0)).transmission(cos_i)
 }
 
+/// A thin dielectric pane of index `eta` relative to the medium around it (parallel faces;
+/// the reflections inside summed incoherently) at cos θi = `cos_i`: the Mueller matrices of
+/// its reflection and its transmission (straight through), in the s/p basis. Each order of
+/// reflection inside is coherent in itself: with r the outer face's amplitude for each
+/// polarization (r′ = −r inside), R = |r|² and T = 1 − R (Stokes's relations: t t′ = 1 − r²),
+/// order k of the reflection is r (k = 0) or −T r^(2k−1), order k of the transmission T r^(2k).
+/// Summed: the reflectance of each polarization 2R/(1 + R), its transmittance (1 − R)/(1 + R),
+/// and between s and p r_s r_p* + T_s T_p r_s r_p/(1 − R_s R_p) reflected,
+/// T_s T_p/(1 − R_s R_p) transmitted (real inside: the light that enters the pane meets no
+/// total internal reflection there). Where the outer face reflects totally (a pane less dense
+/// than its surroundings, beyond the critical angle) it is that face's reflection.
+pub fn thin_pane(cos_i: f64, eta: f64) -> [DMat4; 2] {
+    let [rs, rp] = Amplitudes::new(cos_i, Complex64::new(eta, 0.0)).reflected;
+    let (big_rs, big_rp) = (rs.norm_sqr().min(1.0), rp.norm_sqr().min(1.0));
+    let (ts, tp) = (1.0 - big_rs, 1.0 - big_rp);
+    let inside = match ts * tp > 0.0 {
+        true => ts * tp / (1.0 - big_rs * big_rp),
+        false => 0.0,
+    };
+    let diattenuator = |ss: f64, pp: f64, z: Complex64| {
+        from_rows([
+            [0.5 * (ss + pp), 0.5 * (ss - pp), 0.0, 0.0],
+            [0.5 * (ss - pp), 0.5 * (ss + pp), 0.0, 0.0],
+            [0.0, 0.0, z.re, z.im],
+            [0.0, 0.0, -z.im, z.re],
+        ])
+    };
+    let reflected = |r: f64| 2.0 * r / (1.0 + r);
+    let transmitted = |r: f64| (1.0 - r) / (1.0 + r);
+    [
+        diattenuator(
+            reflected(big_rs),
+            reflected(big_rp),
+            rs * rp.conj() + inside * (rs * rp).re,
+        ),
+        diattenuator(
+            transmitted(big_rs),
+            transmitted(big_rp),
+            Complex64::new(inside, 0.0),
+        ),
+    ]
+}
+
 /// The reflection's Mueller matrix of a conductor of complex index η + ik relative to the
 /// medium outside (`eta`, `k`) at cos θi = `cos_i`.
 pub fn conductor_reflection(cos_i: f64, eta: f64, k: f64) -> DMat4 {
@@ -366,5 +409,60 @@ mod tests {
         // Along k, or not finite: no basis.
         assert_eq!(basis_change(k, x, k), None);
         assert_eq!(basis_change(k, x, DVec3::new(f64::NAN, 0.0, 0.0)), None);
+    }
+
+    /// A thin pane's matrices against the orders of reflection summed one by one (each order's
+    /// Jones amplitudes from the interface's r and t, t·t′ = 1 − r², r′ = −r; until they fall below 1e-17):
+    /// 1e-12, for panes denser and less dense than their surroundings (the latter beyond its
+    /// critical angle too); what unpolarized light keeps of each is the renderer's scalar
+    /// reflectance; reflection and transmission add to 1 for each polarization; square on
+    /// 2R/(1 + R); an index equal to the surroundings' passes everything.
+    #[test]
+    fn a_thin_pane_sums_its_internal_reflections() {
+        for eta in [1.5, 2.4, 1.0 / 1.33, 1.0] {
+            for i in 1..=200 {
+                let cos = i as f64 / 200.0;
+                let [reflection, transmission] = thin_pane(cos, eta);
+                let a = Amplitudes::new(cos, Complex64::new(eta, 0.0));
+                let (mut rj, mut tj) = (Vec::new(), Vec::new());
+                rj.push(a.reflected);
+                if a.eta_cos_t.im.abs() < 1e-12 {
+                    let [rs, rp] = a.reflected.map(|r| r.re);
+                    let (ts, tp) = (1.0 - rs * rs, 1.0 - rp * rp);
+                    let largest = rs.abs().max(rp.abs());
+                    for e in (0..).step_by(2).take_while(|&e| largest.powi(e) > 1e-17) {
+                        tj.push([ts * rs.powi(e), tp * rp.powi(e)].map(|v| Complex64::new(v, 0.0)));
+                        rj.push(
+                            [-ts * rs.powi(e + 1), -tp * rp.powi(e + 1)]
+                                .map(|v| Complex64::new(v, 0.0)),
+                        );
+                    }
+                }
+                let sum = |orders: &[[Complex64; 2]]| {
+                    orders.iter().fold(DMat4::ZERO, |m, &[s, p]| {
+                        m + interface(s, p, 1.0).unwrap()
+                    })
+                };
+                for (name, closed, summed) in [
+                    ("reflection", reflection, sum(&rj)),
+                    ("transmission", transmission, sum(&tj)),
+                ] {
+                    assert!(
+                        closed.abs_diff_eq(summed, 1e-12),
+                        "η {eta}, cos {cos}, {name}: {closed} against {summed}"
+                    );
+                }
+                let scalar = crate::bsdf::thin_dielectric(cos, eta);
+                assert!((reflection.col(0).x - scalar).abs() < 1e-12, "η {eta}, cos {cos}");
+                let (x, y) = (DVec4::X + DVec4::Y, DVec4::X - DVec4::Y);
+                for polarized in [x, y] {
+                    let kept = (reflection * polarized).x + (transmission * polarized).x;
+                    assert!((kept - 1.0).abs() < 1e-12, "η {eta}, cos {cos}: {kept}");
+                }
+            }
+            let r = ((eta - 1.0) / (eta + 1.0)).powi(2);
+            assert!((thin_pane(1.0, eta)[0].col(0).x - 2.0 * r / (1.0 + r)).abs() < 1e-15);
+        }
+        assert!(thin_pane(0.3, 1.0)[1].abs_diff_eq(DMat4::IDENTITY, 1e-15));
     }
 }

@@ -238,6 +238,7 @@ impl SurfaceVertex<'_> {
             Bsdf::Conductor { .. }
             | Bsdf::Dielectric { .. }
             | Bsdf::Plastic { .. }
+            | Bsdf::ThinDielectric { .. }
             | Bsdf::Sheet { .. } => match self.wo.dot(self.shading) > 0.0 {
                 true => self.shading,
                 false => self.normal,
@@ -288,6 +289,7 @@ impl SurfaceVertex<'_> {
             Bsdf::Lambert { .. }
             | Bsdf::Conductor { .. }
             | Bsdf::Dielectric { .. }
+            | Bsdf::ThinDielectric { .. }
             | Bsdf::Plastic { .. }
             | Bsdf::Sheet { .. } => 1.0,
         }

@@ -206,6 +206,15 @@ pub fn read_material(t: &mut TableReader) -> Result<(Material, Option<Interior>)
                  (quad or disk, with `radiance`)",
             ))
         }
+        "thin_dielectric" => {
+            let ior = t.f64("ior")?;
+            t.check(
+                "ior",
+                ior > 0.0 && ior <= 10.0,
+                format!("a pane's index must be in (0, 10], got {ior:?}"),
+            )?;
+            (Material::ThinDielectric { ior }, None)
+        }
         "dielectric" => {
             let interior = match (t.has("ior"), t.has("interior")) {
                 (true, false) => Interior::Ior(t.dispersion("ior")?),
@@ -247,7 +256,7 @@ pub fn read_material(t: &mut TableReader) -> Result<(Material, Option<Interior>)
                 "type",
                 format!(
                     "unknown material type '{other}' (diffuse, mirror, conductor, dielectric, \
-                     plastic, polarizer, retarder, emissive)"
+                     thin_dielectric, plastic, polarizer, retarder, emissive)"
                 ),
             ))
         }
