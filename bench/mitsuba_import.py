@@ -37,6 +37,8 @@ CASES = {
     "textures": ("textures.xml", {}),
     # Two emitting spheres over two diffuse balls and a floor.
     "sphere_lights": ("sphere_lights.xml", {}),
+    # A thin pane (thindielectric) across the view of two balls, under a sky and a lamp.
+    "window": ("window.xml", {}),
 }
 
 

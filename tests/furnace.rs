@@ -364,6 +364,13 @@ fn a_thin_pane_under_a_uniform_sky_keeps_its_radiance() {
         let worst = values.iter().map(|v| (v - 1.0).abs()).fold(0.0, f64::max);
         assert!(worst < 1e-6, "{integrator:?}: a pixel off by {worst}");
     }
-    let foggy = pane.replace("spp = 4\npasses = 2\nphotons = 20000", "spp = 16\npasses = 8\nphotons = 50000");
-    both_integrators_read("pane in fog", &format!("{}{foggy}", fog(1.33, 0.05)), 1.33 * 1.33);
+    let foggy = pane.replace(
+        "spp = 4\npasses = 2\nphotons = 20000",
+        "spp = 16\npasses = 8\nphotons = 50000",
+    );
+    both_integrators_read(
+        "pane in fog",
+        &format!("{}{foggy}", fog(1.33, 0.05)),
+        1.33 * 1.33,
+    );
 }

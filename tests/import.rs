@@ -491,6 +491,8 @@ fn the_mitsuba_scenes_render_as_mitsuba_renders_them() {
         ("textures", "textures.xml", vec![], 16),
         // Two emitting spheres: grinlight's sphere lights, seen and lighting.
         ("sphere_lights", "sphere_lights.xml", vec![], 16),
+        // A thin pane across the view: seen through and reflecting the sky behind the camera.
+        ("window", "window.xml", vec![], 16),
     ] {
         let ours = grinlight_blocks(&Path::new("scenes/mitsuba").join(scene), &defines, 32, spp);
         let (worst, ratio) = compare(&ours, &reference(case));

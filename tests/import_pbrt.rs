@@ -238,7 +238,10 @@ fn pbrts_materials_media_and_settings_take_pbrt_v4s_defaults() {
          Material \"conductor\" \"rgb eta\" [ 0.2 0.3 0.4 ] \"rgb k\" [ 3 2 1 ]\nShape \"sphere\"\n\
          MakeNamedMedium \"smoke\" \"string type\" \"homogeneous\" \"rgb sigma_a\" [ 0.5 0.5 0.5 ] \
          \"rgb sigma_s\" [ 1 2 3 ] \"float scale\" 2 \"float g\" 0.3\n\
-         Material \"dielectric\" \"float eta\" 1.33\nMediumInterface \"smoke\" \"\"\nShape \"sphere\"",
+         Material \"dielectric\" \"float eta\" 1.33\nMediumInterface \"smoke\" \"\"\nShape \"sphere\"\n\
+         MediumInterface \"\" \"\"\n\
+         Material \"thindielectric\" \"float eta\" 1.52\nShape \"sphere\"\n\
+         Material \"thindielectric\"\nShape \"sphere\"",
     );
     let render = t["render"].as_table().unwrap();
     assert_eq!(render["spp"].as_integer(), Some(16));
@@ -272,6 +275,12 @@ fn pbrts_materials_media_and_settings_take_pbrt_v4s_defaults() {
     assert_eq!(f(&smoke["absorption"]), 1.0);
     assert!(close(vec3(&smoke["scattering"]), [2.0, 4.0, 6.0], 0.0));
     assert_eq!(f(&smoke["phase"]["hg"]), 0.3);
+    // A thin pane keeps no medium inside; its index is pbrt's eta, 1.5 by default.
+    for (i, eta) in [(7, 1.52), (8, 1.5)] {
+        assert_eq!(of(i)["type"].as_str(), Some("thin_dielectric"));
+        assert_eq!(f(&of(i)["ior"]), eta);
+        assert!(shapes[i].get("interior").is_none());
+    }
 }
 
 /// The message of a scene that does not convert.
@@ -323,9 +332,9 @@ fn what_pbrt_cannot_convert_is_refused_by_file_line_and_column() {
             "s.pbrt:10:1: a sphere light turned inside out",
         ),
         (
-            "thin glass",
-            in_world("Material \"thindielectric\""),
-            "the material \"thindielectric\" is not supported",
+            "mixed",
+            in_world("Material \"mix\""),
+            "the material \"mix\" is not supported",
         ),
         (
             "anisotropic",

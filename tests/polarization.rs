@@ -765,10 +765,20 @@ fn a_tilted_pane_passes_and_polarizes_light_as_its_summed_reflections_say() {
         assert!(z(m, want) < 4.0, "{deg}°: {:?} against {want:?}", m.flux);
         let [s1, s2, s3] = [0, 1, 2].map(|i| m.stokes[i].flux.0 / m.flux.0);
         let polarized = (t_s - t_p) / (t_s + t_p);
-        assert!((s1 - polarized).abs() < 1e-6, "{deg}°: S1/S0 {s1}, want {polarized}");
+        assert!(
+            (s1 - polarized).abs() < 1e-6,
+            "{deg}°: S1/S0 {s1}, want {polarized}"
+        );
         assert!(s2.abs() < 1e-6 && s3.abs() < 1e-6, "{deg}°: {s2} {s3}");
     }
     let clear = &measured(&pane(60.0, 1.0), photons)[0];
-    assert!(z(clear, open.flux) < 4.0, "a pane of the surroundings' index: {:?}", clear.flux);
-    assert!(clear.stokes.iter().all(|s| s.flux.0.abs() < 1e-6 * clear.flux.0));
+    assert!(
+        z(clear, open.flux) < 4.0,
+        "a pane of the surroundings' index: {:?}",
+        clear.flux
+    );
+    assert!(clear
+        .stokes
+        .iter()
+        .all(|s| s.flux.0.abs() < 1e-6 * clear.flux.0));
 }

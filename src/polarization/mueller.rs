@@ -439,9 +439,9 @@ mod tests {
                     }
                 }
                 let sum = |orders: &[[Complex64; 2]]| {
-                    orders.iter().fold(DMat4::ZERO, |m, &[s, p]| {
-                        m + interface(s, p, 1.0).unwrap()
-                    })
+                    orders
+                        .iter()
+                        .fold(DMat4::ZERO, |m, &[s, p]| m + interface(s, p, 1.0).unwrap())
                 };
                 for (name, closed, summed) in [
                     ("reflection", reflection, sum(&rj)),
@@ -453,7 +453,10 @@ mod tests {
                     );
                 }
                 let scalar = crate::bsdf::thin_dielectric(cos, eta);
-                assert!((reflection.col(0).x - scalar).abs() < 1e-12, "η {eta}, cos {cos}");
+                assert!(
+                    (reflection.col(0).x - scalar).abs() < 1e-12,
+                    "η {eta}, cos {cos}"
+                );
                 let (x, y) = (DVec4::X + DVec4::Y, DVec4::X - DVec4::Y);
                 for polarized in [x, y] {
                     let kept = (reflection * polarized).x + (transmission * polarized).x;

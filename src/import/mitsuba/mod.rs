@@ -405,6 +405,14 @@ impl Converter<'_> {
                 }
                 ("dielectric", m, Some(eta))
             }
+            "thindielectric" => {
+                let eta = self.ior(b, "int_ior", "bk7")? / self.ior(b, "ext_ior", "air")?;
+                self.unit_factor(b, "specular_reflectance")?;
+                self.unit_factor(b, "specular_transmittance")?;
+                let place = b.place.clone();
+                self.told.thin_pane(&place, &b.what(), "Mitsuba");
+                ("thin_dielectric", table([("ior", Toml::Float(eta))]), None)
+            }
             "conductor" | "roughconductor" => {
                 one_sided(self);
                 self.unit_factor(b, "specular_reflectance")?;
@@ -477,8 +485,8 @@ impl Converter<'_> {
             other => {
                 return Err(b.error(format!(
                     "the BSDF '{}' is not supported by grinlight's import (diffuse, \
-                     dielectric, roughdielectric, conductor, roughconductor, plastic, \
-                     roughplastic, twosided, null are)",
+                     dielectric, roughdielectric, thindielectric, conductor, roughconductor, \
+                     plastic, roughplastic, twosided, null are)",
                     cut(other)
                 )))
             }

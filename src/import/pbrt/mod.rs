@@ -612,9 +612,10 @@ impl<'s> Converter<'s> {
 }
 
 /// The material types the import converts.
-const MATERIALS: [&str; 7] = [
+const MATERIALS: [&str; 8] = [
     "diffuse",
     "dielectric",
+    "thindielectric",
     "conductor",
     "coateddiffuse",
     "interface",
@@ -898,6 +899,11 @@ impl<'s> Converter<'s> {
                     microsurface_note(self);
                 }
                 ("dielectric", m, Some(eta))
+            }
+            "thindielectric" => {
+                let eta = self.eta(p, what)?;
+                self.told.thin_pane(place, what, "pbrt");
+                ("thin_dielectric", table([("ior", Toml::Float(eta))]), None)
             }
             "conductor" => {
                 if let Some(param) = p.take("reflectance") {
