@@ -180,6 +180,14 @@ fn cases() -> Vec<Case> {
         scene_case("polarizer without an axis", "[[material]]\nname = \"p\"\ntype = \"polarizer\"\n", Error("axis")),
         scene_case("retarder of a NaN retardance", "[[material]]\nname = \"p\"\ntype = \"retarder\"\nfast_axis = [1, 0, 0]\nretardance_deg = nan\n", Error("retardance_deg")),
         scene_case("retarder of 1e300 degrees", "[[material]]\nname = \"p\"\ntype = \"retarder\"\nfast_axis = [1, 0, 0]\nretardance_deg = 1e300\n", Error("retardance_deg")),
+        scene_case("pane of index 0", "[[material]]\nname = \"p\"\ntype = \"thin_dielectric\"\nior = 0\n", Error("ior")),
+        scene_case("pane of a NaN index", "[[material]]\nname = \"p\"\ntype = \"thin_dielectric\"\nior = nan\n", Error("ior")),
+        scene_case("pane of index 1e300", "[[material]]\nname = \"p\"\ntype = \"thin_dielectric\"\nior = 1e300\n", Error("ior")),
+        scene_case("pane without an index", "[[material]]\nname = \"p\"\ntype = \"thin_dielectric\"\n", Error("ior")),
+        Case {
+            files: vec![("s.toml", [b"ambient = \"f\"\n".to_vec(), scene(&format!("{LIGHT}[[medium]]\nname = \"f\"\nprofile = \"uniform\"\nn = 1.5\nscattering = 0.5\n[[material]]\nname = \"p\"\ntype = \"thin_dielectric\"\nior = 1.0001\n[[shape]]\ntype = \"quad\"\nmaterial = \"p\"\nvertices = [[-1, 0, -1], [1, 0, -1], [1, 0.001, 1], [-1, 0.001, 1]]\n"))].concat())],
+            ..scene_case("pane less dense than its fog, seen at grazing angles", "", Finite("wrote"))
+        },
         scene_case("camera polarizer at NaN degrees", "", Error("")).with_scene_replace("height = 8\n", "height = 8\npolarizer_deg = nan\n", "polarizer_deg"),
         scene_case("camera polarizer at 1e300 degrees", "", Error("")).with_scene_replace("height = 8\n", "height = 8\npolarizer_deg = 1e300\n", "polarizer_deg"),
         scene_case("camera polarizer as a word", "", Error("")).with_scene_replace("height = 8\n", "height = 8\npolarizer_deg = \"up\"\n", "polarizer_deg"),
