@@ -117,7 +117,7 @@ mod tests {
 
     /// The polarized transport's Mueller matrices pass unpolarized light as these scalar terms
     /// do (their first elements), at every angle: a dielectric's reflection and transmission
-    /// both ways, and conductors'.
+    /// both ways, thin panes' reflection, and conductors'.
     #[test]
     fn the_mueller_matrices_first_elements_are_these_terms() {
         use crate::polarization::mueller;
@@ -130,6 +130,13 @@ mod tests {
                 let t = mueller::dielectric_transmission(cos, n1, n2);
                 let want = dielectric_transmittance(cos, n1, n2);
                 assert!((t.col(0).x - want).abs() < 1e-12, "{n1}→{n2} cos {cos}");
+            }
+            for eta in [1.5, 2.4, 1.0 / 1.33, 1.0] {
+                let m = mueller::thin_pane(cos, eta)[0];
+                assert!(
+                    (m.col(0).x - thin_dielectric(cos, eta)).abs() < 1e-12,
+                    "pane η {eta} cos {cos}"
+                );
             }
             for (eta, k) in [(0.2, 3.0), (1.1, 2.5), (2.9, 3.1), (0.05, 8.0)] {
                 let m = mueller::conductor_reflection(cos, eta, k);

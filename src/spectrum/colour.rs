@@ -36,6 +36,8 @@ struct Tables {
     luminance: Vec<f64>,
     /// D65 normalised to unit power, 1/nm.
     d65: Vec<f64>,
+    /// The observer's x̄, ȳ, z̄ themselves (ȳ peaking at 1).
+    xyz: Vec<DVec3>,
 }
 
 static TABLES: LazyLock<Tables> = LazyLock::new(|| {
@@ -44,12 +46,19 @@ static TABLES: LazyLock<Tables> = LazyLock::new(|| {
     let d65 = Illuminant::d65().spectrum().as_array().to_vec();
     let power: f64 = d65.iter().sum();
     let d65: Vec<f64> = d65.iter().map(|s| s / power).collect();
-    let rgb: Vec<DVec3> = (FIRST..=LAST)
+    let xyz: Vec<DVec3> = (FIRST..=LAST)
         .map(|nm| {
-            let xyz = observer
-                .xyz_at_wavelength(nm)
-                .expect("380–780 nm is the observer's range")
-                .to_array();
+            DVec3::from_array(
+                observer
+                    .xyz_at_wavelength(nm)
+                    .expect("380–780 nm is the observer's range")
+                    .to_array(),
+            )
+        })
+        .collect();
+    let rgb: Vec<DVec3> = xyz
+        .iter()
+        .map(|xyz| {
             let row = |r: usize| (0..3).map(|c| m[(r, c)] * xyz[c]).sum::<f64>();
             DVec3::new(row(0), row(1), row(2))
         })
@@ -57,14 +66,13 @@ static TABLES: LazyLock<Tables> = LazyLock::new(|| {
     // White balance: unit-power D65 → (1, 1, 1) (a scale per channel of ≈ 1e-3 relative
     // spread: the matrix is made for D65 already; this makes white exact at 1 nm sums).
     let white: DVec3 = rgb.iter().zip(&d65).map(|(r, s)| *r * *s).sum();
-    let ybar: Vec<f64> = (FIRST..=LAST)
-        .map(|nm| observer.xyz_at_wavelength(nm).expect("in range").to_array()[1])
-        .collect();
+    let ybar: Vec<f64> = xyz.iter().map(|v| v.y).collect();
     let white_y: f64 = ybar.iter().zip(&d65).map(|(y, s)| y * s).sum();
     Tables {
         sensor: rgb.iter().map(|r| *r / white).collect(),
         luminance: ybar.iter().map(|y| y / white_y).collect(),
         d65,
+        xyz,
     }
 });
 
@@ -95,6 +103,18 @@ pub fn sensor(nm: f64) -> Rgb {
     Rgb(lerp(&TABLES.sensor, nm))
 }
 
+/// The CIE 1931 2° observer's colour-matching functions (x̄, ȳ, z̄) at `nm` (ȳ peaks at 1;
+/// zero outside 380–780 nm).
+pub fn observer(nm: f64) -> DVec3 {
+    lerp(&TABLES.xyz, nm)
+}
+
+/// The sum over the observer's range, 1 nm apart, of `f`(λ) at each wavelength λ (nm): the
+/// integral of a function over the visible the way every conversion here takes it.
+pub fn visible_sum<T: Default + std::ops::Add<Output = T>>(f: impl Fn(f64) -> T) -> T {
+    (FIRST..=LAST).fold(T::default(), |sum, nm| sum + f(nm as f64))
+}
+
 /// CIE illuminant D65 at `nm`, normalised to unit power over 380–780 nm (1/nm).
 pub fn d65(nm: f64) -> f64 {
     lerp(&TABLES.d65, nm)
@@ -103,18 +123,14 @@ pub fn d65(nm: f64) -> f64 {
 /// The linear sRGB of a spectral power distribution `power` (per nm), by 1 nm sums over the
 /// observer's range.
 pub fn colour_of(power: impl Fn(f64) -> f64) -> Rgb {
-    (FIRST..=LAST)
-        .map(|nm| sensor(nm as f64) * power(nm as f64))
-        .fold(Rgb::ZERO, |a, b| a + b)
+    visible_sum(|nm| sensor(nm) * power(nm))
 }
 
 /// The luminance (CIE 1931 Y) of a spectral power distribution `power` (per nm) relative to
 /// unit-power D65's, by 1 nm sums over the observer's range: 1 for unit-power D65, whose
 /// colour is (1, 1, 1).
 pub fn luminance_of(power: impl Fn(f64) -> f64) -> f64 {
-    (FIRST..=LAST)
-        .map(|nm| lerp(&TABLES.luminance, nm as f64) * power(nm as f64))
-        .sum()
+    visible_sum(|nm| lerp(&TABLES.luminance, nm) * power(nm))
 }
 
 /// The value at `nm` of the smooth reflectance spectrum of `rgb` (Jakob and Hanika 2019): a

@@ -3,6 +3,7 @@
 //! approximation listed), or refused naming its file, line and element. `docs/import.md`
 //! lists every conversion and its conventions.
 
+mod spectrum;
 pub mod xml;
 
 use super::geometry::{linear, parallelogram, similarity};
@@ -165,8 +166,9 @@ enum Made {
 }
 
 impl Converter<'_> {
-    /// A colour parameter: an `<rgb>`, a `<float>` or a uniform `<spectrum>` (as Mitsuba's RGB
-    /// variants read them); a texture or a spectrum over wavelength is refused.
+    /// A colour parameter: an `<rgb>`, a `<float>` or a `<spectrum>` of one value or of
+    /// wavelength:value pairs, as Mitsuba's RGB variants read them ([`spectrum`]); a texture
+    /// or a spectrum in a file is refused.
     fn colour(&mut self, obj: &Object, name: &str, default: f64) -> Result<DVec3> {
         if let Some(child) = obj.named_child(name) {
             return Err(child.place.error(format!(
@@ -178,15 +180,21 @@ impl Converter<'_> {
         let Some(p) = obj.property(name) else {
             return Ok(DVec3::splat(default));
         };
+        let role = spectrum::Role::of(&obj.tag, name);
         match &p.value {
             xml::Value::Rgb(v) => Ok(*v),
-            xml::Value::Float(x) | xml::Value::UniformSpectrum(x) => Ok(DVec3::splat(*x)),
+            xml::Value::Float(x) => Ok(DVec3::splat(*x)),
+            xml::Value::UniformSpectrum(x) => Ok(spectrum::uniform(*x, role)),
             xml::Value::Integer(i) => Ok(DVec3::splat(*i as f64)),
-            xml::Value::SampledSpectrum(s) => Err(p.place.error(format!(
-                "{}: '{name}' is a spectrum over wavelength (\"{}\"); grinlight's import reads \
-                 an rgb or one number",
+            xml::Value::SampledSpectrum(s) => match spectrum::pairs(s) {
+                Ok(pairs) => Ok(spectrum::sampled(&pairs, role)),
+                Err(why) => Err(p.place.error(format!("{}: '{name}': {why}", obj.what()))),
+            },
+            xml::Value::SpectrumFile(f) => Err(p.place.error(format!(
+                "{}: '{name}' is a spectrum in a file (\"{}\"); grinlight's import reads an rgb, \
+                 one number or wavelength:value pairs",
                 obj.what(),
-                cut(s)
+                cut(f)
             ))),
             other => Err(p.place.error(format!(
                 "{}: '{name}' should be an rgb, a float or a spectrum, got {other:?}",

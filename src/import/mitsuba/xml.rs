@@ -30,8 +30,10 @@ pub enum Value {
     Rgb(DVec3),
     /// `<spectrum value="v">`: the same value at every wavelength.
     UniformSpectrum(f64),
-    /// `<spectrum>` given by wavelength–value pairs or a file (its text).
+    /// `<spectrum value="…">` given by wavelength–value pairs (the attribute's text).
     SampledSpectrum(String),
+    /// `<spectrum filename="…">`: a spectrum in a file.
+    SpectrumFile(String),
     /// `<transform>`: the product of its operations, the first applied first.
     Transform(DMat4),
 }
@@ -46,7 +48,9 @@ impl Value {
             Value::String(_) => "string",
             Value::Vector(_) => "point or vector",
             Value::Rgb(_) => "rgb",
-            Value::UniformSpectrum(_) | Value::SampledSpectrum(_) => "spectrum",
+            Value::UniformSpectrum(_) | Value::SampledSpectrum(_) | Value::SpectrumFile(_) => {
+                "spectrum"
+            }
             Value::Transform(_) => "transform",
         }
     }
@@ -654,7 +658,7 @@ impl Reader {
                 }
             }
             "spectrum" => match node.attribute("filename") {
-                Some(f) => Value::SampledSpectrum(self.substitute(f, place)?),
+                Some(f) => Value::SpectrumFile(self.substitute(f, place)?),
                 None => {
                     let v = value(self)?;
                     match number(&v) {
