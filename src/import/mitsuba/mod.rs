@@ -63,6 +63,7 @@ pub fn convert(doc: &Document, approximate: bool) -> Result<Imported> {
         ambient: None,
         one_sided: Vec::new(),
         made: HashMap::new(),
+        repeated_delta_lights: None,
     };
     let scene = doc.scene.clone();
     let mut table = Table::new();
@@ -154,6 +155,9 @@ struct Converter<'d> {
     one_sided: Vec<String>,
     /// The materials the import made itself, by their names.
     made: HashMap<Made, String>,
+    /// Where a `direct` integrator takes more than one emitter sample, and how many: Mitsuba
+    /// counts a delta light (point, spot, directional) that many times ([`Converter::emitter`]).
+    repeated_delta_lights: Option<(Place, i64)>,
 }
 
 /// A material the import makes itself, not from a BSDF of the scene.
@@ -781,10 +785,13 @@ impl Converter<'_> {
         let depth = match i.kind.as_str() {
             "path" | "volpath" | "volpathmis" | "ptracer" => i.integer_or("max_depth", -1)?,
             // Direct light and the emitters seen: paths of two segments; its sample counts
-            // split the same estimate differently.
+            // split the same estimate differently (but see `repeated_delta_lights`).
             "direct" => {
-                for name in ["emitter_samples", "bsdf_samples", "shading_samples"] {
-                    i.ignore(name);
+                let shading = i.integer_or("shading_samples", 1)?;
+                let emitter = i.integer_or("emitter_samples", shading)?;
+                i.ignore("bsdf_samples");
+                if emitter > 1 {
+                    self.repeated_delta_lights = Some((i.place.clone(), emitter));
                 }
                 2
             }
@@ -1233,6 +1240,19 @@ impl Converter<'_> {
 
     /// A top-level emitter.
     fn emitter(&mut self, e: &Rc<Object>) -> Result<()> {
+        if matches!(e.kind.as_str(), "point" | "spot" | "directional") {
+            if let Some((place, n)) = self.repeated_delta_lights.take() {
+                self.told.note(
+                    &place,
+                    format!(
+                        "<integrator type=\"direct\"> with emitter_samples = {n}: Mitsuba 3 counts \
+                         each sample of a point, spot or directional light in full ({n} times \
+                         its light: its direct.cpp leaves their 1/{n} out); grinlight renders \
+                         the light's own intensity"
+                    ),
+                );
+            }
+        }
         let m = e.transform("to_world")?;
         let light = match e.kind.as_str() {
             "point" => {

@@ -718,10 +718,10 @@ impl Reader {
                     let angle = self.required(op, "angle", &place)?;
                     let angle = number(&angle)
                         .ok_or_else(|| place.error("<rotate>: angle is not a number"))?;
-                    let axis = axis
-                        .try_normalize()
-                        .ok_or_else(|| place.error("<rotate>: the axis is zero"))?;
-                    DMat4::from_axis_angle(axis, angle.to_radians())
+                    if axis == DVec3::ZERO || !axis.is_finite() {
+                        return Err(place.error("<rotate>: the axis is zero"));
+                    }
+                    DMat4::from_mat3(rotation_as_given(axis, angle.to_radians()))
                 }
                 "matrix" => {
                     let v = self.required(op, "value", &place)?;
@@ -808,4 +808,30 @@ mod tests {
         assert_eq!(numbers("1, x"), None);
         assert_eq!(numbers("inf"), None);
     }
+}
+
+/// Mitsuba's `<rotate>` by `angle` (radians) about `axis` as given (Dr.Jit's `rotate`, which
+/// does not normalise it): Rodrigues' R = cos θ I + sin θ [a]× + (1 − cos θ) a aᵀ — a rotation
+/// for a unit axis; one of any other length also scales and shears, and Mitsuba renders the
+/// shape so (its `hello.xml` turns a teapot about (0, 1, 1)).
+fn rotation_as_given(a: DVec3, angle: f64) -> glam::DMat3 {
+    let (s, c) = angle.sin_cos();
+    let t = 1.0 - c;
+    glam::DMat3::from_cols(
+        DVec3::new(
+            c + t * a.x * a.x,
+            t * a.x * a.y + s * a.z,
+            t * a.x * a.z - s * a.y,
+        ),
+        DVec3::new(
+            t * a.x * a.y - s * a.z,
+            c + t * a.y * a.y,
+            t * a.y * a.z + s * a.x,
+        ),
+        DVec3::new(
+            t * a.x * a.z + s * a.y,
+            t * a.y * a.z - s * a.x,
+            c + t * a.z * a.z,
+        ),
+    )
 }
