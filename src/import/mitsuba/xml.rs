@@ -784,32 +784,6 @@ fn numbers(text: &str) -> Option<Vec<f64>> {
         .collect()
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn look_at_is_mitsubas_frame() {
-        let m = look_at(
-            DVec3::new(0.0, 1.0, 5.0),
-            DVec3::new(0.0, 1.0, 0.0),
-            DVec3::Y,
-        )
-        .unwrap();
-        // Looking down −z with +y up, Mitsuba's camera +x is the viewer's left: world −x.
-        assert!((m.transform_vector3(DVec3::X) - DVec3::NEG_X).length() < 1e-15);
-        assert!((m.transform_vector3(DVec3::Z) - DVec3::NEG_Z).length() < 1e-15);
-        assert!((m.transform_point3(DVec3::ZERO) - DVec3::new(0.0, 1.0, 5.0)).length() < 1e-15);
-    }
-
-    #[test]
-    fn numbers_take_commas_and_spaces() {
-        assert_eq!(numbers("1, 2 3"), Some(vec![1.0, 2.0, 3.0]));
-        assert_eq!(numbers("1, x"), None);
-        assert_eq!(numbers("inf"), None);
-    }
-}
-
 /// Mitsuba's `<rotate>` by `angle` (radians) about `axis` as given (Dr.Jit's `rotate`, which
 /// does not normalise it): Rodrigues' R = cos θ I + sin θ [a]× + (1 − cos θ) a aᵀ — a rotation
 /// for a unit axis; one of any other length also scales and shears, and Mitsuba renders the
@@ -834,4 +808,30 @@ fn rotation_as_given(a: DVec3, angle: f64) -> glam::DMat3 {
             c + t * a.z * a.z,
         ),
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn look_at_is_mitsubas_frame() {
+        let m = look_at(
+            DVec3::new(0.0, 1.0, 5.0),
+            DVec3::new(0.0, 1.0, 0.0),
+            DVec3::Y,
+        )
+        .unwrap();
+        // Looking down −z with +y up, Mitsuba's camera +x is the viewer's left: world −x.
+        assert!((m.transform_vector3(DVec3::X) - DVec3::NEG_X).length() < 1e-15);
+        assert!((m.transform_vector3(DVec3::Z) - DVec3::NEG_Z).length() < 1e-15);
+        assert!((m.transform_point3(DVec3::ZERO) - DVec3::new(0.0, 1.0, 5.0)).length() < 1e-15);
+    }
+
+    #[test]
+    fn numbers_take_commas_and_spaces() {
+        assert_eq!(numbers("1, 2 3"), Some(vec![1.0, 2.0, 3.0]));
+        assert_eq!(numbers("1, x"), None);
+        assert_eq!(numbers("inf"), None);
+    }
 }
