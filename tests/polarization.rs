@@ -782,3 +782,29 @@ fn a_tilted_pane_passes_and_polarizes_light_as_its_summed_reflections_say() {
         .iter()
         .all(|s| s.flux.0.abs() < 1e-6 * clear.flux.0));
 }
+
+/// A camera polarizer in front of a black hole: the deflection table, which stands in for
+/// traced camera rays where nothing but one spherically symmetric medium is in view, carries no
+/// measurement, so behind a polarizer every ray is traced — and the unpolarized sky, its rays
+/// bent but its light unpolarized, comes through at half (exactly: the same rays as a render
+/// that traces every ray without the polarizer; 1e-6). A table used behind it would read the
+/// whole sky.
+#[test]
+fn a_black_hole_seen_through_a_camera_polarizer_is_half_as_bright() {
+    let hole = "ambient = \"hole\"\n[[medium]]\nname = \"hole\"\nprofile = \"black_hole\"\n\
+                center = [0, 0, 0]\nrs = 0.01\nq = 0.1\n\
+                [[light]]\ntype = \"environment\"\nsky = \"checker\"\nsquares = 72\n";
+    let view = |render: &str, camera: &str| {
+        let text = format!(
+            "{hole}[render]\nworld_radius = 50.0\nspp = 1\n{render}[camera]\nwidth = 32\n\
+             height = 32\nposition = [0, 0, 5]\nlook_at = [0, 0, 0]\nfov_y_deg = 3\n{camera}"
+        );
+        let (scene, settings) = scene(&text);
+        let film = grinlight::render::render(&scene, &settings, &()).unwrap().0;
+        mean(&film.layer("beauty").unwrap(), 0..32)
+    };
+    let open = view("deflection_table = false\n", "");
+    let seen = view("", "polarizer_deg = 30\n");
+    assert!(open > 0.0);
+    assert!((seen / open - 0.5).abs() < 1e-6, "{}", seen / open);
+}
