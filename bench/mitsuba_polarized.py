@@ -33,7 +33,7 @@ import tomllib
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from mitsuba_import import ROOT, BLOCK, blocks, grinlight_runs, stats  # noqa: E402
+from mitsuba_import import ROOT, BLOCK, block_z, blocks, grinlight_runs, stats, write_blocks  # noqa: E402
 from mitsuba_reference import mitsuba_scene  # noqa: E402
 
 SCENE = os.path.join(ROOT, "tests", "data", "mitsuba", "polarized_spheres.toml")
@@ -107,17 +107,13 @@ def main():
     rows = []
     for i, angle in enumerate(ANGLES):
         mean, se = stats(runs[:, i])
-        csv = os.path.join(ROOT, "tests", "data", "mitsuba", f"polarized_spheres_{angle}.csv")
-        with open(csv if a.write else os.devnull, "w") as f:
-            f.write(f"# Mitsuba {mi.__version__} llvm_ad_mono_polarized (stokes over path), "
-                    f"tests/data/mitsuba/polarized_spheres.toml seen through a linear polarizer at "
-                    f"{angle} deg (½(S0 + S1 cos 2φ + S2 sin 2φ), φ its angle in Mitsuba's basis): {a.runs} runs of {a.spp} spp, means over "
-                    f"blocks of {BLOCK}x{BLOCK} pixels and their standard errors (bench/mitsuba_polarized.py)\n")
-            f.write("bx,by,r,g,b,se_r,se_g,se_b\n")
-            for by in range(mean.shape[0]):
-                for bx in range(mean.shape[1]):
-                    m, s = mean[by, bx], se[by, bx]
-                    f.write(f"{bx},{by},{m[0]:.9g},{m[1]:.9g},{m[2]:.9g},{s[0]:.6g},{s[1]:.6g},{s[2]:.6g}\n")
+        if a.write:
+            write_blocks(os.path.join(ROOT, "tests", "data", "mitsuba", f"polarized_spheres_{angle}.csv"),
+                         f"Mitsuba {mi.__version__} llvm_ad_mono_polarized (stokes over path), "
+                         f"tests/data/mitsuba/polarized_spheres.toml seen through a linear polarizer at "
+                         f"{angle} deg (½(S0 + S1 cos 2φ + S2 sin 2φ), φ its angle in Mitsuba's basis): {a.runs} "
+                         f"runs of {a.spp} spp, means over blocks of {BLOCK}x{BLOCK} pixels and their standard "
+                         f"errors (bench/mitsuba_polarized.py)", mean, se)
         if a.grinlight:
             with tempfile.TemporaryDirectory() as tmp:
                 path = os.path.join(tmp, f"polarizer_{angle}.toml")
@@ -126,9 +122,7 @@ def main():
                 with open(path, "w") as f:
                     f.write(text)
                 gm, gs = stats(grinlight_runs(path, {}, a.runs, a.spp // 4, ["--integrator", a.integrator]))
-            # σ as tests/import.rs takes it: plus 1e-5 of the value, the resolution of
-            # Mitsuba's f32 sums (a block of sky has no spread in either renderer).
-            z = np.abs(gm - mean) / (np.sqrt(gs ** 2 + se ** 2) + 1e-5 * np.abs(mean))
+            z = block_z(gm, gs, mean, se)
             rows.append((f"{angle}°", mean.mean(), gm.mean(), gm.mean() / mean.mean(), z.max()))
     if rows:
         print(f"{'polarizer':10} {'Mitsuba mean':>13} {'grinlight':>10} {'ratio':>7} {'max |z|':>8}")

@@ -125,6 +125,20 @@ impl<'a> TableReader<'a> {
         self.take(key).map(|v| self.number(key, &v)).transpose()
     }
 
+    /// An optional angle in degrees, any number of turns within ±10⁶°, as radians (None:
+    /// absent).
+    pub fn turn_opt(&mut self, key: &str) -> Result<Option<f64>> {
+        let Some(degrees) = self.f64_opt(key)? else {
+            return Ok(None);
+        };
+        self.check(
+            key,
+            degrees.abs() <= 1e6,
+            format!("must be a number of degrees within ±1e6, got {degrees:?}"),
+        )?;
+        Ok(Some(degrees.to_radians()))
+    }
+
     /// A required number > 0.
     pub fn positive(&mut self, key: &str) -> Result<f64> {
         let x = self.f64(key)?;

@@ -48,14 +48,6 @@ pub fn read_camera(t: &mut TableReader) -> Result<Camera> {
             focus,
         });
     }
-    if t.has("polarizer_deg") {
-        let deg = t.f64("polarizer_deg")?;
-        t.check(
-            "polarizer_deg",
-            deg.is_finite() && deg.abs() <= 1e6,
-            format!("must be a number of degrees within ±1e6, got {deg:?}"),
-        )?;
-        camera.polarizer = Some(deg.to_radians());
-    }
+    camera.polarizer = t.turn_opt("polarizer_deg")?;
     Ok(camera)
 }

@@ -237,16 +237,13 @@ pub fn read_material(t: &mut TableReader) -> Result<(Material, Option<Interior>)
         ),
         "retarder" => {
             let fast_axis = t.direction("fast_axis")?;
-            let degrees = t.f64("retardance_deg")?;
-            t.check(
-                "retardance_deg",
-                degrees.is_finite() && degrees.abs() <= 1e6,
-                format!("must be a number of degrees within ±1e6, got {degrees:?}"),
-            )?;
+            let Some(retardance) = t.turn_opt("retardance_deg")? else {
+                return Err(t.error("retardance_deg", "a retarder needs `retardance_deg`"));
+            };
             (
                 Material::Sheet(Sheet::Retarder {
                     fast_axis,
-                    retardance: degrees.to_radians(),
+                    retardance,
                 }),
                 None,
             )
