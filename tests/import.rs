@@ -148,8 +148,7 @@ fn transforms_place_the_camera_and_shapes_as_mitsuba_does() {
 /// axis as given, so Mitsuba's `hello.xml` (a teapot turned 15° about (0, 1, 1), then −15° about
 /// z) renders a teapot scaled and sheared as well as turned. Its to_world below is what Mitsuba
 /// 3.9.1 made of it (the least-squares map from the PLY's vertices to the loaded shape's, f32);
-/// 0.14.0 normalised the axis, and the teapot stood elsewhere (its image mean 0.23 of
-/// Mitsuba's).
+/// with the axis normalised the teapot stands elsewhere.
 #[test]
 fn a_rotation_about_an_axis_not_of_unit_length_is_mitsubas() {
     let d = dir("rotate-axis");
@@ -638,8 +637,8 @@ fn a_material_the_import_makes_never_takes_a_bsdfs_name() {
 
 /// Spectra read as Mitsuba 3.9.1's RGB variants read them — the values below are what it
 /// reports (`mi.traverse` after `load_string`, `llvm_ad_rgb`) for the same XML: one value in
-/// an emitter is that much equal-energy white (pinkish in sRGB, not grey; 0.14.0 read it
-/// grey: 0.83 of Mitsuba's red, 1.10 of its blue), one value elsewhere itself; wavelength:value pairs
+/// an emitter is that much equal-energy white (pinkish in sRGB, not grey: grey would have
+/// 0.83 of Mitsuba's red, 1.10 of its blue), one value elsewhere itself; wavelength:value pairs
 /// in an emitter integrated against the observer, as a reflectance against D65 too (clamped
 /// to [0, 1]), as an index unclamped above. Within 3e-3 (grinlight's 1 nm CIE tables against
 /// Mitsuba's 5 nm ones, in Mitsuba's sums; measured 2.0e-3 at most, the constants to 1e-5).
