@@ -410,6 +410,16 @@ fn mean_of(
     pixels.iter().sum::<f64>() / pixels.len() as f64
 }
 
+/// A white wall across the z axis at z = 4, lit by a point light before it.
+const LIT_WALL: &str =
+    "[[material]]\nname = \"white\"\ntype = \"diffuse\"\nalbedo = [0.8, 0.8, 0.8]\n\
+    [[shape]]\ntype = \"quad\"\nmaterial = \"white\"\n\
+    vertices = [[-4, -4, 4], [-4, 4, 4], [4, 4, 4], [4, -4, 4]]\n\
+    [[light]]\ntype = \"point\"\nposition = [0, 0, 3]\nintensity = [1, 1, 1]\n";
+
+/// A camera at the origin looking along +z (y up) with a 4° view.
+const NARROW_VIEW: &str = "position = [0, 0, 0]\nlook_at = [0, 0, 4]\nfov_y_deg = 4\n";
+
 /// Looking through two polarizers at a lit wall: a camera path carries the measurement row, so
 /// polarizers at 0° and θ pass ½cos²θ of the view — exactly, as the sheets draw no random
 /// numbers and the paths beyond them are the same (both integrators: ½ at 0°, 3/8 at 30°, 0
@@ -418,19 +428,14 @@ fn mean_of(
 /// angle (a 40° view reads 0.37498).
 #[test]
 fn a_view_through_two_polarizers_keeps_half_cos_squared_of_it() {
-    let wall = "[[material]]\nname = \"white\"\ntype = \"diffuse\"\nalbedo = [0.8, 0.8, 0.8]\n\
-                [[shape]]\ntype = \"quad\"\nmaterial = \"white\"\n\
-                vertices = [[-4, -4, 4], [-4, 4, 4], [4, 4, 4], [4, -4, 4]]\n\
-                [[light]]\ntype = \"point\"\nposition = [0, 0, 3]\nintensity = [1, 1, 1]\n";
-    let camera = "position = [0, 0, 0]\nlook_at = [0, 0, 4]\nfov_y_deg = 4\n";
-    let with = |angles: &[f64]| behind_polarizers(wall, angles);
+    let with = |angles: &[f64]| behind_polarizers(LIT_WALL, angles);
     for integrator in ["path", "photon_map"] {
-        let open = beauty(&with(&[]), camera, integrator, 4, 1);
+        let open = beauty(&with(&[]), NARROW_VIEW, integrator, 4, 1);
         let whole = 0..32;
         let reference = mean(&open, whole.clone());
         assert!(reference > 0.0);
         for (deg, share) in [(0.0, 0.5), (30.0, 0.375), (90.0, 0.0)] {
-            let seen = beauty(&with(&[0.0, deg]), camera, integrator, 4, 1);
+            let seen = beauty(&with(&[0.0, deg]), NARROW_VIEW, integrator, 4, 1);
             let ratio = mean(&seen, whole.clone()) / reference;
             assert!(
                 (ratio - share).abs() < 1e-6,
@@ -449,15 +454,10 @@ fn a_view_through_two_polarizers_keeps_half_cos_squared_of_it() {
 /// axis (−cos 30°, sin 30°, 0), at 150° from x.
 #[test]
 fn a_camera_polarizer_is_a_sheet_in_front_of_the_lens() {
-    let wall = "[[material]]\nname = \"white\"\ntype = \"diffuse\"\nalbedo = [0.8, 0.8, 0.8]\n\
-                [[shape]]\ntype = \"quad\"\nmaterial = \"white\"\n\
-                vertices = [[-4, -4, 4], [-4, 4, 4], [4, 4, 4], [4, -4, 4]]\n\
-                [[light]]\ntype = \"point\"\nposition = [0, 0, 3]\nintensity = [1, 1, 1]\n";
-    let camera = "position = [0, 0, 0]\nlook_at = [0, 0, 4]\nfov_y_deg = 4\n";
-    let polarized = format!("{camera}polarizer_deg = 30\n");
-    let with = |angles: &[f64]| behind_polarizers(wall, angles);
+    let polarized = format!("{NARROW_VIEW}polarizer_deg = 30\n");
+    let with = |angles: &[f64]| behind_polarizers(LIT_WALL, angles);
     for integrator in ["path", "photon_map"] {
-        let reference = mean(&beauty(&with(&[]), camera, integrator, 4, 1), 0..32);
+        let reference = mean(&beauty(&with(&[]), NARROW_VIEW, integrator, 4, 1), 0..32);
         assert!(reference > 0.0);
         for (sheets, share) in [
             (&[][..], 0.5),
