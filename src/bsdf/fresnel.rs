@@ -7,15 +7,33 @@ use glam::DVec3;
 /// Unpolarised Fresnel reflectance for a ray from index `n1` to `n2` with cos θi = `cos_i`
 /// (> 0); 1 under total internal reflection. Also returns cos θt.
 pub fn dielectric(cos_i: f64, n1: f64, n2: f64) -> (f64, f64) {
+    match amplitudes(cos_i, n1, n2) {
+        Some(a) => (0.5 * (a.rs * a.rs + a.rp * a.rp), a.cos_t),
+        None => (1.0, 0.0),
+    }
+}
+
+/// The reflected amplitudes r_s, r_p of a ray from index `n1` to `n2` with cos θi = `cos_i`
+/// (> 0), and cos θt (Born and Wolf's, in the module's s/p conventions).
+struct Amplitudes {
+    rs: f64,
+    rp: f64,
+    cos_t: f64,
+}
+
+/// [`Amplitudes`] at cos θi = `cos_i` from `n1` to `n2`; None under total internal reflection.
+fn amplitudes(cos_i: f64, n1: f64, n2: f64) -> Option<Amplitudes> {
     let eta = n1 / n2;
     let sin2_t = eta * eta * (1.0 - cos_i * cos_i).max(0.0);
     if sin2_t >= 1.0 {
-        return (1.0, 0.0);
+        return None;
     }
     let cos_t = (1.0 - sin2_t).sqrt();
-    let rs = (n1 * cos_i - n2 * cos_t) / (n1 * cos_i + n2 * cos_t);
-    let rp = (n2 * cos_i - n1 * cos_t) / (n2 * cos_i + n1 * cos_t);
-    (0.5 * (rs * rs + rp * rp), cos_t)
+    Some(Amplitudes {
+        rs: (n1 * cos_i - n2 * cos_t) / (n1 * cos_i + n2 * cos_t),
+        rp: (n2 * cos_i - n1 * cos_t) / (n2 * cos_i + n1 * cos_t),
+        cos_t,
+    })
 }
 
 /// 1 − [`dielectric`]'s reflectance, written without the cancellation of 1 − R: with
@@ -37,15 +55,11 @@ pub fn dielectric_transmittance(cos_i: f64, n1: f64, n2: f64) -> f64 {
 /// totally). pbrt-v4 and Mitsuba 3 sum them for the unpolarised R, 2R/(1 + R): the same square
 /// on, more than this obliquely (0.1638 against 0.1519 at 60° for η = 1.5).
 pub fn thin_dielectric(cos_i: f64, eta: f64) -> f64 {
-    let sin2_t = (1.0 - cos_i * cos_i).max(0.0) / (eta * eta);
-    if sin2_t >= 1.0 {
+    let Some(a) = amplitudes(cos_i, 1.0, eta) else {
         return 1.0;
-    }
-    let cos_t = (1.0 - sin2_t).sqrt();
-    let rs = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
-    let rp = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
+    };
     let summed = |r: f64| 2.0 * r * r / (1.0 + r * r);
-    0.5 * (summed(rs) + summed(rp))
+    0.5 * (summed(a.rs) + summed(a.rp))
 }
 
 /// Unpolarised reflectance of a conductor of complex index `eta` + i`k` relative to the
