@@ -493,6 +493,9 @@ fn cases() -> Vec<Case> {
         xml_case("Mitsuba: a huge radius", "<shape type=\"sphere\"><float name=\"radius\" value=\"1e300\"/></shape>", Error("as converted, shape[0].radius")),
         xml_case("Mitsuba: a negative radius", "<shape type=\"sphere\"><float name=\"radius\" value=\"-1\"/></shape>", Error("shape[0].radius")),
         xml_case("Mitsuba: a ref to nothing", "<shape type=\"sphere\"><ref id=\"nothing\"/></shape>", Error("no object has this id")),
+        xml_case("Mitsuba: a spectrum that overflows", "<shape type=\"sphere\"><bsdf type=\"diffuse\"><spectrum name=\"reflectance\" value=\"400:1e308, 700:1e308\"/></bsdf></shape>", Error("not a finite number")),
+        xml_case("Mitsuba: a light's spectrum that overflows", "<emitter type=\"point\"><spectrum name=\"intensity\" value=\"400:1e308, 700:1e308\"/></emitter>", Error("not a finite number")),
+        xml_case("Mitsuba: a spectrum of negative values", "<shape type=\"sphere\"><bsdf type=\"diffuse\"><spectrum name=\"reflectance\" value=\"400:-5, 700:-1\"/></bsdf></shape>", Finite("wrote")),
         xml_case("Mitsuba: a zero rotation axis", "<shape type=\"sphere\"><transform name=\"to_world\"><rotate angle=\"30\"/></transform></shape>", Error("the axis is zero")),
         xml_case("Mitsuba: a flat cube", "<shape type=\"cube\"><transform name=\"to_world\"><scale x=\"0\"/><rotate y=\"1\" angle=\"30\"/></transform></shape>", Error("flattens the cube")),
         Case {

@@ -126,6 +126,14 @@ pub fn convert(doc: &Document, approximate: bool) -> Result<Imported> {
     Ok(c.told.into_imported(table, doc.files.clone()))
 }
 
+/// The refusal of a spectrum `name` of `obj` whose colour is not a finite number.
+fn not_finite(obj: &Object, name: &str) -> String {
+    format!(
+        "{}: '{name}': a spectrum whose colour is not a finite number (its values overflow)",
+        obj.what()
+    )
+}
+
 /// What a shape's BSDF became.
 #[derive(Clone)]
 enum Surface {
@@ -188,10 +196,13 @@ impl Converter<'_> {
         match &p.value {
             xml::Value::Rgb(v) => Ok(*v),
             xml::Value::Float(x) => Ok(DVec3::splat(*x)),
-            xml::Value::UniformSpectrum(x) => Ok(spectrum::uniform(*x, role)),
+            xml::Value::UniformSpectrum(x) => {
+                spectrum::uniform(*x, role).ok_or_else(|| p.place.error(not_finite(obj, name)))
+            }
             xml::Value::Integer(i) => Ok(DVec3::splat(*i as f64)),
             xml::Value::SampledSpectrum(s) => match spectrum::pairs(s) {
-                Ok(pairs) => Ok(spectrum::sampled(&pairs, role)),
+                Ok(pairs) => spectrum::sampled(&pairs, role)
+                    .ok_or_else(|| p.place.error(not_finite(obj, name))),
                 Err(why) => Err(p.place.error(format!("{}: '{name}': {why}", obj.what()))),
             },
             xml::Value::SpectrumFile(f) => Err(p.place.error(format!(

@@ -50,17 +50,19 @@ impl Role {
     }
 }
 
-/// The RGB of `<spectrum value="v">` in the role `role`.
-pub fn uniform(v: f64, role: Role) -> DVec3 {
-    match role {
+/// The RGB of `<spectrum value="v">` in the role `role` (None where it is not finite).
+pub fn uniform(v: f64, role: Role) -> Option<DVec3> {
+    let rgb = match role {
         Role::Emission => v * xyz_to_srgb(DVec3::ONE),
         Role::Bounded | Role::Unbounded => DVec3::splat(v),
-    }
+    };
+    rgb.is_finite().then_some(rgb)
 }
 
 /// The RGB of a spectrum given by `pairs` (wavelength in nm, value), in the role `role`: at
-/// least two, their wavelengths increasing ([`pairs`] makes them so).
-pub fn sampled(pairs: &[(f64, f64)], role: Role) -> DVec3 {
+/// least two, their wavelengths increasing ([`pairs`] makes them so). None where the integral
+/// is not finite (values near the largest number overflow it): never a colour made up.
+pub fn sampled(pairs: &[(f64, f64)], role: Role) -> Option<DVec3> {
     let (first, last) = (pairs[0].0, pairs[pairs.len() - 1].0);
     let at = |nm: f64| -> f64 {
         let i = pairs
@@ -85,10 +87,10 @@ pub fn sampled(pairs: &[(f64, f64)], role: Role) -> DVec3 {
         Role::Bounded | Role::Unbounded => visible_sum(|nm| observer(nm).y * d65(nm)),
     };
     let rgb = xyz_to_srgb(xyz / y);
-    match role {
+    rgb.is_finite().then(|| match role {
         Role::Bounded => rgb.clamp(DVec3::ZERO, DVec3::ONE),
         Role::Emission | Role::Unbounded => rgb.max(DVec3::ZERO),
-    }
+    })
 }
 
 /// Mitsuba's sum over wavelength of `f`: 1000 points spread evenly over 360–830 nm, each
