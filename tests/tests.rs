@@ -11,6 +11,7 @@ mod docs;
 mod error_estimate;
 mod exact_arc;
 mod fiber;
+mod fluorescence;
 mod footprint;
 mod furnace;
 mod glossy;

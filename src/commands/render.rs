@@ -397,8 +397,8 @@ pub fn render_in_memory(
     Ok(outcome)
 }
 
-/// Builds a scene to render, refusing one with nothing to render and warning of a camera
-/// where its medium captures light.
+/// Builds a scene to render, refusing one with nothing to render or a camera view no
+/// integrator renders, and warning of a camera where its medium captures light.
 fn build_checked(
     description: Description,
     settings: &Settings,
@@ -412,6 +412,7 @@ fn build_checked(
         )));
     }
     if let Some(c) = &scene.camera {
+        crate::render::images_carry_all_light(&scene)?;
         let tracer = crate::transport::Tracer::new(&scene, &settings.trace);
         if tracer.index(tracer.camera_medium, c.position).is_none() {
             observer.warning(&format!(

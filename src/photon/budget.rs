@@ -2,8 +2,16 @@
 //! Every emitted photon is booked exactly once, so the entries add up to the power emitted;
 //! what they measure is how it divides (out through which face, reflected, absorbed by
 //! surfaces or in which medium, lost). The photons a medium scattered are also booked apart
-//! (where scattered light went), and photons that carry a wavelength in every receiver band
-//! holding it.
+//! (where scattered light went), so are the photons a dye emitted (where fluorescence went),
+//! and photons that carry a wavelength in every receiver band holding it (the band of the
+//! wavelength they left their light at).
+//!
+//! **Dyes.** A dye's absorption ends nothing by itself: what it turns into heat — all of a
+//! photon it does not emit again, and the Stokes shift's energy of one it does — is booked as
+//! absorbed in its medium where it happens, and the photon it emits goes on to a fate of its
+//! own, so the fates still add up to the power emitted. What each dye absorbed, what of that
+//! it had emitted itself before (re-absorption) and what it emitted are booked beside
+//! ([`Dye`]).
 
 use crate::exact::ExactSum;
 use crate::ids::{MediumId, PrimId};
@@ -44,6 +52,45 @@ pub struct Ended {
     pub nm: Option<f64>,
     /// Whether a medium scattered it on the way.
     pub scattered: bool,
+    /// Whether a dye emitted it on the way: Some(power the dye first emitted it with, W;
+    /// booked once, 0 in later bookings of the same photon), else None.
+    pub fluoresced: Option<f64>,
+}
+
+/// What a dye did to a photon at one absorption, as its medium's [`Dye`] books it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DyeEvent {
+    /// The medium holding the dye.
+    pub medium: MediumId,
+    /// The power it absorbed (W, the mean over the RGB channels).
+    pub absorbed: f64,
+    /// The power it emitted again (0: none).
+    pub emitted: f64,
+    /// Whether the photon was light a dye had emitted (re-absorption).
+    pub again: bool,
+    /// The photon's vacuum wavelength when it left its light, nm (the band it is booked in).
+    pub nm: Option<f64>,
+}
+
+/// What a dye absorbed and emitted, W: its heat is `absorbed − emitted`.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Dye<T = f64> {
+    /// Power it absorbed.
+    pub absorbed: T,
+    /// Of that, power a dye had emitted before (re-absorbed).
+    pub reabsorbed: T,
+    /// Power it emitted again.
+    pub emitted: T,
+}
+
+impl<T> Dye<T> {
+    fn map<U>(&self, f: &impl Fn(&T) -> U) -> Dye<U> {
+        Dye {
+            absorbed: f(&self.absorbed),
+            reabsorbed: f(&self.reabsorbed),
+            emitted: f(&self.emitted),
+        }
+    }
 }
 
 /// Power per fate, in the lights' power unit (W), as the mean over the RGB channels; each
@@ -68,6 +115,14 @@ pub struct Budget<T = f64> {
     /// The same for the photons a medium scattered on the way (None: none did): where the
     /// light a scattering medium redirected went in the end.
     pub scattered: Option<Box<Budget<T>>>,
+    /// The same for the light dyes emitted (None: none did), its `emitted` the power they
+    /// emitted first (light a dye absorbs again is booked there as heat and what it emits
+    /// again goes on): where fluorescence went in the end.
+    #[serde(default)]
+    pub fluoresced: Option<Box<Budget<T>>>,
+    /// What each dye absorbed and emitted, by medium index.
+    #[serde(default)]
+    pub dyes: BTreeMap<usize, Dye<T>>,
     /// The same for the photons in each wavelength band [lo, hi) nm (in
     /// [`Ledger::with_bands`] order; empty: no bands).
     pub bands: Vec<((f64, f64), Budget<T>)>,
@@ -88,6 +143,8 @@ impl<T> Budget<T> {
             absorbed_in: self.absorbed_in.iter().map(|(&m, w)| (m, f(w))).collect(),
             lost: f(&self.lost),
             scattered: self.scattered.as_ref().map(|b| Box::new(b.map(f))),
+            fluoresced: self.fluoresced.as_ref().map(|b| Box::new(b.map(f))),
+            dyes: self.dyes.iter().map(|(&m, d)| (m, d.map(f))).collect(),
             bands: self.bands.iter().map(|(b, x)| (*b, x.map(f))).collect(),
         }
     }
@@ -139,12 +196,40 @@ impl Ledger {
             Fate::AbsorbedIn(m) => self.absorbed_in.entry(m.index()).or_default().add(power),
             Fate::Lost => self.lost.add(power),
         }
+        let plain = Ended {
+            scattered: false,
+            fluoresced: None,
+            ..*photon
+        };
         if photon.scattered {
             let part = self.scattered.get_or_insert_with(Box::default);
-            part.book_here(&Ended {
-                scattered: false,
-                ..*photon
-            });
+            part.book_here(&plain);
+        }
+        if let Some(emitted) = photon.fluoresced {
+            let part = self.fluoresced.get_or_insert_with(Box::default);
+            part.book_here(&Ended { emitted, ..plain });
+        }
+    }
+
+    /// Books what a dye did at one absorption, in the whole and in the band holding the
+    /// photon's wavelength.
+    pub fn book_dye(&mut self, event: &DyeEvent) {
+        self.book_dye_here(event);
+        for (_, band) in self
+            .bands
+            .iter_mut()
+            .filter(|((lo, hi), _)| event.nm.is_some_and(|nm| (*lo..*hi).contains(&nm)))
+        {
+            band.book_dye_here(event);
+        }
+    }
+
+    fn book_dye_here(&mut self, event: &DyeEvent) {
+        let dye = self.dyes.entry(event.medium.index()).or_default();
+        dye.absorbed.add(event.absorbed);
+        dye.emitted.add(event.emitted);
+        if event.again {
+            dye.reabsorbed.add(event.absorbed);
         }
     }
 
@@ -163,6 +248,15 @@ impl Ledger {
         }
         if let Some(theirs) = &other.scattered {
             self.scattered.get_or_insert_with(Box::default).add(theirs);
+        }
+        if let Some(theirs) = &other.fluoresced {
+            self.fluoresced.get_or_insert_with(Box::default).add(theirs);
+        }
+        for (&m, theirs) in &other.dyes {
+            let mine = self.dyes.entry(m).or_default();
+            mine.absorbed.merge(&theirs.absorbed);
+            mine.reabsorbed.merge(&theirs.reabsorbed);
+            mine.emitted.merge(&theirs.emitted);
         }
         self.emitted.merge(&other.emitted);
         for (&p, w) in &other.out_through {
@@ -200,9 +294,22 @@ impl Ledger {
                 self.bands.len()
             ));
         }
-        if let Some(part) = &self.scattered {
-            if part.scattered.is_some() || !part.bands.is_empty() {
-                return Err("a malformed scattered part in its energy budget".into());
+        if let Some(m) = self.dyes.keys().find(|&&m| m >= media) {
+            return Err(format!(
+                "an energy budget of a dye in medium {m} of a scene of {media}"
+            ));
+        }
+        let dye_sums = self
+            .dyes
+            .values()
+            .flat_map(|d| [&d.absorbed, &d.reabsorbed, &d.emitted]);
+        if !dye_sums.into_iter().all(ExactSum::is_well_formed) {
+            return Err("a malformed sum in its energy budget".into());
+        }
+        for part in [&self.scattered, &self.fluoresced].into_iter().flatten() {
+            let nested = part.scattered.is_some() || part.fluoresced.is_some();
+            if nested || !part.bands.is_empty() || !part.dyes.is_empty() {
+                return Err("a malformed part (scattered or fluoresced) in its energy budget".into());
             }
             part.fits(primitives, media, 0)?;
         }
@@ -281,6 +388,24 @@ impl Budget {
                 part(b)
             ));
         }
+        for (&m, d) in &self.dyes {
+            lines.push(format!(
+                "  dye in medium '{}': absorbed {:.6e} W ({:.3} % of it emitted by a dye before), \
+                 emitted {:.6e} W, heat {:.6e} W",
+                media[m],
+                d.absorbed,
+                share(d.reabsorbed, d.absorbed),
+                d.emitted,
+                d.absorbed - d.emitted
+            ));
+        }
+        if let Some(b) = &self.fluoresced {
+            lines.push(format!(
+                "  emitted by dyes: {:.6e} W: {}",
+                b.emitted,
+                part(b)
+            ));
+        }
         for ((lo, hi), b) in &self.bands {
             lines.push(format!(
                 "  band {lo}–{hi} nm: emitted {:.6e} W: {}",
@@ -303,6 +428,7 @@ mod tests {
             fate,
             nm: Some(550.0),
             scattered,
+            fluoresced: None,
         }
     }
 

@@ -21,7 +21,7 @@ mod map;
 mod shell;
 mod volume;
 
-pub use budget::{Budget, Ended, Fate, Ledger};
+pub use budget::{Budget, Dye, DyeEvent, Ended, Fate, Ledger};
 pub use map::{Photon, PhotonMap};
 pub use shell::Shell;
 pub use volume::VolumeMap;
@@ -34,10 +34,11 @@ use crate::ids::{MediumId, PrimId};
 use crate::lights::{Aim, Cone, Emission, Entry, Light};
 use crate::math::Ball;
 use crate::receiver::Detection;
-use crate::sampling::{stream, Discrete, Pick, Purpose};
+use crate::sampling::{stream, uniform_sphere, Discrete, Pick, Purpose};
 use crate::spectrum::{colour, Spectrum};
 use crate::transport::chain::{self, End, Policy, Ray};
 use crate::transport::{HeroTracer, MediumVertex, Scattered, Stats, Tracer, Vertex};
+use crate::volume::Fluorescence;
 use glam::DVec3;
 use rand::Rng;
 use rand_pcg::Pcg64Mcg;
@@ -784,7 +785,9 @@ struct PhotonBounce {
 
 /// Follows one photon from its launch, drawing from `rng` and adding to `stats`, storing it
 /// into `stored` as its batch says and booking its power in `stored.budget` when it ends;
-/// `path`, if any, is shown every point it passes.
+/// `path`, if any, is shown every point it passes. Where a dye absorbs it and emits it again,
+/// it goes on from there as a photon of the new wavelength (a leg of its own, on the tracer
+/// at that wavelength).
 fn trace_photon(
     tracer: &Tracer,
     launch: Launch,
@@ -794,13 +797,9 @@ fn trace_photon(
     stored: &mut Sink,
     mut path: Option<&mut dyn FnMut(DVec3)>,
 ) {
-    // A photon with a wavelength of its own sees the dispersive media at it; one with a hero
-    // takes it on where it meets dispersion.
-    let dispersed = launch.wavelength.map(|nm| tracer.at_wavelength(nm));
-    let tracer = dispersed.as_ref().unwrap_or(tracer);
-    let hero = launch.hero.map(|h| HeroTracer::for_photon(tracer, h.nm));
     let scene = tracer.scene;
     let e = launch.emission;
+    // The wavelength it left its light at: its budget's band.
     let nm = launch.wavelength;
     if let Some(path) = path.as_mut() {
         path(e.origin);
@@ -824,50 +823,149 @@ fn trace_photon(
         last: e.origin,
         reach: tracer.ball.radius,
     };
-    let ray = Ray {
-        origin: e.origin,
-        direction: e.direction,
-        medium: launch.medium,
-    };
-    let carried = chain::Carried::starting(tracer, hero.as_ref());
-    let walker = chain::Walker::carrying(carried, Policy::Roulette);
-    // The photon's path, and the branches split off it outside the scene ball (map photons
-    // in open fog: [`split_toward`]), each followed in turn.
-    let mut branches = vec![Branch {
-        ray,
-        walker,
-        power: walk.power,
-        throughput: Rgb::ONE,
-        seen_as: Rgb::ONE,
-        bent: launch.scattered,
-        fogged: launch.scattered,
-        first: true,
-        splits: tag.batch != Batch::Receivers,
-    }];
     let mut emitted = (e.power / tag.count as f64).mean();
     if tag.batch != Batch::Receivers {
         stats.photon_power_emitted += emitted;
     }
-    while let Some(branch) = branches.pop() {
-        walk.power = branch.power;
-        let lent = Lent {
-            rng: &mut *rng,
-            stats: &mut *stats,
+    let mut legs = vec![Leg {
+        launch,
+        ray: Ray {
+            origin: e.origin,
+            direction: e.direction,
+            medium: launch.medium,
+        },
+        power: walk.power,
+        depth: tracer.settings.max_depth,
+        fluoresced: None,
+    }];
+    while let Some(leg) = legs.pop() {
+        // A photon with a wavelength of its own sees the dispersive media at it; one with a
+        // hero takes it on where it meets dispersion.
+        let dispersed = leg.launch.wavelength.map(|nm| tracer.at_wavelength(nm));
+        let tracer = dispersed.as_ref().unwrap_or(tracer);
+        let hero = leg.launch.hero.map(|h| HeroTracer::for_photon(tracer, h.nm));
+        walk.wavelength = tracer.wavelength();
+        let carried = chain::Carried {
+            depth: leg.depth,
+            ..chain::Carried::starting(tracer, hero.as_ref())
         };
-        let stores = Stores {
-            photons: &mut *photons,
-            volume: &mut *volume,
-        };
-        let (fate, fogged) = follow_branch(branch, &launch, &mut walk, &mut branches, lent, stores);
-        budget.book(&Ended {
-            emitted,
-            power: walk.power.mean(),
-            fate,
-            nm,
-            scattered: fogged,
-        });
-        emitted = 0.0;
+        let walker = chain::Walker::carrying(carried, Policy::Roulette);
+        // The photon's path, and the branches split off it outside the scene ball (map
+        // photons in open fog: [`split_toward`]), each followed in turn.
+        let mut branches = vec![Branch {
+            ray: leg.ray,
+            walker,
+            power: leg.power,
+            throughput: Rgb::ONE,
+            seen_as: match leg.fluoresced {
+                Some(_) => colour::sensor(walk.wavelength),
+                None => Rgb::ONE,
+            },
+            bent: leg.launch.scattered || leg.fluoresced.is_some(),
+            fogged: leg.launch.scattered,
+            first: leg.fluoresced.is_none(),
+            splits: tag.batch != Batch::Receivers,
+        }];
+        // The power a dye first emitted it with, booked in the fluorescence part once.
+        let mut first_emission = leg.fluoresced;
+        while let Some(branch) = branches.pop() {
+            walk.power = branch.power;
+            let lent = Lent {
+                rng: &mut *rng,
+                stats: &mut *stats,
+            };
+            let stores = Stores {
+                photons: &mut *photons,
+                volume: &mut *volume,
+            };
+            let (ending, fogged) =
+                follow_branch(branch, &leg.launch, &mut walk, &mut branches, lent, stores);
+            let mut book = |power: f64, fate: Fate| {
+                budget.book(&Ended {
+                    emitted,
+                    power,
+                    fate,
+                    nm,
+                    scattered: fogged,
+                    fluoresced: leg
+                        .fluoresced
+                        .map(|_| first_emission.take().unwrap_or(0.0)),
+                });
+                emitted = 0.0;
+            };
+            let absorbed = walk.power.mean();
+            let at = match ending {
+                Ending::Fate(fate) => {
+                    book(absorbed, fate);
+                    continue;
+                }
+                Ending::Dye(at) => at,
+            };
+            let reemitted = at.dye.reemit(walk.wavelength, rng.gen(), rng.gen());
+            let out = reemitted.map_or(0.0, |r| absorbed * r.energy);
+            // All of it heat, or the Stokes shift's share.
+            book(absorbed - out, Fate::AbsorbedIn(at.medium));
+            budget.book_dye(&DyeEvent {
+                medium: at.medium,
+                absorbed,
+                emitted: out,
+                again: leg.fluoresced.is_some(),
+                nm,
+            });
+            if let Some(r) = reemitted {
+                legs.push(Leg {
+                    launch: Launch {
+                        wavelength: Some(r.nm),
+                        hero: None,
+                        shell: None,
+                        scattered: false,
+                        ..leg.launch
+                    },
+                    ray: Ray {
+                        origin: at.position,
+                        direction: uniform_sphere((rng.gen(), rng.gen())),
+                        medium: Some(at.medium),
+                    },
+                    power: walk.power * r.energy,
+                    depth: at.depth,
+                    fluoresced: Some(leg.fluoresced.map_or(out, |_| 0.0)),
+                });
+            }
+        }
     }
+}
+
+/// A photon's way from its light, or from where a dye emitted it: one leg of its path.
+struct Leg {
+    /// How it set off (a dye's photon: at its wavelength, with no hero, shell or scattering).
+    launch: Launch,
+    /// Where it goes.
+    ray: Ray,
+    /// Its power (W per channel, of the batch's count).
+    power: Rgb,
+    /// Surfaces and events in media it may still meet.
+    depth: u32,
+    /// For a dye's photon: the power a dye first emitted it with, to book in the budget's
+    /// part of fluorescence once (0 after a second emission); None for the light's photon.
+    fluoresced: Option<f64>,
+}
+
+/// How a branch of a photon ends: a fate, or absorbed by a dye (which may emit it again).
+enum Ending<'s> {
+    Fate(Fate),
+    Dye(DyeAbsorption<'s>),
+}
+
+/// Where a dye absorbed a photon.
+struct DyeAbsorption<'s> {
+    /// The medium holding it.
+    medium: MediumId,
+    /// The dye.
+    dye: &'s Fluorescence,
+    /// Where.
+    position: DVec3,
+    /// The surfaces and events in media the photon may still meet.
+    depth: u32,
 }
 
 /// One path of a photon (the photon's own, or a branch split off it): where it goes on from,
@@ -906,8 +1004,8 @@ struct Stores<'a> {
 }
 
 /// Follows `branch` of a photon launched as `launch` to its end, storing it as its batch says
-/// and pushing the branches it splits off onto `branches`; returns how it ended and whether a
-/// medium scattered it.
+/// and pushing the branches it splits off onto `branches`; returns how it ended (a fate, or
+/// absorbed by a dye) and whether a medium scattered it.
 fn follow_branch<'w, R: Rng>(
     mut b: Branch<'w>,
     launch: &Launch,
@@ -915,7 +1013,7 @@ fn follow_branch<'w, R: Rng>(
     branches: &mut Vec<Branch<'w>>,
     lent: Lent<R>,
     stored: Stores,
-) -> (Fate, bool) {
+) -> (Ending<'w>, bool) {
     let Lent { rng, stats } = lent;
     let tracer = b.walker.tracer;
     let tag = walk.tag;
@@ -947,6 +1045,29 @@ fn follow_branch<'w, R: Rng>(
             }
             End::Lost | End::Stopped => break Fate::Lost,
         };
+        // A collision in a medium holding a dye is the dye's absorption in proportion to its
+        // rate ([`Tracer::scattering`] counts the dye in).
+        if let Vertex::Medium(MediumVertex {
+            medium: Some(m),
+            position,
+            ..
+        }) = vertex
+        {
+            let carried = b.walker.carried();
+            if let Some((dye, share)) = carried.tracer.dye_share(m) {
+                if rng.gen::<f64>() < share {
+                    return (
+                        Ending::Dye(DyeAbsorption {
+                            medium: m,
+                            dye,
+                            position,
+                            depth: carried.depth,
+                        }),
+                        b.fogged,
+                    );
+                }
+            }
+        }
         let outside = match &vertex {
             Vertex::Medium(v) => Cone::toward(tracer.ball, v.position).map(|c| (v, c)),
             Vertex::Surface(_) => None,
@@ -1057,5 +1178,5 @@ fn follow_branch<'w, R: Rng>(
         }
         b.ray = bounce.scattered.ray;
     };
-    (fate, b.fogged)
+    (Ending::Fate(fate), b.fogged)
 }

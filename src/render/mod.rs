@@ -132,6 +132,7 @@ pub fn render_passes(
     passes: Passes,
     observer: &dyn Observer,
 ) -> Result<(Film, Report)> {
+    images_carry_all_light(scene)?;
     let tracer = Tracer::new(scene, &settings.trace);
     match settings.integrator {
         Kind::PhotonMap => {
@@ -176,6 +177,23 @@ fn photons_carry_all_light(scene: &Scene) -> Result<()> {
             message: format!(
                 "medium '{name}' emits light (`emission`), and photons are sent only from lights: \
                  render it with integrator = \"path\" (receivers cannot measure it)"
+            ),
+        }),
+    }
+}
+
+/// Refuses to render an image of a scene whose light camera paths cannot carry: a dye's
+/// fluorescence, which changes light's wavelength on the way. Its receivers measure it
+/// (photons change their wavelength where a dye emits them again).
+pub fn images_carry_all_light(scene: &Scene) -> Result<()> {
+    match scene.media().first_fluorescent() {
+        None => Ok(()),
+        Some(name) => Err(crate::error::Error::Setting {
+            key: "integrator",
+            message: format!(
+                "medium '{name}' holds a dye (`fluorescence`), whose light changes its wavelength: \
+                 no integrator renders an image of it; its receivers measure it (leave out [camera] \
+                 to measure them alone)"
             ),
         }),
     }

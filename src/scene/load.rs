@@ -4,7 +4,7 @@
 
 use super::data::SceneText;
 use super::media::{
-    read_absorption, read_density, read_emission, read_profile, read_scattering, uniform,
+    read_absorption, read_density, read_emission, read_fluorescence, read_profile, read_scattering, uniform,
 };
 use super::model::{Description, Media, Role, Scene, Shape, Surface};
 use super::read::{
@@ -78,6 +78,7 @@ fn read_media(source: &Source, tables: Vec<Spanned<SpannedTable>>) -> Result<Med
         let absorption = read_absorption(&mut t, density.clone())?;
         let scattering = read_scattering(&mut t, density.clone())?;
         let emission = read_emission(&mut t, absorption.is_some())?;
+        let fluorescence = read_fluorescence(&mut t, density.is_some(), scattering.as_ref())?;
         if density.is_some() && scattering.is_none() && absorption.is_none() {
             let key = match t.has("density_file") {
                 true => "density_file",
@@ -96,6 +97,7 @@ fn read_media(source: &Source, tables: Vec<Spanned<SpannedTable>>) -> Result<Med
                 absorption,
                 scattering,
                 emission,
+                fluorescence,
             },
         );
     }

@@ -12,7 +12,7 @@ use crate::media::{
     STANDARD_PRESSURE,
 };
 use crate::spectrum::{Dispersion, LAMBDA_D};
-use crate::volume::{Absorption, Emission, Phase, Scattering};
+use crate::volume::{Absorption, Emission, Fluorescence, Phase, Scattering};
 use glam::DVec3;
 use std::sync::Arc;
 use toml::Value;
@@ -68,6 +68,58 @@ pub fn read_emission(t: &mut TableReader, absorbs: bool) -> Result<Option<Emissi
         "a medium emits σa·Le per unit length (Kirchhoff's law): give it an `absorption` > 0",
     )?;
     Ok((radiance.max_element() > 0.0).then_some(Emission { radiance }))
+}
+
+/// A `[[medium]]` table's dye, if it holds one: `fluorescence = { absorption = σf over
+/// wavelength (1/length, ≥ 0, as `scattering`'s forms), emission = the emitted photons'
+/// spectrum (as a light's `spectrum`), quantum_yield = q in [0, 1] }` ([`Fluorescence`]). A dye
+/// is spread evenly: refused with a `density`; and a medium that holds one scatters the same
+/// in every channel or by a form over wavelength (an RGB σs has no value at one wavelength).
+pub fn read_fluorescence(
+    t: &mut TableReader,
+    density: bool,
+    scattering: Option<&Scattering>,
+) -> Result<Option<Fluorescence>> {
+    let Some(mut f) = t.nested("fluorescence")? else {
+        return Ok(None);
+    };
+    let absorption = f.over_wavelength("absorption")?;
+    let (least, most) = (absorption.min_visible(), absorption.max_visible());
+    f.check(
+        "absorption",
+        least >= 0.0 && most.is_finite(),
+        format!("must be ≥ 0 and finite from 360 to 830 nm, got {least:?} to {most:?}"),
+    )?;
+    f.check(
+        "absorption",
+        most > 0.0,
+        "the dye absorbs nothing from 360 to 830 nm",
+    )?;
+    let emission = f
+        .spectrum_opt("emission")?
+        .ok_or_else(|| f.error("emission", "is missing"))?;
+    let quantum_yield = f.f64("quantum_yield")?;
+    f.check(
+        "quantum_yield",
+        (0.0..=1.0).contains(&quantum_yield),
+        format!("photons emitted per photon absorbed: must be in [0, 1], got {quantum_yield}"),
+    )?;
+    f.finish()?;
+    t.check(
+        "fluorescence",
+        !density,
+        "a dye is spread evenly through its medium: not with a density",
+    )?;
+    t.check(
+        "fluorescence",
+        scattering.is_none_or(|s| s.is_spectral() || s.is_grey()),
+        "a medium holding a dye scatters the same in every channel or by a form over wavelength (an RGB σs has no value at one wavelength)",
+    )?;
+    Ok(Some(Fluorescence {
+        absorption,
+        emission,
+        quantum_yield,
+    }))
 }
 
 /// A `[[medium]]` table's scattering, if it scatters: `scattering` σs (1/length, ≥ 0: a

@@ -15,7 +15,7 @@ use crate::media::{Medium, Parametric};
 use crate::receiver::Receiver;
 use crate::shapes::Primitive;
 use crate::spectrum::{Spectrum, LAMBDA_D};
-use crate::volume::{Participating, Scattering};
+use crate::volume::{Fluorescence, Participating, Scattering};
 use std::path::{Path, PathBuf};
 
 /// A dispersive medium's profile at a vacuum wavelength (nm): its constants evaluated there.
@@ -111,11 +111,25 @@ impl Media {
             .map(|e| e.name.as_str())
     }
 
-    /// Whether a path through medium `i` depends on its wavelength: its index does, or its
-    /// scattering coefficient.
+    /// The dye medium `i` holds (None: none).
+    pub fn fluorescence(&self, i: MediumId) -> Option<&Fluorescence> {
+        self.0[i.index()].participating.fluorescence.as_ref()
+    }
+
+    /// The first medium that holds a dye, by name (None: none does).
+    pub fn first_fluorescent(&self) -> Option<&str> {
+        self.0
+            .iter()
+            .find(|e| e.participating.fluorescence.is_some())
+            .map(|e| e.name.as_str())
+    }
+
+    /// Whether a path through medium `i` depends on its wavelength: its index does, its
+    /// scattering coefficient, or a dye's absorption.
     pub fn is_dispersive(&self, i: MediumId) -> bool {
         let e = &self.0[i.index()];
         e.dispersion.is_some()
+            || e.participating.fluorescence.is_some()
             || e.participating
                 .scattering
                 .as_ref()

@@ -5,7 +5,8 @@ use super::source::Source;
 use crate::color::Rgb;
 use crate::error::{Error, Result};
 use crate::media::MonotoneCubic;
-use crate::spectrum::{Dispersion, LAMBDA_MAX, LAMBDA_MIN};
+use crate::spectrum::emission::Shape;
+use crate::spectrum::{Dispersion, Spectrum, LAMBDA_MAX, LAMBDA_MIN};
 use glam::DVec3;
 use std::collections::BTreeMap;
 use std::ops::Range;
@@ -447,6 +448,72 @@ impl<'a> TableReader<'a> {
                     format!("expected a number, a material name or a table {{ sellmeier | cauchy | abbe | table | angstrom = [...] }}, got {}", other.type_str()),
                 ))
             }
+        }))
+    }
+
+    /// An optional spectrum, the shape of an emission over wavelength: `"D65"`, `"E"` (equal
+    /// energy), `{ blackbody = kelvin }` or `{ gaussian = [peak_nm, fwhm_nm] }` (an LED, a
+    /// dye's line); refused where it has no power from 360 to 830 nm.
+    pub fn spectrum_opt(&mut self, key: &str) -> Result<Option<Spectrum>> {
+        let Some(value) = self.take(key) else {
+            return Ok(None);
+        };
+        let bad = |why: &str| {
+            self.error(
+                key,
+                format!("{why} (expected \"D65\", \"E\", {{ blackbody = kelvin }} or {{ gaussian = [peak_nm, fwhm_nm] }})"),
+            )
+        };
+        let shape = match &value {
+            Value::String(s) if s == "D65" => Shape::D65,
+            Value::String(s) if s == "E" => Shape::Equal,
+            Value::Table(table) if table.len() == 1 => {
+                let (model, v) = table.iter().next().expect("one entry");
+                let numbers = self.numbers_in(key, v)?;
+                match (model.as_str(), &numbers[..]) {
+                    ("blackbody", &[k]) if k > 0.0 && k.is_finite() => Shape::Blackbody { kelvin: k },
+                    ("gaussian", &[peak, fwhm])
+                        if fwhm > 0.0 && peak.is_finite() && fwhm.is_finite() =>
+                    {
+                        Shape::Gaussian { peak, fwhm }
+                    }
+                    _ => return Err(bad(&format!("bad `{model}` spectrum"))),
+                }
+            }
+            Value::String(s) => return Err(bad(&format!("unknown spectrum '{s}'"))),
+            _ => return Err(bad("not a spectrum")),
+        };
+        Spectrum::new(shape)
+            .map(Some)
+            .map_err(|e| self.error(key, e))
+    }
+
+    /// The table at `key` (`key = { ... }`) as a reader of its own, called `what key` in
+    /// messages, which point at `key` for each of its keys; None where `key` is absent.
+    pub fn nested(&mut self, key: &str) -> Result<Option<TableReader<'a>>> {
+        let Some(at) = self.entries.iter().position(|(k, _, _)| k.get_ref() == key) else {
+            self.take(key);
+            return Ok(None);
+        };
+        let (name, value) = (self.entries[at].0.span(), self.entries[at].1.span());
+        let Some(Value::Table(table)) = self.take(key) else {
+            return Err(self.error(key, "expected a table { ... }"));
+        };
+        Ok(Some(TableReader {
+            source: self.source,
+            span: value.clone(),
+            what: format!("{} `{key}`", self.what),
+            entries: table
+                .into_iter()
+                .map(|(k, v)| {
+                    (
+                        Spanned::new(name.clone(), k),
+                        Spanned::new(value.clone(), v),
+                        false,
+                    )
+                })
+                .collect(),
+            asked: Vec::new(),
         }))
     }
 

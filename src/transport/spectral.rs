@@ -9,7 +9,7 @@ use crate::ids::MediumId;
 use crate::media::{Medium, Parametric};
 use crate::scene::Surface;
 use crate::spectrum::{colour, Hero, LAMBDA_D};
-use crate::volume::{Participating, Scattering};
+use crate::volume::{Fluorescence, Participating, Scattering};
 use glam::DVec3;
 use std::borrow::Cow;
 use std::sync::Arc;
@@ -155,13 +155,33 @@ impl<'a> Tracer<'a> {
         }
     }
 
-    /// How medium `i` scatters at the tracer's wavelength (None: it does not).
+    /// How medium `i` scatters at the tracer's wavelength (None: it does not), a dye it holds
+    /// counted in: the dye's absorption stops a path as a collision at the rate σf (a path
+    /// through a dye is always at one wavelength: the medium is dispersive), and which of the
+    /// two a collision was is [`Tracer::dye_share`]'s to tell.
     pub fn scattering(&self, i: MediumId) -> Option<Cow<'a, Scattering>> {
-        let scattering = self.scene.media().scattering(i)?;
+        let media = self.scene.media();
+        if let Some(dye) = media.fluorescence(i) {
+            let nm = self.wavelength();
+            return Scattering::with_dye(media.scattering(i), dye.sigma(nm), nm).map(Cow::Owned);
+        }
+        let scattering = media.scattering(i)?;
         Some(match self.wavelength {
             Some(nm) if scattering.is_spectral() => Cow::Owned(scattering.at_wavelength(nm)),
             _ => Cow::Borrowed(scattering),
         })
+    }
+
+    /// The dye medium `i` holds, and the share of the collisions there at the tracer's
+    /// wavelength that are the dye's absorption ([`Fluorescence::share`]); None without a dye.
+    pub fn dye_share(&self, i: MediumId) -> Option<(&'a Fluorescence, f64)> {
+        let media = self.scene.media();
+        let dye = media.fluorescence(i)?;
+        let nm = self.wavelength();
+        let sigma_s = media
+            .scattering(i)
+            .map_or(0.0, |s| s.at_wavelength(nm).sigma_s.0.x);
+        Some((dye, dye.share(nm, sigma_s)))
     }
 
     /// What medium `i` does to light's power: its absorption and emission (its scattering at

@@ -1,6 +1,7 @@
 //! Participating media: a medium's radiometry beside its index field ([`crate::media`]).
 //! A medium may scatter light with coefficient σs (1/length, per RGB channel, or a form over
-//! wavelength) and a [`Phase`] function; it may absorb with σa and emit ([`Participating`]).
+//! wavelength) and a [`Phase`] function; it may absorb with σa and emit ([`Participating`]),
+//! and hold a dye that fluoresces ([`Fluorescence`]).
 //!
 //! **Free flights.** Light travelling a path of arclength s in the medium keeps exp(−σs s)
 //! unscattered — along a curved path exactly as along a straight one, since σs is constant
@@ -32,9 +33,11 @@
 //! does it ([`crate::transport::chain::Chain::radiance_scale`]). A phase function is
 //! normalised over solid angle at the point, whatever n is there.
 
+mod fluorescence;
 mod participating;
 mod phase;
 
+pub use fluorescence::{Fluorescence, Reemitted};
 pub use participating::{Absorption, Emission, Participating};
 pub use phase::Phase;
 
@@ -92,6 +95,22 @@ impl Scattering {
             phase,
             density,
         }
+    }
+
+    /// The collisions a path at vacuum wavelength `nm` meets in a medium scattering as
+    /// `scattering` (None: it does not) and holding a dye of absorption coefficient `sigma_f`
+    /// there: one grey rate σs(λ) + σf, the scattering's phase function (isotropic without
+    /// one); None where neither acts. A dye is spread evenly, and a medium holding one
+    /// scatters greyly or by a form over wavelength (both checked where the scene is read).
+    pub fn with_dye(scattering: Option<&Scattering>, sigma_f: f64, nm: f64) -> Option<Self> {
+        let sigma_s = scattering.map_or(0.0, |s| s.at_wavelength(nm).sigma_s.0.x);
+        let sigma = sigma_s + sigma_f;
+        (sigma > 0.0).then(|| Self {
+            sigma_s: Rgb::splat(sigma),
+            spectrum: None,
+            phase: scattering.map_or(Phase::Isotropic, |s| s.phase),
+            density: None,
+        })
     }
 
     /// Whether σs depends on wavelength (a path through the medium is one wavelength's).

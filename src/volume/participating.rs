@@ -1,7 +1,7 @@
 //! A participating medium: what a medium does to light's power beside bending it — it absorbs
 //! (σa), scatters (σs and a phase function: [`Scattering`]) and emits (Le), each scaled by the
-//! medium's density where it is heterogeneous. The index field ([`crate::media::Medium`]) only
-//! bends rays; the curved-segment engine returns geometry, and the transport asks this type
+//! medium's density where it is heterogeneous, and it may hold a dye ([`Fluorescence`]). The
+//! index field ([`crate::media::Medium`]) only bends rays; the curved-segment engine returns geometry, and the transport asks this type
 //! what the light loses and gains along it.
 //!
 //! **Emission.** A medium that absorbs with σa(x) emits σa(x)·Le per unit length (the
@@ -13,7 +13,7 @@
 //! any density and along any curved path, since d/ds e^(−τa(s)) = −σa(s)·e^(−τa(s)) — and a
 //! path starting at index n sees n² times it ([`Emission::along`]).
 
-use super::Scattering;
+use super::{Fluorescence, Scattering};
 use crate::color::Rgb;
 use crate::media::Density;
 use glam::DVec3;
@@ -81,6 +81,8 @@ pub struct Participating {
     pub scattering: Option<Scattering>,
     /// Emission (only a medium that absorbs emits).
     pub emission: Option<Emission>,
+    /// A dye that fluoresces (None: none).
+    pub fluorescence: Option<Fluorescence>,
 }
 
 impl Participating {

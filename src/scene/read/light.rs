@@ -8,7 +8,6 @@ use crate::lights::{Emitter, Falloff, Light, Luminaire};
 use crate::math::Ball;
 use crate::scene::table::TableReader;
 use crate::shapes::{Disk, Quad};
-use crate::spectrum::emission::Shape;
 use crate::spectrum::Spectrum;
 use glam::{DMat3, DVec3};
 
@@ -16,37 +15,7 @@ use glam::{DMat3, DVec3};
 /// images): the shape of its emission over wavelength, `"D65"`, `"E"` (equal energy),
 /// `{ blackbody = kelvin }` or `{ gaussian = [peak_nm, fwhm_nm] }` (an LED).
 pub fn read_spectrum(t: &mut TableReader) -> Result<Option<Spectrum>> {
-    let Some(value) = t.value_opt("spectrum") else {
-        return Ok(None);
-    };
-    let bad = |why: &str| {
-        t.error(
-            "spectrum",
-            format!("{why} (expected \"D65\", \"E\", {{ blackbody = kelvin }} or {{ gaussian = [peak_nm, fwhm_nm] }})"),
-        )
-    };
-    let shape = match &value {
-        toml::Value::String(s) if s == "D65" => Shape::D65,
-        toml::Value::String(s) if s == "E" => Shape::Equal,
-        toml::Value::Table(table) if table.len() == 1 => {
-            let (model, v) = table.iter().next().expect("one entry");
-            let numbers = t.numbers_in("spectrum", v)?;
-            match (model.as_str(), &numbers[..]) {
-                ("blackbody", &[k]) if k > 0.0 && k.is_finite() => Shape::Blackbody { kelvin: k },
-                ("gaussian", &[peak, fwhm])
-                    if fwhm > 0.0 && peak.is_finite() && fwhm.is_finite() =>
-                {
-                    Shape::Gaussian { peak, fwhm }
-                }
-                _ => return Err(bad(&format!("bad `{model}` spectrum"))),
-            }
-        }
-        toml::Value::String(s) => return Err(bad(&format!("unknown spectrum '{s}'"))),
-        _ => return Err(bad("not a spectrum")),
-    };
-    Spectrum::new(shape)
-        .map(Some)
-        .map_err(|e| t.error("spectrum", e))
+    t.spectrum_opt("spectrum")
 }
 
 /// A light and the spectrum it emits. With a `spectrum`, its power key (one number, or equal

@@ -1,0 +1,232 @@
+//! Fluorescence: a dye that absorbs light and emits some of it again at longer wavelengths —
+//! its quantum yield and Stokes shift in the energy budget, the share of its isotropic light a
+//! slab guides by total internal reflection, and the emission spectrum as receivers read it.
+
+use grinlight::scene::load::parse_scene;
+use std::path::Path;
+
+/// Index of the slab.
+const N: f64 = 1.5;
+/// Quantum yield of the dye.
+const YIELD: f64 = 0.8;
+/// The slab's thickness.
+const THICKNESS: f64 = 0.1;
+/// The slab's half width.
+const HALF: f64 = 50.0;
+/// The largest number of events a photon meets.
+const MAX_DEPTH: u32 = 64;
+/// The receivers' bands over the emission line (nm).
+const BANDS: [(f64, f64); 5] = [
+    (500.0, 570.0),
+    (570.0, 590.0),
+    (590.0, 610.0),
+    (610.0, 630.0),
+    (630.0, 830.0),
+];
+
+/// A thin slab of index 1.5 (0.1 thick, 100 wide) holding a dye that absorbs 20 per unit below
+/// 480 nm and nothing above 500, and emits a Gaussian line at 600 nm (FWHM 40: no overlap with
+/// its absorption, so no re-absorption), lit at its centre by a spot of 400 nm light from
+/// above; receivers just above and below the slab, as wide as it, read the light leaving its
+/// faces in the bands of [`BANDS`].
+fn slab() -> String {
+    let bands: Vec<String> = BANDS
+        .iter()
+        .map(|(lo, hi)| format!("[{lo:.1}, {hi:.1}]"))
+        .collect();
+    let bands = bands.join(", ");
+    let gap = 1e-3;
+    format!(
+        "[render]\nreceiver_photons = 1000000\nmax_depth = {MAX_DEPTH}\n\
+         [[medium]]\nname = \"dyed\"\nprofile = \"uniform\"\nn = {N}\n\
+         fluorescence = {{ absorption = {{ table = [[360, 20], [480, 20], [500, 0], [830, 0]] }}, \
+         emission = {{ gaussian = [600, 40] }}, quantum_yield = {YIELD} }}\n\
+         [[material]]\nname = \"slab\"\ntype = \"dielectric\"\ninterior = \"dyed\"\n\
+         [[shape]]\ntype = \"box\"\nmin = [-{HALF}, -{HALF}, 0]\nmax = [{HALF}, {HALF}, {THICKNESS}]\n\
+         material = \"slab\"\n\
+         [[light]]\ntype = \"spot\"\nposition = [0, 0, 1]\ndirection = [0, 0, -1]\n\
+         intensity = 1\ncone_deg = 5\nspectrum = {{ gaussian = [400, 2] }}\n\
+         [[receiver]]\nname = \"above\"\ncenter = [0, 0, {}]\nnormal = [0, 0, 1]\n\
+         size = [{w}, {w}]\nbins = [1, 1]\nbands = [{bands}]\n\
+         [[receiver]]\nname = \"below\"\ncenter = [0, 0, -{gap}]\nnormal = [0, 0, -1]\n\
+         size = [{w}, {w}]\nbins = [1, 1]\nbands = [{bands}]\n",
+        THICKNESS + gap,
+        w = 2.0 * HALF,
+    )
+}
+
+/// The unpolarized Fresnel reflectance from inside a medium of index `n` to vacuum at cosine
+/// `mu` of the angle of incidence (1 beyond the critical angle).
+fn fresnel_inside(n: f64, mu: f64) -> f64 {
+    let sin_t2 = n * n * (1.0 - mu * mu);
+    if sin_t2 >= 1.0 {
+        return 1.0;
+    }
+    let ct = (1.0 - sin_t2).sqrt();
+    let rs = (n * mu - ct) / (n * mu + ct);
+    let rp = (mu - n * ct) / (mu + n * ct);
+    0.5 * (rs * rs + rp * rp)
+}
+
+/// The share of isotropic light inside a slab of index `n` that leaves through its faces
+/// within `hits` meetings with them: ∫₀¹ (1 − R(μ)^hits) dμ, μ = |cos| to the normal uniform
+/// over [0, 1] for isotropic light, R = 1 beyond the critical angle (midpoint rule on 10⁶
+/// nodes, converged to 1e-9).
+fn leaving_through_faces(n: f64, hits: u32) -> f64 {
+    let nodes = 1_000_000;
+    (0..nodes)
+        .map(|k| {
+            let mu = (k as f64 + 0.5) / nodes as f64;
+            1.0 - fresnel_inside(n, mu).powi(hits as i32)
+        })
+        .sum::<f64>()
+        / nodes as f64
+}
+
+/// ∫ g(λ) ε(λ) dλ / ∫ ε(λ) dλ over a Gaussian line ε (peak, FWHM) on [lo, hi] nm (0.01 nm
+/// midpoint sums).
+fn over_line(peak: f64, fwhm: f64, lo: f64, hi: f64, g: impl Fn(f64) -> f64) -> f64 {
+    let sigma = fwhm / (8.0 * std::f64::consts::LN_2).sqrt();
+    let steps = ((hi - lo) / 0.01) as usize;
+    let (mut mass, mut sum) = (0.0, 0.0);
+    for k in 0..steps {
+        let nm = lo + 0.01 * (k as f64 + 0.5);
+        let e = (-0.5 * ((nm - peak) / sigma).powi(2)).exp();
+        mass += e;
+        sum += e * g(nm);
+    }
+    sum / mass
+}
+
+/// The dyed slab, measured once, checked four ways:
+/// 1. **Quantum yield and Stokes shift.** The power the dye emitted over the power it
+///    absorbed is q·E[λ]·E[1/λ′] (absorbed at the 400 nm line, emitted on the 600 nm line:
+///    each photon emitted carries λ/λ′ of the energy absorbed), within 4 standard errors of
+///    the absorbed photons' count; nothing re-absorbed.
+/// 2. **The budget closes**: the fates add up to the power emitted to 1e-12, and the part of
+///    the dye's light adds up to what the dye emitted.
+/// 3. **Trapping.** Of the light the dye emitted, the share that leaves through the slab's
+///    faces (the two receivers, emission bands only) is 1 − √(1 − 1/n²) = 0.2546 at n = 1.5:
+///    the rest is guided by total internal reflection toward the edges. Light inside the
+///    escape cone near the critical angle is reflected many times (R → 1 there), so within
+///    the photon's last 62–63 meetings with the faces a share 1 − ∫(1 − R^k) stays in:
+///    the expectation is that integral at k = 62 and 63 (they differ by 2e-6), within 4
+///    standard errors (binomial in the emitted photons, times the spread of their powers).
+/// 4. **Spectrum.** Each band's share of the light leaving the faces is the line's share of
+///    emitted *power* there, ∫ε/λ′ over the band over ∫ε/λ′ (ε the photons' number spectrum),
+///    within 4 of the band's standard errors.
+#[test]
+fn a_dyed_slab_emits_its_yield_guides_its_light_and_shows_its_line() {
+    let (scene, settings) = parse_scene(Path::new("dyed_slab.toml"), slab()).unwrap();
+    let photons = settings.receiver_photons as f64;
+    let (m, budget, _) = grinlight::render::measure(&scene, &settings, 0, &()).unwrap();
+    let dye = &budget.dyes[&0];
+    println!("{}", budget.table(scene.accel.primitives(), &["dyed"]));
+
+    // 1. Yield and Stokes shift.
+    let per_photon = budget.emitted / photons;
+    let absorbed = dye.absorbed / per_photon;
+    let mean_inverse = over_line(600.0, 40.0, 360.0, 830.0, |nm| 1.0 / nm);
+    let mean_inverse2 = over_line(600.0, 40.0, 360.0, 830.0, |nm| 1.0 / (nm * nm));
+    let (excitation, excitation2) = (
+        over_line(400.0, 2.0, 360.0, 830.0, |nm| nm),
+        over_line(400.0, 2.0, 360.0, 830.0, |nm| nm * nm),
+    );
+    let expected = YIELD * excitation * mean_inverse;
+    let second = YIELD * excitation2 * mean_inverse2;
+    let sigma = ((second - expected * expected) / absorbed).sqrt();
+    let measured = dye.emitted / dye.absorbed;
+    println!(
+        "emitted / absorbed {measured:.5} against q·E[λ/λ′] {expected:.5} ± {sigma:.5} \
+         ({absorbed:.0} photons absorbed)"
+    );
+    assert!((measured - expected).abs() < 4.0 * sigma);
+    assert_eq!(dye.reabsorbed, 0.0);
+
+    // 2. The budget closes, and so does the dye's part.
+    assert!((budget.booked() / budget.emitted - 1.0).abs() < 1e-12);
+    let part = budget.fluoresced.as_deref().expect("the dye emitted");
+    assert!((part.emitted / dye.emitted - 1.0).abs() < 1e-12);
+    assert!((part.booked() / part.emitted - 1.0).abs() < 1e-12);
+
+    // 3. Trapping.
+    let faces: f64 = m.iter().map(|r| r.bands.iter().map(|b| b.flux.0).sum::<f64>()).sum();
+    let share = faces / dye.emitted;
+    let (early, late) = (
+        leaving_through_faces(N, MAX_DEPTH - 2),
+        leaving_through_faces(N, MAX_DEPTH - 1),
+    );
+    let guided = (1.0 - 1.0 / (N * N)).sqrt();
+    let expected = 0.5 * (early + late);
+    let emitted_photons = dye.emitted / (per_photon * excitation * mean_inverse);
+    let spread = excitation2 * mean_inverse2 / (excitation * mean_inverse).powi(2);
+    let sigma = (expected * (1.0 - expected) / emitted_photons * spread).sqrt();
+    println!(
+        "leaving through the faces: {share:.5} against {expected:.5} ± {sigma:.5} \
+         (1 − √(1 − 1/n²) = {:.5}; {emitted_photons:.0} photons emitted)",
+        1.0 - guided
+    );
+    assert!((share - expected).abs() < 4.0 * sigma + 0.5 * (late - early).abs());
+    assert!((expected - (1.0 - guided)).abs() < 2e-3, "the cone's last reflections");
+
+    // 4. The line's shape, band by band.
+    let power = |lo: f64, hi: f64| over_line(600.0, 40.0, lo, hi, |nm| 1.0 / nm);
+    let line = |lo: f64, hi: f64| {
+        let sigma = 40.0 / (8.0 * std::f64::consts::LN_2).sqrt();
+        let mass = |a: f64, b: f64| libm::erf((b - 600.0) / (sigma * 2f64.sqrt())) - libm::erf((a - 600.0) / (sigma * 2f64.sqrt()));
+        mass(lo, hi) * power(lo, hi)
+    };
+    let total: f64 = BANDS.iter().map(|&(lo, hi)| line(lo, hi)).sum();
+    for (k, &(lo, hi)) in BANDS.iter().enumerate() {
+        let flux: f64 = m.iter().map(|r| r.bands[k].flux.0).sum();
+        let stderr = m.iter().map(|r| r.bands[k].flux.1.powi(2)).sum::<f64>().sqrt();
+        let expected = faces * line(lo, hi) / total;
+        println!("band {lo}–{hi} nm: {flux:.6e} W against {expected:.6e} ± {stderr:.1e}");
+        assert!((flux - expected).abs() < 4.0 * stderr, "band {lo}–{hi}");
+    }
+}
+
+/// A scene with a camera and a dye is refused by name before any work: no integrator renders
+/// an image of light that changes its wavelength.
+#[test]
+fn an_image_of_a_dye_is_refused_by_name() {
+    let text = format!(
+        "[camera]\nposition = [0, 0, 5]\nlook_at = [0, 0, 0]\nfov_y_deg = 30\nwidth = 8\nheight = 8\n{}",
+        slab()
+    );
+    let (scene, settings) = parse_scene(Path::new("dyed_slab.toml"), text).unwrap();
+    let err = grinlight::render::render(&scene, &settings, &())
+        .err()
+        .expect("refused")
+        .to_string();
+    assert!(err.contains("medium 'dyed' holds a dye"), "{err}");
+}
+
+/// Bad dyes are errors at the file's line and column naming the key: a yield above 1 or
+/// below 0, a negative absorption, a dye that absorbs nothing, an emission with no power in
+/// 360–830 nm, a missing key, an unknown key, a dye with a density.
+#[test]
+fn bad_dyes_are_errors_at_their_key() {
+    let cases = [
+        ("quantum_yield = 0.8", "quantum_yield = 1.2", "`quantum_yield`: photons emitted per photon absorbed: must be in [0, 1], got 1.2"),
+        ("quantum_yield = 0.8", "quantum_yield = -0.1", "must be in [0, 1], got -0.1"),
+        ("[[360, 20], [480, 20], [500, 0], [830, 0]]", "[[360, -1], [830, -1]]", "`absorption`: table: every value must be a finite number ≥ 0"),
+        ("[[360, 20], [480, 20], [500, 0], [830, 0]]", "[[360, 0], [830, 0]]", "the dye absorbs nothing"),
+        ("{ table = [[360, 20], [480, 20], [500, 0], [830, 0]] }", "{ cauchy = [1, -1] }", "`absorption`: must be ≥ 0 and finite"),
+        ("gaussian = [600, 40]", "gaussian = [1200, 10]", "`emission`: the spectrum has no power"),
+        (", quantum_yield = 0.8", "", "`quantum_yield`: is missing"),
+        ("quantum_yield = 0.8", "quantum_yield = 0.8, lifetime_ns = 3", "lifetime_ns"),
+        ("n = 1.5\n", "n = 1.5\ndensity_values = [1, 1, 1, 1, 1, 1, 1, 1]\ndensity_bounds = [[-1, -1, -1], [1, 1, 1]]\ndensity_dims = [2, 2, 2]\n", "not with a density"),
+    ];
+    for (from, to, expected) in cases {
+        let text = slab().replacen(from, to, 1);
+        assert_ne!(text, slab(), "{from}");
+        let line = 1 + text.lines().position(|l| l.starts_with("fluorescence")).unwrap();
+        let err = parse_scene(Path::new("dyed_slab.toml"), text)
+            .err()
+            .unwrap_or_else(|| panic!("{to}: accepted"))
+            .to_string();
+        assert!(err.starts_with(&format!("dyed_slab.toml:{line}:")), "{to}: {err}");
+        assert!(err.contains(expected), "{to}: {err}");
+    }
+}
