@@ -83,7 +83,9 @@ pub fn measurement<'py>(
 
 /// Where the receiver photons' power went (W): `emitted`, `reflected`, `missed`,
 /// `absorbed` (by surfaces), `lost`, `out_through` (by primitive index), `absorbed_in` (by
-/// medium name), `scattered` (the same for light a medium scattered, or None), `bands`.
+/// medium name), `scattered` (the same for light a medium scattered, or None), `fluoresced`
+/// (the same for light dyes emitted, or None), `dyes` (by medium name: `absorbed`,
+/// `reabsorbed`, `emitted`), `bands`.
 pub fn budget<'py>(py: Python<'py>, b: &Budget, media: &[String]) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     d.set_item("emitted", b.emitted)?;
@@ -92,20 +94,33 @@ pub fn budget<'py>(py: Python<'py>, b: &Budget, media: &[String]) -> PyResult<Bo
     d.set_item("absorbed", b.absorbed)?;
     d.set_item("lost", b.lost)?;
     d.set_item("out_through", b.out_through.clone())?;
+    let name = |i: usize| {
+        media
+            .get(i)
+            .cloned()
+            .unwrap_or_else(|| format!("medium {i}"))
+    };
     let absorbed_in = PyDict::new(py);
     for (i, w) in &b.absorbed_in {
-        let name = media
-            .get(*i)
-            .cloned()
-            .unwrap_or_else(|| format!("medium {i}"));
-        absorbed_in.set_item(name, w)?;
+        absorbed_in.set_item(name(*i), w)?;
     }
     d.set_item("absorbed_in", absorbed_in)?;
-    let scattered = match &b.scattered {
-        Some(s) => Some(budget(py, s, media)?),
-        None => None,
-    };
-    d.set_item("scattered", scattered)?;
+    let dyes = PyDict::new(py);
+    for (i, dye) in &b.dyes {
+        let entry = PyDict::new(py);
+        entry.set_item("absorbed", dye.absorbed)?;
+        entry.set_item("reabsorbed", dye.reabsorbed)?;
+        entry.set_item("emitted", dye.emitted)?;
+        dyes.set_item(name(*i), entry)?;
+    }
+    d.set_item("dyes", dyes)?;
+    for (key, part) in [("scattered", &b.scattered), ("fluoresced", &b.fluoresced)] {
+        let part = match part {
+            Some(s) => Some(budget(py, s, media)?),
+            None => None,
+        };
+        d.set_item(key, part)?;
+    }
     let bands = b
         .bands
         .iter()

@@ -202,3 +202,16 @@ def test_a_target_error_ends_the_render(scenes):
     assert image.passes >= 4 and image.error <= 0.15
     assert image["error"].shape == (32, 32, 3) and (image["error"] >= 0).all()
     assert any(line.startswith("estimated error") for line in image.report)
+
+
+def test_a_dyes_budget_closes_from_python(scenes):
+    m = grinlight.load(scenes / "solar_concentrator.toml").measure(photons=20000, seed=1, progress=False)
+    budget = m.budget
+    dye = budget["dyes"]["dyed_pmma"]
+    assert 0 < dye["emitted"] < dye["absorbed"] and 0 < dye["reabsorbed"] < dye["absorbed"]
+    part = budget["fluoresced"]
+    booked = part["reflected"] + part["missed"] + part["absorbed"] + part["lost"]
+    booked += sum(part["out_through"].values()) + sum(part["absorbed_in"].values())
+    assert booked == pytest.approx(part["emitted"], rel=1e-9), "the dye's light is booked"
+    edges = sum(m.receivers[f"edge_{side}"]["bands"][1]["flux"] for side in ("east", "west", "north", "south"))
+    assert edges > 0
