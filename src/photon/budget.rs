@@ -309,7 +309,9 @@ impl Ledger {
         for part in [&self.scattered, &self.fluoresced].into_iter().flatten() {
             let nested = part.scattered.is_some() || part.fluoresced.is_some();
             if nested || !part.bands.is_empty() || !part.dyes.is_empty() {
-                return Err("a malformed part (scattered or fluoresced) in its energy budget".into());
+                return Err(
+                    "a malformed part (scattered or fluoresced) in its energy budget".into(),
+                );
             }
             part.fits(primitives, media, 0)?;
         }
@@ -464,8 +466,53 @@ mod tests {
         assert!(whole.fits(4, 2, 2).is_ok());
     }
 
+    /// A dye's absorption is booked with its medium, in the whole and the photon's band; a
+    /// photon a dye emitted is booked in the fluoresced part with the power it was emitted with
+    /// once, and the part's fates add up to it.
+    #[test]
+    fn a_dyes_events_and_light_are_booked_apart() {
+        let mut ledger = Ledger::with_bands(&[(500.0, 600.0)]);
+        let medium = MediumId::new(1);
+        // A photon of 1 W absorbed by the dye, 0.6 W emitted again: 0.4 W of heat at once,
+        // then the emitted light absorbed again (0.6 W, none emitted), all heat.
+        ledger.book(&Ended {
+            emitted: 1.0,
+            power: 0.4,
+            fate: Fate::AbsorbedIn(medium),
+            nm: Some(550.0),
+            scattered: false,
+            fluoresced: None,
+        });
+        for (absorbed, emitted, again) in [(1.0, 0.6, false), (0.6, 0.0, true)] {
+            ledger.book_dye(&DyeEvent {
+                medium,
+                absorbed,
+                emitted,
+                again,
+                nm: Some(550.0),
+            });
+        }
+        ledger.book(&Ended {
+            emitted: 0.0,
+            power: 0.6,
+            fate: Fate::AbsorbedIn(medium),
+            nm: Some(550.0),
+            scattered: false,
+            fluoresced: Some(0.6),
+        });
+        let s = ledger.statement(1.0);
+        assert_eq!((s.emitted, s.booked()), (1.0, 1.0));
+        let dye = &s.dyes[&1];
+        assert_eq!((dye.absorbed, dye.reabsorbed, dye.emitted), (1.6, 0.6, 0.6));
+        let part = s.fluoresced.as_deref().unwrap();
+        assert_eq!((part.emitted, part.booked()), (0.6, 0.6));
+        assert_eq!(s.bands[0].1.dyes[&1].absorbed, 1.6);
+        assert!(ledger.fits(1, 2, 1).is_ok());
+    }
+
     /// Books read from a file are refused when they name a medium or a face the scene does not
-    /// have, or hold a scattered part that is not a plain budget.
+    /// have (a dye's medium too), or hold a scattered or fluoresced part that is not a plain
+    /// budget.
     #[test]
     fn books_that_do_not_fit_the_scene_are_refused() {
         let mut ledger = Ledger::default();
@@ -475,7 +522,19 @@ mod tests {
         assert!(why.contains("medium 2 of a scene of 2"), "{why}");
         let mut nested = ledger.clone();
         nested.scattered.as_mut().unwrap().scattered = Some(Box::default());
-        assert!(nested.fits(1, 3, 0).unwrap_err().contains("scattered part"));
+        assert!(nested.fits(1, 3, 0).unwrap_err().contains("malformed part"));
+        let mut dyed = ledger.clone();
+        dyed.fluoresced = Some(Box::new(Ledger::with_bands(&[(500.0, 600.0)])));
+        assert!(dyed.fits(1, 3, 0).unwrap_err().contains("malformed part"));
+        let mut dyed = ledger.clone();
+        dyed.book_dye(&DyeEvent {
+            medium: MediumId::new(3),
+            absorbed: 1.0,
+            emitted: 0.5,
+            again: false,
+            nm: None,
+        });
+        assert!(dyed.fits(1, 3, 0).unwrap_err().contains("dye in medium 3"));
         ledger.book(&ended(Fate::OutThrough(PrimId::new(5)), false));
         assert!(ledger.fits(5, 3, 0).unwrap_err().contains("primitive 5"));
     }

@@ -843,7 +843,10 @@ fn trace_photon(
         // hero takes it on where it meets dispersion.
         let dispersed = leg.launch.wavelength.map(|nm| tracer.at_wavelength(nm));
         let tracer = dispersed.as_ref().unwrap_or(tracer);
-        let hero = leg.launch.hero.map(|h| HeroTracer::for_photon(tracer, h.nm));
+        let hero = leg
+            .launch
+            .hero
+            .map(|h| HeroTracer::for_photon(tracer, h.nm));
         walk.wavelength = tracer.wavelength();
         let carried = chain::Carried {
             depth: leg.depth,
@@ -887,9 +890,7 @@ fn trace_photon(
                     fate,
                     nm,
                     scattered: fogged,
-                    fluoresced: leg
-                        .fluoresced
-                        .map(|_| first_emission.take().unwrap_or(0.0)),
+                    fluoresced: leg.fluoresced.map(|_| first_emission.take().unwrap_or(0.0)),
                 });
                 emitted = 0.0;
             };

@@ -4,7 +4,8 @@
 
 use super::data::SceneText;
 use super::media::{
-    read_absorption, read_density, read_emission, read_fluorescence, read_profile, read_scattering, uniform,
+    read_absorption, read_density, read_emission, read_fluorescence, read_profile, read_scattering,
+    uniform,
 };
 use super::model::{Description, Media, Role, Scene, Shape, Surface};
 use super::read::{

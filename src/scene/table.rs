@@ -471,7 +471,9 @@ impl<'a> TableReader<'a> {
                 let (model, v) = table.iter().next().expect("one entry");
                 let numbers = self.numbers_in(key, v)?;
                 match (model.as_str(), &numbers[..]) {
-                    ("blackbody", &[k]) if k > 0.0 && k.is_finite() => Shape::Blackbody { kelvin: k },
+                    ("blackbody", &[k]) if k > 0.0 && k.is_finite() => {
+                        Shape::Blackbody { kelvin: k }
+                    }
                     ("gaussian", &[peak, fwhm])
                         if fwhm > 0.0 && peak.is_finite() && fwhm.is_finite() =>
                     {
