@@ -431,7 +431,13 @@ impl std::fmt::Display for Primitive {
                 v(base),
                 v(axis)
             ),
-            Primitive::Quad(Quad { origin, .. }) => write!(f, "quad at {}", v(origin)),
+            // Its centre and the way it faces: a box's six faces each read apart.
+            Primitive::Quad(Quad { origin, e1, e2 }) => write!(
+                f,
+                "quad at {} facing {}",
+                v(origin + 0.5 * (e1 + e2)),
+                v(e1.cross(e2).normalize_or_zero())
+            ),
             Primitive::Disk(Disk {
                 center,
                 normal,
