@@ -4,7 +4,7 @@
 use crate::bsdf::{Bsdf, Coat, Ggx, Lobes, Metal, Reflectance};
 use crate::color::Rgb;
 use crate::polarization::Sheet;
-use crate::spectrum::colour;
+use crate::spectrum::{colour, Dispersion, Fluorophore};
 use crate::texture::Texture;
 use glam::DVec2;
 use std::sync::Arc;
@@ -18,6 +18,8 @@ pub enum Material {
         albedo: Rgb,
         /// An image texture over the surface's (u, v), multiplying `albedo`.
         texture: Option<Arc<Texture>>,
+        /// A fluorescent layer on it (None: none).
+        fluorescence: Option<Arc<FluorescentLayer>>,
     },
     /// A conductor (`conductor`, and `mirror`: a smooth one of constant reflectance), two-sided:
     /// a mirror where `ggx` is None, else GGX microfacet reflection.
@@ -73,6 +75,35 @@ pub enum ConductorIndex {
     },
 }
 
+/// A fluorescent layer on a diffuse surface (a highlighter's ink, a brightened paper): of the
+/// light of vacuum wavelength λ falling on it, the share a(λ) is absorbed by the layer's
+/// fluorophore, which emits q of those photons again, Lambertian, on its line
+/// ([`Fluorophore`]); the rest meets the surface's own reflectance. Its reflectance at λ and
+/// λ′ is so the simplest exact bispectral one (a Donaldson matrix of a diagonal and one rank-1
+/// part): (1 − a(λ))·ρ(λ) for λ′ = λ, a(λ)·q·ε(λ′)·λ/λ′ per nm otherwise.
+#[derive(Clone, Debug)]
+pub struct FluorescentLayer {
+    /// a(λ): the share of the light the layer absorbs, in [0, 1].
+    pub excitation: Dispersion,
+    /// What it emits again.
+    pub fluorophore: Fluorophore,
+}
+
+/// The very same layer (a material's, read once from its file): its forms over wavelength have
+/// no equality of their own.
+impl PartialEq for FluorescentLayer {
+    fn eq(&self, other: &Self) -> bool {
+        std::ptr::eq(self, other)
+    }
+}
+
+impl FluorescentLayer {
+    /// a at vacuum wavelength `nm`, within [0, 1].
+    pub fn absorbed(&self, nm: f64) -> f64 {
+        self.excitation.at(nm).clamp(0.0, 1.0)
+    }
+}
+
 impl Material {
     /// The lobes of the BSDF this material makes at any hit: what the photon plan reads
     /// before any ray is traced.
@@ -92,6 +123,18 @@ impl Material {
             }
             Material::Plastic { .. } => Lobes::DIFFUSE_REFLECTION.with(Lobes::GLOSSY_REFLECTION),
             Material::Sheet(_) => Lobes::SPECULAR_TRANSMISSION,
+        }
+    }
+
+    /// Its fluorescent layer (None: none).
+    pub fn fluorescence(&self) -> Option<&FluorescentLayer> {
+        match self {
+            Material::Diffuse { fluorescence, .. } => fluorescence.as_deref(),
+            Material::Conductor { .. }
+            | Material::Dielectric { .. }
+            | Material::Plastic { .. }
+            | Material::ThinDielectric { .. }
+            | Material::Sheet(_) => None,
         }
     }
 
@@ -115,7 +158,9 @@ impl Material {
             reflectance(albedo, at.wavelength())
         };
         Some(match self {
-            Material::Diffuse { albedo, texture } => Bsdf::Lambert {
+            Material::Diffuse {
+                albedo, texture, ..
+            } => Bsdf::Lambert {
                 albedo: textured(*albedo, texture),
             },
             Material::Conductor { index, ggx } => Bsdf::Conductor {

@@ -461,3 +461,107 @@ fn a_dye_absorbs_along_a_curved_ray() {
     );
     assert!((kept - expected).abs() < 4.0 * sd);
 }
+
+/// A fluorescent layer on a black diffuse square (20 × 20) under the sun at 400 nm, its layer
+/// absorbing a = 0.6 there and emitting a Gaussian line at 600 nm (FWHM 40) with yield 0.7:
+/// the square is a Lambertian emitter of exitance M = E·a·q·E[λ/λ′], and a receiver (4 × 4)
+/// 1 above its centre, in the line's band, reads M times the square's view factor averaged
+/// over the receiver (a 40 × 40 grid of points; at each, the rectangle's factor from the
+/// corner formula F(a, b) = (1/2π)[a/√(1+a²)·atan(b/√(1+a²)) + b/√(1+b²)·atan(a/√(1+b²))],
+/// lengths over the height, odd in a and b) — within 4 standard errors. The budget books the
+/// layer's absorption and emission (their ratio q·E[λ/λ′] within 4 standard errors) and its
+/// heat as absorbed by surfaces.
+#[test]
+fn a_fluorescent_layer_glows_as_a_lambertian_emitter_of_its_absorbed_light() {
+    let (a, q, half, height, side) = (0.6, 0.7, 10.0f64, 1.0f64, 4.0f64);
+    let text = format!(
+        "[render]\nreceiver_photons = 1000000\n\
+         [[material]]\nname = \"ink\"\ntype = \"diffuse\"\nalbedo = 0\n\
+         fluorescence = {{ excitation = {{ table = [[360, {a}], [480, {a}], [500, 0], [830, 0]] }}, \
+         emission = {{ gaussian = [600, 40] }}, quantum_yield = {q} }}\n\
+         [[shape]]\ntype = \"quad\"\n\
+         vertices = [[-{half}, -{half}, 0], [{half}, -{half}, 0], [{half}, {half}, 0], [-{half}, {half}, 0]]\n\
+         material = \"ink\"\n\
+         [[light]]\ntype = \"directional\"\ndirection = [0, 0, -1]\nirradiance = 1\n\
+         spectrum = {{ gaussian = [400, 2] }}\n\
+         [[receiver]]\nname = \"above\"\ncenter = [0, 0, {height}]\nnormal = [0, 0, -1]\n\
+         size = [{side}, {side}]\nbins = [1, 1]\nbands = [[500, 830]]\n"
+    );
+    let (scene, settings) = parse_scene(Path::new("ink.toml"), text).unwrap();
+    let (m, budget, _) = grinlight::render::measure(&scene, &settings, 0, &()).unwrap();
+    let corner = |a: f64, b: f64| {
+        let (ra, rb) = ((1.0 + a * a).sqrt(), (1.0 + b * b).sqrt());
+        (a / ra * (b / ra).atan() + b / rb * (a / rb).atan()) / std::f64::consts::TAU
+    };
+    let points = 40;
+    let view = (0..points * points)
+        .map(|k| {
+            let at = |i: usize| side * ((i as f64 + 0.5) / points as f64 - 0.5);
+            let (x, y) = (at(k % points), at(k / points));
+            let f = |u: f64, v: f64| corner((u - x) / height, (v - y) / height);
+            f(half, half) - f(-half, half) - f(half, -half) + f(-half, -half)
+        })
+        .sum::<f64>()
+        / (points * points) as f64;
+    let stokes = over_line(400.0, 2.0, 360.0, 830.0, |nm| nm) * over_line(600.0, 40.0, 360.0, 830.0, |nm| 1.0 / nm);
+    let exitance = a * q * stokes;
+    let band = &m[0].bands[0];
+    let irradiance = band.flux.0 / (side * side);
+    let sd = band.flux.1 / (side * side);
+    println!(
+        "irradiance {irradiance:.5} ± {sd:.5} against M·F {:.5} (M {exitance:.5}, F {view:.5})",
+        exitance * view
+    );
+    assert!((irradiance - exitance * view).abs() < 4.0 * sd);
+    // The layer's emitted over absorbed power, within 4 standard errors of the photons it
+    // absorbed (each of the same power).
+    let layer = &budget.layers[&0];
+    let absorbed = layer.absorbed / (budget.emitted / settings.receiver_photons as f64);
+    let second = q * over_line(400.0, 2.0, 360.0, 830.0, |nm| nm * nm)
+        * over_line(600.0, 40.0, 360.0, 830.0, |nm| 1.0 / (nm * nm));
+    let sd_ratio = ((second - (q * stokes).powi(2)) / absorbed).sqrt();
+    assert!((layer.emitted / layer.absorbed - q * stokes).abs() < 4.0 * sd_ratio);
+    assert!((budget.booked() / budget.emitted - 1.0).abs() < 1e-12);
+    assert!(budget.absorbed > 0.0 && budget.dyes.is_empty());
+}
+
+/// A bad fluorescent layer is an error at the file's line naming the key: a share absorbed
+/// above 1 or below 0, nothing absorbed, a yield above 1, a missing emission; and a scene
+/// with a camera and a layer is refused by name.
+#[test]
+fn bad_fluorescent_layers_are_errors_at_their_key() {
+    let layer = |excitation: &str, rest: &str| {
+        format!(
+            "[[material]]\nname = \"ink\"\ntype = \"diffuse\"\nalbedo = 0.5\n\
+             fluorescence = {{ excitation = {excitation}{rest} }}\n\
+             [[shape]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"ink\"\n\
+             [[receiver]]\nname = \"r\"\ncenter = [0, 0, 2]\nsize = [1, 1]\nbins = [1, 1]\n"
+        )
+    };
+    let good = ", emission = { gaussian = [600, 40] }, quantum_yield = 0.5";
+    let cases = [
+        (layer("1.5", good), "`excitation`: the share of light the layer absorbs: must be in [0, 1]"),
+        (layer("-0.1", good), "must be in [0, 1] from 360 to 830 nm"),
+        (layer("0", good), "the layer absorbs nothing"),
+        (layer("0.5", ", emission = { gaussian = [600, 40] }, quantum_yield = 2"), "`quantum_yield`: photons emitted per photon absorbed"),
+        (layer("0.5", ", quantum_yield = 0.5"), "`emission`: is missing"),
+    ];
+    for (text, expected) in cases {
+        let err = parse_scene(Path::new("ink.toml"), text.clone())
+            .err()
+            .unwrap_or_else(|| panic!("{text}: accepted"))
+            .to_string();
+        assert!(err.starts_with("ink.toml:5:"), "{err}");
+        assert!(err.contains(expected), "{err}");
+    }
+    let text = format!(
+        "[camera]\nposition = [0, 0, 5]\nlook_at = [0, 0, 0]\nfov_y_deg = 30\nwidth = 8\nheight = 8\n{}",
+        layer("0.5", good)
+    );
+    let (scene, settings) = parse_scene(Path::new("ink.toml"), text).unwrap();
+    let err = grinlight::render::render(&scene, &settings, &())
+        .err()
+        .expect("refused")
+        .to_string();
+    assert!(err.contains("a diffuse material has a fluorescent layer"), "{err}");
+}

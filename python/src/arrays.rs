@@ -84,8 +84,9 @@ pub fn measurement<'py>(
 /// Where the receiver photons' power went (W): `emitted`, `reflected`, `missed`,
 /// `absorbed` (by surfaces), `lost`, `out_through` (by primitive index), `absorbed_in` (by
 /// medium name), `scattered` (the same for light a medium scattered, or None), `fluoresced`
-/// (the same for light dyes emitted, or None), `dyes` (by medium name: `absorbed`,
-/// `reabsorbed`, `emitted`), `bands`.
+/// (the same for light dyes and fluorescent layers emitted, or None), `dyes` (by medium
+/// name: `absorbed`, `reabsorbed`, `emitted`), `layers` (the same by primitive index),
+/// `bands`.
 pub fn budget<'py>(py: Python<'py>, b: &Budget, media: &[String]) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     d.set_item("emitted", b.emitted)?;
@@ -105,15 +106,23 @@ pub fn budget<'py>(py: Python<'py>, b: &Budget, media: &[String]) -> PyResult<Bo
         absorbed_in.set_item(name(*i), w)?;
     }
     d.set_item("absorbed_in", absorbed_in)?;
-    let dyes = PyDict::new(py);
-    for (i, dye) in &b.dyes {
+    let fluorophore = |dye: &grinlight::photon::Dye| -> PyResult<Bound<'py, PyDict>> {
         let entry = PyDict::new(py);
         entry.set_item("absorbed", dye.absorbed)?;
         entry.set_item("reabsorbed", dye.reabsorbed)?;
         entry.set_item("emitted", dye.emitted)?;
-        dyes.set_item(name(*i), entry)?;
+        Ok(entry)
+    };
+    let dyes = PyDict::new(py);
+    for (i, dye) in &b.dyes {
+        dyes.set_item(name(*i), fluorophore(dye)?)?;
     }
     d.set_item("dyes", dyes)?;
+    let layers = PyDict::new(py);
+    for (p, layer) in &b.layers {
+        layers.set_item(*p, fluorophore(layer)?)?;
+    }
+    d.set_item("layers", layers)?;
     for (key, part) in [("scattered", &b.scattered), ("fluoresced", &b.fluoresced)] {
         let part = match part {
             Some(s) => Some(budget(py, s, media)?),

@@ -6,12 +6,12 @@
 //! and photons that carry a wavelength in every receiver band holding it (the band of the
 //! wavelength they left their light at).
 //!
-//! **Dyes.** A dye's absorption ends nothing by itself: what it turns into heat — all of a
-//! photon it does not emit again, and the Stokes shift's energy of one it does — is booked as
-//! absorbed in its medium where it happens, and the photon it emits goes on to a fate of its
-//! own, so the fates still add up to the power emitted. What each dye absorbed, what of that
-//! it had emitted itself before (re-absorption) and what it emitted are booked beside
-//! ([`Dye`]).
+//! **Fluorophores.** A dye's or a fluorescent layer's absorption ends nothing by itself: what
+//! it turns into heat — all of a photon it does not emit again, and the Stokes shift's energy
+//! of one it does — is booked as absorbed in its medium (or by surfaces) where it happens, and
+//! the photon it emits goes on to a fate of its own, so the fates still add up to the power
+//! emitted. What each absorbed, what of that a fluorophore had emitted before (re-absorption)
+//! and what it emitted are booked beside ([`Dye`]).
 
 use crate::exact::ExactSum;
 use crate::ids::{MediumId, PrimId};
@@ -57,11 +57,21 @@ pub struct Ended {
     pub fluoresced: Option<f64>,
 }
 
-/// What a dye did to a photon at one absorption, as its medium's [`Dye`] books it.
+/// Where a fluorophore sits: dissolved in a medium (a dye), or a layer on a primitive's
+/// surface.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DyeSite {
+    /// A dye in this medium.
+    Medium(MediumId),
+    /// A fluorescent layer on this primitive.
+    Surface(PrimId),
+}
+
+/// What a fluorophore did to a photon at one absorption, as its site's [`Dye`] books it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DyeEvent {
-    /// The medium holding the dye.
-    pub medium: MediumId,
+    /// Where the fluorophore sits.
+    pub site: DyeSite,
     /// The power it absorbed (W, the mean over the RGB channels).
     pub absorbed: f64,
     /// The power it emitted again (0: none).
@@ -72,7 +82,7 @@ pub struct DyeEvent {
     pub nm: Option<f64>,
 }
 
-/// What a dye absorbed and emitted, W: its heat is `absorbed − emitted`.
+/// What a fluorophore absorbed and emitted, W: its heat is `absorbed − emitted`.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct Dye<T = f64> {
     /// Power it absorbed.
@@ -123,6 +133,9 @@ pub struct Budget<T = f64> {
     /// What each dye absorbed and emitted, by medium index.
     #[serde(default)]
     pub dyes: BTreeMap<usize, Dye<T>>,
+    /// What each fluorescent layer absorbed and emitted, by primitive index.
+    #[serde(default)]
+    pub layers: BTreeMap<usize, Dye<T>>,
     /// The same for the photons in each wavelength band [lo, hi) nm (in
     /// [`Ledger::with_bands`] order; empty: no bands).
     pub bands: Vec<((f64, f64), Budget<T>)>,
@@ -145,6 +158,7 @@ impl<T> Budget<T> {
             scattered: self.scattered.as_ref().map(|b| Box::new(b.map(f))),
             fluoresced: self.fluoresced.as_ref().map(|b| Box::new(b.map(f))),
             dyes: self.dyes.iter().map(|(&m, d)| (m, d.map(f))).collect(),
+            layers: self.layers.iter().map(|(&p, d)| (p, d.map(f))).collect(),
             bands: self.bands.iter().map(|(b, x)| (*b, x.map(f))).collect(),
         }
     }
@@ -225,7 +239,11 @@ impl Ledger {
     }
 
     fn book_dye_here(&mut self, event: &DyeEvent) {
-        let dye = self.dyes.entry(event.medium.index()).or_default();
+        let dye = match event.site {
+            DyeSite::Medium(m) => self.dyes.entry(m.index()),
+            DyeSite::Surface(p) => self.layers.entry(p.index()),
+        }
+        .or_default();
         dye.absorbed.add(event.absorbed);
         dye.emitted.add(event.emitted);
         if event.again {
@@ -252,11 +270,13 @@ impl Ledger {
         if let Some(theirs) = &other.fluoresced {
             self.fluoresced.get_or_insert_with(Box::default).add(theirs);
         }
-        for (&m, theirs) in &other.dyes {
-            let mine = self.dyes.entry(m).or_default();
-            mine.absorbed.merge(&theirs.absorbed);
-            mine.reabsorbed.merge(&theirs.reabsorbed);
-            mine.emitted.merge(&theirs.emitted);
+        for (mine, theirs) in [(&mut self.dyes, &other.dyes), (&mut self.layers, &other.layers)] {
+            for (&site, theirs) in theirs {
+                let mine = mine.entry(site).or_default();
+                mine.absorbed.merge(&theirs.absorbed);
+                mine.reabsorbed.merge(&theirs.reabsorbed);
+                mine.emitted.merge(&theirs.emitted);
+            }
         }
         self.emitted.merge(&other.emitted);
         for (&p, w) in &other.out_through {
@@ -299,16 +319,23 @@ impl Ledger {
                 "an energy budget of a dye in medium {m} of a scene of {media}"
             ));
         }
+        if let Some(p) = self.layers.keys().find(|&&p| p >= primitives) {
+            return Err(format!(
+                "an energy budget of a fluorescent layer on primitive {p} of a scene of {primitives}"
+            ));
+        }
         let dye_sums = self
             .dyes
             .values()
+            .chain(self.layers.values())
             .flat_map(|d| [&d.absorbed, &d.reabsorbed, &d.emitted]);
         if !dye_sums.into_iter().all(ExactSum::is_well_formed) {
             return Err("a malformed sum in its energy budget".into());
         }
         for part in [&self.scattered, &self.fluoresced].into_iter().flatten() {
             let nested = part.scattered.is_some() || part.fluoresced.is_some();
-            if nested || !part.bands.is_empty() || !part.dyes.is_empty() {
+            let dyed = !part.dyes.is_empty() || !part.layers.is_empty();
+            if nested || !part.bands.is_empty() || dyed {
                 return Err(
                     "a malformed part (scattered or fluoresced) in its energy budget".into(),
                 );
@@ -390,11 +417,15 @@ impl Budget {
                 part(b)
             ));
         }
-        for (&m, d) in &self.dyes {
+        let dyes = self.dyes.iter().map(|(&m, d)| (format!("dye in medium '{}'", media[m]), d));
+        let layers = self
+            .layers
+            .iter()
+            .map(|(&p, d)| (format!("fluorescent layer on {}", primitives[p]), d));
+        for (site, d) in dyes.chain(layers) {
             lines.push(format!(
-                "  dye in medium '{}': absorbed {:.6e} W ({:.3} % of it emitted by a dye before), \
+                "  {site}: absorbed {:.6e} W ({:.3} % of it emitted by a fluorophore before), \
                  emitted {:.6e} W, heat {:.6e} W",
-                media[m],
                 d.absorbed,
                 share(d.reabsorbed, d.absorbed),
                 d.emitted,
@@ -485,7 +516,7 @@ mod tests {
         });
         for (absorbed, emitted, again) in [(1.0, 0.6, false), (0.6, 0.0, true)] {
             ledger.book_dye(&DyeEvent {
-                medium,
+                site: DyeSite::Medium(medium),
                 absorbed,
                 emitted,
                 again,
@@ -528,7 +559,7 @@ mod tests {
         assert!(dyed.fits(1, 3, 0).unwrap_err().contains("malformed part"));
         let mut dyed = ledger.clone();
         dyed.book_dye(&DyeEvent {
-            medium: MediumId::new(3),
+            site: DyeSite::Medium(MediumId::new(3)),
             absorbed: 1.0,
             emitted: 0.5,
             again: false,

@@ -21,7 +21,7 @@ mod map;
 mod shell;
 mod volume;
 
-pub use budget::{Budget, Dye, DyeEvent, Ended, Fate, Ledger};
+pub use budget::{Budget, Dye, DyeEvent, DyeSite, Ended, Fate, Ledger};
 pub use map::{Photon, PhotonMap};
 pub use shell::Shell;
 pub use volume::VolumeMap;
@@ -34,11 +34,10 @@ use crate::ids::{MediumId, PrimId};
 use crate::lights::{Aim, Cone, Emission, Entry, Light};
 use crate::math::Ball;
 use crate::receiver::Detection;
-use crate::sampling::{stream, uniform_sphere, Discrete, Pick, Purpose};
-use crate::spectrum::{colour, Spectrum};
+use crate::sampling::{cosine_hemisphere, stream, uniform_sphere, Discrete, Frame, Pick, Purpose};
+use crate::spectrum::{colour, Fluorophore, Spectrum};
 use crate::transport::chain::{self, End, Policy, Ray};
 use crate::transport::{HeroTracer, MediumVertex, Scattered, Stats, Tracer, Vertex};
-use crate::volume::Fluorescence;
 use glam::DVec3;
 use rand::Rng;
 use rand_pcg::Pcg64Mcg;
@@ -730,6 +729,41 @@ impl chain::ChainEvents for PhotonWalk<'_, '_> {
     }
 }
 
+/// Whether a fluorophore absorbs the photon at `vertex` (one number from `rng` where there is
+/// one): a collision in a medium holding a dye is the dye's absorption in proportion to its
+/// rate ([`Tracer::scattering`] counts the dye in); a surface with a fluorescent layer
+/// absorbs the share a(λ) of the light it meets.
+fn absorbed_by_fluorophore<'s>(
+    vertex: &Vertex,
+    walker: &chain::Walker<'s>,
+    rng: &mut impl Rng,
+) -> Option<DyeAbsorption<'s>> {
+    let carried = walker.carried();
+    let tracer = carried.tracer;
+    let (site, fluorophore, share, facing, medium) = match vertex {
+        Vertex::Medium(MediumVertex {
+            medium: Some(m), ..
+        }) => {
+            let (dye, share) = tracer.dye_share(*m)?;
+            (DyeSite::Medium(*m), &dye.fluorophore, share, None, Some(*m))
+        }
+        Vertex::Medium(MediumVertex { medium: None, .. }) => return None,
+        Vertex::Surface(v) => {
+            let layer = tracer.scene.fluorescent_layer(v.prim)?;
+            let share = layer.absorbed(tracer.wavelength());
+            (DyeSite::Surface(v.prim), &layer.fluorophore, share, Some(v.normal), v.medium)
+        }
+    };
+    (rng.gen::<f64>() < share).then(|| DyeAbsorption {
+        site,
+        fluorophore,
+        position: vertex.origin(),
+        facing,
+        medium,
+        depth: carried.depth,
+    })
+}
+
 /// A photon's scattering at `vertex`: a direction from its BSDF or phase function and
 /// Russian roulette on the sample's weight ([`roulette`]; a phase sample's is 1: what a
 /// medium absorbs was played for on the way); None when it is absorbed. A Lambertian vertex,
@@ -827,7 +861,9 @@ fn trace_photon(
     if tag.batch != Batch::Receivers {
         stats.photon_power_emitted += emitted;
     }
-    let mut legs = vec![Leg {
+    // The photon's first leg, and the legs dyes send off (none in most scenes: an empty Vec
+    // allocates nothing).
+    let mut first = Some(Leg {
         launch,
         ray: Ray {
             origin: e.origin,
@@ -837,8 +873,9 @@ fn trace_photon(
         power: walk.power,
         depth: tracer.settings.max_depth,
         fluoresced: None,
-    }];
-    while let Some(leg) = legs.pop() {
+    });
+    let mut legs: Vec<Leg> = Vec::new();
+    while let Some(leg) = first.take().or_else(|| legs.pop()) {
         // A photon with a wavelength of its own sees the dispersive media at it; one with a
         // hero takes it on where it meets dispersion.
         let dispersed = leg.launch.wavelength.map(|nm| tracer.at_wavelength(nm));
@@ -902,12 +939,16 @@ fn trace_photon(
                 }
                 Ending::Dye(at) => at,
             };
-            let reemitted = at.dye.reemit(walk.wavelength, rng.gen(), rng.gen());
+            let reemitted = at.fluorophore.reemit(walk.wavelength, rng.gen(), rng.gen());
             let out = reemitted.map_or(0.0, |r| absorbed * r.energy);
             // All of it heat, or the Stokes shift's share.
-            book(absorbed - out, Fate::AbsorbedIn(at.medium));
+            let heat = match at.site {
+                DyeSite::Medium(m) => Fate::AbsorbedIn(m),
+                DyeSite::Surface(_) => Fate::Absorbed,
+            };
+            book(absorbed - out, heat);
             budget.book_dye(&DyeEvent {
-                medium: at.medium,
+                site: at.site,
                 absorbed,
                 emitted: out,
                 again: leg.fluoresced.is_some(),
@@ -924,8 +965,13 @@ fn trace_photon(
                     },
                     ray: Ray {
                         origin: at.position,
-                        direction: uniform_sphere((rng.gen(), rng.gen())),
-                        medium: Some(at.medium),
+                        // Isotropic from a dye; Lambertian from a layer, back on the side
+                        // the light came from.
+                        direction: match at.facing {
+                            None => uniform_sphere((rng.gen(), rng.gen())),
+                            Some(n) => Frame::new(n).to_world(cosine_hemisphere((rng.gen(), rng.gen()))),
+                        },
+                        medium: at.medium,
                     },
                     power: walk.power * r.energy,
                     depth: at.depth,
@@ -951,20 +997,26 @@ struct Leg {
     fluoresced: Option<f64>,
 }
 
-/// How a branch of a photon ends: a fate, or absorbed by a dye (which may emit it again).
+/// How a branch of a photon ends: a fate, or absorbed by a fluorophore (which may emit it
+/// again).
 enum Ending<'s> {
     Fate(Fate),
     Dye(DyeAbsorption<'s>),
 }
 
-/// Where a dye absorbed a photon.
+/// Where a fluorophore absorbed a photon.
 struct DyeAbsorption<'s> {
-    /// The medium holding it.
-    medium: MediumId,
-    /// The dye.
-    dye: &'s Fluorescence,
-    /// Where.
+    /// Where it sits.
+    site: DyeSite,
+    /// What it emits.
+    fluorophore: &'s Fluorophore,
+    /// Where its light sets off: the point in a medium, just off a surface on the side the
+    /// light came from.
     position: DVec3,
+    /// A layer's normal on the side the light came from (None: a dye, emitting every way).
+    facing: Option<DVec3>,
+    /// The medium its light sets off in.
+    medium: Option<MediumId>,
     /// The surfaces and events in media the photon may still meet.
     depth: u32,
 }
@@ -1046,28 +1098,8 @@ fn follow_branch<'w, R: Rng>(
             }
             End::Lost | End::Stopped => break Fate::Lost,
         };
-        // A collision in a medium holding a dye is the dye's absorption in proportion to its
-        // rate ([`Tracer::scattering`] counts the dye in).
-        if let Vertex::Medium(MediumVertex {
-            medium: Some(m),
-            position,
-            ..
-        }) = vertex
-        {
-            let carried = b.walker.carried();
-            if let Some((dye, share)) = carried.tracer.dye_share(m) {
-                if rng.gen::<f64>() < share {
-                    return (
-                        Ending::Dye(DyeAbsorption {
-                            medium: m,
-                            dye,
-                            position,
-                            depth: carried.depth,
-                        }),
-                        b.fogged,
-                    );
-                }
-            }
+        if let Some(at) = absorbed_by_fluorophore(&vertex, &b.walker, rng) {
+            return (Ending::Dye(at), b.fogged);
         }
         let outside = match &vertex {
             Vertex::Medium(v) => Cone::toward(tracer.ball, v.position).map(|c| (v, c)),

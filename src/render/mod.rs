@@ -182,18 +182,18 @@ fn photons_carry_all_light(scene: &Scene) -> Result<()> {
     }
 }
 
-/// Refuses to render an image of a scene whose light camera paths cannot carry: a dye's
-/// fluorescence, which changes light's wavelength on the way. Its receivers measure it
-/// (photons change their wavelength where a dye emits them again).
+/// Refuses to render an image of a scene whose light camera paths cannot carry: a dye's or a
+/// fluorescent layer's light, which changes its wavelength on the way. Its receivers measure
+/// it (photons change their wavelength where a fluorophore emits them again).
 pub fn images_carry_all_light(scene: &Scene) -> Result<()> {
-    match scene.media().first_fluorescent() {
+    match scene.first_fluorescent() {
         None => Ok(()),
-        Some(name) => Err(crate::error::Error::Setting {
+        Some(what) => Err(crate::error::Error::Setting {
             key: "integrator",
             message: format!(
-                "medium '{name}' holds a dye (`fluorescence`), whose light changes its wavelength: \
-                 no integrator renders an image of it; its receivers measure it (leave out [camera] \
-                 to measure them alone)"
+                "{what} (`fluorescence`), whose light changes its wavelength: no integrator \
+                 renders an image of it; its receivers measure it (leave out [camera] to \
+                 measure them alone)"
             ),
         }),
     }

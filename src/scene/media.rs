@@ -11,7 +11,7 @@ use crate::media::{
     ParabolicFiber, Parametric, RadialTable, SechFiber, UniformMedium, GLADSTONE_DALE_AIR,
     STANDARD_PRESSURE,
 };
-use crate::spectrum::{Dispersion, LAMBDA_D};
+use crate::spectrum::{Dispersion, Fluorophore, LAMBDA_D};
 use crate::volume::{Absorption, Emission, Fluorescence, Phase, Scattering};
 use glam::DVec3;
 use std::sync::Arc;
@@ -95,15 +95,7 @@ pub fn read_fluorescence(
         most > 0.0,
         "the dye absorbs nothing from 360 to 830 nm",
     )?;
-    let emission = f
-        .spectrum_opt("emission")?
-        .ok_or_else(|| f.error("emission", "is missing"))?;
-    let quantum_yield = f.f64("quantum_yield")?;
-    f.check(
-        "quantum_yield",
-        (0.0..=1.0).contains(&quantum_yield),
-        format!("photons emitted per photon absorbed: must be in [0, 1], got {quantum_yield}"),
-    )?;
+    let fluorophore = read_fluorophore(&mut f)?;
     f.finish()?;
     t.check(
         "fluorescence",
@@ -117,9 +109,26 @@ pub fn read_fluorescence(
     )?;
     Ok(Some(Fluorescence {
         absorption,
+        fluorophore,
+    }))
+}
+
+/// A `fluorescence` table's fluorophore: `emission` (the emitted photons' spectrum, in the
+/// forms of a light's `spectrum`) and `quantum_yield` q in [0, 1].
+pub fn read_fluorophore(f: &mut TableReader) -> Result<Fluorophore> {
+    let emission = f
+        .spectrum_opt("emission")?
+        .ok_or_else(|| f.error("emission", "is missing"))?;
+    let quantum_yield = f.f64("quantum_yield")?;
+    f.check(
+        "quantum_yield",
+        (0.0..=1.0).contains(&quantum_yield),
+        format!("photons emitted per photon absorbed: must be in [0, 1], got {quantum_yield}"),
+    )?;
+    Ok(Fluorophore {
         emission,
         quantum_yield,
-    }))
+    })
 }
 
 /// A `[[medium]]` table's scattering, if it scatters: `scattering` σs (1/length, ≥ 0: a

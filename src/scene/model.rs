@@ -10,7 +10,7 @@ use crate::environment::Environment;
 use crate::error::{Error, Result};
 use crate::ids::{LightId, MaterialId, MediumId, PrimId, ReceiverId};
 use crate::lights::Light;
-use crate::material::Material;
+use crate::material::{FluorescentLayer, Material};
 use crate::media::{Medium, Parametric};
 use crate::receiver::Receiver;
 use crate::shapes::Primitive;
@@ -399,10 +399,29 @@ impl Scene {
         self.media.ids().any(|i| self.media.is_dispersive(i))
     }
 
-    /// Whether photons must carry a wavelength: a medium is dispersive or a receiver measures
-    /// wavelength bands.
+    /// Whether photons must carry a wavelength: a medium is dispersive, a surface fluoresces
+    /// or a receiver measures wavelength bands.
     pub fn is_spectral(&self) -> bool {
-        self.is_dispersive() || self.receivers.iter().any(|r| !r.bands.is_empty())
+        self.is_dispersive()
+            || self.materials.iter().any(|m| m.fluorescence().is_some())
+            || self.receivers.iter().any(|r| !r.bands.is_empty())
+    }
+
+    /// The fluorescent layer on primitive `prim`'s surface (None: none).
+    pub fn fluorescent_layer(&self, prim: PrimId) -> Option<&FluorescentLayer> {
+        self.material(self.surfaces[prim.index()])?.fluorescence()
+    }
+
+    /// What fluoresces first in the scene, in words (None: nothing does).
+    pub fn first_fluorescent(&self) -> Option<String> {
+        match self.media.first_fluorescent() {
+            Some(name) => Some(format!("medium '{name}' holds a dye")),
+            None => self
+                .materials
+                .iter()
+                .any(|m| m.fluorescence().is_some())
+                .then(|| "a diffuse material has a fluorescent layer".to_string()),
+        }
     }
 
     /// Names of all media, in file order.

@@ -37,7 +37,7 @@ mod fluorescence;
 mod participating;
 mod phase;
 
-pub use fluorescence::{Fluorescence, Reemitted};
+pub use fluorescence::Fluorescence;
 pub use participating::{Absorption, Emission, Participating};
 pub use phase::Phase;
 

@@ -4,8 +4,9 @@ use crate::bsdf::Metal;
 use crate::bsdf::{Coat, Ggx, SMOOTH_ALPHA};
 use crate::color::Rgb;
 use crate::error::Result;
-use crate::material::{ConductorIndex, Material};
+use crate::material::{ConductorIndex, FluorescentLayer, Material};
 use crate::polarization::Sheet;
+use crate::scene::media::read_fluorophore;
 use crate::scene::table::TableReader;
 use crate::spectrum::Dispersion;
 use crate::texture::Texture;
@@ -144,6 +145,33 @@ fn conductor_index(t: &mut TableReader) -> Result<ConductorIndex> {
     }
 }
 
+/// A diffuse material's `fluorescence = { excitation = a(λ), emission = spectrum,
+/// quantum_yield = q }` ([`FluorescentLayer`]): a(λ) the share of the light the layer absorbs,
+/// in [0, 1] (a number or a form over wavelength), somewhere above 0.
+fn fluorescent_layer(t: &mut TableReader) -> Result<Option<FluorescentLayer>> {
+    let Some(mut f) = t.nested("fluorescence")? else {
+        return Ok(None);
+    };
+    let excitation = f.over_wavelength("excitation")?;
+    let (least, most) = (excitation.min_visible(), excitation.max_visible());
+    f.check(
+        "excitation",
+        least >= 0.0 && most <= 1.0,
+        format!("the share of light the layer absorbs: must be in [0, 1] from 360 to 830 nm, got {least:?} to {most:?}"),
+    )?;
+    f.check(
+        "excitation",
+        most > 0.0,
+        "the layer absorbs nothing from 360 to 830 nm",
+    )?;
+    let fluorophore = read_fluorophore(&mut f)?;
+    f.finish()?;
+    Ok(Some(FluorescentLayer {
+        excitation,
+        fluorophore,
+    }))
+}
+
 /// A material and, for a dielectric, what fills it.
 pub fn read_material(t: &mut TableReader) -> Result<(Material, Option<Interior>)> {
     let kind = t.string("type")?;
@@ -151,7 +179,15 @@ pub fn read_material(t: &mut TableReader) -> Result<(Material, Option<Interior>)
         "diffuse" => {
             let texture = texture(t)?;
             let albedo = unit_color(t, "albedo", texture.as_ref().map(|_| Rgb::ONE))?;
-            (Material::Diffuse { albedo, texture }, None)
+            let fluorescence = fluorescent_layer(t)?.map(Arc::new);
+            (
+                Material::Diffuse {
+                    albedo,
+                    texture,
+                    fluorescence,
+                },
+                None,
+            )
         }
         "mirror" => (
             Material::Conductor {
