@@ -209,8 +209,8 @@ fn an_image_of_a_dye_is_refused_by_name() {
     );
     let (scene, settings) = parse_scene(Path::new("dyed_slab.toml"), text).unwrap();
     let err = grinlight::render::render(&scene, &settings, &())
-        .err()
-        .expect("refused")
+        .map(drop)
+        .expect_err("refused")
         .to_string();
     assert!(err.contains("medium 'dyed' holds a dye"), "{err}");
 }
@@ -503,7 +503,8 @@ fn a_fluorescent_layer_glows_as_a_lambertian_emitter_of_its_absorbed_light() {
         })
         .sum::<f64>()
         / (points * points) as f64;
-    let stokes = over_line(400.0, 2.0, 360.0, 830.0, |nm| nm) * over_line(600.0, 40.0, 360.0, 830.0, |nm| 1.0 / nm);
+    let stokes = over_line(400.0, 2.0, 360.0, 830.0, |nm| nm)
+        * over_line(600.0, 40.0, 360.0, 830.0, |nm| 1.0 / nm);
     let exitance = a * q * stokes;
     let band = &m[0].bands[0];
     let irradiance = band.flux.0 / (side * side);
@@ -517,7 +518,8 @@ fn a_fluorescent_layer_glows_as_a_lambertian_emitter_of_its_absorbed_light() {
     // absorbed (each of the same power).
     let layer = &budget.layers[&0];
     let absorbed = layer.absorbed / (budget.emitted / settings.receiver_photons as f64);
-    let second = q * over_line(400.0, 2.0, 360.0, 830.0, |nm| nm * nm)
+    let second = q
+        * over_line(400.0, 2.0, 360.0, 830.0, |nm| nm * nm)
         * over_line(600.0, 40.0, 360.0, 830.0, |nm| 1.0 / (nm * nm));
     let sd_ratio = ((second - (q * stokes).powi(2)) / absorbed).sqrt();
     assert!((layer.emitted / layer.absorbed - q * stokes).abs() < 4.0 * sd_ratio);
@@ -540,11 +542,23 @@ fn bad_fluorescent_layers_are_errors_at_their_key() {
     };
     let good = ", emission = { gaussian = [600, 40] }, quantum_yield = 0.5";
     let cases = [
-        (layer("1.5", good), "`excitation`: the share of light the layer absorbs: must be in [0, 1]"),
+        (
+            layer("1.5", good),
+            "`excitation`: the share of light the layer absorbs: must be in [0, 1]",
+        ),
         (layer("-0.1", good), "must be in [0, 1] from 360 to 830 nm"),
         (layer("0", good), "the layer absorbs nothing"),
-        (layer("0.5", ", emission = { gaussian = [600, 40] }, quantum_yield = 2"), "`quantum_yield`: photons emitted per photon absorbed"),
-        (layer("0.5", ", quantum_yield = 0.5"), "`emission`: is missing"),
+        (
+            layer(
+                "0.5",
+                ", emission = { gaussian = [600, 40] }, quantum_yield = 2",
+            ),
+            "`quantum_yield`: photons emitted per photon absorbed",
+        ),
+        (
+            layer("0.5", ", quantum_yield = 0.5"),
+            "`emission`: is missing",
+        ),
     ];
     for (text, expected) in cases {
         let err = parse_scene(Path::new("ink.toml"), text.clone())
@@ -560,8 +574,11 @@ fn bad_fluorescent_layers_are_errors_at_their_key() {
     );
     let (scene, settings) = parse_scene(Path::new("ink.toml"), text).unwrap();
     let err = grinlight::render::render(&scene, &settings, &())
-        .err()
-        .expect("refused")
+        .map(drop)
+        .expect_err("refused")
         .to_string();
-    assert!(err.contains("a diffuse material has a fluorescent layer"), "{err}");
+    assert!(
+        err.contains("a diffuse material has a fluorescent layer"),
+        "{err}"
+    );
 }

@@ -270,7 +270,10 @@ impl Ledger {
         if let Some(theirs) = &other.fluoresced {
             self.fluoresced.get_or_insert_with(Box::default).add(theirs);
         }
-        for (mine, theirs) in [(&mut self.dyes, &other.dyes), (&mut self.layers, &other.layers)] {
+        for (mine, theirs) in [
+            (&mut self.dyes, &other.dyes),
+            (&mut self.layers, &other.layers),
+        ] {
             for (&site, theirs) in theirs {
                 let mine = mine.entry(site).or_default();
                 mine.absorbed.merge(&theirs.absorbed);
@@ -417,7 +420,10 @@ impl Budget {
                 part(b)
             ));
         }
-        let dyes = self.dyes.iter().map(|(&m, d)| (format!("dye in medium '{}'", media[m]), d));
+        let dyes = self
+            .dyes
+            .iter()
+            .map(|(&m, d)| (format!("dye in medium '{}'", media[m]), d));
         let layers = self
             .layers
             .iter()

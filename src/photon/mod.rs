@@ -751,7 +751,13 @@ fn absorbed_by_fluorophore<'s>(
         Vertex::Surface(v) => {
             let layer = tracer.scene.fluorescent_layer(v.prim)?;
             let share = layer.absorbed(tracer.wavelength());
-            (DyeSite::Surface(v.prim), &layer.fluorophore, share, Some(v.normal), v.medium)
+            (
+                DyeSite::Surface(v.prim),
+                &layer.fluorophore,
+                share,
+                Some(v.normal),
+                v.medium,
+            )
         }
     };
     (rng.gen::<f64>() < share).then(|| DyeAbsorption {
@@ -969,7 +975,9 @@ fn trace_photon(
                         // the light came from.
                         direction: match at.facing {
                             None => uniform_sphere((rng.gen(), rng.gen())),
-                            Some(n) => Frame::new(n).to_world(cosine_hemisphere((rng.gen(), rng.gen()))),
+                            Some(n) => {
+                                Frame::new(n).to_world(cosine_hemisphere((rng.gen(), rng.gen())))
+                            }
                         },
                         medium: at.medium,
                     },

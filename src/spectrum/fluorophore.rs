@@ -90,6 +90,9 @@ mod tests {
         let expected = 0.7 * 420.0 * inverse / mass;
         let mean = power / n as f64;
         let sigma = ((squares / n as f64 - mean * mean) / n as f64).sqrt();
-        assert!((mean - expected).abs() < 4.0 * sigma, "{mean} vs {expected}");
+        assert!(
+            (mean - expected).abs() < 4.0 * sigma,
+            "{mean} vs {expected}"
+        );
     }
 }
