@@ -224,8 +224,8 @@ fn bad_dyes_are_errors_at_their_key() {
         ("quantum_yield = 0.8", "quantum_yield = 1.2", "`quantum_yield`: photons emitted per photon absorbed: must be in [0, 1], got 1.2"),
         ("quantum_yield = 0.8", "quantum_yield = -0.1", "must be in [0, 1], got -0.1"),
         ("[[360, 20], [480, 20], [500, 0], [830, 0]]", "[[360, -1], [830, -1]]", "`absorption`: table: every value must be a finite number ≥ 0"),
-        ("[[360, 20], [480, 20], [500, 0], [830, 0]]", "[[360, 0], [830, 0]]", "the dye absorbs nothing"),
-        ("{ table = [[360, 20], [480, 20], [500, 0], [830, 0]] }", "{ cauchy = [1, -1] }", "`absorption`: must be ≥ 0 and finite"),
+        ("[[360, 20], [480, 20], [500, 0], [830, 0]]", "[[360, 0], [830, 0]]", "it absorbs nothing from 360 to 830 nm"),
+        ("{ table = [[360, 20], [480, 20], [500, 0], [830, 0]] }", "{ cauchy = [1, -1] }", "`absorption`: must be ≥ 0 and finite from 360 to 830 nm"),
         ("gaussian = [600, 40]", "gaussian = [1200, 10]", "`emission`: the spectrum has no power"),
         (", quantum_yield = 0.8", "", "`quantum_yield`: is missing"),
         ("quantum_yield = 0.8", "quantum_yield = 0.8, lifetime_ns = 3", "lifetime_ns"),
@@ -544,10 +544,10 @@ fn bad_fluorescent_layers_are_errors_at_their_key() {
     let cases = [
         (
             layer("1.5", good),
-            "`excitation`: the share of light the layer absorbs: must be in [0, 1]",
+            "`excitation`: must be the share of light the layer absorbs, in [0, 1], from 360 to 830 nm",
         ),
-        (layer("-0.1", good), "must be in [0, 1] from 360 to 830 nm"),
-        (layer("0", good), "the layer absorbs nothing"),
+        (layer("-0.1", good), "in [0, 1], from 360 to 830 nm, got -0.1"),
+        (layer("0", good), "it absorbs nothing"),
         (
             layer(
                 "0.5",

@@ -190,12 +190,17 @@ impl Ledger {
     /// scattered if one did, and in every band holding its wavelength.
     pub fn book(&mut self, photon: &Ended) {
         self.book_here(photon);
+        self.in_bands(photon.nm, |band| band.book_here(photon));
+    }
+
+    /// Runs `book` on the band holding wavelength `nm` (none for a photon without one).
+    fn in_bands(&mut self, nm: Option<f64>, mut book: impl FnMut(&mut Ledger)) {
         for (_, band) in self
             .bands
             .iter_mut()
-            .filter(|((lo, hi), _)| photon.nm.is_some_and(|nm| (*lo..*hi).contains(&nm)))
+            .filter(|((lo, hi), _)| nm.is_some_and(|nm| (*lo..*hi).contains(&nm)))
         {
-            band.book_here(photon);
+            book(band);
         }
     }
 
@@ -229,13 +234,7 @@ impl Ledger {
     /// photon's wavelength.
     pub fn book_dye(&mut self, event: &DyeEvent) {
         self.book_dye_here(event);
-        for (_, band) in self
-            .bands
-            .iter_mut()
-            .filter(|((lo, hi), _)| event.nm.is_some_and(|nm| (*lo..*hi).contains(&nm)))
-        {
-            band.book_dye_here(event);
-        }
+        self.in_bands(event.nm, |band| band.book_dye_here(event));
     }
 
     fn book_dye_here(&mut self, event: &DyeEvent) {
@@ -301,30 +300,38 @@ impl Ledger {
         if !self.sums().all(ExactSum::is_well_formed) {
             return Err("a malformed sum in its energy budget".into());
         }
-        if let Some(p) = self.out_through.keys().find(|&&p| p >= primitives) {
-            return Err(format!(
-                "an energy budget through primitive {p} of a scene of {primitives}"
-            ));
-        }
-        if let Some(m) = self.absorbed_in.keys().find(|&&m| m >= media) {
-            return Err(format!(
-                "an energy budget absorbed in medium {m} of a scene of {media}"
-            ));
+        // Each map's keys must name one of the scene's primitives or media.
+        let keyed: [(Vec<usize>, usize, &str); 4] = [
+            (
+                self.out_through.keys().copied().collect(),
+                primitives,
+                "through primitive",
+            ),
+            (
+                self.absorbed_in.keys().copied().collect(),
+                media,
+                "absorbed in medium",
+            ),
+            (
+                self.dyes.keys().copied().collect(),
+                media,
+                "of a dye in medium",
+            ),
+            (
+                self.layers.keys().copied().collect(),
+                primitives,
+                "of a fluorescent layer on primitive",
+            ),
+        ];
+        for (keys, limit, what) in keyed {
+            if let Some(k) = keys.into_iter().find(|&k| k >= limit) {
+                return Err(format!("an energy budget {what} {k} of a scene of {limit}"));
+            }
         }
         if !self.bands.is_empty() && self.bands.len() != bands {
             return Err(format!(
                 "an energy budget of {} wavelength bands where the scene has {bands}",
                 self.bands.len()
-            ));
-        }
-        if let Some(m) = self.dyes.keys().find(|&&m| m >= media) {
-            return Err(format!(
-                "an energy budget of a dye in medium {m} of a scene of {media}"
-            ));
-        }
-        if let Some(p) = self.layers.keys().find(|&&p| p >= primitives) {
-            return Err(format!(
-                "an energy budget of a fluorescent layer on primitive {p} of a scene of {primitives}"
             ));
         }
         let dye_sums = self

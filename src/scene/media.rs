@@ -83,18 +83,7 @@ pub fn read_fluorescence(
     let Some(mut f) = t.nested("fluorescence")? else {
         return Ok(None);
     };
-    let absorption = f.over_wavelength("absorption")?;
-    let (least, most) = (absorption.min_visible(), absorption.max_visible());
-    f.check(
-        "absorption",
-        least >= 0.0 && most.is_finite(),
-        format!("must be ≥ 0 and finite from 360 to 830 nm, got {least:?} to {most:?}"),
-    )?;
-    f.check(
-        "absorption",
-        most > 0.0,
-        "the dye absorbs nothing from 360 to 830 nm",
-    )?;
+    let absorption = absorbing_form(&mut f, "absorption", f64::INFINITY, "≥ 0 and finite")?;
     let fluorophore = read_fluorophore(&mut f)?;
     f.finish()?;
     t.check(
@@ -111,6 +100,25 @@ pub fn read_fluorescence(
         absorption,
         fluorophore,
     }))
+}
+
+/// A fluorophore's absorption, `key` of its `fluorescence` table `f`: a form over wavelength
+/// within [0, `most`] (finite) from 360 to 830 nm (`bounds` in words), above 0 somewhere.
+pub fn absorbing_form(
+    f: &mut TableReader,
+    key: &str,
+    most: f64,
+    bounds: &str,
+) -> Result<Dispersion> {
+    let form = f.over_wavelength(key)?;
+    let (low, high) = (form.min_visible(), form.max_visible());
+    f.check(
+        key,
+        low >= 0.0 && high.is_finite() && high <= most,
+        format!("must be {bounds} from 360 to 830 nm, got {low:?} to {high:?}"),
+    )?;
+    f.check(key, high > 0.0, "it absorbs nothing from 360 to 830 nm")?;
+    Ok(form)
 }
 
 /// A `fluorescence` table's fluorophore: `emission` (the emitted photons' spectrum, in the

@@ -6,7 +6,7 @@ use crate::color::Rgb;
 use crate::error::Result;
 use crate::material::{ConductorIndex, FluorescentLayer, Material};
 use crate::polarization::Sheet;
-use crate::scene::media::read_fluorophore;
+use crate::scene::media::{absorbing_form, read_fluorophore};
 use crate::scene::table::TableReader;
 use crate::spectrum::Dispersion;
 use crate::texture::Texture;
@@ -152,17 +152,11 @@ fn fluorescent_layer(t: &mut TableReader) -> Result<Option<FluorescentLayer>> {
     let Some(mut f) = t.nested("fluorescence")? else {
         return Ok(None);
     };
-    let excitation = f.over_wavelength("excitation")?;
-    let (least, most) = (excitation.min_visible(), excitation.max_visible());
-    f.check(
+    let excitation = absorbing_form(
+        &mut f,
         "excitation",
-        least >= 0.0 && most <= 1.0,
-        format!("the share of light the layer absorbs: must be in [0, 1] from 360 to 830 nm, got {least:?} to {most:?}"),
-    )?;
-    f.check(
-        "excitation",
-        most > 0.0,
-        "the layer absorbs nothing from 360 to 830 nm",
+        1.0,
+        "the share of light the layer absorbs, in [0, 1],",
     )?;
     let fluorophore = read_fluorophore(&mut f)?;
     f.finish()?;
