@@ -12,7 +12,6 @@ use crate::spectrum::{colour, Hero, LAMBDA_D};
 use crate::volume::{Fluorescence, Participating, Scattering};
 use glam::DVec3;
 use std::borrow::Cow;
-use std::sync::Arc;
 
 /// A medium as a tracer's rays see it: the scene's own, or a dispersive one evaluated at
 /// their wavelength (made where it is asked for, on the stack).
@@ -81,14 +80,14 @@ impl<'a> Tracer<'a> {
     /// The same tracer with rays at vacuum wavelength `nm`: each dispersive medium is the
     /// one at that wavelength, and so is each scattering coefficient over wavelength. Rays of
     /// a tracer from [`Tracer::new`] see every medium at [`LAMBDA_D`].
-    pub fn at_wavelength(&self, nm: f64) -> Self {
-        Self {
+    pub fn at_wavelength<'b>(&'b self, nm: f64) -> Tracer<'b> {
+        Tracer {
             scene: self.scene,
             settings: self.settings,
             ball: self.ball,
             world: self.world,
             camera_medium: self.camera_medium,
-            light_sampler: Arc::clone(&self.light_sampler),
+            light_sampler: super::Lent::Borrowed(&self.light_sampler),
             light_samples: self.light_samples,
             wavelength: Some(nm),
         }
