@@ -42,31 +42,10 @@ use crate::shapes::{Hit, SegmentHits};
 use crate::volume::Participating;
 use glam::DVec3;
 pub use stats::Stats;
+use std::borrow::Cow;
 use std::ops::ControlFlow;
-use std::sync::Arc;
 
 pub use crate::math::{facing, offset};
-
-/// A value a tracer holds: its own (shared by the tracers cloned from it), or lent by the
-/// tracer it was made from ([`Tracer::at_wavelength`]), which costs a spectral path nothing —
-/// a shared count, raised and dropped by every photon of every thread, does.
-pub enum Lent<'a, T> {
-    /// Its own.
-    Owned(Arc<T>),
-    /// Another tracer's.
-    Borrowed(&'a T),
-}
-
-impl<T> std::ops::Deref for Lent<'_, T> {
-    type Target = T;
-
-    fn deref(&self) -> &T {
-        match self {
-            Lent::Owned(t) => t,
-            Lent::Borrowed(t) => t,
-        }
-    }
-}
 
 /// Where rays travel: the scene, how rays travel in it, the sphere holding everything in it,
 /// and the sphere beyond which rays count as escaped.
@@ -81,8 +60,11 @@ pub struct Tracer<'a> {
     pub world: Bounds,
     /// The medium the camera sits in (see [`Tracer::medium_containing`]).
     pub camera_medium: Option<MediumId>,
-    /// Which light a vertex's light sample goes to.
-    pub light_sampler: Lent<'a, LightSampler>,
+    /// Which light a vertex's light sample goes to: the tracer's own, or borrowed from the
+    /// tracer it was made at a wavelength from ([`Tracer::at_wavelength`]: a spectral photon
+    /// costs nothing there; a shared count, raised and dropped by every photon of every
+    /// thread, did).
+    pub light_sampler: Cow<'a, LightSampler>,
     /// How many lights a vertex's direct estimate samples (the integrator's choice:
     /// [`Tracer::sampling_lights`]; one unless it says).
     pub light_samples: LightSamples,
@@ -137,7 +119,7 @@ impl<'a> Tracer<'a> {
             ball,
             world: Bounds::Ball { center, radius },
             camera_medium: scene.ambient(),
-            light_sampler: Lent::Owned(Arc::new(LightSampler::new(&scene.lights))),
+            light_sampler: Cow::Owned(LightSampler::new(&scene.lights)),
             light_samples: LightSamples::One,
             wavelength: None,
         };

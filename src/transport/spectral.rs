@@ -87,7 +87,7 @@ impl<'a> Tracer<'a> {
             ball: self.ball,
             world: self.world,
             camera_medium: self.camera_medium,
-            light_sampler: super::Lent::Borrowed(&self.light_sampler),
+            light_sampler: Cow::Borrowed(&self.light_sampler),
             light_samples: self.light_samples,
             wavelength: Some(nm),
         }
@@ -177,9 +177,7 @@ impl<'a> Tracer<'a> {
         let media = self.scene.media();
         let dye = media.fluorescence(i)?;
         let nm = self.wavelength();
-        let sigma_s = media
-            .scattering(i)
-            .map_or(0.0, |s| s.at_wavelength(nm).sigma_s.0.x);
+        let sigma_s = media.scattering(i).map_or(0.0, |s| s.sigma_at(nm));
         Some((dye, dye.share(nm, sigma_s)))
     }
 

@@ -103,7 +103,7 @@ impl Scattering {
     /// one); None where neither acts. A dye is spread evenly, and a medium holding one
     /// scatters greyly or by a form over wavelength (both checked where the scene is read).
     pub fn with_dye(scattering: Option<&Scattering>, sigma_f: f64, nm: f64) -> Option<Self> {
-        let sigma_s = scattering.map_or(0.0, |s| s.at_wavelength(nm).sigma_s.0.x);
+        let sigma_s = scattering.map_or(0.0, |s| s.sigma_at(nm));
         let sigma = sigma_s + sigma_f;
         (sigma > 0.0).then(|| Self {
             sigma_s: Rgb::splat(sigma),
@@ -111,6 +111,15 @@ impl Scattering {
             phase: scattering.map_or(Phase::Isotropic, |s| s.phase),
             density: None,
         })
+    }
+
+    /// σs at vacuum wavelength `nm` where the density is 1, for a medium scattering the same
+    /// in every channel or by a form over wavelength (its first channel otherwise).
+    pub fn sigma_at(&self, nm: f64) -> f64 {
+        match &self.spectrum {
+            Some(s) => s.at(nm),
+            None => self.sigma_s.0.x,
+        }
     }
 
     /// Whether σs depends on wavelength (a path through the medium is one wavelength's).
