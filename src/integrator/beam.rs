@@ -31,8 +31,8 @@ use std::borrow::Cow;
 /// A chain's stretches in scattering media, recorded as it is followed.
 #[derive(Default)]
 pub struct Beams {
-    /// The chain's first stretch (where it starts).
-    start: Option<Stretch>,
+    /// Where the chain starts (its first stretch's origin and medium).
+    start: Option<Start>,
     /// n at the chain's start, looked up at its first stretch in a scattering medium (a chain
     /// through none costs no lookup).
     n_start: Option<f64>,
@@ -41,6 +41,15 @@ pub struct Beams {
     points: Vec<DVec3>,
     /// Whether the stretch under way is recorded.
     recording: bool,
+}
+
+/// Where a recorded chain starts: all of its first stretch that the estimate reads (a whole
+/// [`Stretch`] copied at every chain's start was a tenth of a path-traced sample's moves in a
+/// scene without fog).
+#[derive(Clone, Copy)]
+struct Start {
+    origin: DVec3,
+    medium: Option<MediumId>,
 }
 
 /// A stretch in a scattering medium and where its points start in [`Beams::points`].
@@ -270,7 +279,10 @@ pub struct Recording<'b> {
 impl ChainEvents for Recording<'_> {
     fn stretch(&mut self, stretch: &Stretch) {
         let beams = &mut *self.beams;
-        let start = *beams.start.get_or_insert(*stretch);
+        let start = *beams.start.get_or_insert(Start {
+            origin: stretch.origin,
+            medium: stretch.medium,
+        });
         let scatters = stretch
             .medium
             .filter(|&m| self.tracer.scattering(m).is_some());
