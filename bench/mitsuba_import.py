@@ -35,6 +35,9 @@ CASES = {
     "spheres_envmap": ("spheres_envmap.xml", {}),
     # An image texture on a rectangle and on an OBJ quad.
     "textures": ("textures.xml", {}),
+    # The texture on serialized, PLY and OBJ meshes, their v flipped or not, with and without
+    # texture coordinates.
+    "mesh_textures": ("mesh_textures.xml", {}),
     # Two emitting spheres over two diffuse balls and a floor.
     "sphere_lights": ("sphere_lights.xml", {}),
     # A thin pane (thindielectric) across the view of two balls, under a sky and a lamp.

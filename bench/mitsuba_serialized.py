@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""Write the serialized-mesh fixtures of tests/data/mitsuba/ and check that Mitsuba 3 reads
-them as meant: each mesh's positions, triangles, normals and texture coordinates as Mitsuba's
+"""Write the serialized-mesh fixtures of tests/data/mitsuba/ (and the textured quad of
+scenes/mitsuba/mesh_textures.xml) and check that Mitsuba 3 reads them as meant: each mesh's positions, triangles, normals and texture coordinates as Mitsuba's
 `serialized` plugin loads them, against the values written. grinlight's reader is tested on
 the same files (tests/ply.rs).
 
@@ -9,7 +9,8 @@ the same files (tests/ply.rs).
 Two files, each of two meshes: `meshes_v4.serialized` (format version 4: named meshes, u64
 offsets) and `meshes_v3.serialized` (version 3: no names, u32 offsets). Mesh 0 is a
 tetrahedron in f32 with normals and texture coordinates, mesh 1 a quad of two triangles in f64
-with vertex colours (which readers skip) and no normals.
+with vertex colours (which readers skip) and no normals. `scenes/mitsuba/textured_quad.serialized`
+is textured_quad.obj's quad and (u, v) as stored in its file, one mesh in f32.
 """
 import os
 import struct
@@ -26,6 +27,11 @@ TETRA = dict(
     normals=np.array([[-1, -1, -1], [1, 0, 0], [0, 1, 0], [0, 0, 1]], float),
     uv=np.array([[0, 0], [1, 0], [0, 1], [0.5, 0.5]], float),
     triangles=np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]]),
+)
+TEXTURED_QUAD = dict(
+    positions=np.array([[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]], float),
+    uv=np.array([[0, 0], [1, 0], [1, 1], [0, 1]], float),
+    triangles=np.array([[0, 1, 2], [0, 2, 3]]),
 )
 QUAD = dict(
     positions=np.array([[-1, 0, -1], [1, 0, -1], [1, 0, 1], [-1, 0, 1]], float) * 1.5,
@@ -50,19 +56,19 @@ def mesh_bytes(version, name, mesh, double):
     return struct.pack("<HH", 0x041C, version) + zlib.compress(body)
 
 
-def file_bytes(version):
-    parts = [mesh_bytes(version, "tetra", TETRA, False), mesh_bytes(version, "quad", QUAD, True)]
+def file_bytes(version, meshes):
+    parts = [mesh_bytes(version, name, mesh, double) for name, mesh, double in meshes]
     offsets = np.cumsum([0] + [len(p) for p in parts[:-1]])
     table = b"".join(struct.pack("<Q" if version == 4 else "<I", int(o)) for o in offsets)
     return b"".join(parts) + table + struct.pack("<I", len(parts))
 
 
-def check(path):
+def check(path, meshes):
     import mitsuba as mi
 
     mi.set_variant("scalar_rgb")
     worst = 0.0
-    for index, mesh in enumerate([TETRA, QUAD]):
+    for index, (_, mesh, _) in enumerate(meshes):
         shape = mi.load_dict({"type": "serialized", "filename": path, "shape_index": index})
         params = mi.traverse(shape)
         p = np.array(params["vertex_positions"]).reshape(-1, 3)
@@ -76,17 +82,21 @@ def check(path):
             n = np.array(params["vertex_normals"]).reshape(-1, 3)
             want = mesh["normals"] / np.linalg.norm(mesh["normals"], axis=1, keepdims=True)
             worst = max(worst, np.abs(n - want).max())
-    print(f"{os.path.basename(path)}: Mitsuba {mi.__version__} reads both meshes as written (largest difference {worst:.1e})")
+    print(f"{os.path.basename(path)}: Mitsuba {mi.__version__} reads its {len(meshes)} mesh(es) as written (largest difference {worst:.1e})")
     return worst
 
 
 def main():
     write = "--write" in sys.argv
-    for version in (4, 3):
-        path = os.path.join(OUT if write else "/tmp", f"meshes_v{version}.serialized")
+    files = [(os.path.join(OUT, f"meshes_v{version}.serialized"), version,
+              [("tetra", TETRA, False), ("quad", QUAD, True)]) for version in (4, 3)]
+    files.append((os.path.join(ROOT, "scenes", "mitsuba", "textured_quad.serialized"), 4,
+                  [("textured_quad", TEXTURED_QUAD, False)]))
+    for path, version, meshes in files:
+        path = path if write else os.path.join("/tmp", os.path.basename(path))
         with open(path, "wb") as f:
-            f.write(file_bytes(version))
-        assert check(path) < 1e-6
+            f.write(file_bytes(version, meshes))
+        assert check(path, meshes) < 1e-6
 
 
 if __name__ == "__main__":

@@ -297,6 +297,19 @@ fn what_cannot_be_converted_is_refused_by_file_line_and_element() {
         message.contains("its (u, v) in Mitsuba are not grinlight's"),
         "{message}"
     );
+    // Mitsuba 3.9.1 refuses it too ("unreferenced property"): a serialized mesh's (u, v) are
+    // read as stored.
+    let mesh = std::fs::canonicalize("scenes/mitsuba/textured_quad.serialized").unwrap();
+    let flipped = format!(
+        "<shape type=\"serialized\"><string name=\"filename\" value=\"{}\"/>\n<boolean \
+         name=\"flip_tex_coords\" value=\"true\"/></shape>",
+        mesh.display()
+    );
+    let message = refusal("flipped serialized", &flipped, &exact);
+    assert!(
+        message.contains("parameter 'flip_tex_coords' is not supported"),
+        "{message}"
+    );
     // With --approximate, the approximation is made and listed.
     let d = dir("approximate");
     let p = write(
@@ -530,6 +543,8 @@ fn the_mitsuba_scenes_render_as_mitsuba_renders_them() {
         ("spheres_envmap", "spheres_envmap.xml", vec![], 16),
         // An image texture on a rectangle and on an OBJ quad: Mitsuba's (u, v) and rows.
         ("textures", "textures.xml", vec![], 16),
+        // The same texture on serialized, PLY and OBJ meshes, each way Mitsuba reads their v.
+        ("mesh_textures", "mesh_textures.xml", vec![], 16),
         // Two emitting spheres: grinlight's sphere lights, seen and lighting.
         ("sphere_lights", "sphere_lights.xml", vec![], 16),
         // A thin pane across the view: seen through and reflecting the sky behind the camera.

@@ -255,7 +255,8 @@ fn a_tessellated_luneburg_lens_renders_as_the_analytic_one() {
 /// (bottom to top), and on the same square as an OBJ mesh with those (u, v) as its `vt`. The
 /// albedo layer at the quadrants' centres (u, v = ¼ or ¾) must be their
 /// linear values (sRGB 128 → 0.2158) to 1e-6: there the bilinear lookup and a pixel's jitter
-/// see one colour. Also a 2 × 1 texture's lookup against its definition, wrapped and between
+/// see one colour — also through an OBJ whose v counts from the top (`v_from_top`, and
+/// `flip_v` with it); and a one-colour JPEG its colour. Also a 2 × 1 texture's lookup against its definition, wrapped and between
 /// texel centres (1e-12), and finite for a NaN (u, v).
 #[test]
 fn textures_put_their_texels_where_the_surface_coordinates_say() {
@@ -302,8 +303,27 @@ fn textures_put_their_texels_where_the_surface_coordinates_say() {
         "type = \"mesh\"\nfile = \"sq.obj\"",
     );
     assert_ne!(mesh, text, "the quad was replaced");
+    // The same (u, v) from a file whose v counts from the image's top row down (a Mitsuba PLY's
+    // or serialized mesh's), read as such; and from one whose v the reading turns over (a
+    // Mitsuba OBJ's `flip_tex_coords`) and then counts from the top.
+    std::fs::write(
+        dir.join("top.obj"),
+        "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 1\nvt 1 1\nvt 1 0\nvt 0 0\n\
+         f 1/1 2/2 3/3\nf 1/1 3/3 4/4\n",
+    )
+    .unwrap();
+    let from_top = mesh.replace("file = \"sq.obj\"", "file = \"top.obj\"\nv_from_top = true");
+    let flipped = mesh.replace(
+        "file = \"sq.obj\"",
+        "file = \"sq.obj\"\nflip_v = true\nv_from_top = true",
+    );
     let linear = |c: [u8; 3]| c.map(|v| srgb_decode(v as f32 / 255.0));
-    for (shape, text) in [("quad", text), ("mesh", mesh.as_str())] {
+    for (shape, text) in [
+        ("quad", text),
+        ("mesh", mesh.as_str()),
+        ("mesh, v from the top", from_top.as_str()),
+        ("mesh, v flipped and from the top", flipped.as_str()),
+    ] {
         let scene = parse_scene(&dir.join("s.toml"), text.to_string()).unwrap();
         let albedo = render(&scene, 0).layer("albedo").unwrap();
         // Quadrant (i, j) from the top-left is centred at u = (i + ½)/2, v = 1 − (j + ½)/2:
@@ -321,6 +341,23 @@ fn textures_put_their_texels_where_the_surface_coordinates_say() {
                 );
             }
         }
+    }
+    // A JPEG texture of one colour: its decoded texel (JPEG stores a flat block's colour to
+    // within a level of 255 after the colour transform; bar 2 levels, in sRGB).
+    let colour = [200u8, 120, 40];
+    image::RgbImage::from_pixel(16, 16, image::Rgb(colour))
+        .save(dir.join("t.jpg"))
+        .unwrap();
+    let jpeg = text.replace("texture = \"t.png\"", "texture = \"t.jpg\"");
+    let scene = parse_scene(&dir.join("s.toml"), jpeg).unwrap();
+    let got = render(&scene, 0).layer("albedo").unwrap()[32 * 64 + 32];
+    for c in 0..3 {
+        let level = grinlight::color::srgb_encode(got[c]) * 255.0;
+        assert!(
+            (level - colour[c] as f32).abs() <= 2.0,
+            "JPEG texel {got:?}: sRGB level {level} vs {}",
+            colour[c]
+        );
     }
     std::fs::remove_dir_all(&dir).ok();
 }

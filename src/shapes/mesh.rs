@@ -23,6 +23,8 @@ pub struct TriangleMesh {
     normals: Option<Vec<[f32; 3]>>,
     /// Texture coordinates (u, v), one pair per vertex, or none.
     texcoords: Option<Vec<[f32; 2]>>,
+    /// Whether the mesh's v counts from an image's top row down ([`TriangleMesh::v_from_top`]).
+    v_from_top: bool,
     bvh: Bvh2,
     /// f64 bounds of all vertices.
     bounds: Bounds3,
@@ -119,6 +121,7 @@ impl TriangleMesh {
             triangles,
             normals,
             texcoords,
+            v_from_top: false,
             bvh,
             bounds,
             core: Ball {
@@ -131,6 +134,16 @@ impl TriangleMesh {
     /// Number of triangles.
     pub fn len(&self) -> usize {
         self.triangles.len()
+    }
+
+    /// The same mesh with its v counted from an image's top row down, as Mitsuba reads a
+    /// PLY's and a serialized mesh's (u, v) (and the corners' weights of a mesh without
+    /// them): its hits report grinlight's v, from the bottom row up, 1 − that.
+    pub fn v_from_top(self) -> Self {
+        Self {
+            v_from_top: true,
+            ..self
+        }
     }
 
     /// Whether the mesh has no triangle (never: [`TriangleMesh::new`] refuses that).
@@ -189,6 +202,10 @@ impl TriangleMesh {
                 .map(|k| weight[k] * DVec2::from(t[corner[k] as usize].map(f64::from)))
                 .sum(),
             None => DVec2::new(v, w),
+        };
+        let uv = match self.v_from_top {
+            true => DVec2::new(uv.x, 1.0 - uv.y),
+            false => uv,
         };
         let shading = match &self.normals {
             Some(n) => (0..3)

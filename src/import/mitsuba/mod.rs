@@ -1037,10 +1037,15 @@ impl Converter<'_> {
     /// The geometry keys of a shape; `textured`: its material has an image texture, looked up
     /// at the shape's (u, v), which must then be Mitsuba's.
     fn geometry(&mut self, shape: &Object, m: &DMat4, flip: bool, textured: bool) -> Result<Table> {
-        if textured && !matches!(shape.kind.as_str(), "rectangle" | "obj") {
+        if textured
+            && !matches!(
+                shape.kind.as_str(),
+                "rectangle" | "obj" | "ply" | "serialized"
+            )
+        {
             return Err(shape.error(
                 "a texture on this shape: its (u, v) in Mitsuba are not grinlight's (textures \
-                 are read on rectangles and OBJ meshes)",
+                 are read on rectangles and meshes)",
             ));
         }
         let refuse_flip = |what: &str| -> Result<()> {
@@ -1055,21 +1060,26 @@ impl Converter<'_> {
                 let file = self.mesh_file(shape)?;
                 // Mitsuba interpolates vertex normals (the file's or its own) unless told not to.
                 let smooth = !shape.boolean_or("face_normals", false)?;
-                // Mitsuba turns an OBJ's v upside down by default, which makes its image rows
-                // grinlight's (v from the bottom row up).
-                let flip_v = shape.boolean_or("flip_tex_coords", true)?;
-                if textured && !(shape.kind == "obj" && flip_v) {
-                    return Err(shape.error(
-                        "a texture on a mesh whose (u, v) Mitsuba reads unflipped: grinlight \
-                         reads an OBJ's v from the image's bottom row up (flip_tex_coords = \
-                         true)",
-                    ));
-                }
                 let mut t = table([
                     ("type", string("mesh")),
                     ("file", string(&file.to_string_lossy())),
                     ("smooth", Toml::Boolean(smooth)),
                 ]);
+                // Mitsuba turns the file's v over where told to (an OBJ's by default, a PLY's
+                // on request; a serialized mesh has no such parameter), and looks a texture up
+                // at a mesh's v (or the corners' weights, where the file gives no (u, v)) from
+                // the image's top row down; grinlight does both as told (checked against
+                // Mitsuba 3.9.1: scenes/mitsuba/mesh_textures.xml, tests/import.rs).
+                let flip_v = match shape.kind.as_str() {
+                    "obj" => shape.boolean_or("flip_tex_coords", true)?,
+                    "ply" => shape.boolean_or("flip_tex_coords", false)?,
+                    // serialized
+                    _ => false,
+                };
+                if textured {
+                    t.insert("flip_v".into(), Toml::Boolean(flip_v));
+                    t.insert("v_from_top".into(), Toml::Boolean(true));
+                }
                 if shape.kind == "serialized" {
                     let index = shape_index(shape)?;
                     t.insert("shape_index".into(), Toml::Integer(index as i64));

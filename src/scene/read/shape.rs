@@ -378,8 +378,20 @@ fn read_mesh(t: &mut TableReader) -> Result<Vec<Primitive>> {
         }
         (true, None) => Some(vertex_normals(&vertices, &triangles)),
     };
-    let mesh = TriangleMesh::new(vertices, triangles, normals, obj.texcoords)
-        .map_err(|e| t.error(key, e))?;
+    let mut texcoords = obj.texcoords;
+    // v turned over as the file is read (Mitsuba's `flip_tex_coords`; no texture coordinates,
+    // nothing to turn).
+    if t.bool_or("flip_v", false)? {
+        for uv in texcoords.iter_mut().flatten() {
+            uv[1] = 1.0 - uv[1];
+        }
+    }
+    let mesh =
+        TriangleMesh::new(vertices, triangles, normals, texcoords).map_err(|e| t.error(key, e))?;
+    let mesh = match t.bool_or("v_from_top", false)? {
+        true => mesh.v_from_top(),
+        false => mesh,
+    };
     Ok(vec![Primitive::Mesh(std::sync::Arc::new(mesh))])
 }
 
