@@ -38,6 +38,9 @@ CASES = {
     # The texture on serialized, PLY and OBJ meshes, their v flipped or not, with and without
     # texture coordinates.
     "mesh_textures": ("mesh_textures.xml", {}),
+    # Smoke whose density is a grid (a gridvolume) in a box, over a floor, under a sky and a
+    # point light (volpath).
+    "smoke_box": ("smoke_box.xml", {}),
     # Two emitting spheres over two diffuse balls and a floor.
     "sphere_lights": ("sphere_lights.xml", {}),
     # A thin pane (thindielectric) across the view of two balls, under a sky and a lamp.

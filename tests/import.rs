@@ -285,31 +285,33 @@ fn what_cannot_be_converted_is_refused_by_file_line_and_element() {
         let message = refusal(name, body, &exact);
         assert!(message.contains(words), "{name}: {message}");
     }
-    // A texture where Mitsuba's (u, v) are not grinlight's.
-    let png = std::fs::canonicalize("scenes/mitsuba/texture.png").unwrap();
-    let textured_sphere = format!(
-        "<shape type=\"sphere\"><bsdf type=\"diffuse\"><texture name=\"reflectance\" \
-         type=\"bitmap\"><string name=\"filename\" value=\"{}\"/></texture></bsdf></shape>",
-        png.display()
-    );
-    let message = refusal("texture", &textured_sphere, &exact);
-    assert!(
-        message.contains("its (u, v) in Mitsuba are not grinlight's"),
-        "{message}"
-    );
-    // Mitsuba 3.9.1 refuses it too ("unreferenced property"): a serialized mesh's (u, v) are
-    // read as stored.
-    let mesh = std::fs::canonicalize("scenes/mitsuba/textured_quad.serialized").unwrap();
-    let flipped = format!(
-        "<shape type=\"serialized\"><string name=\"filename\" value=\"{}\"/>\n<boolean \
-         name=\"flip_tex_coords\" value=\"true\"/></shape>",
-        mesh.display()
-    );
-    let message = refusal("flipped serialized", &flipped, &exact);
-    assert!(
-        message.contains("parameter 'flip_tex_coords' is not supported"),
-        "{message}"
-    );
+    // Refusals naming files of the repository: a texture where Mitsuba's (u, v) are not
+    // grinlight's; a flipped serialized mesh, which Mitsuba 3.9.1 refuses too ("unreferenced
+    // property": a serialized mesh's (u, v) are read as stored).
+    let file = |p: &str| std::fs::canonicalize(p).unwrap().display().to_string();
+    for (name, body, words) in [
+        (
+            "texture",
+            format!(
+                "<shape type=\"sphere\"><bsdf type=\"diffuse\"><texture name=\"reflectance\" \
+                 type=\"bitmap\"><string name=\"filename\" value=\"{}\"/></texture></bsdf></shape>",
+                file("scenes/mitsuba/texture.png")
+            ),
+            "its (u, v) in Mitsuba are not grinlight's",
+        ),
+        (
+            "flipped serialized",
+            format!(
+                "<shape type=\"serialized\"><string name=\"filename\" value=\"{}\"/>\n<boolean \
+                 name=\"flip_tex_coords\" value=\"true\"/></shape>",
+                file("scenes/mitsuba/textured_quad.serialized")
+            ),
+            "parameter 'flip_tex_coords' is not supported",
+        ),
+    ] {
+        let message = refusal(name, &body, &exact);
+        assert!(message.contains(words), "{name}: {message}");
+    }
     // With --approximate, the approximation is made and listed.
     let d = dir("approximate");
     let p = write(
@@ -545,6 +547,8 @@ fn the_mitsuba_scenes_render_as_mitsuba_renders_them() {
         ("textures", "textures.xml", vec![], 16),
         // The same texture on serialized, PLY and OBJ meshes, each way Mitsuba reads their v.
         ("mesh_textures", "mesh_textures.xml", vec![], 16),
+        // Smoke whose density is a grid (Mitsuba's gridvolume, its .vol file) in a box.
+        ("smoke_box", "smoke_box.xml", vec![], 16),
         // Two emitting spheres: grinlight's sphere lights, seen and lighting.
         ("sphere_lights", "sphere_lights.xml", vec![], 16),
         // A thin pane across the view: seen through and reflecting the sky behind the camera.

@@ -411,3 +411,50 @@ fn a_pixel_splits_at_a_dielectric_in_proportion_to_its_reflectance() {
         "{mean} vs {want}"
     );
 }
+
+/// A boundary between equal indices is no surface to light: a floor and a wall lit by a point
+/// light and seen from above, alone and with the floor's middle inside a box of a medium of index 1 behind an index-matched
+/// boundary (Mitsuba's `null`). Light samples reach through the box (the path tracer, which
+/// finds a point light by light samples alone, would read the floor black inside it were the
+/// boundary a specular surface), and photons through it (from the light, and from the wall)
+/// are the floor's direct and global light, not a caustic: each integrator's image mean with the box is its own without, the path tracer's
+/// to 1e-4 (its paths cross the box drawing no number; only the crossing's 1e-9 offsets
+/// differ), the photon mapper's to 1 % (its photons' noise). A box of index 1.5 in its place
+/// is a glass block, through which the path tracer sees no point light: under half the light.
+#[test]
+fn an_index_matched_boundary_is_no_surface_to_light() {
+    let plain = "[camera]\nposition = [0, 3, 0.01]\nlook_at = [0, 0, 0]\nfov_y_deg = 40\nwidth = 32\nheight = 32\n\
+                 [render]\nspp = 8\nphotons = 40000\ncaustic_photons = 40000\nmax_depth = 8\n\
+                 [[material]]\nname = \"floor\"\ntype = \"diffuse\"\nalbedo = [0.5, 0.5, 0.5]\n\
+                 [[shape]]\ntype = \"quad\"\nvertices = [[-2, 0, -2], [-2, 0, 2], [2, 0, 2], [2, 0, -2]]\nmaterial = \"floor\"\n\
+                 [[shape]]\ntype = \"quad\"\nvertices = [[1, 0, -2], [1, 1.2, -2], [1, 1.2, 2], [1, 0, 2]]\nmaterial = \"floor\"\n\
+                 [[light]]\ntype = \"point\"\nposition = [0.3, 1.5, 0.2]\nintensity = [5, 5, 5]\n";
+    let boxed = |n: f64| {
+        format!(
+            "{plain}[[medium]]\nname = \"inside\"\nprofile = \"uniform\"\nn = {n}\n\
+             [[material]]\nname = \"boundary\"\ntype = \"dielectric\"\nior = {n}\n\
+             [[shape]]\ntype = \"box\"\nmin = [-0.8, -0.5, -0.8]\nmax = [0.8, 0.6, 0.8]\nmaterial = \"boundary\"\ninterior = \"inside\"\n"
+        )
+    };
+    let mean = |text: &str, integrator: &str| {
+        let text = format!("{text}\n").replace(
+            "[render]\n",
+            &format!("[render]\nintegrator = \"{integrator}\"\n"),
+        );
+        let scene = parse_scene(Path::new("s.toml"), text).unwrap();
+        let beauty = render(&scene, 2).layer("beauty").unwrap();
+        beauty.iter().map(|p| p[0] as f64).sum::<f64>() / beauty.len() as f64
+    };
+    for (integrator, bar) in [("path", 1e-4), ("photon_map", 0.01)] {
+        let (alone, matched) = (mean(plain, integrator), mean(&boxed(1.0), integrator));
+        println!("{integrator}: floor alone {alone:.6}, in an index-matched box {matched:.6}");
+        assert!(alone > 0.01, "{integrator}: {alone}");
+        assert!(
+            (matched / alone - 1.0).abs() < bar,
+            "{integrator}: {matched} vs {alone}"
+        );
+    }
+    let glass = mean(&boxed(1.5), "path");
+    let alone = mean(plain, "path");
+    assert!(glass < 0.5 * alone, "glass block: {glass} vs {alone}");
+}

@@ -295,6 +295,13 @@ impl Bsdf<'_> {
         }
     }
 
+    /// Whether light crosses it unchanged: a smooth interface between equal indices reflects
+    /// nothing and turns nothing (Fresnel's R = 0, Snell's law the identity) — a medium's
+    /// boundary that is no optical surface (Mitsuba's `null` BSDF).
+    pub fn is_index_matched(&self) -> bool {
+        matches!(self, Bsdf::Dielectric { n1, n2, ggx: None } if n1 == n2)
+    }
+
     /// Samples a direction for uniform numbers `u` (u.0, u.1 for the lobe's direction, u.2
     /// for a discrete choice such as Fresnel's: [`Bsdf::draws_choice`]; a specular surface
     /// uses only u.2). None when the sample carries nothing (it would leave on the wrong side

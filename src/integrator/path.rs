@@ -11,7 +11,9 @@
 //!
 //! Light from point, spot, LED and parallel sources that reaches a diffuse point only through
 //! a specular chain (their caustics) cannot be found by any direction sample: the path tracer
-//! misses it, the photon mapper does not.
+//! misses it, the photon mapper does not. An index-matched boundary between uniform media is
+//! no specular surface ([`crate::transport::Tracer::crosses_unchanged`]): light samples reach
+//! through it into the fog it holds.
 
 use super::beam::Beams;
 use super::direct::{camera_path, continued_emission, hero, lit, record_cut, VisiblePoint};

@@ -359,8 +359,9 @@ fn read_fixed(t: &mut TableReader, profile: &str) -> Result<Box<dyn Medium>> {
 }
 
 /// A lattice's nodes as a `[[medium]]` table gives them, under keys named with `prefix`:
-/// `bounds`, `dims` and `values` or a text `file`, or a VDB `file` (with its `grid` name and
-/// `background`) that gives all three.
+/// `bounds`, `dims` and `values` or a text `file`; `bounds` and a Mitsuba `.vol` `file` that
+/// gives the other two; or a VDB `file` (with its `grid` name and `background`) that gives all
+/// three.
 struct Nodes {
     min: DVec3,
     max: DVec3,
@@ -408,6 +409,30 @@ fn read_nodes(t: &mut TableReader, prefix: &str) -> Result<Nodes> {
     let [min, max] = bounds[..] else {
         return Err(t.error(&key("bounds"), "expected [[min x, y, z], [max x, y, z]]"));
     };
+    let mitsuba = file
+        .as_ref()
+        .filter(|f| f.extension().is_some_and(|e| e.eq_ignore_ascii_case("vol")));
+    if let Some(path) = mitsuba {
+        for name in ["dims", "values"] {
+            if t.has(&key(name)) {
+                return Err(t.error(
+                    &key(name),
+                    "a Mitsuba .vol file gives the grid's values and their count: leave out \
+                     `dims` and `values`",
+                ));
+            }
+        }
+        let (dims, values) = super::vol::read(path)
+            .map_err(|e| t.error(&key("file"), format!("{}: {e}", path.display())))?;
+        return Ok(Nodes {
+            min,
+            max,
+            dims,
+            values,
+            key: key("file"),
+            background: None,
+        });
+    }
     let dims: [usize; 3] = t.counts(&key("dims"))?;
     let values = t.f64_list_opt(&key("values"))?;
     let (values, from) = match (values, &file) {

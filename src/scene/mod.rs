@@ -13,6 +13,7 @@ pub mod serialized;
 pub mod source;
 pub mod table;
 pub mod vdb;
+pub mod vol;
 
 pub use load::{load_description, load_scene, parse_data};
 pub use model::{Description, Media, Role, Scene, Shape, Surface};

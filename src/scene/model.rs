@@ -361,6 +361,13 @@ impl Scene {
         self.surfaces[prim.index()]
     }
 
+    /// Whether a surface may join equal indices (a smooth dielectric: its indices are
+    /// known only at a hit, [`crate::transport::Tracer::crosses_unchanged`]); where none
+    /// may, a shadow ray is blocked by any surface it meets.
+    pub fn may_match_indices(&self) -> bool {
+        (self.materials.iter()).any(|m| matches!(m, Material::Dielectric { ggx: None }))
+    }
+
     /// The light `id`.
     pub fn light(&self, id: LightId) -> &Light {
         &self.lights[id.index()]

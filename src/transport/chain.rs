@@ -716,7 +716,7 @@ impl<'w> Walker<'w> {
                     direction: hit.incoming,
                 })
             }
-            Role::Detector(_) | Role::Scatter(_) if exhausted => cut(lent),
+            Role::Detector(_) if exhausted => cut(lent),
             Role::Detector(receiver) => {
                 let crossing = DetectorCrossing {
                     receiver,
@@ -735,16 +735,32 @@ impl<'w> Walker<'w> {
                 ControlFlow::Continue(())
             }
             Role::Scatter(material) => {
-                if matches!(
+                let dielectric = matches!(
                     scene.materials[material.index()],
                     Material::Dielectric { .. }
-                ) {
+                );
+                // Only a dielectric may be no surface at all (an index-matched one).
+                if exhausted && !dielectric {
+                    return cut(lent);
+                }
+                if dielectric {
                     self.meet_dispersion(self.tracer.disperses_at(surface), chain);
                 }
                 let Some(vertex) = self.tracer.vertex(hit, surface, at.medium) else {
                     lent.stats.undefined_index += 1;
                     return ControlFlow::Break(End::Lost);
                 };
+                if self.tracer.crosses_unchanged(&vertex) {
+                    // No event: the depth it was charged is given back.
+                    self.depth = match exhausted {
+                        true => 0,
+                        false => self.depth + 1,
+                    };
+                    return self.cross(at, &vertex, observer);
+                }
+                if exhausted {
+                    return cut(lent);
+                }
                 match vertex.lobes().is_specular() {
                     true => self.bounce(chain, at, &vertex, lent, observer),
                     false => ControlFlow::Break(End::Scatter(Vertex::Surface(vertex))),
@@ -786,6 +802,30 @@ impl<'w> Walker<'w> {
             Policy::Roulette => kept < 1.0 && rng.gen::<f64>() >= kept,
             Policy::Principal => false,
         }
+    }
+
+    /// Takes the chain straight on through the index-matched `vertex`
+    /// ([`Tracer::crosses_unchanged`]) into the medium beyond: no specular bounce, no event
+    /// of its depth, no choice drawn, its weight and polarization unchanged (the interface's Mueller matrix is the
+    /// identity); the observer is told of the crossing as of a refraction.
+    fn cross(
+        &mut self,
+        at: &mut Ray,
+        vertex: &SurfaceVertex,
+        observer: &mut dyn ChainEvents,
+    ) -> ControlFlow<End<'w>> {
+        if observer
+            .specular(vertex.prim, at.medium, vertex.beyond)
+            .is_break()
+        {
+            return ControlFlow::Break(End::Stopped);
+        }
+        *at = Ray {
+            origin: super::offset(vertex.position, -vertex.normal),
+            direction: -vertex.wo,
+            medium: vertex.beyond,
+        };
+        ControlFlow::Continue(())
     }
 
     /// Reflects or refracts the chain at the purely specular `vertex`.

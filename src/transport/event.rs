@@ -149,3 +149,20 @@ pub struct SurfaceHit {
     /// Unit direction of arrival.
     pub incoming: DVec3,
 }
+
+impl SurfaceHit {
+    /// Where the straight ray from `origin` along unit `dir` meets the surface `hit` reports.
+    pub fn straight(origin: DVec3, dir: DVec3, hit: crate::accel::PrimHit) -> Self {
+        let crate::accel::PrimHit { prim, hit: h } = hit;
+        Self {
+            prim,
+            position: origin + h.t * dir,
+            normals: Normals {
+                geometric: h.normal,
+                shading: h.shading,
+            },
+            uv: h.uv,
+            incoming: dir,
+        }
+    }
+}

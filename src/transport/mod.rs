@@ -184,19 +184,10 @@ impl<'a> Tracer<'a> {
                 stats.straight_rays += 1;
                 let depth = |length: f64| self.optical_depth(medium, origin, dir, length);
                 match self.scene.accel.intersect_ray(origin, dir, 0.0, reach) {
-                    Some(PrimHit { prim, hit: h }) => Event::Surface {
-                        hit: SurfaceHit {
-                            prim,
-                            position: origin + h.t * dir,
-                            normals: Normals {
-                                geometric: h.normal,
-                                shading: h.shading,
-                            },
-                            uv: h.uv,
-                            incoming: dir,
-                        },
-                        distance: h.t,
-                        optical_depth: depth(h.t),
+                    Some(found) => Event::Surface {
+                        hit: SurfaceHit::straight(origin, dir, found),
+                        distance: found.hit.t,
+                        optical_depth: depth(found.hit.t),
                     },
                     None => {
                         let distance = self.world.exit_distance(origin, dir);

@@ -67,6 +67,20 @@ impl<'a> Tracer<'a> {
     }
 }
 
+impl Tracer<'_> {
+    /// Whether a path crosses the surface `vertex` is on as though it were not there: an
+    /// index-matched smooth interface ([`crate::bsdf::Bsdf::is_index_matched`]) between
+    /// media of uniform index, where a straight ray goes straight on into the medium beyond.
+    /// Such a crossing is no specular event: light samples see through it (the shadow ray
+    /// goes on, [`super::visibility::transmittance`]) and a BSDF sample through it is weighed
+    /// against them, as though the boundary of a fog were no surface. Into or out of a
+    /// gradient medium the ray bends beyond it, and it stays a specular surface.
+    pub fn crosses_unchanged(&self, vertex: &SurfaceVertex) -> bool {
+        let uniform = |m: Option<MediumId>| m.is_none_or(|m| self.medium(m).is_uniform());
+        vertex.bsdf.is_index_matched() && uniform(vertex.medium) && uniform(vertex.beyond)
+    }
+}
+
 /// A surface point as [`Material::bsdf`] asks of it: the hit, the media on each side and the
 /// tracer's wavelength.
 struct HitPoint<'t, 'a> {

@@ -12,8 +12,10 @@ use std::cell::OnceCell;
 
 /// The fraction of light per channel kept along the straight segment from `from` along
 /// unit `dir` over `reach` (∞: to the world sphere) in `medium`: 0 if a surface other than a
-/// detector lies on it ([`blocked`]), else what the medium lets through
-/// ([`Tracer::transmittance`]: neither absorbed nor scattered out of the line).
+/// detector lies on it ([`blocked`]) — but for an index-matched boundary between uniform
+/// media ([`Tracer::crosses_unchanged`]), which the segment crosses into the medium beyond —
+/// else what the media on the way let through ([`Tracer::transmittance`]: neither absorbed
+/// nor scattered out of the line).
 pub fn transmittance(
     tracer: &Tracer,
     from: DVec3,
@@ -21,17 +23,42 @@ pub fn transmittance(
     dir: DVec3,
     reach: f64,
 ) -> Rgb {
-    if blocked(tracer, from, dir, reach) {
-        return Rgb::ZERO;
-    }
-    match medium {
-        Some(_) => {
-            let length = reach.min(tracer.world.exit_distance(from, dir));
-            tracer.transmittance(medium, from, dir, length)
+    let length = reach.min(tracer.world.exit_distance(from, dir));
+    if !tracer.scene.may_match_indices() {
+        if blocked(tracer, from, dir, reach) {
+            return Rgb::ZERO;
         }
-        None => Rgb::ONE,
+        return tracer.transmittance(medium, from, dir, length);
     }
+    let scene = tracer.scene;
+    let (mut origin, mut medium, mut kept) = (from, medium, Rgb::ONE);
+    for _ in 0..MAX_CROSSINGS {
+        // What is left of the segment from here.
+        let gone = (origin - from).dot(dir);
+        let (left, span) = (reach - gone, length - gone);
+        let Some(found) = scene.accel.intersect_ray(origin, dir, 0.0, left) else {
+            return kept * tracer.transmittance(medium, origin, dir, span.max(0.0));
+        };
+        kept *= tracer.transmittance(medium, origin, dir, found.hit.t);
+        let hit = super::SurfaceHit::straight(origin, dir, found);
+        let surface = scene.surface(found.prim);
+        if !surface.is_detector() {
+            let crossed = tracer
+                .vertex(hit, surface, medium)
+                .filter(|v| tracer.crosses_unchanged(v));
+            let Some(vertex) = crossed else {
+                return Rgb::ZERO;
+            };
+            medium = vertex.beyond;
+        }
+        origin = offset(hit.position, dir);
+    }
+    Rgb::ZERO
 }
+
+/// The most surfaces a shadow ray crosses ([`transmittance`]) before it counts as blocked:
+/// bounded time, whatever the scene stacks on its way.
+const MAX_CROSSINGS: usize = 1024;
 
 /// Whether a surface other than a detector lies on the straight segment from `from` along
 /// unit `dir` over `reach`.

@@ -548,14 +548,37 @@ impl Converter<'_> {
         if let Some(name) = self.medium_names.get(&key) {
             return Ok(name.clone());
         }
-        if medium.kind != "homogeneous" {
-            return Err(medium.error(format!(
-                "the medium '{}' is not supported by grinlight's import (homogeneous is)",
-                cut(&medium.kind)
-            )));
-        }
+        // A heterogeneous medium's σt is a grid of densities times `scale` (or a constant,
+        // as a homogeneous one's).
+        let grid = match medium.kind.as_str() {
+            "homogeneous" => None,
+            "heterogeneous" => {
+                for tuning in ["majorant_resolution_factor", "majorant_factor"] {
+                    medium.ignore(tuning);
+                }
+                // Mitsuba bounds a heterogeneous medium by its σt volume's box: a constant's
+                // is not the shape's.
+                let child = medium.named_child("sigma_t").ok_or_else(|| {
+                    medium.error(
+                        "a heterogeneous medium whose sigma_t is no gridvolume: grinlight's \
+                         import reads a gridvolume here (a constant σt is a homogeneous medium)",
+                    )
+                })?;
+                Some(self.density_grid(child)?)
+            }
+            other => {
+                return Err(medium.error(format!(
+                    "the medium '{}' is not supported by grinlight's import (homogeneous and \
+                     heterogeneous are)",
+                    cut(other)
+                )))
+            }
+        };
         let scale = medium.float_or("scale", 1.0)?;
-        let sigma_t = self.colour(medium, "sigma_t", 1.0)? * scale;
+        let sigma_t = match grid {
+            Some(_) => DVec3::splat(scale),
+            None => self.colour(medium, "sigma_t", 1.0)? * scale,
+        };
         let albedo = self.colour(medium, "albedo", 0.75)?;
         medium.ignore("sample_emitters");
         let sigma_a = sigma_t * (DVec3::ONE - albedo);
@@ -568,6 +591,7 @@ impl Converter<'_> {
             )));
         }
         let mut m = table([("profile", string("uniform")), ("n", Toml::Float(n))]);
+        m.extend(grid.unwrap_or_default());
         if sigma_a.x > 0.0 {
             m.insert("absorption".into(), Toml::Float(sigma_a.x));
         }
@@ -599,6 +623,81 @@ impl Converter<'_> {
         self.lists.media.push(m);
         self.medium_names.insert(key, name.clone());
         Ok(name)
+    }
+
+    /// A heterogeneous medium's σt grid (a `gridvolume`) as a medium's density keys: the
+    /// file's values at their nodes. Mitsuba 3 reads a grid of resolution r over the unit cube
+    /// that `to_world` places, node i at (i + ½)/r, trilinear between nodes and clamped
+    /// beyond the outer ones (checked against Mitsuba 3.9.1's own lookups,
+    /// `bench/mitsuba_gridvolume.py`) — grinlight's density grid between its first and last
+    /// nodes, clamped beyond them, which `density_bounds` places there.
+    fn density_grid(&mut self, child: &xml::Child) -> Result<Table> {
+        let grid = child.object().clone();
+        if grid.tag != "volume" || grid.kind != "gridvolume" {
+            return Err(grid.error(
+                "as 'sigma_t': grinlight's import reads a gridvolume here (a constant σt is a \
+                 homogeneous medium)",
+            ));
+        }
+        let file = grid
+            .string("filename")?
+            .ok_or_else(|| grid.error("has no filename"))?
+            .to_string();
+        let path = self.doc.find(&file, &grid.place)?;
+        let path = std::fs::canonicalize(&path).unwrap_or(path);
+        let header = crate::scene::vol::header(&path)
+            .map_err(|e| grid.error(format!("{}: {e}", path.display())))?;
+        if header.channels != 1 {
+            return Err(grid.error(format!(
+                "{} channels: grinlight's σt grid is one density a node, times an rgb albedo",
+                header.channels
+            )));
+        }
+        if let Some(axis) = header.dims.iter().position(|&n| n < 2) {
+            return Err(grid.error(format!(
+                "{} value(s) along {}: grinlight's grids hold at least 2 a side",
+                header.dims[axis],
+                ["x", "y", "z"][axis]
+            )));
+        }
+        let filter = grid
+            .string("filter_type")?
+            .unwrap_or("trilinear")
+            .to_string();
+        let wrap = grid.string("wrap_mode")?.unwrap_or("clamp").to_string();
+        if filter != "trilinear" || wrap != "clamp" {
+            return Err(grid.error(format!(
+                "filter_type '{}' and wrap_mode '{}': grinlight's density grids are trilinear \
+                 and clamped",
+                cut(&filter),
+                cut(&wrap)
+            )));
+        }
+        if grid.boolean_or("use_grid_bbox", false)? {
+            return Err(grid.error(
+                "use_grid_bbox = true: grinlight places a grid by its to_world, as Mitsuba's \
+                 default does",
+            ));
+        }
+        let m = grid.transform("to_world")?;
+        let l = linear(&m);
+        let diagonal = DVec3::new(l.x_axis.x, l.y_axis.y, l.z_axis.z);
+        let off_diagonal = [
+            l.x_axis.y, l.x_axis.z, l.y_axis.x, l.y_axis.z, l.z_axis.x, l.z_axis.y,
+        ];
+        if off_diagonal.iter().any(|&x| x != 0.0) || diagonal.min_element() <= 0.0 {
+            return Err(grid.error(
+                "a to_world that turns or mirrors the grid: grinlight's grids are axis-aligned",
+            ));
+        }
+        grid.finish()?;
+        let res = DVec3::from(header.dims.map(|n| n as f64));
+        let first = m.transform_point3(0.5 / res);
+        let last = m.transform_point3(DVec3::ONE - 0.5 / res);
+        Ok(table([
+            ("density_file", string(&path.to_string_lossy())),
+            ("density_bounds", Toml::Array(vec![vec3(first), vec3(last)])),
+        ]))
     }
 
     /// The camera (`[camera]` into `out`) and the sampler's settings (the `[render]` table
