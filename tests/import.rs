@@ -277,6 +277,11 @@ fn what_cannot_be_converted_is_refused_by_file_line_and_element() {
             "an ellipsoid is not supported",
         ),
         (
+            "lone area emitter",
+            "<emitter type=\"area\" id=\"lone\"/>\n<shape type=\"sphere\"/>",
+            "s.xml:10:5: <emitter type=\"area\" id=\"lone\">: an area emitter no shape refers to",
+        ),
+        (
             "coloured absorption",
             "<shape type=\"sphere\"><bsdf type=\"dielectric\"/><medium name=\"interior\" type=\"homogeneous\"><rgb name=\"sigma_t\" value=\"1, 2, 3\"/></medium></shape>",
             "that differs by channel",
@@ -386,6 +391,17 @@ fn an_emitting_two_triangle_mesh_is_a_quad_light_facing_its_triangles_way() {
     assert!(v.iter().all(|p| p[1] == 1.5));
     let n = cross(sub(v[1], v[0]), sub(v[3], v[0]));
     assert!(n[1] < 0.0, "the light faces {n:?}");
+    // The same emitter declared at the top level and referred to from the shape (as
+    // mitsuba-data's Cornell boxes write it), declared after the shape that refers to it.
+    let referred = body.replace(
+        r#"<emitter type="area"><rgb name="radiance" value="1, 2, 3"/></emitter></shape>"#,
+        r#"<ref id="lamp"/></shape>
+        <emitter type="area" id="lamp"><rgb name="radiance" value="1, 2, 3"/></emitter>"#,
+    );
+    assert_ne!(referred, body);
+    let p = write(&d, "r.xml", &scene("", &referred));
+    let t = convert(&p, &ImportOptions::default()).unwrap();
+    assert_eq!(tables(&t, "light")[0], light);
 }
 
 #[test]

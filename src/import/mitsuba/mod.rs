@@ -11,7 +11,7 @@ use super::table::{affine_rows, free_name, string, table, vec3, AreaEmitter, Lis
 use super::{Imported, Place, Told};
 use crate::error::{cut, Result};
 use glam::{DMat3, DMat4, DVec3};
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 use std::path::PathBuf;
 use std::rc::Rc;
 use toml::{Table, Value as Toml};
@@ -64,6 +64,7 @@ pub fn convert(doc: &Document, approximate: bool) -> Result<Imported> {
         one_sided: Vec::new(),
         made: HashMap::new(),
         repeated_delta_lights: None,
+        attached: HashSet::new(),
     };
     let scene = doc.scene.clone();
     let mut table = Table::new();
@@ -81,10 +82,15 @@ pub fn convert(doc: &Document, approximate: bool) -> Result<Imported> {
     };
     let mut render = c.sensor(sensor.object(), &mut table)?;
     c.integrator(&scene, &mut render)?;
+    let mut declared_areas = Vec::new();
     for child in scene.all_children() {
         Object::mark(child);
         match child.object().tag.as_str() {
             "shape" => c.shape(child.object())?,
+            // Defined here for a <ref> in a shape, and converted there.
+            "emitter" if child.object().kind == "area" && child.object().id.is_some() => {
+                declared_areas.push(child);
+            }
             "emitter" => c.emitter(child.object())?,
             // Converted where shapes, emitters and the sensor refer to them.
             "bsdf" | "texture" | "medium" | "phase" | "volume" | "sensor" | "integrator" => {}
@@ -102,6 +108,14 @@ pub fn convert(doc: &Document, approximate: bool) -> Result<Imported> {
                     .error(format!("<{}> is not read at the top level", cut(other))))
             }
         }
+    }
+    if let Some(lone) =
+        (declared_areas.iter()).find(|d| !c.attached.contains(&Rc::as_ptr(d.object())))
+    {
+        return Err(lone.place.error(format!(
+            "{}: an area emitter no shape refers to: grinlight's area lights are shapes' (refer to it from one)",
+            lone.object().what()
+        )));
     }
     scene.finish()?;
     if !c.one_sided.is_empty() {
@@ -166,6 +180,8 @@ struct Converter<'d> {
     /// Where a `direct` integrator takes more than one emitter sample, and how many: Mitsuba
     /// counts a delta light (point, spot, directional) that many times ([`Converter::emitter`]).
     repeated_delta_lights: Option<(Place, i64)>,
+    /// The area emitters shapes carry, by address (a top-level one must be one of them).
+    attached: HashSet<*const Object>,
 }
 
 /// A material the import makes itself, not from a BSDF of the scene.
@@ -958,6 +974,7 @@ impl Converter<'_> {
         if e.kind != "area" {
             return Err(e.error("a shape's emitter must be 'area'"));
         }
+        self.attached.insert(Rc::as_ptr(&e));
         let radiance = self.colour(&e, "radiance", 1.0)?;
         e.finish()?;
         Ok(Some((radiance, e.place.clone())))
