@@ -199,3 +199,63 @@ fn bad_vdb_input_is_a_clear_error() {
     assert!(e.contains("key `density_background`"), "{e}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A Mitsuba `.vol` grid as a medium's `density_file` (the smoke of
+/// `scenes/mitsuba/smoke_box.xml`): its 12 × 10 × 8 values are the density at the nodes
+/// `density_bounds` spans; `density_dims` or `density_values` beside it, and a damaged file,
+/// are errors naming the key.
+#[test]
+fn a_mitsuba_volume_is_a_density_grid() {
+    use grinlight::scene::vol;
+    let vol_path = std::fs::canonicalize("scenes/mitsuba/smoke.vol").unwrap();
+    let (dims, values) = vol::read(&vol_path).unwrap();
+    assert_eq!(dims, [12, 10, 8]);
+    let dir = std::env::temp_dir().join(format!("grinlight-vol-scene-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = |extra: &str, file: &Path| {
+        format!(
+            "ambient = \"smoke\"\n[[light]]\ntype = \"point\"\nposition = [0, 2, 0]\n\
+             intensity = [1, 1, 1]\n[[medium]]\nname = \"smoke\"\nprofile = \"uniform\"\nn = 1\n\
+             scattering = 0.5\ndensity_bounds = [[-1, -1, -1], [1, 1, 1]]\n\
+             density_file = \"{}\"\n{extra}",
+            file.display()
+        )
+    };
+    let (s, _) = parse_scene(&dir.join("s.toml"), scene("", &vol_path)).unwrap();
+    let smoke = s.ambient().unwrap();
+    let density = s
+        .media()
+        .scattering(smoke)
+        .unwrap()
+        .density
+        .clone()
+        .unwrap();
+    // Node (i, j, k) at −1 + 2 (i, j, k)/(dims − 1): the file's value there.
+    for (i, j, k) in [(0, 0, 0), (11, 9, 7), (5, 3, 2), (7, 8, 1)] {
+        let p = DVec3::new(
+            -1.0 + 2.0 * i as f64 / 11.0,
+            -1.0 + 2.0 * j as f64 / 9.0,
+            -1.0 + 2.0 * k as f64 / 7.0,
+        );
+        let want = values[(k * 10 + j) * 12 + i];
+        assert!((density.at(p) - want).abs() < 1e-12, "({i}, {j}, {k})");
+    }
+    let refused = |text: String, words: &str| {
+        let Err(e) = parse_scene(&dir.join("s.toml"), text) else {
+            panic!("read: {words}")
+        };
+        let e = e.to_string();
+        assert!(e.contains(words), "{e}");
+    };
+    refused(
+        scene("density_dims = [12, 10, 8]\n", &vol_path),
+        "a Mitsuba .vol file gives the grid's values and their count",
+    );
+    let bad = dir.join("bad.vol");
+    std::fs::write(&bad, &std::fs::read(&vol_path).unwrap()[..1000]).unwrap();
+    refused(
+        scene("", &bad),
+        "bytes of values where 12 × 10 × 8 f32 values take 3840",
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -26,17 +26,17 @@ const MAX_VALUES: u64 = 1 << 29;
 /// names the file and the scene key).
 pub fn header(path: &Path) -> Result<Header, String> {
     use std::io::Read;
-    let mut bytes = [0u8; HEADER_BYTES];
+    let mut bytes = Vec::with_capacity(HEADER_BYTES);
     std::fs::File::open(path)
-        .and_then(|mut f| f.read_exact(&mut bytes))
-        .map_err(|e| format!("cannot read a Mitsuba volume's header: {e}"))?;
+        .and_then(|f| f.take(HEADER_BYTES as u64).read_to_end(&mut bytes))
+        .map_err(|e| format!("cannot read: {e}"))?;
     parse_header(&bytes)
 }
 
-/// The values of the one-channel `.vol` file at `path` and their resolution, x fastest.
+/// The values of the one-channel `.vol` file at `path` and their resolution, x fastest. The
+/// header is checked against the file's size before anything else is read.
 pub fn read(path: &Path) -> Result<([usize; 3], Vec<f64>), String> {
-    let bytes = std::fs::read(path).map_err(|e| format!("cannot read: {e}"))?;
-    let h = parse_header(&bytes)?;
+    let h = header(path)?;
     if h.channels != 1 {
         return Err(format!(
             "{} channels: a density is one number a node",
@@ -44,18 +44,23 @@ pub fn read(path: &Path) -> Result<([usize; 3], Vec<f64>), String> {
         ));
     }
     let count: usize = h.dims.iter().product();
-    let data = &bytes[HEADER_BYTES..];
-    if data.len() != 4 * count {
+    let size = std::fs::metadata(path)
+        .map_err(|e| format!("cannot read: {e}"))?
+        .len();
+    let data = size.saturating_sub(HEADER_BYTES as u64);
+    if data != 4 * count as u64 {
         return Err(format!(
-            "{} bytes of values where {} × {} × {} f32 values take {}",
-            data.len(),
+            "{data} bytes of values where {} × {} × {} f32 values take {}",
             h.dims[0],
             h.dims[1],
             h.dims[2],
             4 * count
         ));
     }
-    let values = data
+    crate::resources::check_memory(8 * count as u64, "reading this volume")
+        .map_err(|e| e.to_string())?;
+    let bytes = std::fs::read(path).map_err(|e| format!("cannot read: {e}"))?;
+    let values = bytes[HEADER_BYTES..]
         .chunks_exact(4)
         .map(|b| f64::from(f32::from_le_bytes(b.try_into().expect("4 bytes"))))
         .collect();
@@ -64,7 +69,9 @@ pub fn read(path: &Path) -> Result<([usize; 3], Vec<f64>), String> {
 
 fn parse_header(bytes: &[u8]) -> Result<Header, String> {
     if bytes.len() < HEADER_BYTES || &bytes[..3] != b"VOL" {
-        return Err("not a Mitsuba volume (it does not start with \"VOL\")".into());
+        return Err(
+            "not a Mitsuba volume (it does not start with \"VOL\" and a 48-byte header)".into(),
+        );
     }
     if bytes[3] != 3 {
         return Err(format!(
