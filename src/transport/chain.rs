@@ -807,16 +807,20 @@ impl<'w> Walker<'w> {
     /// Takes the chain straight on through the index-matched `vertex`
     /// ([`Tracer::crosses_unchanged`]) into the medium beyond: no specular bounce, no event
     /// of its depth, no choice drawn, its weight and polarization unchanged (the interface's Mueller matrix is the
-    /// identity); the observer is told of the crossing as of a refraction.
+    /// identity); the observer is told of a crossing into another medium as of a refraction
+    /// (one between the same medium on both sides is no event to it: it would read as a
+    /// reflection).
     fn cross(
         &mut self,
         at: &mut Ray,
         vertex: &SurfaceVertex,
         observer: &mut dyn ChainEvents,
     ) -> ControlFlow<End<'w>> {
-        if observer
-            .specular(vertex.prim, at.medium, vertex.beyond)
-            .is_break()
+        let into_another = vertex.beyond != at.medium;
+        if into_another
+            && observer
+                .specular(vertex.prim, at.medium, vertex.beyond)
+                .is_break()
         {
             return ControlFlow::Break(End::Stopped);
         }
