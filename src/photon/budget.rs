@@ -301,33 +301,24 @@ impl Ledger {
             return Err("a malformed sum in its energy budget".into());
         }
         // Each map's keys must name one of the scene's primitives or media.
-        let keyed: [(Vec<usize>, usize, &str); 4] = [
-            (
-                self.out_through.keys().copied().collect(),
-                primitives,
-                "through primitive",
-            ),
-            (
-                self.absorbed_in.keys().copied().collect(),
-                media,
-                "absorbed in medium",
-            ),
-            (
-                self.dyes.keys().copied().collect(),
-                media,
-                "of a dye in medium",
-            ),
-            (
-                self.layers.keys().copied().collect(),
-                primitives,
-                "of a fluorescent layer on primitive",
-            ),
-        ];
-        for (keys, limit, what) in keyed {
-            if let Some(k) = keys.into_iter().find(|&k| k >= limit) {
-                return Err(format!("an energy budget {what} {k} of a scene of {limit}"));
+        fn beyond<'k>(
+            mut keys: impl Iterator<Item = &'k usize>,
+            limit: usize,
+            what: &str,
+        ) -> Result<(), String> {
+            match keys.find(|&&k| k >= limit) {
+                Some(k) => Err(format!("an energy budget {what} {k} of a scene of {limit}")),
+                None => Ok(()),
             }
         }
+        beyond(self.out_through.keys(), primitives, "through primitive")?;
+        beyond(self.absorbed_in.keys(), media, "absorbed in medium")?;
+        beyond(self.dyes.keys(), media, "of a dye in medium")?;
+        beyond(
+            self.layers.keys(),
+            primitives,
+            "of a fluorescent layer on primitive",
+        )?;
         if !self.bands.is_empty() && self.bands.len() != bands {
             return Err(format!(
                 "an energy budget of {} wavelength bands where the scene has {bands}",

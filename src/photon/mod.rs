@@ -740,34 +740,35 @@ fn absorbed_by_fluorophore<'s>(
 ) -> Option<DyeAbsorption<'s>> {
     let carried = walker.carried();
     let tracer = carried.tracer;
-    let (site, fluorophore, share, facing, medium) = match vertex {
-        Vertex::Medium(MediumVertex {
-            medium: Some(m), ..
-        }) => {
-            let (dye, share) = tracer.dye_share(*m)?;
-            (DyeSite::Medium(*m), &dye.fluorophore, share, None, Some(*m))
-        }
-        Vertex::Medium(MediumVertex { medium: None, .. }) => return None,
-        Vertex::Surface(v) => {
-            let layer = tracer.scene.fluorescent_layer(v.prim)?;
-            let share = layer.absorbed(tracer.wavelength());
-            (
-                DyeSite::Surface(v.prim),
-                &layer.fluorophore,
-                share,
-                Some(v.normal),
-                v.medium,
-            )
-        }
-    };
-    (rng.gen::<f64>() < share).then(|| DyeAbsorption {
+    let absorption = |site, fluorophore, facing, medium| DyeAbsorption {
         site,
         fluorophore,
         position: vertex.origin(),
         facing,
         medium,
         depth: carried.depth,
-    })
+    };
+    let (share, absorbed) = match vertex {
+        Vertex::Medium(MediumVertex {
+            medium: Some(m), ..
+        }) => {
+            let (dye, share) = tracer.dye_share(*m)?;
+            let at = absorption(DyeSite::Medium(*m), &dye.fluorophore, None, Some(*m));
+            (share, at)
+        }
+        Vertex::Medium(MediumVertex { medium: None, .. }) => return None,
+        Vertex::Surface(v) => {
+            let layer = tracer.scene.fluorescent_layer(v.prim)?;
+            let at = absorption(
+                DyeSite::Surface(v.prim),
+                &layer.fluorophore,
+                Some(v.normal),
+                v.medium,
+            );
+            (layer.absorbed(tracer.wavelength()), at)
+        }
+    };
+    (rng.gen::<f64>() < share).then_some(absorbed)
 }
 
 /// A photon's scattering at `vertex`: a direction from its BSDF or phase function and

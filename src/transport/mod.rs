@@ -71,6 +71,9 @@ pub struct Tracer<'a> {
     /// The wavelength rays travel at, when it is not [`crate::spectrum::LAMBDA_D`] (see
     /// [`Tracer::at_wavelength`]).
     wavelength: Option<f64>,
+    /// Whether a surface of the scene may join equal indices ([`Scene::may_match_indices`],
+    /// asked once here rather than by every shadow ray).
+    pub may_match_indices: bool,
 }
 
 /// A gradient medium a march crosses: its index field and what it does to light's power.
@@ -122,6 +125,7 @@ impl<'a> Tracer<'a> {
             light_sampler: Cow::Owned(LightSampler::new(&scene.lights)),
             light_samples: LightSamples::One,
             wavelength: None,
+            may_match_indices: scene.may_match_indices(),
         };
         if let Some(c) = &scene.camera {
             tracer.camera_medium = tracer.medium_containing(c.position);

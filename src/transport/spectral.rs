@@ -90,6 +90,7 @@ impl<'a> Tracer<'a> {
             light_sampler: Cow::Borrowed(&self.light_sampler),
             light_samples: self.light_samples,
             wavelength: Some(nm),
+            may_match_indices: self.may_match_indices,
         }
     }
 

@@ -24,7 +24,7 @@ pub fn transmittance(
     reach: f64,
 ) -> Rgb {
     let length = reach.min(tracer.world.exit_distance(from, dir));
-    if !tracer.scene.may_match_indices() {
+    if !tracer.may_match_indices {
         if blocked(tracer, from, dir, reach) {
             return Rgb::ZERO;
         }
