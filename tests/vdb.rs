@@ -257,5 +257,35 @@ fn a_mitsuba_volume_is_a_density_grid() {
         scene("", &bad),
         "bytes of values where 12 × 10 × 8 f32 values take 3840",
     );
+    // A file of one value along x, and one holding a NaN: errors naming the file's key.
+    let header = |dims: [i32; 3]| {
+        let mut b = b"VOL\x03".to_vec();
+        for n in [1, dims[0], dims[1], dims[2], 1] {
+            b.extend(n.to_le_bytes());
+        }
+        b.extend(
+            [0f32, 0.0, 0.0, 1.0, 1.0, 1.0]
+                .iter()
+                .flat_map(|x| x.to_le_bytes()),
+        );
+        b
+    };
+    for (dims, values, words) in [
+        (
+            [1, 2, 2],
+            [1f32; 4].to_vec(),
+            "key `density_file`: dims must be at least 2",
+        ),
+        (
+            [2, 2, 2],
+            vec![1.0, f32::NAN, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0],
+            "key `density_file`: value #1 is NaN",
+        ),
+    ] {
+        let mut b = header(dims);
+        b.extend(values.iter().flat_map(|x| x.to_le_bytes()));
+        std::fs::write(&bad, b).unwrap();
+        refused(scene("", &bad), words);
+    }
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -369,6 +369,8 @@ struct Nodes {
     values: Vec<f64>,
     /// The key the values came from (`values` or `file`, prefixed).
     key: String,
+    /// The key their count came from (`dims`, or a file that gives it, prefixed).
+    dims_key: String,
     /// A VDB file's `background` (the value of its inactive voxels), given.
     background: Option<f64>,
 }
@@ -402,6 +404,7 @@ fn read_nodes(t: &mut TableReader, prefix: &str) -> Result<Nodes> {
             dims: dense.dims,
             values: dense.values,
             key: key("file"),
+            dims_key: key("file"),
             background,
         });
     }
@@ -430,6 +433,7 @@ fn read_nodes(t: &mut TableReader, prefix: &str) -> Result<Nodes> {
             dims,
             values,
             key: key("file"),
+            dims_key: key("file"),
             background: None,
         });
     }
@@ -455,6 +459,7 @@ fn read_nodes(t: &mut TableReader, prefix: &str) -> Result<Nodes> {
         dims,
         values,
         key: from,
+        dims_key: key("dims"),
         background: None,
     })
 }
@@ -463,7 +468,7 @@ fn read_nodes(t: &mut TableReader, prefix: &str) -> Result<Nodes> {
 /// background is the `background` key's.
 fn grid_error_key(e: &GridError, prefix: &str, nodes: &Nodes) -> String {
     match e {
-        GridError::TooFewNodes(_) | GridError::TooManyNodes(_) => format!("{prefix}dims"),
+        GridError::TooFewNodes(_) | GridError::TooManyNodes(_) => nodes.dims_key.clone(),
         GridError::EmptyBox => format!("{prefix}bounds"),
         GridError::BadValue { value, .. } if nodes.background == Some(*value) => {
             format!("{prefix}background")

@@ -296,6 +296,8 @@ struct Lent<'a, R> {
     rng: &'a mut R,
     stats: &'a mut Stats,
     polarization: Option<&'a mut Polarization>,
+    /// Index-matched boundaries crossed so far ([`MAX_CROSSINGS`]).
+    crossings: usize,
 }
 
 /// The chain's weight as its start sees light that is unpolarized where the chain is now: with
@@ -322,6 +324,11 @@ pub const ROULETTE_SURVIVAL: f64 = 0.95;
 /// a heterogeneous medium (a path in a near empty corner of a dense grid, or one orbiting in a
 /// void): bounded time, never a loop.
 pub const MAX_NULL_COLLISIONS: usize = 100_000;
+
+/// The most index-matched boundaries one chain (or one shadow ray) crosses: they cost no
+/// depth, so this bounds a chain that numbers trap among coincident ones; past it the chain
+/// ends lost, counted in the statistics as out of steps (a shadow ray: blocked).
+pub const MAX_CROSSINGS: usize = 1 << 16;
 
 /// The scattering column ∫d ds summed along a stretch's chords, where it is wanted.
 struct Column<'s> {
@@ -470,6 +477,7 @@ impl<'w> Walker<'w> {
                     }
                 })
             }),
+            crossings: 0,
         };
         let mut chain = Chain {
             end: End::Lost,
@@ -751,6 +759,11 @@ impl<'w> Walker<'w> {
                     return ControlFlow::Break(End::Lost);
                 };
                 if self.tracer.crosses_unchanged(&vertex) {
+                    lent.crossings += 1;
+                    if lent.crossings > MAX_CROSSINGS {
+                        lent.stats.record_end(crate::curve::Termination::MaxSteps);
+                        return ControlFlow::Break(End::Lost);
+                    }
                     // No event: the depth it was charged is given back.
                     self.depth = match exhausted {
                         true => 0,

@@ -32,7 +32,7 @@ pub fn transmittance(
     }
     let scene = tracer.scene;
     let (mut origin, mut medium, mut kept) = (from, medium, Rgb::ONE);
-    for _ in 0..MAX_CROSSINGS {
+    for _ in 0..super::chain::MAX_CROSSINGS {
         // What is left of the segment from here.
         let gone = (origin - from).dot(dir);
         let (left, span) = (reach - gone, length - gone);
@@ -55,10 +55,6 @@ pub fn transmittance(
     }
     Rgb::ZERO
 }
-
-/// The most surfaces a shadow ray crosses ([`transmittance`]) before it counts as blocked:
-/// bounded time, whatever the scene stacks on its way.
-const MAX_CROSSINGS: usize = 1024;
 
 /// Whether a surface other than a detector lies on the straight segment from `from` along
 /// unit `dir` over `reach`.
