@@ -413,7 +413,7 @@ fn a_pixel_splits_at_a_dielectric_in_proportion_to_its_reflectance() {
 }
 
 /// A boundary between equal indices is no surface to light: a floor and a wall lit by a point
-/// light and seen from above, alone and with the floor's middle inside a box of a medium of index 1 behind an index-matched
+/// light (then a spot, the sun, a quad lamp and a uniform sky, each alone) and seen from above, alone and with the floor's middle inside a box of a medium of index 1 behind an index-matched
 /// boundary (Mitsuba's `null`). Light samples reach through the box (the path tracer, which
 /// finds a point light by light samples alone, would read the floor black inside it were the
 /// boundary a specular surface), and photons through it (from the light, and from the wall)
@@ -423,13 +423,12 @@ fn a_pixel_splits_at_a_dielectric_in_proportion_to_its_reflectance() {
 /// is a glass block, through which the path tracer sees no point light: under half the light.
 #[test]
 fn an_index_matched_boundary_is_no_surface_to_light() {
-    let plain = "[camera]\nposition = [0, 3, 0.01]\nlook_at = [0, 0, 0]\nfov_y_deg = 40\nwidth = 32\nheight = 32\n\
-                 [render]\nspp = 8\nphotons = 40000\ncaustic_photons = 40000\nmax_depth = 8\n\
-                 [[material]]\nname = \"floor\"\ntype = \"diffuse\"\nalbedo = [0.5, 0.5, 0.5]\n\
-                 [[shape]]\ntype = \"quad\"\nvertices = [[-2, 0, -2], [-2, 0, 2], [2, 0, 2], [2, 0, -2]]\nmaterial = \"floor\"\n\
-                 [[shape]]\ntype = \"quad\"\nvertices = [[1, 0, -2], [1, 1.2, -2], [1, 1.2, 2], [1, 0, 2]]\nmaterial = \"floor\"\n\
-                 [[light]]\ntype = \"point\"\nposition = [0.3, 1.5, 0.2]\nintensity = [5, 5, 5]\n";
-    let boxed = |n: f64| {
+    let room = "[camera]\nposition = [0, 3, 0.01]\nlook_at = [0, 0, 0]\nfov_y_deg = 40\nwidth = 32\nheight = 32\n\
+                [render]\nspp = 8\nphotons = 40000\ncaustic_photons = 40000\nmax_depth = 8\n\
+                [[material]]\nname = \"floor\"\ntype = \"diffuse\"\nalbedo = [0.5, 0.5, 0.5]\n\
+                [[shape]]\ntype = \"quad\"\nvertices = [[-2, 0, -2], [-2, 0, 2], [2, 0, 2], [2, 0, -2]]\nmaterial = \"floor\"\n\
+                [[shape]]\ntype = \"quad\"\nvertices = [[1, 0, -2], [1, 1.2, -2], [1, 1.2, 2], [1, 0, 2]]\nmaterial = \"floor\"\n";
+    let boxed = |plain: &str, n: f64| {
         format!(
             "{plain}[[medium]]\nname = \"inside\"\nprofile = \"uniform\"\nn = {n}\n\
              [[material]]\nname = \"boundary\"\ntype = \"dielectric\"\nior = {n}\n\
@@ -445,15 +444,32 @@ fn an_index_matched_boundary_is_no_surface_to_light() {
         let beauty = render(&scene, 2).layer("beauty").unwrap();
         beauty.iter().map(|p| p[0] as f64).sum::<f64>() / beauty.len() as f64
     };
-    for (integrator, bar) in [("path", 1e-4), ("photon_map", 0.01)] {
-        let (alone, matched) = (mean(plain, integrator), mean(&boxed(1.0), integrator));
-        println!("{integrator}: floor alone {alone:.6}, in an index-matched box {matched:.6}");
-        assert!(alone > 0.01, "{integrator}: {alone}");
-        assert!(
-            (matched / alone - 1.0).abs() < bar,
-            "{integrator}: {matched} vs {alone}"
-        );
+    // Every kind of light: found by light samples alone (point, spot, parallel), by both
+    // strategies (a quad lamp), and a sky; open scenes under the sun and the sky.
+    let lights = [
+        ("point", "type = \"point\"\nposition = [0.3, 1.5, 0.2]\nintensity = [5, 5, 5]"),
+        ("spot", "type = \"spot\"\nposition = [0.3, 1.5, 0.2]\nintensity = [5, 5, 5]\ncone_deg = 50"),
+        ("sun", "type = \"directional\"\ndirection = [-0.3, -1, 0.2]\nirradiance = [1, 1, 1]"),
+        ("lamp", "type = \"quad\"\nvertices = [[-0.3, 1.5, -0.3], [0.3, 1.5, -0.3], [0.3, 1.5, 0.3], [-0.3, 1.5, 0.3]]\nradiance = [4, 4, 4]"),
+        ("sky", "type = \"environment\"\nsky = \"uniform\"\nradiance = [0.5, 0.5, 0.5]"),
+    ];
+    let point = format!("{room}[[light]]\n{}\n", lights[0].1);
+    for (light, block) in lights {
+        let plain = format!("{room}[[light]]\n{block}\n");
+        for (integrator, bar) in [("path", 1e-4), ("photon_map", 0.01)] {
+            let alone = mean(&plain, integrator);
+            let matched = mean(&boxed(&plain, 1.0), integrator);
+            println!(
+                "{light}, {integrator}: floor alone {alone:.6}, in an index-matched box {matched:.6}"
+            );
+            assert!(alone > 0.01, "{light}, {integrator}: {alone}");
+            assert!(
+                (matched / alone - 1.0).abs() < bar,
+                "{light}, {integrator}: {matched} vs {alone}"
+            );
+        }
     }
+    let (plain, boxed) = (point.as_str(), |n| boxed(&point, n));
     let glass = mean(&boxed(1.5), "path");
     let alone = mean(plain, "path");
     assert!(glass < 0.5 * alone, "glass block: {glass} vs {alone}");
