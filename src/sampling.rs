@@ -249,4 +249,11 @@ impl Discrete {
     pub fn probability(&self, i: usize) -> f64 {
         self.cdf[i] - if i == 0 { 0.0 } else { self.cdf[i - 1] }
     }
+
+    /// Where `u`, which drew `pick`, lies within that index's share of [0, 1), rescaled to
+    /// [0, 1): uniform again, so one number both picks an index and places a point.
+    pub fn within(&self, u: f64, pick: Pick) -> f64 {
+        let start = self.cdf[pick.index] - pick.probability;
+        ((u - start) / pick.probability).clamp(0.0, 1.0 - f64::EPSILON / 2.0)
+    }
 }

@@ -173,7 +173,7 @@ impl TriangleMesh {
     }
 
     /// The corners of triangle `i`, in f64.
-    fn corners(&self, i: usize) -> [DVec3; 3] {
+    pub fn corners(&self, i: usize) -> [DVec3; 3] {
         self.triangles[i].map(|k| DVec3::from(self.vertices[k as usize].map(f64::from)))
     }
 

@@ -1,11 +1,12 @@
 //! Geometric primitives and their intersections with straight rays ([`primitive`]) and with
 //! curved segments ([`curved`]); shapes of the scene format (box, capped cylinder, mesh) are
-//! made of these.
+//! made of these; points are drawn over a mesh's surface by area ([`SampledMesh`]).
 
 mod curved;
 mod hit;
 mod mesh;
 mod primitive;
+mod sampled_mesh;
 mod triangle;
 
 pub use curved::{round_roots, segment_roots};
@@ -13,4 +14,5 @@ pub(crate) use hit::{padded_box, TraversalRay};
 pub use hit::{Hit, SegmentHits};
 pub use mesh::TriangleMesh;
 pub use primitive::{Disk, Primitive, Quad};
+pub use sampled_mesh::{SampledMesh, SurfacePoint};
 pub use triangle::{Plane, Triangle};

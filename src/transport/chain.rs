@@ -65,6 +65,8 @@ pub enum End<'s> {
         radiance: Rgb,
         /// Hit point.
         position: DVec3,
+        /// The surface's unit geometric normal there (its emitting side's for a front hit).
+        normal: DVec3,
         /// Unit direction of arrival.
         direction: DVec3,
     },
@@ -721,6 +723,7 @@ impl<'w> Walker<'w> {
                         false => Rgb::ZERO,
                     },
                     position: hit.position,
+                    normal: hit.normals.geometric,
                     direction: hit.incoming,
                 })
             }

@@ -219,6 +219,7 @@ pub fn bsdf_sample_weight(tracer: &Tracer, vertex: &Vertex, s: &Scattered, chain
         End::Emitter {
             prim,
             position,
+            normal,
             direction,
             ..
         } if weighed => match tracer.scene.surface(prim).role {
@@ -230,6 +231,7 @@ pub fn bsdf_sample_weight(tracer: &Tracer, vertex: &Vertex, s: &Scattered, chain
                         vertex.origin(),
                         direction,
                         (position - vertex.origin()).length(),
+                        normal,
                     ) * choice.chance(tracer.light_samples, l),
                 )
             }

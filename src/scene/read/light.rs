@@ -1,15 +1,16 @@
 //! `[[light]]`: lights, their spectra, and the environment. Every key's unit and default is in `docs/scene-format.md`.
 
-use super::shape::parallelogram;
+use super::shape::{parallelogram, read_mesh};
 use crate::color::Rgb;
 use crate::environment::{Environment, ImageFilter, Sky, Turn};
 use crate::error::Result;
 use crate::lights::{Emitter, Falloff, Light, Luminaire};
 use crate::math::Ball;
 use crate::scene::table::TableReader;
-use crate::shapes::{Disk, Quad};
+use crate::shapes::{Disk, Quad, SampledMesh};
 use crate::spectrum::Spectrum;
 use glam::{DMat3, DVec3};
+use std::sync::Arc;
 
 /// A light's optional `spectrum` (None: not given — the light is D65 in bands and its RGB in
 /// images): the shape of its emission over wavelength, `"D65"`, `"E"` (equal energy),
@@ -95,18 +96,28 @@ pub fn read_light(t: &mut TableReader, kind: &str) -> Result<Light> {
             });
             area(t, emitter)?
         }
+        "mesh" => {
+            let mesh = read_mesh(t)?;
+            let key = match t.has("points") {
+                true => "points",
+                false => "file",
+            };
+            let surface = SampledMesh::new(mesh)
+                .ok_or_else(|| t.error(key, "the mesh's area is not a finite number"))?;
+            area(t, Emitter::Mesh(Arc::new(surface)))?
+        }
         "led" => {
-            let emitter = Emitter::Disk(Disk::full(
+            let disk = Disk::full(
                 t.vec3("center")?,
                 t.direction_or("normal", DVec3::Z)?,
                 t.positive("radius")?,
-            ));
+            );
             let power = t.positive("power")?;
             let m = t.f64_or("m", 1.0)?;
             t.check("m", m >= 0.0, "must be ≥ 0")?;
             let color = t.rgb_or("color", Some(Rgb::ONE))?;
             let peak_intensity = color * (power * (m + 1.0) / std::f64::consts::TAU);
-            Light::Led { emitter, peak_intensity, m }
+            Light::Led { disk, peak_intensity, m }
         }
         "goniometric" => {
             let path = t.input_file("file")?;
@@ -149,7 +160,7 @@ pub fn read_light(t: &mut TableReader, kind: &str) -> Result<Light> {
             }
         }
         "directional" => Light::Directional { direction: t.direction_or("direction", -DVec3::Y)?, irradiance: t.rgb_or("irradiance", None)? },
-        other => return Err(t.error("type", format!("unknown light type '{other}' (point, spot, quad, disk, sphere, led, goniometric, directional, environment)"))),
+        other => return Err(t.error("type", format!("unknown light type '{other}' (point, spot, quad, disk, sphere, mesh, led, goniometric, directional, environment)"))),
     })
 }
 

@@ -5,6 +5,7 @@ use crate::scene::mesh::ObjTriangles;
 use crate::scene::table::{TableReader, MAX_MAGNITUDE};
 use crate::shapes::{Disk, Primitive, Quad, TriangleMesh};
 use glam::{DMat3, DVec3};
+use std::sync::Arc;
 
 /// A shape before names are resolved.
 pub struct ShapeDesc {
@@ -100,7 +101,7 @@ pub fn read_shape(t: &mut TableReader) -> Result<ShapeDesc> {
                 inner,
             })]
         }
-        "mesh" => read_mesh(t)?,
+        "mesh" => vec![Primitive::Mesh(read_mesh(t)?)],
         other => {
             return Err(t.error(
                 "type",
@@ -248,7 +249,10 @@ fn inline_triangles(t: &mut TableReader) -> Result<ObjTriangles> {
     })
 }
 
-fn read_mesh(t: &mut TableReader) -> Result<Vec<Primitive>> {
+/// A mesh from a `file` (OBJ, PLY or Mitsuba serialized) or from `points` and `indices`,
+/// placed by `matrix` or `scale`, `rotate_deg` and `translate` (a mesh shape's keys; an
+/// emitting mesh's too).
+pub fn read_mesh(t: &mut TableReader) -> Result<Arc<TriangleMesh>> {
     let source = match t.has("points") {
         true => {
             t.check(
@@ -392,7 +396,7 @@ fn read_mesh(t: &mut TableReader) -> Result<Vec<Primitive>> {
         true => mesh.v_from_top(),
         false => mesh,
     };
-    Ok(vec![Primitive::Mesh(std::sync::Arc::new(mesh))])
+    Ok(Arc::new(mesh))
 }
 
 /// How a mesh's file coordinates are placed in the scene: p ↦ linear·(scale·p) + translate,
