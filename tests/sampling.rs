@@ -7,7 +7,7 @@
 use crate::common::chi2::chi2;
 use glam::DVec3;
 use grinlight::color::Rgb;
-use grinlight::lights::{Emitter, Falloff, Light};
+use grinlight::lights::{Falloff, Light};
 use grinlight::math::Ball;
 use grinlight::sampling::{
     cosine_hemisphere, power_cosine_hemisphere, power_cosine_pdf, uniform_cone, uniform_sphere,
@@ -69,7 +69,7 @@ fn uniform_sphere_and_cone_match_their_pdfs() {
 fn led_emission_follows_its_profile() {
     let m = 3.0;
     let led = Light::Led {
-        emitter: Emitter::Disk(grinlight::shapes::Disk::full(DVec3::ZERO, DVec3::Z, 0.01)),
+        disk: grinlight::shapes::Disk::full(DVec3::ZERO, DVec3::Z, 0.01),
         peak_intensity: Rgb::splat(2.0 * (m + 1.0) / TAU),
         m,
     };
