@@ -43,6 +43,9 @@ CASES = {
     "smoke_box": ("smoke_box.xml", {}),
     # Two emitting spheres over two diffuse balls and a floor.
     "sphere_lights": ("sphere_lights.xml", {}),
+    # Two emitting meshes (an OBJ icosphere with vertex normals, a PLY ribbon with its normals
+    # flipped) over a ball, a floor and a wall.
+    "mesh_lights": ("mesh_lights.xml", {}),
     # A thin pane (thindielectric) across the view of two balls, under a sky and a lamp.
     "window": ("window.xml", {}),
 }

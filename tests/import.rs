@@ -405,6 +405,78 @@ fn an_emitting_two_triangle_mesh_is_a_quad_light_facing_its_triangles_way() {
 }
 
 #[test]
+fn an_emitting_mesh_is_a_mesh_light_emitting_where_mitsuba_does() {
+    let d = dir("mesh-lamp");
+    // A tetrahedron wound outward (each face's (b − a) × (c − a) away from the centre).
+    let tetra = "v 1 1 1\nv 1 -1 -1\nv -1 1 -1\nv -1 -1 1\nf 1 2 3\nf 1 4 2\nf 1 3 4\nf 2 4 3\n";
+    write(&d, "tetra.obj", tetra);
+    let lamp = |extra: &str| {
+        format!(
+            r#"<shape type="obj"><string name="filename" value="tetra.obj"/>{extra}
+            <transform name="to_world"><scale x="-0.5" y="0.5" z="0.5"/></transform>
+            <bsdf type="diffuse"><rgb name="reflectance" value="0"/></bsdf>
+            <emitter type="area"><rgb name="radiance" value="1, 2, 3"/></emitter></shape>"#
+        )
+    };
+    let light = |extra: &str| {
+        let p = write(&d, "s.xml", &scene("", &lamp(extra)));
+        tables(&convert(&p, &ImportOptions::default()).unwrap(), "light")[0].clone()
+    };
+    // Faceted (Mitsuba's own vertex normals, averaged from the faces, would differ from them:
+    // the case below), and mirrored by to_world: each face's winding in the world turns
+    // inward, Mitsuba emits on that side, and so does the converted light, unflipped.
+    let faceted = r#"<boolean name="face_normals" value="true"/>"#;
+    let plain = light(faceted);
+    assert_eq!(plain["type"].as_str(), Some("mesh"));
+    assert_eq!(vec3(&plain["radiance"]), [1.0, 2.0, 3.0]);
+    assert!(plain["file"].as_str().unwrap().ends_with("tetra.obj"));
+    assert_eq!(plain.get("flip"), None);
+    let flipped = light(&format!(
+        r#"{faceted}<boolean name="flip_normals" value="true"/>"#
+    ));
+    assert_eq!(flipped["flip"].as_bool(), Some(true));
+    // Vertex normals pointing out of the tetrahedron's corners: Mitsuba follows them (its
+    // emission and light samples' cosine at the interpolated normal) — an approximation,
+    // refused by default; with face_normals it reads the faces' and converts exactly. Here
+    // the (inverse transposed) normals point outward, against the mirrored winding: flipped.
+    let smooth = "vn 1 1 1\nvn 1 -1 -1\nvn -1 1 -1\nvn -1 -1 1\n\
+                  f 1//1 2//2 3//3\nf 1//1 4//4 2//2\nf 1//1 3//3 4//4\nf 2//2 4//4 3//3\n";
+    write(
+        &d,
+        "tetra.obj",
+        &tetra.replace("f 1 2 3\nf 1 4 2\nf 1 3 4\nf 2 4 3\n", smooth),
+    );
+    let p = write(&d, "s.xml", &scene("", &lamp("")));
+    let message = convert(&p, &ImportOptions::default())
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(
+        message.contains("interpolated vertex normal") && message.contains("--approximate"),
+        "{message}"
+    );
+    let approximate = ImportOptions {
+        approximate: true,
+        ..ImportOptions::default()
+    };
+    let t = convert(&p, &approximate).unwrap();
+    assert_eq!(tables(&t, "light")[0]["flip"].as_bool(), Some(true));
+    assert_eq!(light(faceted).get("flip"), None);
+    // Normals that point in at one corner of a face and out at the others: refused.
+    write(
+        &d,
+        "tetra.obj",
+        &tetra.replace(
+            "f 1 2 3\nf 1 4 2\nf 1 3 4\nf 2 4 3\n",
+            &smooth.replace("vn 1 1 1", "vn -1 -1 -1"),
+        ),
+    );
+    let p = write(&d, "split.xml", &scene("", &lamp("")));
+    let message = convert(&p, &approximate).err().unwrap().to_string();
+    assert!(message.contains("emit on different sides"), "{message}");
+}
+
+#[test]
 fn a_converted_file_renders_as_its_xml_does() {
     // `convert`'s file and the XML read directly describe one scene: the same settings and
     // the same EXR, byte for byte.
@@ -567,6 +639,8 @@ fn the_mitsuba_scenes_render_as_mitsuba_renders_them() {
         ("smoke_box", "smoke_box.xml", vec![], 16),
         // Two emitting spheres: grinlight's sphere lights, seen and lighting.
         ("sphere_lights", "sphere_lights.xml", vec![], 16),
+        // Two emitting meshes, one seen and one flipped to light the floor: mesh lights.
+        ("mesh_lights", "mesh_lights.xml", vec![], 16),
         // A thin pane across the view: seen through and reflecting the sky behind the camera.
         ("window", "window.xml", vec![], 16),
     ] {

@@ -1,10 +1,10 @@
 //! Photon mapping and the render against exact answers and an independent reference.
 
+use glam::DVec3;
 use grinlight::compare::{mean_ratios, read_exr_layer, MeanRatios};
 use grinlight::photon::{shoot, Batch, Photons, Sources};
 use grinlight::scene::load::parse_scene;
 use grinlight::transport::Tracer;
-use glam::DVec3;
 use std::f64::consts::PI;
 use std::path::Path;
 
@@ -86,8 +86,15 @@ struct OctahedralLamp {
 
 /// The octahedron of corners `center` ± `a` along each axis.
 fn octahedral_lamp(center: DVec3, a: f64) -> OctahedralLamp {
-    let corners = [DVec3::X, -DVec3::X, DVec3::Y, -DVec3::Y, DVec3::Z, -DVec3::Z]
-        .map(|d| center + a * d);
+    let corners = [
+        DVec3::X,
+        -DVec3::X,
+        DVec3::Y,
+        -DVec3::Y,
+        DVec3::Z,
+        -DVec3::Z,
+    ]
+    .map(|d| center + a * d);
     let mut faces = Vec::new();
     for x in [0, 1] {
         for y in [2, 3] {
@@ -588,7 +595,10 @@ fn an_emitting_mesh_lights_a_room_as_its_surface_does() {
     let triangles = "[[light]]\ntype = \"mesh\"\npoints = [-0.3, 1.5, -0.3, 0.3, 1.5, -0.3, 0.3, 1.5, 0.3, -0.3, 1.5, 0.3]\nindices = [0, 1, 2, 0, 2, 3]\nradiance = [4, 4, 4]\n";
     let (as_quad, as_mesh) = (mean(quad, "path"), mean(triangles, "path"));
     println!("quad lamp {as_quad:.6}, as two triangles {as_mesh:.6}");
-    assert!((as_mesh / as_quad - 1.0).abs() < 2e-3, "{as_mesh} vs {as_quad}");
+    assert!(
+        (as_mesh / as_quad - 1.0).abs() < 2e-3,
+        "{as_mesh} vs {as_quad}"
+    );
     let lamp = octahedral_lamp(DVec3::new(0.2, 0.8, 0.0), 0.25).light("[3, 3, 3]");
     let (path, photons) = (mean(&lamp, "path"), mean(&lamp, "photon_map"));
     println!("octahedral lamp: path tracer {path:.6}, photon mapper {photons:.6}");

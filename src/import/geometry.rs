@@ -68,3 +68,53 @@ pub fn parallelogram(triangles: [[DVec3; 3]; 2], flip: bool) -> Option<[DVec3; 4
     let agree = (u[1] - u[0]).cross(u[2] - u[0]).dot(normal) > 0.0;
     agree.then_some(order)
 }
+
+/// Which side an emitting mesh's triangles emit from, against their winding's normal
+/// (b − a) × (c − a) in the world.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Facing {
+    /// Every triangle emits on its winding's side.
+    Winding,
+    /// Every triangle emits on the other side.
+    Against,
+    /// Some do, some do not: `against` of the `of` triangles with an area emit against their
+    /// winding, and `split` have corners whose normals point to both sides.
+    Mixed {
+        /// Triangles emitting against their winding.
+        against: usize,
+        /// Triangles whose corners' normals disagree.
+        split: usize,
+        /// Triangles with an area.
+        of: usize,
+    },
+}
+
+/// Which side each of a mesh's `triangles` (corners in the world) emits from: its winding's,
+/// or where `normals` gives triangle i's corners normals in the world, the side they point to
+/// (a renderer that reads the emitting side off the interpolated shading normal); then
+/// turned over where `flip`. Triangles without an area are not counted.
+pub fn emitting_side(
+    triangles: impl Iterator<Item = [DVec3; 3]>,
+    normals: Option<&dyn Fn(usize) -> [DVec3; 3]>,
+    flip: bool,
+) -> Facing {
+    let (mut against, mut split, mut of) = (0, 0, 0);
+    for (i, [a, b, c]) in triangles.enumerate() {
+        let w = (b - a).cross(c - a);
+        if w.length_squared() == 0.0 {
+            continue;
+        }
+        of += 1;
+        let sides = normals.map_or([true; 3], |n| n(i).map(|n| n.dot(w) > 0.0));
+        match sides {
+            [true, true, true] => against += usize::from(flip),
+            [false, false, false] => against += usize::from(!flip),
+            _ => split += 1,
+        }
+    }
+    match (against, split) {
+        (0, 0) => Facing::Winding,
+        (n, 0) if n == of => Facing::Against,
+        _ => Facing::Mixed { against, split, of },
+    }
+}

@@ -72,9 +72,9 @@ pub fn string(s: &str) -> Toml {
 }
 
 /// The surface of an area light a converter found: a parallelogram (corners v0..v3, emitting
-/// on the side of (v1 − v0) × (v3 − v0)), a disk emitting on its normal's side, or a sphere
-/// emitting outward.
-#[derive(Clone, Copy, Debug)]
+/// on the side of (v1 − v0) × (v3 − v0)), a disk emitting on its normal's side, a sphere
+/// emitting outward, or a triangle mesh.
+#[derive(Clone, Debug)]
 pub enum AreaEmitter {
     /// A parallelogram's corners v0..v3.
     Quad([DVec3; 4]),
@@ -94,6 +94,14 @@ pub enum AreaEmitter {
         /// Its radius.
         radius: f64,
     },
+    /// A triangle mesh.
+    Mesh {
+        /// Its `[[light]]` keys but the radiance: type `mesh`, where its triangles come from,
+        /// how they are placed, and `flip` where they emit against their winding.
+        keys: Table,
+        /// Its area in the world (length²).
+        area: f64,
+    },
 }
 
 impl AreaEmitter {
@@ -103,6 +111,7 @@ impl AreaEmitter {
             AreaEmitter::Quad(v) => (v[1] - v[0]).cross(v[3] - v[0]).length(),
             AreaEmitter::Disk { radius, .. } => std::f64::consts::PI * radius * radius,
             AreaEmitter::Sphere { radius, .. } => 4.0 * std::f64::consts::PI * radius * radius,
+            AreaEmitter::Mesh { area, .. } => area,
         }
     }
 
@@ -128,6 +137,7 @@ impl AreaEmitter {
                 ("center", vec3(center)),
                 ("radius", Toml::Float(radius)),
             ]),
+            AreaEmitter::Mesh { keys, .. } => keys,
         }
     }
 }

@@ -146,6 +146,15 @@ impl TriangleMesh {
         }
     }
 
+    /// The same mesh with every triangle wound the other way (its corners b and c swapped):
+    /// each geometric normal turned over. The BVH stands (each triangle keeps its corners).
+    pub fn turned_over(mut self) -> Self {
+        for t in &mut self.triangles {
+            t.swap(1, 2);
+        }
+        self
+    }
+
     /// Whether the mesh has no triangle (never: [`TriangleMesh::new`] refuses that).
     pub fn is_empty(&self) -> bool {
         self.triangles.is_empty()

@@ -6,7 +6,7 @@
 mod spectrum;
 pub mod xml;
 
-use super::geometry::{linear, parallelogram, similarity};
+use super::geometry::{emitting_side, linear, parallelogram, similarity, Facing};
 use super::table::{affine_rows, free_name, string, table, vec3, AreaEmitter, Lists};
 use super::{Imported, Place, Told};
 use crate::error::{cut, Result};
@@ -1173,14 +1173,10 @@ impl Converter<'_> {
         Ok(match shape.kind.as_str() {
             "obj" | "ply" | "serialized" => {
                 refuse_flip("mesh")?;
-                let file = self.mesh_file(shape)?;
+                let mut t = self.mesh_source(shape, m)?;
                 // Mitsuba interpolates vertex normals (the file's or its own) unless told not to.
                 let smooth = !shape.boolean_or("face_normals", false)?;
-                let mut t = table([
-                    ("type", string("mesh")),
-                    ("file", string(&file.to_string_lossy())),
-                    ("smooth", Toml::Boolean(smooth)),
-                ]);
+                t.insert("smooth".into(), Toml::Boolean(smooth));
                 // Mitsuba turns the file's v over where told to (an OBJ's by default, a PLY's
                 // on request; a serialized mesh has no such parameter), and looks a texture up
                 // at a mesh's v (or the corners' weights, where the file gives no (u, v)) from
@@ -1195,13 +1191,6 @@ impl Converter<'_> {
                 if textured {
                     t.insert("flip_v".into(), Toml::Boolean(flip_v));
                     t.insert("v_from_top".into(), Toml::Boolean(true));
-                }
-                if shape.kind == "serialized" {
-                    let index = shape_index(shape)?;
-                    t.insert("shape_index".into(), Toml::Integer(index as i64));
-                }
-                if *m != DMat4::IDENTITY {
-                    t.insert("matrix".into(), affine_rows(m));
                 }
                 t
             }
@@ -1310,6 +1299,24 @@ impl Converter<'_> {
         })
     }
 
+    /// A mesh shape's `mesh` keys: its file (and which of a serialized file's meshes) and
+    /// `to_world`'s map `m` as its matrix.
+    fn mesh_source(&mut self, shape: &Object, m: &DMat4) -> Result<Table> {
+        let file = self.mesh_file(shape)?;
+        let mut t = table([
+            ("type", string("mesh")),
+            ("file", string(&file.to_string_lossy())),
+        ]);
+        if shape.kind == "serialized" {
+            let index = shape_index(shape)?;
+            t.insert("shape_index".into(), Toml::Integer(index as i64));
+        }
+        if *m != DMat4::IDENTITY {
+            t.insert("matrix".into(), affine_rows(m));
+        }
+        Ok(t)
+    }
+
     fn mesh_file(&mut self, shape: &Object) -> Result<PathBuf> {
         let name = shape
             .string("filename")?
@@ -1329,8 +1336,8 @@ impl Converter<'_> {
         Ok(std::fs::canonicalize(&path).unwrap_or(path))
     }
 
-    /// The light an emitting shape becomes: a rectangle, a disk, or a mesh that is one
-    /// parallelogram (two triangles).
+    /// The light an emitting shape becomes: a rectangle, a disk, a sphere, or a mesh (one
+    /// parallelogram of two triangles as a quad).
     fn emitting_surface(&mut self, shape: &Object, m: &DMat4, flip: bool) -> Result<AreaEmitter> {
         match shape.kind.as_str() {
             "rectangle" => Ok(AreaEmitter::Quad(rectangle(m, flip))),
@@ -1354,7 +1361,7 @@ impl Converter<'_> {
             }
             "obj" | "ply" | "serialized" => {
                 let path = self.mesh_file(shape)?;
-                shape.ignore("face_normals");
+                let face_normals = shape.boolean_or("face_normals", false)?;
                 shape.ignore("flip_tex_coords");
                 let mesh = match shape.kind.as_str() {
                     "ply" => crate::scene::ply::load_ply(&path),
@@ -1371,17 +1378,74 @@ impl Converter<'_> {
                     [a, b] => parallelogram([a.map(corner), b.map(corner)], flip),
                     _ => None,
                 };
-                quad.map(AreaEmitter::Quad).ok_or_else(|| {
-                    shape.error(format!(
-                        "an area emitter on a mesh of {} triangles: grinlight's area lights are \
-                         parallelograms and disks (a mesh of two triangles forming one is read)",
-                        mesh.triangles.len()
-                    ))
-                })
+                if let Some(quad) = quad {
+                    return Ok(AreaEmitter::Quad(quad));
+                }
+                // Mitsuba emits on the side of a hit's shading normal: the file's vertex
+                // normals interpolated where it has them and face_normals is off, else the
+                // winding's (its own vertex normals follow the winding).
+                let to_normal = linear(m).inverse().transpose();
+                let normals = mesh.normals.as_ref().filter(|_| !face_normals);
+                let corner_normals = |i: usize| {
+                    let n = normals.expect("asked only with normals");
+                    (mesh.triangles[i])
+                        .map(|k| to_normal * DVec3::from(n[k as usize].map(f64::from)))
+                };
+                let side = emitting_side(
+                    mesh.triangles.iter().map(|t| t.map(corner)),
+                    normals.map(|_| &corner_normals as &dyn Fn(usize) -> [DVec3; 3]),
+                    flip,
+                );
+                let area = (mesh.triangles.iter())
+                    .map(|t| {
+                        let [a, b, c] = t.map(corner);
+                        0.5 * (b - a).cross(c - a).length()
+                    })
+                    .sum();
+                // Mitsuba's emission and its light samples' cosine follow the interpolated
+                // normals (the file's, or its own averages of the faces at each vertex);
+                // grinlight's, each triangle's own: the same where those are the faces'.
+                let faceted = face_normals
+                    || match mesh.normals.as_ref() {
+                        Some(_) => (0..mesh.triangles.len()).all(|i| {
+                            let [a, b, c] = mesh.triangles[i].map(corner);
+                            let w = (b - a).cross(c - a);
+                            corner_normals(i).iter().all(|n| parallel(*n, w))
+                        }),
+                        None => faces_agree_at_vertices(&mesh.triangles, &corner),
+                    };
+                if !faceted {
+                    self.told.approximate(
+                        &shape.place,
+                        format!(
+                            "{}: Mitsuba evaluates an emitting mesh's radiance and its light \
+                             samples' cosine at the interpolated vertex normal; grinlight's \
+                             mesh lights at each triangle's own normal (exact with \
+                             face_normals, or where a mesh's normals are its faces')",
+                            shape.what()
+                        ),
+                    )?;
+                }
+                let mut keys = self.mesh_source(shape, m)?;
+                match side {
+                    Facing::Winding => {}
+                    Facing::Against => {
+                        keys.insert("flip".into(), Toml::Boolean(true));
+                    }
+                    Facing::Mixed { against, split, of } => {
+                        return Err(shape.error(format!(
+                            "an area emitter on a mesh whose triangles emit on different sides \
+                             of their winding ({against} of {of} one way, {split} with normals \
+                             on both sides): grinlight's mesh lights emit on one side of every \
+                             triangle's winding"
+                        )))
+                    }
+                }
+                Ok(AreaEmitter::Mesh { keys, area })
             }
             other => Err(shape.error(format!(
                 "an area emitter on a '{}': grinlight's area lights are rectangles, disks, \
-                 spheres and two-triangle parallelogram meshes",
+                 spheres and triangle meshes",
                 cut(other)
             ))),
         }
@@ -1558,6 +1622,22 @@ fn rectangle(m: &DMat4, flip: bool) -> [DVec3; 4] {
 }
 
 /// A `serialized` shape's `shape_index` (0: the file's first mesh).
+/// Whether unit or non-unit `a` and `b` point the same way, to 1e-6 of a radian.
+fn parallel(a: DVec3, b: DVec3) -> bool {
+    a.cross(b).length() <= 1e-6 * a.length() * b.length() && a.dot(b) > 0.0
+}
+
+/// Whether the triangles (corners placed by `corner`) that share each vertex all have the
+/// same normal: then vertex normals averaged from the faces are the faces' own.
+fn faces_agree_at_vertices(triangles: &[[u32; 3]], corner: &dyn Fn(u32) -> DVec3) -> bool {
+    let mut first: HashMap<u32, DVec3> = HashMap::new();
+    triangles.iter().all(|t| {
+        let [a, b, c] = t.map(corner);
+        let w = (b - a).cross(c - a);
+        w.length_squared() == 0.0 || t.iter().all(|&v| parallel(*first.entry(v).or_insert(w), w))
+    })
+}
+
 fn shape_index(shape: &Object) -> Result<usize> {
     let index = shape.integer_or("shape_index", 0)?;
     usize::try_from(index).map_err(|_| shape.error(format!("shape_index {index} is negative")))

@@ -98,11 +98,16 @@ pub fn read_light(t: &mut TableReader, kind: &str) -> Result<Light> {
         }
         "mesh" => {
             let mesh = read_mesh(t)?;
+            // `flip`: each triangle emits from the side of (c − a) × (b − a) instead.
+            let mesh = match t.bool_or("flip", false)? {
+                true => mesh.turned_over(),
+                false => mesh,
+            };
             let key = match t.has("points") {
                 true => "points",
                 false => "file",
             };
-            let surface = SampledMesh::new(mesh)
+            let surface = SampledMesh::new(Arc::new(mesh))
                 .ok_or_else(|| t.error(key, "the mesh's area is not a finite number"))?;
             area(t, Emitter::Mesh(Arc::new(surface)))?
         }

@@ -101,7 +101,7 @@ pub fn read_shape(t: &mut TableReader) -> Result<ShapeDesc> {
                 inner,
             })]
         }
-        "mesh" => vec![Primitive::Mesh(read_mesh(t)?)],
+        "mesh" => vec![Primitive::Mesh(Arc::new(read_mesh(t)?))],
         other => {
             return Err(t.error(
                 "type",
@@ -252,7 +252,7 @@ fn inline_triangles(t: &mut TableReader) -> Result<ObjTriangles> {
 /// A mesh from a `file` (OBJ, PLY or Mitsuba serialized) or from `points` and `indices`,
 /// placed by `matrix` or `scale`, `rotate_deg` and `translate` (a mesh shape's keys; an
 /// emitting mesh's too).
-pub fn read_mesh(t: &mut TableReader) -> Result<Arc<TriangleMesh>> {
+pub fn read_mesh(t: &mut TableReader) -> Result<TriangleMesh> {
     let source = match t.has("points") {
         true => {
             t.check(
@@ -396,7 +396,7 @@ pub fn read_mesh(t: &mut TableReader) -> Result<Arc<TriangleMesh>> {
         true => mesh.v_from_top(),
         false => mesh,
     };
-    Ok(Arc::new(mesh))
+    Ok(mesh)
 }
 
 /// How a mesh's file coordinates are placed in the scene: p ↦ linear·(scale·p) + translate,
