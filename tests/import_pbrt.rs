@@ -42,6 +42,86 @@ fn the_pbrt_cornell_box_renders_as_mitsuba_renders_its_xml_twin() {
 }
 
 #[test]
+fn the_pbrt_mesh_lights_render_as_mitsuba_renders_their_xml_twin() {
+    // An icosphere lamp given in the file and a PLY ribbon turned inside out
+    // (ReverseOrientation): the lights convert to the XML twin's placements and sides, and
+    // the scene renders as Mitsuba renders the XML (the test of the Mitsuba scenes' bars).
+    let options = ImportOptions::default();
+    let pbrt = convert(Path::new("scenes/pbrt/mesh_lights.pbrt"), &options).unwrap();
+    let xml = convert(Path::new("scenes/mitsuba/mesh_lights.xml"), &options).unwrap();
+    let (a, b) = (tables(&pbrt, "light"), tables(&xml, "light"));
+    assert_eq!((a.len(), b.len()), (2, 2));
+    for (a, b) in a.iter().zip(&b) {
+        for key in ["type", "radiance", "matrix", "flip"] {
+            assert_eq!(a.get(key), b.get(key), "{key}");
+        }
+    }
+    assert_eq!(a[1]["flip"].as_bool(), Some(true), "the ribbon emits down");
+    let ours = grinlight_blocks(Path::new("scenes/pbrt/mesh_lights.pbrt"), &[], 32, 16);
+    let (worst, ratio) = compare(&ours, &reference("mesh_lights"));
+    eprintln!("pbrt mesh_lights: largest block z {worst:.2}, mean ratio {ratio:.5}");
+    assert!(worst < 5.0, "a block differs by {worst:.2} standard errors");
+    assert!((ratio - 1.0).abs() < 0.01, "mean ratio {ratio}");
+}
+
+#[test]
+fn a_pbrt_mesh_light_emits_where_pbrt_says_or_is_refused() {
+    let d = dir("pbrt-mesh-light");
+    // Three triangles of the plane y = 1 wound to face up (+y), the last four times the size,
+    // under a camera mirrored as the usual `Scale -1 1 1` mirrors it (the scene keeps its
+    // coordinates: a camera without it sees the world mirrored, and the converted scene is,
+    // every winding turned with it).
+    let mesh = |extra: &str, normals: &str| {
+        scene(
+            "Scale -1 1 1",
+            &format!(
+                "AttributeBegin\n{extra}\nAreaLightSource \"diffuse\" \"rgb L\" [1 1 1]\n\
+                 Material \"diffuse\" \"rgb reflectance\" [0 0 0]\n\
+                 Shape \"trianglemesh\" \"point3 P\" [0 1 0  0 1 1  1 1 0  2 1 0  2 1 1  3 1 0  4 1 0  4 1 2  6 1 0]\n\
+                 \"integer indices\" [0 1 2  3 4 5  6 7 8] {normals}\nAttributeEnd"
+            ),
+        )
+    };
+    let light = |text: &str| -> Result<toml::Table, String> {
+        let p = write(&d, "s.pbrt", text);
+        convert(&p, &ImportOptions::default())
+            .map(|t| tables(&t, "light")[0].clone())
+            .map_err(|e| e.to_string())
+    };
+    let plain = light(&mesh("", "")).unwrap();
+    assert_eq!(plain["type"].as_str(), Some("mesh"));
+    assert_eq!(plain.get("flip"), None);
+    // Seen by pbrt's own left-handed camera the scene converts mirrored in x: each winding
+    // turns, and the light's side with `flip`.
+    let seen_mirrored = mesh("", "").replacen("Scale -1 1 1", "", 1);
+    assert_eq!(light(&seen_mirrored).unwrap()["flip"].as_bool(), Some(true));
+    // ReverseOrientation, or a mirroring transform, turns pbrt's normal over; both turn it
+    // back.
+    let reversed = light(&mesh("ReverseOrientation", "")).unwrap();
+    assert_eq!(reversed["flip"].as_bool(), Some(true));
+    let mirrored = light(&mesh("Scale 1 1 -1", "")).unwrap();
+    assert_eq!(mirrored["flip"].as_bool(), Some(true));
+    let both = light(&mesh("ReverseOrientation\nScale 1 1 -1", "")).unwrap();
+    assert_eq!(both.get("flip"), None);
+    // Shading normals decide the side: pointing down, against the winding.
+    let down =
+        "\"normal N\" [0 -1 0  0 -1 0  0 -1 0  0 -1 0  0 -1 0  0 -1 0  0 -1 0  0 -1 0  0 -1 0]";
+    assert_eq!(
+        light(&mesh("", down)).unwrap()["flip"].as_bool(),
+        Some(true)
+    );
+    // One corner's normal against the others': refused.
+    let split = down.replacen("0 -1 0", "0 1 0", 1);
+    let message = light(&mesh("", &split)).unwrap_err();
+    assert!(message.contains("emit on different sides"), "{message}");
+    // pbrt's `power` is each triangle's: with triangles of different areas their radiances
+    // differ.
+    let powered = mesh("", "").replace("\"rgb L\" [1 1 1]", "\"float power\" [10]");
+    let message = light(&powered).unwrap_err();
+    assert!(message.contains("different areas"), "{message}");
+}
+
+#[test]
 fn the_pbrt_and_mitsuba_cornell_boxes_convert_to_the_same_camera_light_and_materials() {
     let options = ImportOptions::default();
     let pbrt = convert(Path::new("scenes/pbrt/cornell_box.pbrt"), &options).unwrap();

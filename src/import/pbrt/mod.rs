@@ -13,7 +13,7 @@
 
 pub mod parse;
 
-use super::geometry::{linear, look_at, parallelogram, similarity};
+use super::geometry::{emitting_side, linear, look_at, parallelogram, similarity, Facing};
 use super::table::{affine_rows, free_name, string, table, vec3, AreaEmitter, Lists};
 use super::{Imported, Place, Told};
 use crate::error::{cut, Result};
@@ -1549,6 +1549,107 @@ impl<'s> Converter<'s> {
         Ok((facing([p00, p10, p11, p01], normal), normal))
     }
 
+    /// A `trianglemesh` of two triangles forming a parallelogram, in grinlight's world and
+    /// ordered to face pbrt's normal: the first triangle's winding, turned by
+    /// ReverseOrientation and a mirroring transform, or toward the shading normal where one is
+    /// given. None for any other mesh.
+    fn two_triangle_quad(&self, mesh: &TriangleMesh, g: &Graphics) -> Option<[DVec3; 4]> {
+        let corner = |i: u32| {
+            let i = i as usize;
+            g.ctm
+                .transform_point3(DVec3::from_slice(&mesh.points[3 * i..3 * i + 3]))
+        };
+        let tri = |t: usize| [0, 1, 2].map(|k| corner(mesh.indices[3 * t + k]));
+        let quad = match mesh.indices.len() {
+            6 => parallelogram([tri(0), tri(1)], false),
+            _ => None,
+        }?;
+        let [a, b, c] = tri(0);
+        let mut n = (b - a).cross(c - a);
+        match &mesh.normals {
+            Some(normals) => {
+                let i = 3 * mesh.indices[0] as usize;
+                let ns =
+                    linear(&g.ctm).inverse().transpose() * DVec3::from_slice(&normals[i..i + 3]);
+                if n.dot(ns) < 0.0 {
+                    n = -n;
+                }
+            }
+            None if g.reverse ^ (linear(&g.ctm).determinant() < 0.0) => n = -n,
+            None => {}
+        }
+        let r = linear(&mirror_map(self.mirror));
+        let normal = (r * n).normalize();
+        let corners = quad.map(|v| r * v);
+        Some(facing(corners, normal))
+    }
+
+    /// An emitting mesh under `g` whose triangles `file` gives in pbrt's object space, and
+    /// `keys`, the light's keys saying where they come from: placed by its matrix, emitting
+    /// on the side pbrt's does — each triangle's winding in pbrt's world turned by
+    /// ReverseOrientation and a mirroring transform, or the side its shading normals point
+    /// to where the mesh has them. `power` (pbrt's per triangle: each its own light) is
+    /// refused unless the triangles' areas are equal.
+    fn emitting_mesh(
+        &self,
+        s: &Statement,
+        g: &Graphics,
+        file: &FileMesh,
+        mut keys: Table,
+        power: Option<f64>,
+    ) -> Result<AreaEmitter> {
+        let corner = |i: u32| self.point(&g.ctm, file.positions[i as usize]);
+        let world: Vec<[DVec3; 3]> = file.triangles.iter().map(|t| t.map(corner)).collect();
+        let turned = g.reverse ^ (linear(&g.ctm).determinant() < 0.0);
+        let to_grinlight = linear(&mirror_map(self.mirror));
+        // pbrt's normal of triangle i at each corner, in grinlight's world.
+        let normal = |i: usize| -> [DVec3; 3] {
+            let t = file.triangles[i];
+            match &file.normals {
+                Some(n) => t.map(|k| self.normal(&g.ctm, n[k as usize])),
+                None => {
+                    let [a, b, c] = t.map(|k| g.ctm.transform_point3(file.positions[k as usize]));
+                    let w = (b - a).cross(c - a);
+                    [to_grinlight * if turned { -w } else { w }; 3]
+                }
+            }
+        };
+        match emitting_side(world.iter().copied(), Some(&normal), false) {
+            Facing::Winding => {}
+            Facing::Against => {
+                keys.insert("flip".into(), Toml::Boolean(true));
+            }
+            Facing::Mixed { against, split, of } => {
+                return Err(s.place.error(format!(
+                    "an area light on a mesh whose triangles emit on different sides of their \
+                     winding ({against} of {of} one way, {split} with normals on both sides): \
+                     grinlight's mesh lights emit on one side of every triangle's winding"
+                )))
+            }
+        }
+        let areas: Vec<f64> = (world.iter())
+            .map(|[a, b, c]| 0.5 * (*b - *a).cross(*c - *a).length())
+            .collect();
+        let (least, most) = (areas.iter()).fold((f64::INFINITY, 0.0f64), |(lo, hi), &a| {
+            (lo.min(a), hi.max(a))
+        });
+        if power.is_some() && most - least > 1e-9 * most {
+            return Err(s.place.error(format!(
+                "`power` on a mesh of triangles of different areas ({least:e} to {most:e}): \
+                 pbrt makes each triangle a light emitting that power, so their radiances \
+                 differ; grinlight's mesh light has one radiance (give L)"
+            )));
+        }
+        keys.insert(
+            "matrix".into(),
+            affine_rows(&(mirror_map(self.mirror) * g.ctm)),
+        );
+        Ok(AreaEmitter::Mesh {
+            keys,
+            area: areas.iter().sum(),
+        })
+    }
+
     /// A shape under an `AreaLightSource`: a quad or disk light.
     fn emitter(&mut self, s: &Statement, g: &Graphics, area: &AreaLight) -> Result<()> {
         let p = &s.params;
@@ -1557,42 +1658,54 @@ impl<'s> Converter<'s> {
         let (emitter, lights) = match s.text(0) {
             "trianglemesh" => {
                 let mesh = TriangleMesh::read(s)?;
-                let corner = |i: u32| {
-                    let i = i as usize;
-                    g.ctm
-                        .transform_point3(DVec3::from_slice(&mesh.points[3 * i..3 * i + 3]))
-                };
-                let tri = |t: usize| [0, 1, 2].map(|k| corner(mesh.indices[3 * t + k]));
-                let quad = match mesh.indices.len() {
-                    6 => parallelogram([tri(0), tri(1)], false),
-                    _ => None,
-                }
-                .ok_or_else(|| {
-                    s.place.error(
-                        "an area light on a triangle mesh other than two triangles forming a \
-                         parallelogram: grinlight's area lights are quads and disks",
-                    )
-                })?;
-                // pbrt's normal: the first triangle's winding, turned by ReverseOrientation
-                // and a mirroring transform, or toward the shading normal where one is given.
-                let [a, b, c] = tri(0);
-                let mut n = (b - a).cross(c - a);
-                match &mesh.normals {
-                    Some(normals) => {
-                        let i = 3 * mesh.indices[0] as usize;
-                        let ns = linear(&g.ctm).inverse().transpose()
-                            * DVec3::from_slice(&normals[i..i + 3]);
-                        if n.dot(ns) < 0.0 {
-                            n = -n;
-                        }
+                match self.two_triangle_quad(&mesh, g) {
+                    Some(quad) => (AreaEmitter::Quad(quad), 2.0),
+                    None => {
+                        let keys = table([
+                            ("type", string("mesh")),
+                            ("points", floats(&mesh.points)),
+                            (
+                                "indices",
+                                Toml::Array(
+                                    (mesh.indices.iter())
+                                        .map(|&i| Toml::Integer(i as i64))
+                                        .collect(),
+                                ),
+                            ),
+                        ]);
+                        let file = FileMesh {
+                            positions: mesh.points.chunks_exact(3).map(DVec3::from_slice).collect(),
+                            triangles: (mesh.indices.chunks_exact(3))
+                                .map(|t| [t[0], t[1], t[2]])
+                                .collect(),
+                            normals: (mesh.normals.as_ref())
+                                .map(|n| n.chunks_exact(3).map(DVec3::from_slice).collect()),
+                        };
+                        let emitter = self.emitting_mesh(s, g, &file, keys, area.power)?;
+                        (emitter, file.triangles.len() as f64)
                     }
-                    None if g.reverse ^ (linear(&g.ctm).determinant() < 0.0) => n = -n,
-                    None => {}
                 }
-                let r = linear(&mirror_map(self.mirror));
-                let normal = (r * n).normalize();
-                let corners = quad.map(|v| r * v);
-                (AreaEmitter::Quad(facing(corners, normal)), 2.0)
+            }
+            "plymesh" => {
+                let name = p.string("filename")?.ok_or_else(|| {
+                    s.place
+                        .error(format!("{}: \"string filename\" is missing", s.what()))
+                })?;
+                let path = self.scene.find(&name, &s.place)?;
+                let ply = crate::scene::ply::load_ply(&path).map_err(|e| s.place.error(e))?;
+                let f64s = |v: &[f32; 3]| DVec3::from_array(v.map(f64::from));
+                let file = FileMesh {
+                    positions: ply.positions.iter().map(f64s).collect(),
+                    triangles: ply.triangles,
+                    normals: ply.normals.map(|n| n.iter().map(f64s).collect()),
+                };
+                let path = std::fs::canonicalize(&path).unwrap_or(path);
+                let keys = table([
+                    ("type", string("mesh")),
+                    ("file", string(&path.to_string_lossy())),
+                ]);
+                let emitter = self.emitting_mesh(s, g, &file, keys, area.power)?;
+                (emitter, file.triangles.len() as f64)
             }
             "bilinearmesh" => (AreaEmitter::Quad(self.bilinear_quad(s, g)?.0), 1.0),
             "sphere" => {
@@ -1636,8 +1749,8 @@ impl<'s> Converter<'s> {
             }
             other => {
                 return Err(s.place.error(format!(
-                    "an area light on a \"{}\": grinlight's area lights are quads (two \
-                     triangles, one bilinear patch), disks and spheres",
+                    "an area light on a \"{}\": grinlight's area lights are triangle meshes \
+                     (PLY or not), bilinear patches, disks and spheres",
                     cut(other)
                 )))
             }
@@ -1666,6 +1779,14 @@ impl<'s> Converter<'s> {
         self.lists.lights.push(light);
         Ok(())
     }
+}
+
+/// A mesh as its statement or file gives it, in pbrt's object space.
+struct FileMesh {
+    positions: Vec<DVec3>,
+    triangles: Vec<[u32; 3]>,
+    /// One normal a position, if given.
+    normals: Option<Vec<DVec3>>,
 }
 
 /// A `trianglemesh`'s lists as written.
