@@ -321,3 +321,27 @@ fn a_mesh_given_by_its_points_renders_as_its_obj_file() {
     assert!(a.iter().any(|p| p[0] > 0.0), "the mesh is seen");
     assert_eq!(a, b);
 }
+
+/// A mesh light's keys are read as a mesh shape's and refused by file, line and key: a mesh
+/// whose triangles all have zero area, a `flip` that is not a boolean, a key it does not take.
+#[test]
+fn a_mesh_lights_bad_keys_are_refused_by_line_and_key() {
+    let light = |keys: &str| {
+        let text = format!("[[light]]\ntype = \"mesh\"\nradiance = [1, 1, 1]\n{keys}\n");
+        grinlight::scene::load::parse_description(Path::new("m.toml"), text)
+            .err()
+            .map(|e| e.to_string())
+    };
+    let flat = "points = [0, 0, 0, 1, 0, 0, 2, 0, 0]\nindices = [0, 1, 2]";
+    let e = light(flat).expect("a line is no emitter");
+    assert!(
+        e.starts_with("m.toml:4:1: ") && e.contains("key `points`") && e.contains("zero area"),
+        "{e}"
+    );
+    let good = "points = [0, 0, 0, 1, 0, 0, 0, 0, 1]\nindices = [0, 1, 2]";
+    assert_eq!(light(good), None);
+    let e = light(&format!("{good}\nflip = 1")).expect("flip is a boolean");
+    assert!(e.contains("flip"), "{e}");
+    let e = light(&format!("{good}\ncolour = [1, 1, 1]")).expect("an unknown key");
+    assert!(e.contains("colour"), "{e}");
+}
