@@ -72,6 +72,11 @@ def mitsuba_runs(path, defines, runs, spp):
 def grinlight_runs(path, defines, runs, spp, options=()):
     """grinlight's renders of `path` (seeds 0..runs-1, `spp` samples a pixel, with its `defines`
     and further command-line `options`): block means per run, as (runs, h/B, w/B, 3)."""
+    return grinlight_layer_runs(path, defines, runs, spp, ("beauty",), options)[:, 0]
+
+
+def grinlight_layer_runs(path, defines, runs, spp, layers, options=()):
+    """grinlight_runs for each of the EXR's `layers`: (runs, len(layers), h/B, w/B, 3)."""
     import OpenEXR
 
     exe = os.path.join(ROOT, "target", "release", "grinlight")
@@ -82,10 +87,13 @@ def grinlight_runs(path, defines, runs, spp, options=()):
             define = [arg for k_v in defines.items() for arg in ("-D", "=".join(k_v))]
             subprocess.run([exe, "render", path, "-o", exr, "--seed", str(k), "--spp", str(spp)] + define + list(options),
                            check=True, capture_output=True)
+            per_layer = []
             with OpenEXR.File(exr, separate_channels=True) as f:
-                part = next(p for p in f.parts if p.name() == "beauty")
-                image = np.stack([part.channels[c].pixels for c in "RGB"], axis=-1).astype(np.float64)
-            out.append(blocks(image))
+                for name in layers:
+                    part = next(p for p in f.parts if p.name() == name)
+                    image = np.stack([part.channels[c].pixels for c in "RGB"], axis=-1).astype(np.float64)
+                    per_layer.append(blocks(image))
+            out.append(per_layer)
     return np.array(out)
 
 
@@ -103,7 +111,9 @@ def write_blocks(path, comment, mean, se):
 def block_z(ours, ours_se, theirs, theirs_se):
     """|Δ|/σ per block as tests/import.rs takes it: σ = √(se₁² + se₂²) plus 1e-5 of the value,
     the resolution of Mitsuba's f32 sums (a block of sky has no spread in either renderer)."""
-    return np.abs(ours - theirs) / (np.sqrt(ours_se ** 2 + theirs_se ** 2) + 1e-5 * np.abs(theirs))
+    sigma = np.sqrt(ours_se ** 2 + theirs_se ** 2) + 1e-5 * np.abs(theirs)
+    # Blocks both renderers find exactly zero (an unpolarized sky's S1) agree.
+    return np.divide(np.abs(ours - theirs), sigma, out=np.zeros_like(sigma), where=sigma > 0)
 
 
 def stats(runs):

@@ -33,7 +33,8 @@ import tomllib
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from mitsuba_import import ROOT, BLOCK, block_z, blocks, grinlight_runs, stats, write_blocks  # noqa: E402
+from mitsuba_import import (ROOT, BLOCK, block_z, blocks, grinlight_layer_runs, grinlight_runs,  # noqa: E402
+                            stats, write_blocks)
 from mitsuba_reference import mitsuba_scene  # noqa: E402
 
 SCENE = os.path.join(ROOT, "tests", "data", "mitsuba", "polarized_spheres.toml")
@@ -70,8 +71,8 @@ def analyzer_angles(camera, degrees):
 
 
 def mitsuba_runs(runs, spp):
-    """Per run, per angle: I(θ)'s block means, as (runs, angles, h/B, w/B, 3); and the mean
-    |S3|/S0 over the image."""
+    """Per run, per angle: I(θ)'s block means, as (runs, angles, h/B, w/B, 3); per run, S0–S3's
+    block means, as (runs, 4, h/B, w/B, 3); and the mean |S3|/S0 over the image."""
     import mitsuba as mi
 
     mi.set_variant("llvm_ad_mono_polarized")
@@ -81,15 +82,17 @@ def mitsuba_runs(runs, spp):
     angles = [analyzer_angles(table["camera"], a) for a in ANGLES]
     d["integrator"] = {"type": "stokes", "integrator": d["integrator"]}
     scene = mi.load_dict(d)
-    out, circular = [], []
+    out, stokes, circular = [], [], []
+    rgb = lambda i: blocks(np.repeat(i[:, :, None], 3, axis=2))  # noqa: E731
     for k in range(runs):
         # Channels: Y, then S0–S3 each as R, G, B (equal in monochrome).
         image = np.array(mi.render(scene, seed=k, spp=spp)).astype(np.float64)
         s0, s1, s2, s3 = (image[:, :, 1 + 3 * i] for i in range(4))
         seen = [0.5 * (s0 + s1 * np.cos(2 * t) + s2 * np.sin(2 * t)) for t in angles]
-        out.append([blocks(np.repeat(i[:, :, None], 3, axis=2)) for i in seen])
+        out.append([rgb(i) for i in seen])
+        stokes.append([rgb(i) for i in (s0, s1, s2, s3)])
         circular.append(np.abs(s3).mean() / s0.mean())
-    return np.array(out), float(np.mean(circular))
+    return np.array(out), np.array(stokes), float(np.mean(circular))
 
 
 def main():
@@ -102,9 +105,27 @@ def main():
     a = ap.parse_args()
     import mitsuba as mi
 
-    runs, circular = mitsuba_runs(a.runs, a.spp)
+    runs, stokes, circular = mitsuba_runs(a.runs, a.spp)
     print(f"Mitsuba: mean |S3|/S0 {circular:.5f}")
     rows = []
+    # The Stokes vector itself, grinlight's S0–S3 layers (`--stokes true`) against Mitsuba's.
+    ours = None
+    if a.grinlight:
+        layers = [f"S{k}" for k in range(4)]
+        ours = grinlight_layer_runs(SCENE, {}, a.runs, a.spp // 4, layers,
+                                    ["--integrator", a.integrator, "--stokes", "true"])
+    for k in range(4):
+        mean, se = stats(stokes[:, k])
+        if a.write:
+            write_blocks(os.path.join(ROOT, "tests", "data", "mitsuba", f"polarized_spheres_S{k}.csv"),
+                         f"Mitsuba {mi.__version__} llvm_ad_mono_polarized (stokes over path), "
+                         f"tests/data/mitsuba/polarized_spheres.toml: S{k} in Mitsuba's basis (first axis d x up), "
+                         f"{a.runs} runs of {a.spp} spp, means over blocks of {BLOCK}x{BLOCK} pixels and their "
+                         f"standard errors (bench/mitsuba_polarized.py)", mean, se)
+        if ours is not None:
+            gm, gs = stats(ours[:, k])
+            z = block_z(gm, gs, mean, se)
+            rows.append((f"S{k}", mean.mean(), gm.mean(), gm.mean() / mean.mean(), z.max()))
     for i, angle in enumerate(ANGLES):
         mean, se = stats(runs[:, i])
         if a.write:
@@ -123,9 +144,9 @@ def main():
                     f.write(text)
                 gm, gs = stats(grinlight_runs(path, {}, a.runs, a.spp // 4, ["--integrator", a.integrator]))
             z = block_z(gm, gs, mean, se)
-            rows.append((f"{angle}°", mean.mean(), gm.mean(), gm.mean() / mean.mean(), z.max()))
+            rows.append((f"{angle}° pol.", mean.mean(), gm.mean(), gm.mean() / mean.mean(), z.max()))
     if rows:
-        print(f"{'polarizer':10} {'Mitsuba mean':>13} {'grinlight':>10} {'ratio':>7} {'max |z|':>8}")
+        print(f"{'image':10} {'Mitsuba mean':>13} {'grinlight':>10} {'ratio':>7} {'max |z|':>8}")
         for r in rows:
             print(f"{r[0]:10} {r[1]:13.5f} {r[2]:10.5f} {r[3]:7.4f} {r[4]:8.2f}")
 

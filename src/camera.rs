@@ -127,6 +127,14 @@ impl Camera {
             .map(|angle| angle.cos() * self.right + angle.sin() * self.up)
     }
 
+    /// The first axis of the basis the camera's Stokes vector of light arriving along the ray
+    /// of unit direction `d` is given in: d × up normalised, up the camera's (the image's
+    /// right on the image's vertical axis; Mitsuba 3's `stokes` integrator's basis). The
+    /// second is the light's direction −d × it (the image's up on its horizontal axis).
+    pub fn stokes_axis(&self, d: DVec3) -> DVec3 {
+        d.cross(self.up).try_normalize().unwrap_or(self.right)
+    }
+
     /// The full vertical field of view (degrees) that gives a horizontal one of `fov_x_deg`.
     pub fn fov_y_from_x(fov_x_deg: f64, width: u32, height: u32) -> f64 {
         2.0 * ((0.5 * fov_x_deg.to_radians()).tan() * height as f64 / width as f64)

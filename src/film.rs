@@ -28,6 +28,10 @@ pub enum LayerKind {
     Radiance,
     /// A description of what the camera sees (albedo, normal), not summed into `beauty`.
     Aux,
+    /// A component S0–S3 of the Stokes vector of the radiance reaching the camera
+    /// (W/(m²·sr), in the basis of [`crate::camera::Camera::stokes_axis`]), not summed into
+    /// `beauty` (S0 is `beauty` itself).
+    Stokes,
 }
 
 /// One layer an integrator writes besides `beauty`.
@@ -55,7 +59,24 @@ impl Layer {
             kind: LayerKind::Aux,
         }
     }
+
+    /// A Stokes component named `name`.
+    pub const fn stokes(name: &'static str) -> Layer {
+        Layer {
+            name: std::borrow::Cow::Borrowed(name),
+            kind: LayerKind::Stokes,
+        }
+    }
 }
+
+/// The layers of the camera's Stokes vector, S0–S3, which a render measuring it
+/// (`stokes`) writes after the integrator's.
+pub const STOKES_LAYERS: [Layer; 4] = [
+    Layer::stokes("S0"),
+    Layer::stokes("S1"),
+    Layer::stokes("S2"),
+    Layer::stokes("S3"),
+];
 
 /// A film of a rectangle of a larger one, with the rectangle's top-left pixel there.
 #[derive(Clone, Debug)]

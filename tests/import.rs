@@ -508,8 +508,10 @@ fn a_converted_file_renders_as_its_xml_does() {
 
 /// Block means of the reference (8 × 8 blocks) and their standard errors, per channel.
 pub(super) struct Blocks {
-    mean: Vec<[f64; 3]>,
-    se: Vec<[f64; 3]>,
+    /// Per block, its mean.
+    pub(super) mean: Vec<[f64; 3]>,
+    /// Per block, the mean's standard error.
+    pub(super) se: Vec<[f64; 3]>,
 }
 
 pub(super) fn reference(case: &str) -> Blocks {
@@ -537,6 +539,20 @@ pub(super) fn grinlight_blocks(
     runs: u64,
     spp: u32,
 ) -> Blocks {
+    let mut blocks = grinlight_layer_blocks(scene, defines, runs, spp, false, &["beauty"]);
+    blocks.remove(0)
+}
+
+/// [`grinlight_blocks`] of each of the EXR's `layers`, the camera's Stokes vector measured
+/// where `stokes`.
+pub(super) fn grinlight_layer_blocks(
+    scene: &Path,
+    defines: &[(&str, &str)],
+    runs: u64,
+    spp: u32,
+    stokes: bool,
+    layers: &[&str],
+) -> Vec<Blocks> {
     let options = ImportOptions {
         defines: defines
             .iter()
@@ -547,44 +563,50 @@ pub(super) fn grinlight_blocks(
     let (description, mut settings) = load_description(scene, &options).unwrap();
     let scene = description.build();
     let (w, h) = (64, 64);
-    let mut per_run = Vec::new();
+    // Per layer, per run, per block.
+    let mut per_run = vec![Vec::new(); layers.len()];
     for seed in 0..runs {
         settings.seed = seed;
         settings.spp = spp;
         settings.threads = 2;
-        let pixels = grinlight::render::render(&scene, &settings, &())
-            .unwrap()
-            .0
-            .layer("beauty")
-            .unwrap();
-        assert_eq!(pixels.len(), w * h);
-        let mut blocks = vec![[0.0; 3]; (w / 8) * (h / 8)];
-        for (i, p) in pixels.iter().enumerate() {
-            let (x, y) = (i % w, i / w);
-            let b = &mut blocks[(y / 8) * (w / 8) + x / 8];
-            for c in 0..3 {
-                b[c] += p[c] as f64 / 64.0;
+        settings.trace.stokes = stokes;
+        let film = grinlight::render::render(&scene, &settings, &()).unwrap().0;
+        for (layer, runs) in layers.iter().zip(&mut per_run) {
+            let pixels = film.layer(layer).unwrap();
+            assert_eq!(pixels.len(), w * h);
+            let mut blocks = vec![[0.0; 3]; (w / 8) * (h / 8)];
+            for (i, p) in pixels.iter().enumerate() {
+                let (x, y) = (i % w, i / w);
+                let b = &mut blocks[(y / 8) * (w / 8) + x / 8];
+                for c in 0..3 {
+                    b[c] += p[c] as f64 / 64.0;
+                }
             }
+            runs.push(blocks);
         }
-        per_run.push(blocks);
     }
     let n = runs as f64;
-    let mean: Vec<[f64; 3]> = (0..per_run[0].len())
-        .map(|i| std::array::from_fn(|c| per_run.iter().map(|r| r[i][c]).sum::<f64>() / n))
-        .collect();
-    let se = (0..mean.len())
-        .map(|i| {
-            std::array::from_fn(|c| {
-                let var = per_run
-                    .iter()
-                    .map(|r| (r[i][c] - mean[i][c]).powi(2))
-                    .sum::<f64>()
-                    / (n - 1.0);
-                (var / n).sqrt()
-            })
+    per_run
+        .iter()
+        .map(|per_run| {
+            let mean: Vec<[f64; 3]> = (0..per_run[0].len())
+                .map(|i| std::array::from_fn(|c| per_run.iter().map(|r| r[i][c]).sum::<f64>() / n))
+                .collect();
+            let se = (0..mean.len())
+                .map(|i| {
+                    std::array::from_fn(|c| {
+                        let var = per_run
+                            .iter()
+                            .map(|r| (r[i][c] - mean[i][c]).powi(2))
+                            .sum::<f64>()
+                            / (n - 1.0);
+                        (var / n).sqrt()
+                    })
+                })
+                .collect();
+            Blocks { mean, se }
         })
-        .collect();
-    Blocks { mean, se }
+        .collect()
 }
 
 /// The largest block z-score |Δ|/σ — σ = √(se₁² + se₂²) plus 1e-5 of the value, the

@@ -144,8 +144,10 @@ impl<'a> DeflectionTable<'a> {
             || scene.media().scattering(ambient).is_some()
             || scene.media().is_dispersive(ambient)
             || camera.lens.is_some()
-            // Its rays carry no measurement: behind a polarizer the camera's rays are traced.
+            // Its rays carry no measurement: behind a polarizer, or where the camera measures
+            // the Stokes vector, the camera's rays are traced.
             || camera.polarizer.is_some()
+            || tracer.settings.stokes
             || tracer.camera_medium != Some(ambient)
         {
             return None;

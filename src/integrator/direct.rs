@@ -48,6 +48,10 @@ pub struct Components<'w> {
     pub curved: bool,
     /// The wavelengths the path carries there.
     pub carried: Carried<'w>,
+    /// Where the camera measures the whole Stokes vector: what it records as S1, S2, S3 of
+    /// the (depolarized) light that reaches the chain's end, over what it records as S0, per
+    /// channel ([`crate::polarization::Polarization::stokes_shares`]).
+    pub stokes: Option<[Rgb; 3]>,
 }
 
 /// A camera sample's hero wavelength, drawn from `rng` in a dispersive scene (None — and no
@@ -79,7 +83,14 @@ pub fn camera_path<'w>(
     let mut walker = Walker::carrying(carried, Policy::Weighted)
         .choosing(camera.choices)
         .seeing_through(analyzer);
-    let chain = walker.follow(ray, rng, stats, &mut beams.record(carried.tracer));
+    let recording = &mut beams.record(carried.tracer);
+    let (chain, stokes) = match (carried.tracer.settings.stokes, &carried.tracer.scene.camera) {
+        (true, Some(c)) => {
+            let axis = c.stokes_axis(ray.direction);
+            walker.follow_measuring_stokes(ray, axis, rng, stats, recording)
+        }
+        (true, None) | (false, _) => (walker.follow(ray, rng, stats, recording), None),
+    };
     record_cut(&chain, Rgb::ONE, stats);
     let mut out = Components {
         emitted: emission_seen(walker.tracer, &chain) + chain.emitted,
@@ -88,6 +99,7 @@ pub fn camera_path<'w>(
         bounces: chain.specular,
         curved: chain.curved,
         carried: walker.carried(),
+        stokes,
     };
     if let End::Scatter(vertex) = chain.end {
         out.visible = Some(VisiblePoint {

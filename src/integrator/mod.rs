@@ -38,7 +38,9 @@ use crate::transport::Stats;
 use glam::DVec3;
 
 /// One camera sample being estimated: its random stream, the statistics it adds to, and its
-/// value for each of the integrator's layers `L` (zero on entry; in [`Layers::FILM`] order).
+/// value for each of the integrator's layers `L` (zero on entry; in [`Layers::FILM`] order),
+/// then, where the render measures the camera's Stokes vector, for each of
+/// [`crate::film::STOKES_LAYERS`].
 pub struct Sample<'a, L> {
     /// The sample's random stream.
     pub rng: &'a mut SampleStream,
@@ -46,23 +48,43 @@ pub struct Sample<'a, L> {
     pub stats: &'a mut Stats,
     /// Values per layer.
     pub values: &'a mut [Rgb],
+    /// What the camera records as S1, S2, S3 of the radiance its first chain brings, over
+    /// what it records as S0 ([`Sample::measure_stokes`]).
+    stokes: Option<[Rgb; 3]>,
     layers: std::marker::PhantomData<L>,
 }
 
 impl<'a, L: Layers> Sample<'a, L> {
-    /// A sample writing into `values` (one per layer of `L`).
+    /// A sample writing into `values` (one per layer of `L`, then the Stokes layers where the
+    /// render measures them).
     pub fn new(rng: &'a mut SampleStream, stats: &'a mut Stats, values: &'a mut [Rgb]) -> Self {
         Self {
             rng,
             stats,
             values,
+            stokes: None,
             layers: std::marker::PhantomData,
         }
     }
 
-    /// Adds `value` to `layer`.
+    /// From here on, radiance added is also measured as a Stokes vector: S0 the radiance,
+    /// S1–S3 its `shares` of it per channel (the camera's first chain's
+    /// [`direct::Components::stokes`]; None: nothing is).
+    pub fn measure_stokes(&mut self, shares: Option<[Rgb; 3]>) {
+        self.stokes = shares;
+    }
+
+    /// Adds `value` to `layer` (and, for radiance, to the Stokes layers where measured).
     pub fn add(&mut self, layer: L, value: Rgb) {
         self.values[layer.index()] += value;
+        let Some(shares) = self.stokes else { return };
+        let radiance = L::FILM[layer.index()].kind == crate::film::LayerKind::Radiance;
+        if let (true, Some([s0, rest @ ..])) = (radiance, self.values.get_mut(L::FILM.len()..)) {
+            *s0 += value;
+            for (s, share) in rest.iter_mut().zip(shares) {
+                *s += value * share;
+            }
+        }
     }
 }
 

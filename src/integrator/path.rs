@@ -151,6 +151,7 @@ impl Integrator for PathTracer<'_> {
         let carried = Carried::starting(self.tracer, hero.as_ref());
         let mut beams = Beams::default();
         let c = camera_path(carried, ray, &mut beams, s.rng, s.stats);
+        s.measure_stokes(c.stokes);
         s.add(PathLayer::Emitted, c.emitted);
         s.add(PathLayer::Direct, c.single);
         let Some(vp) = c.visible else { return };

@@ -424,6 +424,7 @@ impl<'a> Integrator for PhotonMapper<'a> {
         let (start, start_rng) = (carried, s.rng.clone());
         let mut beams = Beams::default();
         let c = camera_path(carried, ray, &mut beams, s.rng, s.stats);
+        s.measure_stokes(c.stokes);
         s.add(MapLayer::Emitted, c.emitted);
         s.add(MapLayer::Direct, c.single);
         let caustic = self.volume_caustic(maps, &beams, c.carried.tracer, s);

@@ -56,6 +56,10 @@ pub struct Polarization {
     /// Per channel: the Stokes vector with S0 = 1 (with the light), or the measurement row
     /// (against it).
     channels: [DVec4; 3],
+    /// Against the light, where the camera measures the whole Stokes vector: per component
+    /// S1, S2, S3 of it, per channel, the row that measures it (r·S of light S is what the
+    /// camera records as that component), carried as the first row is.
+    stokes: Option<[[DVec4; 3]; 3]>,
     /// The basis's first axis (unit, across the path).
     x: DVec3,
     /// Rytov's transport of the basis along the curved stretch under way, if any.
@@ -68,8 +72,45 @@ impl Polarization {
         Self {
             sense,
             channels: [DVec4::X; 3],
+            stokes: None,
             x: direction.any_orthonormal_vector(),
             curve: None,
+        }
+    }
+
+    /// A camera's measurement of the whole Stokes vector of the light arriving against unit
+    /// `direction`, in the basis whose first axis is the unit `first_axis` across it (the
+    /// second: the light's direction × it), through `analyzer` where it looks through one:
+    /// row k measures S_k, so that where the chain ends on depolarized light of radiance L
+    /// the camera sees L·(r₀₀, r₁₀, r₂₀, r₃₀) ([`Polarization::stokes_shares`]).
+    pub fn measuring_stokes(
+        analyzer: Option<&Element>,
+        direction: DVec3,
+        first_axis: DVec3,
+    ) -> Self {
+        let mut state = Self {
+            x: first_axis,
+            stokes: Some([DVec4::Y, DVec4::Z, DVec4::W].map(|e| [e; 3])),
+            ..Self::unpolarized(Sense::AgainstLight, direction)
+        };
+        if let Some(element) = analyzer {
+            state.look_through(element, direction);
+        }
+        state
+    }
+
+    /// A camera measurement looks through `element` on a path starting along unit `direction`
+    /// (against the light): each row r becomes Mᵀr, M not divided by its first element.
+    fn look_through(&mut self, element: &Element, direction: DVec3) {
+        self.rebase(direction, element.x);
+        let through = |row: &mut [DVec4; 3]| {
+            for (v, m) in row.iter_mut().zip(&element.mueller) {
+                *v = m.transpose() * *v;
+            }
+        };
+        through(&mut self.channels);
+        if let Some(rows) = self.stokes.as_mut() {
+            rows.iter_mut().for_each(through);
         }
     }
 
@@ -79,8 +120,7 @@ impl Polarization {
     /// it, so ½ of unpolarized light through an ideal polarizer.
     pub fn measured_through(element: &Element, direction: DVec3) -> Self {
         let mut state = Self::unpolarized(Sense::AgainstLight, direction);
-        state.rebase(direction, element.x);
-        state.channels = element.mueller.map(|m| m.transpose() * DVec4::X);
+        state.look_through(element, direction);
         state
     }
 
@@ -97,6 +137,9 @@ impl Polarization {
     fn rebase(&mut self, direction: DVec3, x: DVec3) {
         if let Some((turn, x)) = basis_change(self.light(direction), self.x, x) {
             self.channels = self.channels.map(|v| turn * v);
+            if let Some(rows) = self.stokes.as_mut() {
+                *rows = rows.map(|row| row.map(|v| turn * v));
+            }
             self.x = x;
         }
     }
@@ -109,14 +152,22 @@ impl Polarization {
     pub fn meet(&mut self, element: &Element, direction: DVec3) -> Rgb {
         self.rebase(direction, element.x);
         let mut factor = [1.0; 3];
-        for ((v, m), f) in self
-            .channels
-            .iter_mut()
+        for (c, ((v, m), f)) in (self.channels.iter_mut())
             .zip(&element.mueller)
             .zip(&mut factor)
+            .enumerate()
         {
             let unpolarized = m.col(0).x;
-            if unpolarized.is_nan() || unpolarized <= 0.0 {
+            let passes = !(unpolarized.is_nan() || unpolarized <= 0.0);
+            if let Some(rows) = self.stokes.as_mut() {
+                for row in rows {
+                    row[c] = match passes {
+                        true => (*m / unpolarized).transpose() * row[c],
+                        false => DVec4::ZERO,
+                    };
+                }
+            }
+            if !passes {
                 *v = DVec4::ZERO;
                 *f = 0.0;
                 continue;
@@ -162,8 +213,10 @@ impl Polarization {
     /// Meets an ideal depolarizer (Mueller matrix diag(1, 0, 0, 0)): the light beyond it is
     /// unpolarized, what the light's power or the camera's measurement of it was is kept.
     pub fn depolarize(&mut self) {
-        for v in &mut self.channels {
-            *v = DVec4::new(v.x, 0.0, 0.0, 0.0);
+        let keep = |v: &mut DVec4| *v = DVec4::new(v.x, 0.0, 0.0, 0.0);
+        self.channels.iter_mut().for_each(keep);
+        if let Some(rows) = self.stokes.as_mut() {
+            rows.iter_mut().flatten().for_each(keep);
         }
     }
 
@@ -177,6 +230,22 @@ impl Polarization {
                 Rgb::new(r, g, b)
             }
         }
+    }
+
+    /// Where the camera measures the whole Stokes vector ([`Polarization::measuring_stokes`]):
+    /// what it records as S1, S2, S3 of depolarized light where the chain ends, per channel,
+    /// over what it records as S0 (0 where it records nothing) — each in [−1, 1]. None where
+    /// it measures S0 alone.
+    pub fn stokes_shares(&self) -> Option<[Rgb; 3]> {
+        let rows = self.stokes.as_ref()?;
+        let s0 = self.closing();
+        Some(rows.map(|row| {
+            let [r, g, b] = [0, 1, 2].map(|c| match s0[c] > 0.0 {
+                true => row[c].x / s0[c],
+                false => 0.0,
+            });
+            Rgb::new(r, g, b)
+        }))
     }
 
     /// The light's Stokes vector per channel with S0 = 1, in the basis whose first axis is `x`,

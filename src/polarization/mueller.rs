@@ -6,8 +6,10 @@
 //! plane perpendicular to k, right-handed about it: y = k × x. With the field's complex
 //! amplitudes (Ex, Ey) in that basis, time dependence e^(−iωt), its Stokes vector is
 //! S = (S0, S1, S2, S3) with S0 = |Ex|² + |Ey|², S1 = |Ex|² − |Ey|², S2 = 2 Re(Ex Ey*) and
-//! S3 = 2 Im(Ex* Ey): S1 > 0 is linear polarization along x, S2 > 0 along x + y (halfway from
-//! x to y), S3 > 0 a field turning from x toward y. Unpolarized light is (S0, 0, 0, 0).
+//! S3 = 2 Im(Ex Ey*): S1 > 0 is linear polarization along x, S2 > 0 along x + y (halfway from
+//! x to y), S3 > 0 a field turning from y toward x — clockwise seen by a receiver looking into
+//! the light, right-handed in the SPIE convention, as Mitsuba 3 labels it (its Stokes images'
+//! S3 agree in sign: tests/polarization.rs). Unpolarized light is (S0, 0, 0, 0).
 //!
 //! A Mueller matrix M takes the Stokes vector of light arriving (in the basis the element
 //! names) to that of the light leaving. An interface's matrix is written in its s/p basis:
@@ -85,11 +87,11 @@ pub fn linear_retarder(retardance: f64, angle: f64) -> DMat4 {
 
 /// The Mueller matrix, in the s/p basis, of an element whose Jones matrix there is
 /// diag(`a_s`, `a_p`), times `scale` (the ratio of power densities across it, for a
-/// transmission): A = (|a_s|² + |a_p|²)/2, B = (|a_s|² − |a_p|²)/2, C + iS = a_s·a_p*.
-/// None where a coefficient is not finite.
+/// transmission): A = (|a_s|² + |a_p|²)/2, B = (|a_s|² − |a_p|²)/2, C + iS = a_s*·a_p (S's
+/// sign the module's S3 convention's). None where a coefficient is not finite.
 fn interface(a_s: Complex64, a_p: Complex64, scale: f64) -> Option<DMat4> {
     let (ss, pp) = (a_s.norm_sqr(), a_p.norm_sqr());
-    let z = a_s * a_p.conj();
+    let z = a_s.conj() * a_p;
     let (a, b, c, s) = (0.5 * (ss + pp), 0.5 * (ss - pp), z.re, z.im);
     let m = from_rows([
         [a, b, 0.0, 0.0],
@@ -164,7 +166,7 @@ pub fn dielectric_transmission(cos_i: f64, n1: f64, n2: f64) -> DMat4 {
 /// polarization (r′ = −r inside), R = |r|² and T = 1 − R (Stokes's relations: t t′ = 1 − r²),
 /// order k of the reflection is r (k = 0) or −T r^(2k−1), order k of the transmission T r^(2k).
 /// Summed: the reflectance of each polarization 2R/(1 + R), its transmittance (1 − R)/(1 + R),
-/// and between s and p r_s r_p* + T_s T_p r_s r_p/(1 − R_s R_p) reflected,
+/// and between s and p r_s* r_p + T_s T_p r_s r_p/(1 − R_s R_p) reflected,
 /// T_s T_p/(1 − R_s R_p) transmitted (real inside: the light that enters the pane meets no
 /// total internal reflection there). Where the outer face reflects totally (a pane less dense
 /// than its surroundings, beyond the critical angle) it is that face's reflection.
@@ -190,7 +192,7 @@ pub fn thin_pane(cos_i: f64, eta: f64) -> [DMat4; 2] {
         diattenuator(
             reflected(big_rs),
             reflected(big_rp),
-            rs * rp.conj() + inside * (rs * rp).re,
+            rs.conj() * rp + inside * (rs * rp).re,
         ),
         diattenuator(
             transmitted(big_rs),
@@ -301,9 +303,9 @@ mod tests {
             // No light crosses.
             assert_eq!(dielectric_transmission(cos, n1, n2), DMat4::ZERO, "{deg}°");
             // The retardance shows in the matrix: +45° linear light leaves with S2 = cos δ
-            // and S3 = −sin δ.
+            // and S3 = sin δ.
             let out = m * DVec4::new(1.0, 0.0, 1.0, 0.0);
-            let want = DVec4::new(1.0, 0.0, delta.cos(), -delta.sin());
+            let want = DVec4::new(1.0, 0.0, delta.cos(), delta.sin());
             assert!((out - want).length() < 1e-12, "{deg}°: {out}");
         }
     }
@@ -372,7 +374,7 @@ mod tests {
             assert!((second - along).length() < 1e-15, "{deg}°: {second}");
         }
         let quarter = std::f64::consts::FRAC_PI_2;
-        for (axis, sign) in [(45.0, -1.0), (-45.0, 1.0)] {
+        for (axis, sign) in [(45.0, 1.0), (-45.0, -1.0)] {
             let circular = linear_retarder(quarter, f64::to_radians(axis)) * first;
             assert!(
                 (circular.w / circular.x - sign).abs() < 1e-12,

@@ -70,7 +70,7 @@ impl Receiver {
     /// The first axis of the basis its Stokes vectors are measured in: `u`, with the second
     /// k × u for light crossing along k (`v` for light crossing along u × v). S1 > 0 is light
     /// polarized along u, S2 > 0 along u + v (for light along u × v), S3 > 0 a field turning
-    /// from u toward the second axis ([`crate::polarization::mueller`]'s conventions).
+    /// from the second axis toward u ([`crate::polarization::mueller`]'s conventions).
     pub fn stokes_basis(&self) -> DVec3 {
         self.u
     }

@@ -11,7 +11,7 @@
 use crate::camera::PrimaryRay;
 use crate::color::Rgb;
 use crate::error::{Error, Result};
-use crate::film::{ErrorTotals, Film};
+use crate::film::{ErrorTotals, Film, Layer, STOKES_LAYERS};
 use crate::integrator::{CameraRay, DeflectionTable, Integrator, PathTracer, PhotonMapper, Sample};
 use crate::lights::LightSamples;
 pub use crate::report::Report;
@@ -133,6 +133,7 @@ pub fn render_passes(
     observer: &dyn Observer,
 ) -> Result<(Film, Report)> {
     images_carry_all_light(scene)?;
+    stokes_measurable(scene, settings)?;
     let tracer = Tracer::new(scene, &settings.trace);
     match settings.integrator {
         Kind::PhotonMap => {
@@ -199,6 +200,25 @@ pub fn images_carry_all_light(scene: &Scene) -> Result<()> {
     }
 }
 
+/// Refuses to write the camera's Stokes vector (`stokes`) of a scene with a medium that
+/// scatters or emits: the light a camera ray gathers along its way through such a medium
+/// would need the Stokes basis of each stretch it is gathered on, which the camera path does
+/// not yet carry to it (light met at the end of the camera's first chain, and everything
+/// beyond, it does).
+fn stokes_measurable(scene: &Scene, settings: &Settings) -> Result<()> {
+    match (settings.trace.stokes, scene.media().first_shining()) {
+        (true, Some(name)) => Err(crate::error::Error::Setting {
+            key: "stokes",
+            message: format!(
+                "medium '{name}' scatters or emits light toward the camera's rays on their way: \
+                 the Stokes vector of such light is not measured yet (render S0 alone, or \
+                 through `polarizer_deg`)"
+            ),
+        }),
+        (true, None) | (false, _) => Ok(()),
+    }
+}
+
 /// A range of global pass indices.
 #[derive(Clone, Copy, Debug)]
 pub struct Passes<'f> {
@@ -222,7 +242,12 @@ pub fn render_with<I: Integrator>(
     observer: &dyn Observer,
 ) -> Result<(Film, Report)> {
     let (w, h) = film_size(tracer)?;
-    let layers = integrator.layers();
+    // The integrator's layers, then the Stokes vector's where the camera measures it.
+    let stokes: &[Layer] = match tracer.settings.stokes {
+        true => &STOKES_LAYERS,
+        false => &[],
+    };
+    let layers = &[integrator.layers(), stokes].concat();
     let mut tiles = tiles(w, h, layers);
     let assemble = |tiles: &[Tile], passes: u32| {
         Film::assembled(w, h, layers, passes, tiles.iter().map(|t| &t.film))
@@ -479,7 +504,7 @@ fn camera_tile<I: Integrator>(
         .as_ref()
         .expect("render_with() checked the camera");
     let spp = sampler.samples();
-    let layers = integrator.layers().len();
+    let layers = tile.film.film.layers.len();
     let mut sum = vec![Rgb::ZERO; layers];
     let (tile, film) = (&mut tile.pass, &mut tile.film);
     let pixels = film.film.width * film.film.height;

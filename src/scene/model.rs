@@ -111,6 +111,15 @@ impl Media {
             .map(|e| e.name.as_str())
     }
 
+    /// The first medium that sends light toward a ray crossing it — it scatters or emits —
+    /// by name (None: none does).
+    pub fn first_shining(&self) -> Option<&str> {
+        self.0
+            .iter()
+            .find(|e| e.participating.scattering.is_some() || e.participating.emission.is_some())
+            .map(|e| e.name.as_str())
+    }
+
     /// The dye medium `i` holds (None: none).
     pub fn fluorescence(&self, i: MediumId) -> Option<&Fluorescence> {
         self.0[i.index()].participating.fluorescence.as_ref()

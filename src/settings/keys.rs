@@ -426,6 +426,16 @@ pub const POLARIZED: Key = Key {
         set: |t, b| t.settings.trace.polarized = b,
     },
 };
+/// Whether the camera's Stokes vector is written.
+pub const STOKES: Key = Key {
+    name: "stokes",
+    table: Table::Render,
+    default: "false",
+    doc: "Write the Stokes vector of the light the camera sees as EXR layers S0–S3, in the frame of each pixel's ray (first axis d × up, d the ray, up the camera's; S0 is the beauty); implies polarized",
+    kind: Kind::Flag {
+        set: |t, b| t.settings.trace.stokes = b,
+    },
+};
 /// Where a ray in a gradient ambient medium has escaped.
 pub const WORLD_RADIUS: Key = Key {
     name: "world_radius",
@@ -572,7 +582,7 @@ pub const HEIGHT: Key = Key {
 };
 
 /// Every setting of the table, in the order help and documentation list them.
-pub const KEYS: [&Key; 21] = [
+pub const KEYS: [&Key; 22] = [
     &INTEGRATOR,
     &SAMPLER,
     &DEFLECTION_TABLE,
@@ -583,6 +593,7 @@ pub const KEYS: [&Key; 21] = [
     &MAX_STEPS,
     &WORLD_RADIUS,
     &POLARIZED,
+    &STOKES,
     &PHOTONS,
     &CAUSTIC_PHOTONS,
     &GATHER,

@@ -71,6 +71,8 @@ pub struct TraceSettings {
     /// Whether specular chains carry polarization ([`crate::polarization::carried`]); a scene
     /// with a polarizer or retarder is rendered with it whatever this says.
     pub polarized: bool,
+    /// Whether the camera's Stokes vector is written (layers S0–S3); implies `polarized`.
+    pub stokes: bool,
 }
 
 /// The photon maps: how many photons per pass, and how the estimates read them.
@@ -129,6 +131,7 @@ impl Default for TraceSettings {
             max_steps: 1_000_000,
             world_radius: None,
             polarized: false,
+            stokes: false,
         }
     }
 }

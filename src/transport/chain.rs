@@ -462,19 +462,51 @@ impl<'w> Walker<'w> {
         stats: &mut Stats,
         observer: &mut dyn ChainEvents,
     ) -> Chain<'w> {
+        self.walk(ray, None, rng, stats, observer).0
+    }
+
+    /// [`Walker::follow`] for a camera that measures the whole Stokes vector of the light
+    /// arriving along `ray`, in the basis whose first axis is the unit `first_axis` across
+    /// it: the chain, and what the camera records as S1, S2, S3 of depolarized light where it
+    /// ends over what it records as S0, per channel ([`Polarization::stokes_shares`]; None
+    /// where the transport is not polarized).
+    pub fn follow_measuring_stokes<R: Rng>(
+        &mut self,
+        ray: Ray,
+        first_axis: DVec3,
+        rng: &mut R,
+        stats: &mut Stats,
+        observer: &mut dyn ChainEvents,
+    ) -> (Chain<'w>, Option<[Rgb; 3]>) {
+        self.walk(ray, Some(first_axis), rng, stats, observer)
+    }
+
+    /// Follows `ray` (see [`Walker::follow`]), a camera measuring the whole Stokes vector in
+    /// the basis of `stokes_axis` where given.
+    fn walk<R: Rng>(
+        &mut self,
+        ray: Ray,
+        stokes_axis: Option<DVec3>,
+        rng: &mut R,
+        stats: &mut Stats,
+        observer: &mut dyn ChainEvents,
+    ) -> (Chain<'w>, Option<[Rgb; 3]>) {
         // The polarization lives here and the walk holds a reference to it: an unpolarized
         // walk moves no polarization state around.
         let mut carried = None;
-        let analyzer = self.analyzer.take();
+        let analyzer = self.analyzer.take().map(|sheet| sheet.element());
         let mut lent = Lent {
             rng,
             stats,
             polarization: self.polarizes().map(|sense| {
-                carried.insert(match (sense, analyzer) {
-                    (Sense::AgainstLight, Some(sheet)) => {
-                        Polarization::measured_through(&sheet.element(), ray.direction)
+                carried.insert(match (sense, analyzer, stokes_axis) {
+                    (Sense::AgainstLight, analyzer, Some(axis)) => {
+                        Polarization::measuring_stokes(analyzer.as_ref(), ray.direction, axis)
                     }
-                    (Sense::AgainstLight | Sense::WithLight, _) => {
+                    (Sense::AgainstLight, Some(element), None) => {
+                        Polarization::measured_through(&element, ray.direction)
+                    }
+                    (Sense::AgainstLight | Sense::WithLight, _, _) => {
                         Polarization::unpolarized(sense, ray.direction)
                     }
                 })
@@ -494,7 +526,7 @@ impl<'w> Walker<'w> {
         };
         self.meet_dispersion(self.tracer.disperses_in(ray.medium), &mut chain);
         let Some(n_start) = self.tracer.index(ray.medium, ray.origin) else {
-            return chain;
+            return (chain, None);
         };
         chain.n_start = n_start;
         let mut at = ray;
@@ -504,6 +536,10 @@ impl<'w> Walker<'w> {
             }
         };
         chain.medium = at.medium;
+        let stokes = lent
+            .polarization
+            .as_deref()
+            .and_then(Polarization::stokes_shares);
         if let Some(p) = &lent.polarization {
             chain.weight *= p.closing();
         }
@@ -520,7 +556,7 @@ impl<'w> Walker<'w> {
             chain.n_end = self.tracer.index(at.medium, p).unwrap_or(1.0);
         }
         chain.end = end;
-        chain
+        (chain, stokes)
     }
 
     /// Follows the chain from `at` to the end of its stretch: the next surface, the world's

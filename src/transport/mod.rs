@@ -111,6 +111,7 @@ impl<'a> Tracer<'a> {
             radius: extent.max(1e-9),
         };
         let polarized = settings.polarized
+            || settings.stokes
             || (scene.materials.iter()).any(|m| matches!(m, crate::material::Material::Sheet(_)))
             || (scene.camera.as_ref()).is_some_and(|c| c.polarizer.is_some());
         let mut tracer = Self {

@@ -910,11 +910,16 @@ impl Converter<'_> {
             return Ok(());
         };
         let mut i = child.object().clone();
-        while matches!(i.kind.as_str(), "moment" | "aov") {
+        while matches!(i.kind.as_str(), "moment" | "aov" | "stokes") {
             if i.kind == "aov" {
                 i.ignore("aovs");
                 let place = i.place.clone();
                 self.told.note(&place, "<integrator type=\"aov\">: its AOVs are not written (grinlight writes albedo and normal layers)");
+            }
+            // Mitsuba's Stokes images, in its basis (first axis d × up): grinlight's S0–S3
+            // layers (checked against Mitsuba 3.9.1: tests/polarization.rs).
+            if i.kind == "stokes" {
+                render.insert("stokes".into(), Toml::Boolean(true));
             }
             let inner = i.child("integrator")?.map(|c| c.object().clone());
             i.finish()?;
