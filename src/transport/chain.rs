@@ -462,7 +462,7 @@ impl<'w> Walker<'w> {
         stats: &mut Stats,
         observer: &mut dyn ChainEvents,
     ) -> Chain<'w> {
-        self.walk(ray, None, rng, stats, observer).0
+        self.walk(ray, None, rng, stats, observer)
     }
 
     /// [`Walker::follow`] for a camera that measures the whole Stokes vector of the light
@@ -478,19 +478,27 @@ impl<'w> Walker<'w> {
         stats: &mut Stats,
         observer: &mut dyn ChainEvents,
     ) -> (Chain<'w>, Option<[Rgb; 3]>) {
-        self.walk(ray, Some(first_axis), rng, stats, observer)
+        let mut shares = None;
+        let chain = self.walk(ray, Some((first_axis, &mut shares)), rng, stats, observer);
+        (chain, shares)
     }
 
-    /// Follows `ray` (see [`Walker::follow`]), a camera measuring the whole Stokes vector in
-    /// the basis of `stokes_axis` where given.
+    /// Follows `ray` (see [`Walker::follow`]); where `stokes` gives a first axis, a camera
+    /// measures the whole Stokes vector in its basis, and what it records of the light at the
+    /// chain's end is written to the place `stokes` gives (a chain is returned by value at
+    /// every bounce: what only a camera's first chain needs is not returned with it).
     fn walk<R: Rng>(
         &mut self,
         ray: Ray,
-        stokes_axis: Option<DVec3>,
+        stokes: Option<(DVec3, &mut Option<[Rgb; 3]>)>,
         rng: &mut R,
         stats: &mut Stats,
         observer: &mut dyn ChainEvents,
-    ) -> (Chain<'w>, Option<[Rgb; 3]>) {
+    ) -> Chain<'w> {
+        let (stokes_axis, shares) = match stokes {
+            Some((axis, shares)) => (Some(axis), Some(shares)),
+            None => (None, None),
+        };
         // The polarization lives here and the walk holds a reference to it: an unpolarized
         // walk moves no polarization state around.
         let mut carried = None;
@@ -526,7 +534,7 @@ impl<'w> Walker<'w> {
         };
         self.meet_dispersion(self.tracer.disperses_in(ray.medium), &mut chain);
         let Some(n_start) = self.tracer.index(ray.medium, ray.origin) else {
-            return (chain, None);
+            return chain;
         };
         chain.n_start = n_start;
         let mut at = ray;
@@ -536,11 +544,10 @@ impl<'w> Walker<'w> {
             }
         };
         chain.medium = at.medium;
-        let stokes = lent
-            .polarization
-            .as_deref()
-            .and_then(Polarization::stokes_shares);
         if let Some(p) = &lent.polarization {
+            if let Some(shares) = shares {
+                *shares = p.stokes_shares();
+            }
             chain.weight *= p.closing();
         }
         if !matches!(end, End::Escaped { .. }) {
@@ -556,7 +563,7 @@ impl<'w> Walker<'w> {
             chain.n_end = self.tracer.index(at.medium, p).unwrap_or(1.0);
         }
         chain.end = end;
-        (chain, stokes)
+        chain
     }
 
     /// Follows the chain from `at` to the end of its stretch: the next surface, the world's
