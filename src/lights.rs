@@ -9,7 +9,7 @@ use crate::sampling::{
     cosine_hemisphere, power_cosine_hemisphere, uniform_cone, uniform_disk, uniform_sphere, Frame,
     Given, Pick,
 };
-use crate::shapes::{Disk, Primitive, Quad, SampledMesh, SurfacePoint};
+use crate::shapes::{Disk, Primitive, Quad, SampledMesh, SurfaceSample};
 use glam::DVec3;
 use std::f64::consts::{PI, TAU};
 use std::sync::Arc;
@@ -249,15 +249,15 @@ impl Emitter {
     /// A point just in front of the emitting surface (in the medium it emits into).
     pub fn front(&self) -> DVec3 {
         let on = match self {
-            Emitter::Quad(q) => SurfacePoint {
+            Emitter::Quad(q) => SurfaceSample {
                 position: q.center(),
                 normal: q.normal(),
             },
-            Emitter::Disk(d) => SurfacePoint {
+            Emitter::Disk(d) => SurfaceSample {
                 position: d.center,
                 normal: d.normal,
             },
-            Emitter::Sphere(b) => SurfacePoint {
+            Emitter::Sphere(b) => SurfaceSample {
                 position: b.center + DVec3::Y * b.radius,
                 normal: DVec3::Y,
             },
@@ -320,19 +320,19 @@ impl Emitter {
 
     /// A point uniformly distributed over the surface for `uv` uniform in [0,1)², with the
     /// normal of its emitting side.
-    pub fn sample(&self, uv: (f64, f64)) -> SurfacePoint {
+    pub fn sample(&self, uv: (f64, f64)) -> SurfaceSample {
         match self {
-            Emitter::Quad(q) => SurfacePoint {
+            Emitter::Quad(q) => SurfaceSample {
                 position: q.point_at(uv),
                 normal: q.normal(),
             },
-            Emitter::Disk(d) => SurfacePoint {
+            Emitter::Disk(d) => SurfaceSample {
                 position: d.point_at(uv),
                 normal: d.normal,
             },
             Emitter::Sphere(b) => {
                 let position = b.center + uniform_sphere(uv) * b.radius;
-                SurfacePoint {
+                SurfaceSample {
                     position,
                     normal: (position - b.center).normalize(),
                 }
@@ -705,7 +705,7 @@ impl Light {
                 }
             }
             Light::Area { emitter, radiance } => {
-                let SurfacePoint { position, normal } = emitter.sample((u[0], u[1]));
+                let SurfaceSample { position, normal } = emitter.sample((u[0], u[1]));
                 let origin = crate::math::offset(position, normal);
                 if let Some(cone) = self.narrowing_cone(origin, aim) {
                     let area = emitter.area();
@@ -753,7 +753,7 @@ impl Light {
             // on a tilted quad (its sampled point rounded to either side of the plane) hit
             // the light itself at t ≈ 1e-16 about half the time, and its power was lost.
             Light::Area { emitter, radiance } => {
-                let SurfacePoint { position, normal } = emitter.sample((u[0], u[1]));
+                let SurfaceSample { position, normal } = emitter.sample((u[0], u[1]));
                 emission(
                     crate::math::offset(position, normal),
                     Frame::new(normal).to_world(cosine_hemisphere((u[2], u[3]))),

@@ -14,5 +14,5 @@ pub(crate) use hit::{padded_box, TraversalRay};
 pub use hit::{Hit, SegmentHits};
 pub use mesh::TriangleMesh;
 pub use primitive::{Disk, Primitive, Quad};
-pub use sampled_mesh::{SampledMesh, SurfacePoint};
+pub use sampled_mesh::{SampledMesh, SurfaceSample};
 pub use triangle::{Plane, Triangle};

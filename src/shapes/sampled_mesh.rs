@@ -9,10 +9,10 @@ use crate::sampling::Discrete;
 use glam::DVec3;
 use std::sync::Arc;
 
-/// A point of a surface and its unit normal there (for an emitting surface: on the side it
-/// emits to).
+/// A point drawn on a surface and the surface's unit normal there (for an emitting surface: on
+/// the side it emits to).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SurfacePoint {
+pub struct SurfaceSample {
     /// The point.
     pub position: DVec3,
     /// Unit normal.
@@ -73,11 +73,11 @@ impl SampledMesh {
 
     /// A point distributed uniformly over the surface for `uv` uniform in [0, 1)² (density
     /// 1/area), with its triangle's normal.
-    pub fn sample(&self, (u, v): (f64, f64)) -> SurfacePoint {
+    pub fn sample(&self, (u, v): (f64, f64)) -> SurfaceSample {
         let pick = self.triangles.pick(u);
         let [a, b, c] = self.mesh.corners(pick.index);
         let s = self.triangles.within(u, pick).sqrt();
-        SurfacePoint {
+        SurfaceSample {
             position: a * (1.0 - s) + b * (s * (1.0 - v)) + c * (s * v),
             normal: (b - a).cross(c - a).normalize(),
         }
