@@ -2,6 +2,7 @@
 render's EXR bit for bit, a traced ray's CSV, a receiver's CSV, shards merged."""
 
 import csv
+from pathlib import Path
 
 import numpy as np
 import OpenEXR
@@ -41,6 +42,23 @@ def test_render_writes_the_command_lines_exr_bit_for_bit(cli, scenes, tmp_path):
         assert layer.dtype == np.float32 and layer.shape == (36, 48, 3)
         np.testing.assert_array_equal(layer, from_cli[name])
     assert image["caustic"].max() > 0, "the ball's caustic reaches the floor"
+
+
+def test_stokes_layers_are_the_command_lines(cli, tmp_path):
+    """stokes=True writes S0–S3 as --stokes true does; S0 is beauty, and every pixel's Stokes
+    vector is one light can have."""
+    scene = Path(__file__).resolve().parents[2] / "tests" / "data" / "mitsuba" / "polarized_spheres.toml"
+    small = dict(width=32, height=32, spp=2, seed=3)
+    run(cli, "render", scene, "-o", tmp_path / "cli.exr", *cli_flags(small), "--stokes", "true", cwd=tmp_path)
+    image = grinlight.load(scene).render(progress=False, stokes=True, **small)
+    from_cli = read_exr(tmp_path / "cli.exr")
+    s = [image[f"S{k}"] for k in range(4)]
+    for k in range(4):
+        np.testing.assert_array_equal(s[k], from_cli[f"S{k}"])
+    np.testing.assert_allclose(s[0], image["beauty"], rtol=1e-6)
+    assert np.all(s[1] ** 2 + s[2] ** 2 + s[3] ** 2 <= s[0] ** 2 * (1 + 1e-5))
+    assert np.abs(s[1]).max() > 0.01 * s[0].max(), "the balls polarize what they reflect"
+    assert "S1" not in grinlight.load(scene).render(progress=False, **small).names
 
 
 def test_load_overrides_are_the_command_lines(cli, scenes, tmp_path):
