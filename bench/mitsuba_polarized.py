@@ -95,6 +95,18 @@ def mitsuba_runs(runs, spp):
     return np.array(out), np.array(stokes), float(np.mean(circular))
 
 
+def write_reference(name, what, a, mean, se):
+    """tests/data/mitsuba/polarized_spheres_<name>.csv: the scene's `what`, Mitsuba's block
+    means and their standard errors over a.runs runs of a.spp spp."""
+    import mitsuba as mi
+
+    write_blocks(os.path.join(ROOT, "tests", "data", "mitsuba", f"polarized_spheres_{name}.csv"),
+                 f"Mitsuba {mi.__version__} llvm_ad_mono_polarized (stokes over path), "
+                 f"tests/data/mitsuba/polarized_spheres.toml {what}: {a.runs} runs of {a.spp} spp, "
+                 f"means over blocks of {BLOCK}x{BLOCK} pixels and their standard errors "
+                 f"(bench/mitsuba_polarized.py)", mean, se)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--runs", type=int, default=16)
@@ -117,11 +129,7 @@ def main():
     for k in range(4):
         mean, se = stats(stokes[:, k])
         if a.write:
-            write_blocks(os.path.join(ROOT, "tests", "data", "mitsuba", f"polarized_spheres_S{k}.csv"),
-                         f"Mitsuba {mi.__version__} llvm_ad_mono_polarized (stokes over path), "
-                         f"tests/data/mitsuba/polarized_spheres.toml: S{k} in Mitsuba's basis (first axis d x up), "
-                         f"{a.runs} runs of {a.spp} spp, means over blocks of {BLOCK}x{BLOCK} pixels and their "
-                         f"standard errors (bench/mitsuba_polarized.py)", mean, se)
+            write_reference(f"S{k}", f"S{k} in Mitsuba's basis (first axis d x up)", a, mean, se)
         if ours is not None:
             gm, gs = stats(ours[:, k])
             z = block_z(gm, gs, mean, se)
@@ -129,12 +137,8 @@ def main():
     for i, angle in enumerate(ANGLES):
         mean, se = stats(runs[:, i])
         if a.write:
-            write_blocks(os.path.join(ROOT, "tests", "data", "mitsuba", f"polarized_spheres_{angle}.csv"),
-                         f"Mitsuba {mi.__version__} llvm_ad_mono_polarized (stokes over path), "
-                         f"tests/data/mitsuba/polarized_spheres.toml seen through a linear polarizer at "
-                         f"{angle} deg (½(S0 + S1 cos 2φ + S2 sin 2φ), φ its angle in Mitsuba's basis): {a.runs} "
-                         f"runs of {a.spp} spp, means over blocks of {BLOCK}x{BLOCK} pixels and their standard "
-                         f"errors (bench/mitsuba_polarized.py)", mean, se)
+            write_reference(angle, f"seen through a linear polarizer at {angle} deg "
+                            "(½(S0 + S1 cos 2φ + S2 sin 2φ), φ its angle in Mitsuba's basis)", a, mean, se)
         if a.grinlight:
             with tempfile.TemporaryDirectory() as tmp:
                 path = os.path.join(tmp, f"polarizer_{angle}.toml")

@@ -1443,11 +1443,7 @@ impl<'s> Converter<'s> {
                 t
             }
             "plymesh" => {
-                let name = p.string("filename")?.ok_or_else(|| {
-                    s.place
-                        .error(format!("{}: \"string filename\" is missing", s.what()))
-                })?;
-                let path = self.scene.find(&name, &s.place)?;
+                let path = self.ply_file(s)?;
                 if oriented && self.turned(g) {
                     return Err(s.place.error(
                         "a glass PLY mesh turned inside out (ReverseOrientation, a mirroring \
@@ -1480,6 +1476,15 @@ impl<'s> Converter<'s> {
                 )))
             }
         })
+    }
+
+    /// The file a `plymesh` names, found as the scene finds its files.
+    fn ply_file(&self, s: &Statement) -> Result<std::path::PathBuf> {
+        let name = s.params.string("filename")?.ok_or_else(|| {
+            s.place
+                .error(format!("{}: \"string filename\" is missing", s.what()))
+        })?;
+        self.scene.find(&name, &s.place)
     }
 
     /// A whole `sphere` (`radius` 1) in grinlight's world: its centre and radius.
@@ -1687,11 +1692,7 @@ impl<'s> Converter<'s> {
                 }
             }
             "plymesh" => {
-                let name = p.string("filename")?.ok_or_else(|| {
-                    s.place
-                        .error(format!("{}: \"string filename\" is missing", s.what()))
-                })?;
-                let path = self.scene.find(&name, &s.place)?;
+                let path = self.ply_file(s)?;
                 let ply = crate::scene::ply::load_ply(&path).map_err(|e| s.place.error(e))?;
                 let f64s = |v: &[f32; 3]| DVec3::from_array(v.map(f64::from));
                 let file = FileMesh {
