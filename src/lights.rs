@@ -1106,8 +1106,8 @@ mod tests {
     }
 
     /// The irradiance a Lambertian polygon of radiance L sends to a point of unit normal m is
-    /// Lambert's (1760) closed form E = (L/2) Σᵢ Θᵢ m·(rᵢ × rᵢ₊₁)/|rᵢ × rᵢ₊₁|, rᵢ = vᵢ − p,
-    /// Θᵢ the angle between rᵢ and rᵢ₊₁ (Arvo 1995). A regular hexagon facing the point, a
+    /// Lambert's closed form (Arvo 1995) E = (L/2) Σᵢ Θᵢ m·(rᵢ × rᵢ₊₁)/|rᵢ × rᵢ₊₁|, rᵢ = vᵢ − p,
+    /// Θᵢ the angle between rᵢ and rᵢ₊₁. A regular hexagon facing the point, a
     /// fan of six triangles, and a seventh of the same area behind it facing away (it sends
     /// nothing, and takes its share of the samples): a mesh light's samples summed on a
     /// 700 × 700 midpoint grid give it to 1e-6 (the grid's error: −3.5e-7, −8.0e-8, −1.4e-8

@@ -128,7 +128,7 @@ impl OctahedralLamp {
     }
 
     /// The irradiance per unit radiance at `x` on a surface of unit normal `m`: Lambert's
-    /// polygon formula (1760; Arvo 1995), (1/2) Σ Θᵢ m·(rᵢ × rᵢ₊₁)/|rᵢ × rᵢ₊₁|, summed over
+    /// polygon formula (Arvo 1995), (1/2) Σ Θᵢ m·(rᵢ × rᵢ₊₁)/|rᵢ × rᵢ₊₁|, summed over
     /// the faces that face `x` (of a convex emitter, the ones it sees, none hiding another).
     fn irradiance(&self, x: DVec3, m: DVec3) -> f64 {
         let mut e = 0.0;

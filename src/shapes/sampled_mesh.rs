@@ -1,6 +1,6 @@
 //! Points drawn uniformly over a triangle mesh's surface: a triangle in proportion to its area,
-//! then a point uniformly over it (the square root warp of Shirley and Chiu, as in Pharr et
-//! al., *Physically Based Rendering*, 4th ed., §6.5.4), so that the density over the whole
+//! then a point uniformly over it (the square-root warp of Pharr et al. 2023, §6.5.4), so
+//! that the density over the whole
 //! surface is 1/A. An emitting mesh's light samples and photons start here.
 
 use super::TriangleMesh;
