@@ -350,5 +350,29 @@ mod tests {
             power > 0.05 && power < 0.95,
             "{power}: a case that tests something"
         );
+        // A camera measuring the whole Stokes vector in the basis of x reads, as shares of
+        // S0, the Stokes vector in that basis of the light reaching it, elliptical behind
+        // the retarder (without the last sheet, which leaves it linear).
+        let before_the_sheet = &elements[..3];
+        let mut photon = Polarization::unpolarized(Sense::WithLight, k);
+        let mut power = 1.0;
+        for e in before_the_sheet {
+            power *= photon.meet(e, k).0.x;
+        }
+        let mut measuring = Polarization::measuring_stokes(None, -k, DVec3::X);
+        for e in before_the_sheet.iter().rev() {
+            measuring.meet(e, -k);
+        }
+        let arrived = photon.stokes(k, DVec3::X).unwrap()[0];
+        let shares = measuring.stokes_shares().unwrap().map(|s| s.0.x);
+        let want = [arrived.y, arrived.z, arrived.w];
+        for (got, want) in shares.iter().zip(want) {
+            assert!((got - want).abs() < 1e-12, "{shares:?} against {arrived}");
+        }
+        assert!(
+            want.iter().all(|s| s.abs() > 0.05),
+            "{want:?}: every component tested"
+        );
+        assert!((measuring.closing().0.x - power).abs() < 1e-12);
     }
 }
