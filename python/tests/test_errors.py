@@ -109,7 +109,7 @@ def test_bad_settings_name_their_key(scenes, overrides, key):
         (dict(integrator="bidirectional"), "integrator expected 'photon_map' or 'path', got \"bidirectional\""),
         (dict(deflection_table="yes"), 'deflection_table expected true or false, got "yes"'),
         (dict(passes=[2]), "passes expected an integer ≥ 1, got a list"),
-        (dict(sppp=4), "sppp: unknown key `sppp` (expected one of: integrator, sampler, deflection_table, spp, seed, max_depth, threads, max_steps, world_radius, polarized, photons, caustic_photons, gather, knn, radius, passes, time_budget, target_error, receiver_photons, width, height, no_table)"),
+        (dict(sppp=4), "sppp: unknown key `sppp` (expected one of: integrator, sampler, deflection_table, spp, seed, max_depth, threads, max_steps, world_radius, polarized, stokes, photons, caustic_photons, gather, knn, radius, passes, time_budget, target_error, receiver_photons, width, height, no_table)"),
     ],
 )
 def test_a_setting_is_refused_in_the_scene_files_words(scenes, overrides, words):
