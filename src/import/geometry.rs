@@ -69,6 +69,11 @@ pub fn parallelogram(triangles: [[DVec3; 3]; 2], flip: bool) -> Option<[DVec3; 4
     agree.then_some(order)
 }
 
+/// The area of the triangle of corners a, b, c (length²).
+pub fn triangle_area([a, b, c]: &[DVec3; 3]) -> f64 {
+    0.5 * (*b - *a).cross(*c - *a).length()
+}
+
 /// Which side an emitting mesh's triangles emit from, against their winding's normal
 /// (b − a) × (c − a) in the world.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

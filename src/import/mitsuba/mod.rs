@@ -6,7 +6,7 @@
 mod spectrum;
 pub mod xml;
 
-use super::geometry::{emitting_side, linear, parallelogram, similarity, Facing};
+use super::geometry::{emitting_side, linear, parallelogram, similarity, triangle_area, Facing};
 use super::table::{affine_rows, free_name, string, table, vec3, AreaEmitter, Lists};
 use super::{Imported, Place, Told};
 use crate::error::{cut, Result};
@@ -1396,25 +1396,20 @@ impl Converter<'_> {
                     (mesh.triangles[i])
                         .map(|k| to_normal * DVec3::from(n[k as usize].map(f64::from)))
                 };
+                let world: Vec<[DVec3; 3]> = mesh.triangles.iter().map(|t| t.map(corner)).collect();
                 let side = emitting_side(
-                    mesh.triangles.iter().map(|t| t.map(corner)),
+                    world.iter().copied(),
                     normals.map(|_| &corner_normals as &dyn Fn(usize) -> [DVec3; 3]),
                     flip,
                 );
-                let area = (mesh.triangles.iter())
-                    .map(|t| {
-                        let [a, b, c] = t.map(corner);
-                        0.5 * (b - a).cross(c - a).length()
-                    })
-                    .sum();
+                let area = world.iter().map(triangle_area).sum();
                 // Mitsuba's emission and its light samples' cosine follow the interpolated
                 // normals (the file's, or its own averages of the faces at each vertex);
                 // grinlight's, each triangle's own: the same where those are the faces'.
                 let faceted = face_normals
                     || match mesh.normals.as_ref() {
-                        Some(_) => (0..mesh.triangles.len()).all(|i| {
-                            let [a, b, c] = mesh.triangles[i].map(corner);
-                            let w = (b - a).cross(c - a);
+                        Some(_) => world.iter().enumerate().all(|(i, [a, b, c])| {
+                            let w = (*b - *a).cross(*c - *a);
                             corner_normals(i).iter().all(|n| parallel(*n, w))
                         }),
                         None => faces_agree_at_vertices(&mesh.triangles, &corner),

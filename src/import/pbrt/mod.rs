@@ -13,7 +13,9 @@
 
 pub mod parse;
 
-use super::geometry::{emitting_side, linear, look_at, parallelogram, similarity, Facing};
+use super::geometry::{
+    emitting_side, linear, look_at, parallelogram, similarity, triangle_area, Facing,
+};
 use super::table::{affine_rows, free_name, string, table, vec3, AreaEmitter, Lists};
 use super::{Imported, Place, Told};
 use crate::error::{cut, Result};
@@ -1632,9 +1634,7 @@ impl<'s> Converter<'s> {
                 )))
             }
         }
-        let areas: Vec<f64> = (world.iter())
-            .map(|[a, b, c]| 0.5 * (*b - *a).cross(*c - *a).length())
-            .collect();
+        let areas: Vec<f64> = world.iter().map(triangle_area).collect();
         let (least, most) = (areas.iter()).fold((f64::INFINITY, 0.0f64), |(lo, hi), &a| {
             (lo.min(a), hi.max(a))
         });
