@@ -852,13 +852,21 @@ fn a_black_hole_seen_through_a_camera_polarizer_is_half_as_bright() {
 /// exactly) — within 1e-3 (measured 6.9e-4) at angles of incidence below 78° (the pixel's other
 /// rays see angles up to a degree off; nearer grazing the ratio turns too fast across a
 /// pixel); the sky seen directly is unpolarized (S1 = S2 = S3 = 0 exactly); and S0 is
-/// `beauty`. Every Stokes vector is one light can have: S1² + S2² + S3² ≤ S0².
+/// `beauty`. Every Stokes vector is one light can have: S1² + S2² + S3² ≤ S0². Both
+/// integrators.
 #[test]
 fn a_conductor_polarizes_the_sky_it_reflects_as_fresnel_says() {
+    for integrator in ["path", "photon_map"] {
+        a_conductor_reflects_the_sky(integrator);
+    }
+}
+
+/// [`a_conductor_polarizes_the_sky_it_reflects_as_fresnel_says`] through `integrator`.
+fn a_conductor_reflects_the_sky(integrator: &str) {
     let (eta, k) = (1.2, 2.0);
     let text = format!(
         "[camera]\nposition = [0, 1, 0]\nlook_at = [0, 0, 2]\nfov_y_deg = 60\nwidth = 9\nheight = 31\n\
-         [render]\nintegrator = \"path\"\nspp = 16\nstokes = true\n\
+         [render]\nintegrator = \"{integrator}\"\nspp = 16\nstokes = true\nphotons = 2000\ncaustic_photons = 2000\n\
          [[material]]\nname = \"metal\"\ntype = \"conductor\"\neta = [{eta}, {eta}, {eta}]\nk = [{k}, {k}, {k}]\n\
          [[shape]]\ntype = \"quad\"\nvertices = [[-50, 0, -50], [-50, 0, 50], [50, 0, 50], [50, 0, -50]]\nmaterial = \"metal\"\n\
          [[light]]\ntype = \"environment\"\nsky = \"uniform\"\nradiance = [1, 1, 1]\n"
@@ -900,7 +908,7 @@ fn a_conductor_polarizes_the_sky_it_reflects_as_fresnel_says() {
         }
     }
     println!(
-        "middle column: {floor} pixels of the floor, S1/S0 within {worst:.1e}; {sky} of the sky"
+        "{integrator}: middle column: {floor} pixels of the floor, S1/S0 within {worst:.1e}; {sky} of the sky"
     );
     assert!(floor >= 10 && sky >= 10, "{floor} {sky}");
 }

@@ -573,8 +573,8 @@ fn an_index_matched_boundary_is_no_surface_to_light() {
 /// 0.9996–1.0009; bar 0.2 %), and an octahedral mesh lamp, seen by the camera, lights it the
 /// same through the path tracer (light samples, and BSDF samples weighed by the density at
 /// the triangle they hit) and the photon mapper (photons from its faces): over seeds 1–6 the
-/// ratio was 0.9984–1.0031 (the photon mapper's kernel bias and both estimates' noise); bar
-/// 1 %.
+/// ratio was 0.9984–1.0031 (the photon mapper's kernel bias and both estimates' noise), and
+/// with a uniform sky and the sun lighting the room too 0.9984–1.0030; bar 1 %.
 #[test]
 fn an_emitting_mesh_lights_a_room_as_its_surface_does() {
     let room = "[camera]\nposition = [0, 1.2, 3.5]\nlook_at = [0, 0.6, 0]\nfov_y_deg = 50\nwidth = 32\nheight = 32\n\
@@ -603,5 +603,13 @@ fn an_emitting_mesh_lights_a_room_as_its_surface_does() {
     let (path, photons) = (mean(&lamp, "path"), mean(&lamp, "photon_map"));
     println!("octahedral lamp: path tracer {path:.6}, photon mapper {photons:.6}");
     assert!(path > 0.05, "{path}");
+    assert!((photons / path - 1.0).abs() < 0.01, "{photons} vs {path}");
+    // Open to a sky and under the sun as well: the lamp's light among theirs.
+    let open = format!(
+        "{lamp}[[light]]\ntype = \"environment\"\nsky = \"uniform\"\nradiance = [0.2, 0.2, 0.2]\n\
+         [[light]]\ntype = \"directional\"\ndirection = [-0.3, -1, 0.2]\nirradiance = [0.5, 0.5, 0.5]\n"
+    );
+    let (path, photons) = (mean(&open, "path"), mean(&open, "photon_map"));
+    println!("octahedral lamp, sky and sun: path tracer {path:.6}, photon mapper {photons:.6}");
     assert!((photons / path - 1.0).abs() < 0.01, "{photons} vs {path}");
 }
