@@ -23,13 +23,18 @@ pub fn transmittance(
     dir: DVec3,
     reach: f64,
 ) -> Rgb {
-    let length = reach.min(tracer.world.exit_distance(from, dir));
+    // The world's edge is sought only where a medium's transmittance reads the length.
+    let length = || reach.min(tracer.world.exit_distance(from, dir));
     if !tracer.may_match_indices {
         if blocked(tracer, from, dir, reach) {
             return Rgb::ZERO;
         }
-        return tracer.transmittance(medium, from, dir, length);
+        return match medium {
+            Some(_) => tracer.transmittance(medium, from, dir, length()),
+            None => Rgb::ONE,
+        };
     }
+    let length = length();
     let scene = tracer.scene;
     let (mut origin, mut medium, mut kept) = (from, medium, Rgb::ONE);
     for _ in 0..super::chain::MAX_CROSSINGS {
