@@ -3,7 +3,7 @@
 rendered by both renderers: image means per channel and their ratio — the check that a
 conversion renders what Mitsuba renders, on files nobody wrote for grinlight.
 
-    python3 bench/import_corpus_render.py DIR [--spp N] [--runs K]
+    python3 bench/import_corpus_render.py DIR [--spp N] [--runs K] [--match TEXT]
 
 DIR is the mitsuba-data repository (`git clone https://github.com/mitsuba-renderer/mitsuba-data`).
 Each scene converts with `grinlight convert` (--approximate if it must) and renders with
@@ -48,6 +48,7 @@ def main():
     ap.add_argument("dir")
     ap.add_argument("--spp", type=int, default=256)
     ap.add_argument("--runs", type=int, default=4)
+    ap.add_argument("--match", default="", help="only the files whose path holds this text")
     a = ap.parse_args()
     import mitsuba as mi
 
@@ -56,6 +57,8 @@ def main():
     for base, _, names in sorted(os.walk(a.dir)):
         for name in sorted(n for n in names if n.endswith(".xml")):
             path = os.path.join(base, name)
+            if a.match not in path:
+                continue
             kind = converts(path)
             if kind is None:
                 continue

@@ -2,7 +2,7 @@
 //! the reference scenes — as one type, [`Rgb`]; tone mapping for previews.
 
 use glam::DVec3;
-use std::ops::{Add, AddAssign, Deref, Div, DivAssign, Mul, MulAssign, Sub};
+use std::ops::{Add, AddAssign, Deref, Div, DivAssign, Mul, MulAssign, Neg, Sub};
 
 /// A colour quantity — radiance, irradiance, power, reflectance or throughput — per linear
 /// RGB channel. One type, so that a spectral sample can take its place: read its channels
@@ -29,6 +29,16 @@ impl Rgb {
     /// The channels' mean (power and flux are booked so).
     pub fn mean(&self) -> f64 {
         self.0.element_sum() / 3.0
+    }
+
+    /// Whether every channel holds the same value.
+    pub fn is_grey(&self) -> bool {
+        self.0.x == self.0.y && self.0.y == self.0.z
+    }
+
+    /// exp of each channel (a transmittance from its optical depth's negative).
+    pub fn exp(&self) -> Rgb {
+        Rgb(self.0.map(f64::exp))
     }
 }
 
@@ -63,6 +73,13 @@ impl Sub for Rgb {
     type Output = Rgb;
     fn sub(self, o: Rgb) -> Rgb {
         Rgb(self.0 - o.0)
+    }
+}
+
+impl Neg for Rgb {
+    type Output = Rgb;
+    fn neg(self) -> Rgb {
+        Rgb(-self.0)
     }
 }
 

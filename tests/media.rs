@@ -396,7 +396,7 @@ fn march_sums_optical_path_and_its_steps_the_optical_depth() {
     )
     .unwrap();
     let absorption = Absorption {
-        sigma_a: 1.0,
+        sigma_a: grinlight::color::Rgb::ONE,
         density: Some(std::sync::Arc::new(density)),
     };
     let start = RayState::new(&uniform, DVec3::ZERO, DVec3::X).unwrap();
@@ -406,7 +406,7 @@ fn march_sums_optical_path_and_its_steps_the_optical_depth() {
         bounds: Bounds::Unbounded,
     };
     for kind in StepperKind::ALL {
-        let (mut depth, mut last) = (0.0, start.position);
+        let (mut depth, mut last) = (grinlight::color::Rgb::ZERO, start.position);
         let out = march_with(
             kind,
             &uniform,
@@ -419,7 +419,7 @@ fn march_sums_optical_path_and_its_steps_the_optical_depth() {
                 std::ops::ControlFlow::Continue(())
             },
         );
-        assert!((depth - 1.6).abs() < 1e-12, "{kind:?}: {depth}");
+        assert!((depth.x - 1.6).abs() < 1e-12, "{kind:?}: {depth}");
         assert!(
             (out.optical_path - 6.0).abs() < 1e-12,
             "{kind:?}: {}",

@@ -51,7 +51,14 @@ const BAD: &[(&str, usize, usize, &str)] = &[
     // Zero radius.
     ("[[medium]]\nname = \"l\"\nprofile = \"luneburg\"\nradius = 0.0\n", 4, 1, "key `radius`"),
     // Negative absorption.
-    ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = 1.5\nabsorption = -0.1\n", 5, 1, "key `absorption`: must be a finite number ≥ 0"),
+    ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = 1.5\nabsorption = -0.1\n", 5, 1, "key `absorption`: must not be negative"),
+    ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = 1.5\nabsorption = [1, nan, 1]\n", 5, 1, "key `absorption`: must be finite"),
+    // An absorption differing by channel where photons carry single wavelengths or book a
+    // budget: in a dispersive medium, beside a fluorescent layer, with receivers.
+    ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = \"BK7\"\nabsorption = [1, 2, 3]\n", 5, 1, "key `absorption`: differs by channel, which only images' RGB paths carry"),
+    ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = 1\nabsorption = [1, 2, 3]\n[[material]]\nname = \"m\"\ntype = \"diffuse\"\nalbedo = 0.5\n\
+      fluorescence = { excitation = 0.5, emission = { gaussian = [600, 20] }, quantum_yield = 0.5 }\n", 5, 1, "key `absorption`: differs by channel"),
+    ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = 1\nabsorption = [1, 2, 3]\n[[receiver]]\nname = \"r\"\ncenter = [0, 0, 0]\nsize = [1, 1]\nbins = [2, 2]\n", 5, 1, "key `absorption`: differs by channel"),
     // Scattering: σs negative or NaN, |g| ≥ 1, an unknown phase function.
     ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = 1\nscattering = -1\n", 5, 1, "key `scattering`: must not be negative"),
     ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = 1\nscattering = [1, nan, 1]\n", 5, 1, "key `scattering`"),

@@ -131,7 +131,7 @@ fn a_vdb_density_grid_scales_the_medium_coefficients() {
             .participating(grinlight::ids::MediumId::new(0))
             .sigma_a(p);
         assert!(
-            (sigma_a - 0.5 * stored).abs() < 1e-12,
+            (sigma_a.x - 0.5 * stored).abs() < 1e-12,
             "({i},{j},{k}): σa {sigma_a}"
         );
     }

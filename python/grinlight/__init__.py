@@ -127,7 +127,8 @@ class Ray:
     """A traced ray: per accepted point (the start first) ``s`` (arclength), ``opl``
     (optical path length), ``points`` and ``directions`` (N × 3) and the index ``n``; how it
     ended (``reason``: "length reached", "left bounds", ...) after ``steps`` accepted steps
-    of ``attempts``; its total ``arclength``, ``optical_path`` and ``optical_depth``; with
+    of ``attempts``; its total ``arclength``, ``optical_path`` and ``optical_depth`` (3 numbers:
+    ∫σa ds per RGB channel); with
     ``polarization`` asked, the ``field`` carried to the end (3 numbers, unit, perpendicular to
     the ray) and the geometric ``phase`` (radians: the solid angle the direction swept, closed
     by the shortest arc back to its start's, by which the field turned about the ray), else
@@ -143,7 +144,7 @@ class Ray:
     attempts: int
     arclength: float
     optical_path: float
-    optical_depth: float
+    optical_depth: np.ndarray
     field: Optional[np.ndarray] = None
     phase: Optional[float] = None
 

@@ -1,6 +1,7 @@
 //! The library's results as numpy arrays and dicts: image layers, receiver measurements, the
 //! energy budget, traced rays.
 
+use grinlight::color::Rgb;
 use grinlight::commands::Traced;
 use grinlight::photon::Budget;
 use grinlight::receiver::{Measurement, Receiver};
@@ -145,7 +146,7 @@ pub fn budget<'py>(py: Python<'py>, b: &Budget, media: &[String]) -> PyResult<Bo
 
 /// A traced ray: per accepted point (the start first) `s` (arclength), `opl` (optical path
 /// ∫ n ds), `points` and `directions` (N × 3) and `n`; then how it ended: `reason`,
-/// `steps`, `attempts`, `arclength`, `optical_path`, `optical_depth`.
+/// `steps`, `attempts`, `arclength`, `optical_path`, `optical_depth` (per RGB channel).
 pub fn traced<'py>(py: Python<'py>, t: &Traced) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     let column = |f: &dyn Fn(&grinlight::commands::PathPoint) -> f64| -> Array1<f64> {
@@ -172,9 +173,10 @@ pub fn traced<'py>(py: Python<'py>, t: &Traced) -> PyResult<Bound<'py, PyDict>> 
     d.set_item("attempts", o.attempts)?;
     d.set_item("arclength", o.arclength)?;
     d.set_item("optical_path", o.optical_path)?;
+    let depth = t.points.last().map_or(Rgb::ZERO, |p| p.optical_depth);
     d.set_item(
         "optical_depth",
-        t.points.last().map_or(0.0, |p| p.optical_depth),
+        Array1::from(depth.0.to_array().to_vec()).into_pyarray(py),
     )?;
     if let Some(p) = &t.polarization {
         d.set_item(

@@ -68,3 +68,12 @@ def test_blue_focuses_before_red():
     scene = grinlight.load(ROD)
     foci = [back_focal_distance(scene, 0.01, nm) for nm in sorted(G)]
     assert foci[0] < foci[1] < foci[2]
+
+
+def test_a_traced_rays_optical_depth_is_per_channel():
+    """A ray 2 long through a uniform medium absorbing σa = (0.1, 0.2, 0.3): ∫σa ds per
+    channel, (0.2, 0.4, 0.6), to rounding."""
+    scene = {"medium": [{"name": "tint", "profile": "uniform", "n": 1.3, "absorption": [0.1, 0.2, 0.3]}]}
+    ray = grinlight.trace(scene, origin=[0, 0, 0], direction=[0, 0, 1], length=2.0, medium="tint")
+    assert ray.arclength == pytest.approx(2.0, abs=1e-12)
+    assert ray.optical_depth == pytest.approx([0.2, 0.4, 0.6], abs=1e-12)

@@ -1,6 +1,7 @@
 //! `grinlight trace`: one ray through one medium, its summary, its CSV and its picture.
 
 use super::{positive, Observer};
+use crate::color::Rgb;
 use crate::curve::{
     march_with, Bounds, MarchLimits, MarchOutcome, RayState, StepControl, StepperKind,
 };
@@ -402,7 +403,7 @@ fn follow(
         .media()
         .index(&job.medium)
         .map(|i| scene.media().participating(i));
-    let (mut opl, mut optical_depth, mut last) = (0.0, 0.0, start.position);
+    let (mut opl, mut optical_depth, mut last) = (0.0, Rgb::ZERO, start.position);
     let outcome = march_with(job.stepper, medium, control, start, &limits, |s, st| {
         opl += st.optical_path;
         if let Some(r) = radiometry {
@@ -447,9 +448,9 @@ pub struct PathPoint {
     /// Optical path length ∫ n ds from the start (the sum of the steps' own, as
     /// [`MarchOutcome::optical_path`]).
     pub opl: f64,
-    /// Optical depth ∫ σa ds of absorption from the start (the medium's
+    /// Optical depth ∫ σa ds of absorption per channel from the start (the medium's
     /// [`crate::volume::Participating`], summed step by step along the chords).
-    pub optical_depth: f64,
+    pub optical_depth: Rgb,
     /// The state there.
     pub state: RayState,
 }

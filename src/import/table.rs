@@ -22,6 +22,16 @@ pub fn vec3(v: DVec3) -> Toml {
     Toml::Array(v.to_array().iter().map(|&x| Toml::Float(x)).collect())
 }
 
+/// A medium's `absorption` σa per channel: one number where the channels agree to 1e-9 of the
+/// largest (a grey σa computed from a colour, σt·(1 − albedo), rounds apart by channel), else
+/// RGB.
+pub fn absorption(sigma_a: DVec3) -> Toml {
+    match sigma_a.max_element() - sigma_a.min_element() > 1e-9 * sigma_a.max_element() {
+        true => vec3(sigma_a),
+        false => Toml::Float(sigma_a.x),
+    }
+}
+
 /// A table from key–value pairs.
 pub fn table<const N: usize>(pairs: [(&str, Toml); N]) -> Table {
     pairs.into_iter().map(|(k, v)| (k.to_string(), v)).collect()

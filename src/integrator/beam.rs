@@ -78,8 +78,8 @@ pub struct Straight<'a> {
 /// A straight piece of a recorded stretch where the index is defined.
 struct Chord {
     segment: Segment,
-    /// Absorption's optical depth from the stretch's start to the segment's origin.
-    depth: f64,
+    /// Absorption's optical depth per channel from the stretch's start to the segment's origin.
+    depth: Rgb,
     /// The scattering column ∫d ds from the stretch's start to the segment's origin
     /// (`travelled` in a homogeneous medium).
     column: f64,
@@ -170,7 +170,7 @@ impl Beams {
                 // Light arrives travelling along −from and leaves toward the camera, −dir.
                 let phase = scattering.phase.between(-photon.from_direction(), -dir);
                 let scale = (n_start / n) * (n_start / n);
-                light += kept * photon.flux() * (phase * (-depth).exp() * scale * along.kernel);
+                light += kept * photon.flux() * ((-depth).exp() * phase * scale * along.kernel);
             });
             sum += r.stretch.weight * light;
         }
@@ -233,7 +233,7 @@ fn chords<'a>(
     // A uniform medium's index is looked up once; a graded one's at each point once.
     let uniform = medium.is_uniform().then(|| n(r.stretch.origin));
     let radiometry = tracer.participating(r.medium);
-    let (mut from, mut depth, mut column) = (r.stretch.origin, 0.0, 0.0);
+    let (mut from, mut depth, mut column) = (r.stretch.origin, Rgb::ZERO, 0.0);
     let mut n_from = uniform.unwrap_or_else(|| n(from));
     points.iter().filter_map(move |&to| {
         let length = (to - from).length();

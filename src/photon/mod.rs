@@ -262,7 +262,7 @@ impl<'a> Sources<'a> {
             let sigma_s = tracer.scattering(m).map_or(0.0, |sc| {
                 sc.sigma_s.mean() * sc.majorant_near(center).density
             });
-            (-(tracer.participating(m).sigma_a(center) + sigma_s) * length).exp()
+            (-(tracer.participating(m).sigma_a(center).max_element() + sigma_s) * length).exp()
         });
         let mut sources = Vec::new();
         let mut weights = Vec::new();

@@ -69,14 +69,32 @@ fn medium_index(t: &TableReader, key: &str, name: &str, media: &Media) -> Result
         .ok_or_else(|| t.error(key, format!("no medium named '{name}'")))
 }
 
-fn read_media(source: &Source, tables: Vec<Spanned<SpannedTable>>) -> Result<Media> {
+/// The file's media, and the refusal of the first absorption that differs by channel, which
+/// holds only where every path carries RGB ([`refuse_coloured_absorption`]).
+struct ReadMedia {
+    media: Media,
+    coloured_absorption: Option<Error>,
+}
+
+fn read_media(source: &Source, tables: Vec<Spanned<SpannedTable>>) -> Result<ReadMedia> {
     let mut media = Media::default();
+    let mut coloured_absorption = None;
     for table in tables {
         let mut t = reader(source, table, "[[medium]]");
         let name = named(&mut t, media.names(), "medium")?;
         let density = read_density(&mut t)?;
         let medium = read_profile(&mut t)?;
         let absorption = read_absorption(&mut t, density.clone())?;
+        if absorption.as_ref().is_some_and(|a| !a.sigma_a.is_grey()) {
+            coloured_absorption.get_or_insert_with(|| {
+                t.error(
+                    "absorption",
+                    "differs by channel, which only images' RGB paths carry: this scene's \
+                     photons carry single wavelengths (a dispersive medium, a dye or a \
+                     fluorescent layer) or book an energy budget (receivers); give one number",
+                )
+            });
+        }
         let scattering = read_scattering(&mut t, density.clone())?;
         let emission = read_emission(&mut t, absorption.is_some())?;
         let fluorescence = read_fluorescence(&mut t, density.is_some(), scattering.as_ref())?;
@@ -102,7 +120,28 @@ fn read_media(source: &Source, tables: Vec<Spanned<SpannedTable>>) -> Result<Med
             },
         );
     }
-    Ok(media)
+    Ok(ReadMedia {
+        media,
+        coloured_absorption,
+    })
+}
+
+/// Refuses an absorption that differs by channel (`coloured`, its refusal) in a scene whose
+/// photons carry single wavelengths — where σa would need a value at each — or whose receivers
+/// book an energy budget, which books a photon's power by its channels' mean (a photon's
+/// channels reweighed by Russian roulette on the way would leave the absorbed share unbooked).
+fn refuse_coloured_absorption(
+    coloured: Option<Error>,
+    media: &Media,
+    materials: &[Material],
+    receivers: &[Receiver],
+) -> Result<()> {
+    let single_wavelengths = media.ids().any(|i| media.is_dispersive(i))
+        || materials.iter().any(|m| m.fluorescence().is_some());
+    match coloured {
+        Some(refusal) if single_wavelengths || !receivers.is_empty() => Err(refusal),
+        Some(_) | None => Ok(()),
+    }
 }
 
 fn read_materials(
@@ -278,11 +317,15 @@ fn parse(source: Source) -> Result<(Description, Settings)> {
         let message = e.message().trim().replace('\n', " ");
         source.error_at(offset, message)
     })?;
-    let mut media = read_media(&source, file.medium)?;
+    let ReadMedia {
+        mut media,
+        coloured_absorption,
+    } = read_media(&source, file.medium)?;
     let materials = read_materials(&source, file.material, &mut media)?;
     let shapes = read_shapes(&source, file.shape, &materials, &media)?;
     let (lights, light_spectra, environment) = read_lights(&source, file.light)?;
     let receivers = read_receivers(&source, file.receiver)?;
+    refuse_coloured_absorption(coloured_absorption, &media, &materials.list, &receivers)?;
     let ambient = match &file.ambient {
         None => None,
         Some(name) => Some(media.index(name.get_ref()).ok_or_else(|| {

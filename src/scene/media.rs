@@ -35,19 +35,19 @@ pub const PROFILES: &[&str] = &[
     "grid",
 ];
 
-/// A `[[medium]]` table's `absorption` coefficient σa (1/length, ≥ 0; 0 or absent: it does
-/// not absorb), scaled by `density` if it is heterogeneous.
+/// A `[[medium]]` table's `absorption` coefficient σa (1/length, a number or RGB, ≥ 0; 0 or
+/// absent: it does not absorb), scaled by `density` if it is heterogeneous.
 pub fn read_absorption(
     t: &mut TableReader,
     density: Option<Arc<Density>>,
 ) -> Result<Option<Absorption>> {
-    let sigma_a = t.f64_or("absorption", 0.0)?;
+    let sigma_a = t.rgb_or("absorption", Some(Rgb::ZERO))?;
     t.check(
         "absorption",
-        sigma_a.is_finite() && sigma_a >= 0.0,
-        format!("must be a finite number ≥ 0 (1/length), got {sigma_a:?}"),
+        sigma_a.0.is_finite(),
+        format!("must be finite (1/length), got {sigma_a}"),
     )?;
-    Ok((sigma_a > 0.0).then_some(Absorption { sigma_a, density }))
+    Ok((sigma_a.max_element() > 0.0).then_some(Absorption { sigma_a, density }))
 }
 
 /// A `[[medium]]` table's `emission` Le (basic radiance, RGB ≥ 0: emitted at the rate σa,

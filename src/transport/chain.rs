@@ -601,7 +601,7 @@ impl<'w> Walker<'w> {
             total: 0.0,
         };
         let (mut origin, mut dir) = (at.origin, at.direction);
-        let (mut travelled, mut depth) = (0.0, 0.0);
+        let (mut travelled, mut depth) = (0.0, Rgb::ZERO);
         // The polarization's basis, parallel-transported along a curved stretch.
         let carried = (lent.polarization.as_deref_mut()).filter(|_| {
             at.medium
@@ -850,15 +850,26 @@ impl<'w> Walker<'w> {
         }
     }
 
-    /// Carries a stretch's transmittance `kept` by the policy; true when Russian roulette
-    /// absorbs the path there.
-    fn absorbed(&self, chain: &mut Chain, kept: f64, rng: &mut impl Rng) -> bool {
+    /// Carries a stretch's transmittance `kept` (per channel) by the policy; true when Russian
+    /// roulette absorbs the path there. A photon goes on with the probability of its largest
+    /// channel's, its power weighed by each channel's over that (1 in every channel where
+    /// absorption is grey), as at a coloured surface.
+    fn absorbed(&self, chain: &mut Chain, kept: Rgb, rng: &mut impl Rng) -> bool {
         match self.policy {
             Policy::Weighted | Policy::Unscattered => {
                 chain.weight *= kept;
                 false
             }
-            Policy::Roulette => kept < 1.0 && rng.gen::<f64>() >= kept,
+            Policy::Roulette => {
+                let survive = kept.max_element();
+                if survive < 1.0 && rng.gen::<f64>() >= survive {
+                    return true;
+                }
+                if !kept.is_grey() {
+                    chain.weight *= kept / survive;
+                }
+                false
+            }
             Policy::Principal => false,
         }
     }

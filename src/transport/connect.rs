@@ -22,6 +22,7 @@
 //! in the connection.
 
 use super::{Event, Stats, Tracer};
+use crate::color::Rgb;
 use crate::curve::{
     march_replay_with, march_with, Bounds, MarchLimits, MarchOutcome, RayState, Termination,
 };
@@ -45,8 +46,8 @@ pub struct Link {
     pub index_ratio2: f64,
     /// Arclength of the path.
     pub length: f64,
-    /// Optical depth ∫ σa ds along it.
-    pub optical_depth: f64,
+    /// Optical depth ∫ σa ds along it, per channel.
+    pub optical_depth: Rgb,
     /// The scattering column ∫d ds along its chords in a heterogeneous scattering medium
     /// ([`crate::volume::Scattering::column`]); its arclength otherwise.
     pub column: f64,
@@ -55,7 +56,7 @@ pub struct Link {
 impl Link {
     /// Irradiance at the point on a surface facing [`Link::direction`], W/m²: from a point
     /// sending `intensity` (W/sr) along −arrival, or from parallel light of `irradiance`.
-    pub fn irradiance(&self, anchor: &Anchor, intensity: crate::color::Rgb) -> crate::color::Rgb {
+    pub fn irradiance(&self, anchor: &Anchor, intensity: Rgb) -> Rgb {
         let kept = (-self.optical_depth).exp() * self.index_ratio2 / self.spread;
         match anchor {
             Anchor::Point(_) => intensity * kept,
@@ -94,7 +95,7 @@ struct Shot {
     residual: DVec2,
     end: RayState,
     length: f64,
-    optical_depth: f64,
+    optical_depth: Rgb,
     column: f64,
     /// The lengths of the march's steps, for the Jacobian's replays.
     lengths: Vec<f64>,
@@ -142,7 +143,7 @@ impl Problem<'_> {
         let settings = &self.tracer.settings;
         let start = RayState::new(self.medium, self.from, self.direction(ab))?;
         let mut lengths = Vec::new();
-        let (mut last, mut column, mut depth) = (self.from, 0.0, 0.0);
+        let (mut last, mut column, mut depth) = (self.from, 0.0, Rgb::ZERO);
         let out = march_with(
             settings.stepper,
             self.medium,

@@ -1,6 +1,7 @@
 //! What a ray meets next ([`Event`]: a surface, the world's edge, the end of its allowed
 //! reach, or nothing it can name), and where a path meets a surface ([`SurfaceHit`]).
 
+use crate::color::Rgb;
 use crate::ids::PrimId;
 use glam::{DVec2, DVec3};
 
@@ -13,8 +14,8 @@ pub enum Event {
         hit: SurfaceHit,
         /// Path length from the origin to the hit (scene units).
         distance: f64,
-        /// Optical depth ∫ σa ds of absorption from the origin to the hit.
-        optical_depth: f64,
+        /// Optical depth ∫ σa ds of absorption from the origin to the hit, per channel.
+        optical_depth: Rgb,
     },
     /// The ray left the world sphere.
     Escaped {
@@ -24,8 +25,8 @@ pub enum Event {
         direction: DVec3,
         /// Path length from the origin to the world sphere (scene units).
         distance: f64,
-        /// Optical depth ∫ σa ds of absorption from the origin to the world sphere.
-        optical_depth: f64,
+        /// Optical depth ∫ σa ds of absorption from the origin to the world sphere, per channel.
+        optical_depth: Rgb,
     },
     /// The ray went the arclength it was allowed ([`Tracer::next_event_within`]) before any
     /// surface: where a free flight in a scattering medium ends.
@@ -36,8 +37,8 @@ pub enum Event {
         direction: DVec3,
         /// Path length from the origin (the allowed arclength).
         distance: f64,
-        /// Optical depth ∫ σa ds of absorption from the origin.
-        optical_depth: f64,
+        /// Optical depth ∫ σa ds of absorption from the origin, per channel.
+        optical_depth: Rgb,
     },
     /// The ray ended without reaching a surface or escaping: captured, out of steps, trapped
     /// (a curved path 100 world radii long that never left the world), or lost inside an
@@ -84,7 +85,7 @@ impl Event {
 
     /// The event of a ray that had gone `distance` with absorption `depth` before the start
     /// it was traced from: both added to its own.
-    pub fn continuing(mut self, before: f64, depth_before: f64) -> Event {
+    pub fn continuing(mut self, before: f64, depth_before: Rgb) -> Event {
         if let Event::Surface {
             distance,
             optical_depth,
@@ -107,18 +108,20 @@ impl Event {
         self
     }
 
-    /// The optical depth ∫σa ds of absorption on the way to the event (∞ when lost).
-    pub fn optical_depth(&self) -> f64 {
+    /// The optical depth ∫σa ds of absorption per channel on the way to the event (∞ when
+    /// lost).
+    pub fn optical_depth(&self) -> Rgb {
         match *self {
             Event::Surface { optical_depth, .. }
             | Event::Escaped { optical_depth, .. }
             | Event::Reached { optical_depth, .. } => optical_depth,
-            Event::Lost => f64::INFINITY,
+            Event::Lost => Rgb::splat(f64::INFINITY),
         }
     }
 
-    /// The fraction exp(−∫σa ds) of light kept on the way to the event (0 when lost).
-    pub fn transmittance(&self) -> f64 {
+    /// The fraction exp(−∫σa ds) of light kept per channel on the way to the event (0 when
+    /// lost).
+    pub fn transmittance(&self) -> Rgb {
         (-self.optical_depth()).exp()
     }
 }

@@ -28,6 +28,7 @@ pub use spectral::MediumAt;
 pub use vertex::{BsdfNumbers, MediumVertex, Scattered, SurfaceVertex, Vertex};
 
 use crate::accel::PrimHit;
+use crate::color::Rgb;
 use crate::curve::{
     march_with, ArcPoint, Bounds, ExactPath, HermitePath, MarchLimits, MarchOutcome, Path,
     RayState, StepControl, Termination,
@@ -88,7 +89,7 @@ struct Along<'m> {
 struct Marched {
     hit: Option<Event>,
     outcome: MarchOutcome,
-    optical_depth: f64,
+    optical_depth: Rgb,
 }
 
 impl<'a> Tracer<'a> {
@@ -277,7 +278,7 @@ impl<'a> Tracer<'a> {
     ) -> Marched {
         let Along { medium, radiometry } = along;
         let mut prev = start;
-        let (mut prev_s, mut prev_depth) = (0.0, 0.0);
+        let (mut prev_s, mut prev_depth) = (0.0, Rgb::ZERO);
         let mut hit = None;
         let out = march_with(
             self.settings.stepper,

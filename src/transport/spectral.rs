@@ -188,16 +188,16 @@ impl<'a> Tracer<'a> {
         self.scene.media().participating(i)
     }
 
-    /// The optical depth of absorption along the straight piece from `from` along unit `dir`
-    /// over `length` in `medium` (0 in vacuum and in a medium that does not absorb).
+    /// The optical depth of absorption per channel along the straight piece from `from` along
+    /// unit `dir` over `length` in `medium` (0 in vacuum and in a medium that does not absorb).
     pub fn optical_depth(
         &self,
         medium: Option<MediumId>,
         from: DVec3,
         dir: DVec3,
         length: f64,
-    ) -> f64 {
-        medium.map_or(0.0, |i| {
+    ) -> Rgb {
+        medium.map_or(Rgb::ZERO, |i| {
             self.participating(i).optical_depth(from, dir, length)
         })
     }

@@ -143,8 +143,7 @@ impl Scattering {
 
     /// Whether σs is the same in every channel (then a free flight's weights are 1).
     pub fn is_grey(&self) -> bool {
-        let s = self.sigma_s;
-        s.0.x == s.0.y && s.0.y == s.0.z
+        self.sigma_s.is_grey()
     }
 
     /// ln of each channel's density of a free flight's outcome after column `s`: scattered

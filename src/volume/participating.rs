@@ -19,24 +19,26 @@ use crate::media::Density;
 use glam::DVec3;
 use std::sync::Arc;
 
-/// Absorption: a coefficient σa (1/length, > 0) where the density is 1, scaled by the density.
+/// Absorption: a coefficient σa per RGB channel (1/length, ≥ 0, above 0 in some channel) where
+/// the density is 1, scaled by the density. Optical depths are per channel: a channel keeps
+/// exp(−τ) of its light over an optical depth τ.
 #[derive(Clone, Debug)]
 pub struct Absorption {
-    /// σa (1/length) where the density is 1.
-    pub sigma_a: f64,
+    /// σa (1/length) per channel where the density is 1.
+    pub sigma_a: Rgb,
     /// The density scaling σa (None: 1 everywhere).
     pub density: Option<Arc<Density>>,
 }
 
 impl Absorption {
-    /// σa at `p` (1/length).
-    pub fn at(&self, p: DVec3) -> f64 {
+    /// σa at `p` (1/length, per channel).
+    pub fn at(&self, p: DVec3) -> Rgb {
         self.sigma_a * self.density.as_ref().map_or(1.0, |d| d.at(p))
     }
 
     /// The optical depth ∫ σa ds along the straight piece from `from` along unit `dir` over
     /// `length`: σa times the density's column, exactly.
-    pub fn optical_depth(&self, from: DVec3, dir: DVec3, length: f64) -> f64 {
+    pub fn optical_depth(&self, from: DVec3, dir: DVec3, length: f64) -> Rgb {
         match &self.density {
             None => self.sigma_a * length,
             Some(d) => self.sigma_a * d.column(from, dir, length),
@@ -46,7 +48,7 @@ impl Absorption {
     /// The optical depth of one step of a curved path between `a` and `b`, `length` apart
     /// along the path: the depth along the chord, scaled by the arclength over the chord's
     /// length (so a constant σa gives σa·length exactly).
-    pub fn step_depth(&self, a: DVec3, b: DVec3, length: f64) -> f64 {
+    pub fn step_depth(&self, a: DVec3, b: DVec3, length: f64) -> Rgb {
         let chord = (b - a).length();
         match chord > 0.0 {
             true => self.optical_depth(a, (b - a) / chord, chord) * (length / chord),
@@ -64,10 +66,10 @@ pub struct Emission {
 }
 
 impl Emission {
-    /// The basic radiance emitted along a stretch of absorption optical depth `depth` and
-    /// not absorbed on it: Le·(1 − e^(−depth)).
-    pub fn along(&self, depth: f64) -> Rgb {
-        self.radiance * -(-depth).exp_m1()
+    /// The basic radiance emitted along a stretch of absorption optical depth `depth` (per
+    /// channel) and not absorbed on it: Le·(1 − e^(−depth)).
+    pub fn along(&self, depth: Rgb) -> Rgb {
+        self.radiance * Rgb(depth.0.map(|tau| -(-tau).exp_m1()))
     }
 }
 
@@ -86,25 +88,25 @@ pub struct Participating {
 }
 
 impl Participating {
-    /// The optical depth of absorption along the straight piece from `from` along unit `dir`
-    /// over `length` (0 where it does not absorb).
-    pub fn optical_depth(&self, from: DVec3, dir: DVec3, length: f64) -> f64 {
+    /// The optical depth of absorption per channel along the straight piece from `from` along
+    /// unit `dir` over `length` (0 where it does not absorb).
+    pub fn optical_depth(&self, from: DVec3, dir: DVec3, length: f64) -> Rgb {
         match &self.absorption {
             Some(a) if length > 0.0 => a.optical_depth(from, dir, length),
-            _ => 0.0,
+            _ => Rgb::ZERO,
         }
     }
 
     /// The optical depth of absorption along one step of a curved path ([`Absorption::step_depth`];
     /// 0 where it does not absorb).
-    pub fn step_depth(&self, a: DVec3, b: DVec3, length: f64) -> f64 {
+    pub fn step_depth(&self, a: DVec3, b: DVec3, length: f64) -> Rgb {
         self.absorption
             .as_ref()
-            .map_or(0.0, |ab| ab.step_depth(a, b, length))
+            .map_or(Rgb::ZERO, |ab| ab.step_depth(a, b, length))
     }
 
-    /// σa at `p` (1/length; 0 where it does not absorb).
-    pub fn sigma_a(&self, p: DVec3) -> f64 {
-        self.absorption.as_ref().map_or(0.0, |a| a.at(p))
+    /// σa at `p` (1/length per channel; 0 where it does not absorb).
+    pub fn sigma_a(&self, p: DVec3) -> Rgb {
+        self.absorption.as_ref().map_or(Rgb::ZERO, |a| a.at(p))
     }
 }

@@ -7,7 +7,7 @@ mod spectrum;
 pub mod xml;
 
 use super::geometry::{emitting_side, linear, parallelogram, similarity, triangle_area, Facing};
-use super::table::{affine_rows, free_name, string, table, vec3, AreaEmitter, Lists};
+use super::table::{absorption, affine_rows, free_name, string, table, vec3, AreaEmitter, Lists};
 use super::{Imported, Place, Told};
 use crate::error::{cut, Result};
 use glam::{DMat3, DMat4, DVec3};
@@ -599,17 +599,10 @@ impl Converter<'_> {
         medium.ignore("sample_emitters");
         let sigma_a = sigma_t * (DVec3::ONE - albedo);
         let sigma_s = sigma_t * albedo;
-        if (sigma_a.max_element() - sigma_a.min_element()) > 1e-9 * sigma_a.max_element() {
-            return Err(medium.error(format!(
-                "an absorption σt(1 − albedo) = {:?} that differs by channel: grinlight's \
-                 absorption is one number",
-                sigma_a.to_array()
-            )));
-        }
         let mut m = table([("profile", string("uniform")), ("n", Toml::Float(n))]);
         m.extend(grid.unwrap_or_default());
-        if sigma_a.x > 0.0 {
-            m.insert("absorption".into(), Toml::Float(sigma_a.x));
+        if sigma_a.max_element() > 0.0 {
+            m.insert("absorption".into(), absorption(sigma_a));
         }
         if sigma_s.max_element() > 0.0 {
             m.insert("scattering".into(), vec3(sigma_s));

@@ -16,7 +16,7 @@ pub mod parse;
 use super::geometry::{
     emitting_side, linear, look_at, parallelogram, similarity, triangle_area, Facing,
 };
-use super::table::{affine_rows, free_name, string, table, vec3, AreaEmitter, Lists};
+use super::table::{absorption, affine_rows, free_name, string, table, vec3, AreaEmitter, Lists};
 use super::{Imported, Place, Told};
 use crate::error::{cut, Result};
 use glam::{DMat4, DVec3};
@@ -1035,17 +1035,10 @@ impl<'s> Converter<'s> {
             )));
         }
         p.ignore("Lescale");
-        if (sigma_a.max_element() - sigma_a.min_element()) > 1e-9 * sigma_a.max_element() {
-            return Err(s.place.error(format!(
-                "{what}: an absorption sigma_a × scale = {:?} that differs by channel: \
-                 grinlight's absorption is one number",
-                sigma_a.to_array()
-            )));
-        }
         p.finish(&what)?;
         let mut m = table([("profile", string("uniform")), ("n", Toml::Float(n))]);
-        if sigma_a.x > 0.0 {
-            m.insert("absorption".into(), Toml::Float(sigma_a.x));
+        if sigma_a.max_element() > 0.0 {
+            m.insert("absorption".into(), absorption(sigma_a));
         }
         if sigma_s.max_element() > 0.0 {
             m.insert("scattering".into(), vec3(sigma_s));
