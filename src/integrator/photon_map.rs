@@ -310,6 +310,12 @@ impl<'a> PhotonMapper<'a> {
         s: &mut Sample<MapLayer>,
     ) -> Option<(VisiblePoint<'w>, SurfaceVertex<'w>, Carried<'w>)> {
         let mut walker = Walker::carrying(carried, Policy::Weighted);
+        // Whether the path has scattered at a point in a medium with a volume caustic map and
+        // met only specular and glossy lobes since: light reaching it from there through
+        // them alone (L (S|G)+ V) is the map's — the beams that reached the point counted
+        // it — so neither the direct light of a glossy vertex on the way nor emission a
+        // specular chain finds is added again.
+        let mut volume = false;
         loop {
             if let Vertex::Surface(v) = vp.vertex {
                 if v.lobes().has_diffuse() {
@@ -321,10 +327,11 @@ impl<'a> PhotonMapper<'a> {
                 s.stats.depth_limited += 1;
                 return None;
             }
-            found.direct += direct(walker.carried(), &vp, s.rng, s.stats);
-            // From a point in a medium with a volume caustic map, light through specular
-            // surfaces is the map's: the beams that reached the point counted it.
-            let volume = maps.volume.is_some() && matches!(vp.vertex, Vertex::Medium(_));
+            let in_medium = matches!(vp.vertex, Vertex::Medium(_));
+            if in_medium || !volume {
+                found.direct += direct(walker.carried(), &vp, s.rng, s.stats);
+            }
+            volume |= maps.volume.is_some() && in_medium;
             let b = vp.vertex.scatter_with(s.rng)?;
             let throughput = vp.throughput * b.sample.weight * b.radiance_scale;
             let mut beams = Beams::default();

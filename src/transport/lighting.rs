@@ -7,13 +7,14 @@
 
 use super::chain::{Carried, Chain, End, Policy, Walker};
 use super::connect::connect;
-use super::{visibility, Scattered, Stats, Tracer, Vertex};
+use super::{offset, visibility, Scattered, Stats, SurfaceVertex, Tracer, Vertex};
 use crate::color::Rgb;
 use crate::ids::MediumId;
 use crate::lights::Light;
 use crate::lights::LightSamples;
 use crate::sampling::{Given, Pick};
 use crate::scene::Role;
+use glam::DVec3;
 use rand::Rng;
 
 /// Radiance the end of `chain` sends back along it, as seen at its start: an emitter's (in
@@ -37,9 +38,55 @@ pub fn emission_seen(tracer: &Tracer, chain: &Chain) -> Rgb {
     }
 }
 
+/// Whether light samples reach the surface vertex `v` through it, from its far side: its BSDF
+/// transmits, into a medium of uniform index (a straight shadow ray there is a light path).
+pub fn samples_through(tracer: &Tracer, v: &SurfaceVertex) -> bool {
+    v.lobes().transmits() && v.beyond.is_none_or(|m| tracer.medium(m).is_uniform())
+}
+
+/// The side of a scattering vertex light arriving from a direction comes from, as a light
+/// sample's shadow ray leaves it.
+struct LitSide {
+    /// Where the shadow ray starts: off the surface on that side (the point itself in a
+    /// medium).
+    origin: DVec3,
+    /// The medium it crosses.
+    medium: Option<MediumId>,
+    /// |cos| at the surface's normal (1 in a medium).
+    cos: f64,
+    /// What radiance from there becomes toward ωo besides f: (n_ωo/n_far)² from a rough
+    /// interface's far side ([`SurfaceVertex::radiance_scale`]), else 1.
+    radiance_scale: f64,
+}
+
+/// The side light arriving from unit `wi` reaches `vertex` from — its arrival side, or the far
+/// side of a surface light samples reach through ([`samples_through`]) — or None where no
+/// light sample reaches it from there.
+fn lit_side(tracer: &Tracer, vertex: &Vertex, wi: DVec3) -> Option<LitSide> {
+    let cos = vertex.cos(wi);
+    if cos > 0.0 {
+        return Some(LitSide {
+            origin: vertex.origin(),
+            medium: vertex.medium(),
+            cos,
+            radiance_scale: 1.0,
+        });
+    }
+    let v = vertex
+        .surface()
+        .filter(|v| cos < 0.0 && samples_through(tracer, v))?;
+    Some(LitSide {
+        origin: offset(v.position, -v.normal),
+        medium: v.beyond,
+        cos: -cos,
+        radiance_scale: v.radiance_scale(wi),
+    })
+}
+
 /// One light sample of `light` at a scattering vertex in a uniform medium, through a straight
-/// shadow ray from its arrival side (multiple importance weighted against the BSDF or phase
-/// sample for area lights).
+/// shadow ray from the side the light lies on (the far side only through a surface that
+/// transmits into a uniform medium); multiple importance weighted against the BSDF or phase
+/// sample for area lights.
 fn straight_light(
     tracer: &Tracer,
     vertex: &Vertex,
@@ -47,14 +94,12 @@ fn straight_light(
     chosen: f64,
     uv: (f64, f64),
 ) -> Rgb {
-    let origin = vertex.origin();
-    let Some(inc) = light.sample_incident(origin, uv) else {
+    let Some(inc) = light.sample_incident(vertex.origin(), uv) else {
         return Rgb::ZERO;
     };
-    let cos = vertex.cos(inc.wi);
-    if cos <= 0.0 {
+    let Some(side) = lit_side(tracer, vertex, inc.wi) else {
         return Rgb::ZERO;
-    }
+    };
     let reach = if inc.distance.is_finite() {
         inc.distance * (1.0 - 1e-7)
     } else {
@@ -64,10 +109,9 @@ fn straight_light(
     if f == Rgb::ZERO {
         return Rgb::ZERO;
     }
-    let medium = vertex.medium();
-    let kept = visibility::transmittance(tracer, origin, medium, inc.wi, reach);
+    let kept = visibility::transmittance(tracer, side.origin, side.medium, inc.wi, reach);
     let weight = power_heuristic(inc.pdf * chosen, vertex.pdf(inc.wi));
-    f * tracer.radiance(inc.irradiance) * (cos * weight) * kept
+    f * tracer.radiance(inc.irradiance) * (side.cos * weight * side.radiance_scale) * kept
 }
 
 /// A point, spot, LED or parallel light at a scattering vertex in gradient medium `m`,
@@ -116,8 +160,9 @@ fn power_heuristic(a: f64, b: f64) -> f64 {
 ///   detectors are transparent, absorption applied), and one BSDF ray, combined by multiple
 ///   importance sampling with the power heuristic for area lights (the only lights both
 ///   strategies can find; a light sample's density is the light's times the chance it was
-///   drawn). Light samples reach the arrival side; a
-///   transmitted BSDF ray is the only strategy for the other side (weight 1).
+///   drawn). Light samples reach the arrival side, and the far side of a surface that
+///   transmits into a uniform medium (a rough glass lit from behind, by a point light as by
+///   any); a BSDF ray transmitted into a gradient medium is the only strategy there (weight 1).
 /// - In a gradient medium a straight connection is not a light path: point, spot, LED and
 ///   parallel light (the light drawn, if it is one of them) are connected to along the
 ///   curved path ([`connect`]), and the BSDF ray,
@@ -206,15 +251,18 @@ pub struct LightNumbers {
 
 /// The multiple-importance weight of the emission that a BSDF or phase sample `s` of `vertex`
 /// found at the end of `chain`, a chain that met no specular surface: the power heuristic
-/// against the light samples where they could have found it (an area light, seen from the
-/// arrival side of a vertex in a uniform medium), 1 where they could not (the environment,
-/// a transmitted sample, a vertex in a gradient medium).
+/// against the light samples where they could have found it (an area light, seen from a
+/// vertex in a uniform medium on its arrival side, or through it where [`samples_through`]),
+/// 1 where they could not (the environment, a sample transmitted into a gradient medium, a
+/// vertex in a gradient medium).
 pub fn bsdf_sample_weight(tracer: &Tracer, vertex: &Vertex, s: &Scattered, chain: &Chain) -> f64 {
     let graded = vertex
         .medium()
         .is_some_and(|m| !tracer.medium(m).is_uniform());
-    // Light samples reach only the arrival side of a vertex in a uniform medium.
-    let weighed = !graded && !s.sample.transmitted();
+    // Light samples reach the arrival side of a vertex in a uniform medium, and its far side
+    // through a surface that transmits into a uniform medium.
+    let through = || vertex.surface().is_some_and(|v| samples_through(tracer, v));
+    let weighed = !graded && (!s.sample.transmitted() || through());
     match chain.end {
         End::Emitter {
             prim,

@@ -879,7 +879,9 @@ impl<'s> Converter<'s> {
                 format!(
                     "{what}: grinlight's microfacet model masks with correlated heights (pbrt: \
                      separable) and a rough dielectric scatters on its microsurface more than \
-                     once (pbrt: once): grazing highlights differ by a few percent"
+                     once (pbrt: once): grazing highlights differ by a few percent, light \
+                     through a rough dielectric more (a frosted ball of fog lit from behind: \
+                     Mitsuba 3.9.1's image, whose model is pbrt's, 0.86 of grinlight's)"
                 ),
             )
         };
