@@ -56,6 +56,32 @@ impl Bounds3 {
         Self { lo, hi }
     }
 
+    /// The part of the straight segment from `from` along unit `dir` over `length` inside the
+    /// box, as the distances (t0, t1) along it where it enters and leaves (None: it misses the
+    /// box, or touches it only at a point). A direction parallel to a pair of faces meets
+    /// them only if it lies between them.
+    pub fn clip(&self, from: DVec3, dir: DVec3, length: f64) -> Option<(f64, f64)> {
+        let (mut t0, mut t1) = (0.0f64, length);
+        for a in 0..3 {
+            let (o, d, lo, hi) = (from[a], dir[a], self.lo[a], self.hi[a]);
+            if d == 0.0 {
+                if o < lo || o > hi {
+                    return None;
+                }
+                continue;
+            }
+            let (near, far) = ((lo - o) / d, (hi - o) / d);
+            t0 = t0.max(near.min(far));
+            t1 = t1.min(near.max(far));
+        }
+        (t0 < t1).then_some((t0, t1))
+    }
+
+    /// Whether `p` lies in the box (its faces included).
+    pub fn contains(&self, p: DVec3) -> bool {
+        p.cmpge(self.lo).all() && p.cmple(self.hi).all()
+    }
+
     /// The smallest box holding `points` ([`Bounds3::EMPTY`] for none).
     pub fn of_points(points: impl IntoIterator<Item = DVec3>) -> Self {
         points.into_iter().fold(Self::EMPTY, Self::with_point)

@@ -74,6 +74,8 @@ const BAD: &[(&str, usize, usize, &str)] = &[
     ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = 1\nscattering = 1\ndensity_bounds = [[0, 0, 0], [1, 1, 1]]\ndensity_dims = [2, 2, 2]\ndensity_values = [1, 1, 1, 1, 1, 1, -1, 1]\n", 8, 1, "key `density_values`: value #6 is -1: a density must be finite and ≥ 0"),
     ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = 1\nscattering = 1\ndensity_bounds = [[0, 0, 0], [1, 1, 1]]\ndensity_dims = [2, 2, 3]\ndensity_values = [1, 1, 1, 1, 1, 1, 1, 1]\n", 8, 1, "key `density_values`: expected 12 values (dims product), got 8"),
     ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = 1\nscattering = 1\ndensity_bounds = [[0, 0, 0], [1, 1, 1]]\ndensity_values = [1, 1, 1, 1, 1, 1, 1, 1]\n", 1, 1, "key `density_dims`: is missing"),
+    ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = 1\nscattering = 1\ndensity_bounds = [[0, 0, 0], [1, 1, 1]]\ndensity_dims = [2, 2, 2]\ndensity_values = [1, 1, 1, 1, 1, 1, 1, 1]\ndensity_end = [[0, 2, 0], [1, 1, 1]]\n", 9, 1, "key `density_end`: the box's min must lie below its max"),
+    ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = 1\nscattering = 1\ndensity_bounds = [[0, 0, 0], [1, 1, 1]]\ndensity_dims = [2, 2, 2]\ndensity_values = [1, 1, 1, 1, 1, 1, 1, 1]\ndensity_end = [[0, 0, 0]]\n", 9, 1, "key `density_end`: expected [[min x, y, z], [max x, y, z]]"),
     // Radial tables: r not from 0, lengths differing, n ≤ 0.
     ("[[medium]]\nname = \"t\"\nprofile = \"radial_table\"\nr = [0.1, 0.2]\nn = [1.5, 1.4]\n", 4, 1, "key `r`: must start at 0"),
     ("[[medium]]\nname = \"t\"\nprofile = \"radial_table\"\nr = [0.0, 0.2, 0.3]\nn = [1.5, 1.4]\n", 5, 1, "key `n`: `r` and `n` need the same number"),

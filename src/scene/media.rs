@@ -5,6 +5,7 @@ use super::model::Profile;
 use super::table::TableReader;
 use crate::color::Rgb;
 use crate::error::Result;
+use crate::math::Bounds3;
 use crate::media::{
     Axis, BlackHole, Density, ExactBlackHole, ExponentialMedium, FishEye, GridError, GridMedium,
     GridQuantity, HeightTable, HyperbolicMedium, Interpolation, LinearMedium, Luneburg, Medium,
@@ -479,7 +480,8 @@ fn grid_error_key(e: &GridError, prefix: &str, nodes: &Nodes) -> String {
 
 /// A `[[medium]]` table's `density` lattice, if it gives one (keys `density_bounds`,
 /// `density_dims`, `density_values` or `density_file`, and for a VDB file `density_grid` and
-/// `density_background`): a heterogeneous medium's scale of σa and σs.
+/// `density_background`; `density_end`, the box outside which it is 0): a heterogeneous
+/// medium's scale of σa and σs.
 pub fn read_density(t: &mut TableReader) -> Result<Option<Arc<Density>>> {
     const PREFIX: &str = "density_";
     if !["file", "bounds", "dims", "values"]
@@ -493,7 +495,20 @@ pub fn read_density(t: &mut TableReader) -> Result<Option<Arc<Density>>> {
     let values = std::mem::take(&mut nodes.values);
     let density = Density::new(nodes.min, nodes.max, nodes.dims, values)
         .map_err(|e| t.error(&grid_error_key(&e, PREFIX, &nodes), e))?;
-    Ok(Some(Arc::new(density)))
+    let end = "density_end";
+    if !t.has(end) {
+        return Ok(Some(Arc::new(density)));
+    }
+    let corners = t.vec3_list(end)?;
+    let [lo, hi] = corners[..] else {
+        return Err(t.error(end, "expected [[min x, y, z], [max x, y, z]]"));
+    };
+    t.check(
+        end,
+        lo.is_finite() && hi.is_finite() && lo.cmplt(hi).all(),
+        "the box's min must lie below its max on every axis, both finite",
+    )?;
+    Ok(Some(Arc::new(density.ending_at(Bounds3::new(lo, hi)))))
 }
 
 fn read_grid(t: &mut TableReader) -> Result<GridMedium> {

@@ -641,7 +641,8 @@ impl Converter<'_> {
     /// that `to_world` places, node i at (i + ½)/r, trilinear between nodes and clamped
     /// beyond the outer ones (checked against Mitsuba 3.9.1's own lookups,
     /// `bench/mitsuba_gridvolume.py`) — grinlight's density grid between its first and last
-    /// nodes, clamped beyond them, which `density_bounds` places there.
+    /// nodes, clamped beyond them, which `density_bounds` places there. Its medium ends at
+    /// the placed cube (heterogeneous.cpp tracks only within the grid's box): `density_end`.
     fn density_grid(&mut self, child: &xml::Child) -> Result<Table> {
         let grid = child.object().clone();
         if grid.tag != "volume" || grid.kind != "gridvolume" {
@@ -705,9 +706,14 @@ impl Converter<'_> {
         let res = DVec3::from(header.dims.map(|n| n as f64));
         let first = m.transform_point3(0.5 / res);
         let last = m.transform_point3(DVec3::ONE - 0.5 / res);
+        let (lo, hi) = (
+            m.transform_point3(DVec3::ZERO),
+            m.transform_point3(DVec3::ONE),
+        );
         Ok(table([
             ("density_file", string(&path.to_string_lossy())),
             ("density_bounds", Toml::Array(vec![vec3(first), vec3(last)])),
+            ("density_end", Toml::Array(vec![vec3(lo), vec3(hi)])),
         ]))
     }
 
