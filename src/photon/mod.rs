@@ -651,6 +651,10 @@ struct PhotonWalk<'a, 'p> {
     /// that far, so a figure's lines stay short).
     last: DVec3,
     reach: f64,
+    /// Power its bounces absorbed on the way and its branch has not booked yet (W, the mean
+    /// over the channels): where a bounce's weight differs by channel, Russian roulette keeps
+    /// the photon's largest channel's chance and the others lose power without ending it.
+    absorbed: f64,
 }
 
 impl PhotonWalk<'_, '_> {
@@ -863,6 +867,7 @@ fn trace_photon(
         path,
         last: e.origin,
         reach: tracer.ball.radius,
+        absorbed: 0.0,
     };
     let mut emitted = (e.power / tag.count as f64).mean();
     if tag.batch != Batch::Receivers {
@@ -938,6 +943,9 @@ fn trace_photon(
                 });
                 emitted = 0.0;
             };
+            if walk.absorbed != 0.0 {
+                book(std::mem::take(&mut walk.absorbed), Fate::Absorbed);
+            }
             let absorbed = walk.power.mean();
             let at = match ending {
                 Ending::Fate(fate) => {
@@ -1202,7 +1210,12 @@ fn follow_branch<'w, R: Rng>(
                 Vertex::Medium(_) | Vertex::Surface(_) => Fate::Absorbed,
             };
         };
+        let before = walk.power.mean();
         walk.power *= bounce.weight;
+        // What the surviving photon's channels lost (a coloured surface's), signed: a
+        // glossy sample's weight may exceed 1 where its pdf falls short of f·cos, and the
+        // bookings add up to what the bounces absorb in expectation either way.
+        walk.absorbed += before - walk.power.mean();
         b.throughput *= bounce.weight;
         if bounce.scattered.sample.lobe.has_diffuse() {
             if tag.batch == Batch::Caustic {
