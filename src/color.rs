@@ -38,7 +38,7 @@ impl Rgb {
 
     /// exp of each channel (a transmittance from its optical depth's negative).
     pub fn exp(&self) -> Rgb {
-        Rgb(self.0.map(f64::exp))
+        Rgb(self.0.exp())
     }
 }
 
