@@ -363,6 +363,38 @@ fn a_media_absorption_converts_channel_by_channel() {
     }
 }
 
+/// A medium's phase function converts by name: Mitsuba's `rayleigh` (its phase function for
+/// unpolarized light) to grinlight's, `hg` with its g; another is refused by name.
+#[test]
+fn a_media_phase_function_converts_by_name() {
+    for (phase, want) in [
+        ("<phase type=\"rayleigh\"/>", Some("\"rayleigh\"")),
+        (
+            "<phase type=\"hg\"><float name=\"g\" value=\"0.4\"/></phase>",
+            Some("{ hg = 0.4 }"),
+        ),
+        ("<phase type=\"sggx\"/>", None),
+    ] {
+        let d = dir("phase");
+        let body = format!(
+            "<shape type=\"sphere\"><bsdf type=\"dielectric\"/><medium name=\"interior\" \
+             type=\"homogeneous\"><rgb name=\"sigma_t\" value=\"1\"/>{phase}</medium></shape>"
+        );
+        let converted = convert(
+            &write(&d, "s.xml", &scene("", &body)),
+            &ImportOptions::default(),
+        );
+        match (want, converted) {
+            (Some(want), Ok(t)) => {
+                let got = tables(&t, "medium")[0]["phase"].to_string();
+                assert_eq!(got.replace(' ', ""), want.replace(' ', ""), "{phase}");
+            }
+            (None, Err(e)) => assert!(e.to_string().contains("'sggx' is not supported"), "{e}"),
+            (want, got) => panic!("{phase}: {want:?}, got {got:?}"),
+        }
+    }
+}
+
 #[test]
 fn an_include_cycle_is_refused() {
     let d = dir("cycle");

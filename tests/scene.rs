@@ -69,7 +69,7 @@ const BAD: &[(&str, usize, usize, &str)] = &[
     ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = 1\nscattering = { rayleigh = 1 }\n", 5, 1, "key `scattering`: unknown dispersion model 'rayleigh'"),
     ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = 1\nscattering = 1\nphase = { hg = 1.0 }\n", 6, 1, "key `phase`: hg takes one mean cosine g with −1 < g < 1"),
     ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = 1\nscattering = 1\nphase = { hg = -1.5 }\n", 6, 1, "key `phase`: hg takes one mean cosine g with −1 < g < 1"),
-    ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = 1\nscattering = 1\nphase = \"rayleigh\"\n", 6, 1, "key `phase`: expected \"isotropic\" or { hg = g }"),
+    ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = 1\nscattering = 1\nphase = \"mie\"\n", 6, 1, "key `phase`: expected \"isotropic\", \"rayleigh\" or { hg = g }"),
     // Density: a negative value, a count that does not match `density_dims`, a missing key.
     ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = 1\nscattering = 1\ndensity_bounds = [[0, 0, 0], [1, 1, 1]]\ndensity_dims = [2, 2, 2]\ndensity_values = [1, 1, 1, 1, 1, 1, -1, 1]\n", 8, 1, "key `density_values`: value #6 is -1: a density must be finite and ≥ 0"),
     ("[[medium]]\nname = \"a\"\nprofile = \"uniform\"\nn = 1\nscattering = 1\ndensity_bounds = [[0, 0, 0], [1, 1, 1]]\ndensity_dims = [2, 2, 3]\ndensity_values = [1, 1, 1, 1, 1, 1, 1, 1]\n", 8, 1, "key `density_values`: expected 12 values (dims product), got 8"),

@@ -283,9 +283,8 @@ impl ChainEvents for Recording<'_> {
             origin: stretch.origin,
             medium: stretch.medium,
         });
-        let scatters = stretch
-            .medium
-            .filter(|&m| self.tracer.scattering(m).is_some());
+        let scatters = (stretch.medium)
+            .filter(|&m| stretch.may_scatter && self.tracer.scattering(m).is_some());
         beams.recording = scatters.is_some();
         if let Some(medium) = scatters {
             if beams.stretches.is_empty() {

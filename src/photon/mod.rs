@@ -33,6 +33,7 @@ use crate::environment::Environment;
 use crate::ids::{MediumId, PrimId};
 use crate::lights::{Aim, Cone, Emission, Entry, Light};
 use crate::math::Ball;
+use crate::polarization::{Polarization, Sense};
 use crate::receiver::Detection;
 use crate::sampling::{cosine_hemisphere, stream, uniform_sphere, Discrete, Frame, Pick, Purpose};
 use crate::spectrum::{colour, Fluorophore, Spectrum};
@@ -779,16 +780,89 @@ fn absorbed_by_fluorophore<'s>(
 /// Russian roulette on the sample's weight ([`roulette`]; a phase sample's is 1: what a
 /// medium absorbs was played for on the way); None when it is absorbed. A Lambertian vertex,
 /// whose weight (its albedo) is known before sampling, plays the roulette first (as photons
-/// always have: the same numbers, the same photons).
-fn scatter_photon(vertex: &Vertex, rng: &mut impl Rng) -> Option<PhotonBounce> {
-    if let Some(albedo) = vertex.surface().and_then(|v| v.bsdf.lambert_albedo()) {
-        let weight = roulette(albedo, rng)?;
-        let scattered = vertex.scatter_with(rng)?;
-        return Some(PhotonBounce { weight, scattered });
+/// always have: the same numbers, the same photons). Where the photon carries a Stokes vector
+/// (`polarization`, polarized transport) a phase function that polarizes draws its direction
+/// with the polarization's factor ([`polarized_direction`]); every other vertex leaves the
+/// light unpolarized.
+fn scatter_photon(
+    vertex: &Vertex,
+    polarization: &mut Option<Polarization>,
+    rng: &mut impl Rng,
+) -> Option<PhotonBounce> {
+    if let (Vertex::Medium(v), Some(state)) = (vertex, polarization.as_mut()) {
+        if v.phase.polarizes() {
+            let (wi, weight) = polarized_direction(v, state, rng)?;
+            let scattered = v.toward(wi);
+            return Some(PhotonBounce { weight, scattered });
+        }
     }
-    let scattered = vertex.scatter_with(rng)?;
-    let weight = roulette(scattered.sample.weight, rng)?;
-    Some(PhotonBounce { weight, scattered })
+    let bounce = match vertex.surface().and_then(|v| v.bsdf.lambert_albedo()) {
+        Some(albedo) => {
+            let weight = roulette(albedo, rng)?;
+            let scattered = vertex.scatter_with(rng)?;
+            PhotonBounce { weight, scattered }
+        }
+        None => {
+            let scattered = vertex.scatter_with(rng)?;
+            let weight = roulette(scattered.sample.weight, rng)?;
+            PhotonBounce { weight, scattered }
+        }
+    };
+    if let Some(state) = polarization.as_mut() {
+        *state = Polarization::unpolarized(Sense::WithLight, bounce.scattered.ray.direction);
+    }
+    Some(bounce)
+}
+
+/// The most directions [`polarized_direction`] draws before it gives up: each is taken with
+/// probability at least 1/2 on average, so giving up has a chance below 2⁻¹⁰⁰⁰.
+const MAX_REDRAWS: usize = 1000;
+
+/// The light of Stokes vector `state` scattered at `v` into unit `after`: the phase
+/// function's Mueller matrix applied where it polarizes, unpolarized light where it does not.
+/// Returns the factor per channel by which the light's polarization changes the power going
+/// that way, against unpolarized light's ([`Polarization::meet`]).
+fn scatter_state(state: &mut Polarization, v: &MediumVertex, after: DVec3) -> Rgb {
+    let before = -v.wo;
+    match v.phase.mueller(before, after) {
+        Some(element) => state.meet(&element, before),
+        None => {
+            *state = Polarization::unpolarized(Sense::WithLight, after);
+            Rgb::ONE
+        }
+    }
+}
+
+/// A direction for a photon of Stokes vector `state` scattered at `v` by a phase function
+/// that polarizes, drawn with density p·f̄ — p the phase function for unpolarized light, f the
+/// factor per channel by which the light's polarization changes what goes that way
+/// ([`scatter_state`]), f̄ its channels' mean — by rejection from p under f̄'s bound 1 + the
+/// largest degree of linear polarization. f averages 1 over the azimuth (the matrix's first
+/// row is (M00, M01, 0, 0) in the scattering plane's basis, which turns with the azimuth), so
+/// p·f̄ is normalised; unpolarized light is never rejected. `state` becomes the scattered
+/// light's. Returns the direction and the channels' weights f/f̄ (1 where they share one
+/// state); None after [`MAX_REDRAWS`] rejections.
+fn polarized_direction(
+    v: &MediumVertex,
+    state: &mut Polarization,
+    rng: &mut impl Rng,
+) -> Option<(DVec3, Rgb)> {
+    let bound = 1.0 + state.linear_degree();
+    for _ in 0..MAX_REDRAWS {
+        let after = v.phase.sample(-v.wo, (rng.gen(), rng.gen()));
+        let mut scattered = *state;
+        let f = scatter_state(&mut scattered, v, after);
+        let mean = f.mean();
+        if rng.gen::<f64>() * bound < mean {
+            *state = scattered;
+            let weight = match f.is_grey() {
+                true => Rgb::ONE,
+                false => f / mean,
+            };
+            return Some((after, weight));
+        }
+    }
+    None
 }
 
 /// A map photon scattering at a point `v` of a medium outside the scene ball, of which it sees
@@ -797,19 +871,60 @@ fn scatter_photon(vertex: &Vertex, rng: &mut impl Rng) -> Option<PhotonBounce> {
 /// from the phase function — ending where that direction lies in the cone, whose light is the
 /// branch's. In open fog most of the light scattered outside the scene never comes back: drawn
 /// from the phase function alone, a photon scattered at distance ρ reaches the ball about
-/// (radius / 2ρ)² of the time, carrying a weight none of the others do. Returns the branch's
-/// direction and weight, and the photon's way on (None where it ends).
-fn split_toward(v: &MediumVertex, cone: Cone, rng: &mut impl Rng) -> ((DVec3, f64), Option<Ray>) {
+/// (radius / 2ρ)² of the time, carrying a weight none of the others do. Where the photon
+/// carries a Stokes vector (`polarization`), both are scattered light's, the branch weighed by
+/// the polarization's factor and the photon's direction drawn with it ([`polarized_direction`]).
+fn split_toward(
+    v: &MediumVertex,
+    cone: Cone,
+    polarization: &mut Option<Polarization>,
+    rng: &mut impl Rng,
+) -> Option<Split> {
     let before = -v.wo;
     let toward = cone.sample((rng.gen(), rng.gen()));
-    let branch = (toward, v.phase.between(before, toward) * cone.solid_angle());
-    let on = v.phase.sample(before, (rng.gen(), rng.gen()));
-    let ray = (cone.density(on) == 0.0).then_some(Ray {
-        origin: v.position,
-        direction: on,
-        medium: v.medium,
-    });
-    (branch, ray)
+    let mut branch_polarization = *polarization;
+    let polarized =
+        (branch_polarization.as_mut()).map_or(Rgb::ONE, |s| scatter_state(s, v, toward));
+    let branch_weight = polarized * (v.phase.between(before, toward) * cone.solid_angle());
+    let (on, on_weight) = match polarization.as_mut() {
+        Some(state) if v.phase.polarizes() => polarized_direction(v, state, rng)?,
+        _ => {
+            let after = v.phase.sample(before, (rng.gen(), rng.gen()));
+            if let Some(state) = polarization.as_mut() {
+                *state = Polarization::unpolarized(Sense::WithLight, after);
+            }
+            (after, Rgb::ONE)
+        }
+    };
+    Some(Split {
+        branch: Ray {
+            origin: v.position,
+            direction: toward,
+            medium: v.medium,
+        },
+        branch_weight,
+        branch_polarization,
+        on: (cone.density(on) == 0.0).then_some(Ray {
+            origin: v.position,
+            direction: on,
+            medium: v.medium,
+        }),
+        on_weight,
+    })
+}
+
+/// What a photon splits into outside the scene ball ([`split_toward`]).
+struct Split {
+    /// The branch sent toward the ball.
+    branch: Ray,
+    /// The branch's weight: p·Ω, times the polarization's factor.
+    branch_weight: Rgb,
+    /// The branch's Stokes vector, where the photon carries one.
+    branch_polarization: Option<Polarization>,
+    /// The photon's own way on (None where it ends: its direction lies in the cone).
+    on: Option<Ray>,
+    /// What the photon's power is multiplied by on its way on.
+    on_weight: Rgb,
 }
 
 /// Russian roulette on a bounce of `weight`: the photon goes on with probability equal to its
@@ -917,6 +1032,7 @@ fn trace_photon(
             fogged: leg.launch.scattered,
             first: leg.fluoresced.is_none(),
             splits: tag.batch != Batch::Receivers,
+            polarization: None,
         }];
         // The power a dye first emitted it with, booked in the fluorescence part once.
         let mut first_emission = leg.fluoresced;
@@ -1059,6 +1175,9 @@ struct Branch<'w> {
     /// Whether it splits where a medium scatters it outside the scene ball (a map photon's
     /// own path; branches do not split again).
     splits: bool,
+    /// Its Stokes vector where the transport is polarized and a scattering that polarizes
+    /// sent it on polarized (None: unpolarized, as from a source or a depolarizing vertex).
+    polarization: Option<Polarization>,
 }
 
 /// The random stream and statistics a photon's branches share.
@@ -1088,7 +1207,9 @@ fn follow_branch<'w, R: Rng>(
     let tracer = b.walker.tracer;
     let tag = walk.tag;
     let fate = loop {
-        let chain = b.walker.follow(b.ray, rng, stats, walk);
+        let chain = b
+            .walker
+            .follow_carrying(b.ray, &mut b.polarization, rng, stats, walk);
         match (chain.dispersed, launch.hero) {
             (Some(before), Some(h)) => {
                 // Its spectrum at the hero wavelength, times the reflectance spectrum of what
@@ -1175,19 +1296,18 @@ fn follow_branch<'w, R: Rng>(
             walk.power /= chain::ROULETTE_SURVIVAL;
         }
         if let (Some((v, cone)), true) = (outside, b.splits) {
-            let ((toward, weight), on) = split_toward(v, cone, rng);
+            let Some(split) = split_toward(v, cone, &mut b.polarization, rng) else {
+                break Fate::Lost;
+            };
             // A branch from far out, whose weight is small, is kept by Russian roulette in
             // proportion to it: in a thick fog a photon scatters outside the ball dozens of
             // times, and each branch is a photon to trace.
-            let kept = (2.0 * weight).min(1.0);
+            let kept = (2.0 * split.branch_weight.max_element()).min(1.0);
             if rng.gen::<f64>() < kept {
                 branches.push(Branch {
-                    ray: Ray {
-                        origin: v.position,
-                        direction: toward,
-                        medium: v.medium,
-                    },
-                    power: walk.power * (weight / kept),
+                    ray: split.branch,
+                    power: walk.power * (split.branch_weight / kept),
+                    polarization: split.branch_polarization,
                     bent: true,
                     fogged: true,
                     splits: false,
@@ -1196,13 +1316,17 @@ fn follow_branch<'w, R: Rng>(
             }
             b.bent = true;
             b.fogged = true;
-            match on {
-                Some(ray) => b.ray = ray,
+            match split.on {
+                Some(ray) => {
+                    walk.power *= split.on_weight;
+                    b.throughput *= split.on_weight;
+                    b.ray = ray;
+                }
                 None => break Fate::Lost,
             }
             continue;
         }
-        let Some(bounce) = scatter_photon(&vertex, rng) else {
+        let Some(bounce) = scatter_photon(&vertex, &mut b.polarization, rng) else {
             break match vertex {
                 Vertex::Medium(MediumVertex {
                     medium: Some(m), ..

@@ -220,6 +220,18 @@ impl Polarization {
         }
     }
 
+    /// The largest degree of linear polarization √(S1² + S2²)/S0 of the light over the
+    /// channels (with the light; 0 against it, and for a channel that carries nothing).
+    pub fn linear_degree(&self) -> f64 {
+        match self.sense {
+            Sense::WithLight => (self.channels.iter())
+                .filter(|v| v.x > 0.0)
+                .map(|v| v.y.hypot(v.z) / v.x)
+                .fold(0.0, f64::max),
+            Sense::AgainstLight => 0.0,
+        }
+    }
+
     /// What the camera records of depolarized light where the chain ends, per channel (the
     /// first element of its measurement row; 1 with the light, whose power the weight holds).
     pub fn closing(&self) -> Rgb {

@@ -219,6 +219,21 @@ pub fn perfect_mirror() -> DMat4 {
     ])
 }
 
+/// Rayleigh scattering through the angle of cosine `cos` (an electric dipole much smaller than
+/// the wavelength, driven by the field: Chandrasekhar 1960, ch. I §15), in
+/// the s/p basis of the scattering plane — x = s, its unit normal k_in × k_out, the same for
+/// the light arriving and leaving, and y = k × s for each. The dipole radiates the s field
+/// whole and the p field times cos θ (their amplitudes' ratio; y_out·y_in = cos θ), so this
+/// is the element of Jones matrix diag(1, cos θ) times 3/(8π): M00 = 3(1 + cos²θ)/(16π) is the
+/// phase function for unpolarized light (1/sr, [`crate::volume::Phase::Rayleigh`]), and
+/// unpolarized light leaves with S1/S0 = sin²θ/(1 + cos²θ), polarized across the scattering
+/// plane (wholly at 90°).
+pub fn rayleigh(cos: f64) -> DMat4 {
+    let cos = cos.clamp(-1.0, 1.0);
+    let jones = interface(Complex64::new(1.0, 0.0), Complex64::new(cos, 0.0), 1.0);
+    jones.unwrap_or(DMat4::ZERO) * (3.0 / (8.0 * std::f64::consts::PI))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -463,5 +478,76 @@ mod tests {
             assert!((thin_pane(1.0, eta)[0].col(0).x - 2.0 * r / (1.0 + r)).abs() < 1e-15);
         }
         assert!(thin_pane(0.3, 1.0)[1].abs_diff_eq(DMat4::IDENTITY, 1e-15));
+    }
+
+    /// Rayleigh's matrix against the dipole's field computed on its own: a field (Ex, Ey) in
+    /// the basis (x, k × x) of light along k drives a dipole p = E, which radiates along k′ the
+    /// field p − (p·k′)k′; its Stokes vector in the basis (s, k′ × s) of the scattering plane,
+    /// times 3/(8π), is the matrix times the incident Stokes vector in (s, k × s), to 1e-12,
+    /// for linear, elliptical and circular fields and scattering angles from 0.5° to 179.5°.
+    /// Unpolarized light leaves with S1/S0 = sin²θ/(1 + cos²θ), and M00 is the phase function.
+    #[test]
+    fn rayleighs_matrix_is_the_dipoles_field() {
+        let stokes = |ex: Complex64, ey: Complex64| {
+            let z = ex * ey.conj();
+            DVec4::new(
+                ex.norm_sqr() + ey.norm_sqr(),
+                ex.norm_sqr() - ey.norm_sqr(),
+                2.0 * z.re,
+                2.0 * z.im,
+            )
+        };
+        let k = DVec3::new(0.3, -0.4, 0.866).normalize();
+        let fields = [
+            (Complex64::new(1.0, 0.0), Complex64::new(0.0, 0.0)),
+            (Complex64::new(0.0, 0.0), Complex64::new(1.0, 0.0)),
+            (Complex64::new(0.6, 0.0), Complex64::new(0.8, 0.0)),
+            (Complex64::new(0.5, 0.2), Complex64::new(-0.3, 0.7)),
+            (Complex64::new(1.0, 0.0), Complex64::new(0.0, 1.0)),
+        ];
+        for deg in [0.5, 10.0, 45.0, 90.0, 120.0, 179.5] {
+            for azimuth in [0.0, 1.0, 2.5] {
+                let theta = f64::to_radians(deg);
+                let (a, b) = (
+                    k.any_orthonormal_vector(),
+                    k.cross(k.any_orthonormal_vector()),
+                );
+                let across = (a * f64::cos(azimuth) + b * f64::sin(azimuth)).normalize();
+                let out = (k * theta.cos() + across * theta.sin()).normalize();
+                let s = k.cross(out).normalize();
+                let (y_in, y_out) = (k.cross(s), out.cross(s));
+                let m = rayleigh(k.dot(out));
+                for &(ex, ey) in &fields {
+                    let p = |axis: DVec3| ex * axis.dot(s) + ey * axis.dot(y_in);
+                    // The field's Cartesian components, the radiated field, and its (s, p) parts.
+                    let e = [DVec3::X, DVec3::Y, DVec3::Z].map(p);
+                    let along = e[0] * out.x + e[1] * out.y + e[2] * out.z;
+                    let radiated = [0, 1, 2].map(|i| e[i] - along * out[i]);
+                    let on = |axis: DVec3| {
+                        radiated[0] * axis.x + radiated[1] * axis.y + radiated[2] * axis.z
+                    };
+                    let want = stokes(on(s), on(y_out)) * (3.0 / (8.0 * std::f64::consts::PI));
+                    let got = m * stokes(ex, ey);
+                    assert!(
+                        got.abs_diff_eq(want, 1e-12),
+                        "{deg}°, ({ex}, {ey}): {got} against {want}"
+                    );
+                }
+            }
+            let c = f64::to_radians(deg).cos();
+            let v = rayleigh(c) * unpolarized();
+            let phase = crate::volume::Phase::Rayleigh.eval(c);
+            assert!(
+                (v.x - phase).abs() < 1e-15 * phase,
+                "{deg}°: {} against {phase}",
+                v.x
+            );
+            let dolp = (1.0 - c * c) / (1.0 + c * c);
+            assert!(
+                (v.y / v.x - dolp).abs() < 1e-12,
+                "{deg}°: S1/S0 {}",
+                v.y / v.x
+            );
+        }
     }
 }

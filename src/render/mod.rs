@@ -135,6 +135,7 @@ pub fn render_passes(
     images_carry_all_light(scene)?;
     stokes_measurable(scene, settings)?;
     let tracer = Tracer::new(scene, &settings.trace);
+    views_carry_media_polarization(scene, &tracer)?;
     match settings.integrator {
         Kind::PhotonMap => {
             photons_carry_all_light(scene)?;
@@ -213,6 +214,26 @@ fn stokes_measurable(scene: &Scene, settings: &Settings) -> Result<()> {
                 "medium '{name}' scatters or emits light toward the camera's rays on their way: \
                  the Stokes vector of such light is not measured yet (render S0 alone, or \
                  through `polarizer_deg`)"
+            ),
+        }),
+        (true, None) | (false, _) => Ok(()),
+    }
+}
+
+/// Refuses a camera view of a scene with a medium whose scattering polarizes (Rayleigh's)
+/// where the transport is polarized (`polarized`, `stokes`, a sheet or a camera polarizer): a
+/// camera path takes the light a medium scatters toward it as unpolarized, which such light is
+/// not. Photons carry it, so receivers measure it; without polarized transport Rayleigh's
+/// phase function is its unpolarized intensity's, and images render.
+pub fn views_carry_media_polarization(scene: &Scene, tracer: &Tracer) -> Result<()> {
+    match (tracer.settings.polarized, scene.media().first_polarizing()) {
+        (true, Some(name)) => Err(crate::error::Error::Setting {
+            key: "polarized",
+            message: format!(
+                "medium '{name}' scatters as Rayleigh's phase function, which polarizes: a \
+                 camera's view through it does not carry that polarization yet (its receivers \
+                 measure it; leave out [camera] to measure them alone, or render the view \
+                 unpolarized)"
             ),
         }),
         (true, None) | (false, _) => Ok(()),

@@ -153,6 +153,7 @@ pub fn read_scattering(
     let phase = match t.value_opt("phase") {
         None => Phase::Isotropic,
         Some(Value::String(name)) if name == "isotropic" => Phase::Isotropic,
+        Some(Value::String(name)) if name == "rayleigh" => Phase::Rayleigh,
         Some(Value::Table(table)) if table.len() == 1 && table.contains_key("hg") => {
             let g = t.numbers_in("phase", &table["hg"])?;
             t.check(
@@ -165,7 +166,7 @@ pub fn read_scattering(
         Some(other) => {
             return Err(t.error(
                 "phase",
-                format!("expected \"isotropic\" or {{ hg = g }}, got {other}"),
+                format!("expected \"isotropic\", \"rayleigh\" or {{ hg = g }}, got {other}"),
             ))
         }
     };

@@ -146,6 +146,9 @@ pub struct Stretch {
     /// The path's free flights with this stretch's drawn (what [`Flights::weigh`] needs to
     /// weigh a point on it).
     pub flights: Flights,
+    /// Whether the path may still scatter on it: false where it has met `max_depth` events
+    /// (light scattered toward it on the way would be one event too many).
+    pub may_scatter: bool,
 }
 
 /// A chain crossing a receiver's detector.
@@ -300,6 +303,20 @@ struct Lent<'a, R> {
     polarization: Option<&'a mut Polarization>,
     /// Index-matched boundaries crossed so far ([`MAX_CROSSINGS`]).
     crossings: usize,
+}
+
+/// The polarization a chain starts from, where the transport is polarized.
+enum Start<'a> {
+    /// Unpolarized light (a photon), or the camera's measurement of the light's power (through
+    /// its polarizer, if any).
+    Unpolarized,
+    /// A camera's measurement of the whole Stokes vector in the basis of the first axis given;
+    /// what it records of the light at the chain's end is written to the place given (a chain
+    /// is returned by value at every bounce: what only a camera's first chain needs is not
+    /// returned with it).
+    MeasuringStokes(DVec3, &'a mut Option<[Rgb; 3]>),
+    /// What the place holds (unpolarized where it holds none), left there at the chain's end.
+    Carrying(&'a mut Option<Polarization>),
 }
 
 /// The chain's weight as its start sees light that is unpolarized where the chain is now: with
@@ -462,7 +479,23 @@ impl<'w> Walker<'w> {
         stats: &mut Stats,
         observer: &mut dyn ChainEvents,
     ) -> Chain<'w> {
-        self.walk(ray, None, rng, stats, observer)
+        self.walk(ray, Start::Unpolarized, rng, stats, observer)
+    }
+
+    /// [`Walker::follow`] for a chain that starts carrying the polarization `carried` holds
+    /// (unpolarized light where it holds none: a photon leaving a source or a depolarizing
+    /// vertex) and leaves in it what it carries at its end — what a photon takes on through a
+    /// scattering that polarizes ([`crate::volume::Phase::Rayleigh`]). Where the transport is
+    /// not polarized, `carried` stays None.
+    pub fn follow_carrying<R: Rng>(
+        &mut self,
+        ray: Ray,
+        carried: &mut Option<Polarization>,
+        rng: &mut R,
+        stats: &mut Stats,
+        observer: &mut dyn ChainEvents,
+    ) -> Chain<'w> {
+        self.walk(ray, Start::Carrying(carried), rng, stats, observer)
     }
 
     /// [`Walker::follow`] for a camera that measures the whole Stokes vector of the light
@@ -479,35 +512,37 @@ impl<'w> Walker<'w> {
         observer: &mut dyn ChainEvents,
     ) -> (Chain<'w>, Option<[Rgb; 3]>) {
         let mut shares = None;
-        let chain = self.walk(ray, Some((first_axis, &mut shares)), rng, stats, observer);
+        let start = Start::MeasuringStokes(first_axis, &mut shares);
+        let chain = self.walk(ray, start, rng, stats, observer);
         (chain, shares)
     }
 
-    /// Follows `ray` (see [`Walker::follow`]); where `stokes` gives a first axis, a camera
-    /// measures the whole Stokes vector in its basis, and what it records of the light at the
-    /// chain's end is written to the place `stokes` gives (a chain is returned by value at
-    /// every bounce: what only a camera's first chain needs is not returned with it).
+    /// Follows `ray` (see [`Walker::follow`]) from the polarization `start` gives.
     fn walk<R: Rng>(
         &mut self,
         ray: Ray,
-        stokes: Option<(DVec3, &mut Option<[Rgb; 3]>)>,
+        start: Start,
         rng: &mut R,
         stats: &mut Stats,
         observer: &mut dyn ChainEvents,
     ) -> Chain<'w> {
-        let (stokes_axis, shares) = match stokes {
-            Some((axis, shares)) => (Some(axis), Some(shares)),
-            None => (None, None),
-        };
-        // The polarization lives here and the walk holds a reference to it: an unpolarized
-        // walk moves no polarization state around.
-        let mut carried = None;
+        // The polarization lives here (or in the caller's place) and the walk holds a
+        // reference to it: an unpolarized walk moves no polarization state around.
+        let mut own = None;
         let analyzer = self.analyzer.take().map(|sheet| sheet.element());
-        let mut lent = Lent {
-            rng,
-            stats,
-            polarization: self.polarizes().map(|sense| {
-                carried.insert(match (sense, analyzer, stokes_axis) {
+        let (place, stokes_axis, shares) = match start {
+            Start::Unpolarized => (&mut own, None, None),
+            Start::MeasuringStokes(axis, shares) => (&mut own, Some(axis), Some(shares)),
+            Start::Carrying(carried) => (carried, None, None),
+        };
+        let polarization = match self.polarizes() {
+            None => {
+                *place = None;
+                None
+            }
+            Some(sense) => Some(match place {
+                Some(carried) => carried,
+                None => place.insert(match (sense, analyzer, stokes_axis) {
                     (Sense::AgainstLight, analyzer, Some(axis)) => {
                         Polarization::measuring_stokes(analyzer.as_ref(), ray.direction, axis)
                     }
@@ -517,8 +552,13 @@ impl<'w> Walker<'w> {
                     (Sense::AgainstLight | Sense::WithLight, _, _) => {
                         Polarization::unpolarized(sense, ray.direction)
                     }
-                })
+                }),
             }),
+        };
+        let mut lent = Lent {
+            rng,
+            stats,
+            polarization,
             crossings: 0,
         };
         let mut chain = Chain {
@@ -574,9 +614,10 @@ impl<'w> Walker<'w> {
     /// [`MAX_NULL_COLLISIONS`] ends lost, as a march out of steps does. Returns the event
     /// (distance and absorption from `at`) and the stretch's scattering column: the density
     /// integrated along its chords where the weights need it (a coloured σs, or a chain that
-    /// does not scatter), else its arclength.
+    /// does not scatter), else its arclength. `exhausted`: the chain has met `max_depth` events.
     fn fly<R: Rng>(
         &mut self,
+        exhausted: bool,
         scattering: Option<&Scattering>,
         chain: &Chain<'w>,
         at: &Ray,
@@ -591,6 +632,7 @@ impl<'w> Walker<'w> {
             medium: at.medium,
             weight: seen(chain, lent),
             flights: self.flights,
+            may_scatter: !exhausted,
         });
         let integrates = scattering.filter(|sc| {
             sc.is_heterogeneous() && (!sc.is_grey() || self.policy == Policy::Unscattered)
@@ -707,7 +749,7 @@ impl<'w> Walker<'w> {
             .medium
             .is_some_and(|m| !self.tracer.medium(m).is_uniform());
         let scattering = at.medium.and_then(|m| self.tracer.scattering(m));
-        let (event, column) = self.fly(scattering.as_deref(), chain, at, lent, observer);
+        let (event, column) = self.fly(exhausted, scattering.as_deref(), chain, at, lent, observer);
         if let Some(sc) = scattering.as_deref() {
             chain.weight *= match (self.policy, event) {
                 (Policy::Weighted | Policy::Roulette, Event::Reached { .. }) => {

@@ -48,6 +48,24 @@ impl MediumVertex {
     fn density(&self, wi: DVec3) -> f64 {
         self.phase.between(-wi, self.wo)
     }
+
+    /// The scattering into unit `wi` as a sample drawn from the phase function (weight 1).
+    pub fn toward(&self, wi: DVec3) -> Scattered {
+        Scattered {
+            sample: BsdfSample {
+                wi,
+                weight: Rgb::ONE,
+                pdf: self.density(wi),
+                lobe: Lobes::PHASE,
+            },
+            ray: Ray {
+                origin: self.position,
+                direction: wi,
+                medium: self.medium,
+            },
+            radiance_scale: 1.0,
+        }
+    }
 }
 
 impl<'s> Vertex<'s> {
@@ -162,21 +180,7 @@ impl<'s> Vertex<'s> {
             Vertex::Surface(v) => v.scatter_given(numbers, rng),
             Vertex::Medium(v) => {
                 let [a, b] = numbers.direction.or_draw(rng);
-                let wi = v.phase.sample(-v.wo, (a, b));
-                Some(Scattered {
-                    sample: BsdfSample {
-                        wi,
-                        weight: Rgb::ONE,
-                        pdf: v.density(wi),
-                        lobe: Lobes::PHASE,
-                    },
-                    ray: Ray {
-                        origin: v.position,
-                        direction: wi,
-                        medium: v.medium,
-                    },
-                    radiance_scale: 1.0,
-                })
+                Some(v.toward(v.phase.sample(-v.wo, (a, b))))
             }
         }
     }

@@ -612,16 +612,17 @@ impl Converter<'_> {
                 let p = &phase.object();
                 match p.kind.as_str() {
                     "isotropic" => {}
+                    "rayleigh" => {
+                        m.insert("phase".into(), string("rayleigh"));
+                    }
                     "hg" => {
                         let g = p.float_or("g", 0.8)?;
                         m.insert("phase".into(), Toml::Table(table([("hg", Toml::Float(g))])));
                     }
-                    other => {
-                        return Err(p.error(format!(
-                            "the phase function '{}' is not supported (isotropic and hg are)",
-                            cut(other)
-                        )))
-                    }
+                    other => return Err(p.error(format!(
+                        "the phase function '{}' is not supported (isotropic, hg and rayleigh are)",
+                        cut(other)
+                    ))),
                 }
                 p.finish()?;
             }
