@@ -26,7 +26,8 @@ fn phases() -> Vec<Phase> {
 
 /// ∫ p dω = 2π ∫ p(μ) dμ = 1, by Gauss–Legendre quadrature in μ on [−1, 1] split at the
 /// forward peak's scale (1e-9 relative); and Henyey–Greenstein's mean cosine is g (1e-9),
-/// Rayleigh's 0, and its mean squared cosine 2/5 (∫ μ² · 3(1 + μ²)/8 dμ).
+/// Rayleigh's 0, and its mean squared cosine 2/5 (∫ μ² · 3(1 + μ²)/8 dμ); Rayleigh's is its
+/// Mueller matrix's first element (1e-15).
 #[test]
 fn phase_functions_are_normalised() {
     for phase in phases() {
@@ -47,6 +48,13 @@ fn phase_functions_are_normalised() {
                 (square - 0.4).abs() < 1e-9,
                 "Rayleigh: mean squared cosine {square}"
             );
+            for mu in [-1.0, -0.3, 0.0, 0.7, 1.0] {
+                let m00 = grinlight::polarization::mueller::rayleigh(mu).col(0).x;
+                assert!(
+                    (m00 - phase.eval(mu)).abs() < 1e-15,
+                    "Rayleigh: M00 {m00} at {mu}"
+                );
+            }
         }
     }
 }

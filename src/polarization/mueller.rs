@@ -225,7 +225,7 @@ pub fn perfect_mirror() -> DMat4 {
 /// the light arriving and leaving, and y = k × s for each. The dipole radiates the s field
 /// whole and the p field times cos θ (their amplitudes' ratio; y_out·y_in = cos θ), so this
 /// is the element of Jones matrix diag(1, cos θ) times 3/(8π): M00 = 3(1 + cos²θ)/(16π) is the
-/// phase function for unpolarized light (1/sr, [`crate::volume::Phase::Rayleigh`]), and
+/// phase function for unpolarized light (1/sr, the medium's `Phase::Rayleigh`), and
 /// unpolarized light leaves with S1/S0 = sin²θ/(1 + cos²θ), polarized across the scattering
 /// plane (wholly at 90°).
 pub fn rayleigh(cos: f64) -> DMat4 {
@@ -536,7 +536,7 @@ mod tests {
             }
             let c = f64::to_radians(deg).cos();
             let v = rayleigh(c) * unpolarized();
-            let phase = crate::volume::Phase::Rayleigh.eval(c);
+            let phase = 3.0 * (1.0 + c * c) / (16.0 * std::f64::consts::PI);
             assert!(
                 (v.x - phase).abs() < 1e-15 * phase,
                 "{deg}°: {} against {phase}",

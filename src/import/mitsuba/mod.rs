@@ -619,10 +619,12 @@ impl Converter<'_> {
                         let g = p.float_or("g", 0.8)?;
                         m.insert("phase".into(), Toml::Table(table([("hg", Toml::Float(g))])));
                     }
-                    other => return Err(p.error(format!(
+                    other => {
+                        return Err(p.error(format!(
                         "the phase function '{}' is not supported (isotropic, hg and rayleigh are)",
                         cut(other)
-                    ))),
+                    )))
+                    }
                 }
                 p.finish()?;
             }
