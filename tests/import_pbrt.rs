@@ -660,3 +660,97 @@ fn a_blackbody_light_has_plancks_colour_and_its_scale_as_luminance() {
         assert!((xyz.y / 3.0 - 1.0).abs() < 1e-3, "Y {}", xyz.y);
     }
 }
+
+/// pbrt-v4's `SampledGrid` lookup (util/containers.h), written out here on its own: the values
+/// (x fastest) at the sample points (i + ½)/n of the unit cube, trilinear between them, 0 at
+/// samples outside the grid.
+fn pbrt_grid(values: &[f64], n: [usize; 3], p: [f64; 3]) -> f64 {
+    let s = [0, 1, 2].map(|a| p[a] * n[a] as f64 - 0.5);
+    let i = s.map(|x| x.floor());
+    let d = [0, 1, 2].map(|a| s[a] - i[a]);
+    let at = |x: f64, y: f64, z: f64| -> f64 {
+        let q = [x, y, z];
+        if (0..3).any(|a| q[a] < 0.0 || q[a] >= n[a] as f64) {
+            return 0.0;
+        }
+        values[(q[2] as usize * n[1] + q[1] as usize) * n[0] + q[0] as usize]
+    };
+    let lerp = |t: f64, a: f64, b: f64| (1.0 - t) * a + t * b;
+    let x0 = |y: f64, z: f64| lerp(d[0], at(i[0], y, z), at(i[0] + 1.0, y, z));
+    let y0 = |z: f64| lerp(d[1], x0(i[1], z), x0(i[1] + 1.0, z));
+    lerp(d[2], y0(i[2]), y0(i[2] + 1.0))
+}
+
+/// pbrt's `uniformgrid` medium converts exactly: grinlight's density at 3000 points in and
+/// around its box equals pbrt-v4's lookup there (its `SampledGrid`, values falling to 0 half a
+/// cell past the outer ones, and no medium outside the box p0–p1) to 1e-12, for a grid of
+/// 3 × 2 × 4 made under a transform that moves, scales unevenly and mirrors z, in a scene the
+/// import mirrors in x (pbrt's left-handed camera); σa and σs are pbrt's defaults, 1, times
+/// `scale`. A grid turned by its transform, a count that is not nx·ny·nz and a negative
+/// density are refused by line.
+#[test]
+fn a_pbrt_uniform_grid_converts_to_the_density_pbrt_looks_up() {
+    let values: Vec<f64> = (0..24).map(|i| ((i * 7) % 11) as f64 * 0.3).collect();
+    let listed: Vec<String> = values.iter().map(|v| v.to_string()).collect();
+    let grid = |transform: &str, density: &str| {
+        format!(
+            "AttributeBegin\n{transform}\nMakeNamedMedium \"smoke\" \"string type\" \"uniformgrid\" \
+             \"integer nx\" 3 \"integer ny\" 2 \"integer nz\" 4 \"float density\" [ {density} ] \
+             \"point3 p0\" [ -1 0 0.5 ] \"point3 p1\" [ 2 1 1.5 ] \"float scale\" 0.5\n\
+             AttributeEnd\nMaterial \"interface\"\nMediumInterface \"smoke\" \"\"\n\
+             Shape \"sphere\" \"float radius\" 20"
+        )
+    };
+    let transform = "Translate 1 2 3\nScale 2 0.5 -1";
+    let t = converted("grid", "", &grid(transform, &listed.join(" ")));
+    let medium = &tables(&t, "medium")[0];
+    assert_eq!(f(&medium["absorption"]), 0.5);
+    assert!(close(vec3(&medium["scattering"]), [0.5; 3], 0.0));
+    let text = toml::to_string(&t).unwrap();
+    let (parsed, _) = grinlight::scene::load::parse_scene(Path::new("grid.toml"), text).unwrap();
+    let media = parsed.media();
+    let id = media.index(medium["name"].as_str().unwrap()).unwrap();
+    let density = media.scattering(id).unwrap().density.clone().unwrap();
+    // The file's world in grinlight's: x negated (pbrt's camera), then the medium's transform.
+    let to_world = glam::DMat4::from_scale(glam::DVec3::new(-1.0, 1.0, 1.0))
+        * glam::DMat4::from_translation(glam::DVec3::new(1.0, 2.0, 3.0))
+        * glam::DMat4::from_scale(glam::DVec3::new(2.0, 0.5, -1.0));
+    let (p0, p1) = (
+        glam::DVec3::new(-1.0, 0.0, 0.5),
+        glam::DVec3::new(2.0, 1.0, 1.5),
+    );
+    use rand::{Rng, SeedableRng};
+    let mut rng = rand_pcg::Pcg64Mcg::seed_from_u64(3);
+    let mut inside = 0;
+    for _ in 0..3000 {
+        // Medium-space points over the box and a margin of a third of it each way.
+        let u = glam::DVec3::new(rng.gen(), rng.gen(), rng.gen()) * 1.6 - 0.3;
+        let local = p0 + (p1 - p0) * u;
+        let want = match u.cmpge(glam::DVec3::ZERO).all() && u.cmple(glam::DVec3::ONE).all() {
+            true => {
+                inside += 1;
+                pbrt_grid(&values, [3, 2, 4], u.to_array())
+            }
+            false => 0.0,
+        };
+        let got = density.at(to_world.transform_point3(local));
+        assert!(
+            (got - want).abs() < 1e-12,
+            "at {local}: {got} against pbrt's {want}"
+        );
+    }
+    assert!(inside > 500, "{inside} points inside");
+    for (transform, density, message) in [
+        ("Rotate 30 0 0 1", listed.join(" "), "turns the grid"),
+        ("", "1 2 3".to_string(), "3 density values"),
+        ("", format!("{} -1", listed[..23].join(" ")), "a density -1"),
+    ] {
+        let d = dir("pbrt-grid-refused");
+        let p = write(&d, "s.pbrt", &scene("", &grid(transform, &density)));
+        let e = convert(&p, &ImportOptions::default())
+            .err()
+            .unwrap()
+            .to_string();
+        assert!(e.contains("s.pbrt:") && e.contains(message), "{e}");
+    }
+}

@@ -182,7 +182,7 @@ struct Converter<'s> {
     default_material: Option<String>,
     index_matched: Option<String>,
     /// `MakeNamedMedium` statements by name.
-    named_media: HashMap<String, &'s Statement>,
+    named_media: HashMap<String, NamedMedium<'s>>,
     /// Each medium converted at an index (bits of n), by name.
     medium_tables: HashMap<(String, u64), String>,
     /// The grinlight medium around the camera, and its pbrt name.
@@ -192,6 +192,14 @@ struct Converter<'s> {
 }
 
 /// The reflection x ↦ −x, or the identity.
+/// A `MakeNamedMedium` statement and the transform current where it was written (the
+/// medium's space: a grid medium's lies in it).
+#[derive(Clone, Copy)]
+struct NamedMedium<'s> {
+    statement: &'s Statement,
+    ctm: DMat4,
+}
+
 fn mirror_map(mirror: bool) -> DMat4 {
     match mirror {
         true => DMat4::from_scale(DVec3::new(-1.0, 1.0, 1.0)),
@@ -535,7 +543,11 @@ impl<'s> Converter<'s> {
                 self.graphics.material = Some(made);
             }
             "MakeNamedMedium" => {
-                self.named_media.insert(s.text(0).to_string(), s);
+                let medium = NamedMedium {
+                    statement: s,
+                    ctm: self.graphics.ctm,
+                };
+                self.named_media.insert(s.text(0).to_string(), medium);
             }
             "MediumInterface" => {
                 let name = |t: &str| -> Result<Option<String>> {
@@ -1017,19 +1029,29 @@ impl<'s> Converter<'s> {
         if let Some(made) = self.medium_tables.get(&key) {
             return Ok(made.clone());
         }
-        let s = self.named_media[name];
+        let NamedMedium { statement: s, ctm } = self.named_media[name];
         let p = &s.params;
         let kind = p.string("type")?.unwrap_or_default();
-        if kind != "homogeneous" {
-            return Err(s.place.error(format!(
-                "the medium \"{}\" is not supported by grinlight's import (homogeneous is)",
-                cut(&kind)
-            )));
-        }
+        // pbrt-v4's defaults differ by medium (media.cpp).
+        let (grid, sigma_a, sigma_s) = match kind.as_str() {
+            "homogeneous" => (
+                None,
+                DVec3::new(0.0011, 0.0024, 0.014),
+                DVec3::new(2.55, 3.21, 3.77),
+            ),
+            "uniformgrid" => (Some(self.uniform_grid(s, ctm)?), DVec3::ONE, DVec3::ONE),
+            _ => {
+                return Err(s.place.error(format!(
+                    "the medium \"{}\" is not supported by grinlight's import (homogeneous and \
+                     uniformgrid are)",
+                    cut(&kind)
+                )))
+            }
+        };
         let what = s.what();
         let scale = p.float("scale", 1.0)?;
-        let sigma_a = self.rgb(p, "sigma_a", DVec3::new(0.0011, 0.0024, 0.014), &what)? * scale;
-        let sigma_s = self.rgb(p, "sigma_s", DVec3::new(2.55, 3.21, 3.77), &what)? * scale;
+        let sigma_a = self.rgb(p, "sigma_a", sigma_a, &what)? * scale;
+        let sigma_s = self.rgb(p, "sigma_s", sigma_s, &what)? * scale;
         let g = p.float("g", 0.0)?;
         if self.rgb(p, "Le", DVec3::ZERO, &what)? != DVec3::ZERO {
             return Err(s.place.error(format!(
@@ -1039,6 +1061,7 @@ impl<'s> Converter<'s> {
         p.ignore("Lescale");
         p.finish(&what)?;
         let mut m = table([("profile", string("uniform")), ("n", Toml::Float(n))]);
+        m.extend(grid.unwrap_or_default());
         if sigma_a.max_element() > 0.0 {
             m.insert("absorption".into(), absorption(sigma_a));
         }
@@ -1053,6 +1076,113 @@ impl<'s> Converter<'s> {
         self.lists.media.push(m);
         self.medium_tables.insert(key, made.clone());
         Ok(made)
+    }
+
+    /// A `uniformgrid` medium's density as a medium's density keys. pbrt-v4 (`SampledGrid`)
+    /// holds nx × ny × nz values (x fastest) over the box [p0, p1] of the medium's space, value
+    /// (i, j, k) at p0 + (p1 − p0)·((i, j, k) + ½)/(nx, ny, nz), trilinear between them and 0
+    /// at the samples beyond them (so it falls to 0 half a cell past the outer values), and
+    /// tracks the medium only within the box: grinlight's grid of the values ringed by zeros,
+    /// placed by the transform where the medium was made, ending at the box (`density_end`).
+    /// A transform that turns the grid is refused (grinlight's grids are axis-aligned); a
+    /// mirroring one (the import's own mirror among them) reverses the values along that axis.
+    fn uniform_grid(&self, s: &Statement, ctm: DMat4) -> Result<Table> {
+        let p = &s.params;
+        let what = s.what();
+        if p.has("temperature") {
+            return Err(s.place.error(format!(
+                "{what}: an emitting medium (temperature) is not supported by grinlight's import"
+            )));
+        }
+        for ignored in ["temperaturescale", "temperatureoffset", "temperaturecutoff"] {
+            p.ignore(ignored);
+        }
+        let (density, param) = p
+            .numbers("density", &["float"])?
+            .ok_or_else(|| s.place.error(format!("{what}: no \"density\" values")))?;
+        let dims = [
+            p.integer("nx", 1)?,
+            p.integer("ny", 1)?,
+            p.integer("nz", 1)?,
+        ];
+        let count = dims.iter().try_fold(1i64, |n, &d| match d {
+            1..=4096 => Some(n * d),
+            _ => None,
+        });
+        if count != Some(density.len() as i64) {
+            return Err(param.place.error(format!(
+                "{what}: {} density values for nx, ny, nz = {dims:?} (each 1 to 4096, their \
+                 product the number of values)",
+                density.len()
+            )));
+        }
+        if let Some(bad) = density.iter().find(|d| !(d.is_finite() && **d >= 0.0)) {
+            return Err(param.place.error(format!(
+                "{what}: a density {bad}: densities are finite and ≥ 0"
+            )));
+        }
+        let (p0, p1) = (
+            point_param(p, "p0", DVec3::ZERO)?,
+            point_param(p, "p1", DVec3::ONE)?,
+        );
+        if !(p0.cmplt(p1).all() && p0.is_finite() && p1.is_finite()) {
+            return Err(s.place.error(format!(
+                "{what}: the box p0 {:?}, p1 {:?} is empty",
+                p0.to_array(),
+                p1.to_array()
+            )));
+        }
+        let m = mirror_map(self.mirror) * ctm;
+        let l = linear(&m);
+        let diagonal = DVec3::new(l.x_axis.x, l.y_axis.y, l.z_axis.z);
+        let off_diagonal = [
+            l.x_axis.y, l.x_axis.z, l.y_axis.x, l.y_axis.z, l.z_axis.x, l.z_axis.y,
+        ];
+        if off_diagonal.iter().any(|&x| x != 0.0) || diagonal.cmpeq(DVec3::ZERO).any() {
+            return Err(s.place.error(format!(
+                "{what}: a transform that turns the grid: grinlight's grids are axis-aligned"
+            )));
+        }
+        let n = dims.map(|d| d as usize);
+        let padded = n.map(|d| d + 2);
+        // The value at padded node (i, j, k): the file's, or 0 on the ring; read along an axis
+        // the transform mirrors from its far end.
+        let value = |node: [usize; 3]| {
+            let mut at = [0; 3];
+            for axis in 0..3 {
+                let i = match diagonal[axis] < 0.0 {
+                    true => padded[axis] - 1 - node[axis],
+                    false => node[axis],
+                };
+                if i == 0 || i > n[axis] {
+                    return 0.0;
+                }
+                at[axis] = i - 1;
+            }
+            density[(at[2] * n[1] + at[1]) * n[0] + at[0]]
+        };
+        let mut values = Vec::with_capacity(padded.iter().product());
+        for k in 0..padded[2] {
+            for j in 0..padded[1] {
+                for i in 0..padded[0] {
+                    values.push(Toml::Float(value([i, j, k])));
+                }
+            }
+        }
+        let cell = (p1 - p0) / DVec3::from(n.map(|d| d as f64));
+        let corners = |a: DVec3, b: DVec3| {
+            let (a, b) = (m.transform_point3(a), m.transform_point3(b));
+            Toml::Array(vec![vec3(a.min(b)), vec3(a.max(b))])
+        };
+        Ok(table([
+            ("density_bounds", corners(p0 - 0.5 * cell, p1 + 0.5 * cell)),
+            (
+                "density_dims",
+                Toml::Array(padded.iter().map(|&d| Toml::Integer(d as i64)).collect()),
+            ),
+            ("density_values", Toml::Array(values)),
+            ("density_end", corners(p0, p1)),
+        ]))
     }
 
     fn area_light(&mut self, s: &Statement) -> Result<()> {
