@@ -516,6 +516,27 @@ impl Film {
         });
         crate::plot::save(&img, path)
     }
+
+    /// Writes a false-colour picture of the linear polarization of the light its Stokes layers
+    /// hold (each pixel's channels' mean: [`crate::polarization::preview::colour`]) to `path`,
+    /// the radiance times `exposure` as in [`Film::write_png`]. An error where the film has no
+    /// Stokes layers.
+    pub fn write_polarization_png(&self, path: &Path, exposure: f32) -> Result<()> {
+        let layers = STOKES_LAYERS.map(|l| self.layer(&l.name));
+        let [Some(s0), Some(s1), Some(s2), Some(s3)] = layers else {
+            return Err(Error::Usage(format!(
+                "{}: the film holds no Stokes layers (render with stokes = true)",
+                path.display()
+            )));
+        };
+        let mean = |p: [f32; 3]| p.iter().map(|&c| f64::from(c)).sum::<f64>() / 3.0;
+        let img = image::RgbImage::from_fn(self.width as u32, self.height as u32, |x, y| {
+            let i = y as usize * self.width + x as usize;
+            let stokes = [mean(s0[i]), mean(s1[i]), mean(s2[i]), mean(s3[i])];
+            image::Rgb(crate::polarization::preview::colour(stokes, exposure))
+        });
+        crate::plot::save(&img, path)
+    }
 }
 
 /// The name of the EXR layer of each pixel's standard error.

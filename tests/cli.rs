@@ -470,3 +470,61 @@ fn convert_writes_a_scene_replaces_only_its_own_and_render_reads_the_xml() {
     );
     assert!(exr.exists());
 }
+
+/// With `stokes` the render writes `<stem>.polarization.png` beside its preview, hue the angle
+/// of linear polarization and saturation its degree: a lit wall seen through a polarizer along
+/// the image's right line is red (the light wholly polarized along the first axis, S1 = S0),
+/// through one along its up cyan, and without the sheet grey; without `stokes` no such file.
+#[test]
+fn a_stokes_render_writes_a_false_colour_picture_of_its_polarization() {
+    let wall = "[camera]\nposition = [0, 0, 0]\nlook_at = [0, 0, 4]\nfov_y_deg = 4\nwidth = 8\n\
+                height = 8\n[render]\nspp = 4\nintegrator = \"path\"\nstokes = true\n\
+                [[material]]\nname = \"white\"\ntype = \"diffuse\"\nalbedo = [0.8, 0.8, 0.8]\n\
+                [[shape]]\ntype = \"quad\"\nmaterial = \"white\"\n\
+                vertices = [[-4, -4, 4], [-4, 4, 4], [4, 4, 4], [4, -4, 4]]\n\
+                [[light]]\ntype = \"point\"\nposition = [0, 0, 3]\nintensity = [30, 30, 30]\n";
+    let sheet = |axis: &str| {
+        format!(
+            "[[material]]\nname = \"sheet\"\ntype = \"polarizer\"\naxis = {axis}\n\
+             [[shape]]\ntype = \"quad\"\nmaterial = \"sheet\"\n\
+             vertices = [[-3, -3, 1], [3, -3, 1], [3, 3, 1], [-3, 3, 1]]\n"
+        )
+    };
+    let centre = |text: &str, name: &str| -> Option<[u8; 3]> {
+        let scene = temp(&format!("{name}.toml"));
+        let exr = temp(&format!("{name}.exr"));
+        std::fs::write(&scene, text).unwrap();
+        let out = grinlight(&[
+            "render",
+            scene.to_str().unwrap(),
+            "-o",
+            exr.to_str().unwrap(),
+        ]);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let png = exr.with_extension("polarization.png");
+        let pixel = png
+            .exists()
+            .then(|| image::open(&png).unwrap().to_rgb8().get_pixel(4, 4).0);
+        for f in [scene, exr.clone(), exr.with_extension("png"), png] {
+            let _ = std::fs::remove_file(f);
+        }
+        pixel
+    };
+    // The camera looks along +z with y up: its right is −x.
+    let [r, g, b] = centre(&format!("{wall}{}", sheet("[1, 0, 0]")), "right").unwrap();
+    assert!(
+        r > 100 && g == 0 && b == 0,
+        "along the right: {:?}",
+        [r, g, b]
+    );
+    let [r, g, b] = centre(&format!("{wall}{}", sheet("[0, 1, 0]")), "up").unwrap();
+    assert!(r == 0 && g > 100 && g == b, "along the up: {:?}", [r, g, b]);
+    let [r, g, b] = centre(wall, "open").unwrap();
+    assert!(r > 100 && r == g && g == b, "unpolarized: {:?}", [r, g, b]);
+    let plain = wall.replace("stokes = true\n", "");
+    assert_eq!(centre(&plain, "plain"), None);
+}

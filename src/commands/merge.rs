@@ -55,7 +55,8 @@ pub fn merge(job: &MergeJob, observer: &dyn Observer) -> Result<RenderOutcome> {
     }
     let exr = output_exr(job.output.clone(), &settings, &path);
     let mut outputs = Outputs::new(scene.inputs.iter().chain(&job.partials));
-    let files = Files::plan(&scene, exr, settings.output.png, 0, &mut outputs)?;
+    let stokes = settings.trace.stokes;
+    let files = Files::plan(&scene, exr, settings.output.png, stokes, 0, &mut outputs)?;
     for p in &job.partials {
         let part = Partial::read(p)?;
         part.fits(&scene, p)?;

@@ -132,6 +132,9 @@ const SAVE_INTERVAL: Duration = Duration::from_secs(60);
 pub(super) struct Files {
     exr: PathBuf,
     png: Option<PathBuf>,
+    /// The false-colour picture of the light's linear polarization (with the preview, where
+    /// the render writes the Stokes layers).
+    polarization: Option<PathBuf>,
     /// Per receiver: bins CSV, heat map, radial CSV, radial plot.
     receivers: Vec<[PathBuf; 4]>,
     /// The fiber figure.
@@ -145,6 +148,7 @@ impl Files {
         scene: &Scene,
         exr: PathBuf,
         png: bool,
+        stokes: bool,
         paths: u64,
         outputs: &mut Outputs,
     ) -> Result<Self> {
@@ -158,6 +162,8 @@ impl Files {
         let beside = |suffix: &str| beside(&exr, suffix);
         let files = Files {
             png: (scene.camera.is_some() && png).then(|| exr.with_extension("png")),
+            polarization: (scene.camera.is_some() && png && stokes)
+                .then(|| beside("polarization.png")),
             receivers: scene
                 .receivers
                 .iter()
@@ -172,7 +178,8 @@ impl Files {
         if scene.camera.is_some() {
             outputs.add(&files.exr, Kind::Exr)?;
         }
-        for (path, kind) in files.png.iter().map(|p| (p, Kind::Png)).chain(
+        let previews = files.png.iter().chain(&files.polarization);
+        for (path, kind) in previews.map(|p| (p, Kind::Png)).chain(
             files
                 .receivers
                 .iter()
@@ -191,6 +198,9 @@ impl Files {
         film.write_exr(&self.exr)?;
         if let Some(png) = &self.png {
             film.write_png(png, exposure)?;
+        }
+        if let Some(png) = &self.polarization {
+            film.write_polarization_png(png, exposure)?;
         }
         Ok(())
     }
@@ -250,7 +260,14 @@ pub fn render(job: &RenderJob, observer: &dyn Observer) -> Result<RenderOutcome>
         None => {
             let exr = output_exr(job.output.clone(), &settings, &job.scene);
             let state = beside(&exr, "partial");
-            let files = Files::plan(&scene, exr, settings.output.png, job.paths, &mut outputs)?;
+            let files = Files::plan(
+                &scene,
+                exr,
+                settings.output.png,
+                settings.trace.stokes,
+                job.paths,
+                &mut outputs,
+            )?;
             (Some(files), state)
         }
     };
@@ -616,7 +633,7 @@ fn write_results(
             files.exr.display(),
             film.names().join(", ")
         ));
-        if let Some(png) = &files.png {
+        for png in files.png.iter().chain(&files.polarization) {
             observer.line(&format!("wrote {}", png.display()));
         }
     }
