@@ -12,12 +12,12 @@ use crate::color::preview_byte;
 /// positive) of the Stokes vector `s` = (S0, S1, S2, S3).
 pub fn linear(s: [f64; 4]) -> (f64, f64) {
     let [s0, s1, s2, _] = s;
-    if !(s0 > 0.0) {
+    let degree = s1.hypot(s2) / s0;
+    if s0.is_nan() || s0 <= 0.0 || !degree.is_finite() {
         return (0.0, 0.0);
     }
-    let degree = (s1.hypot(s2) / s0).clamp(0.0, 1.0);
     let angle = (0.5 * s2.atan2(s1)).rem_euclid(std::f64::consts::PI);
-    (angle, if degree.is_finite() { degree } else { 0.0 })
+    (angle, degree.clamp(0.0, 1.0))
 }
 
 /// The 8-bit sRGB colour of a pixel whose Stokes vector is `s` (its channels' mean), with the
