@@ -1,15 +1,27 @@
 //! Textures: an 8- or 16-bit sRGB image (PNG, JPEG, …) decoded to linear RGB, looked up by
 //! surface coordinates (u, v) with bilinear filtering, repeating beyond [0, 1]; or a
 //! checkerboard. Convention: u runs left to right along the image's rows, v from its bottom
-//! row up — the image's own coordinates are (u, 1 − v), its top row at 0.
+//! row up — the image's own coordinates are (u, 1 − v), its top row at 0 — placed on the
+//! surface by an affine map of those coordinates ([`UvMap`], the identity by default).
 
 use crate::color::Rgb;
 use glam::DVec2;
 use std::path::Path;
 
-/// A texture in linear RGB.
+/// A texture in linear RGB: a pattern over image coordinates, placed on the surface's (u, v)
+/// by an affine map.
 #[derive(Clone, PartialEq)]
-pub enum Texture {
+pub struct Texture {
+    /// What it shows.
+    pub pattern: Pattern,
+    /// Where: the image coordinates at a surface's (u, v).
+    pub to_uv: UvMap,
+}
+
+/// What a texture shows over image coordinates (x, y): x across the image's rows, y down from
+/// its top row, each repeating with period 1.
+#[derive(Clone, PartialEq)]
+pub enum Pattern {
     /// An image.
     Image {
         /// Width in texels.
@@ -19,15 +31,34 @@ pub enum Texture {
         /// Row-major from the top row.
         texels: Vec<[f32; 3]>,
     },
-    /// Two colours in a checkerboard over the image coordinates (x, y) = `to_uv`·(u, 1 − v):
-    /// `colours[0]` where x and y are both in the first half of their unit cells or both in
-    /// the second (Mitsuba 3's `checkerboard`), `colours[1]` elsewhere.
+    /// Two colours in a checkerboard: `colours[0]` where x and y are both in the first half
+    /// of their unit cells or both in the second (Mitsuba 3's `checkerboard`), `colours[1]`
+    /// elsewhere.
     Checkerboard {
         /// The two colours, linear RGB.
         colours: [Rgb; 2],
-        /// The affine map to the pattern's coordinates: rows [a, b, c] of x = a u' + b v' + c.
-        to_uv: [[f64; 3]; 2],
     },
+}
+
+/// The affine map from a surface's (u, v) to a texture's image coordinates:
+/// (x, y) = M·(u, 1 − v) + c, rows [a, b, c] of x = a u + b (1 − v) + c (Mitsuba 3's `to_uv`
+/// in grinlight's v, which runs the other way); the identity by default.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct UvMap(pub [[f64; 3]; 2]);
+
+impl Default for UvMap {
+    fn default() -> Self {
+        Self([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]])
+    }
+}
+
+impl UvMap {
+    /// The image coordinates at surface coordinates `uv`.
+    pub fn image_point(&self, uv: DVec2) -> DVec2 {
+        let (u, v) = (uv.x, 1.0 - uv.y);
+        let at = |r: [f64; 3]| r[0] * u + r[1] * v + r[2];
+        DVec2::new(at(self.0[0]), at(self.0[1]))
+    }
 }
 
 /// The linear value of an sRGB-encoded channel in [0, 1].
@@ -48,36 +79,46 @@ impl Texture {
             return Err(format!("{}: the image is empty", path.display()));
         }
         let texels = img.pixels().map(|p| p.0.map(srgb_decode)).collect();
-        Ok(Self::Image {
+        Ok(Self::from_pattern(Pattern::Image {
             width,
             height,
             texels,
-        })
+        }))
+    }
+
+    /// `pattern` on the surface's (u, v) as they are (the identity map).
+    pub fn from_pattern(pattern: Pattern) -> Self {
+        Self {
+            pattern,
+            to_uv: UvMap::default(),
+        }
     }
 
     /// A texture from linear texels, row-major from the top. Panics unless there are
     /// `width` × `height` of them (a caller's error, not a user's: files go through [`Self::load`]).
     pub fn from_texels(width: usize, height: usize, texels: Vec<[f32; 3]>) -> Self {
         assert_eq!(texels.len(), width * height, "texel count");
-        Self::Image {
+        Self::from_pattern(Pattern::Image {
             width,
             height,
             texels,
-        }
+        })
     }
 
-    /// The linear colour at `uv`: an image's bilinear between texel centres, repeating (a
-    /// non-finite `uv`, which no sound surface gives, reads (0, 0) rather than spreading NaN).
+    /// The linear colour at surface coordinates `uv`: an image's bilinear between texel
+    /// centres, repeating (a non-finite `uv`, which no sound surface gives, reads (0, 0)
+    /// rather than spreading NaN).
     pub fn at(&self, uv: DVec2) -> Rgb {
         let uv = if uv.is_finite() { uv } else { DVec2::ZERO };
-        match self {
-            Texture::Image {
+        let p = self.to_uv.image_point(uv);
+        match &self.pattern {
+            Pattern::Image {
                 width,
                 height,
                 texels,
             } => {
-                let x = uv.x.rem_euclid(1.0) * *width as f64 - 0.5;
-                let y = (1.0 - uv.y.rem_euclid(1.0)) * *height as f64 - 0.5;
+                let x = p.x.rem_euclid(1.0) * *width as f64 - 0.5;
+                let y = p.y.rem_euclid(1.0) * *height as f64 - 0.5;
                 let (x0, y0) = (x.floor(), y.floor());
                 let (fx, fy) = (x - x0, y - y0);
                 let texel = |i: f64, j: f64| {
@@ -91,11 +132,9 @@ impl Texture {
                     + texel(x0, y0 + 1.0) * ((1.0 - fx) * fy)
                     + texel(x0 + 1.0, y0 + 1.0) * (fx * fy)
             }
-            Texture::Checkerboard { colours, to_uv } => {
-                let (u, v) = (uv.x, 1.0 - uv.y);
-                let at = |r: [f64; 3]| r[0] * u + r[1] * v + r[2];
+            Pattern::Checkerboard { colours } => {
                 let second_half = |x: f64| x - x.floor() > 0.5;
-                match second_half(at(to_uv[0])) == second_half(at(to_uv[1])) {
+                match second_half(p.x) == second_half(p.y) {
                     true => colours[0],
                     false => colours[1],
                 }
@@ -106,9 +145,9 @@ impl Texture {
 
 impl std::fmt::Debug for Texture {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            Texture::Image { width, height, .. } => write!(f, "Texture({width} × {height})"),
-            Texture::Checkerboard { colours, .. } => write!(f, "Checkerboard({colours:?})"),
+        match &self.pattern {
+            Pattern::Image { width, height, .. } => write!(f, "Texture({width} × {height})"),
+            Pattern::Checkerboard { colours } => write!(f, "Checkerboard({colours:?})"),
         }
     }
 }

@@ -246,22 +246,13 @@ impl Converter<'_> {
                 self.colour(&tex, "color0", 0.4)?,
                 self.colour(&tex, "color1", 0.2)?,
             ];
-            let m = tex.transform("to_uv")?;
+            let mut t = table([(
+                "checkerboard",
+                Toml::Array(colours.into_iter().map(vec3).collect()),
+            )]);
+            t.extend(texture_uv(&tex)?);
             tex.finish()?;
-            // Mitsuba's (u, v) are grinlight's image coordinates (u, 1 − v): see `geometry`.
-            let rows = [
-                m.x_axis.x, m.y_axis.x, m.w_axis.x, m.x_axis.y, m.y_axis.y, m.w_axis.y,
-            ];
-            return Ok(table([
-                (
-                    "checkerboard",
-                    Toml::Array(colours.into_iter().map(vec3).collect()),
-                ),
-                (
-                    "checkerboard_uv",
-                    Toml::Array(rows.iter().map(|&x| Toml::Float(x)).collect()),
-                ),
-            ]));
+            return Ok(t);
         }
         if tex.tag != "texture" || tex.kind != "bitmap" {
             return Err(tex.error(format!(
@@ -297,11 +288,10 @@ impl Converter<'_> {
                 cut(&wrap)
             )));
         }
-        if tex.transform("to_uv")? != DMat4::IDENTITY {
-            return Err(tex.error("a to_uv transform is not supported"));
-        }
+        let mut t = table([("texture", string(&path.to_string_lossy()))]);
+        t.extend(texture_uv(&tex)?);
         tex.finish()?;
-        Ok(table([("texture", string(&path.to_string_lossy()))]))
+        Ok(t)
     }
 
     /// A colour parameter that must be 1 (Mitsuba's specular reflectance and transmittance
@@ -1725,6 +1715,28 @@ fn cube_faces(m: &DMat4) -> Vec<[DVec3; 4]> {
         }
     }
     faces
+}
+
+/// A texture's `to_uv` as grinlight's `texture_uv` (none where it is the identity): Mitsuba's
+/// (u, v) are grinlight's image coordinates (u, 1 − v) (see `geometry`), and Mitsuba maps
+/// them by the transform's affine part in the plane; a `to_uv` that reaches out of that
+/// plane (a z part) is refused.
+fn texture_uv(tex: &Object) -> Result<Table> {
+    let m = tex.transform("to_uv")?;
+    if m == DMat4::IDENTITY {
+        return Ok(Table::new());
+    }
+    let out_of_plane = [m.x_axis.z, m.y_axis.z, m.w_axis.z, m.z_axis.x, m.z_axis.y];
+    if out_of_plane.iter().any(|&x| x != 0.0) {
+        return Err(tex.error("a to_uv transform out of the (u, v) plane is not supported"));
+    }
+    let rows = [
+        m.x_axis.x, m.y_axis.x, m.w_axis.x, m.x_axis.y, m.y_axis.y, m.w_axis.y,
+    ];
+    Ok(table([(
+        "texture_uv",
+        Toml::Array(rows.iter().map(|&x| Toml::Float(x)).collect()),
+    )]))
 }
 
 #[cfg(test)]

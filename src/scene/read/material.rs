@@ -9,7 +9,7 @@ use crate::polarization::Sheet;
 use crate::scene::media::{absorbing_form, read_fluorophore};
 use crate::scene::table::TableReader;
 use crate::spectrum::Dispersion;
-use crate::texture::Texture;
+use crate::texture::{Pattern, Texture, UvMap};
 use std::sync::Arc;
 
 /// What fills a dielectric: a named medium or a uniform index.
@@ -32,42 +32,54 @@ fn unit_color(t: &mut TableReader, key: &str, default: Option<Rgb>) -> Result<Rg
 }
 
 /// An optional texture over the surface's (u, v), multiplying the albedo: an image at
-/// `texture`, or a `checkerboard` of two colours placed by `checkerboard_uv`.
+/// `texture` or a `checkerboard` of two colours, placed by `texture_uv` (6 numbers, the rows
+/// of [`UvMap`]; `checkerboard_uv` is the same key for a checkerboard).
 fn texture(t: &mut TableReader) -> Result<Option<Arc<Texture>>> {
-    if t.has("checkerboard") {
-        t.check(
-            "texture",
-            !t.has("texture"),
-            "give either `texture` or `checkerboard`",
-        )?;
-        let colours = t.vec3_list("checkerboard")?;
-        t.check(
-            "checkerboard",
-            colours.len() == 2
-                && colours
-                    .iter()
-                    .all(|c| c.is_finite() && c.min_element() >= 0.0 && c.max_element() <= 1.0),
-            "expected two colours [[r, g, b], [r, g, b]], each in [0, 1]",
-        )?;
-        let m = t
-            .f64_list_opt("checkerboard_uv")?
-            .unwrap_or(vec![1.0, 0.0, 0.0, 0.0, 1.0, 0.0]);
-        t.check(
-            "checkerboard_uv",
-            m.len() == 6,
-            format!("expected 6 numbers (2 rows [a, b, c]), got {}", m.len()),
-        )?;
-        return Ok(Some(Arc::new(Texture::Checkerboard {
-            colours: [Rgb(colours[0]), Rgb(colours[1])],
-            to_uv: [[m[0], m[1], m[2]], [m[3], m[4], m[5]]],
-        })));
-    }
-    if !t.has("texture") {
-        return Ok(None);
-    }
-    let path = t.input_file("texture")?;
-    let texture = Texture::load(&path).map_err(|e| t.error("texture", e))?;
-    Ok(Some(Arc::new(texture)))
+    let pattern = match (t.has("checkerboard"), t.has("texture")) {
+        (true, true) => return Err(t.error("texture", "give either `texture` or `checkerboard`")),
+        (false, false) => return Ok(None),
+        (true, false) => {
+            let colours = t.vec3_list("checkerboard")?;
+            t.check(
+                "checkerboard",
+                colours.len() == 2
+                    && colours
+                        .iter()
+                        .all(|c| c.is_finite() && c.min_element() >= 0.0 && c.max_element() <= 1.0),
+                "expected two colours [[r, g, b], [r, g, b]], each in [0, 1]",
+            )?;
+            Pattern::Checkerboard {
+                colours: [Rgb(colours[0]), Rgb(colours[1])],
+            }
+        }
+        (false, true) => {
+            let path = t.input_file("texture")?;
+            Texture::load(&path)
+                .map_err(|e| t.error("texture", e))?
+                .pattern
+        }
+    };
+    let key = match t.has("checkerboard_uv") {
+        true => "checkerboard_uv",
+        false => "texture_uv",
+    };
+    t.check(
+        "texture_uv",
+        !(t.has("checkerboard_uv") && t.has("texture_uv")),
+        "give either `texture_uv` or `checkerboard_uv` (the same map)",
+    )?;
+    let to_uv = match t.f64_list_opt(key)? {
+        None => UvMap::default(),
+        Some(m) => {
+            t.check(
+                key,
+                m.len() == 6 && m.iter().all(|x| x.is_finite()),
+                format!("expected 6 numbers (2 rows [a, b, c]), each finite, got {m:?}"),
+            )?;
+            UvMap([[m[0], m[1], m[2]], [m[3], m[4], m[5]]])
+        }
+    };
+    Ok(Some(Arc::new(Texture { pattern, to_uv })))
 }
 
 /// GGX α at `roughness` (`default` if absent), a number in [0, 1].
