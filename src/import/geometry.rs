@@ -24,6 +24,18 @@ pub fn linear(m: &DMat4) -> DMat3 {
     DMat3::from_mat4(*m)
 }
 
+/// The scale along each axis of a map that neither turns nor shears — its linear part
+/// diagonal, each entry non-zero, negative where it mirrors that axis; None otherwise.
+pub fn axis_scales(m: &DMat4) -> Option<DVec3> {
+    let l = linear(m);
+    let diagonal = DVec3::new(l.x_axis.x, l.y_axis.y, l.z_axis.z);
+    let off_diagonal = [
+        l.x_axis.y, l.x_axis.z, l.y_axis.x, l.y_axis.z, l.z_axis.x, l.z_axis.y,
+    ];
+    let axis_aligned = off_diagonal.iter().all(|&x| x == 0.0);
+    (axis_aligned && !diagonal.cmpeq(DVec3::ZERO).any()).then_some(diagonal)
+}
+
 /// The uniform scale s of a map whose linear part is s times a rotation (None: it shears or
 /// scales unevenly, beyond a relative 1e-6).
 pub fn similarity(m: &DMat4) -> Option<f64> {

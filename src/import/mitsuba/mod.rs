@@ -6,7 +6,9 @@
 mod spectrum;
 pub mod xml;
 
-use super::geometry::{emitting_side, linear, parallelogram, similarity, triangle_area, Facing};
+use super::geometry::{
+    axis_scales, emitting_side, linear, parallelogram, similarity, triangle_area, Facing,
+};
 use super::table::{absorption, affine_rows, free_name, string, table, vec3, AreaEmitter, Lists};
 use super::{Imported, Place, Told};
 use crate::error::{cut, Result};
@@ -687,12 +689,7 @@ impl Converter<'_> {
             ));
         }
         let m = grid.transform("to_world")?;
-        let l = linear(&m);
-        let diagonal = DVec3::new(l.x_axis.x, l.y_axis.y, l.z_axis.z);
-        let off_diagonal = [
-            l.x_axis.y, l.x_axis.z, l.y_axis.x, l.y_axis.z, l.z_axis.x, l.z_axis.y,
-        ];
-        if off_diagonal.iter().any(|&x| x != 0.0) || diagonal.min_element() <= 0.0 {
+        if !axis_scales(&m).is_some_and(|d| d.min_element() > 0.0) {
             return Err(grid.error(
                 "a to_world that turns or mirrors the grid: grinlight's grids are axis-aligned",
             ));

@@ -14,7 +14,7 @@
 pub mod parse;
 
 use super::geometry::{
-    emitting_side, linear, look_at, parallelogram, similarity, triangle_area, Facing,
+    axis_scales, emitting_side, linear, look_at, parallelogram, similarity, triangle_area, Facing,
 };
 use super::table::{absorption, affine_rows, free_name, string, table, vec3, AreaEmitter, Lists};
 use super::{Imported, Place, Told};
@@ -1133,16 +1133,11 @@ impl<'s> Converter<'s> {
             )));
         }
         let m = mirror_map(self.mirror) * ctm;
-        let l = linear(&m);
-        let diagonal = DVec3::new(l.x_axis.x, l.y_axis.y, l.z_axis.z);
-        let off_diagonal = [
-            l.x_axis.y, l.x_axis.z, l.y_axis.x, l.y_axis.z, l.z_axis.x, l.z_axis.y,
-        ];
-        if off_diagonal.iter().any(|&x| x != 0.0) || diagonal.cmpeq(DVec3::ZERO).any() {
+        let Some(diagonal) = axis_scales(&m) else {
             return Err(s.place.error(format!(
                 "{what}: a transform that turns the grid: grinlight's grids are axis-aligned"
             )));
-        }
+        };
         let n = dims.map(|d| d as usize);
         let padded = n.map(|d| d + 2);
         // The value at padded node (i, j, k): the file's, or 0 on the ring; read along an axis
