@@ -48,6 +48,8 @@ CASES = {
     "mesh_lights": ("mesh_lights.xml", {}),
     # A thin pane (thindielectric) across the view of two balls, under a sky and a lamp.
     "window": ("window.xml", {}),
+    # An orthographic view, tilted and scaled, of a checkerboard, a ball and a box.
+    "orthographic": ("orthographic.xml", {}),
 }
 
 

@@ -63,15 +63,34 @@ pub struct PrimaryRay {
     pub direction: DVec3,
 }
 
+/// How the film's points become rays.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Projection {
+    /// Through a pinhole at the eye (or a thin lens about it): rays spread from it, the film
+    /// spanning tan(fov_y/2) = `tan_half_fov_y` up and down at unit distance.
+    Perspective {
+        /// tan of half the vertical field of view.
+        tan_half_fov_y: f64,
+    },
+    /// Parallel rays along the view direction, from the points of a film square to it about
+    /// the eye, `half_height` up and down (scene units) and as far across as the image's
+    /// aspect makes it.
+    Orthographic {
+        /// Half the film's height, scene units.
+        half_height: f64,
+    },
+}
+
 /// A camera producing primary rays.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Camera {
-    /// Eye position.
+    /// Eye position (an orthographic camera's film centre).
     pub position: DVec3,
     forward: DVec3,
     right: DVec3,
     up: DVec3,
-    tan_half_fov_y: f64,
+    /// How its film's points become rays.
+    pub projection: Projection,
     /// Image width in pixels.
     pub width: u32,
     /// Image height in pixels.
@@ -99,6 +118,35 @@ impl Camera {
         width: u32,
         height: u32,
     ) -> Result<Self, &'static str> {
+        let tan_half_fov_y = (0.5 * fov_y_deg.to_radians()).tan();
+        let projection = Projection::Perspective { tan_half_fov_y };
+        Self::projecting(projection, position, look_at, up, width, height)
+    }
+
+    /// An orthographic camera looking from `position` toward `look_at`, its film
+    /// `view_height` high (scene units) about `position`. Fails as [`Camera::new`] does.
+    pub fn orthographic(
+        position: DVec3,
+        look_at: DVec3,
+        up: DVec3,
+        view_height: f64,
+        width: u32,
+        height: u32,
+    ) -> Result<Self, &'static str> {
+        let projection = Projection::Orthographic {
+            half_height: 0.5 * view_height,
+        };
+        Self::projecting(projection, position, look_at, up, width, height)
+    }
+
+    fn projecting(
+        projection: Projection,
+        position: DVec3,
+        look_at: DVec3,
+        up: DVec3,
+        width: u32,
+        height: u32,
+    ) -> Result<Self, &'static str> {
         let forward = (look_at - position)
             .try_normalize()
             .ok_or("look_at equals position")?;
@@ -111,7 +159,7 @@ impl Camera {
             forward,
             right,
             up: right.cross(forward),
-            tan_half_fov_y: (0.5 * fov_y_deg.to_radians()).tan(),
+            projection,
             width,
             height,
             lens: None,
@@ -142,23 +190,43 @@ impl Camera {
             .to_degrees()
     }
 
-    /// Unit direction of the pinhole ray through pixel (px, py) at sub-pixel (u, v).
-    pub fn direction(&self, px: u32, py: u32, u: f64, v: f64) -> DVec3 {
+    /// The point (x, y) of the film at pixel (px, py), sub-pixel (u, v): x across from −w/h
+    /// (the left edge) to w/h, y up from −1 (the bottom edge) to 1.
+    fn film_xy(&self, px: u32, py: u32, u: f64, v: f64) -> (f64, f64) {
         let (w, h) = (self.width as f64, self.height as f64);
-        let x = (2.0 * (px as f64 + u) / w - 1.0) * self.tan_half_fov_y * w / h;
-        let y = (1.0 - 2.0 * (py as f64 + v) / h) * self.tan_half_fov_y;
-        (self.forward + x * self.right + y * self.up).normalize()
+        let x = (2.0 * (px as f64 + u) / w - 1.0) * w / h;
+        let y = 1.0 - 2.0 * (py as f64 + v) / h;
+        (x, y)
+    }
+
+    /// Unit direction of the ray through pixel (px, py) at sub-pixel (u, v): the pinhole's
+    /// (the view direction for an orthographic camera).
+    pub fn direction(&self, px: u32, py: u32, u: f64, v: f64) -> DVec3 {
+        match self.projection {
+            Projection::Perspective { tan_half_fov_y } => {
+                let (x, y) = self.film_xy(px, py, u, v);
+                (self.forward + (x * self.right + y * self.up) * tan_half_fov_y).normalize()
+            }
+            Projection::Orthographic { .. } => self.forward,
+        }
     }
 
     /// The primary ray through `film` (its lens point samples the aperture uniformly).
     pub fn ray(&self, film: FilmPoint) -> PrimaryRay {
         let d = self.direction(film.px, film.py, film.u, film.v);
-        match self.lens {
-            None => PrimaryRay {
+        match (self.projection, self.lens) {
+            (Projection::Orthographic { half_height }, _) => {
+                let (x, y) = self.film_xy(film.px, film.py, film.u, film.v);
+                PrimaryRay {
+                    origin: self.position + (x * self.right + y * self.up) * half_height,
+                    direction: d,
+                }
+            }
+            (Projection::Perspective { .. }, None) => PrimaryRay {
                 origin: self.position,
                 direction: d,
             },
-            Some(ThinLens { radius, focus }) => {
+            (Projection::Perspective { .. }, Some(ThinLens { radius, focus })) => {
                 // The pinhole ray's point at depth `focus` along the view axis stays sharp.
                 let focal_point = self.position + d * (focus / d.dot(self.forward));
                 let r = radius * film.lens.x.sqrt();
@@ -173,7 +241,8 @@ impl Camera {
     }
 
     /// The angle (rad) between the pinhole rays through the centre pixel and its right-hand
-    /// neighbour: the angular size of a pixel at the film's centre.
+    /// neighbour: the angular size of a pixel at the film's centre (0 for an orthographic
+    /// camera, whose rays are parallel).
     pub fn pixel_angle(&self) -> f64 {
         let (cx, cy) = (self.width / 2, self.height / 2);
         crate::math::angle_between(
@@ -182,15 +251,31 @@ impl Camera {
         )
     }
 
-    /// Whether the unit direction `dir` from the eye falls on the film (the pinhole view).
+    /// The width (scene units) a pixel at the film's centre spans at the point `x` seen
+    /// straight on, given its [`Camera::pixel_angle`] `angle` (computed once by the caller):
+    /// the angle times the distance from the eye, or an orthographic pixel's own width.
+    pub fn pixel_width_at(&self, angle: f64, x: DVec3) -> f64 {
+        match self.projection {
+            Projection::Perspective { .. } => angle * self.position.distance(x),
+            Projection::Orthographic { half_height } => 2.0 * half_height / self.height as f64,
+        }
+    }
+
+    /// Whether the unit direction `dir` from the eye falls on the film: for a perspective
+    /// camera, its pinhole view; for an orthographic one, whether it is the view direction.
     pub fn sees(&self, dir: DVec3) -> bool {
         let depth = dir.dot(self.forward);
         if depth <= 0.0 {
             return false;
         }
-        let aspect = self.width as f64 / self.height as f64;
-        let (x, y) = (dir.dot(self.right) / depth, dir.dot(self.up) / depth);
-        x.abs() <= self.tan_half_fov_y * aspect && y.abs() <= self.tan_half_fov_y
+        match self.projection {
+            Projection::Perspective { tan_half_fov_y } => {
+                let aspect = self.width as f64 / self.height as f64;
+                let (x, y) = (dir.dot(self.right) / depth, dir.dot(self.up) / depth);
+                x.abs() <= tan_half_fov_y * aspect && y.abs() <= tan_half_fov_y
+            }
+            Projection::Orthographic { .. } => depth >= 1.0 - 1e-12,
+        }
     }
 
     /// The range [lo, hi] of angles (rad) between `axis` (unit) and the pinhole rays of the

@@ -617,7 +617,8 @@ pub(super) fn grinlight_layer_blocks(
     };
     let (description, mut settings) = load_description(scene, &options).unwrap();
     let scene = description.build();
-    let (w, h) = (64, 64);
+    let camera = scene.camera.as_ref().expect("a camera");
+    let (w, h) = (camera.width as usize, camera.height as usize);
     // Per layer, per run, per block.
     let mut per_run = vec![Vec::new(); layers.len()];
     for seed in 0..runs {
@@ -720,6 +721,8 @@ fn the_mitsuba_scenes_render_as_mitsuba_renders_them() {
         ("mesh_lights", "mesh_lights.xml", vec![], 16),
         // A thin pane across the view: seen through and reflecting the sky behind the camera.
         ("window", "window.xml", vec![], 16),
+        // An orthographic view, tilted and scaled by its to_world, rays from its near plane.
+        ("orthographic", "orthographic.xml", vec![], 16),
     ] {
         let ours = grinlight_blocks(&Path::new("scenes/mitsuba").join(scene), &defines, 32, spp);
         let (worst, ratio) = compare(&ours, &reference(case));

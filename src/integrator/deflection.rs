@@ -144,6 +144,8 @@ impl<'a> DeflectionTable<'a> {
             || scene.media().scattering(ambient).is_some()
             || scene.media().is_dispersive(ambient)
             || camera.lens.is_some()
+            // Parallel rays do not share the eye's symmetry axis.
+            || matches!(camera.projection, crate::camera::Projection::Orthographic { .. })
             // Its rays carry no measurement: behind a polarizer, or where the camera measures
             // the Stokes vector, the camera's rays are traced.
             || camera.polarizer.is_some()

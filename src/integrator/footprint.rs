@@ -52,7 +52,7 @@ impl Way {
 /// The camera, as footprints are measured from it.
 pub struct Eye<'a> {
     camera: &'a Camera,
-    /// The angle a pixel spans at the film's centre (rad).
+    /// The angle a pixel spans at the film's centre (rad; 0 for an orthographic camera).
     pixel_angle: f64,
 }
 
@@ -71,7 +71,7 @@ impl<'a> Eye<'a> {
     /// neighbouring rays are traced) is not measured: in a dim part of a caustic, where the
     /// k-nearest radius is wide, that would be the cost of a camera path or two for nothing.
     pub fn may_exceed(&self, x: DVec3, r2: f64) -> bool {
-        let half = 0.5 * WIDENING * self.pixel_angle * self.camera.position.distance(x);
+        let half = 0.5 * WIDENING * self.camera.pixel_width_at(self.pixel_angle, x);
         r2 < half * half
     }
 

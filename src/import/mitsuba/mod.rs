@@ -715,9 +715,11 @@ impl Converter<'_> {
         let thin_lens = match s.kind.as_str() {
             "perspective" => false,
             "thinlens" => true,
+            "orthographic" => return self.orthographic_sensor(s, out),
             other => {
                 return Err(s.error(format!(
-                    "the sensor '{}' is not supported (perspective and thinlens are)",
+                    "the sensor '{}' is not supported (perspective, thinlens and orthographic \
+                     are)",
                     cut(other)
                 )))
             }
@@ -811,6 +813,65 @@ impl Converter<'_> {
                 Toml::Float(s.float_or("focus_distance", 0.0)?),
             );
         }
+        self.sensor_rest(s, film, camera, out)
+    }
+
+    /// An `orthographic` sensor: Mitsuba 3 sends parallel rays along `to_world`'s z from the
+    /// near plane (`near_clip`, 0.01) over x ∈ [−1, 1], y ∈ [−1/aspect, 1/aspect] of its
+    /// frame (`orthographic_projection` in sensor.h), which `to_world` scales, turns and moves:
+    /// grinlight's orthographic camera at that plane's centre, `view_height` = 2|y axis|/aspect.
+    /// A `to_world` that shears, mirrors or scales x and y apart (non-square pixels) is refused.
+    fn orthographic_sensor(&mut self, s: &Object, out: &mut Table) -> Result<Table> {
+        let m = s.transform("to_world")?;
+        let l = linear(&m);
+        let (left, up, dir) = (l.x_axis, l.y_axis, l.z_axis);
+        let scale = left.length();
+        let square = left.dot(up).abs() + up.dot(dir).abs() + left.dot(dir).abs()
+            <= 1e-9 * scale * (scale + dir.length());
+        if !square || (up.length() - scale).abs() > 1e-9 * scale || dir.length() == 0.0 {
+            return Err(s.error(
+                "to_world shears or scales x and y apart: grinlight's orthographic pixels are \
+                 square",
+            ));
+        }
+        if left.dot(up.cross(dir)) <= 0.0 {
+            return Err(s.error("to_world mirrors the camera (its x axis is not up × forward): grinlight does not render mirrored images"));
+        }
+        let film = s.child("film")?.map(|c| c.object().clone());
+        let (width, height) = match &film {
+            Some(f) => self.film(f)?,
+            None => (768, 576),
+        };
+        let aspect = width as f64 / height as f64;
+        let position = m.transform_point3(DVec3::new(0.0, 0.0, s.float_or("near_clip", 0.01)?));
+        if s.float("far_clip")?.is_some() {
+            let place = s.place.clone();
+            self.told.note(
+                &place,
+                "far_clip read past: grinlight does not clip".to_string(),
+            );
+        }
+        let camera = table([
+            ("projection", string("orthographic")),
+            ("position", vec3(position)),
+            ("look_at", vec3(position + dir.normalize())),
+            ("up", vec3(up.normalize())),
+            ("width", Toml::Integer(width)),
+            ("height", Toml::Integer(height)),
+            ("view_height", Toml::Float(2.0 * up.length() / aspect)),
+        ]);
+        self.sensor_rest(s, film, camera, out)
+    }
+
+    /// What every sensor has besides its projection: its medium, its sampler's settings
+    /// (the `[render]` table returned) and its film's; `camera` goes into `out`.
+    fn sensor_rest(
+        &mut self,
+        s: &Object,
+        film: Option<Rc<Object>>,
+        camera: Table,
+        out: &mut Table,
+    ) -> Result<Table> {
         if let Some(medium) = s.named_child("medium").or(s.child("medium")?) {
             // The camera's medium: grinlight finds it from the camera's position; a medium no
             // shape holds fills the space around them.

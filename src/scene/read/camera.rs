@@ -17,6 +17,37 @@ pub fn read_camera(t: &mut TableReader) -> Result<Camera> {
     };
     let width = side(&settings::WIDTH, Camera::DEFAULT_WIDTH)?;
     let height = side(&settings::HEIGHT, Camera::DEFAULT_HEIGHT)?;
+    let orthographic = match t.string_opt("projection")?.as_deref() {
+        None | Some("perspective") => false,
+        Some("orthographic") => true,
+        Some(other) => {
+            return Err(t.error(
+                "projection",
+                format!("expected \"perspective\" or \"orthographic\", got \"{other}\""),
+            ))
+        }
+    };
+    if orthographic {
+        for key in [
+            "fov_y_deg",
+            "fov_x_deg",
+            "aperture_radius",
+            "focus_distance",
+        ] {
+            t.check(
+                key,
+                !t.has(key),
+                "an orthographic camera has no field of view or lens (its film is `view_height` high)",
+            )?;
+        }
+        let view_height = t.positive("view_height")?;
+        return Camera::orthographic(position, look_at, up, view_height, width, height)
+            .map_err(|e| t.error("look_at", e))
+            .and_then(|mut camera| {
+                camera.polarizer = t.turn_opt("polarizer_deg")?;
+                Ok(camera)
+            });
+    }
     let fov_y = match (t.has("fov_y_deg"), t.has("fov_x_deg")) {
         (true, false) => t.f64("fov_y_deg")?,
         (false, true) => Camera::fov_y_from_x(t.f64("fov_x_deg")?, width, height),
