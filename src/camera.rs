@@ -190,12 +190,13 @@ impl Camera {
             .to_degrees()
     }
 
-    /// The point (x, y) of the film at pixel (px, py), sub-pixel (u, v): x across from −w/h
-    /// (the left edge) to w/h, y up from −1 (the bottom edge) to 1.
-    fn film_xy(&self, px: u32, py: u32, u: f64, v: f64) -> (f64, f64) {
+    /// The point (x, y) of the film at pixel (px, py), sub-pixel (u, v), `scale` times the
+    /// image's own: x across from −scale·w/h (the left edge) to scale·w/h, y up from −scale
+    /// (the bottom edge) to scale.
+    fn film_xy(&self, px: u32, py: u32, u: f64, v: f64, scale: f64) -> (f64, f64) {
         let (w, h) = (self.width as f64, self.height as f64);
-        let x = (2.0 * (px as f64 + u) / w - 1.0) * w / h;
-        let y = 1.0 - 2.0 * (py as f64 + v) / h;
+        let x = (2.0 * (px as f64 + u) / w - 1.0) * scale * w / h;
+        let y = (1.0 - 2.0 * (py as f64 + v) / h) * scale;
         (x, y)
     }
 
@@ -204,8 +205,8 @@ impl Camera {
     pub fn direction(&self, px: u32, py: u32, u: f64, v: f64) -> DVec3 {
         match self.projection {
             Projection::Perspective { tan_half_fov_y } => {
-                let (x, y) = self.film_xy(px, py, u, v);
-                (self.forward + (x * self.right + y * self.up) * tan_half_fov_y).normalize()
+                let (x, y) = self.film_xy(px, py, u, v, tan_half_fov_y);
+                (self.forward + x * self.right + y * self.up).normalize()
             }
             Projection::Orthographic { .. } => self.forward,
         }
@@ -216,9 +217,9 @@ impl Camera {
         let d = self.direction(film.px, film.py, film.u, film.v);
         match (self.projection, self.lens) {
             (Projection::Orthographic { half_height }, _) => {
-                let (x, y) = self.film_xy(film.px, film.py, film.u, film.v);
+                let (x, y) = self.film_xy(film.px, film.py, film.u, film.v, half_height);
                 PrimaryRay {
-                    origin: self.position + (x * self.right + y * self.up) * half_height,
+                    origin: self.position + x * self.right + y * self.up,
                     direction: d,
                 }
             }

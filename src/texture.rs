@@ -30,6 +30,10 @@ pub enum Pattern {
         height: usize,
         /// Row-major from the top row.
         texels: Vec<[f32; 3]>,
+        /// How it is read between its texels.
+        filter: Filter,
+        /// How it is read beyond its edges.
+        wrap: Wrap,
     },
     /// Two colours in a checkerboard: `colours[0]` where x and y are both in the first half
     /// of their unit cells or both in the second (Mitsuba 3's `checkerboard`), `colours[1]`
@@ -38,6 +42,42 @@ pub enum Pattern {
         /// The two colours, linear RGB.
         colours: [Rgb; 2],
     },
+}
+
+/// How an image is read between its texels (Mitsuba 3's `filter_type`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Filter {
+    /// Bilinear between the texel centres (x·width − ½ and y·height − ½ between two).
+    Bilinear,
+    /// The texel the point lies in.
+    Nearest,
+}
+
+/// How an image is read beyond its edges (Mitsuba 3's `wrap_mode`, by texel index).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Wrap {
+    /// Periodically.
+    Repeat,
+    /// The edge texels extend outward.
+    Clamp,
+    /// Reflected at every edge: periodic over twice the image.
+    Mirror,
+}
+
+impl Wrap {
+    /// The texel index an index `i` along an axis of `n` texels reads.
+    fn index(self, i: i64, n: usize) -> usize {
+        let n = n as i64;
+        let i = match self {
+            Wrap::Repeat => i.rem_euclid(n),
+            Wrap::Clamp => i.clamp(0, n - 1),
+            Wrap::Mirror => match i.rem_euclid(2 * n) {
+                m if m < n => m,
+                m => 2 * n - 1 - m,
+            },
+        };
+        i as usize
+    }
 }
 
 /// The affine map from a surface's (u, v) to a texture's image coordinates:
@@ -71,8 +111,9 @@ pub fn srgb_decode(x: f32) -> f32 {
 }
 
 impl Texture {
-    /// The image at `path`, or why not (the message names the file).
-    pub fn load(path: &Path) -> Result<Self, String> {
+    /// The image at `path`, read with `filter` and `wrap`, or why not (the message names the
+    /// file).
+    pub fn load(path: &Path, filter: Filter, wrap: Wrap) -> Result<Self, String> {
         let img = open_image(path)?.to_rgb32f();
         let (width, height) = (img.width() as usize, img.height() as usize);
         if width == 0 || height == 0 {
@@ -83,6 +124,8 @@ impl Texture {
             width,
             height,
             texels,
+            filter,
+            wrap,
         }))
     }
 
@@ -102,6 +145,8 @@ impl Texture {
             width,
             height,
             texels,
+            filter: Filter::Bilinear,
+            wrap: Wrap::Repeat,
         })
     }
 
@@ -116,21 +161,33 @@ impl Texture {
                 width,
                 height,
                 texels,
+                filter,
+                wrap,
             } => {
-                let x = p.x.rem_euclid(1.0) * *width as f64 - 0.5;
-                let y = p.y.rem_euclid(1.0) * *height as f64 - 0.5;
-                let (x0, y0) = (x.floor(), y.floor());
-                let (fx, fy) = (x - x0, y - y0);
                 let texel = |i: f64, j: f64| {
-                    let i = (i as i64).rem_euclid(*width as i64) as usize;
-                    let j = (j as i64).rem_euclid(*height as i64) as usize;
+                    let i = wrap.index(i as i64, *width);
+                    let j = wrap.index(j as i64, *height);
                     let t = texels[j * width + i];
                     Rgb::new(t[0] as f64, t[1] as f64, t[2] as f64)
                 };
-                texel(x0, y0) * ((1.0 - fx) * (1.0 - fy))
-                    + texel(x0 + 1.0, y0) * (fx * (1.0 - fy))
-                    + texel(x0, y0 + 1.0) * ((1.0 - fx) * fy)
-                    + texel(x0 + 1.0, y0 + 1.0) * (fx * fy)
+                // A repeating image is read within its first period (the same texels).
+                let (px, py) = match wrap {
+                    Wrap::Repeat => (p.x.rem_euclid(1.0), p.y.rem_euclid(1.0)),
+                    Wrap::Clamp | Wrap::Mirror => (p.x, p.y),
+                };
+                let (x, y) = (px * *width as f64, py * *height as f64);
+                match filter {
+                    Filter::Nearest => texel(x.floor(), y.floor()),
+                    Filter::Bilinear => {
+                        let (x, y) = (x - 0.5, y - 0.5);
+                        let (x0, y0) = (x.floor(), y.floor());
+                        let (fx, fy) = (x - x0, y - y0);
+                        texel(x0, y0) * ((1.0 - fx) * (1.0 - fy))
+                            + texel(x0 + 1.0, y0) * (fx * (1.0 - fy))
+                            + texel(x0, y0 + 1.0) * ((1.0 - fx) * fy)
+                            + texel(x0 + 1.0, y0 + 1.0) * (fx * fy)
+                    }
+                }
             }
             Pattern::Checkerboard { colours } => {
                 let second_half = |x: f64| x - x.floor() > 0.5;

@@ -114,6 +114,18 @@ fn mesh_case(name: &'static str, obj: &str, extra: &str, expect: Expect) -> Case
 }
 
 /// A 2 × 2 EXR (one RGB layer) whose pixel (1, 0) has `value`.
+/// A 2 × 2 grey PNG's bytes.
+fn png_2x2() -> Vec<u8> {
+    let mut bytes = Vec::new();
+    image::RgbImage::from_pixel(2, 2, image::Rgb([128, 128, 128]))
+        .write_to(
+            &mut std::io::Cursor::new(&mut bytes),
+            image::ImageFormat::Png,
+        )
+        .unwrap();
+    bytes
+}
+
 fn exr_with(value: f32) -> Vec<u8> {
     let path = std::env::temp_dir().join(format!(
         "grinlight-hostile-{}-{}.exr",
@@ -327,6 +339,7 @@ fn cases() -> Vec<Case> {
         scene_case("checkerboard of one colour", "[[material]]\nname = \"c\"\ntype = \"diffuse\"\ncheckerboard = [[1, 0, 0]]\n", Error("expected two colours")),
         scene_case("checkerboard beyond 1", "[[material]]\nname = \"c\"\ntype = \"diffuse\"\ncheckerboard = [[1, 0, 0], [2, 0, 0]]\n", Error("each in [0, 1]")),
         scene_case("checkerboard and texture", "[[material]]\nname = \"c\"\ntype = \"diffuse\"\ncheckerboard = [[1, 0, 0], [0, 0, 0]]\ntexture = \"t.png\"\n", Error("either `texture` or `checkerboard`")),
+        Case { name: "texture_wrap unknown", files: vec![("s.toml", scene("[[material]]\nname = \"c\"\ntype = \"diffuse\"\ntexture = \"t.png\"\ntexture_wrap = \"tile\"\n")), ("t.png", png_2x2())], args: render(""), expect: Error("key `texture_wrap`: unknown value 'tile' (repeat, clamp, mirror)") },
         scene_case("checkerboard_uv of 4 numbers", "[[material]]\nname = \"c\"\ntype = \"diffuse\"\ncheckerboard = [[1, 0, 0], [0, 0, 0]]\ncheckerboard_uv = [1, 0, 0, 1]\n", Error("expected 6 numbers")),
         mesh_case("mesh matrix flat", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "matrix = [1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 0]\n", Error("flattens the mesh")),
         mesh_case("mesh matrix and scale", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "matrix = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0]\nscale = 2\n", Error("give either `matrix`")),

@@ -131,7 +131,7 @@ const BAD: &[(&str, usize, usize, &str)] = &[
     ("[camera]\nposition = [0, 0, 1]\nlook_at = [0, 0, 1]\nfov_y_deg = 40\n", 3, 1, "look_at equals position"),
     ("[camera]\nposition = [0, 0, 1]\nlook_at = [0, 0, 0]\nfov_y_deg = 40\nfov_x_deg = 50\n", 4, 1, "exactly one of `fov_y_deg`"),
     ("[camera]\nposition = [0, 0, 1]\nlook_at = [0, 0, 0]\nfov_y_deg = 190\n", 4, 1, "(0°, 179°)"),
-    ("[camera]\nposition = [0, 0, 1]\nlook_at = [0, 0, 0]\nprojection = \"fisheye\"\n", 4, 1, "expected \"perspective\" or \"orthographic\""),
+    ("[camera]\nposition = [0, 0, 1]\nlook_at = [0, 0, 0]\nprojection = \"fisheye\"\n", 4, 1, "unknown value 'fisheye' (perspective, orthographic)"),
     ("[camera]\nposition = [0, 0, 1]\nlook_at = [0, 0, 0]\nprojection = \"orthographic\"\nfov_y_deg = 40\nview_height = 2\n", 5, 1, "an orthographic camera has no field of view"),
     ("[camera]\nposition = [0, 0, 1]\nlook_at = [0, 0, 0]\nprojection = \"orthographic\"\n", 1, 1, "key `view_height`: is missing"),
     ("[camera]\nposition = [0, 0, 1]\nlook_at = [0, 0, 0]\nprojection = \"orthographic\"\nview_height = -1\n", 5, 1, "key `view_height`"),

@@ -282,15 +282,23 @@ impl Converter<'_> {
         }
         let filter = tex.string("filter_type")?.unwrap_or("bilinear").to_string();
         let wrap = tex.string("wrap_mode")?.unwrap_or("repeat").to_string();
-        if filter != "bilinear" || wrap != "repeat" {
+        let known = ["bilinear", "nearest"].contains(&filter.as_str())
+            && ["repeat", "clamp", "mirror"].contains(&wrap.as_str());
+        if !known {
             return Err(tex.error(format!(
-                "filter_type '{}' and wrap_mode '{}': grinlight's textures are bilinear and \
-                 repeating",
+                "filter_type '{}' and wrap_mode '{}': Mitsuba's are bilinear or nearest, and \
+                 repeat, clamp or mirror",
                 cut(&filter),
                 cut(&wrap)
             )));
         }
         let mut t = table([("texture", string(&path.to_string_lossy()))]);
+        if filter != "bilinear" {
+            t.insert("texture_filter".into(), string(&filter));
+        }
+        if wrap != "repeat" {
+            t.insert("texture_wrap".into(), string(&wrap));
+        }
         t.extend(texture_uv(&tex)?);
         tex.finish()?;
         Ok(t)

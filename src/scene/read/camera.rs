@@ -17,16 +17,10 @@ pub fn read_camera(t: &mut TableReader) -> Result<Camera> {
     };
     let width = side(&settings::WIDTH, Camera::DEFAULT_WIDTH)?;
     let height = side(&settings::HEIGHT, Camera::DEFAULT_HEIGHT)?;
-    let orthographic = match t.string_opt("projection")?.as_deref() {
-        None | Some("perspective") => false,
-        Some("orthographic") => true,
-        Some(other) => {
-            return Err(t.error(
-                "projection",
-                format!("expected \"perspective\" or \"orthographic\", got \"{other}\""),
-            ))
-        }
-    };
+    let orthographic = t.choice(
+        "projection",
+        &[("perspective", false), ("orthographic", true)],
+    )?;
     if orthographic {
         for key in [
             "fov_y_deg",

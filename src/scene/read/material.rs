@@ -9,7 +9,7 @@ use crate::polarization::Sheet;
 use crate::scene::media::{absorbing_form, read_fluorophore};
 use crate::scene::table::TableReader;
 use crate::spectrum::Dispersion;
-use crate::texture::{Pattern, Texture, UvMap};
+use crate::texture::{Filter, Pattern, Texture, UvMap, Wrap};
 use std::sync::Arc;
 
 /// What fills a dielectric: a named medium or a uniform index.
@@ -54,7 +54,19 @@ fn texture(t: &mut TableReader) -> Result<Option<Arc<Texture>>> {
         }
         (false, true) => {
             let path = t.input_file("texture")?;
-            Texture::load(&path)
+            let filter = t.choice(
+                "texture_filter",
+                &[("bilinear", Filter::Bilinear), ("nearest", Filter::Nearest)],
+            )?;
+            let wrap = t.choice(
+                "texture_wrap",
+                &[
+                    ("repeat", Wrap::Repeat),
+                    ("clamp", Wrap::Clamp),
+                    ("mirror", Wrap::Mirror),
+                ],
+            )?;
+            Texture::load(&path, filter, wrap)
                 .map_err(|e| t.error("texture", e))?
                 .pattern
         }
