@@ -21,27 +21,52 @@ pub fn read_camera(t: &mut TableReader) -> Result<Camera> {
         "projection",
         &[("perspective", false), ("orthographic", true)],
     )?;
-    if orthographic {
-        for key in [
-            "fov_y_deg",
-            "fov_x_deg",
-            "aperture_radius",
-            "focus_distance",
-        ] {
-            t.check(
-                key,
-                !t.has(key),
-                "an orthographic camera has no field of view or lens (its film is `view_height` high)",
-            )?;
-        }
-        let view_height = t.positive("view_height")?;
-        return Camera::orthographic(position, look_at, up, view_height, width, height)
-            .map_err(|e| t.error("look_at", e))
-            .and_then(|mut camera| {
-                camera.polarizer = t.turn_opt("polarizer_deg")?;
-                Ok(camera)
-            });
+    let frame = Frame {
+        position,
+        look_at,
+        up,
+        width,
+        height,
+    };
+    let mut camera = match orthographic {
+        true => read_orthographic(t, frame)?,
+        false => read_perspective(t, frame)?,
+    };
+    camera.polarizer = t.turn_opt("polarizer_deg")?;
+    Ok(camera)
+}
+
+/// Where a camera stands and looks, and its image's size in pixels.
+struct Frame {
+    position: DVec3,
+    look_at: DVec3,
+    up: DVec3,
+    width: u32,
+    height: u32,
+}
+
+/// An orthographic camera's keys: `view_height`, and no field of view or lens.
+fn read_orthographic(t: &mut TableReader, f: Frame) -> Result<Camera> {
+    for key in [
+        "fov_y_deg",
+        "fov_x_deg",
+        "aperture_radius",
+        "focus_distance",
+    ] {
+        t.check(
+            key,
+            !t.has(key),
+            "an orthographic camera has no field of view or lens (its film is `view_height` high)",
+        )?;
     }
+    let view_height = t.positive("view_height")?;
+    Camera::orthographic(f.position, f.look_at, f.up, view_height, f.width, f.height)
+        .map_err(|e| t.error("look_at", e))
+}
+
+/// A perspective camera's keys: its field of view, and its lens if it has one.
+fn read_perspective(t: &mut TableReader, f: Frame) -> Result<Camera> {
+    let (width, height) = (f.width, f.height);
     let fov_y = match (t.has("fov_y_deg"), t.has("fov_x_deg")) {
         (true, false) => t.f64("fov_y_deg")?,
         (false, true) => Camera::fov_y_from_x(t.f64("fov_x_deg")?, width, height),
@@ -62,7 +87,7 @@ pub fn read_camera(t: &mut TableReader) -> Result<Camera> {
         fov_y > 0.0 && fov_y < 179.0,
         "the field of view must be in (0°, 179°)",
     )?;
-    let mut camera = Camera::new(position, look_at, up, fov_y, width, height)
+    let mut camera = Camera::new(f.position, f.look_at, f.up, fov_y, width, height)
         .map_err(|e| t.error("look_at", e))?;
     let aperture = t.f64_or("aperture_radius", 0.0)?;
     t.check("aperture_radius", aperture >= 0.0, "must be ≥ 0")?;
@@ -73,6 +98,5 @@ pub fn read_camera(t: &mut TableReader) -> Result<Camera> {
             focus,
         });
     }
-    camera.polarizer = t.turn_opt("polarizer_deg")?;
     Ok(camera)
 }
