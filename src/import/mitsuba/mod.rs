@@ -741,14 +741,7 @@ impl Converter<'_> {
                 "to_world scales unevenly or shears: a camera's frame is turned and moved only",
             ));
         };
-        if left.dot(up.cross(dir)) <= 0.0 {
-            return Err(s.error("to_world mirrors the camera (its x axis is not up × forward): grinlight does not render mirrored images"));
-        }
-        let film = s.child("film")?.map(|c| c.object().clone());
-        let (width, height) = match &film {
-            Some(f) => self.film(f)?,
-            None => (768, 576),
-        };
+        let (film, width, height) = self.sensor_film(s, [left, up, dir])?;
         let (w, h) = (width as f64, height as f64);
         // Mitsuba's field of view on its axis, turned into the horizontal one.
         let tan_half_x = |fov_deg: f64, axis: &str| -> Option<f64> {
@@ -842,14 +835,7 @@ impl Converter<'_> {
                  square",
             ));
         }
-        if left.dot(up.cross(dir)) <= 0.0 {
-            return Err(s.error("to_world mirrors the camera (its x axis is not up × forward): grinlight does not render mirrored images"));
-        }
-        let film = s.child("film")?.map(|c| c.object().clone());
-        let (width, height) = match &film {
-            Some(f) => self.film(f)?,
-            None => (768, 576),
-        };
+        let (film, width, height) = self.sensor_film(s, [left, up, dir])?;
         let aspect = width as f64 / height as f64;
         let position = m.transform_point3(DVec3::new(0.0, 0.0, s.float_or("near_clip", 0.01)?));
         if s.float("far_clip")?.is_some() {
@@ -869,6 +855,25 @@ impl Converter<'_> {
             ("view_height", Toml::Float(2.0 * up.length() / aspect)),
         ]);
         self.sensor_rest(s, film, camera, out)
+    }
+
+    /// A sensor's film and its size in pixels (Mitsuba's 768 × 576 without one), once its
+    /// frame `axes` (to_world's x, y and z) are known not to mirror the image.
+    fn sensor_film(
+        &mut self,
+        s: &Object,
+        axes: [DVec3; 3],
+    ) -> Result<(Option<Rc<Object>>, i64, i64)> {
+        let [left, up, dir] = axes;
+        if left.dot(up.cross(dir)) <= 0.0 {
+            return Err(s.error("to_world mirrors the camera (its x axis is not up × forward): grinlight does not render mirrored images"));
+        }
+        let film = s.child("film")?.map(|c| c.object().clone());
+        let (width, height) = match &film {
+            Some(f) => self.film(f)?,
+            None => (768, 576),
+        };
+        Ok((film, width, height))
     }
 
     /// What every sensor has besides its projection: its medium, its sampler's settings
