@@ -1,6 +1,6 @@
 //! Textures: an 8- or 16-bit sRGB image (PNG, JPEG, …) decoded to linear RGB, looked up by
-//! surface coordinates (u, v) with bilinear filtering, repeating beyond [0, 1]; or a
-//! checkerboard. Convention: u runs left to right along the image's rows, v from its bottom
+//! surface coordinates (u, v), bilinear or nearest, repeating, clamped or mirrored beyond
+//! [0, 1] ([`Filter`], [`Wrap`]); or a checkerboard. Convention: u runs left to right along the image's rows, v from its bottom
 //! row up — the image's own coordinates are (u, 1 − v), its top row at 0 — placed on the
 //! surface by an affine map of those coordinates ([`UvMap`], the identity by default).
 
@@ -19,7 +19,8 @@ pub struct Texture {
 }
 
 /// What a texture shows over image coordinates (x, y): x across the image's rows, y down from
-/// its top row, each repeating with period 1.
+/// its top row, the image within [0, 1]² (beyond it as its [`Wrap`] says), the checkerboard's
+/// cells of side ½.
 #[derive(Clone, PartialEq)]
 pub enum Pattern {
     /// An image.
