@@ -44,9 +44,20 @@ pub fn samples_through(tracer: &Tracer, v: &SurfaceVertex) -> bool {
     v.lobes().transmits() && v.beyond.is_none_or(|m| tracer.medium(m).is_uniform())
 }
 
+/// A face of a scattering vertex.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Face {
+    /// The side the path arrived on (the point itself in a medium).
+    Arrival,
+    /// The other side of a surface, where a transmitted path goes.
+    Far,
+}
+
 /// The side of a scattering vertex light arriving from a direction comes from, as a light
 /// sample's shadow ray leaves it.
 struct LitSide {
+    /// Which face it is.
+    face: Face,
     /// Where the shadow ray starts: off the surface on that side (the point itself in a
     /// medium).
     origin: DVec3,
@@ -66,6 +77,7 @@ fn lit_side(tracer: &Tracer, vertex: &Vertex, wi: DVec3) -> Option<LitSide> {
     let cos = vertex.cos(wi);
     if cos > 0.0 {
         return Some(LitSide {
+            face: Face::Arrival,
             origin: vertex.origin(),
             medium: vertex.medium(),
             cos,
@@ -76,6 +88,7 @@ fn lit_side(tracer: &Tracer, vertex: &Vertex, wi: DVec3) -> Option<LitSide> {
         .surface()
         .filter(|v| cos < 0.0 && samples_through(tracer, v))?;
     Some(LitSide {
+        face: Face::Far,
         origin: offset(v.position, -v.normal),
         medium: v.beyond,
         cos: -cos,
@@ -83,13 +96,24 @@ fn lit_side(tracer: &Tracer, vertex: &Vertex, wi: DVec3) -> Option<LitSide> {
     })
 }
 
-/// One light sample of `light` at a scattering vertex in a uniform medium, through a straight
-/// shadow ray from the side the light lies on (the far side only through a surface that
-/// transmits into a uniform medium); multiple importance weighted against the BSDF or phase
-/// sample for area lights.
+/// The sides of a vertex a light sample may light.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Sides {
+    /// Whichever side the light lies on (the vertex is in a uniform medium).
+    Either,
+    /// Only the far side of a surface (its arrival side is in a gradient medium, where light
+    /// samples connect by curved paths).
+    Far,
+}
+
+/// One light sample of `light` at a scattering vertex, through a straight shadow ray from the
+/// side the light lies on, among `sides` (the far side only through a surface that transmits
+/// into a uniform medium); multiple importance weighted against the BSDF or phase sample for
+/// area lights.
 fn straight_light(
     tracer: &Tracer,
     vertex: &Vertex,
+    sides: Sides,
     light: &Light,
     chosen: f64,
     uv: (f64, f64),
@@ -100,6 +124,9 @@ fn straight_light(
     let Some(side) = lit_side(tracer, vertex, inc.wi) else {
         return Rgb::ZERO;
     };
+    if sides == Sides::Far && side.face == Face::Arrival {
+        return Rgb::ZERO;
+    }
     let reach = if inc.distance.is_finite() {
         inc.distance * (1.0 - 1e-7)
     } else {
@@ -114,23 +141,39 @@ fn straight_light(
     f * tracer.radiance(inc.irradiance) * (side.cos * weight * side.radiance_scale) * kept
 }
 
-/// A point, spot, LED or parallel light at a scattering vertex in gradient medium `m`,
-/// through the curved connection to it (`uv` samples an LED's disk).
+/// A point, spot, LED or parallel light at a scattering vertex, through the curved connection
+/// to it from its `face` in the gradient medium there: its arrival side, or the far side of a
+/// surface that transmits into one (`uv` samples an LED's disk). Zero where that side's
+/// medium is uniform (a straight shadow ray serves it) or no connection reaches the light.
 fn curved_light(
     tracer: &Tracer,
     vertex: &Vertex,
-    m: MediumId,
+    face: Face,
     light: &Light,
     uv: (f64, f64),
     stats: &mut Stats,
 ) -> Rgb {
+    let (origin, medium) = match (face, vertex.surface()) {
+        (Face::Arrival, _) => (vertex.origin(), vertex.medium()),
+        (Face::Far, Some(v)) if v.lobes().transmits() => (offset(v.position, -v.normal), v.beyond),
+        (Face::Far, _) => return Rgb::ZERO,
+    };
+    let Some(m) = medium.filter(|&m| !tracer.medium(m).is_uniform()) else {
+        return Rgb::ZERO;
+    };
     let Some(anchor) = light.anchor(uv) else {
         return Rgb::ZERO;
     };
-    let Some(link) = connect(tracer, vertex.origin(), m, &anchor, stats) else {
+    let Some(link) = connect(tracer, origin, m, &anchor, stats) else {
         return Rgb::ZERO;
     };
-    let cos = vertex.cos(link.direction);
+    let (cos, radiance_scale) = match (face, vertex.surface()) {
+        (Face::Far, Some(v)) => (
+            -vertex.cos(link.direction),
+            v.radiance_scale(link.direction),
+        ),
+        (Face::Arrival, _) | (Face::Far, None) => (vertex.cos(link.direction), 1.0),
+    };
     if cos <= 0.0 {
         return Rgb::ZERO;
     }
@@ -138,11 +181,9 @@ fn curved_light(
     let unscattered = tracer
         .scattering(m)
         .map_or(Rgb::ONE, |sc| sc.transmittance(link.column));
-    vertex.eval(link.direction) * e * unscattered * cos
+    vertex.eval(link.direction) * e * unscattered * (cos * radiance_scale)
 }
 
-/// The power heuristic's weight of a strategy of pdf `a` against one of pdf `b` (1 when `a`
-/// is a delta).
 fn power_heuristic(a: f64, b: f64) -> f64 {
     if a.is_infinite() {
         1.0
@@ -201,19 +242,30 @@ pub fn light_samples(
 ) -> Rgb {
     let tracer = carried.tracer;
     let scene = tracer.scene;
-    let graded = vertex.medium().filter(|&m| !tracer.medium(m).is_uniform());
+    let graded = vertex
+        .medium()
+        .is_some_and(|m| !tracer.medium(m).is_uniform());
     // Light `index`'s sample at `uv`, drawn with chance `chosen`, divided by it.
     let sample = |Pick { index, probability }: Pick, [u, v]: [f64; 2], stats: &mut Stats| {
         let light = &scene.lights[index];
-        let lit = match graded {
-            None => straight_light(tracer, vertex, light, probability, (u, v)),
-            Some(m) if !light.is_hittable() => {
-                curved_light(tracer, vertex, m, light, (u, v), stats)
+        let uv = (u, v);
+        let lit = match (graded, light.is_hittable()) {
+            (false, _) => straight_light(tracer, vertex, Sides::Either, light, probability, uv),
+            (true, false) => {
+                curved_light(tracer, vertex, Face::Arrival, light, uv, stats)
+                    + straight_light(tracer, vertex, Sides::Far, light, probability, uv)
             }
             // An area light's light reaches a vertex in a gradient medium by the BSDF ray.
-            Some(_) => Rgb::ZERO,
+            (true, true) => Rgb::ZERO,
         };
-        lit / probability
+        // A delta light in a gradient medium beyond a surface that transmits into it is
+        // reached by no direction sample and no straight shadow ray: by the curved connection
+        // from the far side only (an area light there by the BSDF ray).
+        let beyond = match light.is_hittable() {
+            false => curved_light(tracer, vertex, Face::Far, light, uv, stats),
+            true => Rgb::ZERO,
+        };
+        (lit + beyond) / probability
     };
     match tracer.light_samples {
         LightSamples::Each => {
