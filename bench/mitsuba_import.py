@@ -50,6 +50,8 @@ CASES = {
     "window": ("window.xml", {}),
     # An orthographic view, tilted and scaled, of a checkerboard, a ball and a box.
     "orthographic": ("orthographic.xml", {}),
+    # Rough metal balls with Beckmann normals (Mitsuba's default distribution), α 0.1–0.6.
+    "beckmann": ("beckmann.xml", {}),
 }
 
 

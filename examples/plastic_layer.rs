@@ -9,7 +9,7 @@
 //!
 //!     cargo run --release --example plastic_layer [ALPHA] [ETA] [RHO] [RAYS]
 use glam::DVec3;
-use grinlight::bsdf::{walk, Bsdf, Coat, Ggx};
+use grinlight::bsdf::{walk, Bsdf, Coat, Microsurface};
 use grinlight::color::Rgb;
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
@@ -21,7 +21,13 @@ fn flip(v: DVec3) -> DVec3 {
 
 /// Where a ray arriving along −`o` (o.z > 0) leaves the layer: Some(direction) above it, None
 /// where the base absorbs it.
-fn through_layer(g: &Ggx, eta: f64, rho: f64, o: DVec3, rng: &mut Pcg64Mcg) -> Option<DVec3> {
+fn through_layer(
+    g: &Microsurface,
+    eta: f64,
+    rho: f64,
+    o: DVec3,
+    rng: &mut Pcg64Mcg,
+) -> Option<DVec3> {
     let exit = walk::dielectric(g, 1.0, eta, o, (rng.gen(), rng.gen(), rng.gen()))?;
     if exit.wi.z > 0.0 {
         return Some(exit.wi);
@@ -51,7 +57,7 @@ fn main() {
     let eta = args.get(1).copied().unwrap_or(1.5);
     let rho = args.get(2).copied().unwrap_or(0.8);
     let rays = args.get(3).copied().unwrap_or(4e6) as usize;
-    let g = Ggx::isotropic(alpha);
+    let g = Microsurface::ggx(alpha);
     let coat = Coat::new(eta, g);
     let plastic = Bsdf::Plastic {
         albedo: Rgb::splat(rho),

@@ -1,7 +1,7 @@
 //! Surface materials: what a scene says a surface is. [`crate::bsdf`] is how it scatters;
 //! [`Material::bsdf`] makes the one from the other at a point of the surface.
 
-use crate::bsdf::{Bsdf, Coat, Ggx, Lobes, Metal, Reflectance};
+use crate::bsdf::{Bsdf, Coat, Lobes, Metal, Microsurface, Reflectance};
 use crate::color::Rgb;
 use crate::polarization::Sheet;
 use crate::spectrum::{colour, Dispersion, Fluorophore};
@@ -22,20 +22,20 @@ pub enum Material {
         fluorescence: Option<Arc<FluorescentLayer>>,
     },
     /// A conductor (`conductor`, and `mirror`: a smooth one of constant reflectance), two-sided:
-    /// a mirror where `ggx` is None, else GGX microfacet reflection.
+    /// a mirror where `microsurface` is None, else microfacet reflection.
     Conductor {
         /// Its complex index or reflectance.
         index: ConductorIndex,
         /// The microsurface; None: smooth (a roughness below [`crate::bsdf::SMOOTH_ALPHA`],
-        /// decided once by [`Ggx::rough`] where the scene is read).
-        ggx: Option<Ggx>,
+        /// decided once by [`Microsurface::rough`] where the scene is read).
+        microsurface: Option<Microsurface>,
     },
     /// A dielectric boundary, with the index on each side evaluated at the hit point: Fresnel
-    /// reflection and Snell refraction where `ggx` is None, else the rough interface. The
+    /// reflection and Snell refraction where `microsurface` is None, else the rough interface. The
     /// inside is the shape's interior medium.
     Dielectric {
         /// The microsurface; None: smooth (as a conductor's).
-        ggx: Option<Ggx>,
+        microsurface: Option<Microsurface>,
     },
     /// A diffuse base under a rough dielectric coat, two-sided.
     Plastic {
@@ -110,12 +110,17 @@ impl Material {
     pub fn lobes(&self) -> Lobes {
         match self {
             Material::Diffuse { .. } => Lobes::DIFFUSE_REFLECTION,
-            Material::Conductor { ggx: Some(_), .. } => Lobes::GLOSSY_REFLECTION,
-            Material::Conductor { ggx: None, .. } => Lobes::SPECULAR_REFLECTION,
-            Material::Dielectric { ggx: Some(_) } => {
-                Lobes::GLOSSY_REFLECTION.with(Lobes::GLOSSY_TRANSMISSION)
-            }
-            Material::Dielectric { ggx: None } => {
+            Material::Conductor {
+                microsurface: Some(_),
+                ..
+            } => Lobes::GLOSSY_REFLECTION,
+            Material::Conductor {
+                microsurface: None, ..
+            } => Lobes::SPECULAR_REFLECTION,
+            Material::Dielectric {
+                microsurface: Some(_),
+            } => Lobes::GLOSSY_REFLECTION.with(Lobes::GLOSSY_TRANSMISSION),
+            Material::Dielectric { microsurface: None } => {
                 Lobes::SPECULAR_REFLECTION.with(Lobes::SPECULAR_TRANSMISSION)
             }
             Material::ThinDielectric { .. } => {
@@ -163,14 +168,17 @@ impl Material {
             } => Bsdf::Lambert {
                 albedo: textured(*albedo, texture),
             },
-            Material::Conductor { index, ggx } => Bsdf::Conductor {
+            Material::Conductor {
+                index,
+                microsurface,
+            } => Bsdf::Conductor {
                 fresnel: index.reflectance(at.wavelength(), at.index_near()?),
-                ggx: *ggx,
+                microsurface: *microsurface,
             },
-            Material::Dielectric { ggx } => Bsdf::Dielectric {
+            Material::Dielectric { microsurface } => Bsdf::Dielectric {
                 n1: at.index_near()?,
                 n2: at.index_far()?,
-                ggx: *ggx,
+                microsurface: *microsurface,
             },
             Material::Plastic {
                 albedo,

@@ -3,7 +3,7 @@
 //! against the path tracer on a Cornell box of rough metal, frosted glass and plastic walls.
 
 use glam::DVec3;
-use grinlight::bsdf::{Bsdf, Ggx, Reflectance};
+use grinlight::bsdf::{Bsdf, Microsurface, Reflectance};
 use grinlight::color::Rgb;
 use grinlight::scene::load::parse_scene;
 use grinlight::settings::{IntegratorKind, Settings};
@@ -17,7 +17,7 @@ use crate::common::quadrature;
 fn ggx_albedo(alpha: f64, mu: f64) -> f64 {
     let bsdf = Bsdf::Conductor {
         fresnel: Reflectance::Constant(Rgb::ONE),
-        ggx: Some(Ggx::isotropic(alpha)),
+        microsurface: Some(Microsurface::ggx(alpha)),
     };
     let wo = DVec3::new((1.0 - mu * mu).max(0.0).sqrt(), 0.0, mu);
     quadrature::reflected_fraction(1500, 360, wo, |wi| bsdf.eval(wo, wi, DVec3::Z).0.x)

@@ -146,10 +146,11 @@ const BAD: &[(&str, usize, usize, &str)] = &[
     // Glossy materials: roughness below 0, NaN or above 1; an unknown metal; eta without k,
     // k without eta, both metal and eta; negative k or η over wavelength; a plastic with a smooth coat or a coat of index ≤ 1;
     // a negative k.
-    ("[[material]]\nname = \"m\"\ntype = \"conductor\"\nmetal = \"Au\"\nroughness = -0.1\n", 5, 1, "key `roughness`: must be GGX α in [0, 1]"),
+    ("[[material]]\nname = \"m\"\ntype = \"conductor\"\nmetal = \"Au\"\nroughness = -0.1\n", 5, 1, "key `roughness`: must be a microfacet α in [0, 1]"),
     ("[[material]]\nname = \"m\"\ntype = \"conductor\"\nmetal = \"Au\"\nroughness = nan\n", 5, 1, "key `roughness`: must be finite, got NaN"),
-    ("[[material]]\nname = \"m\"\ntype = \"dielectric\"\nior = 1.5\nroughness = 2\n", 5, 1, "key `roughness`: must be GGX α in [0, 1]"),
+    ("[[material]]\nname = \"m\"\ntype = \"dielectric\"\nior = 1.5\nroughness = 2\n", 5, 1, "key `roughness`: must be a microfacet α in [0, 1]"),
     ("[[material]]\nname = \"m\"\ntype = \"conductor\"\nmetal = \"Pt\"\n", 4, 1, "unknown metal 'Pt' (Ag, Al, Au, Cu, perfect)"),
+    ("[[material]]\nname = \"m\"\ntype = \"conductor\"\nmetal = \"Au\"\nroughness = 0.2\ndistribution = \"phong\"\n", 6, 1, "key `distribution`: unknown distribution 'phong' (expected ggx or beckmann)"),
     ("[[material]]\nname = \"m\"\ntype = \"conductor\"\neta = [0.2, 0.4, 1.4]\n", 4, 1, "key `eta`: `eta` needs `k`"),
     ("[[material]]\nname = \"m\"\ntype = \"conductor\"\nk = 3\n", 4, 1, "key `k`: `k` needs `eta`"),
     ("[[material]]\nname = \"m\"\ntype = \"conductor\"\nmetal = \"Au\"\neta = 1\nk = 1\n", 4, 1, "give `metal` or `eta` and `k`"),

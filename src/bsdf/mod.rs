@@ -28,7 +28,7 @@ pub use fresnel::{
     thin_dielectric,
 };
 pub use metals::{named as metal, Metal, METALS, WAVELENGTHS};
-pub use microfacet::{Ggx, SMOOTH_ALPHA};
+pub use microfacet::{Distribution, Microsurface, SMOOTH_ALPHA};
 pub use plastic::Coat;
 
 use crate::color::Rgb;
@@ -137,16 +137,16 @@ pub enum Bsdf<'a> {
         /// Reflectance per channel.
         albedo: Rgb,
     },
-    /// A conductor: a mirror reflection where `ggx` is None, else GGX microfacet reflection
+    /// A conductor: a mirror reflection where `microsurface` is None, else microfacet reflection
     /// with Smith's height-correlated G₂.
     Conductor {
         /// Its Fresnel reflectance.
         fresnel: Reflectance<'a>,
         /// The microsurface (None: smooth).
-        ggx: Option<Ggx>,
+        microsurface: Option<Microsurface>,
     },
     /// An interface from index `n1` (the side of `wo`) to `n2`: Fresnel reflection and Snell
-    /// refraction where `ggx` is None, else Walter et al.'s (2007) rough reflection and
+    /// refraction where `microsurface` is None, else Walter et al.'s (2007) rough reflection and
     /// transmission.
     Dielectric {
         /// Index on the side of `wo`.
@@ -154,7 +154,7 @@ pub enum Bsdf<'a> {
         /// Index on the other side.
         n2: f64,
         /// The microsurface (None: smooth).
-        ggx: Option<Ggx>,
+        microsurface: Option<Microsurface>,
     },
     /// A thin dielectric pane (a window) of index `eta` relative to the medium around it:
     /// light is reflected specularly with its internal reflections summed
@@ -270,11 +270,13 @@ impl Bsdf<'_> {
     pub fn lobes(&self) -> Lobes {
         match self {
             Bsdf::Lambert { .. } => Lobes::DIFFUSE_REFLECTION,
-            Bsdf::Conductor { ggx: None, .. } => Lobes::SPECULAR_REFLECTION,
+            Bsdf::Conductor {
+                microsurface: None, ..
+            } => Lobes::SPECULAR_REFLECTION,
             Bsdf::Conductor { .. } => Lobes::GLOSSY_REFLECTION,
-            Bsdf::Dielectric { ggx: None, .. } => {
-                Lobes::SPECULAR_REFLECTION.with(Lobes::SPECULAR_TRANSMISSION)
-            }
+            Bsdf::Dielectric {
+                microsurface: None, ..
+            } => Lobes::SPECULAR_REFLECTION.with(Lobes::SPECULAR_TRANSMISSION),
             Bsdf::Dielectric { .. } => Lobes::GLOSSY_REFLECTION.with(Lobes::GLOSSY_TRANSMISSION),
             Bsdf::ThinDielectric { .. } => {
                 Lobes::SPECULAR_REFLECTION.with(Lobes::SPECULAR_TRANSMISSION)
@@ -299,7 +301,7 @@ impl Bsdf<'_> {
     /// nothing and turns nothing (Fresnel's R = 0, Snell's law the identity) — a medium's
     /// boundary that is no optical surface (Mitsuba's `null` BSDF).
     pub fn is_index_matched(&self) -> bool {
-        matches!(self, Bsdf::Dielectric { n1, n2, ggx: None } if n1 == n2)
+        matches!(self, Bsdf::Dielectric { n1, n2, microsurface: None } if n1 == n2)
     }
 
     /// Samples a direction for uniform numbers `u` (u.0, u.1 for the lobe's direction, u.2
@@ -319,13 +321,20 @@ impl Bsdf<'_> {
                     lobe: Lobes::DIFFUSE_REFLECTION,
                 })
             }
-            Bsdf::Conductor { fresnel, ggx: None } => Some(BsdfSample {
+            Bsdf::Conductor {
+                fresnel,
+                microsurface: None,
+            } => Some(BsdfSample {
                 wi: reflect(-wo, n),
                 weight: fresnel.at(wo.dot(n)),
                 pdf: f64::INFINITY,
                 lobe: Lobes::SPECULAR_REFLECTION,
             }),
-            Bsdf::Dielectric { n1, n2, ggx: None } => {
+            Bsdf::Dielectric {
+                n1,
+                n2,
+                microsurface: None,
+            } => {
                 if wo.dot(n) < 0.0 {
                     return None;
                 }
@@ -356,7 +365,7 @@ impl Bsdf<'_> {
             }
             Bsdf::Conductor {
                 fresnel,
-                ggx: Some(g),
+                microsurface: Some(g),
             } => in_local(n, wo, |o| {
                 let m = g.sample_visible(o, (u.0, u.1));
                 let i = reflect(-o, m);
@@ -370,7 +379,7 @@ impl Bsdf<'_> {
             Bsdf::Dielectric {
                 n1,
                 n2,
-                ggx: Some(g),
+                microsurface: Some(g),
             } => in_local(n, wo, |o| {
                 let exit = walk::dielectric(&g, n1, n2, o, u)?;
                 let i = exit.wi;
@@ -396,7 +405,7 @@ impl Bsdf<'_> {
             Bsdf::Plastic { albedo, coat } => in_local(n, wo, |o| {
                 let p = coat.specular_probability(o.z, albedo);
                 let (i, lobe) = if u.2 < p {
-                    let m = coat.ggx.sample_visible(o, (u.0, u.1));
+                    let m = coat.microsurface.sample_visible(o, (u.0, u.1));
                     (reflect(-o, m), Lobes::GLOSSY_REFLECTION)
                 } else {
                     (cosine_hemisphere((u.0, u.1)), Lobes::DIFFUSE_REFLECTION)
@@ -426,8 +435,12 @@ impl Bsdf<'_> {
         let pair = Pair::of(n, wo, wi);
         let above = pair.above();
         match *self {
-            Bsdf::Conductor { ggx: None, .. }
-            | Bsdf::Dielectric { ggx: None, .. }
+            Bsdf::Conductor {
+                microsurface: None, ..
+            }
+            | Bsdf::Dielectric {
+                microsurface: None, ..
+            }
             | Bsdf::ThinDielectric { .. }
             | Bsdf::Sheet { .. } => Rgb::ZERO,
             Bsdf::Lambert { albedo } => match above {
@@ -436,7 +449,7 @@ impl Bsdf<'_> {
             },
             Bsdf::Conductor {
                 fresnel,
-                ggx: Some(g),
+                microsurface: Some(g),
             } => match above {
                 true => {
                     let (o, i) = pair.local();
@@ -448,7 +461,7 @@ impl Bsdf<'_> {
             Bsdf::Dielectric {
                 n1,
                 n2,
-                ggx: Some(g),
+                microsurface: Some(g),
             } => match pair.cos_o > 0.0 && pair.cos_i != 0.0 {
                 true => {
                     let (o, i) = pair.local();
@@ -472,15 +485,22 @@ impl Bsdf<'_> {
         let pair = Pair::of(n, wo, wi);
         let above = pair.above();
         match *self {
-            Bsdf::Conductor { ggx: None, .. }
-            | Bsdf::Dielectric { ggx: None, .. }
+            Bsdf::Conductor {
+                microsurface: None, ..
+            }
+            | Bsdf::Dielectric {
+                microsurface: None, ..
+            }
             | Bsdf::ThinDielectric { .. }
             | Bsdf::Sheet { .. } => 0.0,
             Bsdf::Lambert { .. } => match pair.cos_o > 0.0 {
                 true => pair.cos_i.max(0.0) * FRAC_1_PI,
                 false => 0.0,
             },
-            Bsdf::Conductor { ggx: Some(g), .. } => match above {
+            Bsdf::Conductor {
+                microsurface: Some(g),
+                ..
+            } => match above {
                 true => {
                     let (o, i) = pair.local();
                     let m = (i + o).normalize();
@@ -491,7 +511,7 @@ impl Bsdf<'_> {
             Bsdf::Dielectric {
                 n1,
                 n2,
-                ggx: Some(g),
+                microsurface: Some(g),
             } => match pair.cos_o > 0.0 && pair.cos_i != 0.0 {
                 true => {
                     let (o, i) = pair.local();
@@ -608,7 +628,11 @@ impl Bsdf<'_> {
                 .unwrap_or_else(|| wo.any_orthonormal_vector())
         };
         match *self {
-            Bsdf::Dielectric { n1, n2, ggx: None } => {
+            Bsdf::Dielectric {
+                n1,
+                n2,
+                microsurface: None,
+            } => {
                 let reflected = wi.dot(n) * wo.dot(n) > 0.0;
                 Some(Element::grey(
                     match reflected {
@@ -618,7 +642,10 @@ impl Bsdf<'_> {
                     s(),
                 ))
             }
-            Bsdf::Conductor { fresnel, ggx: None } => Some(Element {
+            Bsdf::Conductor {
+                fresnel,
+                microsurface: None,
+            } => Some(Element {
                 mueller: fresnel.mueller(cos),
                 x: s(),
             }),
@@ -635,8 +662,14 @@ impl Bsdf<'_> {
             }
             Bsdf::Sheet { sheet } => Some(sheet.element()),
             Bsdf::Lambert { .. }
-            | Bsdf::Conductor { ggx: Some(_), .. }
-            | Bsdf::Dielectric { ggx: Some(_), .. }
+            | Bsdf::Conductor {
+                microsurface: Some(_),
+                ..
+            }
+            | Bsdf::Dielectric {
+                microsurface: Some(_),
+                ..
+            }
             | Bsdf::Plastic { .. } => None,
         }
     }
@@ -670,8 +703,8 @@ fn transmittance(n1: f64, n2: f64, om: f64, im: f64) -> f64 {
 
 /// Walter et al.'s (2007) rough dielectric f for basic radiance (see the module's notes): the
 /// single scattering of [`walk::dielectric`], with the Smith G₂ of correlated heights, a
-/// reflection's or a transmission's ([`Ggx::g2_transmission`]).
-fn rough_dielectric_f(g: &Ggx, n1: f64, n2: f64, o: DVec3, i: DVec3) -> f64 {
+/// reflection's or a transmission's ([`Microsurface::g2_transmission`]).
+fn rough_dielectric_f(g: &Microsurface, n1: f64, n2: f64, o: DVec3, i: DVec3) -> f64 {
     let Some(m) = half_vector(n1, n2, o, i) else {
         return 0.0;
     };
@@ -689,6 +722,6 @@ fn rough_dielectric_f(g: &Ggx, n1: f64, n2: f64, o: DVec3, i: DVec3) -> f64 {
 
 /// The density with which [`Bsdf::sample`]'s walk leaves along `i` after a single scattering:
 /// f·|cos θi| (a walk's weight is 1).
-fn rough_dielectric_pdf(g: &Ggx, n1: f64, n2: f64, o: DVec3, i: DVec3) -> f64 {
+fn rough_dielectric_pdf(g: &Microsurface, n1: f64, n2: f64, o: DVec3, i: DVec3) -> f64 {
     rough_dielectric_f(g, n1, n2, o, i) * i.z.abs()
 }

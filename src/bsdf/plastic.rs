@@ -1,6 +1,6 @@
 //! Plastic: a Lambertian base under a rough dielectric coat, as Mitsuba's `roughplastic`
 //! models it (Jakob et al.; after Kelemen and Szirmay-Kalos 2001 and Weidlich and Wilkie
-//! 2007). Light either reflects off the coat (GGX, the dielectric Fresnel term) or enters,
+//! 2007). Light either reflects off the coat (its microsurface, the dielectric Fresnel term) or enters,
 //! scatters in the base (albedo ρ) and among the coat's inner side, and leaves:
 //!
 //! f(ωo, ωi) = F(ωo·m) D(m) G₂ / (4 cos θi cos θo)
@@ -14,7 +14,7 @@
 //! 1, and 1 for ρ = 1: no energy is made, and a white plastic loses none.
 
 use super::fresnel::dielectric;
-use super::microfacet::Ggx;
+use super::microfacet::Microsurface;
 use super::{reflect, BsdfSample, Lobes};
 use crate::color::Rgb;
 use glam::DVec3;
@@ -29,7 +29,7 @@ pub struct Coat {
     /// The coat's index relative to the medium outside.
     pub eta: f64,
     /// Its microsurface.
-    pub ggx: Ggx,
+    pub microsurface: Microsurface,
     /// E(μ) at μ = j/(NODES − 1).
     albedo: Vec<f64>,
     /// The inner side's mean reflectance F̄ᵢ of diffuse light.
@@ -37,10 +37,10 @@ pub struct Coat {
 }
 
 impl Coat {
-    /// The coat of relative index `eta` (> 1) and roughness `ggx`: tabulates E(μ) by a
+    /// The coat of relative index `eta` (> 1) and roughness `microsurface`: tabulates E(μ) by a
     /// 64 × 64 midpoint rule over the visible normals' sampling square (smooth there) at each
     /// of 65 angles.
-    pub fn new(eta: f64, ggx: Ggx) -> Self {
+    pub fn new(eta: f64, microsurface: Microsurface) -> Self {
         let n = 64;
         let albedo: Vec<f64> = (0..NODES)
             .map(|j| {
@@ -50,10 +50,11 @@ impl Coat {
                 for a in 0..n {
                     for b in 0..n {
                         let u = ((a as f64 + 0.5) / n as f64, (b as f64 + 0.5) / n as f64);
-                        let m = ggx.sample_visible(o, u);
+                        let m = microsurface.sample_visible(o, u);
                         let i = reflect(-o, m);
                         if i.z > 0.0 {
-                            sum += dielectric(o.dot(m), 1.0, eta).0 * ggx.g2(i, o) / ggx.g1(o);
+                            sum += dielectric(o.dot(m), 1.0, eta).0 * microsurface.g2(i, o)
+                                / microsurface.g1(o);
                         }
                     }
                 }
@@ -72,7 +73,7 @@ impl Coat {
                 .sum::<f64>();
         Self {
             eta,
-            ggx,
+            microsurface,
             albedo,
             inner_reflectance: 1.0 - t_mean / (eta * eta),
         }
@@ -89,7 +90,9 @@ impl Coat {
     /// f(o, i) in the local frame (both above the surface).
     pub(super) fn f(&self, o: DVec3, i: DVec3, albedo: Rgb) -> Rgb {
         let m = (o + i).normalize();
-        let specular = dielectric(o.dot(m), 1.0, self.eta).0 * self.ggx.d(m) * self.ggx.g2(i, o)
+        let specular = dielectric(o.dot(m), 1.0, self.eta).0
+            * self.microsurface.d(m)
+            * self.microsurface.g2(i, o)
             / (4.0 * i.z * o.z);
         self.leaving(o.z, albedo) * self.entering(i.z) + Rgb::splat(specular)
     }
@@ -118,13 +121,14 @@ impl Coat {
         if u.2 >= e {
             return None;
         }
-        let m = self.ggx.sample_visible(o, (u.0, u.1));
+        let m = self.microsurface.sample_visible(o, (u.0, u.1));
         let i = reflect(-o, m);
         if i.z <= 0.0 {
             return None;
         }
-        let weight = dielectric(o.dot(m), 1.0, self.eta).0 * self.ggx.g2(i, o) / self.ggx.g1(o);
-        let pdf = e * self.ggx.visible_d(o, m) / (4.0 * o.dot(m));
+        let weight = dielectric(o.dot(m), 1.0, self.eta).0 * self.microsurface.g2(i, o)
+            / self.microsurface.g1(o);
+        let pdf = e * self.microsurface.visible_d(o, m) / (4.0 * o.dot(m));
         Some(BsdfSample {
             wi: i,
             weight: Rgb::splat(weight / e),
@@ -148,7 +152,7 @@ impl Coat {
     /// The mixture's pdf for `i` given `o` and the coat's probability `p`.
     pub(super) fn pdf(&self, o: DVec3, i: DVec3, p: f64) -> f64 {
         let m = (o + i).normalize();
-        let specular = self.ggx.visible_d(o, m) / (4.0 * o.dot(m));
+        let specular = self.microsurface.visible_d(o, m) / (4.0 * o.dot(m));
         p * specular + (1.0 - p) * i.z.max(0.0) * FRAC_1_PI
     }
 }

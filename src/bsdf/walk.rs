@@ -1,4 +1,4 @@
-//! Light on a rough dielectric interface as it really goes: a random walk over the Smith GGX
+//! Light on a rough dielectric interface as it really goes: a random walk over the Smith
 //! microsurface (Heitz, Hanika, d'Eon and Dachsbacher 2016, "Multiple-scattering microfacet
 //! BSDFs with the Smith model"). A ray meets the microsurface at a height drawn from the Smith
 //! statistics (heights uniform in [−1, 1]), on a facet drawn from the visible normals, is
@@ -8,14 +8,14 @@
 //! Its first scattering is Walter et al.'s (2007) single-scattering BSDF with the Smith
 //! masking–shadowing of correlated heights: G₂ = 1/(1 + Λo + Λi) for a reflection and
 //! B(1 + Λo, 1 + Λi) (Euler's beta function) for a transmission, whose outgoing ray must
-//! leave downward from the height it refracted at ([`Ggx::g2_transmission`]). The later
+//! leave downward from the height it refracted at ([`Microsurface::g2_transmission`]). The later
 //! ones are the light a single-scattering model loses: none is lost here (a dielectric
 //! absorbs nothing), so a sample's weight is 1. At equal indices every facet lets the ray
 //! through unbent and the walk leaves straight on: the interface is not there, as it must
 //! not be (a single-scattering model keeps only G₂/G₁ of it).
 
 use super::fresnel::{self, reflect, refract};
-use super::microfacet::Ggx;
+use super::microfacet::Microsurface;
 use glam::DVec3;
 use rand::Rng;
 use rand_pcg::Pcg64Mcg;
@@ -39,7 +39,13 @@ pub struct Exit {
 /// normal, then the Fresnel choice); the walk's other numbers come from a stream keyed by
 /// their bits, so that the exit is a function of `u` alone. None when it meets
 /// [`MAX_ORDER`] facets.
-pub fn dielectric(g: &Ggx, n1: f64, n2: f64, o: DVec3, u: (f64, f64, f64)) -> Option<Exit> {
+pub fn dielectric(
+    g: &Microsurface,
+    n1: f64,
+    n2: f64,
+    o: DVec3,
+    u: (f64, f64, f64),
+) -> Option<Exit> {
     let mut rng = Pcg64Mcg::new(
         (u128::from(u.0.to_bits()) << 64 | u128::from(u.1.to_bits()))
             ^ u128::from(u.2.to_bits()).rotate_left(37)
@@ -85,7 +91,7 @@ pub fn dielectric(g: &Ggx, n1: f64, n2: f64, o: DVec3, u: (f64, f64, f64)) -> Op
 
 /// Smith's Λ of a direction of travel `w` (local) as Heitz et al. sign it: Λ(w) upward,
 /// −1 − Λ(w) downward (a ray going down meets the surface surely).
-fn signed_lambda(g: &Ggx, w: DVec3) -> f64 {
+fn signed_lambda(g: &Microsurface, w: DVec3) -> f64 {
     match w.z > 0.0 {
         true => g.lambda(w),
         false => -1.0 - g.lambda(w),
@@ -95,7 +101,7 @@ fn signed_lambda(g: &Ggx, w: DVec3) -> f64 {
 /// The height at which a ray travelling along `w` from height `h` above the microsurface
 /// next meets it, for uniform `u`; None where it leaves. Heights are uniform in [−1, 1]
 /// (C₁(h) = (h + 1)/2), so the chance a ray goes on unstopped from h is C₁(h)^Λ(w).
-fn next_height(g: &Ggx, w: DVec3, h: f64, u: f64) -> Option<f64> {
+fn next_height(g: &Microsurface, w: DVec3, h: f64, u: f64) -> Option<f64> {
     let c1 = |h: f64| (0.5 * (h + 1.0)).clamp(0.0, 1.0);
     let inverse = |c: f64| (2.0 * c - 1.0).clamp(-1.0, 1.0);
     if w.z > 0.9999 {

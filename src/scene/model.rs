@@ -383,7 +383,7 @@ impl Scene {
     /// known only at a hit, [`crate::transport::Tracer::crosses_unchanged`]); where none
     /// may, a shadow ray is blocked by any surface it meets.
     pub fn may_match_indices(&self) -> bool {
-        (self.materials.iter()).any(|m| matches!(m, Material::Dielectric { ggx: None }))
+        (self.materials.iter()).any(|m| matches!(m, Material::Dielectric { microsurface: None }))
     }
 
     /// The light `id`.

@@ -11,6 +11,7 @@ use super::geometry::{
 };
 use super::table::{absorption, affine_rows, free_name, string, table, vec3, AreaEmitter, Lists};
 use super::{Imported, Place, Told};
+use crate::bsdf::Distribution;
 use crate::error::{cut, Result};
 use glam::{DMat3, DMat4, DVec3};
 use std::collections::{HashMap, HashSet};
@@ -162,6 +163,25 @@ enum Surface {
     },
     /// Mitsuba's `null`: no surface (a medium's boundary only).
     Null,
+}
+
+/// A rough surface's microsurface as a grinlight material's keys.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Roughness {
+    /// Its α.
+    alpha: f64,
+    /// Its distribution of normals.
+    distribution: Distribution,
+}
+
+impl Roughness {
+    /// Writes `roughness` (and `distribution`, where it is not GGX, the default) into `m`.
+    fn write(self, m: &mut Table) {
+        m.insert("roughness".into(), Toml::Float(self.alpha));
+        if self.distribution != Distribution::Ggx {
+            m.insert("distribution".into(), string(self.distribution.name()));
+        }
+    }
 }
 
 struct Converter<'d> {
@@ -341,11 +361,12 @@ impl Converter<'_> {
         })
     }
 
-    /// GGX α from `alpha` (or equal `alpha_u`, `alpha_v`), `distribution` GGX (Beckmann only
-    /// approximately). The masking differs by model, said in a note: Mitsuba's is the
-    /// separable Smith G₁(ωi)G₁(ωo), grinlight's the height-correlated one (and its rough
-    /// dielectric keeps every order of scattering on the microsurface).
-    fn roughness(&mut self, obj: &Object) -> Result<f64> {
+    /// The microsurface: α from `alpha` (or equal `alpha_u`, `alpha_v`), `distribution` GGX or
+    /// Beckmann (Mitsuba's default). The masking differs by model, said in a note: Mitsuba's
+    /// is the separable Smith G₁(ωi)G₁(ωo) (for Beckmann its rational fit to G₁, within
+    /// 0.35 %), grinlight's the height-correlated one (and its rough dielectric keeps every
+    /// order of scattering on the microsurface).
+    fn roughness(&mut self, obj: &Object) -> Result<Roughness> {
         let place = obj.place.clone();
         self.told.note(
             &place,
@@ -372,27 +393,16 @@ impl Converter<'_> {
             }
             _ => obj.float_or("alpha", 0.1)?,
         };
-        match distribution.as_str() {
-            "ggx" => {}
-            "beckmann" => {
-                let place = obj.place.clone();
-                self.told.approximate(
-                    &place,
-                    format!(
-                        "{}: a Beckmann microfacet distribution (Mitsuba's default) taken as \
-                         GGX of the same α (GGX's longer tails: light through rough glass can \
-                         differ by a third — a frosted ball lit from behind rendered 0.64 of \
-                         Mitsuba's image)",
-                        obj.what()
-                    ),
-                )?;
-            }
-            other => return Err(obj.error(format!("unknown distribution '{}'", cut(other)))),
-        }
+        let Some(distribution) = Distribution::named(&distribution) else {
+            return Err(obj.error(format!("unknown distribution '{}'", cut(&distribution))));
+        };
         if !(0.0..=1.0).contains(&alpha) {
             return Err(obj.error(format!("alpha = {alpha} is outside grinlight's [0, 1]")));
         }
-        Ok(alpha)
+        Ok(Roughness {
+            alpha,
+            distribution,
+        })
     }
 
     /// The material a BSDF becomes (each BSDF object once).
@@ -444,7 +454,7 @@ impl Converter<'_> {
                 self.unit_factor(b, "specular_transmittance")?;
                 let mut m = table([("ior", Toml::Float(eta))]);
                 if b.kind == "roughdielectric" {
-                    m.insert("roughness".into(), Toml::Float(self.roughness(b)?));
+                    self.roughness(b)?.write(&mut m);
                 }
                 ("dielectric", m, Some(eta))
             }
@@ -483,7 +493,7 @@ impl Converter<'_> {
                     _ => return Err(b.error("give both eta and k, or neither")),
                 };
                 if b.kind == "roughconductor" {
-                    m.insert("roughness".into(), Toml::Float(self.roughness(b)?));
+                    self.roughness(b)?.write(&mut m);
                 }
                 ("conductor", m, None)
             }
@@ -508,7 +518,13 @@ impl Converter<'_> {
                     )?;
                 }
                 let roughness = match b.kind.as_str() {
-                    "roughplastic" => self.roughness(b)?.max(1e-3),
+                    "roughplastic" => {
+                        let rough = self.roughness(b)?;
+                        Roughness {
+                            alpha: rough.alpha.max(1e-3),
+                            ..rough
+                        }
+                    }
                     _ => {
                         let place = b.place.clone();
                         self.told.approximate(
@@ -518,11 +534,14 @@ impl Converter<'_> {
                                 b.what()
                             ),
                         )?;
-                        1e-3
+                        Roughness {
+                            alpha: 1e-3,
+                            distribution: Distribution::Ggx,
+                        }
                     }
                 };
                 base.insert("ior".into(), Toml::Float(eta));
-                base.insert("roughness".into(), Toml::Float(roughness));
+                roughness.write(&mut base);
                 let place = b.place.clone();
                 self.told.note(
                     &place,

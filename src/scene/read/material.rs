@@ -1,9 +1,9 @@
 //! `[[material]]`: surfaces, and what fills a dielectric. Every key's unit and default is in `docs/scene-format.md`.
 
 use crate::bsdf::Metal;
-use crate::bsdf::{Coat, Ggx, SMOOTH_ALPHA};
+use crate::bsdf::{Coat, Distribution, Microsurface, SMOOTH_ALPHA};
 use crate::color::Rgb;
-use crate::error::Result;
+use crate::error::{cut, Result};
 use crate::material::{ConductorIndex, FluorescentLayer, Material};
 use crate::polarization::Sheet;
 use crate::scene::media::{absorbing_form, read_fluorophore};
@@ -94,22 +94,42 @@ fn texture(t: &mut TableReader) -> Result<Option<Arc<Texture>>> {
     Ok(Some(Arc::new(Texture { pattern, to_uv })))
 }
 
-/// GGX α at `roughness` (`default` if absent), a number in [0, 1].
+/// The microfacet α at `roughness` (`default` if absent), a number in [0, 1].
 fn roughness(t: &mut TableReader, default: f64) -> Result<f64> {
     let alpha = t.f64_or("roughness", default)?;
     t.check(
         "roughness",
         (0.0..=1.0).contains(&alpha),
-        format!("must be GGX α in [0, 1], got {alpha:?}"),
+        format!("must be a microfacet α in [0, 1], got {alpha:?}"),
     )?;
     Ok(alpha)
 }
 
-/// The microsurface of `roughness` (smooth if absent): None, a smooth surface, where α is
-/// below [`crate::bsdf::SMOOTH_ALPHA`] — the one place rough and smooth are told apart.
-fn microsurface(t: &mut TableReader) -> Result<Option<Ggx>> {
+/// The microfacet `distribution`: `"ggx"` (the default) or `"beckmann"`.
+fn distribution(t: &mut TableReader) -> Result<Distribution> {
+    let Some(name) = t.string_opt("distribution")? else {
+        return Ok(Distribution::Ggx);
+    };
+    Distribution::named(&name).ok_or_else(|| {
+        let names: Vec<&str> = Distribution::ALL.iter().map(|d| d.name()).collect();
+        t.error(
+            "distribution",
+            format!(
+                "unknown distribution '{}' (expected {})",
+                cut(&name),
+                names.join(" or ")
+            ),
+        )
+    })
+}
+
+/// The microsurface of `roughness` (smooth if absent) and `distribution`: None, a smooth
+/// surface, where α is below [`crate::bsdf::SMOOTH_ALPHA`] — the one place rough and smooth
+/// are told apart.
+fn microsurface(t: &mut TableReader) -> Result<Option<Microsurface>> {
     let alpha = roughness(t, 0.0)?;
-    Ok(Ggx::rough([alpha, alpha]))
+    let distribution = distribution(t)?;
+    Ok(Microsurface::rough(distribution, [alpha, alpha]))
 }
 
 /// A conductor's index: `metal` (a measured metal's symbol, or "perfect"), or `eta` and `k`
@@ -210,14 +230,14 @@ pub fn read_material(t: &mut TableReader) -> Result<(Material, Option<Interior>)
         "mirror" => (
             Material::Conductor {
                 index: ConductorIndex::Constant(unit_color(t, "reflectance", Some(Rgb::ONE))?),
-                ggx: None,
+                microsurface: None,
             },
             None,
         ),
         "conductor" => (
             Material::Conductor {
                 index: conductor_index(t)?,
-                ggx: microsurface(t)?,
+                microsurface: microsurface(t)?,
             },
             None,
         ),
@@ -233,7 +253,8 @@ pub fn read_material(t: &mut TableReader) -> Result<(Material, Option<Interior>)
                 ),
             )?;
             let alpha = roughness(t, 0.1)?;
-            let Some(ggx) = Ggx::rough([alpha, alpha]) else {
+            let distribution = distribution(t)?;
+            let Some(microsurface) = Microsurface::rough(distribution, [alpha, alpha]) else {
                 return Err(t.error(
                     "roughness",
                     format!(
@@ -241,7 +262,7 @@ pub fn read_material(t: &mut TableReader) -> Result<(Material, Option<Interior>)
                     ),
                 ));
             };
-            let coat = Arc::new(Coat::new(ior, ggx));
+            let coat = Arc::new(Coat::new(ior, microsurface));
             (
                 Material::Plastic {
                     albedo,
@@ -280,8 +301,8 @@ pub fn read_material(t: &mut TableReader) -> Result<(Material, Option<Interior>)
                     ))
                 }
             };
-            let ggx = microsurface(t)?;
-            (Material::Dielectric { ggx }, Some(interior))
+            let microsurface = microsurface(t)?;
+            (Material::Dielectric { microsurface }, Some(interior))
         }
         "polarizer" => (
             Material::Sheet(Sheet::Polarizer {
