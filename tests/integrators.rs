@@ -230,6 +230,55 @@ fn photon_mapper_agrees_with_the_path_tracer_under_sphere_lights() {
     assert!(worst < 0.02, "worst block {worst}");
 }
 
+/// Two renders of one view, each film with its `error` layer: the second's image over the
+/// first's (the sum of every pixel and channel), that difference in standard errors, and the
+/// largest difference of a `block` × `block` block's channel in standard errors (the films
+/// `width` pixels wide).
+struct Agreement {
+    ratio: f64,
+    z: f64,
+    worst: f64,
+}
+
+fn agreement(first: &Film, second: &Film, width: usize, block: usize) -> Agreement {
+    let layer = |film: &Film, name: &str| film.layer(name).unwrap();
+    let (a, b) = (layer(first, "beauty"), layer(second, "beauty"));
+    let (ea, eb) = (layer(first, "error"), layer(second, "error"));
+    let mut worst: f64 = 0.0;
+    for by in 0..a.len() / width / block {
+        for bx in 0..width / block {
+            let pixels: Vec<usize> = (0..block * block)
+                .map(|k| (by * block + k / block) * width + bx * block + k % block)
+                .collect();
+            for c in 0..3 {
+                let sum = |img: &[[f32; 3]]| pixels.iter().map(|&i| img[i][c] as f64).sum::<f64>();
+                let var = |err: &[[f32; 3]]| {
+                    pixels
+                        .iter()
+                        .map(|&i| (err[i][c] as f64).powi(2))
+                        .sum::<f64>()
+                };
+                let sigma = (var(&ea) + var(&eb)).sqrt();
+                if sigma > 0.0 {
+                    worst = worst.max((sum(&a) - sum(&b)).abs() / sigma);
+                }
+            }
+        }
+    }
+    let total = |img: &[[f32; 3]]| img.iter().flatten().map(|&v| v as f64).sum::<f64>();
+    let spread = |err: &[[f32; 3]]| {
+        err.iter()
+            .flatten()
+            .map(|&v| (v as f64).powi(2))
+            .sum::<f64>()
+    };
+    Agreement {
+        ratio: total(&b) / total(&a),
+        z: (total(&b) - total(&a)).abs() / (spread(&ea) + spread(&eb)).sqrt(),
+        worst,
+    }
+}
+
 /// A spot light behind a frosted glass ball (`scenes/mitsuba/frosted_spot.xml`: GGX α = 0.3,
 /// n = 1.3, a fog inside that absorbs and scatters by colour) over a floor: its light reaches
 /// the camera and the floor only through the rough glass. The path tracer finds it by light
@@ -252,45 +301,11 @@ fn a_spot_light_through_frosted_glass_lights_both_integrators_alike() {
         render(&(description.build(), settings))
     };
     let (pt, pm) = (load(Kind::Path, 64), load(Kind::PhotonMap, 16));
-    let layer = |film: &Film, name: &str| film.layer(name).unwrap();
-    let (a, b) = (layer(&pt, "beauty"), layer(&pm, "beauty"));
-    let (ea, eb) = (layer(&pt, "error"), layer(&pm, "error"));
-    let (width, block) = (48, 16);
-    let mut worst: f64 = 0.0;
-    for by in 0..width / block {
-        for bx in 0..width / block {
-            let pixels: Vec<usize> = (0..block * block)
-                .map(|k| (by * block + k / block) * width + bx * block + k % block)
-                .collect();
-            let n = pixels.len() as f64;
-            for c in 0..3 {
-                let sum =
-                    |img: &[[f32; 3]]| pixels.iter().map(|&i| img[i][c] as f64).sum::<f64>() / n;
-                let se = |err: &[[f32; 3]]| {
-                    pixels
-                        .iter()
-                        .map(|&i| (err[i][c] as f64).powi(2))
-                        .sum::<f64>()
-                        .sqrt()
-                        / n
-                };
-                let sigma = se(&ea).hypot(se(&eb));
-                if sigma > 0.0 {
-                    worst = worst.max((sum(&a) - sum(&b)).abs() / sigma);
-                }
-            }
-        }
-    }
-    // The image: the sum of every pixel and channel, and its standard error.
-    let total = |img: &[[f32; 3]]| img.iter().flatten().map(|&v| v as f64).sum::<f64>();
-    let spread = |err: &[[f32; 3]]| {
-        err.iter()
-            .flatten()
-            .map(|&v| (v as f64).powi(2))
-            .sum::<f64>()
-    };
-    let z = (total(&b) - total(&a)).abs() / (spread(&ea) + spread(&eb)).sqrt();
-    let overall = total(&b) / total(&a);
+    let Agreement {
+        ratio: overall,
+        z,
+        worst,
+    } = agreement(&pt, &pm, 48, 16);
     println!(
         "frosted spot, photon mapper / path tracer: image {overall:.4} (z {z:.2}), largest block z {worst:.2}"
     );
@@ -372,42 +387,7 @@ intensity = 2.0
             (settings.photons.global, settings.photons.caustic) = (100_000, 100_000);
             render(&(scene, settings))
         };
-        let (a, b) = (film(&uniform), film(&graded));
-        let layer = |film: &Film, name: &str| film.layer(name).unwrap();
-        let (ia, ib) = (layer(&a, "beauty"), layer(&b, "beauty"));
-        let (ea, eb) = (layer(&a, "error"), layer(&b, "error"));
-        let (width, block) = (32, 8);
-        let mut worst: f64 = 0.0;
-        for by in 0..width / block {
-            for bx in 0..width / block {
-                let pixels: Vec<usize> = (0..block * block)
-                    .map(|k| (by * block + k / block) * width + bx * block + k % block)
-                    .collect();
-                for c in 0..3 {
-                    let sum =
-                        |img: &[[f32; 3]]| pixels.iter().map(|&i| img[i][c] as f64).sum::<f64>();
-                    let var = |err: &[[f32; 3]]| {
-                        pixels
-                            .iter()
-                            .map(|&i| (err[i][c] as f64).powi(2))
-                            .sum::<f64>()
-                    };
-                    let sigma = (var(&ea) + var(&eb)).sqrt();
-                    if sigma > 0.0 {
-                        worst = worst.max((sum(&ia) - sum(&ib)).abs() / sigma);
-                    }
-                }
-            }
-        }
-        let total = |img: &[[f32; 3]]| img.iter().flatten().map(|&v| v as f64).sum::<f64>();
-        let spread = |err: &[[f32; 3]]| {
-            err.iter()
-                .flatten()
-                .map(|&v| (v as f64).powi(2))
-                .sum::<f64>()
-        };
-        let z = (total(&ib) - total(&ia)).abs() / (spread(&ea) + spread(&eb)).sqrt();
-        let ratio = total(&ib) / total(&ia);
+        let Agreement { ratio, z, worst } = agreement(&film(&uniform), &film(&graded), 32, 8);
         println!(
             "{kind:?}: gradient / uniform ball {ratio:.4} (z {z:.2}), largest block z {worst:.2}"
         );
