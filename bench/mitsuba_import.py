@@ -52,6 +52,10 @@ CASES = {
     "orthographic": ("orthographic.xml", {}),
     # Rough metal balls with Beckmann normals (Mitsuba's default distribution), α 0.1–0.6.
     "beckmann": ("beckmann.xml", {}),
+    # Mitsuba's Gaussian pixel filter on edges at the blocks' boundaries and at the image's.
+    "pixel_filter": ("pixel_filter.xml", {}),
+    # The Cornell box through the Gaussian pixel filter.
+    "cornell_box_gaussian": ("cornell_box.xml", {"filter": "gaussian"}),
 }
 
 

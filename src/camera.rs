@@ -4,6 +4,7 @@
 //! x = (2(px+u)/W − 1)·tan(fov_y/2)·W/H, y = (1 − 2(py+v)/H)·tan(fov_y/2),
 //! dir = normalize(f + x r + y u′).
 
+use crate::pixel_filter::PixelFilter;
 use glam::{DVec2, DVec3};
 
 /// The point of the film and of the lens a camera ray is drawn through.
@@ -100,6 +101,8 @@ pub struct Camera {
     /// The transmission axis of an ideal linear polarizer in front of the lens, radians from
     /// the image's right toward its up (`polarizer_deg`); `None` for none.
     pub polarizer: Option<f64>,
+    /// How a pixel weighs the film around it (where its samples' film points fall).
+    pub filter: PixelFilter,
 }
 
 impl Camera {
@@ -164,6 +167,7 @@ impl Camera {
             height,
             lens: None,
             polarizer: None,
+            filter: PixelFilter::Box,
         })
     }
 

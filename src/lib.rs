@@ -44,6 +44,7 @@ pub mod media;
 pub mod output;
 pub mod photometry;
 pub mod photon;
+pub mod pixel_filter;
 pub mod plot;
 pub mod polarization;
 pub mod receiver;

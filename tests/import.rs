@@ -726,6 +726,15 @@ fn the_mitsuba_scenes_render_as_mitsuba_renders_them() {
         // Rough metal with Beckmann normals, Mitsuba's default distribution (GGX of the same
         // α in its place reads a block 207 standard errors off).
         ("beckmann", "beckmann.xml", vec![], 16),
+        // Mitsuba's Gaussian pixel filter: edges on the blocks' boundaries and the image's (a
+        // box filter in its place reads a block 689 standard errors off), and the Cornell box.
+        ("pixel_filter", "pixel_filter.xml", vec![], 16),
+        (
+            "cornell_box_gaussian",
+            "cornell_box.xml",
+            vec![("filter", "gaussian")],
+            16,
+        ),
     ] {
         let ours = grinlight_blocks(&Path::new("scenes/mitsuba").join(scene), &defines, 32, spp);
         let (worst, ratio) = compare(&ours, &reference(case));

@@ -135,6 +135,10 @@ const BAD: &[(&str, usize, usize, &str)] = &[
     ("[camera]\nposition = [0, 0, 1]\nlook_at = [0, 0, 0]\nprojection = \"orthographic\"\nfov_y_deg = 40\nview_height = 2\n", 5, 1, "an orthographic camera has no field of view"),
     ("[camera]\nposition = [0, 0, 1]\nlook_at = [0, 0, 0]\nprojection = \"orthographic\"\n", 1, 1, "key `view_height`: is missing"),
     ("[camera]\nposition = [0, 0, 1]\nlook_at = [0, 0, 0]\nprojection = \"orthographic\"\nview_height = -1\n", 5, 1, "key `view_height`"),
+    ("[camera]\nposition = [0, 0, 1]\nlook_at = [0, 0, 0]\nfov_y_deg = 40\nfilter = \"tent\"\n", 5, 1, "key `filter`: unknown value 'tent' (box, gaussian)"),
+    ("[camera]\nposition = [0, 0, 1]\nlook_at = [0, 0, 0]\nfov_y_deg = 40\nfilter_stddev = 0.5\n", 5, 1, "key `filter_stddev`: is a Gaussian filter's"),
+    ("[camera]\nposition = [0, 0, 1]\nlook_at = [0, 0, 0]\nfov_y_deg = 40\nfilter = \"gaussian\"\nfilter_stddev = 20\n", 6, 1, "key `filter_stddev`: must be at most 8 pixels"),
+    ("[camera]\nposition = [0, 0, 1]\nlook_at = [0, 0, 0]\nfov_y_deg = 40\nfilter = \"gaussian\"\nfilter_stddev = nan\n", 6, 1, "key `filter_stddev`"),
     // Render: unknown stepper, negative tolerance.
     ("[render]\nstepper = \"euler\"\n", 2, 1, "key `stepper`"),
     ("[render]\ntolerance = -1e-9\n", 2, 1, "key `tolerance`: must be > 0"),

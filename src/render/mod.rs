@@ -8,7 +8,7 @@
 //! Also here: the receivers' measurement ([`measure`], [`Books`]: `render/measurement.rs`) and what a render will need of the
 //! machine ([`memory_needed`]).
 
-use crate::camera::PrimaryRay;
+use crate::camera::{FilmPoint, PrimaryRay};
 use crate::color::Rgb;
 use crate::error::{Error, Result};
 use crate::film::{ErrorTotals, Film, Layer, STOKES_LAYERS};
@@ -548,6 +548,15 @@ fn camera_tile<I: Integrator>(
                     first,
                     mut rng,
                 } = sampler.sample(s);
+                let film_point = FilmPoint {
+                    u: camera
+                        .filter
+                        .place(film_point.px, camera.width, film_point.u),
+                    v: camera
+                        .filter
+                        .place(film_point.py, camera.height, film_point.v),
+                    ..film_point
+                };
                 let PrimaryRay { origin, direction } = camera.ray(film_point);
                 stats.camera_rays += 1;
                 values.fill(Rgb::ZERO);

@@ -13,6 +13,7 @@ use super::table::{absorption, affine_rows, free_name, string, table, vec3, Area
 use super::{Imported, Place, Told};
 use crate::bsdf::Distribution;
 use crate::error::{cut, Result};
+use crate::pixel_filter::PixelFilter;
 use glam::{DMat3, DMat4, DVec3};
 use std::collections::{HashMap, HashSet};
 use std::path::PathBuf;
@@ -163,6 +164,18 @@ enum Surface {
     },
     /// Mitsuba's `null`: no surface (a medium's boundary only).
     Null,
+}
+
+/// A sensor's film as grinlight's camera takes it.
+struct SensorFilm {
+    /// The `<film>` (None: Mitsuba's default film).
+    object: Option<Rc<Object>>,
+    /// Pixels across.
+    width: i64,
+    /// Pixels down.
+    height: i64,
+    /// Its pixel filter.
+    filter: PixelFilter,
 }
 
 /// A rough surface's microsurface as a grinlight material's keys.
@@ -760,7 +773,8 @@ impl Converter<'_> {
                 "to_world scales unevenly or shears: a camera's frame is turned and moved only",
             ));
         };
-        let (film, width, height) = self.sensor_film(s, [left, up, dir])?;
+        let film = self.sensor_film(s, [left, up, dir])?;
+        let (width, height) = (film.width, film.height);
         let (w, h) = (width as f64, height as f64);
         // Mitsuba's field of view on its axis, turned into the horizontal one.
         let tan_half_x = |fov_deg: f64, axis: &str| -> Option<f64> {
@@ -854,7 +868,8 @@ impl Converter<'_> {
                  square",
             ));
         }
-        let (film, width, height) = self.sensor_film(s, [left, up, dir])?;
+        let film = self.sensor_film(s, [left, up, dir])?;
+        let (width, height) = (film.width, film.height);
         let aspect = width as f64 / height as f64;
         let position = m.transform_point3(DVec3::new(0.0, 0.0, s.float_or("near_clip", 0.01)?));
         if s.float("far_clip")?.is_some() {
@@ -876,23 +891,23 @@ impl Converter<'_> {
         self.sensor_rest(s, film, camera, out)
     }
 
-    /// A sensor's film and its size in pixels (Mitsuba's 768 × 576 without one), once its
-    /// frame `axes` (to_world's x, y and z) are known not to mirror the image.
-    fn sensor_film(
-        &mut self,
-        s: &Object,
-        axes: [DVec3; 3],
-    ) -> Result<(Option<Rc<Object>>, i64, i64)> {
+    /// A sensor's film: its size in pixels and pixel filter (Mitsuba's 768 × 576 and Gaussian
+    /// without one), once its frame `axes` (to_world's x, y and z) are known not to mirror the
+    /// image.
+    fn sensor_film(&mut self, s: &Object, axes: [DVec3; 3]) -> Result<SensorFilm> {
         let [left, up, dir] = axes;
         if left.dot(up.cross(dir)) <= 0.0 {
             return Err(s.error("to_world mirrors the camera (its x axis is not up × forward): grinlight does not render mirrored images"));
         }
-        let film = s.child("film")?.map(|c| c.object().clone());
-        let (width, height) = match &film {
-            Some(f) => self.film(f)?,
-            None => (768, 576),
-        };
-        Ok((film, width, height))
+        match s.child("film")?.map(|c| c.object().clone()) {
+            Some(f) => self.film(f),
+            None => Ok(SensorFilm {
+                object: None,
+                width: 768,
+                height: 576,
+                filter: PixelFilter::Gaussian { stddev: 0.5 },
+            }),
+        }
     }
 
     /// What every sensor has besides its projection: its medium, its sampler's settings
@@ -900,10 +915,14 @@ impl Converter<'_> {
     fn sensor_rest(
         &mut self,
         s: &Object,
-        film: Option<Rc<Object>>,
-        camera: Table,
+        film: SensorFilm,
+        mut camera: Table,
         out: &mut Table,
     ) -> Result<Table> {
+        if let PixelFilter::Gaussian { stddev } = film.filter {
+            camera.insert("filter".into(), string("gaussian"));
+            camera.insert("filter_stddev".into(), Toml::Float(stddev));
+        }
         if let Some(medium) = s.named_child("medium").or(s.child("medium")?) {
             // The camera's medium: grinlight finds it from the camera's position; a medium no
             // shape holds fills the space around them.
@@ -930,7 +949,7 @@ impl Converter<'_> {
         } else {
             render.insert("spp".into(), Toml::Integer(4));
         }
-        if let Some(f) = &film {
+        if let Some(f) = &film.object {
             f.finish()?;
         }
         s.finish()?;
@@ -938,8 +957,9 @@ impl Converter<'_> {
         Ok(render)
     }
 
-    /// The film's size; its pixel filter must be a box (others only approximately).
-    fn film(&mut self, f: &Object) -> Result<(i64, i64)> {
+    /// The film's size and pixel filter: a box or a Gaussian exactly, others only
+    /// approximately (as a box).
+    fn film(&mut self, f: Rc<Object>) -> Result<SensorFilm> {
         if f.kind != "hdrfilm" {
             return Err(f.error(format!(
                 "the film '{}' is not supported (hdrfilm is)",
@@ -961,32 +981,46 @@ impl Converter<'_> {
         let kind = filter
             .as_ref()
             .map_or("gaussian".to_string(), |r| r.kind.clone());
-        if kind != "box" {
-            let place = filter.as_ref().map_or(f.place.clone(), |r| r.place.clone());
-            self.told.approximate(
-                &place,
-                format!(
-                    "the pixel filter '{kind}'{} taken as a box (grinlight's pixels are \
-                     box-filtered: the image is a little sharper)",
-                    if filter.is_none() {
-                        " (Mitsuba's default)"
-                    } else {
-                        ""
-                    }
-                ),
-            )?;
-            if let Some(r) = &filter {
-                r.ignore("stddev");
-                r.ignore("radius");
-                r.ignore("B");
-                r.ignore("C");
-                r.ignore("lobes");
+        let pixel_filter = match kind.as_str() {
+            "box" => PixelFilter::Box,
+            "gaussian" => {
+                let stddev = filter
+                    .as_ref()
+                    .map_or(Ok(0.5), |r| r.float_or("stddev", 0.5))?;
+                if !(stddev > 0.0 && stddev <= 8.0) {
+                    let at = filter.as_ref().unwrap_or(&f);
+                    return Err(at.error(format!(
+                        "stddev = {stddev}: grinlight's Gaussian pixel filter is (0, 8] pixels wide"
+                    )));
+                }
+                PixelFilter::Gaussian { stddev }
             }
-        }
+            _ => {
+                let place = filter.as_ref().map_or(f.place.clone(), |r| r.place.clone());
+                self.told.approximate(
+                    &place,
+                    format!(
+                        "the pixel filter '{kind}' taken as a box (grinlight's pixels are \
+                         box- or Gaussian-filtered: the image is a little sharper)"
+                    ),
+                )?;
+                if let Some(r) = &filter {
+                    for name in ["radius", "B", "C", "lobes"] {
+                        r.ignore(name);
+                    }
+                }
+                PixelFilter::Box
+            }
+        };
         if let Some(r) = &filter {
             r.finish()?;
         }
-        Ok((width, height))
+        Ok(SensorFilm {
+            object: Some(f),
+            width,
+            height,
+            filter: pixel_filter,
+        })
     }
 
     /// `[render] integrator` and `max_depth` from the `<integrator>`.

@@ -2,6 +2,7 @@
 
 use crate::camera::{Camera, ThinLens};
 use crate::error::Result;
+use crate::pixel_filter::PixelFilter;
 use crate::scene::table::TableReader;
 use crate::settings;
 use glam::DVec3;
@@ -33,7 +34,29 @@ pub fn read_camera(t: &mut TableReader) -> Result<Camera> {
         false => read_perspective(t, frame)?,
     };
     camera.polarizer = t.turn_opt("polarizer_deg")?;
+    camera.filter = read_filter(t)?;
     Ok(camera)
+}
+
+/// `filter` (`"box"`, the default, or `"gaussian"`) and a Gaussian's `filter_stddev` (pixels,
+/// in (0, 8]; 0.5, Mitsuba's default).
+fn read_filter(t: &mut TableReader) -> Result<PixelFilter> {
+    let gaussian = t.choice("filter", &[("box", false), ("gaussian", true)])?;
+    if !gaussian {
+        t.check(
+            "filter_stddev",
+            !t.has("filter_stddev"),
+            "is a Gaussian filter's: give filter = \"gaussian\"",
+        )?;
+        return Ok(PixelFilter::Box);
+    }
+    let stddev = t.positive_or("filter_stddev", 0.5)?;
+    t.check(
+        "filter_stddev",
+        stddev <= 8.0,
+        format!("must be at most 8 pixels, got {stddev}"),
+    )?;
+    Ok(PixelFilter::Gaussian { stddev })
 }
 
 /// Where a camera stands and looks, and its image's size in pixels.
