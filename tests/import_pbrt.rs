@@ -381,6 +381,44 @@ fn pbrts_materials_media_and_settings_take_pbrt_v4s_defaults() {
     }
 }
 
+/// pbrt-v4's Gaussian pixel filter converts exactly — its default (σ ½, radius 1.5) when the
+/// file names none, its own σ and radius when it does, beyond the image's edges as pbrt
+/// draws it — and a box of radius ½ to grinlight's box (no keys).
+#[test]
+fn pbrts_gaussian_pixel_filter_converts_with_its_sigma_radius_and_reach() {
+    let d = dir("pbrt-filter");
+    for (name, statement, expected) in [
+        ("default", "", Some((0.5, 1.5))),
+        (
+            "given",
+            "PixelFilter \"gaussian\" \"float sigma\" 0.7 \"float xradius\" 2 \"float yradius\" 2\n",
+            Some((0.7, 2.0)),
+        ),
+        ("box", "PixelFilter \"box\"\n", None),
+    ] {
+        let p = write(
+            &d,
+            &format!("{name}.pbrt"),
+            &format!("Camera \"perspective\"\n{statement}WorldBegin\n"),
+        );
+        let t = convert(&p, &ImportOptions::default()).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let camera = t["camera"].as_table().unwrap();
+        match expected {
+            Some((sigma, radius)) => {
+                assert_eq!(camera["filter"].as_str(), Some("gaussian"), "{name}");
+                assert_eq!(f(&camera["filter_stddev"]), sigma, "{name}");
+                assert_eq!(f(&camera["filter_radius"]), radius, "{name}");
+                assert_eq!(camera["filter_beyond_image"].as_bool(), Some(true), "{name}");
+            }
+            None => {
+                for key in ["filter", "filter_stddev", "filter_radius", "filter_beyond_image"] {
+                    assert!(camera.get(key).is_none(), "{name}: {key}");
+                }
+            }
+        }
+    }
+}
+
 /// The message of a scene that does not convert.
 fn refusal(name: &str, text: &str, options: &ImportOptions) -> String {
     let d = dir(&format!("pbrt-refuse-{name}"));
@@ -476,8 +514,13 @@ fn what_pbrt_cannot_convert_is_refused_by_file_line_and_column() {
         ),
         (
             "filter",
-            "LookAt 0 0 5 0 0 0 0 1 0\nCamera \"perspective\"\nWorldBegin\n".into(),
-            "s.pbrt:3:1: pbrt's default pixel filter (a Gaussian of radius 1.5) taken as a box",
+            "LookAt 0 0 5 0 0 0 0 1 0\nCamera \"perspective\"\nPixelFilter \"mitchell\"\nWorldBegin\n".into(),
+            "s.pbrt:3:1: PixelFilter \"mitchell\": taken as a box of one pixel",
+        ),
+        (
+            "elliptic filter",
+            "PixelFilter \"gaussian\" \"float xradius\" 2\n".into(),
+            "s.pbrt:1:1: PixelFilter \"gaussian\": xradius 2 ≠ yradius 1.5",
         ),
         (
             "twice",
@@ -545,7 +588,7 @@ fn what_pbrt_cannot_convert_is_refused_by_file_line_and_column() {
     let p = write(
         &d,
         "s.pbrt",
-        "LookAt 0 0 5 0 0 0 0 1 0\nCamera \"perspective\"\nWorldBegin\nMaterial \"coateddiffuse\"\nShape \"sphere\"\n",
+        "LookAt 0 0 5 0 0 0 0 1 0\nCamera \"perspective\"\nPixelFilter \"mitchell\"\nWorldBegin\nMaterial \"coateddiffuse\"\nShape \"sphere\"\n",
     );
     let imported = import(
         &p,
@@ -557,11 +600,11 @@ fn what_pbrt_cannot_convert_is_refused_by_file_line_and_column() {
     .unwrap();
     let told = imported.approximations.join("\n");
     assert!(
-        told.contains("s.pbrt:3:1: pbrt's default pixel filter"),
+        told.contains("s.pbrt:3:1: PixelFilter \"mitchell\""),
         "{told}"
     );
     assert!(
-        told.contains("s.pbrt:4:1: Material \"coateddiffuse\""),
+        told.contains("s.pbrt:5:1: Material \"coateddiffuse\""),
         "{told}"
     );
     assert_eq!(

@@ -454,6 +454,66 @@ fn textures_put_their_texels_where_the_surface_coordinates_say() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// A Gaussian pixel filter weighs the film around each pixel as it says at the image's edge:
+/// a white square fills the view exactly (nothing beyond it), so a pixel's albedo is the
+/// share of the filter that falls on the image. pbrt's filter (σ ½, r 1.5, beyond the image)
+/// gives a pixel in the first column the share ∫ f over [−½, 1.5] / ∫ f over [−1.5, 1.5]
+/// (by a midpoint sum of f here, not the renderer's closed form), and the corner pixel its
+/// square; Mitsuba's (inside the image only) gives 1 everywhere, exactly. A sample's albedo
+/// is 0 or 1: with 4096 samples along the column's 16 middle pixels its standard error is
+/// at most √(¼/4096) ≈ 0.008 (independent samples; stratified ones scatter less), bar 0.03;
+/// the corner's 256 samples at most 0.031, bar 0.1.
+#[test]
+fn a_gaussian_filter_weighs_the_film_beyond_the_image_only_when_asked() {
+    let (sigma, radius) = (0.5f64, 1.5f64);
+    let f = |x: f64| {
+        ((-x * x / (2.0 * sigma * sigma)).exp() - (-radius * radius / (2.0 * sigma * sigma)).exp())
+            .max(0.0)
+    };
+    let integral = |a: f64, b: f64| {
+        let n = 100_000;
+        let h = (b - a) / n as f64;
+        (0..n).map(|k| f(a + (k as f64 + 0.5) * h)).sum::<f64>() * h
+    };
+    let edge_share = integral(-0.5, radius) / integral(-radius, radius);
+    let dir = std::env::temp_dir().join(format!("grinlight-filter-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (reach, beyond, edge, corner) in [
+        (
+            "beyond the image",
+            true,
+            edge_share,
+            edge_share * edge_share,
+        ),
+        ("inside the image", false, 1.0, 1.0),
+    ] {
+        let text = format!(
+            "[[material]]\nname = \"white\"\ntype = \"diffuse\"\nalbedo = 1\n\
+             [[shape]]\ntype = \"quad\"\nvertices = [[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]]\nmaterial = \"white\"\n\
+             [[light]]\ntype = \"environment\"\nsky = \"uniform\"\n\
+             [camera]\nposition = [0, 0, 2]\nlook_at = [0, 0, 0]\nfov_y_deg = 53.13010235415598\nwidth = 32\nheight = 32\n\
+             filter = \"gaussian\"\nfilter_stddev = {sigma}\nfilter_radius = {radius}\nfilter_beyond_image = {beyond}\n\
+             [render]\nspp = 256\nphotons = 1000\ncaustic_photons = 0\ngather = 0\n"
+        );
+        let scene = parse_scene(&dir.join("s.toml"), text).unwrap();
+        let albedo = render(&scene, 0).layer("albedo").unwrap();
+        let column: f64 = (8..24).map(|y| f64::from(albedo[y * 32][0])).sum::<f64>() / 16.0;
+        let corner_got = f64::from(albedo[0][0]);
+        let middle = f64::from(albedo[16 * 32 + 16][0]);
+        println!("{reach}: first column {column} ({edge}), corner {corner_got} ({corner}), middle {middle}");
+        assert!(
+            (column - edge).abs() < 0.03,
+            "{reach}: first column {column} vs {edge}"
+        );
+        assert!(
+            (corner_got - corner).abs() < 0.1,
+            "{reach}: corner {corner_got} vs {corner}"
+        );
+        assert!((middle - 1.0).abs() < 1e-6, "{reach}: middle {middle}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 /// A pixel's samples split at a dielectric in proportion to its reflectance: a glass slab
 /// (n = 1.5, 1 thick) seen at 70° incidence under a uniform sky of radiance 1, a black floor
 /// below it. A path leaves upward after 0, 2, 4, … internal reflections, so a pixel sees the

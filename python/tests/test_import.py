@@ -37,13 +37,14 @@ def test_an_approximation_is_made_only_when_asked(tmp_path):
     xml = tmp_path / "s.xml"
     xml.write_text(
         '<scene version="3.0.0"><sensor type="perspective"><film type="hdrfilm">'
-        '<integer name="width" value="4"/><integer name="height" value="4"/></film></sensor>'
+        '<integer name="width" value="4"/><integer name="height" value="4"/>'
+        '<rfilter type="tent"/></film></sensor>'
         '<emitter type="constant"/></scene>'
     )
     with pytest.raises(ValueError, match="--approximate"):
         grinlight.load(xml)
     image = grinlight.load(xml, approximate=True).render(spp=1)
-    assert any("approximated" in w and "gaussian" in w for w in image.warnings)
+    assert any("approximated" in w and "'tent'" in w for w in image.warnings)
 
 
 def test_defines_belong_to_other_renderers_scenes():

@@ -1,5 +1,6 @@
 //! The values of a grinlight scene table as converters write them (docs/scene-format.md).
 
+use crate::pixel_filter::{PixelFilter, Reach};
 use glam::{DMat4, DVec3};
 use toml::{Table, Value as Toml};
 
@@ -148,6 +149,32 @@ impl AreaEmitter {
                 ("radius", Toml::Float(radius)),
             ]),
             AreaEmitter::Mesh { keys, .. } => keys,
+        }
+    }
+}
+
+/// A pixel filter as `[camera]` keys in `camera`: none for a box, grinlight's default; a
+/// Gaussian's `filter`, `filter_stddev`, and `filter_radius` and `filter_beyond_image` where
+/// they are not the defaults (4σ, false).
+pub fn pixel_filter_keys(filter: PixelFilter, camera: &mut Table) {
+    match filter {
+        PixelFilter::Box => {}
+        PixelFilter::Gaussian {
+            stddev,
+            radius,
+            reach,
+        } => {
+            camera.insert("filter".into(), string("gaussian"));
+            camera.insert("filter_stddev".into(), Toml::Float(stddev));
+            if radius != 4.0 * stddev {
+                camera.insert("filter_radius".into(), Toml::Float(radius));
+            }
+            match reach {
+                Reach::Image => {}
+                Reach::Beyond => {
+                    camera.insert("filter_beyond_image".into(), Toml::Boolean(true));
+                }
+            }
         }
     }
 }

@@ -9,7 +9,9 @@ pub mod xml;
 use super::geometry::{
     axis_scales, emitting_side, linear, parallelogram, similarity, triangle_area, Facing,
 };
-use super::table::{absorption, affine_rows, free_name, string, table, vec3, AreaEmitter, Lists};
+use super::table::{
+    absorption, affine_rows, free_name, pixel_filter_keys, string, table, vec3, AreaEmitter, Lists,
+};
 use super::{Imported, Place, Told};
 use crate::bsdf::Distribution;
 use crate::error::{cut, Result};
@@ -905,7 +907,7 @@ impl Converter<'_> {
                 object: None,
                 width: 768,
                 height: 576,
-                filter: PixelFilter::Gaussian { stddev: 0.5 },
+                filter: PixelFilter::mitsuba_gaussian(0.5),
             }),
         }
     }
@@ -919,10 +921,7 @@ impl Converter<'_> {
         mut camera: Table,
         out: &mut Table,
     ) -> Result<Table> {
-        if let PixelFilter::Gaussian { stddev } = film.filter {
-            camera.insert("filter".into(), string("gaussian"));
-            camera.insert("filter_stddev".into(), Toml::Float(stddev));
-        }
+        pixel_filter_keys(film.filter, &mut camera);
         if let Some(medium) = s.named_child("medium").or(s.child("medium")?) {
             // The camera's medium: grinlight finds it from the camera's position; a medium no
             // shape holds fills the space around them.
@@ -993,7 +992,7 @@ impl Converter<'_> {
                         "stddev = {stddev}: grinlight's Gaussian pixel filter is (0, 8] pixels wide"
                     )));
                 }
-                PixelFilter::Gaussian { stddev }
+                PixelFilter::mitsuba_gaussian(stddev)
             }
             _ => {
                 let place = filter.as_ref().map_or(f.place.clone(), |r| r.place.clone());

@@ -16,9 +16,12 @@ pub mod parse;
 use super::geometry::{
     axis_scales, emitting_side, linear, look_at, parallelogram, similarity, triangle_area, Facing,
 };
-use super::table::{absorption, affine_rows, free_name, string, table, vec3, AreaEmitter, Lists};
+use super::table::{
+    absorption, affine_rows, free_name, pixel_filter_keys, string, table, vec3, AreaEmitter, Lists,
+};
 use super::{Imported, Place, Told};
 use crate::error::{cut, Result};
+use crate::pixel_filter::PixelFilter;
 use glam::{DMat4, DVec3};
 use parse::{Params, Scene, Statement};
 use std::collections::{HashMap, HashSet};
@@ -43,7 +46,7 @@ pub fn convert(scene: &Scene, approximate: bool) -> Result<Imported> {
         camera: None,
         film: None,
         sampler: None,
-        filter_seen: false,
+        filter: PixelFilter::pbrt_gaussian(0.5, 1.5),
         render: Table::new(),
         mirror: false,
         world: false,
@@ -167,7 +170,8 @@ struct Converter<'s> {
     /// `Film`, `Sampler` as read (converted at `WorldBegin`, when the camera is).
     film: Option<(i64, i64)>,
     sampler: Option<i64>,
-    filter_seen: bool,
+    /// The pixel filter (pbrt's default until a `PixelFilter` says otherwise).
+    filter: PixelFilter,
     render: Table,
     /// Whether x is negated (pbrt's camera frame is a rotation).
     mirror: bool,
@@ -470,23 +474,7 @@ impl<'s> Converter<'s> {
             }
             "PixelFilter" => {
                 before_world("PixelFilter")?;
-                self.filter_seen = true;
-                let exact = s.text(0) == "box"
-                    && p.float("xradius", 0.5)? == 0.5
-                    && p.float("yradius", 0.5)? == 0.5;
-                if !exact {
-                    for name in ["xradius", "yradius", "sigma", "alpha", "B", "C", "tau"] {
-                        p.ignore(name);
-                    }
-                    self.told.approximate(
-                        &s.place,
-                        format!(
-                            "{}: taken as a box of one pixel (each sample in its own pixel)",
-                            s.what()
-                        ),
-                    )?;
-                }
-                p.finish(&s.what())?;
+                self.filter = self.pixel_filter(s)?;
             }
             "Integrator" => {
                 before_world("Integrator")?;
@@ -606,6 +594,50 @@ impl<'s> Converter<'s> {
             other => unreachable!("the parser admits only pbrt-v4's directives, not {other}"),
         }
         Ok(())
+    }
+
+    /// A `PixelFilter`: a box of radius ½ (one pixel) or a Gaussian exactly (pbrt draws its
+    /// film points from the filter, beyond the image's edges too); others as a box of one
+    /// pixel, approximately.
+    fn pixel_filter(&mut self, s: &Statement) -> Result<PixelFilter> {
+        let p = &s.params;
+        let filter = match s.text(0) {
+            "box" if p.float("xradius", 0.5)? == 0.5 && p.float("yradius", 0.5)? == 0.5 => {
+                PixelFilter::Box
+            }
+            "gaussian" => {
+                let (x, y) = (p.float("xradius", 1.5)?, p.float("yradius", 1.5)?);
+                let sigma = p.float("sigma", 0.5)?;
+                if x != y {
+                    return Err(s.place.error(format!(
+                        "{}: xradius {x} ≠ yradius {y}: grinlight's Gaussian is the same along x and y",
+                        s.what()
+                    )));
+                }
+                if !(sigma > 0.0 && sigma <= 8.0 && x > 0.0 && x <= 32.0) {
+                    return Err(s.place.error(format!(
+                        "{}: sigma {sigma}, radius {x}: grinlight's Gaussian takes σ in (0, 8] and r in (0, 32] pixels",
+                        s.what()
+                    )));
+                }
+                PixelFilter::pbrt_gaussian(sigma, x)
+            }
+            _ => {
+                for name in ["xradius", "yradius", "sigma", "alpha", "B", "C", "tau"] {
+                    p.ignore(name);
+                }
+                self.told.approximate(
+                    &s.place,
+                    format!(
+                        "{}: taken as a box of one pixel (each sample in its own pixel)",
+                        s.what()
+                    ),
+                )?;
+                PixelFilter::Box
+            }
+        };
+        p.finish(&s.what())?;
+        Ok(filter)
     }
 
     fn camera_statement(&mut self, s: &'s Statement) -> Result<()> {
@@ -755,13 +787,6 @@ impl<'s> Converter<'s> {
     /// The camera, film, sampler and filter, converted now that all are known.
     fn world_begin(&mut self, s: &Statement) -> Result<()> {
         let (w, h) = self.film.unwrap_or((1280, 720));
-        if !self.filter_seen {
-            self.told.approximate(
-                &s.place,
-                "pbrt's default pixel filter (a Gaussian of radius 1.5) taken as a box of one \
-                 pixel",
-            )?;
-        }
         self.render
             .insert("spp".into(), Toml::Integer(self.sampler.unwrap_or(16)));
         let (camera, world_from_camera, medium) = match self.camera_at.take() {
@@ -812,6 +837,7 @@ impl<'s> Converter<'s> {
             table.insert("aperture_radius".into(), Toml::Float(lens));
             table.insert("focus_distance".into(), Toml::Float(focus));
         }
+        pixel_filter_keys(self.filter, &mut table);
         // The exposure scales pbrt's pixels: 1 (its default shutter) is grinlight's.
         let exposure = p.float("shutterclose", 1.0)? - p.float("shutteropen", 0.0)?;
         if exposure != 1.0 {

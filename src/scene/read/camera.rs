@@ -2,7 +2,7 @@
 
 use crate::camera::{Camera, ThinLens};
 use crate::error::Result;
-use crate::pixel_filter::PixelFilter;
+use crate::pixel_filter::{PixelFilter, Reach};
 use crate::scene::table::TableReader;
 use crate::settings;
 use glam::DVec3;
@@ -39,15 +39,19 @@ pub fn read_camera(t: &mut TableReader) -> Result<Camera> {
 }
 
 /// `filter` (`"box"`, the default, or `"gaussian"`) and a Gaussian's `filter_stddev` (pixels,
-/// in (0, 8]; 0.5, Mitsuba's default).
+/// in (0, 8]; 0.5, Mitsuba's default), `filter_radius` (pixels, in (0, 32]; 4σ, Mitsuba's) and
+/// `filter_beyond_image` (false: a pixel at the image's edge weighs the film inside it only,
+/// as Mitsuba's; true: the film beyond it too, as pbrt's).
 fn read_filter(t: &mut TableReader) -> Result<PixelFilter> {
     let gaussian = t.choice("filter", &[("box", false), ("gaussian", true)])?;
     if !gaussian {
-        t.check(
-            "filter_stddev",
-            !t.has("filter_stddev"),
-            "is a Gaussian filter's: give filter = \"gaussian\"",
-        )?;
+        for key in ["filter_stddev", "filter_radius", "filter_beyond_image"] {
+            t.check(
+                key,
+                !t.has(key),
+                "is a Gaussian filter's: give filter = \"gaussian\"",
+            )?;
+        }
         return Ok(PixelFilter::Box);
     }
     let stddev = t.positive_or("filter_stddev", 0.5)?;
@@ -56,7 +60,21 @@ fn read_filter(t: &mut TableReader) -> Result<PixelFilter> {
         stddev <= 8.0,
         format!("must be at most 8 pixels, got {stddev}"),
     )?;
-    Ok(PixelFilter::Gaussian { stddev })
+    let radius = t.positive_or("filter_radius", 4.0 * stddev)?;
+    t.check(
+        "filter_radius",
+        radius <= 32.0,
+        format!("must be at most 32 pixels, got {radius}"),
+    )?;
+    let reach = match t.bool_or("filter_beyond_image", false)? {
+        true => Reach::Beyond,
+        false => Reach::Image,
+    };
+    Ok(PixelFilter::Gaussian {
+        stddev,
+        radius,
+        reach,
+    })
 }
 
 /// Where a camera stands and looks, and its image's size in pixels.
