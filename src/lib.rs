@@ -28,6 +28,7 @@ pub mod commands;
 pub mod compare;
 pub mod curve;
 pub(crate) mod environment;
+pub mod equal_area;
 pub mod error;
 pub(crate) mod exact;
 pub mod fiber;

@@ -4,7 +4,7 @@
 use crate::color::Rgb;
 use crate::ids::LightId;
 use crate::math::Ball;
-use crate::photometry::Goniogram;
+use crate::photometry::IntensityMap;
 use crate::sampling::{
     cosine_hemisphere, power_cosine_hemisphere, uniform_cone, uniform_disk, uniform_sphere, Frame,
     Given, Pick,
@@ -383,17 +383,17 @@ pub enum Light {
         /// The exponent m.
         m: f64,
     },
-    /// A point source whose intensity over direction is a luminaire's measured table
-    /// ([`crate::photometry`]: an IES file's).
+    /// A point source whose intensity over direction is a luminaire's measured one
+    /// ([`crate::photometry`]: an IES or EULUMDAT file's table, or an equal-area image).
     Goniometric {
         /// Position.
         position: DVec3,
         /// How the luminaire is turned.
         aim: Luminaire,
-        /// The table's intensity unit in W/sr, per channel.
+        /// The map's intensity unit in W/sr, per channel.
         colour: Rgb,
-        /// I(γ, C), in the table's unit.
-        table: Arc<Goniogram>,
+        /// The intensity over direction, in the map's unit.
+        map: Arc<IntensityMap>,
     },
     /// Parallel light.
     Directional {
@@ -463,6 +463,17 @@ impl Luminaire {
             dir.dot(self.nadir),
             dir.dot(self.c90).atan2(dir.dot(self.c0)),
         )
+    }
+
+    /// Unit direction `dir` in the frame of an intensity image
+    /// ([`crate::photometry::image`]): x along C = 0, y along C = 90°, z the zenith (−nadir).
+    fn image_direction(&self, dir: DVec3) -> DVec3 {
+        DVec3::new(dir.dot(self.c0), dir.dot(self.c90), -dir.dot(self.nadir))
+    }
+
+    /// The world direction of unit direction `d` of an intensity image's frame.
+    fn world_direction(&self, d: DVec3) -> DVec3 {
+        self.c0 * d.x + self.c90 * d.y - self.nadir * d.z
     }
 
     /// The unit direction of angles (cos γ, C).
@@ -593,10 +604,16 @@ impl Light {
                 }
             }
             Light::Goniometric {
-                aim, colour, table, ..
+                aim, colour, map, ..
             } => {
-                let (cos_gamma, c) = aim.angles(dir);
-                *colour * table.intensity(cos_gamma.clamp(-1.0, 1.0).acos(), c)
+                *colour
+                    * match &**map {
+                        IntensityMap::Table(table) => {
+                            let (cos_gamma, c) = aim.angles(dir);
+                            table.intensity(cos_gamma.clamp(-1.0, 1.0).acos(), c)
+                        }
+                        IntensityMap::Image(image) => image.intensity(aim.image_direction(dir)),
+                    }
             }
             Light::Area { .. } | Light::Directional { .. } => Rgb::ZERO,
         }
@@ -655,8 +672,8 @@ impl Light {
             // A Lambertian surface's power π A L over its peak intensity: π flat, 4π a sphere.
             Light::Area { emitter, .. } => PI * emitter.area() / emitter.largest_projected_area(),
             Light::Led { m, .. } => TAU / (m + 1.0),
-            Light::Goniometric { table, .. } => match table.peak() > 0.0 {
-                true => table.power() / table.peak(),
+            Light::Goniometric { map, .. } => match map.peak() > 0.0 {
+                true => map.power() / map.peak(),
                 false => 0.0,
             },
             Light::Directional { .. } => 0.0,
@@ -772,12 +789,20 @@ impl Light {
             Light::Goniometric {
                 position,
                 aim: luminaire,
-                table,
+                map,
                 ..
             } => {
-                let drawn = table.draw([u[0], u[1], u[2]])?;
-                let direction = luminaire.direction(drawn.cos_gamma, drawn.c);
-                let power = self.intensity(direction) / drawn.pdf;
+                let (direction, pdf) = match &**map {
+                    IntensityMap::Table(table) => {
+                        let drawn = table.draw([u[0], u[1], u[2]])?;
+                        (luminaire.direction(drawn.cos_gamma, drawn.c), drawn.pdf)
+                    }
+                    IntensityMap::Image(image) => {
+                        let (d, pdf) = image.draw([u[0], u[1], u[2]])?;
+                        (luminaire.world_direction(d), pdf)
+                    }
+                };
+                let power = self.intensity(direction) / pdf;
                 (power != Rgb::ZERO).then_some(())?;
                 emission(*position, direction, power)
             }
@@ -844,7 +869,7 @@ impl Light {
             Light::Point { intensity, .. } | Light::Spot { intensity, .. } => *intensity,
             Light::Area { emitter, radiance } => *radiance * emitter.largest_projected_area(),
             Light::Led { peak_intensity, .. } => *peak_intensity,
-            Light::Goniometric { colour, table, .. } => *colour * table.peak(),
+            Light::Goniometric { colour, map, .. } => *colour * map.peak(),
             Light::Directional { .. } => Rgb::ZERO,
         }
     }

@@ -77,6 +77,20 @@ fn scene(extra: &str) -> Vec<u8> {
     format!("{BASE}{extra}").into_bytes()
 }
 
+/// An image file's bytes in `format`, `w` × `h` pixels of `value` (R, G and B).
+fn image_bytes(w: u32, h: u32, value: f32, format: image::ImageFormat) -> Vec<u8> {
+    let mut bytes = std::io::Cursor::new(Vec::new());
+    let img = image::Rgb32FImage::from_pixel(w, h, image::Rgb([value; 3]));
+    match format {
+        image::ImageFormat::Png => image::DynamicImage::ImageRgb32F(img)
+            .into_rgb8()
+            .write_to(&mut bytes, format),
+        _ => img.write_to(&mut bytes, format),
+    }
+    .unwrap();
+    bytes.into_inner()
+}
+
 fn render(extra_args: &str) -> Vec<String> {
     let mut v = vec!["render".to_string(), "s.toml".to_string()];
     v.extend(extra_args.split_whitespace().map(str::to_string));
@@ -238,6 +252,41 @@ fn cases() -> Vec<Case> {
                 ("l.ies", b"IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 2 1 1 2 0 0 0\n1 1 10\n0 90\n0\n5 1\n".to_vec()),
             ],
             ..scene_case("luminaire whose C = 0 is its nadir", "", Error("must not be parallel"))
+        },
+        Case {
+            files: vec![
+                ("s.toml", scene("[[light]]\ntype = \"goniometric\"\nfile = \"l.exr\"\nposition = [0, 0, 1]\n")),
+                ("l.exr", image_bytes(4, 2, 1.0, image::ImageFormat::OpenExr)),
+            ],
+            ..scene_case("intensity image not square", "", Error("is square; this one is 4 × 2"))
+        },
+        Case {
+            files: vec![
+                ("s.toml", scene("[[light]]\ntype = \"goniometric\"\nfile = \"l.exr\"\nposition = [0, 0, 1]\n")),
+                ("l.exr", image_bytes(4, 4, f32::NAN, image::ImageFormat::OpenExr)),
+            ],
+            ..scene_case("intensity image of NaN", "", Error("intensities are finite and ≥ 0"))
+        },
+        Case {
+            files: vec![
+                ("s.toml", scene("[[light]]\ntype = \"goniometric\"\nfile = \"l.png\"\nposition = [0, 0, 1]\n")),
+                ("l.png", image_bytes(4, 4, 0.5, image::ImageFormat::Png)),
+            ],
+            ..scene_case("intensity image of 8-bit levels", "", Error("floating-point pixels"))
+        },
+        Case {
+            files: vec![
+                ("s.toml", scene("[[light]]\ntype = \"goniometric\"\nfile = \"l.exr\"\nposition = [0, 0, 1]\n")),
+                ("l.exr", image_bytes(4, 4, 0.0, image::ImageFormat::OpenExr)),
+            ],
+            ..scene_case("intensity image all black", "", Error("finite power > 0"))
+        },
+        Case {
+            files: vec![
+                ("s.toml", scene("[[light]]\ntype = \"goniometric\"\nfile = \"l.ies\"\nposition = [0, 0, 1]\nflip_v = true\n")),
+                ("l.ies", b"IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 2 1 1 2 0 0 0\n1 1 10\n0 90\n0\n5 1\n".to_vec()),
+            ],
+            ..scene_case("a table's rows flipped", "", Error("is an intensity image's"))
         },
         scene_case("intensity 1e308", "[[light]]\ntype = \"point\"\nposition = [0, 0, 1]\nintensity = 1e308\n", Error("out of range")),
         scene_case("camera at 1e308", "[[light]]\ntype = \"point\"\nposition = [0, 0, 1e308]\nintensity = 1\n", Error("out of range")),

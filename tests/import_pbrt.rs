@@ -419,6 +419,145 @@ fn pbrts_gaussian_pixel_filter_converts_with_its_sigma_radius_and_reach() {
     }
 }
 
+/// pbrt-v4's EqualAreaSphereToSquare (util/math.cpp), written out: Clarberg's map with the
+/// angle by pbrt's 6th-degree minimax polynomial, its coefficients as pbrt prints them.
+#[allow(clippy::excessive_precision)]
+fn pbrt_sphere_to_square(d: glam::DVec3) -> glam::DVec2 {
+    let (x, y, z) = (d.x.abs(), d.y.abs(), d.z.abs());
+    let r = (1.0 - z).max(0.0).sqrt();
+    let (a, b) = (x.max(y), x.min(y));
+    let b = if a == 0.0 { 0.0 } else { b / a };
+    let t = [
+        0.406758566246788489601959989e-5,
+        0.636226545274016134946890922156,
+        0.61572017898280213493197203466e-2,
+        -0.247333733281268944196501420480,
+        0.881770664775316294736387951347e-1,
+        0.419038818029165735901852432784e-1,
+        -0.251390972343483509333252996350e-1,
+    ];
+    let mut phi = t.iter().rev().fold(0.0, |acc, c| acc * b + c);
+    if x < y {
+        phi = 1.0 - phi;
+    }
+    let (mut u, mut v) = (r - phi * r, phi * r);
+    if d.z < 0.0 {
+        (u, v) = (1.0 - v, 1.0 - u);
+    }
+    glam::DVec2::new(0.5 * (u.copysign(d.x) + 1.0), 0.5 * (v.copysign(d.y) + 1.0))
+}
+
+/// pbrt-v4's map and grinlight's (the angle exact) agree to 5·10⁻⁶ of the square over a grid
+/// of directions: pbrt's polynomial errs by about 4·10⁻⁶ of a quadrant.
+#[test]
+fn pbrts_equal_area_map_is_grinlights_to_its_polynomials_error() {
+    for i in 0..60 {
+        for j in 0..120 {
+            let theta = (i as f64 + 0.5) / 60.0 * PI;
+            let phi = j as f64 / 120.0 * std::f64::consts::TAU;
+            let d = glam::DVec3::new(
+                theta.sin() * phi.cos(),
+                theta.sin() * phi.sin(),
+                theta.cos(),
+            );
+            let gap = (pbrt_sphere_to_square(d) - grinlight::equal_area::sphere_to_square(d))
+                .abs()
+                .max_element();
+            assert!(gap < 5e-6, "{d}: {gap}");
+        }
+    }
+}
+
+/// pbrt-v4's `goniometric` light converts to the intensity pbrt computes: toward a world
+/// direction w, its image's pixel at EqualAreaSphereToSquare(swapYZ(R⁻¹ w)) — pbrt's map with
+/// its own polynomial, written out here from lights.cpp and util/math.cpp — times `I` and
+/// `scale`, R the light's rotation. Checked over 4000 directions (those within 10⁻⁶ of a pixel's
+/// edge left out, where the polynomial and grinlight's exact angle may pick neighbours) with
+/// the scene's x negated (pbrt's left-handed camera) and kept (`Scale -1 1 1`), which read the
+/// image mirrored against each other; and `power` sets the luminous power, 4π/N² × the pixels'
+/// sum × scale × the converted colour's luminance, to 1e-12.
+#[test]
+fn a_pbrt_goniometric_light_sends_the_intensity_pbrt_computes() {
+    use glam::{DMat3, DVec3};
+    let d = dir("pbrt-goniometric");
+    let n = 8usize;
+    let values: Vec<f64> = (0..n * n).map(|i| 1.0 + i as f64).collect();
+    image::Rgb32FImage::from_fn(n as u32, n as u32, |x, y| {
+        let v = values[(y * n as u32 + x) as usize] as f32;
+        image::Rgb([v - 0.5, v, v + 0.5])
+    })
+    .save(d.join("map.exr"))
+    .unwrap();
+    let rotation =
+        DMat3::from_axis_angle(DVec3::new(1.0, 1.0, 0.0).normalize(), 30f64.to_radians());
+    let light = "AttributeBegin\nTranslate 1 2 3\nRotate 30 1 1 0\nLightSource \"goniometric\" \
+                 \"string filename\" \"map.exr\" \"rgb I\" [ 1 2 3 ] \"float scale\" 2\nAttributeEnd";
+    for (case, camera, negated) in [
+        ("negated", "LookAt 0 0 5  0 0 0  0 1 0", true),
+        ("kept", "Scale -1 1 1\nLookAt 0 0 5  0 0 0  0 1 0", false),
+    ] {
+        let p = write(&d, &format!("{case}.pbrt"), &scene(camera, light));
+        let (description, _) =
+            grinlight::import::load_description(&p, &ImportOptions::default()).unwrap();
+        let built = description.build();
+        let converted = &built.lights[0];
+        let mirror = DVec3::new(if negated { -1.0 } else { 1.0 }, 1.0, 1.0);
+        let mut compared = 0;
+        for k in 0..4000u64 {
+            let h = grinlight::sampling::mix(k + 17);
+            let u = (
+                (h >> 32) as f64 / 2f64.powi(32),
+                (h & 0xffff_ffff) as f64 / 2f64.powi(32),
+            );
+            let w = grinlight::sampling::uniform_sphere(u);
+            // pbrt's world direction, its light frame's, and the image's (y and z swapped).
+            let light_frame = rotation.transpose() * (w * mirror);
+            let square =
+                pbrt_sphere_to_square(DVec3::new(light_frame.x, light_frame.z, light_frame.y));
+            let cell = square * n as f64;
+            if (cell - cell.round()).abs().min_element() < 1e-6 * n as f64 {
+                continue;
+            }
+            let (i, j) = ((cell.x as usize).min(n - 1), (cell.y as usize).min(n - 1));
+            let expected = 2.0 * values[j * n + i];
+            let got = converted.intensity(w).0;
+            compared += 1;
+            assert!(
+                (got - DVec3::new(1.0, 2.0, 3.0) * expected)
+                    .abs()
+                    .max_element()
+                    < 1e-9 * expected,
+                "{case}: toward {w}: {got} against {expected} × (1, 2, 3)"
+            );
+        }
+        assert!(compared > 3900, "{case}: {compared}");
+        assert!(
+            close(
+                vec3(
+                    &tables(&convert(&p, &ImportOptions::default()).unwrap(), "light")[0]
+                        ["position"]
+                ),
+                (DVec3::new(1.0, 2.0, 3.0) * mirror).into(),
+                1e-12
+            ),
+            "{case}"
+        );
+    }
+    // `power`: pbrt's Φ = power × scale for an I of luminance 1; grinlight's power key.
+    let p = write(
+        &d,
+        "power.pbrt",
+        &scene(
+            "LookAt 0 0 5  0 0 0  0 1 0",
+            "LightSource \"goniometric\" \"string filename\" \"map.exr\" \"float power\" 100 \"float scale\" 3",
+        ),
+    );
+    let t = convert(&p, &ImportOptions::default()).unwrap();
+    let light = &tables(&t, "light")[0];
+    assert_eq!(f(&light["power"]), 300.0);
+    assert!(light.get("scale").is_none());
+}
+
 /// The message of a scene that does not convert.
 fn refusal(name: &str, text: &str, options: &ImportOptions) -> String {
     let d = dir(&format!("pbrt-refuse-{name}"));
@@ -543,9 +682,19 @@ fn what_pbrt_cannot_convert_is_refused_by_file_line_and_column() {
             "the camera \"orthographic\" is not supported",
         ),
         (
-            "goniometric",
+            "projection",
+            in_world("LightSource \"projection\""),
+            "the light \"projection\" is not supported",
+        ),
+        (
+            "goniometric without its image",
             in_world("LightSource \"goniometric\""),
-            "the light \"goniometric\" is not supported",
+            "s.pbrt:7:1: LightSource \"goniometric\": \"string filename\" is missing",
+        ),
+        (
+            "scaled goniometric",
+            in_world("Scale 2 2 2\nLightSource \"goniometric\" \"string filename\" \"g.exr\""),
+            "s.pbrt:8:1: LightSource \"goniometric\": the transform scales or shears the light",
         ),
         (
             "image sky",

@@ -1,5 +1,7 @@
 //! Measured luminaires: a luminaire's intensity over direction as its photometric file gives
-//! it (a goniogram), read from IES LM-63 files ([`ies`]) and EULUMDAT files ([`eulumdat`]).
+//! it (a goniogram), read from IES LM-63 files ([`ies`]) and EULUMDAT files ([`eulumdat`]),
+//! or as an image over the sphere in the equal-area map ([`image`], pbrt-v4's goniometric
+//! light's).
 //!
 //! **Conventions** (type C photometry, as IES LM-63 and EULUMDAT state it): the vertical angle
 //! γ is measured from the luminaire's nadir (γ = 0 straight down its axis, 180° straight up);
@@ -10,9 +12,37 @@
 
 pub mod eulumdat;
 pub mod ies;
+pub mod image;
 
 use crate::sampling::Discrete;
 use std::f64::consts::TAU;
+
+/// A luminaire's intensity over direction, as a file gives it.
+#[derive(Clone, Debug, PartialEq)]
+pub enum IntensityMap {
+    /// A table over the angles (γ, C) (an IES or EULUMDAT file).
+    Table(Goniogram),
+    /// An image over the sphere in the equal-area map (pbrt-v4's goniometric light).
+    Image(image::IntensityImage),
+}
+
+impl IntensityMap {
+    /// The largest intensity.
+    pub fn peak(&self) -> f64 {
+        match self {
+            Self::Table(t) => t.peak(),
+            Self::Image(i) => i.peak(),
+        }
+    }
+
+    /// The power ∫ I dω (the file's unit times sr).
+    pub fn power(&self) -> f64 {
+        match self {
+            Self::Table(t) => t.power(),
+            Self::Image(i) => i.power(),
+        }
+    }
+}
 
 /// A luminaire's intensity I(γ, C) on a grid of angles (radians): bilinear between the nodes.
 #[derive(Clone, Debug, PartialEq)]

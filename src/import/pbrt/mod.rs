@@ -1299,6 +1299,7 @@ impl<'s> Converter<'s> {
                 irradiance.put(&mut t, "irradiance")?;
                 t
             }
+            "goniometric" => self.goniometric(s, &m, scale)?,
             "infinite" => {
                 if let Some(param) = p.take("filename") {
                     return Err(param.place.error(
@@ -1328,7 +1329,7 @@ impl<'s> Converter<'s> {
             other => {
                 return Err(s.place.error(format!(
                     "the light \"{}\" is not supported by grinlight's import (point, spot, \
-                     distant, infinite are)",
+                     goniometric, distant, infinite are)",
                     cut(other)
                 )))
             }
@@ -1336,6 +1337,65 @@ impl<'s> Converter<'s> {
         p.finish(&what)?;
         self.lists.lights.push(light);
         Ok(())
+    }
+
+    /// A `goniometric` light: a point light whose intensity is its image's (`filename`, in
+    /// the equal-area map; pbrt-v4 reads it with the light's y and z swapped, so the image's
+    /// +z pole is the light's +y) times `I` and `scale`, or scaled to `power` (its luminous
+    /// power, so with an RGB `I` of luminance 1 the power in grinlight's unit).
+    fn goniometric(&self, s: &Statement, m: &DMat4, scale: f64) -> Result<Table> {
+        let p = &s.params;
+        let colour = match self.emission(p, "I", &s.what())? {
+            Emission::Rgb(rgb) => rgb,
+            Emission::Blackbody(_) => {
+                return Err(s.place.error(format!(
+                    "{}: a blackbody I is not supported on a goniometric light (give rgb I)",
+                    s.what()
+                )))
+            }
+        };
+        let name = p.string("filename")?.ok_or_else(|| {
+            s.place.error(format!(
+                "{}: \"string filename\" is missing (pbrt renders it black)",
+                s.what()
+            ))
+        })?;
+        // The image's axes in grinlight's world: pbrt's light frame with y and z swapped.
+        let [x, y, z] = [DVec3::X, DVec3::Z, DVec3::Y].map(|a| self.vector(m, a));
+        let orthonormal = [x, y, z].iter().all(|a| (a.length() - 1.0).abs() < 1e-9)
+            && [x.dot(y), y.dot(z), z.dot(x)]
+                .iter()
+                .all(|d| d.abs() < 1e-9);
+        if !orthonormal {
+            return Err(s.place.error(format!(
+                "{}: the transform scales or shears the light (pbrt looks its image up along \
+                 directions no longer of unit length)",
+                s.what()
+            )));
+        }
+        // grinlight's image frame is (c0, c90, −nadir) with c90 = −nadir × c0: its rows are
+        // read flipped where pbrt's frame is mirrored against it.
+        let (nadir, c0) = (-z, x);
+        let flip_v = y.dot((-nadir).cross(c0)) < 0.0;
+        let path = self.scene.find(&name, &s.place)?;
+        let file = std::fs::canonicalize(&path).unwrap_or(path);
+        let mut t = table([
+            ("type", string("goniometric")),
+            ("file", string(&file.to_string_lossy())),
+            ("position", vec3(self.point(m, DVec3::ZERO))),
+            ("direction", vec3(nadir)),
+            ("c0", vec3(c0)),
+            ("color", vec3(colour)),
+        ]);
+        if flip_v {
+            t.insert("flip_v".into(), Toml::Boolean(true));
+        }
+        let power = p.float("power", -1.0)?;
+        match power > 0.0 {
+            true => t.insert("power".into(), Toml::Float(power * scale)),
+            false => t.insert("scale".into(), Toml::Float(scale)),
+        };
+        Ok(t)
     }
 
     /// A material statement's type and the name its grinlight material is given.

@@ -6,6 +6,8 @@ use crate::environment::{Environment, ImageFilter, Sky, Turn};
 use crate::error::Result;
 use crate::lights::{Emitter, Falloff, Light, Luminaire};
 use crate::math::Ball;
+use crate::photometry::image::IntensityImage;
+use crate::photometry::IntensityMap;
 use crate::scene::table::TableReader;
 use crate::shapes::{Disk, Quad, SampledMesh};
 use crate::spectrum::Spectrum;
@@ -126,20 +128,11 @@ pub fn read_light(t: &mut TableReader, kind: &str) -> Result<Light> {
         }
         "goniometric" => {
             let path = t.input_file("file")?;
-            let text = crate::input::read_text(&path, 64 << 20, "photometric file")
-                .map_err(|e| t.error("file", e))?;
-            let eulumdat = path
-                .extension()
-                .is_some_and(|e| e.eq_ignore_ascii_case("ldt"));
-            let table = match eulumdat {
-                true => crate::photometry::eulumdat::parse(&text),
-                false => crate::photometry::ies::parse(&text),
-            }
-            .map_err(|e| t.error("file", format!("{}: {e}", path.display())))?;
+            let map = read_intensity_map(&path).map_err(|e| t.error("file", e))?;
             t.check(
                 "file",
-                table.power() > 0.0 && table.power().is_finite(),
-                format!("the luminaire's table must send a finite power > 0, got {}", table.power()),
+                map.power() > 0.0 && map.power().is_finite(),
+                format!("the luminaire must send a finite power > 0, got {}", map.power()),
             )?;
             let nadir = t.direction_or("direction", -DVec3::Y)?;
             let fallback = match nadir.cross(DVec3::X).length() > 1e-6 {
@@ -152,21 +145,55 @@ pub fn read_light(t: &mut TableReader, kind: &str) -> Result<Light> {
                 nadir.cross(c0).length() > 1e-9,
                 "must not be parallel to `direction` (the luminaire's nadir)",
             )?;
+            let map = match map {
+                IntensityMap::Image(image) => IntensityMap::Image(image.with_flip_v(t.bool_or("flip_v", false)?)),
+                IntensityMap::Table(table) => {
+                    t.check("flip_v", !t.has("flip_v"), "is an intensity image's: this file is a table")?;
+                    IntensityMap::Table(table)
+                }
+            };
             let scale = match (t.has("power"), t.has("scale")) {
                 (true, true) => return Err(t.error("scale", "give `power` or `scale`, not both")),
-                (true, false) => t.positive("power")? / table.power(),
+                (true, false) => t.positive("power")? / map.power(),
                 (false, _) => t.positive_or("scale", 1.0)?,
             };
             Light::Goniometric {
                 position: t.vec3("position")?,
                 aim: Luminaire::new(nadir, c0),
                 colour: t.rgb_or("color", Some(Rgb::ONE))? * scale,
-                table: std::sync::Arc::new(table),
+                map: std::sync::Arc::new(map),
             }
         }
         "directional" => Light::Directional { direction: t.direction_or("direction", -DVec3::Y)?, irradiance: t.rgb_or("irradiance", None)? },
         other => return Err(t.error("type", format!("unknown light type '{other}' (point, spot, quad, disk, sphere, mesh, led, goniometric, directional, environment)"))),
     })
+}
+
+/// A luminaire's intensity from its file, by the file's extension: an equal-area image
+/// (`.exr`, `.hdr`; `.png` and `.jpg` are read to be refused by name), a EULUMDAT table
+/// (`.ldt`) or an IES table (any other). The message of
+/// a file that does not read names it.
+fn read_intensity_map(path: &std::path::Path) -> std::result::Result<IntensityMap, String> {
+    use crate::photometry::{eulumdat, ies};
+    let extension = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .unwrap_or("")
+        .to_ascii_lowercase();
+    let named = |e: String| format!("{}: {e}", path.display());
+    if let "exr" | "hdr" | "png" | "jpg" | "jpeg" = extension.as_str() {
+        let image = crate::texture::open_image(path)?;
+        return Ok(IntensityMap::Image(
+            IntensityImage::from_image(&image).map_err(named)?,
+        ));
+    }
+    let text =
+        crate::input::read_text(path, 64 << 20, "photometric file").map_err(|e| e.to_string())?;
+    let table = match extension.as_str() {
+        "ldt" => eulumdat::parse(&text),
+        _ => ies::parse(&text),
+    };
+    Ok(IntensityMap::Table(table.map_err(named)?))
 }
 
 /// A `[[light]]` of type `environment`; image files are relative to `dir`.
