@@ -1,8 +1,10 @@
-//! What a ray that leaves the scene sees: a lat-long image or a procedural sky.
+//! What a ray that leaves the scene sees: a lat-long image, an image in the equal-area
+//! octahedral map ([`crate::equal_area`], pbrt-v4's environment maps) or a procedural sky.
 //! Lat-long convention: u = 0.5 + atan2(x, −z)/2π (−z at the centre), v = acos(y)/π (+y at the
 //! top row); the map is turned by a [`Turn`].
 
 use crate::color::Rgb;
+use crate::equal_area::{pixel, sphere_to_square};
 use crate::lights::{covering_disk, Aim, Emission};
 use crate::sampling::{uniform_sphere, UNIFORM_SPHERE_PDF};
 use glam::{DMat3, DVec3};
@@ -21,6 +23,18 @@ pub enum Sky {
         pixels: Vec<[f32; 3]>,
         /// How radiance between the pixels is read.
         filter: ImageFilter,
+    },
+    /// A square image in the equal-area octahedral map, linear RGB, row-major from the top,
+    /// read by nearest pixel (as pbrt-v4 reads its environment maps): +z at its centre, +x at
+    /// its right edge's midpoint, +y at its bottom edge's (at its top edge's with `flip_v`).
+    EqualArea {
+        /// Width and height in pixels.
+        size: usize,
+        /// Pixels.
+        pixels: Vec<[f32; 3]>,
+        /// Whether the rows are read in the opposite order (v as 1 − v, y as −y): the map seen
+        /// in a mirror.
+        flip_v: bool,
     },
     /// Random stars on black, deterministic in `seed` (about 2 stars per square degree on
     /// average, denser toward the poles where lat-long cells are smaller).
@@ -129,8 +143,12 @@ impl Environment {
     /// Radiance arriving from unit direction `d` (travelling along −d toward the scene).
     pub fn radiance(&self, d: DVec3) -> Rgb {
         let d = self.turn.to_map(d);
-        let u = 0.5 + d.x.atan2(-d.z) / TAU;
-        let v = d.y.clamp(-1.0, 1.0).acos() / PI;
+        let latlong = || {
+            (
+                0.5 + d.x.atan2(-d.z) / TAU,
+                d.y.clamp(-1.0, 1.0).acos() / PI,
+            )
+        };
         self.scale
             * match &self.sky {
                 Sky::Image {
@@ -138,9 +156,29 @@ impl Environment {
                     height,
                     pixels,
                     filter,
-                } => image_radiance(pixels, *width, *height, *filter, u, v),
-                Sky::Starfield { seed } => starfield(*seed, d, u, v),
+                } => {
+                    let (u, v) = latlong();
+                    image_radiance(pixels, *width, *height, *filter, u, v)
+                }
+                Sky::EqualArea {
+                    size,
+                    pixels,
+                    flip_v,
+                } => {
+                    let d = match flip_v {
+                        true => DVec3::new(d.x, -d.y, d.z),
+                        false => d,
+                    };
+                    let (x, y) = pixel(sphere_to_square(d), *size);
+                    let p = pixels[y * size + x];
+                    Rgb::new(p[0] as f64, p[1] as f64, p[2] as f64)
+                }
+                Sky::Starfield { seed } => {
+                    let (u, v) = latlong();
+                    starfield(*seed, d, u, v)
+                }
                 Sky::Checker { squares } => {
+                    let (u, v) = latlong();
                     let n = *squares as f64;
                     let odd = ((u * n).floor() + (v * n * 0.5).floor()) as i64 % 2 == 0;
                     Rgb::splat(if odd { 1.0 } else { 0.1 })

@@ -288,6 +288,41 @@ fn cases() -> Vec<Case> {
             ],
             ..scene_case("a table's rows flipped", "", Error("is an intensity image's"))
         },
+        Case {
+            files: vec![
+                ("s.toml", scene("[[light]]\ntype = \"environment\"\nfile = \"sky.exr\"\nprojection = \"equal_area\"\n")),
+                ("sky.exr", image_bytes(4, 2, 1.0, image::ImageFormat::OpenExr)),
+            ],
+            ..scene_case("equal-area sky not square", "", Error("is square; this one is 4 × 2"))
+        },
+        Case {
+            files: vec![
+                ("s.toml", scene("[[light]]\ntype = \"environment\"\nfile = \"sky.png\"\nprojection = \"equal_area\"\n")),
+                ("sky.png", image_bytes(4, 4, 0.5, image::ImageFormat::Png)),
+            ],
+            ..scene_case("equal-area sky of 8-bit levels", "", Error("floating-point pixels"))
+        },
+        Case {
+            files: vec![
+                ("s.toml", scene("[[light]]\ntype = \"environment\"\nfile = \"sky.exr\"\nprojection = \"equal_area\"\nfilter = \"bilinear\"\n")),
+                ("sky.exr", image_bytes(4, 4, 1.0, image::ImageFormat::OpenExr)),
+            ],
+            ..scene_case("equal-area sky read bilinearly", "", Error("by nearest pixel"))
+        },
+        Case {
+            files: vec![
+                ("s.toml", scene("[[light]]\ntype = \"environment\"\nfile = \"sky.exr\"\nflip_v = true\n")),
+                ("sky.exr", image_bytes(4, 2, 1.0, image::ImageFormat::OpenExr)),
+            ],
+            ..scene_case("lat-long sky's rows flipped", "", Error("is an equal-area map's"))
+        },
+        Case {
+            files: vec![
+                ("s.toml", scene("[[light]]\ntype = \"environment\"\nfile = \"sky.exr\"\nprojection = \"equal_area\"\n")),
+                ("sky.exr", image_bytes(8, 8, 1.0, image::ImageFormat::OpenExr)),
+            ],
+            ..scene_case("equal-area sky", "", Finite("wrote"))
+        },
         scene_case("intensity 1e308", "[[light]]\ntype = \"point\"\nposition = [0, 0, 1]\nintensity = 1e308\n", Error("out of range")),
         scene_case("camera at 1e308", "[[light]]\ntype = \"point\"\nposition = [0, 0, 1e308]\nintensity = 1\n", Error("out of range")),
         scene_case("negative intensity", "[[light]]\ntype = \"point\"\nposition = [0, 0, 1]\nintensity = -1\n", Error("must not be negative")),

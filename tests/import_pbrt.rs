@@ -558,6 +558,109 @@ fn a_pbrt_goniometric_light_sends_the_intensity_pbrt_computes() {
     assert!(light.get("scale").is_none());
 }
 
+/// pbrt-v4's `infinite` light of an image converts to the radiance pbrt looks up: toward a
+/// world direction w, the image's pixel at EqualAreaSphereToSquare(R⁻¹ w) (pbrt's polynomial
+/// map, written out above) times `scale`, R the light's rotation — over 4000 directions (those
+/// within 10⁻⁶ of a pixel's edge left out), with the scene's x negated and kept. With
+/// `illuminance` E, pbrt scales the map by E over its own sum for the upper hemisphere's
+/// illuminance, which weighs each pixel by 2π/N² sr where it covers 4π/N²: the converted
+/// environment gives a surface facing the map's +z twice E (by quadrature over 1.6·10⁵
+/// directions, 1 %: a 64 × 64 map, whose sum at the pixels' centres pbrt takes for the
+/// integral), as pbrt renders it.
+#[test]
+fn a_pbrt_image_infinite_light_shows_the_radiance_pbrt_looks_up() {
+    use glam::{DMat3, DVec3};
+    let d = dir("pbrt-envmap");
+    let n = 16usize;
+    let value = |i: usize| 0.1 + (i % 7) as f64 + 3.0 * (i / n) as f64;
+    image::Rgb32FImage::from_fn(n as u32, n as u32, |x, y| {
+        let v = value((y * n as u32 + x) as usize) as f32;
+        image::Rgb([v, 2.0 * v, 0.5 * v])
+    })
+    .save(d.join("sky.exr"))
+    .unwrap();
+    let rotation =
+        DMat3::from_axis_angle(DVec3::new(1.0, 0.0, 1.0).normalize(), (-75f64).to_radians());
+    let light = "AttributeBegin\nRotate -75 1 0 1\nLightSource \"infinite\" \
+                 \"string filename\" \"sky.exr\" \"float scale\" 1.5\nAttributeEnd";
+    for (case, camera, negated) in [
+        ("negated", "LookAt 0 0 5  0 0 0  0 1 0", true),
+        ("kept", "Scale -1 1 1\nLookAt 0 0 5  0 0 0  0 1 0", false),
+    ] {
+        let p = write(&d, &format!("{case}.pbrt"), &scene(camera, light));
+        let (description, _) =
+            grinlight::import::load_description(&p, &ImportOptions::default()).unwrap();
+        let built = description.build();
+        let sky = built.environment.as_ref().expect("an environment");
+        let mirror = DVec3::new(if negated { -1.0 } else { 1.0 }, 1.0, 1.0);
+        let mut compared = 0;
+        for k in 0..4000u64 {
+            let h = grinlight::sampling::mix(k + 99);
+            let u = (
+                (h >> 32) as f64 / 2f64.powi(32),
+                (h & 0xffff_ffff) as f64 / 2f64.powi(32),
+            );
+            let w = grinlight::sampling::uniform_sphere(u);
+            let cell = pbrt_sphere_to_square(rotation.transpose() * (w * mirror)) * n as f64;
+            if (cell - cell.round()).abs().min_element() < 1e-6 * n as f64 {
+                continue;
+            }
+            let (i, j) = ((cell.x as usize).min(n - 1), (cell.y as usize).min(n - 1));
+            let expected = 1.5 * value(j * n + i) as f32 as f64;
+            let got = sky.radiance(w).0;
+            compared += 1;
+            assert!(
+                (got - DVec3::new(1.0, 2.0, 0.5) * expected)
+                    .abs()
+                    .max_element()
+                    < 1e-6 * expected,
+                "{case}: toward {w}: {got} against {expected} × (1, 2, ½)"
+            );
+        }
+        assert!(compared > 3900, "{case}: {compared}");
+    }
+    // Illuminance: the converted sky's irradiance on a surface facing the map's +z, from a
+    // finer map (pbrt's sum at the pixels' centres is then within 0.5 % of the integral).
+    let fine = 64u32;
+    image::Rgb32FImage::from_fn(fine, fine, |x, y| {
+        image::Rgb([1.0 + (x + y) as f32 / fine as f32, 1.0, 0.5])
+    })
+    .save(d.join("fine.exr"))
+    .unwrap();
+    let p = write(
+        &d,
+        "illuminance.pbrt",
+        &scene(
+            "Scale -1 1 1\nLookAt 0 0 5  0 0 0  0 1 0",
+            "LightSource \"infinite\" \"string filename\" \"fine.exr\" \"float illuminance\" 10",
+        ),
+    );
+    let (description, _) =
+        grinlight::import::load_description(&p, &ImportOptions::default()).unwrap();
+    let built = description.build();
+    let sky = built.environment.as_ref().unwrap();
+    let (rows, cols) = (400, 400);
+    let mut irradiance = 0.0;
+    for a in 0..rows {
+        for b in 0..cols {
+            let w = grinlight::sampling::uniform_sphere((
+                (a as f64 + 0.5) / rows as f64,
+                (b as f64 + 0.5) / cols as f64,
+            ));
+            if w.z > 0.0 {
+                let l = sky.radiance(w).0;
+                irradiance += (0.212_639 * l.x + 0.715_169 * l.y + 0.072_192 * l.z) * w.z;
+            }
+        }
+    }
+    irradiance *= 4.0 * PI / (rows * cols) as f64;
+    println!("irradiance {irradiance} against twice 10");
+    assert!(
+        (irradiance - 20.0).abs() < 0.01 * 20.0,
+        "irradiance {irradiance} against twice 10"
+    );
+}
+
 /// The message of a scene that does not convert.
 fn refusal(name: &str, text: &str, options: &ImportOptions) -> String {
     let d = dir(&format!("pbrt-refuse-{name}"));
@@ -697,9 +800,14 @@ fn what_pbrt_cannot_convert_is_refused_by_file_line_and_column() {
             "s.pbrt:8:1: LightSource \"goniometric\": the transform scales or shears the light",
         ),
         (
-            "image sky",
-            in_world("LightSource \"infinite\" \"string filename\" \"sky.exr\""),
-            "equal-area octahedral map",
+            "image sky and L",
+            in_world("LightSource \"infinite\" \"string filename\" \"sky.exr\" \"rgb L\" [ 1 1 1 ]"),
+            "s.pbrt:7:52: LightSource \"infinite\": an image's infinite light with \"rgb L\" is not supported",
+        ),
+        (
+            "image sky squashed",
+            in_world("Scale 1 2 1\nLightSource \"infinite\" \"string filename\" \"sky.exr\""),
+            "s.pbrt:8:1: LightSource \"infinite\": the transform scales unevenly or shears the environment",
         ),
         (
             "two cameras",

@@ -22,7 +22,7 @@ use super::table::{
 use super::{Imported, Place, Told};
 use crate::error::{cut, Result};
 use crate::pixel_filter::PixelFilter;
-use glam::{DMat4, DVec3};
+use glam::{DMat3, DMat4, DVec3};
 use parse::{Params, Scene, Statement};
 use std::collections::{HashMap, HashSet};
 use std::f64::consts::PI;
@@ -1301,11 +1301,10 @@ impl<'s> Converter<'s> {
             }
             "goniometric" => self.goniometric(s, &m, scale)?,
             "infinite" => {
-                if let Some(param) = p.take("filename") {
-                    return Err(param.place.error(
-                        "an environment image (pbrt's equal-area octahedral map) is not \
-                         supported by grinlight's import",
-                    ));
+                if let Some(name) = p.string("filename")? {
+                    let environment = self.image_environment(s, &m, scale, &name)?;
+                    p.finish(&what)?;
+                    return self.set_environment(s, environment);
                 }
                 let mut radiance = self.emission(p, "L", &what)?.times(scale);
                 let illuminance = p.float("illuminance", -1.0)?;
@@ -1313,18 +1312,13 @@ impl<'s> Converter<'s> {
                     radiance = radiance.times(illuminance / PI);
                 }
                 p.finish(&what)?;
-                if self.environment.is_some() {
-                    return Err(s
-                        .place
-                        .error("a second infinite light: grinlight has one environment"));
-                }
                 // An environment has no spectrum of its own: its RGB.
-                self.environment = Some(table([
+                let environment = table([
                     ("type", string("environment")),
                     ("sky", string("uniform")),
                     ("radiance", vec3(radiance.rgb()?)),
-                ]));
-                return Ok(());
+                ]);
+                return self.set_environment(s, environment);
             }
             other => {
                 return Err(s.place.error(format!(
@@ -1337,6 +1331,94 @@ impl<'s> Converter<'s> {
         p.finish(&what)?;
         self.lists.lights.push(light);
         Ok(())
+    }
+
+    /// The scene's environment, `environment` from the infinite light `s` (grinlight has one).
+    fn set_environment(&mut self, s: &Statement, environment: Table) -> Result<()> {
+        if self.environment.is_some() {
+            return Err(s
+                .place
+                .error("a second infinite light: grinlight has one environment"));
+        }
+        self.environment = Some(environment);
+        Ok(())
+    }
+
+    /// An `infinite` light of an image (`filename`: RGB in the equal-area map, the light's frame
+    /// its map's frame, read by nearest pixel): an `environment` of that image turned by the
+    /// light's rotation — its rows read flipped where the rotation, with the scene's x negated
+    /// or not, mirrors —, its radiance times `scale`, and with `illuminance` E times E/k,
+    /// k the upper hemisphere's illuminance as pbrt-v4 computes it (each pixel's centre, cos θ
+    /// and the sRGB luminance of its RGB, summed with weight 2π/N²).
+    fn image_environment(&self, s: &Statement, m: &DMat4, scale: f64, name: &str) -> Result<Table> {
+        let p = &s.params;
+        for refused in ["L", "portal"] {
+            if let Some(param) = p.take(refused) {
+                return Err(param.place.error(format!(
+                    "{}: an image's infinite light with {} is not supported",
+                    s.what(),
+                    param.what()
+                )));
+            }
+        }
+        let k = similarity(m).ok_or_else(|| {
+            s.place.error(format!(
+                "{}: the transform scales unevenly or shears the environment",
+                s.what()
+            ))
+        })?;
+        let path = self.scene.find(name, &s.place)?;
+        let turn = linear(&(mirror_map(self.mirror) * *m)) * (1.0 / k);
+        let flip_v = turn.determinant() < 0.0;
+        let turn = match flip_v {
+            true => turn * DMat3::from_diagonal(DVec3::new(1.0, -1.0, 1.0)),
+            false => turn,
+        };
+        let mut scale = scale;
+        let illuminance = p.float("illuminance", -1.0)?;
+        if illuminance > 0.0 {
+            let image = crate::texture::open_image(&path)
+                .map_err(|e| s.place.error(e))?
+                .to_rgb32f();
+            let n = image.width() as usize;
+            let luminance = [0.212_639, 0.715_169, 0.072_192];
+            let mut sum = 0.0;
+            for (x, y, rgb) in image.enumerate_pixels() {
+                let centre = glam::DVec2::new(
+                    (f64::from(x) + 0.5) / n as f64,
+                    (f64::from(y) + 0.5) / n as f64,
+                );
+                let w = crate::equal_area::square_to_sphere(centre);
+                if w.z > 0.0 {
+                    sum += (0..3)
+                        .map(|c| f64::from(rgb.0[c]) * luminance[c])
+                        .sum::<f64>()
+                        * w.z;
+                }
+            }
+            let k = sum * 2.0 * PI / (n * n) as f64;
+            if !k.is_finite() || k <= 0.0 {
+                return Err(s.place.error(format!(
+                    "{}: illuminance {illuminance} asked of an image whose own above the \
+                     horizon (pbrt's sum) is {k}",
+                    s.what()
+                )));
+            }
+            scale *= illuminance / k;
+        }
+        let file = std::fs::canonicalize(&path).unwrap_or(path);
+        let rows = (0..3).flat_map(|r| (0..3).map(move |c| turn.col(c)[r]));
+        let mut t = table([
+            ("type", string("environment")),
+            ("file", string(&file.to_string_lossy())),
+            ("projection", string("equal_area")),
+            ("matrix", Toml::Array(rows.map(Toml::Float).collect())),
+            ("scale", Toml::Float(scale)),
+        ]);
+        if flip_v {
+            t.insert("flip_v".into(), Toml::Boolean(true));
+        }
+        Ok(t)
     }
 
     /// A `goniometric` light: a point light whose intensity is its image's (`filename`, in

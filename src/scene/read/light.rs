@@ -201,9 +201,12 @@ pub fn read_environment(t: &mut TableReader) -> Result<Environment> {
     let sky = match (t.has("file"), t.string_opt("sky")?) {
         (true, None) => {
             let path = t.input_file("file")?;
-            let img = crate::texture::open_image(&path)
-                .map_err(|e| t.error("file", e))?
-                .to_rgb32f();
+            let decoded = crate::texture::open_image(&path).map_err(|e| t.error("file", e))?;
+            let floating = matches!(
+                decoded,
+                image::DynamicImage::ImageRgb32F(_) | image::DynamicImage::ImageRgba32F(_)
+            );
+            let img = decoded.to_rgb32f();
             let bad = img
                 .pixels()
                 .filter(|p| !p.0.iter().all(|c| c.is_finite() && *c >= 0.0));
@@ -224,18 +227,54 @@ pub fn read_environment(t: &mut TableReader) -> Result<Environment> {
                     ),
                 ));
             }
-            let filter = t.choice(
-                "filter",
-                &[
-                    ("nearest", ImageFilter::Nearest),
-                    ("bilinear", ImageFilter::Bilinear),
-                ],
-            )?;
-            Sky::Image {
-                width: img.width() as usize,
-                height: img.height() as usize,
-                pixels: img.pixels().map(|p| p.0).collect(),
-                filter,
+            let (width, height) = (img.width() as usize, img.height() as usize);
+            let pixels = img.pixels().map(|p| p.0).collect();
+            match t.choice("projection", &[("latlong", false), ("equal_area", true)])? {
+                false => {
+                    t.check(
+                        "flip_v",
+                        !t.has("flip_v"),
+                        "is an equal-area map's: give projection = \"equal_area\"",
+                    )?;
+                    let filter = t.choice(
+                        "filter",
+                        &[
+                            ("nearest", ImageFilter::Nearest),
+                            ("bilinear", ImageFilter::Bilinear),
+                        ],
+                    )?;
+                    Sky::Image {
+                        width,
+                        height,
+                        pixels,
+                        filter,
+                    }
+                }
+                true => {
+                    t.check(
+                        "filter",
+                        !t.has("filter"),
+                        "an equal-area map is read by nearest pixel: leave `filter` out",
+                    )?;
+                    t.check(
+                        "file",
+                        width == height,
+                        format!(
+                            "{}: an equal-area map is square; this one is {width} × {height}",
+                            path.display()
+                        ),
+                    )?;
+                    t.check(
+                        "file",
+                        floating,
+                        format!("{}: an equal-area map must hold floating-point pixels (an EXR or HDR file): its values are linear radiances, not sRGB levels", path.display()),
+                    )?;
+                    Sky::EqualArea {
+                        size: width,
+                        pixels,
+                        flip_v: t.bool_or("flip_v", false)?,
+                    }
+                }
             }
         }
         (false, Some(sky)) => match sky.as_str() {
