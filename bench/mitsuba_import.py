@@ -3,13 +3,19 @@
 tests/import.rs holds grinlight's renders of the same XML files against.
 
     python3 bench/mitsuba_import.py [CASE ...] [--runs K] [--spp N] [--write] [--grinlight]
+                                    [--stored] [--integrator NAME] [-- GRINLIGHT OPTIONS]
 
 For each case (a scene of scenes/mitsuba/ and the values of its parameters: CASES below), K independent Mitsuba renders (seeds 0..K-1, N samples a pixel each, the
 scene's own resolution) are averaged over blocks of 8 × 8 pixels; with --write, the block means
 and their standard errors (from the spread of the K runs) are written to
 tests/data/mitsuba/<case>.csv (the references were written with --runs 16 --spp 1024). With --grinlight, grinlight renders the same XML as many times
 (`grinlight render`, its release build) and the script prints a table: image means, their ratio,
-and the largest block z-score |Δ|/√(se₁² + se₂²).
+and the largest block z-score |Δ|/√(se₁² + se₂²). With --stored the Mitsuba side is read from
+tests/data/mitsuba/<case>.csv instead of rendered (no Mitsuba needed, --spp and --runs then set
+grinlight's side alone); --integrator photon_map (or path) and options after `--` go to grinlight,
+so that its photon mapper is held against the same references, e.g.
+
+    python3 bench/mitsuba_import.py --grinlight --stored --runs 16 --spp 256 --integrator photon_map
 
 Needs `pip install mitsuba` (3.9.1 wrote the files here), the fast `llvm_ad_rgb` variant:
 `apt-get install libllvm19` and DRJIT_LIBLLVM_PATH set to the `libLLVM-19.so` it installs.
@@ -17,6 +23,7 @@ Needs `pip install mitsuba` (3.9.1 wrote the files here), the fast `llvm_ad_rgb`
 import argparse
 import os
 import subprocess
+import sys
 import tempfile
 
 import numpy as np
@@ -105,6 +112,17 @@ def grinlight_layer_runs(path, defines, runs, spp, layers, options=()):
     return np.array(out)
 
 
+def read_blocks(path):
+    """Block means and standard errors from a CSV `write_blocks` wrote, as (h/B, w/B, 3) each."""
+    rows = np.loadtxt(path, delimiter=",", comments="#", skiprows=2)
+    h, w = int(rows[:, 1].max()) + 1, int(rows[:, 0].max()) + 1
+    mean, se = np.zeros((h, w, 3)), np.zeros((h, w, 3))
+    for r in rows:
+        bx, by = int(r[0]), int(r[1])
+        mean[by, bx], se[by, bx] = r[2:5], r[5:8]
+    return mean, se
+
+
 def write_blocks(path, comment, mean, se):
     """Block means and their standard errors as a CSV of tests/data/mitsuba/ under `comment`."""
     with open(path, "w") as f:
@@ -137,22 +155,34 @@ def main():
     ap.add_argument("--spp", type=int, default=1024)
     ap.add_argument("--write", action="store_true")
     ap.add_argument("--grinlight", action="store_true")
-    a = ap.parse_args()
-    import mitsuba as mi
+    ap.add_argument("--stored", action="store_true")
+    ap.add_argument("--integrator", choices=["path", "photon_map"])
+    argv = sys.argv[1:]
+    cut = argv.index("--") if "--" in argv else len(argv)
+    a = ap.parse_args(argv[:cut])
+    options = argv[cut + 1 :]
+    if a.integrator:
+        options += ["--integrator", a.integrator]
 
     rows = []
     for name in a.cases or list(CASES):
         scene, defines = CASES[name]
         path = os.path.join(ROOT, "scenes", "mitsuba", scene)
-        mean, se = stats(mitsuba_runs(path, defines, a.runs, a.spp))
-        if a.write:
+        if a.stored:
+            mean, se = read_blocks(os.path.join(ROOT, "tests", "data", "mitsuba", name + ".csv"))
+        else:
+            import mitsuba as mi
+
+            mean, se = stats(mitsuba_runs(path, defines, a.runs, a.spp))
+        if a.write and not a.stored:
             given = "".join(f" -D {k}={v}" for k, v in defines.items())
             write_blocks(os.path.join(ROOT, "tests", "data", "mitsuba", name + ".csv"),
                          f"Mitsuba {mi.__version__} llvm_ad_rgb, scenes/mitsuba/{scene}{given}: {a.runs} runs of "
                          f"{a.spp} spp, means over blocks of {BLOCK}x{BLOCK} pixels and their standard errors "
                          f"(bench/mitsuba_import.py)", mean, se)
         if a.grinlight:
-            gm, gs = stats(grinlight_runs(path, defines, a.runs, a.spp // 4))
+            spp = a.spp if a.stored else a.spp // 4
+            gm, gs = stats(grinlight_runs(path, defines, a.runs, spp, options))
             z = block_z(gm, gs, mean, se)
             rel = np.abs(gm - mean) / np.maximum(mean, 1e-300)
             rows.append((name, mean.mean(), gm.mean(), gm.mean() / mean.mean(), z.max(), rel.max()))
