@@ -7,9 +7,8 @@
 //! edge's midpoint, +y at the bottom edge's.
 //!
 //! grinlight computes the map's angle with `atan` where pbrt-v4 evaluates a 6th-degree minimax
-//! polynomial of it (error ≈ 4·10⁻⁶ of a quadrant): the two agree to that fraction of a pixel's
-//! width or better, so a nearest-pixel lookup differs only within that distance of a pixel's
-//! edge.
+//! polynomial of it: the two maps agree to 5·10⁻⁶ of the square's side (tests/import_pbrt.rs),
+//! so a nearest-pixel lookup differs only within that distance of a pixel's edge.
 
 use glam::{DVec2, DVec3};
 use std::f64::consts::{FRAC_2_PI, FRAC_PI_4};

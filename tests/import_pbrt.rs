@@ -447,6 +447,58 @@ fn pbrt_sphere_to_square(d: glam::DVec3) -> glam::DVec2 {
     glam::DVec2::new(0.5 * (u.copysign(d.x) + 1.0), 0.5 * (v.copysign(d.y) + 1.0))
 }
 
+/// The pixel (its index in an n × n image, row-major) pbrt-v4's nearest lookup reads toward
+/// each of 4000 directions spread over the sphere (`seed` keys them), a direction `w` being
+/// `image_frame(w)` in the image's frame; directions within 5·10⁻⁶ of the square's side of a
+/// pixel's edge (the bound of pbrt's polynomial against the exact angle, tested below), where
+/// the two may pick neighbours, left out.
+fn pbrt_pixels(
+    seed: u64,
+    n: usize,
+    image_frame: impl Fn(glam::DVec3) -> glam::DVec3,
+) -> Vec<(glam::DVec3, usize)> {
+    (0..4000u64)
+        .filter_map(|k| {
+            let h = grinlight::sampling::mix(k + seed);
+            let u = (
+                (h >> 32) as f64 / 2f64.powi(32),
+                (h & 0xffff_ffff) as f64 / 2f64.powi(32),
+            );
+            let w = grinlight::sampling::uniform_sphere(u);
+            let cell = pbrt_sphere_to_square(image_frame(w)) * n as f64;
+            let on_edge = (cell - cell.round()).abs().min_element() < 5e-6 * n as f64;
+            let (i, j) = ((cell.x as usize).min(n - 1), (cell.y as usize).min(n - 1));
+            (!on_edge).then_some((w, j * n + i))
+        })
+        .collect()
+}
+
+/// The world `light` written in `dir` under a camera whose conversion negates x and under one
+/// whose conversion keeps it (`Scale -1 1 1`, pbrt's camera then right-handed): each case's
+/// name, file, built scene and the mirror the conversion applied to pbrt's world.
+fn built_with_x_negated_and_kept(
+    dir: &Path,
+    light: &str,
+) -> Vec<(
+    &'static str,
+    std::path::PathBuf,
+    grinlight::scene::Scene,
+    glam::DVec3,
+)> {
+    [
+        ("negated", "LookAt 0 0 5  0 0 0  0 1 0", -1.0),
+        ("kept", "Scale -1 1 1\nLookAt 0 0 5  0 0 0  0 1 0", 1.0),
+    ]
+    .into_iter()
+    .map(|(case, camera, x)| {
+        let p = write(dir, &format!("{case}.pbrt"), &scene(camera, light));
+        let (description, _) =
+            grinlight::import::load_description(&p, &ImportOptions::default()).unwrap();
+        (case, p, description.build(), glam::DVec3::new(x, 1.0, 1.0))
+    })
+    .collect()
+}
+
 /// pbrt-v4's map and grinlight's (the angle exact) agree to 5·10⁻⁶ of the square over a grid
 /// of directions: pbrt's polynomial errs by about 4·10⁻⁶ of a quadrant.
 #[test]
@@ -471,7 +523,7 @@ fn pbrts_equal_area_map_is_grinlights_to_its_polynomials_error() {
 /// pbrt-v4's `goniometric` light converts to the intensity pbrt computes: toward a world
 /// direction w, its image's pixel at EqualAreaSphereToSquare(swapYZ(R⁻¹ w)) — pbrt's map with
 /// its own polynomial, written out here from lights.cpp and util/math.cpp — times `I` and
-/// `scale`, R the light's rotation. Checked over 4000 directions (those within 10⁻⁶ of a pixel's
+/// `scale`, R the light's rotation. Checked over 4000 directions (those within 5·10⁻⁶ of the square's side of a pixel's
 /// edge left out, where the polynomial and grinlight's exact angle may pick neighbours) with
 /// the scene's x negated (pbrt's left-handed camera) and kept (`Scale -1 1 1`), which read the
 /// image mirrored against each other; and `power` sets the luminous power, 4π/N² × the pixels'
@@ -492,36 +544,18 @@ fn a_pbrt_goniometric_light_sends_the_intensity_pbrt_computes() {
         DMat3::from_axis_angle(DVec3::new(1.0, 1.0, 0.0).normalize(), 30f64.to_radians());
     let light = "AttributeBegin\nTranslate 1 2 3\nRotate 30 1 1 0\nLightSource \"goniometric\" \
                  \"string filename\" \"map.exr\" \"rgb I\" [ 1 2 3 ] \"float scale\" 2\nAttributeEnd";
-    for (case, camera, negated) in [
-        ("negated", "LookAt 0 0 5  0 0 0  0 1 0", true),
-        ("kept", "Scale -1 1 1\nLookAt 0 0 5  0 0 0  0 1 0", false),
-    ] {
-        let p = write(&d, &format!("{case}.pbrt"), &scene(camera, light));
-        let (description, _) =
-            grinlight::import::load_description(&p, &ImportOptions::default()).unwrap();
-        let built = description.build();
+    for (case, p, built, mirror) in built_with_x_negated_and_kept(&d, light) {
         let converted = &built.lights[0];
-        let mirror = DVec3::new(if negated { -1.0 } else { 1.0 }, 1.0, 1.0);
-        let mut compared = 0;
-        for k in 0..4000u64 {
-            let h = grinlight::sampling::mix(k + 17);
-            let u = (
-                (h >> 32) as f64 / 2f64.powi(32),
-                (h & 0xffff_ffff) as f64 / 2f64.powi(32),
-            );
-            let w = grinlight::sampling::uniform_sphere(u);
-            // pbrt's world direction, its light frame's, and the image's (y and z swapped).
+        // pbrt's world direction, its light frame's, and the image's (y and z swapped).
+        let image_frame = |w: DVec3| {
             let light_frame = rotation.transpose() * (w * mirror);
-            let square =
-                pbrt_sphere_to_square(DVec3::new(light_frame.x, light_frame.z, light_frame.y));
-            let cell = square * n as f64;
-            if (cell - cell.round()).abs().min_element() < 1e-6 * n as f64 {
-                continue;
-            }
-            let (i, j) = ((cell.x as usize).min(n - 1), (cell.y as usize).min(n - 1));
-            let expected = 2.0 * values[j * n + i];
+            DVec3::new(light_frame.x, light_frame.z, light_frame.y)
+        };
+        let looked_up = pbrt_pixels(17, n, image_frame);
+        assert!(looked_up.len() > 3900, "{case}: {}", looked_up.len());
+        for (w, pixel) in looked_up {
+            let expected = 2.0 * values[pixel];
             let got = converted.intensity(w).0;
-            compared += 1;
             assert!(
                 (got - DVec3::new(1.0, 2.0, 3.0) * expected)
                     .abs()
@@ -530,7 +564,6 @@ fn a_pbrt_goniometric_light_sends_the_intensity_pbrt_computes() {
                 "{case}: toward {w}: {got} against {expected} × (1, 2, 3)"
             );
         }
-        assert!(compared > 3900, "{case}: {compared}");
         assert!(
             close(
                 vec3(
@@ -561,7 +594,7 @@ fn a_pbrt_goniometric_light_sends_the_intensity_pbrt_computes() {
 /// pbrt-v4's `infinite` light of an image converts to the radiance pbrt looks up: toward a
 /// world direction w, the image's pixel at EqualAreaSphereToSquare(R⁻¹ w) (pbrt's polynomial
 /// map, written out above) times `scale`, R the light's rotation — over 4000 directions (those
-/// within 10⁻⁶ of a pixel's edge left out), with the scene's x negated and kept. With
+/// within 5·10⁻⁶ of the square's side of a pixel's edge left out), with the scene's x negated and kept. With
 /// `illuminance` E, pbrt scales the map by E over its own sum for the upper hemisphere's
 /// illuminance, which weighs each pixel by 2π/N² sr where it covers 4π/N²: the converted
 /// environment gives a surface facing the map's +z twice E (by quadrature over 1.6·10⁵
@@ -583,32 +616,13 @@ fn a_pbrt_image_infinite_light_shows_the_radiance_pbrt_looks_up() {
         DMat3::from_axis_angle(DVec3::new(1.0, 0.0, 1.0).normalize(), (-75f64).to_radians());
     let light = "AttributeBegin\nRotate -75 1 0 1\nLightSource \"infinite\" \
                  \"string filename\" \"sky.exr\" \"float scale\" 1.5\nAttributeEnd";
-    for (case, camera, negated) in [
-        ("negated", "LookAt 0 0 5  0 0 0  0 1 0", true),
-        ("kept", "Scale -1 1 1\nLookAt 0 0 5  0 0 0  0 1 0", false),
-    ] {
-        let p = write(&d, &format!("{case}.pbrt"), &scene(camera, light));
-        let (description, _) =
-            grinlight::import::load_description(&p, &ImportOptions::default()).unwrap();
-        let built = description.build();
+    for (case, _, built, mirror) in built_with_x_negated_and_kept(&d, light) {
         let sky = built.environment.as_ref().expect("an environment");
-        let mirror = DVec3::new(if negated { -1.0 } else { 1.0 }, 1.0, 1.0);
-        let mut compared = 0;
-        for k in 0..4000u64 {
-            let h = grinlight::sampling::mix(k + 99);
-            let u = (
-                (h >> 32) as f64 / 2f64.powi(32),
-                (h & 0xffff_ffff) as f64 / 2f64.powi(32),
-            );
-            let w = grinlight::sampling::uniform_sphere(u);
-            let cell = pbrt_sphere_to_square(rotation.transpose() * (w * mirror)) * n as f64;
-            if (cell - cell.round()).abs().min_element() < 1e-6 * n as f64 {
-                continue;
-            }
-            let (i, j) = ((cell.x as usize).min(n - 1), (cell.y as usize).min(n - 1));
-            let expected = 1.5 * value(j * n + i) as f32 as f64;
+        let looked_up = pbrt_pixels(99, n, |w| rotation.transpose() * (w * mirror));
+        assert!(looked_up.len() > 3900, "{case}: {}", looked_up.len());
+        for (w, pixel) in looked_up {
+            let expected = 1.5 * value(pixel) as f32 as f64;
             let got = sky.radiance(w).0;
-            compared += 1;
             assert!(
                 (got - DVec3::new(1.0, 2.0, 0.5) * expected)
                     .abs()
@@ -617,7 +631,6 @@ fn a_pbrt_image_infinite_light_shows_the_radiance_pbrt_looks_up() {
                 "{case}: toward {w}: {got} against {expected} × (1, 2, ½)"
             );
         }
-        assert!(compared > 3900, "{case}: {compared}");
     }
     // Illuminance: the converted sky's irradiance on a surface facing the map's +z, from a
     // finer map (pbrt's sum at the pixels' centres is then within 0.5 % of the integral).

@@ -163,6 +163,24 @@ fn a_luminaires_photons_carry_its_power() {
     );
 }
 
+/// The scene's `beauty` layer rendered by each integrator.
+fn beauty_by_integrator(
+    scene: &grinlight::scene::Scene,
+    settings: &grinlight::settings::Settings,
+) -> Vec<(grinlight::settings::IntegratorKind, Vec<[f32; 3]>)> {
+    grinlight::settings::IntegratorKind::ALL
+        .into_iter()
+        .map(|integrator| {
+            let settings = grinlight::settings::Settings {
+                integrator,
+                ..settings.clone()
+            };
+            let film = grinlight::render::render(scene, &settings, &()).unwrap().0;
+            (integrator, film.layer("beauty").unwrap())
+        })
+        .collect()
+}
+
 /// The white spherical room of albedo ρ = 0.5 lit by a luminaire at its centre whose IES table
 /// is I = I₀ cos γ downward (I₀ = 1, at 1°): each pixel reads (ρ/π)(I(ω) + ρΦ/(A(1 − ρ))),
 /// Φ = π I₀, as for the other lights; both integrators, image mean within 1 %.
@@ -192,13 +210,7 @@ fn a_luminaire_lights_a_white_spherical_room_as_an_integrating_sphere_does() {
         })
         .sum::<f64>()
         / (w * h) as f64;
-    for integrator in grinlight::settings::IntegratorKind::ALL {
-        let settings = grinlight::settings::Settings {
-            integrator,
-            ..settings.clone()
-        };
-        let film = grinlight::render::render(&scene, &settings, &()).unwrap().0;
-        let pixels = film.layer("beauty").unwrap();
+    for (integrator, pixels) in beauty_by_integrator(&scene, &settings) {
         let mean = pixels.iter().map(|p| p[1] as f64).sum::<f64>() / pixels.len() as f64;
         println!("luminaire, {integrator:?}: {mean:.5} against {expected:.5}");
         assert!(
@@ -428,13 +440,7 @@ fn an_intensity_image_lights_a_white_spherical_room_as_an_integrating_sphere_doe
         expected[quadrant(i)] +=
             rho / PI * (0.02 * values[b * n + a] + bounced) / (w * h / 4) as f64;
     }
-    for integrator in grinlight::settings::IntegratorKind::ALL {
-        let settings = grinlight::settings::Settings {
-            integrator,
-            ..settings.clone()
-        };
-        let film = grinlight::render::render(&scene, &settings, &()).unwrap().0;
-        let pixels = film.layer("beauty").unwrap();
+    for (integrator, pixels) in beauty_by_integrator(&scene, &settings) {
         let mut mean = [0.0; 4];
         for (i, p) in pixels.iter().enumerate() {
             mean[quadrant(i)] += p[1] as f64 / (w * h / 4) as f64;
