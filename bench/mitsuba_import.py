@@ -61,6 +61,8 @@ CASES = {
     "beckmann": ("beckmann.xml", {}),
     # Mitsuba's Gaussian pixel filter on edges at the blocks' boundaries and at the image's.
     "pixel_filter": ("pixel_filter.xml", {}),
+    # Its crop window of 24 × 16 pixels from (8, 8): its left and top edges on the square's.
+    "pixel_filter_crop": ("pixel_filter.xml", {"crop_x": "8", "crop_y": "8", "crop_w": "24", "crop_h": "16"}),
     # The Cornell box through the Gaussian pixel filter.
     "cornell_box_gaussian": ("cornell_box.xml", {"filter": "gaussian"}),
 }

@@ -92,7 +92,7 @@ pub struct Camera {
     up: DVec3,
     /// How its film's points become rays.
     pub projection: Projection,
-    /// Image width in pixels.
+    /// Image width in pixels (the whole image's, cropped or not).
     pub width: u32,
     /// Image height in pixels.
     pub height: u32,
@@ -103,6 +103,32 @@ pub struct Camera {
     pub polarizer: Option<f64>,
     /// How a pixel weighs the film around it (where its samples' film points fall).
     pub filter: PixelFilter,
+    /// The part of the image a render makes; `None` for all of it.
+    pub crop: Option<Crop>,
+}
+
+/// A window of a camera's image: `width` × `height` pixels from pixel (`x`, `y`), counted from
+/// the image's top-left. A render makes the window alone, each of its pixels as the whole
+/// image's render makes it — but that a pixel filter's support ends at the window's edges as
+/// at the image's (Mitsuba's crop).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Crop {
+    /// The window's left column.
+    pub x: u32,
+    /// The window's top row.
+    pub y: u32,
+    /// Its width in pixels.
+    pub width: u32,
+    /// Its height in pixels.
+    pub height: u32,
+}
+
+impl Crop {
+    /// Whether the window lies within a `width` × `height` image.
+    pub fn fits(&self, width: u32, height: u32) -> bool {
+        u64::from(self.x) + u64::from(self.width) <= u64::from(width)
+            && u64::from(self.y) + u64::from(self.height) <= u64::from(height)
+    }
 }
 
 impl Camera {
@@ -168,6 +194,17 @@ impl Camera {
             lens: None,
             polarizer: None,
             filter: PixelFilter::Box,
+            crop: None,
+        })
+    }
+
+    /// The window of the image a render makes: the crop, or the whole image.
+    pub fn window(&self) -> Crop {
+        self.crop.unwrap_or(Crop {
+            x: 0,
+            y: 0,
+            width: self.width,
+            height: self.height,
         })
     }
 

@@ -214,6 +214,12 @@ fn cases() -> Vec<Case> {
             files: vec![("s.toml", [b"ambient = \"f\"\n".to_vec(), scene(&format!("{LIGHT}[[medium]]\nname = \"f\"\nprofile = \"uniform\"\nn = 1.5\nscattering = 0.5\n[[material]]\nname = \"p\"\ntype = \"thin_dielectric\"\nior = 1.0001\n[[shape]]\ntype = \"quad\"\nmaterial = \"p\"\nvertices = [[-1, 0, -1], [1, 0, -1], [1, 0.001, 1], [-1, 0.001, 1]]\n"))].concat())],
             ..scene_case("pane less dense than its fog, seen at grazing angles", "", Finite("wrote"))
         },
+        scene_case("crop beyond the image", "", Error("")).with_scene_replace("height = 8\n", "height = 8\ncrop = [4, 0, 8, 8]\n", "must be non-empty and lie within the 8×8 image"),
+        scene_case("empty crop", "", Error("")).with_scene_replace("height = 8\n", "height = 8\ncrop = [0, 0, 0, 8]\n", "must be non-empty"),
+        scene_case("crop of three numbers", "", Error("")).with_scene_replace("height = 8\n", "height = 8\ncrop = [0, 0, 8]\n", "expected 4 integers, got 3"),
+        scene_case("negative crop", "", Error("")).with_scene_replace("height = 8\n", "height = 8\ncrop = [-1, 0, 4, 4]\n", "expected non-negative integers"),
+        Case { name: "crop outside an image made smaller", files: vec![("s.toml", String::from_utf8(scene(LIGHT)).unwrap().replacen("height = 8\n", "height = 8\ncrop = [2, 2, 6, 6]\n", 1).into_bytes())], args: render("--width 4"), expect: Error("crop 6×6 at (2, 2) does not lie within the 4×8 image") },
+        Case { name: "crop inside", files: vec![("s.toml", String::from_utf8(scene(LIGHT)).unwrap().replacen("height = 8\n", "height = 8\ncrop = [2, 2, 4, 4]\n", 1).into_bytes())], args: render(""), expect: Finite("wrote") },
         scene_case("camera polarizer at NaN degrees", "", Error("")).with_scene_replace("height = 8\n", "height = 8\npolarizer_deg = nan\n", "polarizer_deg"),
         scene_case("camera polarizer at 1e300 degrees", "", Error("")).with_scene_replace("height = 8\n", "height = 8\npolarizer_deg = 1e300\n", "polarizer_deg"),
         scene_case("camera polarizer as a word", "", Error("")).with_scene_replace("height = 8\n", "height = 8\npolarizer_deg = \"up\"\n", "polarizer_deg"),
@@ -578,6 +584,12 @@ fn cases() -> Vec<Case> {
     ]);
     v.extend([
         xml_case("Mitsuba: a sphere", "<shape type=\"sphere\"><point name=\"center\" value=\"0, 0, -3\"/></shape>", Finite("wrote")),
+        Case {
+            name: "Mitsuba: a crop beyond its film",
+            files: vec![("s.xml", String::from_utf8(mitsuba("")).unwrap().replacen("<rfilter", "<integer name=\"crop_offset_x\" value=\"4\"/><integer name=\"crop_width\" value=\"6\"/><rfilter", 1).into_bytes())],
+            args: args("render s.xml"),
+            expect: Error("s.xml:2:"),
+        },
         Case { name: "Mitsuba: malformed XML", files: vec![("s.xml", b"<scene version=\"3.0.0\"><shape".to_vec())], args: args("render s.xml"), expect: Error("s.xml:1:") },
         Case { name: "Mitsuba: not a scene", files: vec![("s.xml", b"<html></html>".to_vec())], args: args("render s.xml"), expect: Error("expected a Mitsuba <scene>, found <html>") },
         Case { name: "Mitsuba: version 0.6", files: vec![("s.xml", b"<scene version=\"0.6.0\"></scene>".to_vec())], args: args("render s.xml"), expect: Error("only Mitsuba 2 and 3 scenes") },

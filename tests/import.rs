@@ -617,8 +617,8 @@ pub(super) fn grinlight_layer_blocks(
     };
     let (description, mut settings) = load_description(scene, &options).unwrap();
     let scene = description.build();
-    let camera = scene.camera.as_ref().expect("a camera");
-    let (w, h) = (camera.width as usize, camera.height as usize);
+    let window = scene.camera.as_ref().expect("a camera").window();
+    let (w, h) = (window.width as usize, window.height as usize);
     // Per layer, per run, per block.
     let mut per_run = vec![Vec::new(); layers.len()];
     for seed in 0..runs {
@@ -729,6 +729,19 @@ fn the_mitsuba_scenes_render_as_mitsuba_renders_them() {
         // Mitsuba's Gaussian pixel filter: edges on the blocks' boundaries and the image's (a
         // box filter in its place reads a block 689 standard errors off), and the Cornell box.
         ("pixel_filter", "pixel_filter.xml", vec![], 16),
+        // Its crop window, whose left and top edges lie on the square's: the filter's support
+        // ends at the window's edges (carried past them, a block reads z 891).
+        (
+            "pixel_filter_crop",
+            "pixel_filter.xml",
+            vec![
+                ("crop_x", "8"),
+                ("crop_y", "8"),
+                ("crop_w", "24"),
+                ("crop_h", "16"),
+            ],
+            16,
+        ),
         (
             "cornell_box_gaussian",
             "cornell_box.xml",

@@ -514,6 +514,72 @@ fn a_gaussian_filter_weighs_the_film_beyond_the_image_only_when_asked() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// A cropped camera renders its window of the image and nothing else: each of the window's
+/// pixels is the whole image's pixel bit for bit (both integrators, every layer; a pixel's
+/// numbers are keyed by its place in the image), with a box filter everywhere and with a
+/// Gaussian (σ ½, r 2) wherever its support lies inside the window; at the window's edges the
+/// Gaussian's support ends there (as at an image's edge), so the pixels on them differ.
+#[test]
+fn a_crop_renders_its_window_of_the_image_pixel_for_pixel() {
+    let text = std::fs::read_to_string("scenes/cornell_diffuse.toml")
+        .unwrap()
+        .replace("width = 256\nheight = 256\n", "width = 48\nheight = 40\n")
+        .replace("spp = 16\n", "spp = 4\n");
+    let (x, y, w, h) = (10usize, 6usize, 24usize, 20usize);
+    for filter in ["box", "gaussian"] {
+        let text = text.replace(
+            "height = 40\n",
+            &format!("height = 40\nfilter = \"{filter}\"\n"),
+        );
+        let cropped = text.replace(
+            "height = 40\n",
+            &format!("height = 40\ncrop = [{x}, {y}, {w}, {h}]\n"),
+        );
+        assert_ne!(cropped, text, "the crop was set");
+        let path = Path::new("scenes/cornell_diffuse.toml");
+        let (whole_scene, settings) = parse_scene(path, text.clone()).unwrap();
+        let (crop_scene, _) = parse_scene(path, cropped).unwrap();
+        for integrator in grinlight::settings::IntegratorKind::ALL {
+            let settings = grinlight::settings::Settings {
+                integrator,
+                threads: 2,
+                ..settings.clone()
+            };
+            let whole = grinlight::render::render(&whole_scene, &settings, &())
+                .unwrap()
+                .0;
+            let part = grinlight::render::render(&crop_scene, &settings, &())
+                .unwrap()
+                .0;
+            for layer in ["beauty", "albedo"] {
+                let (a, b) = (whole.layer(layer).unwrap(), part.layer(layer).unwrap());
+                assert_eq!(b.len(), w * h, "{filter} {integrator:?}: the window's size");
+                let (mut inner, mut cut) = (0, 0);
+                for (j, i) in (0..h).flat_map(|j| (0..w).map(move |i| (j, i))) {
+                    let edge = i.min(j).min(w - 1 - i).min(h - 1 - j);
+                    if filter == "gaussian" && edge < 2 {
+                        cut += usize::from(b[j * w + i] != a[(y + j) * 48 + x + i]);
+                        continue;
+                    }
+                    inner += 1;
+                    assert_eq!(
+                        b[j * w + i],
+                        a[(y + j) * 48 + x + i],
+                        "{filter} {integrator:?} {layer}: window pixel ({i}, {j})"
+                    );
+                }
+                assert!(inner >= (w - 4) * (h - 4));
+                if filter == "gaussian" && layer == "beauty" {
+                    assert!(
+                        cut > 0,
+                        "{integrator:?}: the filter's support ends at the window"
+                    );
+                }
+            }
+        }
+    }
+}
+
 /// A pixel's samples split at a dielectric in proportion to its reflectance: a glass slab
 /// (n = 1.5, 1 thick) seen at 70° incidence under a uniform sky of radiance 1, a black floor
 /// below it. A path leaves upward after 0, 2, 4, … internal reflections, so a pixel sees the

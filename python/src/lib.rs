@@ -96,7 +96,10 @@ impl Scene {
             .iter()
             .map(|r| r.name.clone())
             .collect();
-        scene.camera = description.camera.as_ref().map(|c| (c.width, c.height));
+        scene.camera = description
+            .camera
+            .as_ref()
+            .map(|c| (c.window().width, c.window().height));
         convert::overrides(overrides)?
             .apply(&mut description, &mut settings)
             .map_err(py_err)?;

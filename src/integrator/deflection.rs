@@ -177,7 +177,8 @@ impl<'a> DeflectionTable<'a> {
             axis,
             scale: n * n,
             nodes: Vec::new(),
-            budget: (camera.width as usize * camera.height as usize).max(MIN_BUDGET),
+            budget: (camera.window().width as usize * camera.window().height as usize)
+                .max(MIN_BUDGET),
             traced: Default::default(),
             build_seconds: 0.0,
             check: TableCheck::default(),

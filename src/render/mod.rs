@@ -462,7 +462,20 @@ fn film_size(tracer: &Tracer) -> Result<(usize, usize)> {
             tracer.scene.path().display()
         ))
     })?;
-    Ok((camera.width as usize, camera.height as usize))
+    let window = camera.window();
+    if !window.fits(camera.width, camera.height) {
+        return Err(Error::Usage(format!(
+            "{}: [camera] crop {}×{} at ({}, {}) does not lie within the {}×{} image",
+            tracer.scene.path().display(),
+            window.width,
+            window.height,
+            window.x,
+            window.y,
+            camera.width,
+            camera.height
+        )));
+    }
+    Ok((window.width as usize, window.height as usize))
 }
 
 /// The tiles of a `w` × `h` film of `layers`, row by row.
@@ -531,13 +544,15 @@ fn camera_tile<I: Integrator>(
     let pixels = film.film.width * film.film.height;
     let mut record = PassRecord::new(layers, spp as u64, film.film.planes_held());
     let mut values = vec![Rgb::ZERO; layers];
+    // The film is the camera's window; its pixels are the image's, keyed as the image's are.
+    let window = camera.window();
     for ty in 0..film.film.height {
         for tx in 0..film.film.width {
             let mut state = I::Pixel::default();
             sum.fill(Rgb::ZERO);
             sampler.start_pixel(PixelPass {
-                x: (film.x0 + tx) as u32,
-                y: (film.y0 + ty) as u32,
+                x: window.x + (film.x0 + tx) as u32,
+                y: window.y + (film.y0 + ty) as u32,
                 width: camera.width,
                 height: camera.height,
             });
@@ -548,13 +563,14 @@ fn camera_tile<I: Integrator>(
                     first,
                     mut rng,
                 } = sampler.sample(s);
+                // The filter's support ends at the window's edges.
                 let film_point = FilmPoint {
                     u: camera
                         .filter
-                        .place(film_point.px, camera.width, film_point.u),
+                        .place(film_point.px - window.x, window.width, film_point.u),
                     v: camera
                         .filter
-                        .place(film_point.py, camera.height, film_point.v),
+                        .place(film_point.py - window.y, window.height, film_point.v),
                     ..film_point
                 };
                 let PrimaryRay { origin, direction } = camera.ray(film_point);
@@ -593,10 +609,10 @@ fn camera_tile<I: Integrator>(
 /// is asked.
 pub fn memory_needed(scene: &Scene, settings: &Settings) -> u64 {
     use std::mem::size_of;
-    let pixels = scene
-        .camera
-        .as_ref()
-        .map_or(0, |c| c.width as u64 * c.height as u64);
+    let pixels = scene.camera.as_ref().map_or(0, |c| {
+        let window = c.window();
+        u64::from(window.width) * u64::from(window.height)
+    });
     // What the integrator keeps besides the film, and its film's layers.
     let (own, layers) = match settings.integrator {
         Kind::PhotonMap => (

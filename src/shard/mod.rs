@@ -105,7 +105,7 @@ pub struct Shaping {
     pub trace: TraceSettings,
     /// The photon maps.
     pub photons: PhotonSettings,
-    /// The image's width and height (None: no camera).
+    /// The rendered image's (the camera's window's) width and height (None: no camera).
     pub image: Option<[u32; 2]>,
 }
 
@@ -176,7 +176,7 @@ impl Header {
                 deflection_table: settings.deflection_table,
                 trace: settings.trace,
                 photons: settings.photons,
-                image: camera.map(|c| [c.width, c.height]),
+                image: camera.map(|c| [c.window().width, c.window().height]),
             },
             shard,
             passes: if camera.is_some() { settings.passes } else { 0 },

@@ -178,6 +178,8 @@ struct SensorFilm {
     height: i64,
     /// Its pixel filter.
     filter: PixelFilter,
+    /// Its crop window, `[x, y, width, height]` (None: the whole film).
+    crop: Option<[i64; 4]>,
 }
 
 /// A rough surface's microsurface as a grinlight material's keys.
@@ -908,6 +910,7 @@ impl Converter<'_> {
                 width: 768,
                 height: 576,
                 filter: PixelFilter::mitsuba_gaussian(0.5),
+                crop: None,
             }),
         }
     }
@@ -922,6 +925,12 @@ impl Converter<'_> {
         out: &mut Table,
     ) -> Result<Table> {
         pixel_filter_keys(film.filter, &mut camera);
+        if let Some(crop) = film.crop {
+            camera.insert(
+                "crop".into(),
+                Toml::Array(crop.iter().map(|&n| Toml::Integer(n)).collect()),
+            );
+        }
         if let Some(medium) = s.named_child("medium").or(s.child("medium")?) {
             // The camera's medium: grinlight finds it from the camera's position; a medium no
             // shape holds fills the space around them.
@@ -1014,11 +1023,26 @@ impl Converter<'_> {
         if let Some(r) = &filter {
             r.finish()?;
         }
+        // The crop window: Mitsuba renders it alone, its pixels as the whole film's, the
+        // filter's support ending at its edges (its film's image block has no border).
+        let crop = [
+            f.integer_or("crop_offset_x", 0)?,
+            f.integer_or("crop_offset_y", 0)?,
+            f.integer_or("crop_width", width)?,
+            f.integer_or("crop_height", height)?,
+        ];
+        let [x, y, w, h] = crop;
+        if x < 0 || y < 0 || w < 1 || h < 1 || x + w > width || y + h > height {
+            return Err(f.error(format!(
+                "a crop of {w}×{h} pixels at ({x}, {y}) does not lie within the {width}×{height} film"
+            )));
+        }
         Ok(SensorFilm {
             object: Some(f),
             width,
             height,
             filter: pixel_filter,
+            crop: (crop != [0, 0, width, height]).then_some(crop),
         })
     }
 

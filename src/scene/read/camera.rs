@@ -1,6 +1,6 @@
 //! `[camera]`: the view. Every key's unit and default is in `docs/scene-format.md`.
 
-use crate::camera::{Camera, ThinLens};
+use crate::camera::{Camera, Crop, ThinLens};
 use crate::error::Result;
 use crate::pixel_filter::{PixelFilter, Reach};
 use crate::scene::table::TableReader;
@@ -35,7 +35,33 @@ pub fn read_camera(t: &mut TableReader) -> Result<Camera> {
     };
     camera.polarizer = t.turn_opt("polarizer_deg")?;
     camera.filter = read_filter(t)?;
+    camera.crop = read_crop(t, width, height)?;
     Ok(camera)
+}
+
+/// `crop`: `[x, y, width, height]`, the window of the `width` × `height` image a render makes
+/// (pixels, from the top-left), non-empty and within the image.
+fn read_crop(t: &mut TableReader, width: u32, height: u32) -> Result<Option<Crop>> {
+    if !t.has("crop") {
+        return Ok(None);
+    }
+    let [x, y, w, h] = t.counts::<4>("crop")?;
+    let side = |n: usize| u32::try_from(n).unwrap_or(u32::MAX);
+    let crop = Crop {
+        x: side(x),
+        y: side(y),
+        width: side(w),
+        height: side(h),
+    };
+    t.check(
+        "crop",
+        crop.width > 0 && crop.height > 0 && crop.fits(width, height),
+        format!(
+            "a window of {w}×{h} pixels at ({x}, {y}) must be non-empty and lie within the \
+             {width}×{height} image"
+        ),
+    )?;
+    Ok(Some(crop))
 }
 
 /// `filter` (`"box"`, the default, or `"gaussian"`) and a Gaussian's `filter_stddev` (pixels,
