@@ -87,6 +87,21 @@ fn an_ies_table_reads_back_with_its_symmetry() {
     }
 }
 
+/// An LM-63-2019 file reads as its 2002 twin: the same table once its first line names the
+/// 2019 edition and the field 2002 left for future use holds 2019's file-generation type (here
+/// 1.10000), which says how the file was made, not what it measures.
+#[test]
+fn an_lm_63_2019_file_reads_as_its_2002_twin() {
+    let old = ies_file(&degrees(0.0, 90.0, 5.0), &[0.0, 90.0], |g, c| {
+        100.0 * g.to_radians().cos() + c * 0.1
+    });
+    let new = old
+        .replacen("IESNA:LM-63-2002", "IES:LM-63-2019", 1)
+        .replacen("\n1 1 10\n", "\n1 1.10000 10\n", 1);
+    assert_ne!(new, old, "the 2019 header and field were written");
+    assert_eq!(ies::parse(&new).unwrap(), ies::parse(&old).unwrap());
+}
+
 /// A file's horizontal symmetry: the planes it gives, the intensity over C it tabulates and
 /// the angles (degrees) where each given plane's intensity recurs.
 struct Symmetric {

@@ -1,4 +1,4 @@
-//! IES LM-63 photometric files (the 1986, 1991, 1995 and 2002 editions): the header lines
+//! IES LM-63 photometric files (the 1986, 1991, 1995, 2002 and 2019 editions): the header lines
 //! (keywords ignored), `TILT=NONE` or `TILT=INCLUDE` (its lamp-tilt table read past: a tilt
 //! changes the lamp's output with the luminaire's tilt, which a scene does not have), the
 //! numbers that follow, and the candela table of type C photometry, its horizontal symmetry
@@ -80,7 +80,8 @@ pub fn parse(text: &str) -> Result<Goniogram, String> {
     let _length = next("length")?;
     let _height = next("height")?;
     let ballast = next("ballast factor")?;
-    let _future = next("ballast-lamp photometric factor")?;
+    // 2002's field for future use; 2019's file-generation type: how the file was made.
+    let _future = next("ballast-lamp photometric factor or file-generation type")?;
     let _watts = next("input watts")?;
     let read = |n: usize, what: &str, next: &mut dyn FnMut(&str) -> Result<f64, String>| {
         (0..n)
