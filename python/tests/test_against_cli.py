@@ -72,6 +72,19 @@ def test_load_overrides_are_the_command_lines(cli, scenes, tmp_path):
     assert not np.array_equal(a["beauty"], c["beauty"]), "a render-time seed replaces the load-time one"
 
 
+def test_a_cropped_camera_renders_its_window_as_the_command_line_does(cli, scenes, tmp_path):
+    tomllib = pytest.importorskip("tomllib")
+    data = tomllib.loads((scenes / "cornell_caustic.toml").read_text())
+    data["camera"].update(width=48, height=36, crop=[8, 4, 24, 16])
+    small = {k: v for k, v in SMALL.items() if k not in ("width", "height")}
+    scene = grinlight.load_dict(data, base_dir=scenes)
+    assert scene.camera == (24, 16)
+    image = scene.render(progress=False, **small)
+    assert image["beauty"].shape == (16, 24, 3)
+    whole = grinlight.load(scenes / "cornell_caustic.toml").render(progress=False, **SMALL)
+    np.testing.assert_array_equal(image["beauty"], whole["beauty"][4:20, 8:32])
+
+
 def test_a_dict_scene_renders_as_its_file(scenes):
     tomllib = pytest.importorskip("tomllib")
     path = scenes / "cornell_caustic.toml"
