@@ -60,6 +60,17 @@ fn the_pbrt_cornell_box_renders_as_mitsuba_renders_its_xml_twin() {
 }
 
 #[test]
+fn the_pbrt_window_renders_as_mitsuba_renders_its_xml_twin() {
+    // A thin pane across the view of two balls under a uniform infinite light and a sphere
+    // lamp, the bars of the Mitsuba scenes' test.
+    let ours = grinlight_blocks(Path::new("scenes/pbrt/window.pbrt"), &[], 32, 16);
+    let (worst, ratio) = compare(&ours, &reference("window"));
+    eprintln!("pbrt window: largest block z {worst:.2}, mean ratio {ratio:.5}");
+    assert!(worst < 5.0, "a block differs by {worst:.2} standard errors");
+    assert!((ratio - 1.0).abs() < 0.01, "mean ratio {ratio}");
+}
+
+#[test]
 fn the_pbrt_mesh_lights_render_as_mitsuba_renders_their_xml_twin() {
     // An icosphere lamp given in the file and a PLY ribbon turned inside out
     // (ReverseOrientation): the lights convert to the XML twin's placements and sides, and
