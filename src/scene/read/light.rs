@@ -171,8 +171,7 @@ pub fn read_light(t: &mut TableReader, kind: &str) -> Result<Light> {
 
 /// A luminaire's intensity from its file, by the file's extension: an equal-area image
 /// (`.exr`, `.hdr`; `.png` and `.jpg` are read to be refused by name), a EULUMDAT table
-/// (`.ldt`) or an IES table (any other). The message of
-/// a file that does not read names it.
+/// (`.ldt`) or an IES table (any other). The message of a file that does not read names it.
 fn read_intensity_map(path: &std::path::Path) -> std::result::Result<IntensityMap, String> {
     use crate::photometry::{eulumdat, ies};
     let extension = path
