@@ -145,6 +145,47 @@ fn white_objects_in_fog_read_the_radiance_around_them() {
     }
 }
 
+/// An equal-area environment map of one radiance (an 8 × 8 EXR of 1) is the uniform sky: the
+/// open furnace (white objects in fog of n = 1) renders pixel for pixel as under `sky =
+/// "uniform"`, by both integrators — its lookup reads the map wherever a path leaves, and the
+/// map's pixels hold 1 exactly.
+#[test]
+fn an_equal_area_map_of_one_radiance_is_the_uniform_sky() {
+    let dir = std::env::temp_dir().join(format!("grinlight-equal-area-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    image::Rgb32FImage::from_pixel(8, 8, image::Rgb([1.0; 3]))
+        .save(dir.join("sky.exr"))
+        .unwrap();
+    let render_keys = "[render]\nspp = 2\npasses = 2\nphotons = 20000\ncaustic_photons = 20000\n";
+    let scene = |sky: &str| {
+        format!(
+            "{}{}[[light]]\ntype = \"environment\"\n{sky}{CAMERA}{render_keys}",
+            fog(1.0, 0.05),
+            white_objects(1.0)
+        )
+    };
+    let uniform = scene("sky = \"uniform\"\n");
+    let map = scene("file = \"sky.exr\"\nprojection = \"equal_area\"\n");
+    for integrator in BOTH {
+        let image = |text: &str| {
+            let (scene, settings) = parse_scene(&dir.join("s.toml"), text.to_string()).unwrap();
+            let settings = Settings {
+                integrator,
+                ..settings
+            };
+            let film = grinlight::render::render(&scene, &settings, &()).unwrap().0;
+            film.layer("beauty").unwrap()
+        };
+        let (a, b) = (image(&uniform), image(&map));
+        assert!(
+            a.iter().any(|p| p[1] > 0.5),
+            "{integrator:?}: the sky lights the view"
+        );
+        assert_eq!(a, b, "{integrator:?}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 /// A fog that absorbs, scatters and emits basic radiance 1, open under a sky of radiance 1,
 /// around white objects: in equilibrium every pixel reads n² (1 for n = 1, 1.33² for n =
 /// 1.33), whatever σa and σs — the path tracer gathers the fog's emission along every stretch
