@@ -57,7 +57,7 @@ CASES = {
     "window": ("window.xml", {}),
     # An orthographic view, tilted and scaled, of a checkerboard, a ball and a box.
     "orthographic": ("orthographic.xml", {}),
-    # Rough metal balls with Beckmann normals (Mitsuba's default distribution), α 0.1–0.6.
+    # Rough metal balls with Beckmann normals (Mitsuba's default distribution), α 0.05–0.2.
     "beckmann": ("beckmann.xml", {}),
     # Mitsuba's Gaussian pixel filter on edges at the blocks' boundaries and at the image's.
     "pixel_filter": ("pixel_filter.xml", {}),
