@@ -4,7 +4,7 @@
 //! top row); the map is turned by a [`Turn`].
 
 use crate::color::Rgb;
-use crate::equal_area::{pixel, sphere_to_square};
+use crate::equal_area::Grid;
 use crate::lights::{covering_disk, Aim, Emission};
 use crate::sampling::{uniform_sphere, UNIFORM_SPHERE_PDF};
 use glam::{DMat3, DVec3};
@@ -28,13 +28,10 @@ pub enum Sky {
     /// read by nearest pixel (as pbrt-v4 reads its environment maps): +z at its centre, +x at
     /// its right edge's midpoint, +y at its bottom edge's (at its top edge's with `flip_v`).
     EqualArea {
-        /// Width and height in pixels.
-        size: usize,
+        /// How the pixels lie over the sphere.
+        grid: Grid,
         /// Pixels.
         pixels: Vec<[f32; 3]>,
-        /// Whether the rows are read in the opposite order (v as 1 − v, y as −y): the map seen
-        /// in a mirror.
-        flip_v: bool,
     },
     /// Random stars on black, deterministic in `seed` (about 2 stars per square degree on
     /// average, denser toward the poles where lat-long cells are smaller).
@@ -160,17 +157,8 @@ impl Environment {
                     let (u, v) = latlong();
                     image_radiance(pixels, *width, *height, *filter, u, v)
                 }
-                Sky::EqualArea {
-                    size,
-                    pixels,
-                    flip_v,
-                } => {
-                    let d = match flip_v {
-                        true => DVec3::new(d.x, -d.y, d.z),
-                        false => d,
-                    };
-                    let (x, y) = pixel(sphere_to_square(d), *size);
-                    let p = pixels[y * size + x];
+                Sky::EqualArea { grid, pixels } => {
+                    let p = pixels[grid.index(d)];
                     Rgb::new(p[0] as f64, p[1] as f64, p[2] as f64)
                 }
                 Sky::Starfield { seed } => {

@@ -61,6 +61,70 @@ pub fn pixel(p: DVec2, n: usize) -> (usize, usize) {
     (at(p.x), at(p.y))
 }
 
+/// An `size` × `size` image laid over the sphere by the map, its rows read as stored or, with
+/// `flip_v`, in the opposite order (v as 1 − v, which is y as −y: the image seen in a mirror).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Grid {
+    /// Pixels along each side.
+    pub size: usize,
+    /// Whether the rows are read in the opposite order.
+    pub flip_v: bool,
+}
+
+impl Grid {
+    /// Direction `d` in the map's frame, and back: y negated where the rows are flipped.
+    fn oriented(&self, d: DVec3) -> DVec3 {
+        match self.flip_v {
+            true => DVec3::new(d.x, -d.y, d.z),
+            false => d,
+        }
+    }
+
+    /// The row-major index of the pixel unit direction `d` lies in (nearest lookup).
+    pub fn index(&self, d: DVec3) -> usize {
+        let (x, y) = pixel(sphere_to_square(self.oriented(d)), self.size);
+        y * self.size + x
+    }
+
+    /// The direction at the point `u` ∈ [0, 1)² of pixel `index` (uniform points of a pixel
+    /// are uniform over the directions it covers: the map is equal-area).
+    pub fn direction(&self, index: usize, u: [f64; 2]) -> DVec3 {
+        let n = self.size as f64;
+        let (x, y) = ((index % self.size) as f64, (index / self.size) as f64);
+        self.oriented(square_to_sphere(DVec2::new((x + u[0]) / n, (y + u[1]) / n)))
+    }
+
+    /// The solid angle a pixel covers, 4π/N² sr.
+    pub fn pixel_solid_angle(&self) -> f64 {
+        4.0 * std::f64::consts::PI / (self.size * self.size) as f64
+    }
+}
+
+/// The pixels of an image to be laid over the sphere by the map, row-major from the top, and
+/// its side; or why it cannot be: it must be square, and of floating-point pixels (an EXR or
+/// HDR file: its values are linear, where an 8-bit image holds sRGB levels).
+pub fn square_pixels(image: &image::DynamicImage) -> Result<(usize, Vec<[f32; 3]>), String> {
+    use image::DynamicImage as D;
+    match image {
+        D::ImageRgb32F(_) | D::ImageRgba32F(_) => {}
+        _ => {
+            return Err(
+                "an image in the equal-area map must hold floating-point pixels (an EXR or HDR \
+                 file): its values are linear, not sRGB levels"
+                    .into(),
+            )
+        }
+    }
+    let rgb = image.to_rgb32f();
+    let (w, h) = rgb.dimensions();
+    if w != h || w == 0 {
+        return Err(format!(
+            "an image in the equal-area map is square; this one is {w} × {h}"
+        ));
+    }
+    Ok((w as usize, rgb.pixels().map(|p| p.0).collect()))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -7,7 +7,7 @@
 //! γ is measured from the luminaire's nadir (γ = 0 straight down its axis, 180° straight up);
 //! the horizontal angle C turns about the axis, counterclockwise seen from above, from the
 //! luminaire's C = 0 direction. Intensities are in the file's unit (candela), scaled by the
-//! scene ([`Goniogram::scaled`]). Between the measured angles the intensity is bilinear in
+//! scene (the light's colour). Between the measured angles the intensity is bilinear in
 //! (γ, C); outside the measured γ range it is 0; C wraps around.
 
 pub mod eulumdat;
@@ -90,14 +90,6 @@ impl Goniogram {
         g.cells = Discrete::new(&weights);
         g.power = weights.iter().sum();
         g
-    }
-
-    /// The same goniogram with every intensity times `factor` (≥ 0).
-    pub fn scaled(mut self, factor: f64) -> Self {
-        for v in &mut self.values {
-            *v *= factor;
-        }
-        Self::new(self.gammas, self.cs, self.values)
     }
 
     fn value(&self, i: usize, j: usize) -> f64 {

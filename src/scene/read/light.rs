@@ -3,6 +3,7 @@
 use super::shape::{parallelogram, read_mesh};
 use crate::color::Rgb;
 use crate::environment::{Environment, ImageFilter, Sky, Turn};
+use crate::equal_area::Grid;
 use crate::error::Result;
 use crate::lights::{Emitter, Falloff, Light, Luminaire};
 use crate::math::Ball;
@@ -201,10 +202,6 @@ pub fn read_environment(t: &mut TableReader) -> Result<Environment> {
         (true, None) => {
             let path = t.input_file("file")?;
             let decoded = crate::texture::open_image(&path).map_err(|e| t.error("file", e))?;
-            let floating = matches!(
-                decoded,
-                image::DynamicImage::ImageRgb32F(_) | image::DynamicImage::ImageRgba32F(_)
-            );
             let img = decoded.to_rgb32f();
             let bad = img
                 .pixels()
@@ -226,8 +223,6 @@ pub fn read_environment(t: &mut TableReader) -> Result<Environment> {
                     ),
                 ));
             }
-            let (width, height) = (img.width() as usize, img.height() as usize);
-            let pixels = img.pixels().map(|p| p.0).collect();
             match t.choice("projection", &[("latlong", false), ("equal_area", true)])? {
                 false => {
                     t.check(
@@ -243,9 +238,9 @@ pub fn read_environment(t: &mut TableReader) -> Result<Environment> {
                         ],
                     )?;
                     Sky::Image {
-                        width,
-                        height,
-                        pixels,
+                        width: img.width() as usize,
+                        height: img.height() as usize,
+                        pixels: img.pixels().map(|p| p.0).collect(),
                         filter,
                     }
                 }
@@ -255,23 +250,14 @@ pub fn read_environment(t: &mut TableReader) -> Result<Environment> {
                         !t.has("filter"),
                         "an equal-area map is read by nearest pixel: leave `filter` out",
                     )?;
-                    t.check(
-                        "file",
-                        width == height,
-                        format!(
-                            "{}: an equal-area map is square; this one is {width} × {height}",
-                            path.display()
-                        ),
-                    )?;
-                    t.check(
-                        "file",
-                        floating,
-                        format!("{}: an equal-area map must hold floating-point pixels (an EXR or HDR file): its values are linear radiances, not sRGB levels", path.display()),
-                    )?;
+                    let (size, pixels) = crate::equal_area::square_pixels(&decoded)
+                        .map_err(|e| t.error("file", format!("{}: {e}", path.display())))?;
                     Sky::EqualArea {
-                        size: width,
+                        grid: Grid {
+                            size,
+                            flip_v: t.bool_or("flip_v", false)?,
+                        },
                         pixels,
-                        flip_v: t.bool_or("flip_v", false)?,
                     }
                 }
             }
