@@ -211,6 +211,20 @@ fn mirror_map(mirror: bool) -> DMat4 {
     }
 }
 
+/// The frame of an image laid over directions (an equal-area map), `axes` its x, y and z
+/// (orthonormal) in grinlight's world, as a rotation and whether the image's rows are read
+/// flipped (its y negated) for it to be one: pbrt's frames may be mirrored against grinlight's
+/// (the scene's x negated, a goniometric light's y and z swapped).
+fn map_rotation(axes: DMat3) -> (DMat3, bool) {
+    match axes.determinant() < 0.0 {
+        true => (
+            axes * DMat3::from_diagonal(DVec3::new(1.0, -1.0, 1.0)),
+            true,
+        ),
+        false => (axes, false),
+    }
+}
+
 /// What a pbrt light emits. pbrt scales an RGB emission by its illuminant's luminance, so the
 /// RGB given is the RGB seen, and a blackbody to unit luminance, so its luminance is its scale
 /// (`power` and `illuminance` then scale either).
@@ -1368,12 +1382,7 @@ impl<'s> Converter<'s> {
             ))
         })?;
         let path = self.scene.find(name, &s.place)?;
-        let turn = linear(&(mirror_map(self.mirror) * *m)) * (1.0 / k);
-        let flip_v = turn.determinant() < 0.0;
-        let turn = match flip_v {
-            true => turn * DMat3::from_diagonal(DVec3::new(1.0, -1.0, 1.0)),
-            false => turn,
-        };
+        let (turn, flip_v) = map_rotation(linear(&(mirror_map(self.mirror) * *m)) * (1.0 / k));
         let mut scale = scale;
         let illuminance = p.float("illuminance", -1.0)?;
         if illuminance > 0.0 {
@@ -1442,23 +1451,18 @@ impl<'s> Converter<'s> {
                 s.what()
             ))
         })?;
-        // The image's axes in grinlight's world: pbrt's light frame with y and z swapped.
-        let [x, y, z] = [DVec3::X, DVec3::Z, DVec3::Y].map(|a| self.vector(m, a));
-        let orthonormal = [x, y, z].iter().all(|a| (a.length() - 1.0).abs() < 1e-9)
-            && [x.dot(y), y.dot(z), z.dot(x)]
-                .iter()
-                .all(|d| d.abs() < 1e-9);
-        if !orthonormal {
+        if !similarity(m).is_some_and(|k| (k - 1.0).abs() < 1e-9) {
             return Err(s.place.error(format!(
                 "{}: the transform scales or shears the light (pbrt looks its image up along \
                  directions no longer of unit length)",
                 s.what()
             )));
         }
-        // grinlight's image frame is (c0, c90, −nadir) with c90 = −nadir × c0: its rows are
-        // read flipped where pbrt's frame is mirrored against it.
-        let (nadir, c0) = (-z, x);
-        let flip_v = y.dot((-nadir).cross(c0)) < 0.0;
+        // The image's axes in grinlight's world: pbrt's light frame with y and z swapped.
+        // grinlight's image frame is (c0, c90, −nadir), c90 = −nadir × c0.
+        let swap = DMat3::from_cols(DVec3::X, DVec3::Z, DVec3::Y);
+        let (axes, flip_v) = map_rotation(linear(&(mirror_map(self.mirror) * *m)) * swap);
+        let (nadir, c0) = (-axes.z_axis, axes.x_axis);
         let path = self.scene.find(&name, &s.place)?;
         let file = std::fs::canonicalize(&path).unwrap_or(path);
         let mut t = table([
