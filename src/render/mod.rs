@@ -14,6 +14,7 @@ use crate::error::{Error, Result};
 use crate::film::{ErrorTotals, Film, Layer, STOKES_LAYERS};
 use crate::integrator::{CameraRay, DeflectionTable, Integrator, PathTracer, PhotonMapper, Sample};
 use crate::lights::LightSamples;
+use crate::pixel_filter::Placement;
 pub use crate::report::Report;
 use crate::scene::Scene;
 use crate::settings::IntegratorKind as Kind;
@@ -508,13 +509,19 @@ fn camera_pass<I: Integrator>(
     tiles: &mut [Tile],
     observer: &dyn Observer,
 ) -> Vec<(Stats, bool)> {
+    let placement = (tracer.scene.camera.as_ref())
+        .expect("render_with() checked the camera")
+        .filter
+        .placement();
     tiles
         .par_iter_mut()
         .map(|tile| {
             let mut stats = Stats::default();
             let run = !observer.stop_requested();
             if run {
-                camera_tile(integrator, prepared, tracer, sampling, tile, &mut stats);
+                camera_tile(
+                    integrator, prepared, tracer, sampling, &placement, tile, &mut stats,
+                );
             }
             observer.progress(Progress::Tile);
             (stats, run)
@@ -528,6 +535,7 @@ fn camera_tile<I: Integrator>(
     prepared: &I::Pass,
     tracer: &Tracer,
     sampling: Sampling,
+    placement: &Placement,
     tile: &mut Tile,
     stats: &mut Stats,
 ) {
@@ -565,12 +573,8 @@ fn camera_tile<I: Integrator>(
                 } = sampler.sample(s);
                 // The filter's support ends at the window's edges.
                 let film_point = FilmPoint {
-                    u: camera
-                        .filter
-                        .place(film_point.px - window.x, window.width, film_point.u),
-                    v: camera
-                        .filter
-                        .place(film_point.py - window.y, window.height, film_point.v),
+                    u: placement.place(film_point.px - window.x, window.width, film_point.u),
+                    v: placement.place(film_point.py - window.y, window.height, film_point.v),
                     ..film_point
                 };
                 let PrimaryRay { origin, direction } = camera.ray(film_point);
