@@ -65,6 +65,10 @@ CASES = {
     "pixel_filter_crop": ("pixel_filter.xml", {"crop_x": "8", "crop_y": "8", "crop_w": "24", "crop_h": "16"}),
     # The Cornell box through the Gaussian pixel filter.
     "cornell_box_gaussian": ("cornell_box.xml", {"filter": "gaussian"}),
+    # hide_emitters: the sky seen directly left out, seen in the mirror ball kept; emitting
+    # spheres left out where seen, their light kept.
+    "spheres_envmap_hidden": ("spheres_envmap.xml", {"hide": "true"}),
+    "sphere_lights_hidden": ("sphere_lights.xml", {"hide": "true"}),
 }
 
 

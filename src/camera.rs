@@ -105,6 +105,11 @@ pub struct Camera {
     pub filter: PixelFilter,
     /// The part of the image a render makes; `None` for all of it.
     pub crop: Option<Crop>,
+    /// Whether emitting surfaces and the sky seen directly are left out of the image
+    /// (`hide_emitters`): what the camera's first chain finds before any reflection or bending
+    /// refraction ([`crate::transport::chain::Chain::specular`]). Light they cast is seen as
+    /// ever, and so is light a medium emits.
+    pub hide_emitters: bool,
 }
 
 /// A window of a camera's image: `width` × `height` pixels from pixel (`x`, `y`), counted from
@@ -195,6 +200,7 @@ impl Camera {
             polarizer: None,
             filter: PixelFilter::Box,
             crop: None,
+            hide_emitters: false,
         })
     }
 

@@ -739,3 +739,117 @@ fn an_emitting_mesh_lights_a_room_as_its_surface_does() {
     println!("octahedral lamp, sky and sun: path tracer {path:.6}, photon mapper {photons:.6}");
     assert!((photons / path - 1.0).abs() < 0.01, "{photons} vs {path}");
 }
+
+/// A camera that hides emitters leaves out what its first chain meets before any specular
+/// surface — the sky and an emitting quad seen directly — and nothing else: the same sky and
+/// quad in a mirror ball, and the light both cast on the floor, are as a camera that shows
+/// them sees them, bit for bit (the same numbers are drawn), in both integrators. Each pixel's
+/// class comes from its footprint's corners and centre traced here, analytically.
+#[test]
+fn a_camera_that_hides_emitters_leaves_out_only_what_it_sees_directly() {
+    #[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]
+    enum Seen {
+        Sky,
+        Light,
+        Ball,
+        Floor,
+    }
+    let (centre, radius) = (DVec3::new(0.7, 0.5, 0.0), 0.5);
+    let class = |o: DVec3, d: DVec3| -> Seen {
+        let oc = o - centre;
+        let (b, c) = (oc.dot(d), oc.length_squared() - radius * radius);
+        let ball = (b * b - c >= 0.0).then(|| -b - (b * b - c).sqrt());
+        let t_light = -o.z / d.z;
+        let p = o + t_light * d;
+        let light = (t_light > 0.0 && (-1.2..=-0.2).contains(&p.x) && (0.3..=1.0).contains(&p.y))
+            .then_some(t_light);
+        let t_floor = -o.y / d.y;
+        let q = o + t_floor * d;
+        let floor = (t_floor > 0.0 && q.x.abs() <= 3.0 && q.z.abs() <= 3.0).then_some(t_floor);
+        let nearest = [(ball, Seen::Ball), (light, Seen::Light), (floor, Seen::Floor)]
+            .into_iter()
+            .filter_map(|(t, s)| t.filter(|t| *t > 0.0).map(|t| (t, s)))
+            .min_by(|a, b| a.0.total_cmp(&b.0));
+        nearest.map_or(Seen::Sky, |(_, s)| s)
+    };
+    let text = |hide: bool| {
+        format!(
+            "[[material]]\nname = \"white\"\ntype = \"diffuse\"\nalbedo = 0.5\n\
+             [[material]]\nname = \"mirror\"\ntype = \"conductor\"\nmetal = \"perfect\"\n\
+             [[shape]]\ntype = \"quad\"\nvertices = [[-3, 0, -3], [-3, 0, 3], [3, 0, 3], [3, 0, -3]]\nmaterial = \"white\"\n\
+             [[shape]]\ntype = \"sphere\"\ncenter = [0.7, 0.5, 0]\nradius = 0.5\nmaterial = \"mirror\"\n\
+             [[light]]\ntype = \"quad\"\nvertices = [[-1.2, 0.3, 0], [-0.2, 0.3, 0], [-0.2, 1.0, 0], [-1.2, 1.0, 0]]\nradiance = 4\n\
+             [[light]]\ntype = \"environment\"\nsky = \"uniform\"\nradiance = 0.5\n\
+             [camera]\nposition = [0, 1, 4]\nlook_at = [0, 0.5, 0]\nfov_y_deg = 40\nwidth = 48\nheight = 32\nhide_emitters = {hide}\n\
+             [render]\nspp = 4\nphotons = 20000\ncaustic_photons = 20000\n"
+        )
+    };
+    let path = Path::new("hide_emitters.toml");
+    let shown = parse_scene(path, text(false)).unwrap();
+    let hidden = parse_scene(path, text(true)).unwrap();
+    let camera = shown.0.camera.as_ref().unwrap();
+    let seen = |px: u32, py: u32| -> Option<Seen> {
+        let corners = [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0), (0.5, 0.5)];
+        let classes: Vec<Seen> = corners
+            .iter()
+            .map(|&(u, v)| {
+                let film = grinlight::camera::FilmPoint {
+                    px,
+                    py,
+                    u,
+                    v,
+                    lens: glam::DVec2::ZERO,
+                };
+                let ray = camera.ray(film);
+                class(ray.origin, ray.direction)
+            })
+            .collect();
+        classes.iter().all(|c| *c == classes[0]).then_some(classes[0])
+    };
+    for integrator in grinlight::settings::IntegratorKind::ALL {
+        let with = |s: &(grinlight::scene::Scene, grinlight::settings::Settings)| {
+            let settings = grinlight::settings::Settings {
+                integrator,
+                ..s.1.clone()
+            };
+            let film = grinlight::render::render(&s.0, &settings, &()).unwrap().0;
+            let layer = |name| film.layer(name).unwrap().to_vec();
+            (layer("beauty"), layer("emitted"))
+        };
+        let (shown_beauty, shown_emitted) = with(&shown);
+        let (hidden_beauty, hidden_emitted) = with(&hidden);
+        let mut counts = std::collections::HashMap::new();
+        for (i, ((sb, se), (hb, he))) in (shown_beauty.iter().zip(&shown_emitted))
+            .zip(hidden_beauty.iter().zip(&hidden_emitted))
+            .enumerate()
+        {
+            let (px, py) = ((i % 48) as u32, (i / 48) as u32);
+            for c in 0..3 {
+                // Only the emitted layer changes, and only downward.
+                let rest = sb[c] - se[c];
+                assert!(
+                    (hb[c] - he[c] - rest).abs() <= 1e-5 * sb[c].abs() + 1e-6,
+                    "{integrator:?} pixel ({px}, {py}): beauty {} − emitted {} against {rest}",
+                    hb[c],
+                    he[c]
+                );
+                assert!(he[c] <= se[c] + 1e-6, "{integrator:?} ({px}, {py})");
+            }
+            let Some(what) = seen(px, py) else { continue };
+            *counts.entry(what).or_insert(0) += 1;
+            match what {
+                Seen::Sky | Seen::Light => {
+                    assert_eq!(*hb, [0.0; 3], "{integrator:?} {what:?} ({px}, {py})");
+                    assert!(sb[0] >= 0.5 * 0.999, "{integrator:?} {what:?} ({px}, {py})");
+                }
+                Seen::Ball | Seen::Floor => {
+                    assert_eq!(hb, sb, "{integrator:?} {what:?} ({px}, {py})");
+                }
+            }
+        }
+        println!("{integrator:?}: pixels by what they see {counts:?}");
+        for what in [Seen::Sky, Seen::Light, Seen::Ball, Seen::Floor] {
+            assert!(counts.get(&what).copied().unwrap_or(0) >= 8, "{what:?}: {counts:?}");
+        }
+    }
+}

@@ -149,6 +149,9 @@ impl<'a> DeflectionTable<'a> {
             // Its rays carry no measurement: behind a polarizer, or where the camera measures
             // the Stokes vector, the camera's rays are traced.
             || camera.polarizer.is_some()
+            // The table's rays end in the sky: a camera that hides the sky it sees directly
+            // has its rays traced.
+            || camera.hide_emitters
             || tracer.settings.stokes
             || tracer.camera_medium != Some(ambient)
         {

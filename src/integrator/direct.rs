@@ -34,8 +34,9 @@ pub struct VisiblePoint<'w> {
 /// What one camera path found.
 #[derive(Clone, Copy)]
 pub struct Components<'w> {
-    /// Emission and environment radiance met along the specular chain, and the light its
-    /// media emitted on the way.
+    /// Emission and environment radiance met along the specular chain (none where the camera
+    /// hides emitters and the chain met no specular surface), and the light its media emitted
+    /// on the way.
     pub emitted: Rgb,
     /// Direct light scattered toward the camera along the chain's straight stretches through
     /// scattering media ([`super::single::single_scattering`]).
@@ -92,8 +93,14 @@ pub fn camera_path<'w>(
         (true, None) | (false, _) => (walker.follow(ray, rng, stats, recording), None),
     };
     record_cut(&chain, Rgb::ONE, stats);
+    let hidden = chain.specular == 0
+        && (carried.tracer.scene.camera.as_ref()).is_some_and(|c| c.hide_emitters);
+    let seen = match hidden {
+        true => Rgb::ZERO,
+        false => emission_seen(walker.tracer, &chain),
+    };
     let mut out = Components {
-        emitted: emission_seen(walker.tracer, &chain) + chain.emitted,
+        emitted: seen + chain.emitted,
         single: single_scattering(beams, walker.carried(), rng, stats),
         visible: None,
         bounces: chain.specular,

@@ -71,6 +71,8 @@ pub fn convert(doc: &Document, approximate: bool) -> Result<Imported> {
         made: HashMap::new(),
         repeated_delta_lights: None,
         attached: HashSet::new(),
+        hide_emitters: None,
+        see_through: SeeThrough::default(),
     };
     let scene = doc.scene.clone();
     let mut table = Table::new();
@@ -135,6 +137,7 @@ pub fn convert(doc: &Document, approximate: bool) -> Result<Imported> {
             ),
         );
     }
+    c.hide_emitters(&mut table)?;
     if let Some(env) = c.environment.take() {
         c.lists.lights.push(env);
     }
@@ -221,6 +224,21 @@ struct Converter<'d> {
     repeated_delta_lights: Option<(Place, i64)>,
     /// The area emitters shapes carry, by address (a top-level one must be one of them).
     attached: HashSet<*const Object>,
+    /// Where the integrator hides the emitters it sees directly, and its kind.
+    hide_emitters: Option<(Place, String)>,
+    /// The `null` BSDFs and the `thindielectric`s converted: where Mitsuba's integrators
+    /// disagree on whether emitters seen through them are seen directly.
+    see_through: SeeThrough,
+}
+
+/// BSDFs a camera ray passes straight through, by kind ([`Converter::hide_emitters`]).
+#[derive(Default)]
+struct SeeThrough {
+    /// `null` BSDFs: Mitsuba's `volpath` sees through them as through nothing (an emitter
+    /// behind one is hidden), its `path` shows an area emitter behind one.
+    null: Vec<String>,
+    /// `thindielectric`s: Mitsuba's `path` shows an emitter behind one, its `volpath` hides it.
+    thin: Vec<String>,
 }
 
 /// A material the import makes itself, not from a BSDF of the scene.
@@ -459,6 +477,7 @@ impl Converter<'_> {
         let (kind, mut m, ior) = match b.kind.as_str() {
             "null" => {
                 b.finish()?;
+                self.see_through.null.push(b.what());
                 return Ok(Surface::Null);
             }
             "diffuse" => {
@@ -481,6 +500,7 @@ impl Converter<'_> {
                 self.unit_factor(b, "specular_transmittance")?;
                 let place = b.place.clone();
                 self.told.thin_pane(&place, &b.what(), "Mitsuba");
+                self.see_through.thin.push(b.what());
                 ("thin_dielectric", table([("ior", Toml::Float(eta))]), None)
             }
             "conductor" | "roughconductor" => {
@@ -1107,9 +1127,41 @@ impl Converter<'_> {
             i.ignore(name);
         }
         if i.boolean_or("hide_emitters", false)? {
-            return Err(i.error("hide_emitters = true is not supported"));
+            self.hide_emitters = Some((i.place.clone(), i.kind.clone()));
         }
         i.finish()?;
+        Ok(())
+    }
+
+    /// `hide_emitters`: the camera's `hide_emitters`, which leaves out emitters and the sky
+    /// its first chain meets before any specular surface — Mitsuba's, whose integrators see
+    /// emitters at depth 0 only (checked against Mitsuba 3.9.1: `tests/import.rs`). Emitters
+    /// behind a `null` BSDF or a `thindielectric` are where its integrators disagree (measured
+    /// with Mitsuba 3.9.1: `path` shows an area emitter behind a `null` surface and behind a
+    /// thin pane, `volpath` hides both; grinlight counts a thin pane's transmission as a
+    /// specular surface and a `null` surface as none): an approximation where they differ.
+    fn hide_emitters(&mut self, scene: &mut Table) -> Result<()> {
+        let Some((place, kind)) = self.hide_emitters.take() else {
+            return Ok(());
+        };
+        if let Some(Toml::Table(camera)) = scene.get_mut("camera") {
+            camera.insert("hide_emitters".into(), Toml::Boolean(true));
+        }
+        let differ = match kind.as_str() {
+            "volpath" | "volpathmis" => &self.see_through.thin,
+            _ => &self.see_through.null,
+        };
+        if !differ.is_empty() {
+            let list = differ.join(", ");
+            self.told.approximate(
+                &place,
+                format!(
+                    "hide_emitters = true with {list}: Mitsuba's `{}` decides otherwise than \
+                     grinlight whether an emitter seen through them is seen directly",
+                    cut(&kind)
+                ),
+            )?;
+        }
         Ok(())
     }
 

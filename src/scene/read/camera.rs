@@ -36,6 +36,7 @@ pub fn read_camera(t: &mut TableReader) -> Result<Camera> {
     camera.polarizer = t.turn_opt("polarizer_deg")?;
     camera.filter = read_filter(t)?;
     camera.crop = read_crop(t, width, height)?;
+    camera.hide_emitters = t.bool_or("hide_emitters", false)?;
     Ok(camera)
 }
 
