@@ -715,9 +715,34 @@ fn what_pbrt_cannot_convert_is_refused_by_file_line_and_column() {
             "s.pbrt:7:1: Texture \"t\": textures are not supported",
         ),
         (
-            "instance",
-            in_world("ObjectBegin \"o\""),
-            "object instancing is not supported",
+            "unended object",
+            in_world("ObjectBegin \"o\"\nShape \"sphere\""),
+            "s.pbrt:7:1: ObjectBegin \"o\" is never ended",
+        ),
+        (
+            "object defined twice",
+            in_world("ObjectBegin \"o\"\nObjectEnd\nObjectBegin \"o\"\nObjectEnd"),
+            "s.pbrt:9:1: the object \"o\" is defined again (first at",
+        ),
+        (
+            "nested object",
+            in_world("ObjectBegin \"o\"\nObjectBegin \"p\""),
+            "s.pbrt:8:1: ObjectBegin inside the definition of \"o\"",
+        ),
+        (
+            "unknown object",
+            in_world("ObjectInstance \"o\""),
+            "s.pbrt:7:1: no object is named \"o\"",
+        ),
+        (
+            "object with an unended attribute",
+            in_world("ObjectBegin \"o\"\nAttributeBegin\nObjectEnd"),
+            "s.pbrt:9:1: ObjectEnd with an AttributeBegin inside \"o\" not ended",
+        ),
+        (
+            "area light in an object",
+            in_world("ObjectBegin \"o\"\nAreaLightSource \"diffuse\"\nShape \"sphere\"\nObjectEnd"),
+            "s.pbrt:9:1: Shape \"sphere\": an area light in an object's definition",
         ),
         ("v3", in_world("WorldEnd"), "WorldEnd is pbrt-v3's"),
         (
@@ -1073,5 +1098,92 @@ fn a_pbrt_uniform_grid_converts_to_the_density_pbrt_looks_up() {
             .unwrap()
             .to_string();
         assert!(e.contains("s.pbrt:") && e.contains(message), "{e}");
+    }
+}
+
+/// pbrt-v4's object instancing converts to the shapes it places: each shape of an object's
+/// definition with the instance's transform composed with its own (CTM_instance · CTM_shape,
+/// pbrt-v4's render-from-instance times render-from-object) and the material and orientation
+/// it was defined with. A scene that places two instances of a box of two shapes — one used
+/// before its definition, as pbrt-v4 allows — converts to the same shapes, materials and
+/// numbers (1e-12) as the same scene written out without instancing.
+#[test]
+fn pbrt_object_instances_convert_as_the_shapes_they_place() {
+    let object = "ObjectBegin \"thing\"\n\
+         Material \"diffuse\" \"rgb reflectance\" [0.2 0.4 0.6]\n\
+         AttributeBegin\nTranslate 0 0.5 0\nShape \"sphere\" \"float radius\" 0.25\nAttributeEnd\n\
+         Material \"conductor\"\nReverseOrientation\n\
+         Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 1 1 0] \"integer indices\" [0 1 2]\n\
+         ObjectEnd\n";
+    let instanced = format!(
+        "AttributeBegin\nTranslate 1 2 3\nRotate 30 0 1 0\nObjectInstance \"thing\"\nAttributeEnd\n\
+         AttributeBegin\nTranslate 0.5 0 0\nScale 2 2 2\n{object}AttributeEnd\n\
+         AttributeBegin\nScale 1 -1 1\nObjectInstance \"thing\"\nAttributeEnd\n"
+    );
+    // The same shapes written out: the instance's transform, then the one the definition
+    // was given under (Translate 0.5 0 0, Scale 2 2 2), then each shape's own.
+    let shapes = |placement: &str| {
+        format!(
+            "AttributeBegin\n{placement}\nTranslate 0.5 0 0\nScale 2 2 2\n\
+             Material \"diffuse\" \"rgb reflectance\" [0.2 0.4 0.6]\n\
+             AttributeBegin\nTranslate 0 0.5 0\nShape \"sphere\" \"float radius\" 0.25\nAttributeEnd\n\
+             Material \"conductor\"\nReverseOrientation\n\
+             Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 1 1 0] \"integer indices\" [0 1 2]\n\
+             AttributeEnd\n"
+        )
+    };
+    let flat = format!(
+        "{}{}",
+        shapes("Translate 1 2 3\nRotate 30 0 1 0"),
+        shapes("Scale 1 -1 1")
+    );
+    let camera = "LookAt 0 0 5  0 0 0  0 1 0";
+    let light = "LightSource \"point\" \"point3 from\" [0 4 0]\n";
+    let a = converted("instanced", camera, &format!("{light}{instanced}"));
+    let b = converted("flat", camera, &format!("{light}{flat}"));
+    // Each shape with its material's table in place of its name (the flat scene's four
+    // Material statements are four materials, the object's two are two).
+    let resolved = |t: &toml::Table, key: &str| -> Vec<Value> {
+        let materials = tables(t, "material");
+        tables(t, key)
+            .into_iter()
+            .map(|shape| {
+                let mut shape = shape.clone();
+                if let Some(Value::String(name)) = shape.get("material").cloned() {
+                    let mut m = (materials.iter())
+                        .find(|m| m["name"].as_str() == Some(name.as_str()))
+                        .map(|m| (*m).clone())
+                        .unwrap();
+                    m.remove("name");
+                    shape.insert("material".into(), Value::Table(m));
+                }
+                Value::Table(shape)
+            })
+            .collect()
+    };
+    for key in ["shape", "light"] {
+        let (x, y) = (resolved(&a, key), resolved(&b, key));
+        assert_eq!(x.len(), y.len(), "{key}: {x:?} against {y:?}");
+        for (x, y) in x.iter().zip(&y) {
+            assert!(same(x, y), "{key}: {x:?} against {y:?}");
+        }
+    }
+    assert_eq!(tables(&a, "shape").len(), 4, "two instances of two shapes");
+}
+
+/// Whether two converted values are equal, numbers to 1e-12.
+fn same(a: &Value, b: &Value) -> bool {
+    match (a, b) {
+        (Value::Table(x), Value::Table(y)) => {
+            x.len() == y.len() && x.iter().all(|(k, v)| y.get(k).is_some_and(|w| same(v, w)))
+        }
+        (Value::Array(x), Value::Array(y)) => {
+            x.len() == y.len() && x.iter().zip(y).all(|(v, w)| same(v, w))
+        }
+        (Value::Float(_) | Value::Integer(_), Value::Float(_) | Value::Integer(_)) => {
+            let n = |v: &Value| v.as_float().or(v.as_integer().map(|i| i as f64));
+            (n(a).unwrap() - n(b).unwrap()).abs() <= 1e-12
+        }
+        _ => a == b,
     }
 }

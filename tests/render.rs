@@ -766,10 +766,14 @@ fn a_camera_that_hides_emitters_leaves_out_only_what_it_sees_directly() {
         let t_floor = -o.y / d.y;
         let q = o + t_floor * d;
         let floor = (t_floor > 0.0 && q.x.abs() <= 3.0 && q.z.abs() <= 3.0).then_some(t_floor);
-        let nearest = [(ball, Seen::Ball), (light, Seen::Light), (floor, Seen::Floor)]
-            .into_iter()
-            .filter_map(|(t, s)| t.filter(|t| *t > 0.0).map(|t| (t, s)))
-            .min_by(|a, b| a.0.total_cmp(&b.0));
+        let nearest = [
+            (ball, Seen::Ball),
+            (light, Seen::Light),
+            (floor, Seen::Floor),
+        ]
+        .into_iter()
+        .filter_map(|(t, s)| t.filter(|t| *t > 0.0).map(|t| (t, s)))
+        .min_by(|a, b| a.0.total_cmp(&b.0));
         nearest.map_or(Seen::Sky, |(_, s)| s)
     };
     let text = |hide: bool| {
@@ -804,7 +808,10 @@ fn a_camera_that_hides_emitters_leaves_out_only_what_it_sees_directly() {
                 class(ray.origin, ray.direction)
             })
             .collect();
-        classes.iter().all(|c| *c == classes[0]).then_some(classes[0])
+        classes
+            .iter()
+            .all(|c| *c == classes[0])
+            .then_some(classes[0])
     };
     for integrator in grinlight::settings::IntegratorKind::ALL {
         let with = |s: &(grinlight::scene::Scene, grinlight::settings::Settings)| {
@@ -849,7 +856,10 @@ fn a_camera_that_hides_emitters_leaves_out_only_what_it_sees_directly() {
         }
         println!("{integrator:?}: pixels by what they see {counts:?}");
         for what in [Seen::Sky, Seen::Light, Seen::Ball, Seen::Floor] {
-            assert!(counts.get(&what).copied().unwrap_or(0) >= 8, "{what:?}: {counts:?}");
+            assert!(
+                counts.get(&what).copied().unwrap_or(0) >= 8,
+                "{what:?}: {counts:?}"
+            );
         }
     }
 }

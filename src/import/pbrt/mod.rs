@@ -40,6 +40,9 @@ pub fn convert(scene: &Scene, approximate: bool) -> Result<Imported> {
         told: Told::new(approximate),
         lists: Lists::default(),
         graphics: Graphics::default(),
+        defining: None,
+        instances: HashMap::new(),
+        instance_uses: Vec::new(),
         stack: Vec::new(),
         named_frames: HashMap::new(),
         camera_at: None,
@@ -68,6 +71,13 @@ pub fn convert(scene: &Scene, approximate: bool) -> Result<Imported> {
     for s in &scene.statements {
         c.statement(s)?;
     }
+    if let Some(open) = &c.defining {
+        return Err(open.place.error(format!(
+            "ObjectBegin \"{}\" is never ended (ObjectEnd)",
+            cut(&open.name)
+        )));
+    }
+    c.place_instances()?;
     if !c.world {
         let place = scene
             .statements
@@ -103,6 +113,18 @@ pub fn convert(scene: &Scene, approximate: bool) -> Result<Imported> {
     table.insert("render".into(), Toml::Table(std::mem::take(&mut c.render)));
     std::mem::take(&mut c.lists).insert_into(&mut table);
     Ok(c.told.into_imported(table, scene.files.clone()))
+}
+
+/// An object's definition (`ObjectBegin` … `ObjectEnd`): its shapes, each with the graphics
+/// state it was given in. An `ObjectInstance` places each shape with the transform current
+/// there composed with its own, CTM_instance · CTM_shape, as pbrt-v4's render-from-instance
+/// times its render-from-object (a flattening: every instance converts to shapes of its own).
+struct Definition<'s> {
+    name: String,
+    place: Place,
+    shapes: Vec<(&'s Statement, Graphics<'s>)>,
+    /// The graphics states saved when it began, its own included.
+    depth: usize,
 }
 
 /// pbrt's graphics state: what `AttributeBegin` saves and `AttributeEnd` restores.
@@ -160,6 +182,13 @@ struct Converter<'s> {
     /// The scene's arrays of tables, as made.
     lists: Lists,
     graphics: Graphics<'s>,
+    /// The object being defined (`ObjectBegin` … `ObjectEnd`).
+    defining: Option<Definition<'s>>,
+    /// The objects defined, by name.
+    instances: HashMap<String, Definition<'s>>,
+    /// Each `ObjectInstance` and the transform current there, placed once every object is
+    /// defined (pbrt-v4 lets an instance come before its definition).
+    instance_uses: Vec<(&'s Statement, DMat4)>,
     stack: Vec<Graphics<'s>>,
     /// `CoordinateSystem` names (and `camera`).
     named_frames: HashMap<String, DMat4>,
@@ -573,6 +602,17 @@ impl<'s> Converter<'s> {
                 if !self.world {
                     return Err(s.place.error("Shape belongs after WorldBegin"));
                 }
+                if let Some(definition) = &mut self.defining {
+                    if self.graphics.area.is_some() {
+                        return Err(s.place.error(format!(
+                            "{}: an area light in an object's definition (pbrt-v4 leaves its \
+                             light out with a warning; give the light outside the object)",
+                            s.what()
+                        )));
+                    }
+                    definition.shapes.push((s, self.graphics.clone()));
+                    return Ok(());
+                }
                 self.shape(s)?;
             }
             "Texture" => {
@@ -581,11 +621,59 @@ impl<'s> Converter<'s> {
                     s.what()
                 )))
             }
-            "ObjectBegin" | "ObjectEnd" | "ObjectInstance" => {
-                return Err(s.place.error(format!(
-                    "{}: object instancing is not supported by grinlight's import",
-                    s.directive
-                )))
+            "ObjectBegin" => {
+                if !self.world {
+                    return Err(s.place.error("ObjectBegin belongs after WorldBegin"));
+                }
+                if let Some(open) = &self.defining {
+                    return Err(s.place.error(format!(
+                        "ObjectBegin inside the definition of \"{}\" (begun at {})",
+                        cut(&open.name),
+                        open.place
+                    )));
+                }
+                let name = s.text(0).to_string();
+                if let Some(earlier) = self.instances.get(&name) {
+                    return Err(s.place.error(format!(
+                        "the object \"{}\" is defined again (first at {})",
+                        cut(&name),
+                        earlier.place
+                    )));
+                }
+                self.stack.push(self.graphics.clone());
+                self.defining = Some(Definition {
+                    name,
+                    place: s.place.clone(),
+                    shapes: Vec::new(),
+                    depth: self.stack.len(),
+                });
+            }
+            "ObjectEnd" => {
+                let definition = self
+                    .defining
+                    .take()
+                    .ok_or_else(|| s.place.error("ObjectEnd without ObjectBegin"))?;
+                if self.stack.len() != definition.depth {
+                    return Err(s.place.error(format!(
+                        "ObjectEnd with an AttributeBegin inside \"{}\" not ended",
+                        cut(&definition.name)
+                    )));
+                }
+                self.graphics = self
+                    .stack
+                    .pop()
+                    .ok_or_else(|| s.place.error("ObjectEnd without ObjectBegin"))?;
+                self.instances.insert(definition.name.clone(), definition);
+            }
+            "ObjectInstance" => {
+                if let Some(open) = &self.defining {
+                    return Err(s.place.error(format!(
+                        "ObjectInstance inside the definition of \"{}\" (begun at {})",
+                        cut(&open.name),
+                        open.place
+                    )));
+                }
+                self.instance_uses.push((s, self.graphics.ctm));
             }
             "Attribute" => {
                 return Err(s.place.error(
@@ -1534,6 +1622,32 @@ impl<'s> Converter<'s> {
             }
         };
         Ok(Surface::Material { name, ior: None })
+    }
+
+    /// Places every `ObjectInstance`: each shape of its object's definition converted with
+    /// the graphics state it was given in, its transform the instance's composed with its own.
+    fn place_instances(&mut self) -> Result<()> {
+        let saved = self.graphics.clone();
+        for (use_, ctm) in std::mem::take(&mut self.instance_uses) {
+            let name = use_.text(0);
+            let shapes = match self.instances.get(name) {
+                Some(d) => d.shapes.clone(),
+                None => {
+                    return Err(use_
+                        .place
+                        .error(format!("no object is named \"{}\"", cut(name))))
+                }
+            };
+            for (shape, graphics) in shapes {
+                self.graphics = Graphics {
+                    ctm: ctm * graphics.ctm,
+                    ..graphics
+                };
+                self.shape(shape)?;
+            }
+        }
+        self.graphics = saved;
+        Ok(())
     }
 
     /// A dielectric of relative index 1: the boundary of a medium behind an `interface`.
