@@ -69,6 +69,8 @@ CASES = {
     # spheres left out where seen, their light kept.
     "spheres_envmap_hidden": ("spheres_envmap.xml", {"hide": "true"}),
     "sphere_lights_hidden": ("sphere_lights.xml", {"hide": "true"}),
+    # A shapegroup of three shapes placed by three instances.
+    "instancing": ("instancing.xml", {}),
 }
 
 

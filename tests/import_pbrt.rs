@@ -1187,3 +1187,56 @@ fn same(a: &Value, b: &Value) -> bool {
         _ => a == b,
     }
 }
+
+/// A diffuse or rough material on a mesh whose normals `N` are not its faces' converts only
+/// as an approximation (pbrt, as Mitsuba, evaluates it about them; grinlight about each
+/// triangle's own); the same mesh with `N` along its face, or with a smooth conductor, or
+/// without `N`, exactly.
+#[test]
+fn a_rough_material_on_a_mesh_with_bent_normals_is_an_approximation() {
+    let mesh = |normals: &str| {
+        format!(
+            "Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0] \"integer indices\" [0 1 2]{normals}"
+        )
+    };
+    let bent = " \"normal N\" [0 0 1 0.3 0 1 0 0.3 1]";
+    let along = " \"normal N\" [0 0 2 0 0 1 0 0 3]";
+    for (name, material, normals, exact) in [
+        ("diffuse, bent", "Material \"diffuse\"", bent, false),
+        (
+            "rough conductor, bent",
+            "Material \"conductor\" \"float roughness\" 0.1",
+            bent,
+            false,
+        ),
+        ("default, bent", "", bent, false),
+        (
+            "smooth conductor, bent",
+            "Material \"conductor\"",
+            bent,
+            true,
+        ),
+        (
+            "diffuse, along the face",
+            "Material \"diffuse\"",
+            along,
+            true,
+        ),
+        ("diffuse, no normals", "Material \"diffuse\"", "", true),
+    ] {
+        let d = dir(&format!("pbrt-bent-{}", name.replace([' ', ','], "")));
+        let body = format!("{material}\n{}", mesh(normals));
+        let p = write(&d, "s.pbrt", &scene("LookAt 0 0 5  0 0 0  0 1 0", &body));
+        match convert(&p, &ImportOptions::default()) {
+            Ok(_) => assert!(exact, "{name}: converted exactly"),
+            Err(e) => {
+                let message = e.to_string();
+                assert!(!exact, "{name}: {message}");
+                assert!(
+                    message.contains("s.pbrt:7:1") && message.contains("interpolated"),
+                    "{name}: {message}"
+                );
+            }
+        }
+    }
+}

@@ -1,6 +1,6 @@
 //! Geometry a converter reads from another renderer's scene: the look-at frame, affine maps'
-//! linear parts and whether they keep shapes' proportions, and parallelograms found in pairs
-//! of triangles.
+//! linear parts and whether they keep shapes' proportions, parallelograms found in pairs of
+//! triangles, and whether a mesh's interpolated normals are its faces'.
 
 use glam::{DMat3, DMat4, DVec3};
 
@@ -134,4 +134,42 @@ pub fn emitting_side(
         (n, 0) if n == of => Facing::Against,
         _ => Facing::Mixed { against, split, of },
     }
+}
+
+/// The angle between `a` and `b` (any lengths, not zero), radians.
+fn angle(a: DVec3, b: DVec3) -> f64 {
+    a.cross(b).length().atan2(a.dot(b))
+}
+
+/// The angle within which normals count as one, radians.
+pub const FACES_TOLERANCE: f64 = 1e-6;
+
+/// How far the normals a renderer interpolates over a mesh turn from its faces' own (radians,
+/// the largest over its corners) — so that a BSDF evaluated about them is evaluated about each
+/// triangle's where this is 0 ([`FACES_TOLERANCE`]): the vertex normals `normal` gives
+/// (placed) against each triangle's where there are some, else (the renderer averaging the
+/// faces at each vertex) the faces meeting at each vertex against the first of them there,
+/// which bounds twice the turn of their average. Triangles of no area are passed over.
+pub fn normal_turn(
+    triangles: &[[u32; 3]],
+    corner: &dyn Fn(u32) -> DVec3,
+    normal: Option<&dyn Fn(u32) -> DVec3>,
+) -> f64 {
+    let mut first: std::collections::HashMap<u32, DVec3> = std::collections::HashMap::new();
+    let mut turn: f64 = 0.0;
+    for t in triangles {
+        let [a, b, c] = t.map(corner);
+        let w = (b - a).cross(c - a);
+        if w.length_squared() == 0.0 {
+            continue;
+        }
+        for &k in t {
+            let n = match normal {
+                Some(normal) => normal(k),
+                None => *first.entry(k).or_insert(w),
+            };
+            turn = turn.max(angle(n, w));
+        }
+    }
+    turn
 }
