@@ -329,3 +329,70 @@ fn the_photon_mapper_reads_plastic_as_the_path_tracer_sees_it() {
         );
     }
 }
+
+/// On a smooth mesh a light sample and a BSDF sample estimate the same integral: the light
+/// sample's f·cos (`Vertex::eval` times `Vertex::cos`) and the BSDF sample's weight f·|cos|/pdf
+/// take the cosine at the same normal — the shading normal a glossy or coated lobe is
+/// evaluated about — so that multiple importance sampling weighs two estimates of one thing.
+/// At a point of a coarse sphere mesh whose shading normal turns 5.2° from its facet's,
+/// ∫ f cos g dω for g(ω) = 1 + ½ω·x + ¼ω·y is estimated both ways (2·10⁵ BSDF samples, 2·10⁶
+/// uniform directions), for a rough conductor and a rough plastic; they agree within 4
+/// standard errors. With the cosine at the facet's normal on the light-sample side the
+/// conductor's read 5 % apart (z 28).
+#[test]
+fn light_and_bsdf_samples_take_the_same_cosine_on_a_smooth_mesh() {
+    use grinlight::transport::{Stats, Tracer, Vertex};
+    use rand::{Rng, SeedableRng};
+    let dir = std::env::temp_dir().join(format!("grinlight-smooth-cos-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("ball.obj"), crate::common::sphere_obj(2, true)).unwrap();
+    for material in [
+        "type = \"conductor\"\nmetal = \"Cu\"\nroughness = 0.3\n",
+        "type = \"plastic\"\nalbedo = 0.5\nroughness = 0.2\n",
+    ] {
+        let text = format!(
+            "[[material]]\nname = \"m\"\n{material}\
+             [[shape]]\ntype = \"mesh\"\nfile = \"ball.obj\"\nmaterial = \"m\"\n"
+        );
+        let (scene, settings) = parse_scene(&dir.join("s.toml"), text).unwrap();
+        let tracer = Tracer::new(&scene, &settings.trace);
+        let (origin, direction) = (DVec3::new(0.31, 0.22, 3.0), -DVec3::Z);
+        let hit = tracer
+            .next_event(origin, direction, None, &mut Stats::default())
+            .surface_hit()
+            .expect("the ray meets the ball");
+        let v = tracer.vertex(hit, scene.surface(hit.prim), None).unwrap();
+        let turn = v.shading.angle_between(v.normal).to_degrees();
+        assert!(turn > 5.0, "{material}: the shading normal turns {turn}°");
+        let g = |w: DVec3| 1.0 + 0.5 * w.x + 0.25 * w.y;
+        let mut rng = rand_pcg::Pcg64Mcg::seed_from_u64(7);
+        let stats = |xs: &[f64]| {
+            let n = xs.len() as f64;
+            let mean = xs.iter().sum::<f64>() / n;
+            let var = xs.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0);
+            (mean, (var / n).sqrt())
+        };
+        let by_bsdf: Vec<f64> = (0..200_000)
+            .map(|_| {
+                v.scatter((rng.gen(), rng.gen(), rng.gen()))
+                    .map_or(0.0, |s| s.sample.weight.0.x * g(s.sample.wi))
+            })
+            .collect();
+        let vertex = Vertex::Surface(v);
+        let by_light: Vec<f64> = (0..2_000_000)
+            .map(|_| {
+                let z: f64 = 2.0 * rng.gen::<f64>() - 1.0;
+                let phi = std::f64::consts::TAU * rng.gen::<f64>();
+                let r = (1.0 - z * z).sqrt();
+                let wi = DVec3::new(r * phi.cos(), r * phi.sin(), z);
+                let cos = vertex.cos(wi).max(0.0);
+                vertex.eval(wi).0.x * cos * g(wi) * 4.0 * std::f64::consts::PI
+            })
+            .collect();
+        let ((a, sa), (b, sb)) = (stats(&by_bsdf), stats(&by_light));
+        let z = (a - b).abs() / (sa * sa + sb * sb).sqrt();
+        println!("{material}: turn {turn:.1}°, BSDF samples {a:.5} ± {sa:.5}, light samples {b:.5} ± {sb:.5}, z {z:.2}");
+        assert!(z < 4.0, "{material}: {a} ± {sa} against {b} ± {sb} (z {z:.1})");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -136,12 +136,15 @@ impl<'s> Vertex<'s> {
         }
     }
 
-    /// The foreshortening of light arriving from direction `wi`: |cos| at the surface's
-    /// normal, ≤ 0 where light from there cannot be sampled (the surface's far side, which
+    /// The foreshortening of light arriving from direction `wi`: its cosine at the normal the
+    /// BSDF is evaluated about ([`SurfaceVertex::frame`]: a smooth mesh's shading normal for
+    /// glossy and coated lobes, the geometric normal for a Lambertian one), the cosine a BSDF
+    /// sample's weight f·|cos|/pdf holds — so that a light sample and a BSDF sample estimate
+    /// the same integral; ≤ 0 where light from there cannot be sampled (the far side, which
     /// only a transmitted sample reaches); 1 in a medium.
     pub fn cos(&self, wi: DVec3) -> f64 {
         match self {
-            Vertex::Surface(v) => wi.dot(v.normal),
+            Vertex::Surface(v) => wi.dot(v.frame()),
             Vertex::Medium(_) => 1.0,
         }
     }
