@@ -392,7 +392,10 @@ fn light_and_bsdf_samples_take_the_same_cosine_on_a_smooth_mesh() {
         let ((a, sa), (b, sb)) = (stats(&by_bsdf), stats(&by_light));
         let z = (a - b).abs() / (sa * sa + sb * sb).sqrt();
         println!("{material}: turn {turn:.1}°, BSDF samples {a:.5} ± {sa:.5}, light samples {b:.5} ± {sb:.5}, z {z:.2}");
-        assert!(z < 4.0, "{material}: {a} ± {sa} against {b} ± {sb} (z {z:.1})");
+        assert!(
+            z < 4.0,
+            "{material}: {a} ± {sa} against {b} ± {sb} (z {z:.1})"
+        );
     }
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -1240,3 +1240,68 @@ fn a_rough_material_on_a_mesh_with_bent_normals_is_an_approximation() {
         }
     }
 }
+
+/// pbrt-v4's named illuminants as a light's spectrum (pbrt scales a light's spectrum to unit
+/// luminance): `stdillum-D65` is an RGB white, the same light as `rgb L [1 1 1]`;
+/// `stdillum-A` is CIE illuminant A — Planck's law at 2848 K with the CIE's c₂ = 1.435·10⁻²
+/// m·K, 2855.50 K with today's — whose colour is A's chromaticity (0.44757, 0.40745, CIE
+/// 15:2004) and whose luminance is the light's scale. Other names, and values over
+/// wavelength, are refused by name.
+#[test]
+fn pbrts_named_illuminants_convert_to_their_light() {
+    let camera = "LookAt 0 0 5  0 0 0  0 1 0";
+    let d65 = converted(
+        "d65",
+        camera,
+        "LightSource \"point\" \"spectrum I\" \"stdillum-D65\" \"float scale\" 2",
+    );
+    let white = converted(
+        "white",
+        camera,
+        "LightSource \"point\" \"rgb I\" [1 1 1] \"float scale\" 2",
+    );
+    assert_eq!(tables(&d65, "light"), tables(&white, "light"));
+    let a = converted(
+        "stdillum-a",
+        camera,
+        "LightSource \"point\" \"spectrum I\" \"stdillum-A\" \"float scale\" 3",
+    );
+    let light = tables(&a, "light")[0];
+    let kelvin = f(&light["spectrum"]["blackbody"]);
+    assert!((kelvin - 2855.4959).abs() < 1e-3, "{kelvin}");
+    let spectrum =
+        grinlight::spectrum::Spectrum::new(grinlight::spectrum::emission::Shape::Blackbody {
+            kelvin,
+        })
+        .unwrap();
+    let rgb = spectrum.colour().0 * f(&light["intensity"]);
+    let xyz = glam::DMat3::from_cols_array(&[
+        0.4124, 0.2126, 0.0193, 0.3576, 0.7152, 0.1192, 0.1805, 0.0722, 0.9505,
+    ]) * rgb;
+    let (x, y) = (xyz.x / xyz.element_sum(), xyz.y / xyz.element_sum());
+    println!("illuminant A: x {x:.5}, y {y:.5}, Y {:.5}", xyz.y);
+    assert!(
+        (x - 0.44757).abs() < 1e-4 && (y - 0.40745).abs() < 1e-4,
+        "x {x}, y {y}"
+    );
+    assert!((xyz.y / 3.0 - 1.0).abs() < 1e-3, "Y {}", xyz.y);
+    for (name, light, words) in [
+        (
+            "F2",
+            "\"spectrum I\" \"stdillum-F2\"",
+            "the spectrum \"stdillum-F2\"",
+        ),
+        (
+            "values",
+            "\"spectrum I\" [400 1 700 2]",
+            "over wavelength is not supported",
+        ),
+    ] {
+        let text = scene(camera, &format!("LightSource \"point\" {light}"));
+        let message = refusal(name, &text, &ImportOptions::default());
+        assert!(
+            message.contains("s.pbrt:6:") && message.contains(words),
+            "{name}: {message}"
+        );
+    }
+}

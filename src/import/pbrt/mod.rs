@@ -266,6 +266,11 @@ enum Emission {
     Blackbody(Blackbody),
 }
 
+/// CIE standard illuminant A as a temperature: the CIE defines it as Planck's law at 2848 K
+/// with c₂ = 1.435·10⁻² m·K (CIE 15:2004), the same spectrum as at 2848 · c₂/1.435·10⁻² K with
+/// c₂ = hc/k = 1.438777·10⁻² m·K (Planck's law depends on c₂/T alone, up to its scale).
+const ILLUMINANT_A_KELVIN: f64 = 2848.0 * 1.438_776_877e-2 / 1.435e-2;
+
 /// Planck's spectrum at `kelvin`, of luminance `luminance` relative to unit-power D65's (a
 /// white of luminance 1 is (1, 1, 1)), written at `place`.
 #[derive(Clone, Debug)]
@@ -397,6 +402,30 @@ impl<'s> Converter<'s> {
                     ))),
                 }
             }
+            Some(param) if param.ty == "spectrum" => match &param.values[..] {
+                // pbrt scales a light's spectrum to unit luminance, as it does an RGB one's
+                // illuminant: D65 is the RGB white, and CIE illuminant A Planck's spectrum at
+                // 2848 K with the CIE's c₂ = 1.435·10⁻² m·K, 2855.50 K with today's
+                // (c₂ = hc/k = 1.438777·10⁻² m·K).
+                [parse::Value::Text(n)] if n == "stdillum-D65" => Ok(Emission::Rgb(DVec3::ONE)),
+                [parse::Value::Text(n)] if n == "stdillum-A" => {
+                    Ok(Emission::Blackbody(Blackbody {
+                        kelvin: ILLUMINANT_A_KELVIN,
+                        luminance: 1.0,
+                        place: param.place.clone(),
+                    }))
+                }
+                [parse::Value::Text(n)] => Err(param.place.error(format!(
+                    "{owner}: the spectrum \"{}\": grinlight's import reads the named \
+                     illuminants stdillum-D65 and stdillum-A (or give an rgb or a blackbody)",
+                    cut(n)
+                ))),
+                _ => Err(param.place.error(format!(
+                    "{owner}: {} over wavelength is not supported (give a named illuminant, an \
+                     rgb or a blackbody)",
+                    param.what()
+                ))),
+            },
             _ => Ok(Emission::Rgb(self.rgb(p, name, DVec3::ONE, owner)?)),
         }
     }
