@@ -773,7 +773,7 @@ fn what_pbrt_cannot_convert_is_refused_by_file_line_and_column() {
         (
             "spectral light",
             in_world("LightSource \"point\" \"spectrum I\" [ 400 1 700 1 ]"),
-            "a spectrum is not supported by grinlight's import (give an rgb)",
+            "s.pbrt:7:21: LightSource \"point\": \"spectrum I\" over wavelength is not supported",
         ),
         (
             "cold blackbody",
