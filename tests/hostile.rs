@@ -583,7 +583,12 @@ fn cases() -> Vec<Case> {
         Case { name: "a partial with a 4 GiB header", files: vec![("p.partial", [PARTIAL, &[0xff; 4]].concat())], args: args("merge p.partial -o m.exr"), expect: Error("a header of 4294967295 bytes") },
     ]);
     v.extend([
-        xml_case("Mitsuba: a sphere", "<shape type=\"sphere\"><point name=\"center\" value=\"0, 0, -3\"/></shape>", Finite("wrote")),
+xml_case(
+            "mitsuba: a shapegroup holding an instance of itself",
+            "<shape type=\"shapegroup\" id=\"g\"><shape type=\"instance\"><ref id=\"g\"/></shape></shape><shape type=\"instance\"><ref id=\"g\"/></shape>",
+            Error("s.xml:"),
+        ),
+                xml_case("Mitsuba: a sphere", "<shape type=\"sphere\"><point name=\"center\" value=\"0, 0, -3\"/></shape>", Finite("wrote")),
         Case {
             name: "Mitsuba: a crop beyond its film",
             files: vec![("s.xml", String::from_utf8(mitsuba("")).unwrap().replacen("<rfilter", "<integer name=\"crop_offset_x\" value=\"4\"/><integer name=\"crop_width\" value=\"6\"/><rfilter", 1).into_bytes())],
@@ -614,6 +619,15 @@ fn cases() -> Vec<Case> {
             expect: Error("a cycle"),
         },
         pbrt_case("pbrt: a sphere", "Shape \"sphere\"", Finite("wrote")),
+        pbrt_case(
+            "pbrt: an object placed 10⁵ times",
+            &format!(
+                "ObjectBegin \"o\"\nShape \"trianglemesh\" \"point3 P\" [{}] \"integer indices\" [0 1 2]\nObjectEnd\n{}",
+                "0 1 2 ".repeat(20_000),
+                "ObjectInstance \"o\"\n".repeat(100_000)
+            ),
+            Error("100000 object instances write their objects'"),
+        ),
         pbrt_case("pbrt: a NaN translation", "Translate nan 0 0\nShape \"sphere\"", Error("s.pbrt:9:11: Translate: expected 3 numbers, found 'nan'")),
         pbrt_case("pbrt: an infinite radius", "Shape \"sphere\" \"float radius\" inf", Error("s.pbrt:9:31: expected a number, found 'inf'")),
         pbrt_case("pbrt: a huge radius", "Shape \"sphere\" \"float radius\" 1e300", Error("as converted, shape[0].radius")),

@@ -1219,10 +1219,9 @@ impl Converter<'_> {
                 for member in shape.children("shape") {
                     let member = member.object();
                     if matches!(member.kind.as_str(), "shapegroup" | "instance") {
-                        return Err(member.error(format!(
-                            "{} inside a shapegroup: Mitsuba's groups hold plain shapes",
-                            member.what()
-                        )));
+                        return Err(
+                            member.error("inside a shapegroup: Mitsuba's groups hold plain shapes")
+                        );
                     }
                     if let Some(e) = member.child("emitter")? {
                         return Err(e.place.error(format!(

@@ -1671,6 +1671,32 @@ impl<'s> Converter<'s> {
     /// Places every `ObjectInstance`: each shape of its object's definition converted with
     /// the graphics state it was given in, its transform the instance's composed with its own.
     fn place_instances(&mut self) -> Result<()> {
+        // Each use writes its object's shapes out again, a triangle mesh's numbers and all: a
+        // small file may place an object millions of times. Refused up front where what would
+        // be written (a converted number is about 64 bytes with its text) does not fit.
+        let mut numbers: u64 = 0;
+        for (use_, _) in &self.instance_uses {
+            if let Some(d) = self.instances.get(use_.text(0)) {
+                let each: usize = d.shapes.iter().map(|(s, _)| 16 + s.params.values()).sum();
+                numbers = numbers.saturating_add(each as u64);
+            }
+        }
+        let needed = numbers.saturating_mul(64);
+        if let (Some((first, _)), Some(free)) = (
+            self.instance_uses.first(),
+            crate::resources::available_memory(),
+        ) {
+            if needed > free {
+                return Err(first.place.error(format!(
+                    "{} object instances write their objects' {numbers} numbers out, about \
+                     {} of memory; this machine has {} available (place fewer instances or \
+                     give the meshes as PLY files, which an instance refers to)",
+                    self.instance_uses.len(),
+                    crate::resources::human(needed),
+                    crate::resources::human(free)
+                )));
+            }
+        }
         let saved = self.graphics.clone();
         for (use_, ctm) in std::mem::take(&mut self.instance_uses) {
             let name = use_.text(0);

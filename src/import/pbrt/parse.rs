@@ -170,6 +170,11 @@ impl Params {
         Some(p)
     }
 
+    /// How many values its parameters hold in all (none marked read).
+    pub fn values(&self) -> usize {
+        self.0.iter().map(|p| p.values.len()).sum()
+    }
+
     /// Whether `name` is given (not marked read).
     pub fn has(&self, name: &str) -> bool {
         self.0.iter().any(|p| p.name == name)
