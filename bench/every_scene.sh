@@ -35,10 +35,7 @@ for ((i = 0; i < runs; i++)); do
     for scene in "${scenes[@]}"; do
         name=$(basename "$scene" .toml)
         for build in earlier current; do
-            case $build in
-                current) bin=target/release/grinlight ;;
-                earlier) bin=target/earlier/release/grinlight ;;
-            esac
+            bin=$(grinlight_of "$build")
             if [[ $passes == own ]]; then flags=(); else flags=(--passes "$passes" --spp "$spp"); fi
             if t=$(wall "$bin" render "$scene" "${flags[@]}" -o "$out/$build.exr"); then
                 echo "$t" >> "$out/$name.$build"

@@ -20,10 +20,7 @@ earlier_worktree "$rev"
 earlier_build --bin grinlight
 for ((i = 0; i < runs; i++)); do
     for build in earlier current; do
-        case $build in
-            current) bin=target/release/grinlight ;;
-            earlier) bin=target/earlier/release/grinlight ;;
-        esac
+        bin=$(grinlight_of "$build")
         # Builds from before the deflection table always trace: they have no --no-table.
         flags=(--spp 1)
         if "$bin" render --help | grep -q -- --no-table; then flags+=(--no-table); fi

@@ -29,10 +29,7 @@ if python3 -c 'import mitsuba' 2> /dev/null; then mitsuba=yes; fi
 declare -A times
 for ((i = 0; i < runs; i++)); do
     for build in earlier current; do
-        case $build in
-            current) bin=target/release/grinlight ;;
-            earlier) bin=target/earlier/release/grinlight ;;
-        esac
+        bin=$(grinlight_of "$build")
         t=$(wall "$bin" render "$scene" --integrator path --spp 16 --passes $((spp / 16)) \
             --threads 2 -o "$out/$build.exr")
         times[$build]+="$t "

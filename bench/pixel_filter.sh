@@ -24,10 +24,7 @@ user() { /usr/bin/time -f %U "$@" 2>&1 > /dev/null | tail -1; }
 declare -A times
 for ((i = 0; i < runs; i++)); do
     for build in earlier current; do
-        case $build in
-            current) bin=target/release/grinlight ;;
-            earlier) bin=target/earlier/release/grinlight ;;
-        esac
+        bin=$(grinlight_of "$build")
         for filter in box gaussian; do
             t=$(user "$bin" render "$out/$filter.toml" --integrator path --spp "$spp" \
                 --passes 1 --threads 1 -o "$out/$build-$filter.exr")
