@@ -5,7 +5,7 @@
 //! cannot be converted exactly refused by file, line and column.
 
 use super::import::{compare, convert, dir, f, grinlight_blocks, reference, tables, vec3, write};
-use grinlight::import::{import, ImportOptions};
+use grinlight::import::{import, load_description, ImportOptions};
 use std::f64::consts::PI;
 use std::path::Path;
 use toml::Value;
@@ -1302,6 +1302,93 @@ fn pbrts_named_illuminants_convert_to_their_light() {
         assert!(
             message.contains("s.pbrt:6:") && message.contains(words),
             "{name}: {message}"
+        );
+    }
+}
+
+/// pbrt-v4's `cropwindow` and `pixelbounds` become the camera's crop, as pbrt-v4's film
+/// computes its pixel bounds (`film.cpp`): a crop window's pairs ordered and clamped to
+/// [0, 1], its pixels from ⌈x0·width⌉ to ⌈x1·width⌉ (end excluded; likewise down from the
+/// top), winning over pixel bounds, which are clamped to the image. pbrt's Gaussian filter
+/// draws beyond the window as beyond the image, so the cropped render is the whole render's
+/// window, pixel for pixel.
+#[test]
+fn pbrts_crop_window_and_pixel_bounds_convert_to_the_cameras_crop() {
+    let crop_of = |film: &str| -> Option<Vec<i64>> {
+        let d = dir("pbrt-crop");
+        let text = format!(
+            "LookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" [ 30 ]\n\
+             Film \"rgb\" \"integer xresolution\" [ 200 ] \"integer yresolution\" [ 100 ] {film}\n\
+             WorldBegin\nShape \"sphere\"\n"
+        );
+        let p = write(&d, "s.pbrt", &text);
+        let t = convert(&p, &ImportOptions::default()).unwrap();
+        t["camera"].get("crop").map(|c| {
+            c.as_array()
+                .unwrap()
+                .iter()
+                .map(|v| v.as_integer().unwrap())
+                .collect()
+        })
+    };
+    assert_eq!(
+        crop_of("\"float cropwindow\" [0.25 0.75 0 0.5]"),
+        Some(vec![50, 0, 100, 50])
+    );
+    assert_eq!(
+        crop_of("\"float cropwindow\" [0.8 -1 0.5 0.33]"),
+        Some(vec![0, 33, 160, 17])
+    );
+    assert_eq!(
+        crop_of("\"integer pixelbounds\" [10 30 5 300]"),
+        Some(vec![10, 5, 20, 95])
+    );
+    assert_eq!(
+        crop_of("\"integer pixelbounds\" [10 30 5 300] \"float cropwindow\" [0 0.5 0 1]"),
+        Some(vec![0, 0, 100, 100])
+    );
+    assert_eq!(crop_of("\"float cropwindow\" [0 1 0 1]"), None);
+    let d = dir("pbrt-crop-empty");
+    let text = "Film \"rgb\" \"float cropwindow\" [0.5 0.5 0 1]\nWorldBegin\n";
+    let message = convert(&write(&d, "s.pbrt", text), &ImportOptions::default())
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(
+        message.contains("s.pbrt:1:1") && message.contains("is empty"),
+        "{message}"
+    );
+    // The cropped render against the whole one (pbrt's default Gaussian filter).
+    let render = |film: &str| {
+        let d = dir(&format!("pbrt-crop-render-{}", film.len()));
+        let text = format!(
+            "LookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" [ 30 ]\n\
+             Film \"rgb\" \"integer xresolution\" [ 24 ] \"integer yresolution\" [ 16 ] {film}\n\
+             Sampler \"independent\" \"integer pixelsamples\" 4\n\
+             WorldBegin\nLightSource \"point\" \"point3 from\" [1 2 4] \"rgb I\" [20 20 20]\n\
+             Material \"diffuse\"\nShape \"sphere\"\n"
+        );
+        let p = write(&d, "s.pbrt", &text);
+        let (description, settings) = load_description(&p, &ImportOptions::default()).unwrap();
+        let settings = grinlight::settings::Settings {
+            threads: 2,
+            ..settings
+        };
+        grinlight::render::render(&description.build(), &settings, &())
+            .unwrap()
+            .0
+            .layer("beauty")
+            .unwrap()
+            .to_vec()
+    };
+    let whole = render("");
+    let part = render("\"integer pixelbounds\" [5 17 3 11]");
+    assert_eq!(part.len(), 12 * 8);
+    for (j, i) in (0..8).flat_map(|j| (0..12).map(move |i| (j, i))) {
+        assert_eq!(
+            part[j * 12 + i],
+            whole[(j + 3) * 24 + i + 5],
+            "pixel ({i}, {j}) of the window"
         );
     }
 }

@@ -198,7 +198,7 @@ struct Converter<'s> {
     /// The `[camera]` table, made at `WorldBegin`.
     camera: Option<Table>,
     /// `Film`, `Sampler` as read (converted at `WorldBegin`, when the camera is).
-    film: Option<(i64, i64)>,
+    film: Option<Film>,
     sampler: Option<i64>,
     /// The pixel filter (pbrt's default until a `PixelFilter` says otherwise).
     filter: PixelFilter,
@@ -836,8 +836,22 @@ fn scatters_about_the_normal(s: &Statement) -> bool {
     }
 }
 
-/// `Film "rgb"` (or `"gbuffer"`): its size.
-fn film(s: &Statement) -> Result<(i64, i64)> {
+/// A `Film`: its size, and the window of it rendered.
+#[derive(Clone, Copy, Debug)]
+struct Film {
+    width: i64,
+    height: i64,
+    /// `[x, y, width, height]` in pixels from the top-left, where it is not the whole image.
+    window: Option<[i64; 4]>,
+}
+
+/// `Film "rgb"` (or `"gbuffer"`): its size and the window `cropwindow` or `pixelbounds` gives,
+/// as pbrt-v4's film computes it (`film.cpp`): a crop window [x0, x1, y0, y1] of the unit
+/// square, each pair ordered and clamped to [0, 1], is the pixels from ⌈x0·width⌉ to
+/// ⌈x1·width⌉ (and likewise in y, from the top), the end excluded, and wins over pixel bounds
+/// [x0, x1, y0, y1], which are clamped to the image. A window that is empty is refused, as
+/// pbrt refuses it.
+fn film(s: &Statement) -> Result<Film> {
     let p = &s.params;
     if !matches!(s.text(0), "rgb" | "gbuffer") {
         return Err(s.place.error(format!(
@@ -851,6 +865,45 @@ fn film(s: &Statement) -> Result<(i64, i64)> {
     );
     if w < 1 || h < 1 {
         return Err(s.place.error("the resolution must be at least 1 × 1"));
+    }
+    let bounds = match (
+        p.numbers("cropwindow", &["float"])?,
+        p.numbers("pixelbounds", &["integer"])?,
+    ) {
+        (Some((c, param)), _) => {
+            let [a, b, c0, d] = c[..] else {
+                return Err(param.place.error(format!(
+                    "{}: expected 4 numbers, found {}",
+                    param.what(),
+                    c.len()
+                )));
+            };
+            let edge = |t: f64, n: i64| (n as f64 * t.clamp(0.0, 1.0)).ceil() as i64;
+            [
+                edge(a.min(b), w),
+                edge(a.max(b), w),
+                edge(c0.min(d), h),
+                edge(c0.max(d), h),
+            ]
+        }
+        (None, Some((b, param))) => {
+            let [x0, x1, y0, y1] = b[..] else {
+                return Err(param.place.error(format!(
+                    "{}: expected 4 numbers, found {}",
+                    param.what(),
+                    b.len()
+                )));
+            };
+            let clamp = |v: f64, n: i64| (v as i64).clamp(0, n);
+            [clamp(x0, w), clamp(x1, w), clamp(y0, h), clamp(y1, h)]
+        }
+        (None, None) => [0, w, 0, h],
+    };
+    let [x0, x1, y0, y1] = bounds;
+    if x1 <= x0 || y1 <= y0 {
+        return Err(s.place.error(format!(
+            "the film's window (pixels {x0}–{x1} across, {y0}–{y1} down) is empty"
+        )));
     }
     // What pbrt writes where changes no pixel.
     for name in ["filename", "savefp16", "diagonal", "writefp16"] {
@@ -876,7 +929,11 @@ fn film(s: &Statement) -> Result<(i64, i64)> {
             .error("maxcomponentvalue clamps pbrt's samples (a biased estimate): not supported"));
     }
     p.finish(&s.what())?;
-    Ok((w, h))
+    Ok(Film {
+        width: w,
+        height: h,
+        window: (bounds != [0, w, 0, h]).then_some([x0, y0, x1 - x0, y1 - y0]),
+    })
 }
 
 /// A `Sampler`'s samples a pixel (pbrt-v4's default 16; `stratified`: xsamples × ysamples).
@@ -932,7 +989,12 @@ fn floats(v: &[f64]) -> Toml {
 impl<'s> Converter<'s> {
     /// The camera, film, sampler and filter, converted now that all are known.
     fn world_begin(&mut self, s: &Statement) -> Result<()> {
-        let (w, h) = self.film.unwrap_or((1280, 720));
+        let film = self.film.unwrap_or(Film {
+            width: 1280,
+            height: 720,
+            window: None,
+        });
+        let (w, h) = (film.width, film.height);
         self.render
             .insert("spp".into(), Toml::Integer(self.sampler.unwrap_or(16)));
         let (camera, world_from_camera, medium) = match self.camera_at.take() {
@@ -982,6 +1044,10 @@ impl<'s> Converter<'s> {
         if lens > 0.0 {
             table.insert("aperture_radius".into(), Toml::Float(lens));
             table.insert("focus_distance".into(), Toml::Float(focus));
+        }
+        if let Some([x, y, width, height]) = film.window {
+            let crop = [x, y, width, height].map(Toml::Integer);
+            table.insert("crop".into(), Toml::Array(crop.to_vec()));
         }
         pixel_filter_keys(self.filter, &mut table);
         // The exposure scales pbrt's pixels: 1 (its default shutter) is grinlight's.
