@@ -74,6 +74,7 @@ pub fn convert(doc: &Document, approximate: bool) -> Result<Imported> {
         attached: HashSet::new(),
         hide_emitters: None,
         see_through: SeeThrough::default(),
+        meshes: HashMap::new(),
     };
     let scene = doc.scene.clone();
     let mut table = Table::new();
@@ -260,6 +261,9 @@ struct Converter<'d> {
     /// The `null` BSDFs and the `thindielectric`s converted: where Mitsuba's integrators
     /// disagree on whether emitters seen through them are seen directly.
     see_through: SeeThrough,
+    /// The mesh files read at conversion (to measure their normals, or an emitting mesh's
+    /// side), by shape.
+    meshes: HashMap<*const Object, Rc<crate::scene::mesh::ObjTriangles>>,
 }
 
 /// BSDFs a camera ray passes straight through, by kind ([`Converter::hide_emitters`]).
@@ -1258,14 +1262,21 @@ impl Converter<'_> {
     }
 
     /// The triangles of a mesh shape's file (OBJ, PLY or serialized).
-    fn load_mesh(&mut self, shape: &Object) -> Result<crate::scene::mesh::ObjTriangles> {
+    /// Read once a shape, however many instances place it.
+    fn load_mesh(&mut self, shape: &Object) -> Result<Rc<crate::scene::mesh::ObjTriangles>> {
+        if let Some(mesh) = self.meshes.get(&(shape as *const Object)) {
+            return Ok(mesh.clone());
+        }
         let path = self.mesh_file(shape)?;
-        match shape.kind.as_str() {
+        let mesh = match shape.kind.as_str() {
             "ply" => crate::scene::ply::load_ply(&path),
             "serialized" => crate::scene::serialized::load_serialized(&path, shape_index(shape)?),
             _ => crate::scene::mesh::load_triangles(&path),
         }
-        .map_err(|e| shape.error(e))
+        .map_err(|e| shape.error(e))?;
+        let mesh = Rc::new(mesh);
+        self.meshes.insert(shape as *const Object, mesh.clone());
+        Ok(mesh)
     }
 
     /// A shape placed by `placement` after its own `to_world`.
@@ -1377,7 +1388,7 @@ impl Converter<'_> {
         // Where the mesh's interpolated normals are not its faces' (read from its file once
         // here, before the render reads it again).
         let turn = match mesh && scatters && !shape.boolean_or("face_normals", false)? {
-            true => mesh_normal_turn(&self.load_mesh(shape)?, &m),
+            true => mesh_normal_turn(&*self.load_mesh(shape)?, &m),
             false => 0.0,
         };
         if turn > FACES_TOLERANCE {

@@ -44,6 +44,7 @@ pub fn convert(scene: &Scene, approximate: bool) -> Result<Imported> {
         defining: None,
         instances: HashMap::new(),
         instance_uses: Vec::new(),
+        plys: HashMap::new(),
         stack: Vec::new(),
         named_frames: HashMap::new(),
         camera_at: None,
@@ -190,6 +191,8 @@ struct Converter<'s> {
     /// Each `ObjectInstance` and the transform current there, placed once every object is
     /// defined (pbrt-v4 lets an instance come before its definition).
     instance_uses: Vec<(&'s Statement, DMat4)>,
+    /// The PLY files read at conversion (to measure their normals), by statement.
+    plys: HashMap<*const Statement, std::rc::Rc<crate::scene::mesh::ObjTriangles>>,
     stack: Vec<Graphics<'s>>,
     /// `CoordinateSystem` names (and `camera`).
     named_frames: HashMap<String, DMat4>,
@@ -1903,11 +1906,26 @@ impl<'s> Converter<'s> {
         Ok(())
     }
 
+    /// A `plymesh`'s triangles, read once a statement however many instances place it.
+    fn ply_mesh(
+        &mut self,
+        s: &'s Statement,
+    ) -> Result<std::rc::Rc<crate::scene::mesh::ObjTriangles>> {
+        if let Some(mesh) = self.plys.get(&(s as *const Statement)) {
+            return Ok(mesh.clone());
+        }
+        let path = self.ply_file(s)?;
+        let mesh =
+            std::rc::Rc::new(crate::scene::ply::load_ply(&path).map_err(|e| s.place.error(e))?);
+        self.plys.insert(s, mesh.clone());
+        Ok(mesh)
+    }
+
     /// How far the normals pbrt interpolates over shape `s` (placed by `g`) turn from its
     /// faces' ([`normal_turn`], radians): a mesh's `N` (a `trianglemesh`'s, a `plymesh`
     /// file's — read here for it); 0 for a mesh without them (pbrt then shades each triangle
     /// by its own normal) and for every other shape.
-    fn normal_turn(&self, s: &Statement, g: &Graphics) -> Result<f64> {
+    fn normal_turn(&mut self, s: &'s Statement, g: &Graphics) -> Result<f64> {
         let (positions, triangles, normals): (Vec<DVec3>, Vec<[u32; 3]>, Option<Vec<DVec3>>) =
             match s.text(0) {
                 "trianglemesh" => {
@@ -1923,13 +1941,12 @@ impl<'s> Converter<'s> {
                     )
                 }
                 "plymesh" => {
-                    let path = self.ply_file(s)?;
-                    let mesh = crate::scene::ply::load_ply(&path).map_err(|e| s.place.error(e))?;
+                    let mesh = self.ply_mesh(s)?;
                     let vector = |v: &[f32; 3]| DVec3::from(v.map(f64::from));
                     (
                         mesh.positions.iter().map(vector).collect(),
-                        mesh.triangles,
-                        mesh.normals.map(|n| n.iter().map(vector).collect()),
+                        mesh.triangles.clone(),
+                        (mesh.normals.as_ref()).map(|n| n.iter().map(vector).collect()),
                     )
                 }
                 _ => return Ok(0.0),
