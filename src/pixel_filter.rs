@@ -256,8 +256,8 @@ mod tests {
     use super::*;
 
     /// The offsets are f's quantiles: the share of f below each (by a midpoint sum of f over
-    /// 10⁶ steps) is u, to 1e-9, and as close to it as
-    /// the root bisection finds — Mitsuba's filter (σ 0.5, r 2) inside the image at its edges
+    /// 10⁶ steps) is u, to 1e-9, and as close to it as the root bisection finds — Mitsuba's
+    /// filter (σ 0.5, r 2) inside the image at its edges
     /// (the support cut at the first and last pixels' outer edges), pbrt's (σ 0.5, r 1.5)
     /// beyond them too; a box leaves points alone.
     #[test]
@@ -291,9 +291,10 @@ mod tests {
                         "{index}/{size} u {u}: {x} outside [{a}, {b}]"
                     );
                     // The root by bisection alone, to the last bits: Newton's early stop
-                    // leaves a share no further from u than it does (to 1e-12, the stop's 1e-13 with room; at the
-                    // support's ends, where f vanishes, F is flat and the root's place is
-                    // only as sharp as F's rounding, so shares are compared, not places).
+                    // leaves a share no further from u than it does (to 1e-12, the stop's
+                    // 1e-13 with room; at the support's ends, where f vanishes, F is flat and
+                    // the root's place is only as sharp as F's rounding, so shares are
+                    // compared, not places).
                     let (from, to) = (g.integral(a), g.integral(b));
                     let (mut lo, mut hi) = (a, b);
                     for _ in 0..100 {

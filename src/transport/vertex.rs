@@ -137,7 +137,7 @@ impl<'s> Vertex<'s> {
     }
 
     /// The foreshortening of light arriving from direction `wi`: its cosine at the normal the
-    /// BSDF is evaluated about ([`SurfaceVertex::frame`]: a smooth mesh's shading normal for
+    /// BSDF is evaluated about (`SurfaceVertex::frame`: a smooth mesh's shading normal for
     /// glossy and coated lobes, the geometric normal for a Lambertian one), the cosine a BSDF
     /// sample's weight f·|cos|/pdf holds — so that a light sample and a BSDF sample estimate
     /// the same integral; ≤ 0 where light from there cannot be sampled (the far side, which
