@@ -33,6 +33,7 @@ pub mod error;
 pub(crate) mod exact;
 pub mod fiber;
 pub mod film;
+pub(crate) mod fluorescent_layer;
 pub mod ids;
 pub mod import;
 pub mod input;

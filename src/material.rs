@@ -3,8 +3,9 @@
 
 use crate::bsdf::{Bsdf, Coat, Lobes, Metal, Microsurface, Reflectance};
 use crate::color::Rgb;
+pub use crate::fluorescent_layer::FluorescentLayer;
 use crate::polarization::Sheet;
-use crate::spectrum::{colour, Dispersion, Fluorophore};
+use crate::spectrum::colour;
 use crate::texture::Texture;
 use glam::DVec2;
 use std::sync::Arc;
@@ -73,35 +74,6 @@ pub enum ConductorIndex {
         /// Extinction coefficient.
         k: Rgb,
     },
-}
-
-/// A fluorescent layer on a diffuse surface (a highlighter's ink, a brightened paper): of the
-/// light of vacuum wavelength λ falling on it, the share a(λ) is absorbed by the layer's
-/// fluorophore, which emits q of those photons again, Lambertian, on its line
-/// ([`Fluorophore`]); the rest meets the surface's own reflectance. Its reflectance at λ and
-/// λ′ is so the simplest exact bispectral one (a Donaldson matrix of a diagonal and one rank-1
-/// part): (1 − a(λ))·ρ(λ) for λ′ = λ, a(λ)·q·ε(λ′)·λ/λ′ per nm otherwise.
-#[derive(Clone, Debug)]
-pub struct FluorescentLayer {
-    /// a(λ): the share of the light the layer absorbs, in [0, 1].
-    pub excitation: Dispersion,
-    /// What it emits again.
-    pub fluorophore: Fluorophore,
-}
-
-/// The very same layer (a material's, read once from its file): its forms over wavelength have
-/// no equality of their own.
-impl PartialEq for FluorescentLayer {
-    fn eq(&self, other: &Self) -> bool {
-        std::ptr::eq(self, other)
-    }
-}
-
-impl FluorescentLayer {
-    /// a at vacuum wavelength `nm`, within [0, 1].
-    pub fn absorbed(&self, nm: f64) -> f64 {
-        self.excitation.at(nm).clamp(0.0, 1.0)
-    }
 }
 
 impl Material {

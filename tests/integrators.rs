@@ -2,6 +2,7 @@
 //! (on the Cornell boxes against Mitsuba and on a GRIN scene), and passes rendered apart and
 //! merged against the same passes rendered at once.
 
+use crate::common::agreement::{agreement, Agreement};
 use grinlight::compare::{mean_ratios, read_exr_layer, MeanRatios};
 use grinlight::film::Film;
 use grinlight::integrator::PhotonMapper;
@@ -228,55 +229,6 @@ fn photon_mapper_agrees_with_the_path_tracer_under_sphere_lights() {
     );
     assert!((overall - 1.0).abs() < 0.01, "image {overall}");
     assert!(worst < 0.02, "worst block {worst}");
-}
-
-/// Two renders of one view, each film with its `error` layer: the second's image over the
-/// first's (the sum of every pixel and channel), that difference in standard errors, and the
-/// largest difference of a `block` × `block` block's channel in standard errors (the films
-/// `width` pixels wide).
-struct Agreement {
-    ratio: f64,
-    z: f64,
-    worst: f64,
-}
-
-fn agreement(first: &Film, second: &Film, width: usize, block: usize) -> Agreement {
-    let layer = |film: &Film, name: &str| film.layer(name).unwrap();
-    let (a, b) = (layer(first, "beauty"), layer(second, "beauty"));
-    let (ea, eb) = (layer(first, "error"), layer(second, "error"));
-    let mut worst: f64 = 0.0;
-    for by in 0..a.len() / width / block {
-        for bx in 0..width / block {
-            let pixels: Vec<usize> = (0..block * block)
-                .map(|k| (by * block + k / block) * width + bx * block + k % block)
-                .collect();
-            for c in 0..3 {
-                let sum = |img: &[[f32; 3]]| pixels.iter().map(|&i| img[i][c] as f64).sum::<f64>();
-                let var = |err: &[[f32; 3]]| {
-                    pixels
-                        .iter()
-                        .map(|&i| (err[i][c] as f64).powi(2))
-                        .sum::<f64>()
-                };
-                let sigma = (var(&ea) + var(&eb)).sqrt();
-                if sigma > 0.0 {
-                    worst = worst.max((sum(&a) - sum(&b)).abs() / sigma);
-                }
-            }
-        }
-    }
-    let total = |img: &[[f32; 3]]| img.iter().flatten().map(|&v| v as f64).sum::<f64>();
-    let spread = |err: &[[f32; 3]]| {
-        err.iter()
-            .flatten()
-            .map(|&v| (v as f64).powi(2))
-            .sum::<f64>()
-    };
-    Agreement {
-        ratio: total(&b) / total(&a),
-        z: (total(&b) - total(&a)).abs() / (spread(&ea) + spread(&eb)).sqrt(),
-        worst,
-    }
 }
 
 /// A spot light behind a frosted glass ball (`scenes/mitsuba/frosted_spot.xml`: GGX α = 0.3,

@@ -22,6 +22,7 @@ pub mod footprint;
 mod neighbourhood;
 mod path;
 mod photon_map;
+mod relight;
 mod single;
 
 pub use deflection::{DeflectionTable, TableCheck};

@@ -17,13 +17,14 @@
 
 use super::beam::Beams;
 use super::direct::{camera_path, continued_emission, hero, lit, record_cut, VisiblePoint};
+use super::relight::{fluoresces, relight, Relighting};
 use super::single::single_scattering;
-use super::{CameraRay, Integrator, Sample};
+use super::{CameraRay, FirstVertex, Integrator, Sample};
 use crate::color::Rgb;
 use crate::report::Report;
 use crate::transport::chain::{Carried, End, Policy, Walker};
 use crate::transport::lighting::LightNumbers;
-use crate::transport::{BsdfNumbers, Tracer};
+use crate::transport::{BsdfNumbers, Stats, Tracer};
 use rand::Rng;
 
 super::layers!(
@@ -60,81 +61,139 @@ impl<'a> PathTracer<'a> {
     pub fn new(tracer: &'a Tracer<'a>) -> Self {
         Self { tracer }
     }
+}
 
-    /// The light reaching the camera along the bounces from the visible point `vp`: direct
-    /// light at every later scattering vertex (light samples), and the emission each bounce's
-    /// chain finds (weighed against the light samples where it met no specular surface); the
-    /// first bounce's, where it met none, is the visible point's direct light.
-    /// The first bounce's BSDF or phase sample takes `first` where given.
-    fn bounces<'w>(
-        &self,
-        mut vp: VisiblePoint<'w>,
-        carried: Carried<'w>,
-        first: BsdfNumbers,
-        s: &mut Sample<PathLayer>,
-    ) -> Bounces {
-        let mut walker = Walker::carrying(carried, Policy::Weighted);
-        let mut direct = Rgb::ZERO;
-        let mut sum = Rgb::ZERO;
-        for bounce in 0.. {
-            if bounce >= SURE_BOUNCES {
-                let survive = vp.throughput.max_element().min(0.95);
-                if survive <= 0.0 || s.rng.gen::<f64>() >= survive {
-                    break;
-                }
-                vp.throughput /= survive;
-            }
-            let numbers = match bounce {
-                0 => first,
-                _ => BsdfNumbers::default(),
+/// The light reaching the camera from the scattering vertex `vp` a camera path carrying
+/// `carried` has reached, estimated by path tracing: its light samples (taking `first`'s light
+/// numbers where given), and the bounces on from it ([`bounces`]). At a fluorescent layer the
+/// path goes on at the wavelength the layer absorbs ([`relight`]).
+pub fn onward<'w, R: Rng>(
+    mut vp: VisiblePoint<'w>,
+    carried: Carried<'w>,
+    first: FirstVertex,
+    rng: &mut R,
+    stats: &mut Stats,
+) -> Onward {
+    match relight(carried.tracer, &mut vp, rng) {
+        Relighting::Unchanged => lit_and_bounces(vp, carried, first, rng, stats),
+        Relighting::Dark => Onward::default(),
+        Relighting::Relit { nm } => {
+            let tracer = carried.tracer.at_wavelength(nm);
+            let carried = Carried {
+                tracer: &tracer,
+                hero: None,
+                flights: carried.flights,
+                depth: carried.depth,
             };
-            let Some(b) = vp.vertex.scatter_given(numbers, s.rng) else {
-                break;
-            };
-            let mut beams = Beams::default();
-            let chain = walker.follow(b.ray, s.rng, s.stats, &mut beams.record(walker.tracer));
-            let weight = b.sample.weight * b.radiance_scale;
-            record_cut(&chain, vp.throughput * weight, s.stats);
-            sum += vp.throughput
-                * weight
-                * single_scattering(&beams, walker.carried(), s.rng, s.stats);
-            let throughput = vp.throughput * weight * chain.weight;
-            // Light emitted by media on the way is sampled by no light sample: it counts here.
-            sum += vp.throughput * weight * chain.emitted;
-            // The sample is also direct light's second strategy, weighed against `lit`'s.
-            let found = vp.throughput * continued_emission(walker.tracer, &vp.vertex, &b, &chain);
-            match bounce == 0 && chain.specular == 0 {
-                true => direct += found,
-                false => sum += found,
-            }
-            let End::Scatter(vertex) = chain.end else {
-                break;
-            };
-            vp = VisiblePoint {
-                vertex,
-                throughput: throughput * chain.radiance_scale(),
-            };
-            sum += lit(
-                walker.carried(),
-                &vp,
-                LightNumbers::default(),
-                s.rng,
-                s.stats,
-            );
-        }
-        Bounces {
-            direct,
-            indirect: sum,
+            lit_and_bounces(vp, carried, first, rng, stats)
         }
     }
 }
 
-/// The light a camera path's bounces from its visible point bring: the visible point's
-/// direct light its first bounce found (the second strategy of direct light there), and the
-/// rest.
+/// [`onward`] from a vertex the path goes on from as it is.
+fn lit_and_bounces<'w, R: Rng>(
+    vp: VisiblePoint<'w>,
+    carried: Carried<'w>,
+    first: FirstVertex,
+    rng: &mut R,
+    stats: &mut Stats,
+) -> Onward {
+    let lit = lit(carried, &vp, first.light, rng, stats);
+    let Bounces { direct, indirect } = bounces(vp, carried, first.bsdf, rng, stats);
+    Onward {
+        lit,
+        direct,
+        indirect,
+    }
+}
+
+/// The light reaching the camera along the bounces from the vertex `vp`: direct light at every
+/// later scattering vertex (light samples), and the emission each bounce's chain finds
+/// (weighed against the light samples where it met no specular surface); the first bounce's,
+/// where it met none, is `vp`'s direct light. The first bounce's BSDF or phase sample takes
+/// `first` where given. A bounce that reaches a fluorescent layer goes on from it by
+/// [`onward`].
+fn bounces<'w, R: Rng>(
+    mut vp: VisiblePoint<'w>,
+    carried: Carried<'w>,
+    first: BsdfNumbers,
+    rng: &mut R,
+    stats: &mut Stats,
+) -> Bounces {
+    let mut walker = Walker::carrying(carried, Policy::Weighted);
+    let mut direct = Rgb::ZERO;
+    let mut sum = Rgb::ZERO;
+    for bounce in 0.. {
+        if bounce >= SURE_BOUNCES {
+            let survive = vp.throughput.max_element().min(0.95);
+            if survive <= 0.0 || rng.gen::<f64>() >= survive {
+                break;
+            }
+            vp.throughput /= survive;
+        }
+        let numbers = match bounce {
+            0 => first,
+            _ => BsdfNumbers::default(),
+        };
+        let Some(b) = vp.vertex.scatter_given(numbers, rng) else {
+            break;
+        };
+        let mut beams = Beams::default();
+        let chain = walker.follow(b.ray, rng, stats, &mut beams.record(walker.tracer));
+        let weight = b.sample.weight * b.radiance_scale;
+        record_cut(&chain, vp.throughput * weight, stats);
+        sum += vp.throughput * weight * single_scattering(&beams, walker.carried(), rng, stats);
+        let throughput = vp.throughput * weight * chain.weight;
+        // Light emitted by media on the way is sampled by no light sample: it counts here.
+        sum += vp.throughput * weight * chain.emitted;
+        // The sample is also direct light's second strategy, weighed against `lit`'s.
+        let found = vp.throughput * continued_emission(walker.tracer, &vp.vertex, &b, &chain);
+        match bounce == 0 && chain.specular == 0 {
+            true => direct += found,
+            false => sum += found,
+        }
+        let End::Scatter(vertex) = chain.end else {
+            break;
+        };
+        vp = VisiblePoint {
+            vertex,
+            throughput: throughput * chain.radiance_scale(),
+        };
+        if fluoresces(walker.tracer, &vp.vertex) {
+            sum += onward(vp, walker.carried(), FirstVertex::default(), rng, stats).total();
+            break;
+        }
+        sum += lit(walker.carried(), &vp, LightNumbers::default(), rng, stats);
+    }
+    Bounces {
+        direct,
+        indirect: sum,
+    }
+}
+
+/// The light a camera path's bounces from a vertex bring: the vertex's direct light its first
+/// bounce found (the second strategy of direct light there), and the rest.
 struct Bounces {
     direct: Rgb,
     indirect: Rgb,
+}
+
+/// The light reaching the camera from a vertex ([`onward`]), as seen at the camera.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Onward {
+    /// The vertex's light samples.
+    pub lit: Rgb,
+    /// Its direct light the first bounce found.
+    pub direct: Rgb,
+    /// The rest.
+    pub indirect: Rgb,
+}
+
+impl Onward {
+    /// All of it.
+    pub fn total(&self) -> Rgb {
+        self.lit + self.direct + self.indirect
+    }
 }
 
 impl Integrator for PathTracer<'_> {
@@ -157,10 +216,9 @@ impl Integrator for PathTracer<'_> {
         let Some(vp) = c.visible else { return };
         s.add(PathLayer::Albedo, vp.vertex.albedo());
         s.add(PathLayer::Normal, vp.vertex.normal());
-        let direct = lit(c.carried, &vp, ray.first.light, s.rng, s.stats);
-        s.add(PathLayer::Direct, direct);
-        let bounces = self.bounces(vp, c.carried, ray.first.bsdf, s);
-        s.add(PathLayer::Direct, bounces.direct);
-        s.add(PathLayer::Indirect, bounces.indirect);
+        let onward = onward(vp, c.carried, ray.first, s.rng, s.stats);
+        s.add(PathLayer::Direct, onward.lit);
+        s.add(PathLayer::Direct, onward.direct);
+        s.add(PathLayer::Indirect, onward.indirect);
     }
 }

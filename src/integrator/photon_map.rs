@@ -32,8 +32,10 @@ use super::beam::Beams;
 use super::direct::{camera_path, direct, emission_seen, hero, record_cut, VisiblePoint};
 use super::footprint::{Eye, Way};
 use super::neighbourhood::Neighbourhood;
+use super::path::onward;
+use super::relight::fluoresces;
 use super::single::single_scattering;
-use super::{CameraRay, Integrator, Sample};
+use super::{CameraRay, FirstVertex, Integrator, Sample};
 use crate::color::Rgb;
 use crate::material::Material;
 use crate::photon::{shoot, Batch, PhotonMap, Photons, Sources, VolumeMap};
@@ -278,6 +280,18 @@ impl<'a> PhotonMapper<'a> {
                 let End::Scatter(y) = chain.end else { break };
                 weight *= chain.radiance_scale();
                 next = match y {
+                    // A fluorescent layer's photons carry no wavelength to read its response
+                    // at: the light it sends is path traced.
+                    y if fluoresces(walker.tracer, &y) => {
+                        let vp = VisiblePoint {
+                            vertex: y,
+                            throughput: Rgb::ONE,
+                        };
+                        let carried = walker.carried();
+                        let rest = onward(vp, carried, FirstVertex::default(), s.rng, s.stats);
+                        sum += weight * rest.total();
+                        None
+                    }
                     Vertex::Surface(y) if y.lobes().has_diffuse() => {
                         let e = s
                             .stats
@@ -457,6 +471,13 @@ impl<'a> Integrator for PhotonMapper<'a> {
         let Some((vp, v, carried)) = visible else {
             return;
         };
+        if fluoresces(carried.tracer, &vp.vertex) {
+            // A fluorescent layer's light is path traced ([`super::relight`]).
+            let onward = onward(vp, carried, FirstVertex::default(), s.rng, s.stats);
+            s.add(MapLayer::Direct, onward.lit + onward.direct);
+            s.add(MapLayer::Secondary, onward.indirect);
+            return;
+        }
         let direct = direct(carried, &vp, s.rng, s.stats);
         s.add(MapLayer::Direct, direct);
         if let Some(global) = &maps.global {

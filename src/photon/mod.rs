@@ -26,7 +26,7 @@ pub use map::{Photon, PhotonMap};
 pub use shell::Shell;
 pub use volume::VolumeMap;
 
-use crate::bsdf::Lobes;
+use crate::bsdf::{Bsdf, Lobes};
 use crate::color::Rgb;
 use crate::curve::Bounds;
 use crate::environment::Environment;
@@ -173,6 +173,9 @@ pub struct Sources<'a> {
     spectral: bool,
     /// Whether map photons take a hero wavelength ([`crate::scene::Scene::is_dispersive`]).
     dispersive: bool,
+    /// Whether a surface has a fluorescent layer: map photons then take a hero wavelength,
+    /// which they take on where they meet a layer ([`crate::scene::Scene::fluoresces`]).
+    layers: bool,
     /// How a photon picks its source (None: nothing emits).
     choice: Option<Discrete>,
 }
@@ -326,6 +329,7 @@ impl<'a> Sources<'a> {
             shell,
             spectral: scene.is_spectral(),
             dispersive: scene.is_dispersive(),
+            layers: scene.fluoresces(),
         }
     }
 
@@ -512,7 +516,7 @@ impl Photons {
                 Batch::Receivers => launch.radiometric(spectrum),
                 // A shell photon in a medium whose σs depends on wavelength has its own.
                 Batch::Caustic | Batch::Global if launch.hero.is_some() => launch,
-                Batch::Caustic | Batch::Global if sources.dispersive => Launch {
+                Batch::Caustic | Batch::Global if sources.dispersive || sources.layers => Launch {
                     hero: Some(launch.draw_wavelength(spectrum, rng.gen())),
                     ..launch
                 },
@@ -748,6 +752,7 @@ fn absorbed_by_fluorophore<'s>(
     let absorption = |site, fluorophore, facing, medium| DyeAbsorption {
         site,
         fluorophore,
+        nm: tracer.wavelength(),
         position: vertex.origin(),
         facing,
         medium,
@@ -1024,8 +1029,8 @@ fn trace_photon(
             walker,
             power: leg.power,
             throughput: Rgb::ONE,
-            seen_as: match leg.fluoresced {
-                Some(_) => colour::sensor(walk.wavelength),
+            seen_as: match leg.launch.wavelength {
+                Some(nm) => colour::sensor(nm),
                 None => Rgb::ONE,
             },
             bent: leg.launch.scattered || leg.fluoresced.is_some(),
@@ -1070,7 +1075,7 @@ fn trace_photon(
                 }
                 Ending::Dye(at) => at,
             };
-            let reemitted = at.fluorophore.reemit(walk.wavelength, rng.gen(), rng.gen());
+            let reemitted = at.fluorophore.reemit(at.nm, rng.gen(), rng.gen());
             let out = reemitted.map_or(0.0, |r| absorbed * r.energy);
             // All of it heat, or the Stokes shift's share.
             let heat = match at.site {
@@ -1085,7 +1090,10 @@ fn trace_photon(
                 again: leg.fluoresced.is_some(),
                 nm,
             });
-            if let Some(r) = reemitted {
+            // A fluorophore's light reaches the caustic map by no specular way from a light:
+            // camera paths find it through the final gather ([`crate::integrator`]'s
+            // relighting), which the caustic map would count again.
+            if let (Some(r), false) = (reemitted, tag.batch == Batch::Caustic) {
                 legs.push(Leg {
                     launch: Launch {
                         wavelength: Some(r.nm),
@@ -1143,6 +1151,8 @@ struct DyeAbsorption<'s> {
     site: DyeSite,
     /// What it emits.
     fluorophore: &'s Fluorophore,
+    /// The vacuum wavelength it absorbed, nm.
+    nm: f64,
     /// Where its light sets off: the point in a medium, just off a surface on the side the
     /// light came from.
     position: DVec3,
@@ -1223,7 +1233,7 @@ fn follow_branch<'w, R: Rng>(
                 b.throughput *= chain.weight;
             }
         }
-        let vertex = match chain.end {
+        let mut vertex = match chain.end {
             End::Scatter(vertex) => vertex,
             End::Escaped { .. } => break walk.escaped(chain.medium),
             End::Emitter { .. } | End::Absorbed { medium: None } => break Fate::Absorbed,
@@ -1236,6 +1246,23 @@ fn follow_branch<'w, R: Rng>(
             }
             End::Lost | End::Stopped => break Fate::Lost,
         };
+        if let (Vertex::Surface(v), Some(h)) = (&mut vertex, launch.hero) {
+            let layer =
+                tracer.scene.fluoresces() && tracer.scene.fluorescent_layer(v.prim).is_some();
+            if layer && b.walker.take_on_hero() {
+                // A layer absorbs and emits at wavelengths: the photon takes on its hero's
+                // here, as where it meets dispersion, and so does the surface's reflectance.
+                let kept = colour::reflectance(b.throughput, h.nm);
+                walk.power = Rgb::splat(h.power * kept / tag.count as f64);
+                b.seen_as = colour::sensor(h.nm);
+                walk.wavelength = h.nm;
+                if let Some(albedo) = v.bsdf.lambert_albedo() {
+                    v.bsdf = Bsdf::Lambert {
+                        albedo: Rgb::splat(colour::reflectance(albedo, h.nm)),
+                    };
+                }
+            }
+        }
         if let Some(at) = absorbed_by_fluorophore(&vertex, &b.walker, rng) {
             return (Ending::Dye(at), b.fogged);
         }

@@ -185,18 +185,20 @@ fn photons_carry_all_light(scene: &Scene) -> Result<()> {
     }
 }
 
-/// Refuses to render an image of a scene whose light camera paths cannot carry: a dye's or a
-/// fluorescent layer's light, which changes its wavelength on the way. Its receivers measure
-/// it (photons change their wavelength where a fluorophore emits them again).
+/// Refuses to render an image of a scene whose light camera paths cannot carry: a dye's in a
+/// medium, which changes its wavelength on the way (a camera path would have to find where
+/// along its way the dye emits toward it). Its receivers measure it (photons change their
+/// wavelength where a dye emits them again). A fluorescent layer's light camera paths carry
+/// ([`crate::integrator`]'s relighting).
 pub fn images_carry_all_light(scene: &Scene) -> Result<()> {
-    match scene.first_fluorescent() {
+    match scene.media().first_fluorescent() {
         None => Ok(()),
-        Some(what) => Err(crate::error::Error::Setting {
+        Some(name) => Err(crate::error::Error::Setting {
             key: "integrator",
             message: format!(
-                "{what} (`fluorescence`), whose light changes its wavelength: no integrator \
-                 renders an image of it; its receivers measure it (leave out [camera] to \
-                 measure them alone)"
+                "medium '{name}' holds a dye (`fluorescence`), whose light changes its \
+                 wavelength on the way: no integrator renders an image of it yet; its receivers \
+                 measure it (leave out [camera] to measure them alone)"
             ),
         }),
     }

@@ -14,7 +14,7 @@ use crate::material::{FluorescentLayer, Material};
 use crate::media::{Medium, Parametric};
 use crate::receiver::Receiver;
 use crate::shapes::Primitive;
-use crate::spectrum::{Spectrum, LAMBDA_D};
+use crate::spectrum::{colour, Binned, Spectrum, LAMBDA_D};
 use crate::volume::{Fluorescence, Participating, Scattering};
 use std::path::{Path, PathBuf};
 
@@ -301,7 +301,13 @@ impl Description {
         for (receiver, r) in self.receivers.iter().enumerate() {
             add(Role::Detector(ReceiverId::new(receiver)), r.primitive());
         }
+        let fluoresces = self.materials.iter().any(|m| m.fluorescence().is_some());
+        let sources = fluoresces
+            .then(|| source_spectrum(&self.light_spectra, self.environment.is_some()))
+            .flatten();
         Scene {
+            fluoresces,
+            sources,
             path: self.path,
             media: self.media,
             ambient: self.ambient,
@@ -316,6 +322,21 @@ impl Description {
             inputs: self.inputs,
         }
     }
+}
+
+/// The density of [`Scene::sources`] for lights of `spectra` (None: D65) and, where
+/// `environment`, the environment's D65; None without a source.
+fn source_spectrum(spectra: &[Option<Spectrum>], environment: bool) -> Option<Binned> {
+    let d65 = || Binned::new(colour::d65);
+    let parts: Option<Vec<Binned>> = spectra
+        .iter()
+        .map(|s| match s {
+            Some(s) => Binned::new(|nm| s.pdf(nm)),
+            None => d65(),
+        })
+        .chain(environment.then(d65))
+        .collect();
+    Binned::mixture(&parts?)
 }
 
 /// A built scene, immutable and shareable across threads.
@@ -344,6 +365,11 @@ pub struct Scene {
     pub camera: Option<Camera>,
     /// The scene file and every file it reads (meshes, images, grids).
     pub inputs: Vec<PathBuf>,
+    /// Whether a surface has a fluorescent layer (see [`Scene::fluoresces`]).
+    fluoresces: bool,
+    /// Where a surface fluoresces: the light its sources emit over wavelength, each light and
+    /// the environment in equal shares (see [`Scene::sources`]).
+    sources: Option<Binned>,
 }
 
 impl Scene {
@@ -430,6 +456,21 @@ impl Scene {
         self.is_dispersive()
             || self.materials.iter().any(|m| m.fluorescence().is_some())
             || self.receivers.iter().any(|r| !r.bands.is_empty())
+    }
+
+    /// Whether a surface has a fluorescent layer: a path that meets one takes on one
+    /// wavelength there (as where it meets dispersion).
+    pub fn fluoresces(&self) -> bool {
+        self.fluoresces
+    }
+
+    /// The density over wavelength of the light the scene's sources emit, each light and the
+    /// environment in equal shares (a light without a spectrum, and the environment, emit
+    /// D65): where camera paths draw the wavelength a fluorescent layer absorbs
+    /// ([`FluorescentLayer::relight`]). None in a scene without a fluorescent layer, or
+    /// without a source.
+    pub fn sources(&self) -> Option<&Binned> {
+        self.sources.as_ref()
     }
 
     /// The fluorescent layer on primitive `prim`'s surface (None: none).

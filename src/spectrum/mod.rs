@@ -4,13 +4,15 @@
 //! 004's media answer "which wavelengths share a path" with it: media whose index does not
 //! depend on λ keep them all on one), [`emission`] (the shape of a light's spectrum, and
 //! sampling a photon's wavelength from it), [`fluorophore`] (what emits light again at another
-//! wavelength), [`colour`] (spectra to and from the linear sRGB of the images) and [`Hero`] (the wavelength a camera path takes where it meets dispersion).
+//! wavelength), [`binned`] (a density over wavelength drawn from where no closed form serves), [`colour`] (spectra to and from the linear sRGB of the images) and [`Hero`] (the wavelength a camera path takes where it meets dispersion).
 
+pub mod binned;
 pub mod colour;
 pub mod dispersion;
 pub mod emission;
 pub mod fluorophore;
 
+pub use binned::Binned;
 pub use dispersion::Dispersion;
 pub use emission::Spectrum;
 pub use fluorophore::{Fluorophore, Reemitted};

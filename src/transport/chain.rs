@@ -470,6 +470,19 @@ impl<'w> Walker<'w> {
         }
     }
 
+    /// Takes on the hero's wavelength now, where the path still carries every wavelength and
+    /// has a hero (a photon meeting a fluorescent layer, which absorbs and emits at
+    /// wavelengths); true where it did. Its weight there is the caller's to change.
+    pub fn take_on_hero(&mut self) -> bool {
+        match self.hero.take() {
+            Some(hero) => {
+                self.tracer = hero.tracer();
+                true
+            }
+            None => false,
+        }
+    }
+
     /// Follows `ray` to the end of its specular chain, drawing from `rng`, adding to `stats`
     /// and telling `observer` what it passes. Counts a depth-limited chain in the statistics.
     pub fn follow<R: Rng>(
@@ -804,7 +817,9 @@ impl<'w> Walker<'w> {
                 ControlFlow::Break(End::Emitter {
                     prim: hit.prim,
                     radiance: match front {
-                        true => self.tracer.radiance(scene.light(light).surface_radiance()),
+                        true => self
+                            .tracer
+                            .emitted_by(light.index(), scene.light(light).surface_radiance()),
                         false => Rgb::ZERO,
                     },
                     position: hit.position,

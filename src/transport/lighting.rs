@@ -10,7 +10,6 @@ use super::connect::connect;
 use super::{offset, visibility, Scattered, Stats, SurfaceVertex, Tracer, Vertex};
 use crate::color::Rgb;
 use crate::ids::MediumId;
-use crate::lights::Light;
 use crate::lights::LightSamples;
 use crate::sampling::{Given, Pick};
 use crate::scene::Role;
@@ -106,7 +105,7 @@ enum Sides {
     Far,
 }
 
-/// One light sample of `light` at a scattering vertex, through a straight shadow ray from the
+/// One light sample of light `index` at a scattering vertex, through a straight shadow ray from the
 /// side the light lies on, among `sides` (the far side only through a surface that transmits
 /// into a uniform medium); multiple importance weighted against the BSDF or phase sample for
 /// area lights.
@@ -114,10 +113,11 @@ fn straight_light(
     tracer: &Tracer,
     vertex: &Vertex,
     sides: Sides,
-    light: &Light,
+    index: usize,
     chosen: f64,
     uv: (f64, f64),
 ) -> Rgb {
+    let light = &tracer.scene.lights[index];
     let Some(inc) = light.sample_incident(vertex.origin(), uv) else {
         return Rgb::ZERO;
     };
@@ -138,10 +138,10 @@ fn straight_light(
     }
     let kept = visibility::transmittance(tracer, side.origin, side.medium, inc.wi, reach);
     let weight = power_heuristic(inc.pdf * chosen, vertex.pdf(inc.wi));
-    f * tracer.radiance(inc.irradiance) * (side.cos * weight * side.radiance_scale) * kept
+    f * tracer.emitted_by(index, inc.irradiance) * (side.cos * weight * side.radiance_scale) * kept
 }
 
-/// A point, spot, LED or parallel light at a scattering vertex, through the curved connection
+/// A point, spot, LED or parallel light (light `index`) at a scattering vertex, through the curved connection
 /// to it from its `face` in the gradient medium there: its arrival side, or the far side of a
 /// surface that transmits into one (`uv` samples an LED's disk). Zero where that side's
 /// medium is uniform (a straight shadow ray serves it) or no connection reaches the light.
@@ -149,10 +149,11 @@ fn curved_light(
     tracer: &Tracer,
     vertex: &Vertex,
     face: Face,
-    light: &Light,
+    index: usize,
     uv: (f64, f64),
     stats: &mut Stats,
 ) -> Rgb {
+    let light = &tracer.scene.lights[index];
     let (origin, medium) = match (face, vertex.surface()) {
         (Face::Arrival, _) => (vertex.origin(), vertex.medium()),
         (Face::Far, Some(v)) if v.lobes().transmits() => (offset(v.position, -v.normal), v.beyond),
@@ -177,7 +178,10 @@ fn curved_light(
     if cos <= 0.0 {
         return Rgb::ZERO;
     }
-    let e = link.irradiance(&anchor, tracer.radiance(light.intensity(-link.arrival)));
+    let e = link.irradiance(
+        &anchor,
+        tracer.emitted_by(index, light.intensity(-link.arrival)),
+    );
     let unscattered = tracer
         .scattering(m)
         .map_or(Rgb::ONE, |sc| sc.transmittance(link.column));
@@ -250,10 +254,10 @@ pub fn light_samples(
         let light = &scene.lights[index];
         let uv = (u, v);
         let lit = match (graded, light.is_hittable()) {
-            (false, _) => straight_light(tracer, vertex, Sides::Either, light, probability, uv),
+            (false, _) => straight_light(tracer, vertex, Sides::Either, index, probability, uv),
             (true, false) => {
-                curved_light(tracer, vertex, Face::Arrival, light, uv, stats)
-                    + straight_light(tracer, vertex, Sides::Far, light, probability, uv)
+                curved_light(tracer, vertex, Face::Arrival, index, uv, stats)
+                    + straight_light(tracer, vertex, Sides::Far, index, probability, uv)
             }
             // An area light's light reaches a vertex in a gradient medium by the BSDF ray.
             (true, true) => Rgb::ZERO,
@@ -262,7 +266,7 @@ pub fn light_samples(
         // reached by no direction sample and no straight shadow ray: by the curved connection
         // from the far side only (an area light there by the BSDF ray).
         let beyond = match light.is_hittable() {
-            false => curved_light(tracer, vertex, Face::Far, light, uv, stats),
+            false => curved_light(tracer, vertex, Face::Far, index, uv, stats),
             true => Rgb::ZERO,
         };
         (lit + beyond) / probability

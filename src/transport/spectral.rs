@@ -132,6 +132,20 @@ impl<'a> Tracer<'a> {
         }
     }
 
+    /// The radiance, irradiance or intensity `rgb` of light `light`'s emission as this
+    /// tracer's rays see it: [`Tracer::radiance`] for a light without a spectrum; for one with
+    /// a spectrum S, the RGB itself, or at one wavelength S's density there times its power
+    /// (the light's RGB is its power times S's colour, [`crate::scene::read::light`]), so
+    /// that a line's light is found at the line's wavelengths alone.
+    pub fn emitted_by(&self, light: usize, rgb: Rgb) -> Rgb {
+        let (Some(nm), Some(spectrum)) = (self.wavelength, self.scene.light_spectrum(light)) else {
+            return self.radiance(rgb);
+        };
+        let colour = spectrum.colour().0.max(glam::DVec3::ZERO);
+        let k = colour.max_position();
+        Rgb::splat(rgb.0[k] / colour[k] * spectrum.pdf(nm))
+    }
+
     /// An irradiance estimated from stored photons (an RGB sum of a few photons' colours,
     /// whose channels may be negative: [`colour::sensor`]) as this tracer's rays see it: the
     /// RGB itself, or — rays at one wavelength — each channel times D65 there, joined to the

@@ -1,3 +1,4 @@
+pub mod agreement;
 pub mod bigarc;
 pub mod chi2;
 pub mod quadrature;

@@ -204,10 +204,13 @@ fn fluorescent_layer(t: &mut TableReader) -> Result<Option<FluorescentLayer>> {
     )?;
     let fluorophore = read_fluorophore(&mut f)?;
     f.finish()?;
-    Ok(Some(FluorescentLayer {
-        excitation,
-        fluorophore,
-    }))
+    match FluorescentLayer::new(excitation, fluorophore) {
+        Some(layer) => Ok(Some(layer)),
+        None => Err(t.error(
+            "fluorescence",
+            "the layer absorbs nothing from 360 to 830 nm",
+        )),
+    }
 }
 
 /// A material and, for a dielectric, what fills it.

@@ -1,0 +1,150 @@
+//! A fluorescent layer on a diffuse surface (a highlighter's ink, a brightened paper): of the
+//! light of vacuum wavelength λ falling on it, the share a(λ) is absorbed by the layer's
+//! fluorophore, which emits q of those photons again, Lambertian, on its line
+//! ([`Fluorophore`]: ε(λ′) their number per nm, each with λ/λ′ of the absorbed energy); the
+//! rest meets the surface's own reflectance ρ. Its reflectance from λ to λ′ is so the simplest
+//! exact bispectral one (a Donaldson matrix of a diagonal and one rank-1 part): (1 − a(λ))·ρ(λ)
+//! for λ′ = λ, a(λ)·q·ε(λ′)·λ/λ′ per nm otherwise.
+//!
+//! **Seen from a camera** ([`FluorescentLayer::relight`]). Under spectral irradiance E(λ) the
+//! layer's radiance at λ′ is
+//!
+//! L(λ′) = ρ(λ′)(1 − a(λ′))·E(λ′)/π + q·ε(λ′)/λ′ · ∫ a(λ)·λ·E(λ) dλ / π.
+//!
+//! A camera path that carries every wavelength takes on one λ′ there, drawn from the
+//! visible-importance density and the emission line in equal shares ([`FluorescentLayer::hero`]),
+//! its throughput weighed r̄(λ′)/p(λ′) as where a path meets dispersion. A camera path
+//! carrying one wavelength λ′ estimates either part by going on from the layer as
+//! from a white Lambertian surface at one wavelength λ — whose estimate is E(λ)/π — with a
+//! weight: the reflected part at λ = λ′, weighed ρ(λ′)(1 − a(λ′)); the fluorescent part at an
+//! excitation wavelength drawn from a(λ)·λ and from the light the scene's sources emit in equal
+//! shares (the light's narrow line and the layer's broad band both found), weighed
+//! q·ε(λ′)/λ′·a(λ)·λ/p(λ). Which part a path takes is drawn in proportion to their sizes under
+//! equal-energy light, and the weight divided by its chance.
+
+use crate::spectrum::{Binned, Dispersion, Fluorophore, Hero, LAMBDA_MAX, LAMBDA_MIN};
+
+/// A fluorescent layer (see the module's notes).
+#[derive(Clone, Debug)]
+pub struct FluorescentLayer {
+    /// a(λ): the share of the light the layer absorbs, in [0, 1].
+    pub excitation: Dispersion,
+    /// What it emits again.
+    pub fluorophore: Fluorophore,
+    /// The density ∝ a(λ)·λ: its absorbed photons' number over wavelength under equal-energy
+    /// light.
+    absorbing: Binned,
+    /// ∫ a(λ)·λ dλ, nm² (1 nm midpoint sums; only the share of the two parts uses it).
+    absorbing_integral: f64,
+}
+
+/// The very same layer (a material's, read once from its file): its forms over wavelength have
+/// no equality of their own.
+impl PartialEq for FluorescentLayer {
+    fn eq(&self, other: &Self) -> bool {
+        std::ptr::eq(self, other)
+    }
+}
+
+/// Where a camera path goes on from a fluorescent layer: as from a white Lambertian surface at
+/// one wavelength, its throughput times a weight.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Relit {
+    /// The vacuum wavelength (nm) the path carries on at.
+    pub nm: f64,
+    /// What its throughput is multiplied by (see the module's notes).
+    pub weight: f64,
+}
+
+impl FluorescentLayer {
+    /// The layer absorbing a(λ) = `excitation` and emitting as `fluorophore` (None where it
+    /// absorbs nothing from 360 to 830 nm).
+    pub fn new(excitation: Dispersion, fluorophore: Fluorophore) -> Option<Self> {
+        let a = |nm: f64| excitation.at(nm).clamp(0.0, 1.0);
+        let absorbing = Binned::new(|nm| a(nm) * nm)?;
+        let bins = (LAMBDA_MAX - LAMBDA_MIN) as usize;
+        let absorbing_integral = (0..bins)
+            .map(|i| {
+                let nm = LAMBDA_MIN + i as f64 + 0.5;
+                a(nm) * nm
+            })
+            .sum();
+        Some(Self {
+            excitation,
+            fluorophore,
+            absorbing,
+            absorbing_integral,
+        })
+    }
+
+    /// a at vacuum wavelength `nm`, within [0, 1].
+    pub fn absorbed(&self, nm: f64) -> f64 {
+        self.excitation.at(nm).clamp(0.0, 1.0)
+    }
+
+    /// Where a camera path at vacuum wavelength `nm` that meets the layer on a surface of
+    /// reflectance `albedo` there goes on (see the module's notes), drawing the excitation
+    /// wavelength from a(λ)·λ and `sources` (the light the scene's sources emit; None: from
+    /// a(λ)·λ alone), for uniform `u`; None where the layer sends no light its way.
+    pub fn relight(
+        &self,
+        nm: f64,
+        albedo: f64,
+        sources: Option<&Binned>,
+        u: [f64; 2],
+    ) -> Option<Relit> {
+        let [choice, draw] = u;
+        let reflected = albedo * (1.0 - self.absorbed(nm));
+        let line = self.fluorophore.quantum_yield * self.fluorophore.emission.pdf(nm) / nm;
+        let fluorescent = line * self.absorbing_integral;
+        let total = reflected + fluorescent;
+        if total.is_nan() || total <= 0.0 {
+            return None;
+        }
+        let relit = match choice * total < fluorescent {
+            true => {
+                let (at, ratio) = self.excitation_draw(sources, draw);
+                Relit {
+                    nm: at,
+                    weight: total * ratio / self.absorbing_integral,
+                }
+            }
+            false => Relit { nm, weight: total },
+        };
+        (relit.weight > 0.0).then_some(relit)
+    }
+
+    /// The wavelength a camera path carrying every wavelength takes on where it meets the
+    /// layer, for uniform `u`: from the visible-importance density and the layer's emission
+    /// line in equal shares (a narrow line is found by half the paths, where the visible
+    /// density alone would find it by a few), with the mixture's density.
+    pub fn hero(&self, u: f64) -> Hero {
+        let emission = &self.fluorophore.emission;
+        let nm = match u < 0.5 {
+            true => Hero::visible(2.0 * u).nm,
+            false => emission.sample(2.0 * u - 1.0),
+        };
+        Hero {
+            nm,
+            pdf: 0.5 * (Hero::visible_pdf(nm) + emission.pdf(nm)),
+        }
+    }
+
+    /// An excitation wavelength for uniform `u`, from a(λ)·λ and `sources` in equal shares, and
+    /// a(λ)·λ/p(λ) there.
+    fn excitation_draw(&self, sources: Option<&Binned>, u: f64) -> (f64, f64) {
+        let nm = match sources {
+            Some(s) if u >= 0.5 => s.sample(2.0 * u - 1.0),
+            Some(_) => self.absorbing.sample(2.0 * u),
+            None => self.absorbing.sample(u),
+        };
+        let pdf = match sources {
+            Some(s) => 0.5 * (self.absorbing.pdf(nm) + s.pdf(nm)),
+            None => self.absorbing.pdf(nm),
+        };
+        match pdf > 0.0 {
+            true => (nm, self.absorbed(nm) * nm / pdf),
+            false => (nm, 0.0),
+        }
+    }
+}
