@@ -12,13 +12,15 @@
 //! L(λ′) = ρ(λ′)(1 − a(λ′))·E(λ′)/π + q·ε(λ′)/λ′ · ∫ a(λ)·λ·E(λ) dλ / π.
 //!
 //! A camera path that carries every wavelength takes on one λ′ there, drawn from the
-//! visible-importance density and the emission line in equal shares ([`FluorescentLayer::hero`]),
+//! visible-importance density, the emission line and the light the scene's sources emit in
+//! equal shares ([`FluorescentLayer::hero`]),
 //! its throughput weighed r̄(λ′)/p(λ′) as where a path meets dispersion. A camera path
 //! carrying one wavelength λ′ estimates either part by going on from the layer as
 //! from a white Lambertian surface at one wavelength λ — whose estimate is E(λ)/π — with a
 //! weight: the reflected part at λ = λ′, weighed ρ(λ′)(1 − a(λ′)); the fluorescent part at an
-//! excitation wavelength drawn from a(λ)·λ and from the light the scene's sources emit in equal
-//! shares (the light's narrow line and the layer's broad band both found), weighed
+//! excitation wavelength drawn in equal shares from a(λ)·λ and from a(λ)·λ·s(λ), s the light
+//! the scene's sources emit (a narrow line of a light found where it excites, and light the
+//! scene's surfaces colour on its way still found), weighed
 //! q·ε(λ′)/λ′·a(λ)·λ/p(λ). Which part a path takes is drawn in proportion to their sizes under
 //! equal-energy light, and the weight divided by its chance.
 
@@ -84,13 +86,14 @@ impl FluorescentLayer {
 
     /// Where a camera path at vacuum wavelength `nm` that meets the layer on a surface of
     /// reflectance `albedo` there goes on (see the module's notes), drawing the excitation
-    /// wavelength from a(λ)·λ and `sources` (the light the scene's sources emit; None: from
-    /// a(λ)·λ alone), for uniform `u`; None where the layer sends no light its way.
+    /// wavelength from a(λ)·λ and `excited`, the density of the light the layer absorbs from
+    /// the scene's sources (None: from a(λ)·λ alone), for uniform `u`; None where the layer
+    /// sends no light its way.
     pub fn relight(
         &self,
         nm: f64,
         albedo: f64,
-        sources: Option<&Binned>,
+        excited: Option<&Binned>,
         u: [f64; 2],
     ) -> Option<Relit> {
         let [choice, draw] = u;
@@ -103,7 +106,7 @@ impl FluorescentLayer {
         }
         let relit = match choice * total < fluorescent {
             true => {
-                let (at, ratio) = self.excitation_draw(sources, draw);
+                let (at, ratio) = self.excitation_draw(excited, draw);
                 Relit {
                     nm: at,
                     weight: total * ratio / self.absorbing_integral,
@@ -115,30 +118,36 @@ impl FluorescentLayer {
     }
 
     /// The wavelength a camera path carrying every wavelength takes on where it meets the
-    /// layer, for uniform `u`: from the visible-importance density and the layer's emission
-    /// line in equal shares (a narrow line is found by half the paths, where the visible
-    /// density alone would find it by a few), with the mixture's density.
-    pub fn hero(&self, u: f64) -> Hero {
+    /// layer, for uniform `u`: from the visible-importance density, the layer's emission line
+    /// and `sources` (the light the scene's sources emit, which the layer reflects; None: the
+    /// first two alone) in equal shares — a narrow line, emitted or reflected, is found by a
+    /// share of the paths where the visible density alone would find it by a few — with the
+    /// mixture's density.
+    pub fn hero(&self, sources: Option<&Binned>, u: f64) -> Hero {
         let emission = &self.fluorophore.emission;
-        let nm = match u < 0.5 {
-            true => Hero::visible(2.0 * u).nm,
-            false => emission.sample(2.0 * u - 1.0),
+        let parts = if sources.is_some() { 3.0 } else { 2.0 };
+        let (part, v) = ((u * parts).floor().min(parts - 1.0), (u * parts).fract());
+        let nm = match (part as usize, sources) {
+            (0, _) => Hero::visible(v).nm,
+            (1, _) | (_, None) => emission.sample(v),
+            (_, Some(s)) => s.sample(v),
         };
+        let sourced = sources.map_or(0.0, |s| s.pdf(nm));
         Hero {
             nm,
-            pdf: 0.5 * (Hero::visible_pdf(nm) + emission.pdf(nm)),
+            pdf: (Hero::visible_pdf(nm) + emission.pdf(nm) + sourced) / parts,
         }
     }
 
-    /// An excitation wavelength for uniform `u`, from a(λ)·λ and `sources` in equal shares, and
-    /// a(λ)·λ/p(λ) there.
-    fn excitation_draw(&self, sources: Option<&Binned>, u: f64) -> (f64, f64) {
-        let nm = match sources {
+    /// An excitation wavelength for uniform `u`, from a(λ)·λ and `excited` in equal shares,
+    /// and a(λ)·λ/p(λ) there.
+    fn excitation_draw(&self, excited: Option<&Binned>, u: f64) -> (f64, f64) {
+        let nm = match excited {
             Some(s) if u >= 0.5 => s.sample(2.0 * u - 1.0),
             Some(_) => self.absorbing.sample(2.0 * u),
             None => self.absorbing.sample(u),
         };
-        let pdf = match sources {
+        let pdf = match excited {
             Some(s) => 0.5 * (self.absorbing.pdf(nm) + s.pdf(nm)),
             None => self.absorbing.pdf(nm),
         };

@@ -463,6 +463,23 @@ fn a_dye_absorbs_along_a_curved_ray() {
     assert!((kept - expected).abs() < 4.0 * sd);
 }
 
+/// A black diffuse square of half width `half` about the origin in the plane z = 0, its
+/// fluorescent layer absorbing the share `a` below 480 nm (nothing above 500) and emitting a
+/// Gaussian line at 600 nm (FWHM 40) with yield `q`, under the sun of a 400 nm line (FWHM 2,
+/// irradiance 1) from +z.
+fn ink_square(a: f64, q: f64, half: f64) -> String {
+    format!(
+        "[[material]]\nname = \"ink\"\ntype = \"diffuse\"\nalbedo = 0\n\
+         fluorescence = {{ excitation = {{ table = [[360, {a}], [480, {a}], [500, 0], [830, 0]] }}, \
+         emission = {{ gaussian = [600, 40] }}, quantum_yield = {q} }}\n\
+         [[shape]]\ntype = \"quad\"\n\
+         vertices = [[-{half}, -{half}, 0], [{half}, -{half}, 0], [{half}, {half}, 0], [-{half}, {half}, 0]]\n\
+         material = \"ink\"\n\
+         [[light]]\ntype = \"directional\"\ndirection = [0, 0, -1]\nirradiance = 1\n\
+         spectrum = {{ gaussian = [400, 2] }}\n"
+    )
+}
+
 /// A fluorescent layer on a black diffuse square (20 × 20) under the sun at 400 nm, its layer
 /// absorbing a = 0.6 there and emitting a Gaussian line at 600 nm (FWHM 40) with yield 0.7:
 /// the square is a Lambertian emitter of exitance M = E·a·q·E[λ/λ′], and a receiver (4 × 4)
@@ -476,17 +493,10 @@ fn a_dye_absorbs_along_a_curved_ray() {
 fn a_fluorescent_layer_glows_as_a_lambertian_emitter_of_its_absorbed_light() {
     let (a, q, half, height, side) = (0.6, 0.7, 10.0f64, 1.0f64, 4.0f64);
     let text = format!(
-        "[render]\nreceiver_photons = 1000000\n\
-         [[material]]\nname = \"ink\"\ntype = \"diffuse\"\nalbedo = 0\n\
-         fluorescence = {{ excitation = {{ table = [[360, {a}], [480, {a}], [500, 0], [830, 0]] }}, \
-         emission = {{ gaussian = [600, 40] }}, quantum_yield = {q} }}\n\
-         [[shape]]\ntype = \"quad\"\n\
-         vertices = [[-{half}, -{half}, 0], [{half}, -{half}, 0], [{half}, {half}, 0], [-{half}, {half}, 0]]\n\
-         material = \"ink\"\n\
-         [[light]]\ntype = \"directional\"\ndirection = [0, 0, -1]\nirradiance = 1\n\
-         spectrum = {{ gaussian = [400, 2] }}\n\
+        "[render]\nreceiver_photons = 1000000\n{}\
          [[receiver]]\nname = \"above\"\ncenter = [0, 0, {height}]\nnormal = [0, 0, -1]\n\
-         size = [{side}, {side}]\nbins = [1, 1]\nbands = [[500, 830]]\n"
+         size = [{side}, {side}]\nbins = [1, 1]\nbands = [[500, 830]]\n",
+        ink_square(a, q, half)
     );
     let (scene, settings) = parse_scene(Path::new("ink.toml"), text).unwrap();
     let (m, budget, _) = grinlight::render::measure(&scene, &settings, 0, &()).unwrap();
@@ -542,15 +552,8 @@ fn a_camera_sees_a_fluorescent_layer_glow_with_the_light_it_absorbs() {
     let text = format!(
         "[render]\nspp = 64\n\
          [camera]\nposition = [0, 0, 5]\nlook_at = [0, 0, 0]\nup = [0, 1, 0]\nfov_y_deg = 20\n\
-         width = 32\nheight = 32\n\
-         [[material]]\nname = \"ink\"\ntype = \"diffuse\"\nalbedo = 0\n\
-         fluorescence = {{ excitation = {{ table = [[360, {a}], [480, {a}], [500, 0], [830, 0]] }}, \
-         emission = {{ gaussian = [600, 40] }}, quantum_yield = {q} }}\n\
-         [[shape]]\ntype = \"quad\"\n\
-         vertices = [[-{half}, -{half}, 0], [{half}, -{half}, 0], [{half}, {half}, 0], [-{half}, {half}, 0]]\n\
-         material = \"ink\"\n\
-         [[light]]\ntype = \"directional\"\ndirection = [0, 0, -1]\nirradiance = 1\n\
-         spectrum = {{ gaussian = [400, 2] }}\n"
+         width = 32\nheight = 32\n{}",
+        ink_square(a, q, half)
     );
     let (scene, settings) = parse_scene(Path::new("ink.toml"), text).unwrap();
     let colour = (0..3).map(|c| {

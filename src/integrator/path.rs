@@ -21,6 +21,7 @@ use super::relight::{fluoresces, relight, Relighting};
 use super::single::single_scattering;
 use super::{CameraRay, FirstVertex, Integrator, Sample};
 use crate::color::Rgb;
+use crate::lights::LightSamples;
 use crate::report::Report;
 use crate::transport::chain::{Carried, End, Policy, Walker};
 use crate::transport::lighting::LightNumbers;
@@ -78,7 +79,11 @@ pub fn onward<'w, R: Rng>(
         Relighting::Unchanged => lit_and_bounces(vp, carried, first, rng, stats),
         Relighting::Dark => Onward::default(),
         Relighting::Relit { nm } => {
-            let tracer = carried.tracer.at_wavelength(nm);
+            // Light samples go to every light: the light sampler weighs lights by their RGB
+            // power, and at one wavelength a light of little colour (a violet lamp) may be the
+            // brightest.
+            let mut tracer = carried.tracer.at_wavelength(nm);
+            tracer.light_samples = LightSamples::Each;
             let carried = Carried {
                 tracer: &tracer,
                 hero: None,

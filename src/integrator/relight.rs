@@ -54,13 +54,13 @@ pub fn relight(tracer: &Tracer, vp: &mut VisiblePoint, rng: &mut impl Rng) -> Re
     let (nm, sensor) = match tracer.single_wavelength() {
         Some(nm) => (nm, Rgb::ONE),
         None => {
-            let hero = layer.hero(rng.gen());
+            let hero = layer.hero(tracer.scene.sources(), rng.gen());
             (hero.nm, hero.sensor_weight())
         }
     };
     let reflectance = crate::material::reflectance(albedo, Some(nm)).mean();
     let u = [rng.gen(), rng.gen()];
-    let Some(relit) = layer.relight(nm, reflectance, tracer.scene.sources(), u) else {
+    let Some(relit) = layer.relight(nm, reflectance, tracer.scene.excitation(v.prim), u) else {
         return Relighting::Dark;
     };
     let mut white = v;

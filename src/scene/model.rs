@@ -305,9 +305,16 @@ impl Description {
         let sources = fluoresces
             .then(|| source_spectrum(&self.light_spectra, self.environment.is_some()))
             .flatten();
+        let excitations = (self.materials.iter())
+            .map(|m| {
+                let (layer, sources) = (m.fluorescence()?, sources.as_ref()?);
+                Binned::new(|nm| layer.absorbed(nm) * nm * sources.pdf(nm))
+            })
+            .collect();
         Scene {
             fluoresces,
             sources,
+            excitations,
             path: self.path,
             media: self.media,
             ambient: self.ambient,
@@ -324,8 +331,8 @@ impl Description {
     }
 }
 
-/// The density of [`Scene::sources`] for lights of `spectra` (None: D65) and, where
-/// `environment`, the environment's D65; None without a source.
+/// The density over wavelength of the light of lights of `spectra` (None: D65) and, where
+/// `environment`, the environment's D65, in equal shares; None without a source.
 fn source_spectrum(spectra: &[Option<Spectrum>], environment: bool) -> Option<Binned> {
     let d65 = || Binned::new(colour::d65);
     let parts: Option<Vec<Binned>> = spectra
@@ -367,9 +374,12 @@ pub struct Scene {
     pub inputs: Vec<PathBuf>,
     /// Whether a surface has a fluorescent layer (see [`Scene::fluoresces`]).
     fluoresces: bool,
-    /// Where a surface fluoresces: the light its sources emit over wavelength, each light and
-    /// the environment in equal shares (see [`Scene::sources`]).
+    /// Where a surface fluoresces: the light the scene's sources emit over wavelength (see
+    /// [`Scene::sources`]).
     sources: Option<Binned>,
+    /// By material, for a material with a fluorescent layer: the density of the light it
+    /// absorbs from the scene's sources over wavelength (see [`Scene::excitation`]).
+    excitations: Vec<Option<Binned>>,
 }
 
 impl Scene {
@@ -466,11 +476,24 @@ impl Scene {
 
     /// The density over wavelength of the light the scene's sources emit, each light and the
     /// environment in equal shares (a light without a spectrum, and the environment, emit
-    /// D65): where camera paths draw the wavelength a fluorescent layer absorbs
-    /// ([`FluorescentLayer::relight`]). None in a scene without a fluorescent layer, or
-    /// without a source.
+    /// D65): where camera paths that meet a fluorescent layer draw a wavelength
+    /// ([`FluorescentLayer::hero`]). None in a scene without a fluorescent layer, or without a
+    /// source.
     pub fn sources(&self) -> Option<&Binned> {
         self.sources.as_ref()
+    }
+
+    /// The density over wavelength of the light the fluorescent layer on primitive `prim`'s
+    /// surface absorbs from the scene's sources, in proportion to a(λ)·λ·s(λ): s the light the
+    /// sources emit, each light and the environment in equal shares (a light without a
+    /// spectrum, and the environment, emit D65). Where camera paths draw the wavelength a
+    /// layer absorbs ([`FluorescentLayer::relight`]). None without a layer there, or without a
+    /// source whose light it absorbs.
+    pub fn excitation(&self, prim: PrimId) -> Option<&Binned> {
+        match self.surfaces[prim.index()].role {
+            Role::Scatter(m) => self.excitations[m.index()].as_ref(),
+            Role::Detector(_) | Role::Emitter(_) => None,
+        }
     }
 
     /// The fluorescent layer on primitive `prim`'s surface (None: none).
