@@ -200,6 +200,46 @@ fn a_dyed_slab_emits_its_yield_guides_its_light_and_shows_its_line() {
     }
 }
 
+/// `scenes/dyed_fiber.toml`, a dye-doped GRIN fiber lit at its middle from the side by a
+/// 405 nm lamp (4·10⁴ photons): the dye's light is guided to both end faces, which read the same
+/// flux in the dye's band (the fiber and its lighting are symmetric about the middle; within 4
+/// standard errors of their difference) and next to none of the lamp's, which crosses the
+/// fiber unguided (below 10⁻³ of the dye's; 8·10⁻⁵ at 2·10⁵ photons); the budget closes to 1e-12, and the dye emitted q·E[λ/λ′] of what it absorbed
+/// (every photon it absorbed is the lamp's: nothing the dye emits is in its absorption band;
+/// within 4 standard errors of the photons absorbed).
+#[test]
+fn a_dyed_fiber_guides_its_fluorescence_to_both_ends() {
+    let (scene, mut settings) =
+        grinlight::scene::load_scene(Path::new("scenes/dyed_fiber.toml")).unwrap();
+    settings.receiver_photons = 40_000;
+    let (m, budget, _) = grinlight::render::measure(&scene, &settings, 0, &()).unwrap();
+    let (near, far) = (&m[0], &m[1]);
+    let [(lamp_near, _), (dye_near, sd_near)] = [near.bands[0].flux, near.bands[1].flux];
+    let [(lamp_far, _), (dye_far, sd_far)] = [far.bands[0].flux, far.bands[1].flux];
+    println!("dye's band: near {dye_near:.4e} ± {sd_near:.1e}, far {dye_far:.4e} ± {sd_far:.1e}");
+    assert!(dye_near > 0.0 && dye_far > 0.0);
+    assert!((dye_near - dye_far).abs() < 4.0 * (sd_near.powi(2) + sd_far.powi(2)).sqrt());
+    assert!(lamp_near < 1e-3 * dye_near && lamp_far < 1e-3 * dye_far);
+    assert!((budget.booked() / budget.emitted - 1.0).abs() < 1e-12);
+    let dye = &budget.dyes[&0];
+    let q = 0.9;
+    let stokes = over_line(405.0, 15.0, 360.0, 830.0, |nm| nm)
+        * over_line(530.0, 40.0, 360.0, 830.0, |nm| 1.0 / nm);
+    // Each photon absorbed carries the same power (all are the lamp's, none re-absorbed): the
+    // ratio's spread is that of q·λ/λ′ over the photons absorbed.
+    let absorbed = dye.absorbed / (budget.emitted / settings.receiver_photons as f64);
+    let second = q
+        * over_line(405.0, 15.0, 360.0, 830.0, |nm| nm * nm)
+        * over_line(530.0, 40.0, 360.0, 830.0, |nm| 1.0 / (nm * nm));
+    let sd = ((second - (q * stokes).powi(2)) / absorbed).sqrt();
+    let ratio = dye.emitted / dye.absorbed;
+    println!(
+        "emitted / absorbed {ratio:.5} ± {sd:.5} against q·E[λ/λ′] {:.5}",
+        q * stokes
+    );
+    assert!((ratio - q * stokes).abs() < 4.0 * sd);
+}
+
 /// A scene with a camera and a dye is refused by name before any work: no integrator renders
 /// an image of light that changes its wavelength.
 #[test]

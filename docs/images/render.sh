@@ -34,6 +34,7 @@ for name in black_hole schwarzschild; do
 done
 cp "$out/fiber_led.exit.png" "$here/fiber_led.png"
 cp "$out/diffusing_fiber.side.png" "$here/diffusing_fiber.png"
+cp "$out/dyed_fiber.far_end.png" "$here/dyed_fiber.png"
 python3 - "$times" "$version" "$(date -u +%Y-%m-%d)" <<'PY'
 import re, sys
 times = dict(line.split() for line in open(sys.argv[1]))
