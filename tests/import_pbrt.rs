@@ -683,6 +683,65 @@ fn a_pbrt_image_infinite_light_shows_the_radiance_pbrt_looks_up() {
 }
 
 /// The message of a scene that does not convert.
+/// A pbrt `dielectric` whose index is a spectrum converts to a dispersive index that is pbrt-v4's:
+/// its named glass `glass-BK7` and `glass-F11` (Schott's SF11, whose table starts at 370 nm) and
+/// inline pairs (400 nm 1.6, 700 nm 1.5) read, at wavelengths on and between pbrt's nodes, pbrt's
+/// piecewise-linear n(λ) from its table's values written out here, within 10⁻⁷ — and 1 outside
+/// the nodes, where pbrt's spectrum reads 0 and its dielectric takes the index 1. The scene is
+/// dispersive; a `float eta` stays one number.
+#[test]
+fn a_pbrt_dielectric_over_wavelength_converts_to_pbrts_index() {
+    let d = dir("pbrt-glass");
+    let body = "Material \"dielectric\" \"spectrum eta\" \"glass-BK7\"\nShape \"sphere\"\n\
+                Material \"dielectric\" \"spectrum eta\" \"glass-F11\"\nShape \"sphere\"\n\
+                Material \"dielectric\" \"spectrum eta\" [ 400 1.6 700 1.5 ]\nShape \"sphere\"\n\
+                Material \"dielectric\" \"float eta\" 1.33\nShape \"sphere\"";
+    let p = write(&d, "s.pbrt", &scene("", body));
+    let (description, _) = load_description(&p, &ImportOptions::default()).unwrap();
+    let built = description.build();
+    assert!(built.is_dispersive());
+    let media = built.media();
+    let n = |i: usize, nm: f64| {
+        let id = grinlight::ids::MediumId::new(i);
+        let at = media.at_wavelength(id, nm);
+        let medium = at.as_ref().map_or(media.at(id), |p| p.as_medium());
+        medium.sample(glam::DVec3::ZERO).unwrap().n
+    };
+    let lerp =
+        |(x0, n0): (f64, f64), (x1, n1): (f64, f64), x: f64| n0 + (n1 - n0) * (x - x0) / (x1 - x0);
+    let bk7 = [
+        (344.0, 1.5404466868331),
+        (366.0, 1.536090527917),
+        (586.0, 1.516865556749),
+        (608.0, 1.5159846691816),
+    ];
+    let sf11 = [(370.0, 1.8700216173234), (391.0, 1.8516255860581)];
+    let cases = [
+        (0, 360.0, lerp(bk7[0], bk7[1], 360.0)),
+        (0, 586.0, bk7[2].1),
+        (0, 597.0, lerp(bk7[2], bk7[3], 597.0)),
+        (0, 600.3, lerp(bk7[2], bk7[3], 600.3)),
+        (1, 365.0, 1.0),
+        (1, 369.99, 1.0),
+        (1, 370.0, sf11[0].1),
+        (1, 380.5, lerp(sf11[0], sf11[1], 380.5)),
+        (2, 380.0, 1.0),
+        (2, 400.0, 1.6),
+        (2, 512.3, lerp((400.0, 1.6), (700.0, 1.5), 512.3)),
+        (2, 700.0, 1.5),
+        (2, 750.0, 1.0),
+        (3, 450.0, 1.33),
+    ];
+    for (i, nm, want) in cases {
+        let got = n(i, nm);
+        assert!(
+            (got - want).abs() < 1e-7,
+            "medium {i} at {nm} nm: {got} against pbrt's {want}"
+        );
+    }
+    assert!(!media.is_dispersive(grinlight::ids::MediumId::new(3)));
+}
+
 fn refusal(name: &str, text: &str, options: &ImportOptions) -> String {
     let d = dir(&format!("pbrt-refuse-{name}"));
     let p = write(&d, "s.pbrt", text);
@@ -766,9 +825,19 @@ fn what_pbrt_cannot_convert_is_refused_by_file_line_and_column() {
             "an anisotropic roughness",
         ),
         (
-            "dispersive",
-            in_world("Material \"dielectric\" \"spectrum eta\" \"glass-BK7\"\nShape \"sphere\""),
-            "s.pbrt:7:23: Material \"dielectric\": \"spectrum eta\" — an index over wavelength",
+            "unknown glass",
+            in_world("Material \"dielectric\" \"spectrum eta\" \"glass-XYZ\"\nShape \"sphere\""),
+            "s.pbrt:7:23: Material \"dielectric\": \"spectrum eta\": \"glass-XYZ\" is not one of pbrt-v4's glasses",
+        ),
+        (
+            "descending index spectrum",
+            in_world("Material \"dielectric\" \"spectrum eta\" [ 700 1.5 400 1.6 ]\nShape \"sphere\""),
+            "give pairs of wavelength (nm, ascending) and index (> 0)",
+        ),
+        (
+            "dispersive pane",
+            in_world("Material \"thindielectric\" \"spectrum eta\" \"glass-BK7\"\nShape \"sphere\""),
+            "s.pbrt:7:27: Material \"thindielectric\": \"spectrum eta\" — an index over wavelength",
         ),
         (
             "spectral light",

@@ -11,6 +11,7 @@
 //! at (−x, y, z) in grinlight's scene), which renders the image pbrt renders; a scene whose
 //! camera transform mirrors (the usual `Scale -1 1 1` before `LookAt`) keeps its coordinates.
 
+mod index;
 pub mod parse;
 
 use super::geometry::{
@@ -24,6 +25,7 @@ use super::{Imported, Place, Told};
 use crate::error::{cut, Result};
 use crate::pixel_filter::PixelFilter;
 use glam::{DMat3, DMat4, DVec3};
+use index::Eta;
 use parse::{Params, Scene, Statement};
 use std::collections::{HashMap, HashSet};
 use std::f64::consts::PI;
@@ -163,7 +165,7 @@ impl Default for Graphics<'_> {
 #[derive(Clone)]
 enum Surface {
     /// A grinlight material, its name; a dielectric's relative index.
-    Material { name: String, ior: Option<f64> },
+    Material { name: String, ior: Option<Eta> },
     /// pbrt's `interface`: no surface, a medium's boundary only.
     Interface,
 }
@@ -220,8 +222,8 @@ struct Converter<'s> {
     index_matched: Option<String>,
     /// `MakeNamedMedium` statements by name.
     named_media: HashMap<String, NamedMedium<'s>>,
-    /// Each medium converted at an index (bits of n), by name.
-    medium_tables: HashMap<(String, u64), String>,
+    /// Each medium converted at an index (its bits, [`Eta::key`]), by name.
+    medium_tables: HashMap<(String, Vec<u64>), String>,
     /// The grinlight medium around the camera, and its pbrt name.
     ambient: Option<String>,
     ambient_pbrt: Option<String>,
@@ -1065,7 +1067,7 @@ impl<'s> Converter<'s> {
             p.finish(&c.what())?;
         }
         if let Some(medium) = medium {
-            let name = self.medium(&medium, 1.0)?;
+            let name = self.medium(&medium, &Eta::Constant(1.0))?;
             self.ambient = Some(name);
             self.ambient_pbrt = Some(medium);
         }
@@ -1116,6 +1118,69 @@ impl<'s> Converter<'s> {
         }
     }
 
+    /// pbrt's index of a `dielectric` ([`Eta`]): a `float eta` (1.5), or a `spectrum eta` — one of
+    /// pbrt-v4's named glasses or inline pairs of wavelength (nm) and index; any other spectrum
+    /// (a file, a blackbody, another named one) refused by name.
+    fn dielectric_eta(&self, p: &Params, what: &str) -> Result<Eta> {
+        let Some(param) = p.take("eta") else {
+            return Ok(Eta::Constant(1.5));
+        };
+        if param.ty == "float" {
+            return Ok(Eta::Constant(p.float("eta", 1.5)?));
+        }
+        let refuse = |why: String| {
+            Err(param
+                .place
+                .error(format!("{what}: {}: {why}", param.what())))
+        };
+        if param.ty != "spectrum" {
+            return refuse("expected a float or a spectrum".to_string());
+        }
+        let nodes: Vec<(f64, f64)> = match &param.values[..] {
+            [parse::Value::Text(name)] => match index::glass(name) {
+                Some(nodes) => nodes.to_vec(),
+                None => {
+                    return refuse(format!(
+                        "\"{}\" is not one of pbrt-v4's glasses grinlight's import knows ({}; \
+                         or give a float or pairs of wavelength and index)",
+                        cut(name),
+                        index::NAMES.join(", ")
+                    ))
+                }
+            },
+            values => {
+                let numbers: Option<Vec<f64>> = values
+                    .iter()
+                    .map(|v| match v {
+                        parse::Value::Number(x) => Some(*x),
+                        parse::Value::Text(_) | parse::Value::Bool(_) => None,
+                    })
+                    .collect();
+                let pairs = numbers
+                    .filter(|n| n.len() >= 2 && n.len() % 2 == 0)
+                    .map(|n| n.chunks(2).map(|c| (c[0], c[1])).collect::<Vec<_>>());
+                match pairs {
+                    Some(pairs)
+                        if pairs.windows(2).all(|w| w[1].0 > w[0].0)
+                            && pairs
+                                .iter()
+                                .all(|&(nm, n)| nm.is_finite() && n.is_finite() && n > 0.0) =>
+                    {
+                        pairs
+                    }
+                    _ => {
+                        return refuse(
+                            "give pairs of wavelength (nm, ascending) and index (> 0), or a \
+                             named glass"
+                                .to_string(),
+                        )
+                    }
+                }
+            }
+        };
+        Ok(Eta::Spectrum(nodes))
+    }
+
     /// The grinlight material of a pbrt material of type `kind`, named `wanted` (or a free
     /// name near it).
     fn material(
@@ -1148,9 +1213,9 @@ impl<'s> Converter<'s> {
                 ("diffuse", table([("albedo", vec3(r))]), None)
             }
             "dielectric" => {
-                let eta = self.eta(p, what)?;
+                let eta = self.dielectric_eta(p, what)?;
                 let a = alpha(p, place)?;
-                let mut m = table([("ior", Toml::Float(eta))]);
+                let mut m = table([("ior", eta.toml())]);
                 if a > 0.0 {
                     m.insert("roughness".into(), Toml::Float(a));
                     microsurface_note(self);
@@ -1265,8 +1330,8 @@ impl<'s> Converter<'s> {
     }
 
     /// The grinlight medium the pbrt medium `name` becomes at (relative) index `n`.
-    fn medium(&mut self, name: &str, n: f64) -> Result<String> {
-        let key = (name.to_string(), n.to_bits());
+    fn medium(&mut self, name: &str, n: &Eta) -> Result<String> {
+        let key = (name.to_string(), n.key());
         if let Some(made) = self.medium_tables.get(&key) {
             return Ok(made.clone());
         }
@@ -1301,7 +1366,7 @@ impl<'s> Converter<'s> {
         }
         p.ignore("Lescale");
         p.finish(&what)?;
-        let mut m = table([("profile", string("uniform")), ("n", Toml::Float(n))]);
+        let mut m = table([("profile", string("uniform")), ("n", n.toml())]);
         m.extend(grid.unwrap_or_default());
         if sigma_a.max_element() > 0.0 {
             m.insert("absorption".into(), absorption(sigma_a));
@@ -1841,7 +1906,7 @@ impl<'s> Converter<'s> {
             }
             (Surface::Interface, inside) => {
                 let inside = inside.as_deref().expect("matched above");
-                let name = self.medium(inside, 1.0)?;
+                let name = self.medium(inside, &Eta::Constant(1.0))?;
                 out.insert("material".into(), string(&self.index_matched()));
                 out.insert("interior".into(), string(&name));
             }
@@ -1850,7 +1915,7 @@ impl<'s> Converter<'s> {
                 match (ior, inside) {
                     (_, _) if !transition => {}
                     (Some(eta), Some(inside)) => {
-                        let name = self.medium(inside, *eta)?;
+                        let name = self.medium(inside, eta)?;
                         out.insert("interior".into(), string(&name));
                     }
                     (None, Some(_)) => {
@@ -1865,7 +1930,7 @@ impl<'s> Converter<'s> {
         if transition && g.outside != self.ambient_pbrt {
             match &g.outside {
                 Some(outside) => {
-                    let name = self.medium(outside, 1.0)?;
+                    let name = self.medium(outside, &Eta::Constant(1.0))?;
                     out.insert("exterior".into(), string(&name));
                 }
                 None => {
