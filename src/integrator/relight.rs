@@ -49,8 +49,8 @@ pub fn relight(tracer: &Tracer, vp: &mut VisiblePoint, rng: &mut impl Rng) -> Re
     let Some(albedo) = v.bsdf.lambert_albedo() else {
         return Relighting::Unchanged;
     };
-    // A path carries one wavelength in a scene with a layer from its start; one that does
-    // not (carrying every wavelength) takes on a hero's here, as where it meets dispersion.
+    // A path that still carries every wavelength (RGB) takes on one here, as where it meets
+    // dispersion; one past dispersion keeps its own.
     let (nm, sensor) = match tracer.single_wavelength() {
         Some(nm) => (nm, Rgb::ONE),
         None => {

@@ -1171,7 +1171,9 @@ struct Branch<'w> {
     walker: chain::Walker<'w>,
     /// Its power (W per channel, of the batch's count).
     power: Rgb,
-    /// What it has kept of its launch power while it carries every wavelength.
+    /// What it has kept of its launch power while it carries every wavelength: every factor
+    /// its power has taken on (Russian roulette's and a split's too), for the power it takes on
+    /// with its hero wavelength ([`Branch::take_on`]).
     throughput: Rgb,
     /// The sRGB its power stands for: a photon of one wavelength is stored in that
     /// wavelength's (once it has met dispersion).
@@ -1188,6 +1190,19 @@ struct Branch<'w> {
     /// Its Stokes vector where the transport is polarized and a scattering that polarizes
     /// sent it on polarized (None: unpolarized, as from a source or a depolarizing vertex).
     polarization: Option<Polarization>,
+}
+
+impl Branch<'_> {
+    /// Takes on the photon's hero wavelength `h` (its walker already on the tracer there): its
+    /// power becomes its source's spectrum at `h` times the reflectance spectrum of `kept`, what
+    /// it kept of its launch power while it carried every wavelength; it is stored in that
+    /// wavelength's sRGB from here on.
+    fn take_on(&mut self, walk: &mut PhotonWalk, h: PhotonHero, kept: Rgb) {
+        let kept = colour::reflectance(kept, h.nm);
+        walk.power = Rgb::splat(h.power * kept / walk.tag.count as f64);
+        walk.wavelength = h.nm;
+        self.seen_as = colour::sensor(h.nm);
+    }
 }
 
 /// The random stream and statistics a photon's branches share.
@@ -1222,11 +1237,8 @@ fn follow_branch<'w, R: Rng>(
             .follow_carrying(b.ray, &mut b.polarization, rng, stats, walk);
         match (chain.dispersed, launch.hero) {
             (Some(before), Some(h)) => {
-                // Its spectrum at the hero wavelength, times the reflectance spectrum of what
-                // it kept on the way there.
-                let kept = colour::reflectance(b.throughput * before, h.nm);
-                walk.power = Rgb::splat(h.power * kept / tag.count as f64) * chain.weight;
-                b.seen_as = colour::sensor(h.nm);
+                b.take_on(walk, h, b.throughput * before);
+                walk.power *= chain.weight;
             }
             _ => {
                 walk.power *= chain.weight;
@@ -1252,10 +1264,7 @@ fn follow_branch<'w, R: Rng>(
             if layer && b.walker.take_on_hero() {
                 // A layer absorbs and emits at wavelengths: the photon takes on its hero's
                 // here, as where it meets dispersion, and so does the surface's reflectance.
-                let kept = colour::reflectance(b.throughput, h.nm);
-                walk.power = Rgb::splat(h.power * kept / tag.count as f64);
-                b.seen_as = colour::sensor(h.nm);
-                walk.wavelength = h.nm;
+                b.take_on(walk, h, b.throughput);
                 if let Some(albedo) = v.bsdf.lambert_albedo() {
                     v.bsdf = Bsdf::Lambert {
                         albedo: Rgb::splat(colour::reflectance(albedo, h.nm)),
@@ -1321,6 +1330,7 @@ fn follow_branch<'w, R: Rng>(
                 break Fate::Lost;
             }
             walk.power /= chain::ROULETTE_SURVIVAL;
+            b.throughput /= chain::ROULETTE_SURVIVAL;
         }
         if let (Some((v, cone)), true) = (outside, b.splits) {
             let Some(split) = split_toward(v, cone, &mut b.polarization, rng) else {
@@ -1334,6 +1344,7 @@ fn follow_branch<'w, R: Rng>(
                 branches.push(Branch {
                     ray: split.branch,
                     power: walk.power * (split.branch_weight / kept),
+                    throughput: b.throughput * (split.branch_weight / kept),
                     polarization: split.branch_polarization,
                     bent: true,
                     fogged: true,
