@@ -24,20 +24,15 @@
 //! q·ε(λ′)/λ′·a(λ)·λ/p(λ). Which part a path takes is drawn in proportion to their sizes under
 //! equal-energy light, and the weight divided by its chance.
 
-use crate::spectrum::{Binned, Dispersion, Fluorophore, Hero, LAMBDA_MAX, LAMBDA_MIN};
+use crate::spectrum::{Binned, Dispersion, Excitation, Fluorophore, Hero};
 
 /// A fluorescent layer (see the module's notes).
 #[derive(Clone, Debug)]
 pub struct FluorescentLayer {
     /// a(λ): the share of the light the layer absorbs, in [0, 1].
-    pub excitation: Dispersion,
+    pub excitation: Excitation,
     /// What it emits again.
     pub fluorophore: Fluorophore,
-    /// The density ∝ a(λ)·λ: its absorbed photons' number over wavelength under equal-energy
-    /// light.
-    absorbing: Binned,
-    /// ∫ a(λ)·λ dλ, nm² (1 nm midpoint sums; only the share of the two parts uses it).
-    absorbing_integral: f64,
 }
 
 /// The very same layer (a material's, read once from its file): its forms over wavelength have
@@ -62,26 +57,15 @@ impl FluorescentLayer {
     /// The layer absorbing a(λ) = `excitation` and emitting as `fluorophore` (None where it
     /// absorbs nothing from 360 to 830 nm).
     pub fn new(excitation: Dispersion, fluorophore: Fluorophore) -> Option<Self> {
-        let a = |nm: f64| excitation.at(nm).clamp(0.0, 1.0);
-        let absorbing = Binned::new(|nm| a(nm) * nm)?;
-        let bins = (LAMBDA_MAX - LAMBDA_MIN) as usize;
-        let absorbing_integral = (0..bins)
-            .map(|i| {
-                let nm = LAMBDA_MIN + i as f64 + 0.5;
-                a(nm) * nm
-            })
-            .sum();
         Some(Self {
-            excitation,
+            excitation: Excitation::new(excitation, 1.0)?,
             fluorophore,
-            absorbing,
-            absorbing_integral,
         })
     }
 
     /// a at vacuum wavelength `nm`, within [0, 1].
     pub fn absorbed(&self, nm: f64) -> f64 {
-        self.excitation.at(nm).clamp(0.0, 1.0)
+        self.excitation.at(nm)
     }
 
     /// Where a camera path at vacuum wavelength `nm` that meets the layer on a surface of
@@ -98,18 +82,18 @@ impl FluorescentLayer {
     ) -> Option<Relit> {
         let [choice, draw] = u;
         let reflected = albedo * (1.0 - self.absorbed(nm));
-        let line = self.fluorophore.quantum_yield * self.fluorophore.emission.pdf(nm) / nm;
-        let fluorescent = line * self.absorbing_integral;
+        let line = self.fluorophore.emitted(nm);
+        let fluorescent = line * self.excitation.integral();
         let total = reflected + fluorescent;
         if total.is_nan() || total <= 0.0 {
             return None;
         }
         let relit = match choice * total < fluorescent {
             true => {
-                let (at, ratio) = self.excitation_draw(excited, draw);
+                let (at, ratio) = self.excitation.draw(excited, draw);
                 Relit {
                     nm: at,
-                    weight: total * ratio / self.absorbing_integral,
+                    weight: total * ratio / self.excitation.integral(),
                 }
             }
             false => Relit { nm, weight: total },
@@ -136,24 +120,6 @@ impl FluorescentLayer {
         Hero {
             nm,
             pdf: (Hero::visible_pdf(nm) + emission.pdf(nm) + sourced) / parts,
-        }
-    }
-
-    /// An excitation wavelength for uniform `u`, from a(λ)·λ and `excited` in equal shares,
-    /// and a(λ)·λ/p(λ) there.
-    fn excitation_draw(&self, excited: Option<&Binned>, u: f64) -> (f64, f64) {
-        let nm = match excited {
-            Some(s) if u >= 0.5 => s.sample(2.0 * u - 1.0),
-            Some(_) => self.absorbing.sample(2.0 * u),
-            None => self.absorbing.sample(u),
-        };
-        let pdf = match excited {
-            Some(s) => 0.5 * (self.absorbing.pdf(nm) + s.pdf(nm)),
-            None => self.absorbing.pdf(nm),
-        };
-        match pdf > 0.0 {
-            true => (nm, self.absorbed(nm) * nm / pdf),
-            false => (nm, 0.0),
         }
     }
 }

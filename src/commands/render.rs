@@ -429,7 +429,6 @@ fn build_checked(
         )));
     }
     if let Some(c) = &scene.camera {
-        crate::render::images_carry_all_light(&scene)?;
         let tracer = crate::transport::Tracer::new(&scene, &settings.trace);
         crate::render::views_carry_media_polarization(&scene, &tracer)?;
         if tracer.index(tracer.camera_medium, c.position).is_none() {

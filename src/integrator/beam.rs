@@ -59,6 +59,19 @@ struct Recorded {
     first: usize,
 }
 
+/// A recorded stretch as the chain walked it.
+pub struct Walked<'a> {
+    /// The stretch.
+    pub stretch: &'a Stretch,
+    /// Its medium.
+    pub medium: MediumId,
+    /// Its points after its origin, in order, its end last: the accepted points of a curved
+    /// stretch, the end alone of a straight one.
+    pub points: &'a [DVec3],
+    /// n at the chain's start.
+    pub n_start: f64,
+}
+
 /// A recorded stretch through a medium of uniform index: one straight segment.
 pub struct Straight<'a> {
     /// The segment, to where it ends (a surface, the world's edge or its free flight's end).
@@ -207,6 +220,17 @@ impl Beams {
         })
     }
 
+    /// The recorded stretches, each with its medium and its points, and n at the chain's start.
+    pub fn walked(&self) -> impl Iterator<Item = Walked<'_>> {
+        let n_start = self.n_start.unwrap_or(1.0);
+        self.recorded().map(move |(r, points)| Walked {
+            stretch: &r.stretch,
+            medium: r.medium,
+            points,
+            n_start,
+        })
+    }
+
     /// The recorded stretches with their points after their origins.
     fn recorded(&self) -> impl Iterator<Item = (&Recorded, &[DVec3])> {
         self.stretches.iter().enumerate().map(|(k, r)| {
@@ -283,8 +307,13 @@ impl ChainEvents for Recording<'_> {
             origin: stretch.origin,
             medium: stretch.medium,
         });
-        let scatters = (stretch.medium)
-            .filter(|&m| stretch.may_scatter && self.tracer.scattering(m).is_some());
+        // A medium holding a dye is recorded whether or not its collisions' rate is 0 at the
+        // recording tracer's wavelength: the dye may emit toward the chain all the same.
+        let media = self.tracer.scene.media();
+        let scatters = (stretch.medium).filter(|&m| {
+            stretch.may_scatter
+                && (self.tracer.scattering(m).is_some() || media.fluorescence(m).is_some())
+        });
         beams.recording = scatters.is_some();
         if let Some(medium) = scatters {
             if beams.stretches.is_empty() {

@@ -158,7 +158,7 @@ pub fn continued_emission(tracer: &Tracer, vertex: &Vertex, s: &Scattered, chain
 
 /// Whether direct light is estimated at `vertex`: everywhere but at a point in a scattering
 /// medium of uniform index, whose direct light is the stretch's single scattering.
-fn takes_direct(tracer: &Tracer, vertex: &Vertex) -> bool {
+pub fn takes_direct(tracer: &Tracer, vertex: &Vertex) -> bool {
     match vertex {
         Vertex::Medium(v) => !v.medium.is_some_and(|m| tracer.medium(m).is_uniform()),
         Vertex::Surface(_) => true,

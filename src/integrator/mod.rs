@@ -18,6 +18,7 @@
 mod beam;
 mod deflection;
 pub mod direct;
+mod dye;
 pub mod footprint;
 mod neighbourhood;
 mod path;

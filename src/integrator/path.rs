@@ -16,7 +16,10 @@
 //! through it into the fog it holds.
 
 use super::beam::Beams;
-use super::direct::{camera_path, continued_emission, hero, lit, record_cut, VisiblePoint};
+use super::direct::{
+    camera_path, continued_emission, hero, lit, record_cut, takes_direct, VisiblePoint,
+};
+use super::dye::dye_sources;
 use super::relight::{fluoresces, relight, Relighting};
 use super::single::single_scattering;
 use super::{CameraRay, FirstVertex, Integrator, Sample};
@@ -24,8 +27,8 @@ use crate::color::Rgb;
 use crate::lights::LightSamples;
 use crate::report::Report;
 use crate::transport::chain::{Carried, End, Policy, Walker};
-use crate::transport::lighting::LightNumbers;
-use crate::transport::{BsdfNumbers, Stats, Tracer};
+use crate::transport::lighting::{direct_light, LightNumbers};
+use crate::transport::{BsdfNumbers, Stats, Tracer, Vertex};
 use rand::Rng;
 
 super::layers!(
@@ -95,6 +98,51 @@ pub fn onward<'w, R: Rng>(
     }
 }
 
+/// The light dyes emit toward the chain recorded in `beams` on its way through their media
+/// ([`super::dye`]), per unit of the path's throughput before it, estimated by path tracing on
+/// from a point on each stretch at a wavelength the dye absorbs; `carried`: what the chain
+/// carried at its end.
+pub fn dye_light<R: Rng>(beams: &Beams, carried: Carried, rng: &mut R, stats: &mut Stats) -> Rgb {
+    let mut sum = Rgb::ZERO;
+    for source in dye_sources(beams, carried.tracer, rng, stats) {
+        // Light samples go to every light, as from a fluorescent layer (a violet lamp).
+        let mut tracer = carried.tracer.at_wavelength(source.nm);
+        tracer.light_samples = LightSamples::Each;
+        let carried = Carried {
+            tracer: &tracer,
+            hero: None,
+            flights: source.flights,
+            depth: source.depth,
+        };
+        let vp = VisiblePoint {
+            vertex: Vertex::Medium(source.vertex),
+            throughput: source.weight,
+        };
+        sum += from_point(vp, carried, rng, stats);
+    }
+    sum
+}
+
+/// The light reaching the camera from the point `vp` in a medium where no free flight ended
+/// (a dye's point): its direct light in full — at a point in a medium of uniform index too,
+/// where a flight's end leaves it to the stretch's single scattering — and the bounces on.
+fn from_point<'w, R: Rng>(
+    vp: VisiblePoint<'w>,
+    carried: Carried<'w>,
+    rng: &mut R,
+    stats: &mut Stats,
+) -> Rgb {
+    let direct = match takes_direct(carried.tracer, &vp.vertex) {
+        true => lit(carried, &vp, LightNumbers::default(), rng, stats),
+        false => vp.throughput * direct_light(carried, &vp.vertex, rng, stats),
+    };
+    let Bounces {
+        direct: found,
+        indirect,
+    } = bounces(vp, carried, BsdfNumbers::default(), rng, stats);
+    direct + found + indirect
+}
+
 /// [`onward`] from a vertex the path goes on from as it is.
 fn lit_and_bounces<'w, R: Rng>(
     vp: VisiblePoint<'w>,
@@ -148,6 +196,7 @@ fn bounces<'w, R: Rng>(
         let weight = b.sample.weight * b.radiance_scale;
         record_cut(&chain, vp.throughput * weight, stats);
         sum += vp.throughput * weight * single_scattering(&beams, walker.carried(), rng, stats);
+        sum += vp.throughput * weight * dye_light(&beams, walker.carried(), rng, stats);
         let throughput = vp.throughput * weight * chain.weight;
         // Light emitted by media on the way is sampled by no light sample: it counts here.
         sum += vp.throughput * weight * chain.emitted;
@@ -218,6 +267,8 @@ impl Integrator for PathTracer<'_> {
         s.measure_stokes(c.stokes);
         s.add(PathLayer::Emitted, c.emitted);
         s.add(PathLayer::Direct, c.single);
+        let dyed = dye_light(&beams, c.carried, s.rng, s.stats);
+        s.add(PathLayer::Indirect, dyed);
         let Some(vp) = c.visible else { return };
         s.add(PathLayer::Albedo, vp.vertex.albedo());
         s.add(PathLayer::Normal, vp.vertex.normal());

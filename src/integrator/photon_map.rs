@@ -32,7 +32,7 @@ use super::beam::Beams;
 use super::direct::{camera_path, direct, emission_seen, hero, record_cut, VisiblePoint};
 use super::footprint::{Eye, Way};
 use super::neighbourhood::Neighbourhood;
-use super::path::onward;
+use super::path::{dye_light, onward};
 use super::relight::fluoresces;
 use super::single::single_scattering;
 use super::{CameraRay, FirstVertex, Integrator, Sample};
@@ -266,16 +266,29 @@ impl<'a> PhotonMapper<'a> {
         s: &mut Sample<MapLayer>,
     ) -> Rgb {
         let gather = self.photons.gather;
+        let dyes = self.tracer.scene.media().first_fluorescent().is_some();
         let mut sum = Rgb::ZERO;
         for _ in 0..gather {
             s.stats.gather_rays += 1;
             let mut walker = Walker::carrying(carried, Policy::Weighted);
             let mut weight = Rgb::ONE;
             let mut next = vp.vertex.scatter_with(s.rng);
+            let mut beams = Beams::default();
             while let Some(b) = next {
-                let chain = walker.follow(b.ray, s.rng, s.stats, &mut ());
+                // A dye's light is path traced from points on the ray's way through it.
+                let chain = match dyes {
+                    true => {
+                        let recording = &mut beams.record(walker.tracer);
+                        walker.follow(b.ray, s.rng, s.stats, recording)
+                    }
+                    false => walker.follow(b.ray, s.rng, s.stats, &mut ()),
+                };
                 let before = vp.throughput * weight * b.sample.weight * b.radiance_scale;
                 record_cut(&chain, before / gather as f64, s.stats);
+                if dyes {
+                    let dyed = dye_light(&beams, walker.carried(), s.rng, s.stats);
+                    sum += weight * b.sample.weight * b.radiance_scale * dyed;
+                }
                 weight = weight * b.sample.weight * chain.weight * b.radiance_scale;
                 let End::Scatter(y) = chain.end else { break };
                 weight *= chain.radiance_scale();
@@ -354,6 +367,7 @@ impl<'a> PhotonMapper<'a> {
             found.caustic += throughput * self.volume_caustic(maps, &beams, walker.tracer, s);
             found.direct +=
                 throughput * single_scattering(&beams, walker.carried(), s.rng, s.stats);
+            found.dyed += throughput * dye_light(&beams, walker.carried(), s.rng, s.stats);
             if chain.specular > 0 && !volume {
                 found.emitted += throughput * emission_seen(walker.tracer, &chain);
             }
@@ -390,6 +404,8 @@ struct Found {
     emitted: Rgb,
     /// Volume caustics scattered into the path along its way through media.
     caustic: Rgb,
+    /// Light dyes emitted toward it along its way through their media (path traced).
+    dyed: Rgb,
 }
 
 /// r_p²/r₀² of Knaus and Zwicker's schedule at pass `index`: Π_{j=1..index} (j + α)/(j + 1).
@@ -450,6 +466,8 @@ impl<'a> Integrator for PhotonMapper<'a> {
         s.add(MapLayer::Direct, c.single);
         let caustic = self.volume_caustic(maps, &beams, c.carried.tracer, s);
         s.add(MapLayer::Caustic, caustic);
+        let dyed = dye_light(&beams, c.carried, s.rng, s.stats);
+        s.add(MapLayer::Secondary, dyed);
         let Some(first) = c.visible else { return };
         // The way the path took to its visible point, where that is its first vertex (the
         // pixel's footprint is measured there).
@@ -468,6 +486,7 @@ impl<'a> Integrator for PhotonMapper<'a> {
         s.add(MapLayer::Direct, found.direct);
         s.add(MapLayer::Emitted, found.emitted);
         s.add(MapLayer::Caustic, found.caustic);
+        s.add(MapLayer::Secondary, found.dyed);
         let Some((vp, v, carried)) = visible else {
             return;
         };

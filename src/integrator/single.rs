@@ -1,5 +1,6 @@
 //! Single scattering of direct light along a camera chain's straight stretches through
-//! scattering media, by equiangular sampling (Kulla and Fajardo 2012).
+//! scattering media, by equiangular sampling (Kulla and Fajardo 2012). In a medium holding a
+//! dye, σs is the share of the collision rate σs + σf that scatters.
 //!
 //! **The estimator.** Light scattered toward the chain's start along a stretch of length T is
 //! ∫₀ᵀ σs(t) (T_s(t)/P(t)) T_a(t) (n_start/n)² L_direct(x(t)) dt, where P(t) is the chance the
@@ -78,8 +79,14 @@ pub fn single_scattering(
             medium: Some(s.medium),
             phase: s.scattering.phase,
         });
-        let throughput =
-            s.weight * s.scattering.sigma_s * kept * (density * absorbed * s.radiance_scale / pdf);
+        // Of the collisions a dye counts in, the share that scatter.
+        let scatters = tracer
+            .dye_share(s.medium)
+            .map_or(1.0, |(_, share)| 1.0 - share);
+        let throughput = s.weight
+            * s.scattering.sigma_s
+            * kept
+            * (scatters * density * absorbed * s.radiance_scale / pdf);
         sum += throughput * direct_light(carried, &vertex, rng, stats);
     }
     sum

@@ -133,7 +133,6 @@ pub fn render_passes(
     passes: Passes,
     observer: &dyn Observer,
 ) -> Result<(Film, Report)> {
-    images_carry_all_light(scene)?;
     stokes_measurable(scene, settings)?;
     let tracer = Tracer::new(scene, &settings.trace);
     views_carry_media_polarization(scene, &tracer)?;
@@ -185,25 +184,6 @@ fn photons_carry_all_light(scene: &Scene) -> Result<()> {
     }
 }
 
-/// Refuses to render an image of a scene whose light camera paths cannot carry: a dye's in a
-/// medium, which changes its wavelength on the way (a camera path would have to find where
-/// along its way the dye emits toward it). Its receivers measure it (photons change their
-/// wavelength where a dye emits them again). A fluorescent layer's light camera paths carry
-/// ([`crate::integrator`]'s relighting).
-pub fn images_carry_all_light(scene: &Scene) -> Result<()> {
-    match scene.media().first_fluorescent() {
-        None => Ok(()),
-        Some(name) => Err(crate::error::Error::Setting {
-            key: "integrator",
-            message: format!(
-                "medium '{name}' holds a dye (`fluorescence`), whose light changes its \
-                 wavelength on the way: no integrator renders an image of it yet; its receivers \
-                 measure it (leave out [camera] to measure them alone)"
-            ),
-        }),
-    }
-}
-
 /// Refuses to write the camera's Stokes vector (`stokes`) of a scene with a medium that
 /// scatters or emits: the light a camera ray gathers along its way through such a medium
 /// would need the Stokes basis of each stretch it is gathered on, which the camera path does
@@ -214,7 +194,7 @@ fn stokes_measurable(scene: &Scene, settings: &Settings) -> Result<()> {
         (true, Some(name)) => Err(crate::error::Error::Setting {
             key: "stokes",
             message: format!(
-                "medium '{name}' scatters or emits light toward the camera's rays on their way: \
+                "medium '{name}' scatters, emits or fluoresces light toward the camera's rays on their way: \
                  the Stokes vector of such light is not measured yet (render S0 alone, or \
                  through `polarizer_deg`)"
             ),

@@ -12,7 +12,7 @@ use crate::media::{
     ParabolicFiber, Parametric, RadialTable, SechFiber, UniformMedium, GLADSTONE_DALE_AIR,
     STANDARD_PRESSURE,
 };
-use crate::spectrum::{Dispersion, Fluorophore, LAMBDA_D};
+use crate::spectrum::{Dispersion, Excitation, Fluorophore, LAMBDA_D};
 use crate::volume::{Absorption, Emission, Fluorescence, Phase, Scattering};
 use glam::DVec3;
 use std::sync::Arc;
@@ -97,6 +97,9 @@ pub fn read_fluorescence(
         scattering.is_none_or(|s| s.is_spectral() || s.is_grey()),
         "a medium holding a dye scatters the same in every channel or by a form over wavelength (an RGB σs has no value at one wavelength)",
     )?;
+    // `absorbing_form` has checked that it absorbs somewhere from 360 to 830 nm.
+    let absorption = Excitation::new(absorption, f64::INFINITY)
+        .ok_or_else(|| t.error("fluorescence", "the dye absorbs nothing from 360 to 830 nm"))?;
     Ok(Some(Fluorescence {
         absorption,
         fluorophore,

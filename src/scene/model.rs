@@ -14,7 +14,7 @@ use crate::material::{FluorescentLayer, Material};
 use crate::media::{Medium, Parametric};
 use crate::receiver::Receiver;
 use crate::shapes::Primitive;
-use crate::spectrum::{colour, Binned, Spectrum, LAMBDA_D};
+use crate::spectrum::{colour, Binned, Excitation, Spectrum, LAMBDA_D};
 use crate::volume::{Fluorescence, Participating, Scattering};
 use std::path::{Path, PathBuf};
 
@@ -111,12 +111,15 @@ impl Media {
             .map(|e| e.name.as_str())
     }
 
-    /// The first medium that sends light toward a ray crossing it — it scatters or emits —
-    /// by name (None: none does).
+    /// The first medium that sends light toward a ray crossing it — it scatters, emits or
+    /// holds a dye — by name (None: none does).
     pub fn first_shining(&self) -> Option<&str> {
         self.0
             .iter()
-            .find(|e| e.participating.scattering.is_some() || e.participating.emission.is_some())
+            .find(|e| {
+                let p = &e.participating;
+                p.scattering.is_some() || p.emission.is_some() || p.fluorescence.is_some()
+            })
             .map(|e| e.name.as_str())
     }
 
@@ -302,19 +305,24 @@ impl Description {
             add(Role::Detector(ReceiverId::new(receiver)), r.primitive());
         }
         let fluoresces = self.materials.iter().any(|m| m.fluorescence().is_some());
-        let sources = fluoresces
+        let sources = (fluoresces || self.media.first_fluorescent().is_some())
             .then(|| source_spectrum(&self.light_spectra, self.environment.is_some()))
             .flatten();
+        let excited = |f: &Excitation| {
+            let sources = sources.as_ref()?;
+            Binned::new(|nm| f.at(nm) * nm * sources.pdf(nm))
+        };
         let excitations = (self.materials.iter())
-            .map(|m| {
-                let (layer, sources) = (m.fluorescence()?, sources.as_ref()?);
-                Binned::new(|nm| layer.absorbed(nm) * nm * sources.pdf(nm))
-            })
+            .map(|m| excited(&m.fluorescence()?.excitation))
+            .collect();
+        let dye_excitations = (self.media.ids())
+            .map(|i| excited(&self.media.fluorescence(i)?.absorption))
             .collect();
         Scene {
             fluoresces,
             sources,
             excitations,
+            dye_excitations,
             path: self.path,
             media: self.media,
             ambient: self.ambient,
@@ -374,12 +382,16 @@ pub struct Scene {
     pub inputs: Vec<PathBuf>,
     /// Whether a surface has a fluorescent layer (see [`Scene::fluoresces`]).
     fluoresces: bool,
-    /// Where a surface fluoresces: the light the scene's sources emit over wavelength (see
+    /// Where a surface fluoresces or a medium holds a dye: the light the scene's sources emit
+    /// over wavelength (see
     /// [`Scene::sources`]).
     sources: Option<Binned>,
     /// By material, for a material with a fluorescent layer: the density of the light it
     /// absorbs from the scene's sources over wavelength (see [`Scene::excitation`]).
     excitations: Vec<Option<Binned>>,
+    /// By medium, for a medium holding a dye: the density of the light the dye absorbs from
+    /// the scene's sources over wavelength (see [`Scene::dye_excitation`]).
+    dye_excitations: Vec<Option<Binned>>,
 }
 
 impl Scene {
@@ -477,8 +489,8 @@ impl Scene {
     /// The density over wavelength of the light the scene's sources emit, each light and the
     /// environment in equal shares (a light without a spectrum, and the environment, emit
     /// D65): where camera paths that meet a fluorescent layer draw a wavelength
-    /// ([`FluorescentLayer::hero`]). None in a scene without a fluorescent layer, or without a
-    /// source.
+    /// ([`FluorescentLayer::hero`]). None in a scene without a fluorescent layer or a dye, or
+    /// without a source.
     pub fn sources(&self) -> Option<&Binned> {
         self.sources.as_ref()
     }
@@ -494,6 +506,14 @@ impl Scene {
             Role::Scatter(m) => self.excitations[m.index()].as_ref(),
             Role::Detector(_) | Role::Emitter(_) => None,
         }
+    }
+
+    /// The density over wavelength of the light the dye in medium `i` absorbs from the
+    /// scene's sources, in proportion to σf(λ)·λ·s(λ) (s as in [`Scene::excitation`]): where
+    /// camera paths draw the wavelength a dye absorbs. None without a dye there, or without a
+    /// source whose light it absorbs.
+    pub fn dye_excitation(&self, i: MediumId) -> Option<&Binned> {
+        self.dye_excitations[i.index()].as_ref()
     }
 
     /// The fluorescent layer on primitive `prim`'s surface (None: none).

@@ -33,6 +33,13 @@ pub struct Reemitted {
 }
 
 impl Fluorophore {
+    /// q·ε(λ′)/λ′ at vacuum wavelength `nm` = λ′ (1/nm²): the light it emits at λ′, per nm,
+    /// per unit of λ times the light of wavelength λ it absorbs — q of the absorbed photons,
+    /// each with λ/λ′ of the absorbed energy.
+    pub fn emitted(&self, nm: f64) -> f64 {
+        self.quantum_yield * self.emission.pdf(nm) / nm
+    }
+
     /// What becomes of a photon of wavelength `nm` it absorbed, for uniform `yield_u` and
     /// `nm_u`: emitted again (with probability q) at a wavelength drawn from the emission
     /// spectrum, or None: turned into heat.

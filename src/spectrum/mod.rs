@@ -10,11 +10,13 @@ pub mod binned;
 pub mod colour;
 pub mod dispersion;
 pub mod emission;
+pub mod excitation;
 pub mod fluorophore;
 
 pub use binned::Binned;
 pub use dispersion::Dispersion;
 pub use emission::Spectrum;
+pub use excitation::Excitation;
 pub use fluorophore::{Fluorophore, Reemitted};
 
 use crate::color::Rgb;

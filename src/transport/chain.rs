@@ -139,6 +139,8 @@ impl Chain<'_> {
 pub struct Stretch {
     /// Where it starts.
     pub origin: DVec3,
+    /// Its unit direction there.
+    pub direction: DVec3,
     /// The medium it travels in.
     pub medium: Option<MediumId>,
     /// The chain's weight at its start (its own absorption and free flight not yet in it).
@@ -149,6 +151,8 @@ pub struct Stretch {
     /// Whether the path may still scatter on it: false where it has met `max_depth` events
     /// (light scattered toward it on the way would be one event too many).
     pub may_scatter: bool,
+    /// The events the path may still meet past one on it.
+    pub depth: u32,
 }
 
 /// A chain crossing a receiver's detector.
@@ -642,10 +646,12 @@ impl<'w> Walker<'w> {
         let mut flight = tracks.map(|sc| Flight::from(at.origin, sc, &mut self.flights, lent.rng));
         observer.stretch(&Stretch {
             origin: at.origin,
+            direction: at.direction,
             medium: at.medium,
             weight: seen(chain, lent),
             flights: self.flights,
             may_scatter: !exhausted,
+            depth: self.depth,
         });
         let integrates = scattering.filter(|sc| {
             sc.is_heterogeneous() && (!sc.is_grey() || self.policy == Policy::Unscattered)
@@ -798,6 +804,9 @@ impl<'w> Walker<'w> {
                 ..
             } => {
                 observer.point(position);
+                if self.dye_absorbs(chain, at.medium) {
+                    return ControlFlow::Break(End::Absorbed { medium: at.medium });
+                }
                 let phase = scattering
                     .expect("a free flight in a scattering medium")
                     .phase;
@@ -904,6 +913,25 @@ impl<'w> Walker<'w> {
         {
             let basic = self.tracer.radiance(emission.along(event.optical_depth()));
             chain.emitted += weight * basic * (chain.n_start * chain.n_start);
+        }
+    }
+
+    /// Whether a dye in `medium` absorbs the path at a collision there: a collision at the
+    /// tracer's wavelength is the dye's absorption in the share [`Tracer::dye_share`] gives.
+    /// A camera path goes on weighed by the share that scatters (ending where none does); a
+    /// photon's [`crate::photon`] tracing plays for it where it meets the vertex, and every
+    /// other chain makes no collision.
+    fn dye_absorbs(&self, chain: &mut Chain, medium: Option<MediumId>) -> bool {
+        let Some((_, share)) = medium.and_then(|m| self.tracer.dye_share(m)) else {
+            return false;
+        };
+        match self.policy {
+            Policy::Weighted if share >= 1.0 => true,
+            Policy::Weighted => {
+                chain.weight *= 1.0 - share;
+                false
+            }
+            Policy::Roulette | Policy::Principal | Policy::Unscattered => false,
         }
     }
 

@@ -13,13 +13,13 @@
 //! other light: where the emission spectrum overlaps the absorption, the dye absorbs its own
 //! light again (what limits a luminescent solar concentrator).
 
-use crate::spectrum::{Dispersion, Fluorophore};
+use crate::spectrum::{Excitation, Fluorophore};
 
 /// A dye in a medium (see the module's notes).
 #[derive(Clone, Debug)]
 pub struct Fluorescence {
     /// σf over vacuum wavelength (1/length, ≥ 0).
-    pub absorption: Dispersion,
+    pub absorption: Excitation,
     /// What it emits again.
     pub fluorophore: Fluorophore,
 }
@@ -27,7 +27,7 @@ pub struct Fluorescence {
 impl Fluorescence {
     /// σf at vacuum wavelength `nm` (1/length).
     pub fn sigma(&self, nm: f64) -> f64 {
-        self.absorption.at(nm).max(0.0)
+        self.absorption.at(nm)
     }
 
     /// The share of the collisions at `nm` that are the dye's, where the medium also scatters
