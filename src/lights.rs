@@ -405,6 +405,20 @@ pub enum Light {
 }
 
 impl Light {
+    /// Whether a ray can meet it (an area light's surface): light from any other reaches a
+    /// point of a camera path only by a light sample, in a straight line (through
+    /// index-matched boundaries), never through a refracting or reflecting surface.
+    pub fn is_met_by_rays(&self) -> bool {
+        match self {
+            Light::Area { .. } => true,
+            Light::Point { .. }
+            | Light::Spot { .. }
+            | Light::Led { .. }
+            | Light::Goniometric { .. }
+            | Light::Directional { .. } => false,
+        }
+    }
+
     /// Its colour quantity (intensity, radiance, peak intensity or irradiance, as its type
     /// says), to be scaled.
     pub fn colour_mut(&mut self) -> &mut Rgb {

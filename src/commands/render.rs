@@ -415,7 +415,8 @@ pub fn render_in_memory(
 }
 
 /// Builds a scene to render, refusing one with nothing to render or a camera view no
-/// integrator renders, and warning of a camera where its medium captures light.
+/// integrator renders, and warning of a camera where its medium captures light and of a
+/// dye whose light an image may miss ([`crate::render::dye_light_warning`]).
 fn build_checked(
     description: Description,
     settings: &Settings,
@@ -431,6 +432,9 @@ fn build_checked(
     if let Some(c) = &scene.camera {
         let tracer = crate::transport::Tracer::new(&scene, &settings.trace);
         crate::render::views_carry_media_polarization(&scene, &tracer)?;
+        if let Some(w) = crate::render::dye_light_warning(&scene) {
+            observer.warning(&w);
+        }
         if tracer.index(tracer.camera_medium, c.position).is_none() {
             observer.warning(&format!(
                 "the camera at {:?} is where its medium captures light (inside a black hole's \

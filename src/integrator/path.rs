@@ -82,20 +82,24 @@ pub fn onward<'w, R: Rng>(
         Relighting::Unchanged => lit_and_bounces(vp, carried, first, rng, stats),
         Relighting::Dark => Onward::default(),
         Relighting::Relit { nm } => {
-            // Light samples go to every light: the light sampler weighs lights by their RGB
-            // power, and at one wavelength a light of little colour (a violet lamp) may be the
-            // brightest.
-            let mut tracer = carried.tracer.at_wavelength(nm);
-            tracer.light_samples = LightSamples::Each;
+            let tracer = past_fluorophore(carried.tracer, nm);
             let carried = Carried {
                 tracer: &tracer,
                 hero: None,
-                flights: carried.flights,
-                depth: carried.depth,
+                ..carried
             };
             lit_and_bounces(vp, carried, first, rng, stats)
         }
     }
+}
+
+/// The tracer a path goes on with past a fluorophore, at the vacuum wavelength `nm` it absorbs:
+/// its light samples go to every light, since the light sampler weighs lights by their RGB
+/// power, and at one wavelength a light of little colour (a violet lamp) may be the brightest.
+fn past_fluorophore<'a>(tracer: &'a Tracer<'a>, nm: f64) -> Tracer<'a> {
+    let mut tracer = tracer.at_wavelength(nm);
+    tracer.light_samples = LightSamples::Each;
+    tracer
 }
 
 /// The light dyes emit toward the chain recorded in `beams` on its way through their media
@@ -105,9 +109,7 @@ pub fn onward<'w, R: Rng>(
 pub fn dye_light<R: Rng>(beams: &Beams, carried: Carried, rng: &mut R, stats: &mut Stats) -> Rgb {
     let mut sum = Rgb::ZERO;
     for source in dye_sources(beams, carried.tracer, rng, stats) {
-        // Light samples go to every light, as from a fluorescent layer (a violet lamp).
-        let mut tracer = carried.tracer.at_wavelength(source.nm);
-        tracer.light_samples = LightSamples::Each;
+        let tracer = past_fluorophore(carried.tracer, source.nm);
         let carried = Carried {
             tracer: &tracer,
             hero: None,

@@ -184,8 +184,25 @@ fn photons_carry_all_light(scene: &Scene) -> Result<()> {
     }
 }
 
+/// The warning a camera view of `scene` needs where a dye's light may be missing from it: both
+/// integrators path trace the light a dye absorbs ([`crate::integrator`]), so light of a
+/// point, spot, LED, goniometric or parallel source that reaches the dye only through a
+/// refracting or reflecting surface (a lamp shining into a dyed glass block) is found by no
+/// sample. None where no medium holds a dye or every light is an area light.
+pub fn dye_light_warning(scene: &Scene) -> Option<String> {
+    let medium = scene.media().first_fluorescent()?;
+    scene.lights.iter().any(|l| !l.is_met_by_rays()).then(|| {
+        format!(
+            "medium '{medium}' holds a dye: an image shows the light it absorbs from point, \
+                 spot, LED, goniometric and parallel lights only where that light reaches it in \
+                 a straight line (through index-matched boundaries), not through a refracting \
+                 or reflecting surface; its receivers measure all of it"
+        )
+    })
+}
+
 /// Refuses to write the camera's Stokes vector (`stokes`) of a scene with a medium that
-/// scatters or emits: the light a camera ray gathers along its way through such a medium
+/// scatters, emits or holds a dye: the light a camera ray gathers along its way through such a medium
 /// would need the Stokes basis of each stretch it is gathered on, which the camera path does
 /// not yet carry to it (light met at the end of the camera's first chain, and everything
 /// beyond, it does).
