@@ -109,17 +109,9 @@ impl FluorescentLayer {
     /// mixture's density.
     pub fn hero(&self, sources: Option<&Binned>, u: f64) -> Hero {
         let emission = &self.fluorophore.emission;
-        let parts = if sources.is_some() { 3.0 } else { 2.0 };
-        let (part, v) = ((u * parts).floor().min(parts - 1.0), (u * parts).fract());
-        let nm = match (part as usize, sources) {
-            (0, _) => Hero::visible(v).nm,
-            (1, _) | (_, None) => emission.sample(v),
-            (_, Some(s)) => s.sample(v),
-        };
-        let sourced = sources.map_or(0.0, |s| s.pdf(nm));
-        Hero {
-            nm,
-            pdf: (Hero::visible_pdf(nm) + emission.pdf(nm) + sourced) / parts,
+        match sources {
+            Some(s) => Hero::visible_or(&[emission, s], u),
+            None => Hero::visible_or(&[emission], u),
         }
     }
 }

@@ -13,7 +13,6 @@ use super::single::single_scattering;
 use super::CameraRay;
 use crate::color::Rgb;
 use crate::polarization::Sheet;
-use crate::spectrum::Hero;
 use crate::transport::chain::{Carried, Chain, End, Policy, Ray, Walker};
 pub use crate::transport::lighting::emission_seen;
 use crate::transport::lighting::{bsdf_sample_weight, direct_light, light_samples, LightNumbers};
@@ -55,13 +54,14 @@ pub struct Components<'w> {
     pub stokes: Option<[Rgb; 3]>,
 }
 
-/// A camera sample's hero wavelength, drawn from `rng` in a dispersive scene (None — and no
+/// A camera sample's hero wavelength ([`crate::scene::Scene::hero`]), drawn from `rng` in a
+/// dispersive scene (None — and no
 /// random number drawn — in any other).
 pub fn hero<'a>(tracer: &'a Tracer<'a>, rng: &mut impl Rng) -> Option<HeroTracer<'a>> {
     tracer
         .scene
         .is_dispersive()
-        .then(|| HeroTracer::new(tracer, Hero::visible(rng.gen())))
+        .then(|| HeroTracer::new(tracer, tracer.scene.hero(rng.gen())))
 }
 
 /// Follows a camera ray through mirrors, dielectrics and curved media to its visible point,

@@ -14,7 +14,7 @@ use crate::material::{FluorescentLayer, Material};
 use crate::media::{Medium, Parametric};
 use crate::receiver::Receiver;
 use crate::shapes::Primitive;
-use crate::spectrum::{colour, Binned, Excitation, Spectrum, LAMBDA_D};
+use crate::spectrum::{colour, Binned, Excitation, Hero, Spectrum, LAMBDA_D};
 use crate::volume::{Fluorescence, Participating, Scattering};
 use std::path::{Path, PathBuf};
 
@@ -318,11 +318,17 @@ impl Description {
         let dye_excitations = (self.media.ids())
             .map(|i| excited(&self.media.fluorescence(i)?.absorption))
             .collect();
+        let dye_lines: Vec<Binned> = (self.media.ids())
+            .filter_map(|i| self.media.fluorescence(i))
+            .filter_map(|dye| Binned::new(|nm| dye.fluorophore.emission.pdf(nm)))
+            .collect();
+        let dye_lines = Binned::mixture(&dye_lines);
         Scene {
             fluoresces,
             sources,
             excitations,
             dye_excitations,
+            dye_lines,
             path: self.path,
             media: self.media,
             ambient: self.ambient,
@@ -392,6 +398,9 @@ pub struct Scene {
     /// By medium, for a medium holding a dye: the density of the light the dye absorbs from
     /// the scene's sources over wavelength (see [`Scene::dye_excitation`]).
     dye_excitations: Vec<Option<Binned>>,
+    /// The dyes' emission lines in equal shares (None: no medium holds a dye; see
+    /// [`Scene::hero`]).
+    dye_lines: Option<Binned>,
 }
 
 impl Scene {
@@ -505,6 +514,16 @@ impl Scene {
         match self.surfaces[prim.index()].role {
             Role::Scatter(m) => self.excitations[m.index()].as_ref(),
             Role::Detector(_) | Role::Emitter(_) => None,
+        }
+    }
+
+    /// The hero wavelength a camera sample draws for uniform `u` ([`Hero`]): from the
+    /// visible-importance density, and in a scene with dyes from their emission lines too, in
+    /// equal shares (a dye's light is seen only by paths at its line's wavelengths).
+    pub fn hero(&self, u: f64) -> Hero {
+        match &self.dye_lines {
+            Some(lines) => Hero::visible_or(&[lines], u),
+            None => Hero::visible(u),
         }
     }
 

@@ -35,6 +35,32 @@ pub const LAMBDA_F: f64 = 486.1327;
 /// Hydrogen C line (red), nm.
 pub const LAMBDA_C: f64 = 656.2725;
 
+/// A probability density over vacuum wavelength that a path may draw its wavelength from.
+pub trait Density {
+    /// The wavelength (nm) for uniform `u` in [0, 1).
+    fn sample(&self, u: f64) -> f64;
+    /// The density (1/nm) at `nm`.
+    fn pdf(&self, nm: f64) -> f64;
+}
+
+impl Density for Spectrum {
+    fn sample(&self, u: f64) -> f64 {
+        Spectrum::sample(self, u)
+    }
+    fn pdf(&self, nm: f64) -> f64 {
+        Spectrum::pdf(self, nm)
+    }
+}
+
+impl Density for Binned {
+    fn sample(&self, u: f64) -> f64 {
+        Binned::sample(self, u)
+    }
+    fn pdf(&self, nm: f64) -> f64 {
+        Binned::pdf(self, nm)
+    }
+}
+
 /// A wavelength drawn for a path, with its probability density: the one wavelength the path
 /// carries on from where it meets dispersion (Zhdanov et al.'s (2020) "subset of wavelengths that share a
 /// path": all of them until then, one after). Drawn from the visible-importance density
@@ -77,6 +103,29 @@ impl Hero {
         let hi = (VISIBLE_RATE * (LAMBDA_MAX - VISIBLE_CENTRE)).tanh();
         let c = (VISIBLE_RATE * (nm - VISIBLE_CENTRE)).cosh();
         VISIBLE_RATE / (hi - lo) / (c * c)
+    }
+
+    /// The wavelength for uniform `u` from the visible-importance density and `lines` in
+    /// equal shares — a narrow line (a fluorophore's emission, a light's) is found by a share
+    /// of the paths where the visible density alone would find it by a few — with the
+    /// mixture's density; [`Hero::visible`] without lines.
+    pub fn visible_or(lines: &[&dyn Density], u: f64) -> Hero {
+        if lines.is_empty() {
+            return Hero::visible(u);
+        }
+        let parts = (lines.len() + 1) as f64;
+        let (part, v) = ((u * parts).floor().min(parts - 1.0), (u * parts).fract());
+        let nm = match part as usize {
+            0 => Hero::visible(v).nm,
+            k => lines[k - 1].sample(v),
+        };
+        let pdf = lines
+            .iter()
+            .fold(Hero::visible_pdf(nm), |sum, line| sum + line.pdf(nm));
+        Hero {
+            nm,
+            pdf: pdf / parts,
+        }
     }
 
     /// r̄(λ)/p(λ) ([`colour::sensor`]): the linear sRGB a path's spectral radiance at this
