@@ -1314,8 +1314,8 @@ fn a_rough_material_on_a_mesh_with_bent_normals_is_an_approximation() {
 /// luminance): `stdillum-D65` is an RGB white, the same light as `rgb L [1 1 1]`;
 /// `stdillum-A` is CIE illuminant A — Planck's law at 2848 K with the CIE's c₂ = 1.435·10⁻²
 /// m·K, 2855.50 K with today's — whose colour is A's chromaticity (0.44757, 0.40745, CIE
-/// 15:2004) and whose luminance is the light's scale. Other names, and values over
-/// wavelength, are refused by name.
+/// 15:2004) and whose luminance is the light's scale. Other names, and pairs of wavelength and
+/// power that are not pairs or do not rise, are refused by name.
 #[test]
 fn pbrts_named_illuminants_convert_to_their_light() {
     let camera = "LookAt 0 0 5  0 0 0  0 1 0";
@@ -1361,9 +1361,14 @@ fn pbrts_named_illuminants_convert_to_their_light() {
             "the spectrum \"stdillum-F2\"",
         ),
         (
-            "values",
-            "\"spectrum I\" [400 1 700 2]",
-            "over wavelength is not supported",
+            "odd values",
+            "\"spectrum I\" [400 1 700]",
+            "expected pairs of wavelength",
+        ),
+        (
+            "falling",
+            "\"spectrum I\" [700 1 400 2]",
+            "expected pairs of wavelength",
         ),
     ] {
         let text = scene(camera, &format!("LightSource \"point\" {light}"));
@@ -1460,4 +1465,77 @@ fn pbrts_crop_window_and_pixel_bounds_convert_to_the_cameras_crop() {
             "pixel ({i}, {j}) of the window"
         );
     }
+}
+
+/// pbrt-v4's spectrum given as pairs of wavelength and power (its piecewise-linear spectrum, 0
+/// beyond its ends, scaled to unit luminance times `scale`): converted to a light whose
+/// `spectrum` table holds the very pairs; whose power over bands is pbrt's interpolation's
+/// (each band's share against 0.01 nm midpoint sums of it, 1e-9: grinlight integrates the
+/// table exactly); whose luminance is `scale` (its intensity times the spectrum's luminance per
+/// unit, 1e-12); and whose colour is ∫ r̄(λ)·s(λ) dλ per unit of luminance times `scale`, by
+/// 0.01 nm sums (1e-3 of it: grinlight's colours scale each channel by up to 1e-3 so that
+/// D65 is exactly white).
+#[test]
+fn a_pbrt_spectrum_of_pairs_converts_to_a_table_of_its_colour_and_scale() {
+    let pairs = [
+        (430.0, 0.0),
+        (450.0, 2.0),
+        (470.0, 0.2),
+        (560.0, 0.5),
+        (640.0, 0.0),
+    ];
+    let values: Vec<String> = pairs.iter().map(|(nm, p)| format!("{nm} {p}")).collect();
+    let t = converted(
+        "pairs",
+        "LookAt 0 0 5  0 0 0  0 1 0",
+        &format!(
+            "LightSource \"point\" \"spectrum I\" [ {} ] \"float scale\" 3",
+            values.join(" ")
+        ),
+    );
+    let light = tables(&t, "light")[0];
+    let rows: Vec<(f64, f64)> = light["spectrum"]["table"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| (f(&r[0]), f(&r[1])))
+        .collect();
+    assert_eq!(rows, pairs);
+    let at = |nm: f64| {
+        pairs
+            .windows(2)
+            .find(|w| w[0].0 <= nm && nm <= w[1].0)
+            .map_or(0.0, |w| {
+                w[0].1 + (w[1].1 - w[0].1) * (nm - w[0].0) / (w[1].0 - w[0].0)
+            })
+    };
+    let power = |lo: f64, hi: f64| -> f64 {
+        let steps = ((hi - lo) / 0.01).round() as usize;
+        (0..steps)
+            .map(|k| at(lo + 0.01 * (k as f64 + 0.5)) * 0.01)
+            .sum()
+    };
+    let shape = grinlight::spectrum::emission::Shape::Table(pairs.to_vec().into());
+    let spectrum = grinlight::spectrum::Spectrum::new(shape).unwrap();
+    let total = power(360.0, 830.0);
+    for (lo, hi) in [(430.0, 450.0), (450.0, 500.0), (500.0, 640.0)] {
+        let share = spectrum.fraction(lo, hi);
+        assert!(
+            (share - power(lo, hi) / total).abs() < 1e-9,
+            "{lo}–{hi}: {share}"
+        );
+    }
+    let intensity = f(&light["intensity"]);
+    assert!((intensity * spectrum.luminance() - 3.0).abs() < 1e-12);
+    let colour: glam::DVec3 = (0..47_000)
+        .map(|k| 360.0 + 0.01 * (k as f64 + 0.5))
+        .map(|nm| grinlight::spectrum::colour::sensor(nm).0 * at(nm) * 0.01)
+        .sum();
+    let expected = colour * (3.0 / colour.dot(glam::DVec3::new(0.2126, 0.7152, 0.0722)));
+    let rgb = spectrum.colour().0 * intensity;
+    println!("pairs: rgb {rgb:?} against {expected:?}");
+    assert!(
+        ((rgb - expected) / expected).abs().max_element() < 1e-3,
+        "{rgb} against {expected}"
+    );
 }

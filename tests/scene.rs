@@ -38,6 +38,11 @@ const BAD: &[(&str, usize, usize, &str)] = &[
     ("[[light]]\ntype = \"point\"\nposition = [0, 0, 0]\nintensity = [1, 0.5, 0.5]\nspectrum = \"E\"\n", 5, 1, "gives its power as one number"),
     ("[[light]]\ntype = \"point\"\nposition = [0, 0, 0]\nintensity = 1\nspectrum = { gaussian = [450.0] }\n", 5, 1, "bad `gaussian` spectrum"),
     ("[[light]]\ntype = \"point\"\nposition = [0, 0, 0]\nintensity = 1\nspectrum = { gaussian = [450.0, 20.0, \"x\"] }\n", 5, 1, "key `spectrum`: expected a number, got string"),
+    // A measured table: rising wavelengths, powers ≥ 0, power somewhere in 360–830 nm.
+    ("[[light]]\ntype = \"point\"\nposition = [0, 0, 0]\nintensity = 1\nspectrum = { table = [[500, 1], [450, 2]] }\n", 5, 1, "the wavelengths rising"),
+    ("[[light]]\ntype = \"point\"\nposition = [0, 0, 0]\nintensity = 1\nspectrum = { table = [[450, 1], [500, -2]] }\n", 5, 1, "the powers ≥ 0"),
+    ("[[light]]\ntype = \"point\"\nposition = [0, 0, 0]\nintensity = 1\nspectrum = { table = [[900, 1], [950, 2]] }\n", 5, 1, "no power between 360 and 830 nm"),
+    ("[[light]]\ntype = \"point\"\nposition = [0, 0, 0]\nintensity = 1\nspectrum = { table = [[450, 1, 3]] }\n", 5, 1, "expected pairs"),
     ("[[receiver]]\nname = \"r\"\ncenter = [0, 0, 0]\nsize = [1, 1]\nbins = [2, 2]\nbands = [[300.0, 400.0]]\n", 6, 1, "each band is [lo_nm, hi_nm]"),
     ("[[medium]]\nname = \"a\"\nprofile = \"parabolic\"\nn0 = 1.5\na = 0.1\ng = 0.3\n", 5, 1, "give exactly one of `a`"),
     // The exact black holes: a charge is required of reissner_nordstrom, and not negative.

@@ -452,8 +452,9 @@ impl<'a> TableReader<'a> {
     }
 
     /// An optional spectrum, the shape of an emission over wavelength: `"D65"`, `"E"` (equal
-    /// energy), `{ blackbody = kelvin }` or `{ gaussian = [peak_nm, fwhm_nm] }` (an LED, a
-    /// dye's line); refused where it has no power from 360 to 830 nm.
+    /// energy), `{ blackbody = kelvin }`, `{ gaussian = [peak_nm, fwhm_nm] }` (an LED, a
+    /// dye's line) or `{ table = [[nm, power], ...] }` (a measured spectrum: linear between
+    /// its rows, 0 beyond them); refused where it has no power from 360 to 830 nm.
     pub fn spectrum_opt(&mut self, key: &str) -> Result<Option<Spectrum>> {
         let Some(value) = self.take(key) else {
             return Ok(None);
@@ -461,12 +462,24 @@ impl<'a> TableReader<'a> {
         let bad = |why: &str| {
             self.error(
                 key,
-                format!("{why} (expected \"D65\", \"E\", {{ blackbody = kelvin }} or {{ gaussian = [peak_nm, fwhm_nm] }})"),
+                format!("{why} (expected \"D65\", \"E\", {{ blackbody = kelvin }}, {{ gaussian = [peak_nm, fwhm_nm] }} or {{ table = [[nm, power], ...] }})"),
             )
         };
         let shape = match &value {
             Value::String(s) if s == "D65" => Shape::D65,
             Value::String(s) if s == "E" => Shape::Equal,
+            Value::Table(table) if table.len() == 1 && table.contains_key("table") => {
+                let nodes = self.pairs(key, &table["table"])?;
+                let rising = nodes.windows(2).all(|w| w[0].0 < w[1].0);
+                let valid =
+                    nodes.len() >= 2 && rising && nodes.iter().all(|&(nm, p)| nm > 0.0 && p >= 0.0);
+                if !valid {
+                    return Err(bad(
+                        "a table needs two or more [nm, power] rows, the wavelengths rising and > 0, the powers ≥ 0",
+                    ));
+                }
+                Shape::Table(nodes.into())
+            }
             Value::Table(table) if table.len() == 1 => {
                 let (model, v) = table.iter().next().expect("one entry");
                 let numbers = self.numbers_in(key, v)?;

@@ -87,7 +87,7 @@ mod tests {
         let share = emitted as f64 / n as f64;
         let sigma = (0.7 * 0.3 / n as f64).sqrt();
         assert!((share - 0.7).abs() < 4.0 * sigma, "{share}");
-        let shape = dye.emission.shape;
+        let shape = &dye.emission.shape;
         let (mut mass, mut inverse) = (0.0, 0.0);
         for k in 0..47_000 {
             let nm = 360.0 + 0.01 * (k as f64 + 0.5);

@@ -24,6 +24,7 @@ use super::table::{
 use super::{Imported, Place, Told};
 use crate::error::{cut, Result};
 use crate::pixel_filter::PixelFilter;
+use crate::spectrum::emission::Shape;
 use glam::{DMat3, DMat4, DVec3};
 use index::Eta;
 use parse::{Params, Scene, Statement};
@@ -261,14 +262,15 @@ fn map_rotation(axes: DMat3) -> (DMat3, bool) {
 }
 
 /// What a pbrt light emits. pbrt scales an RGB emission by its illuminant's luminance, so the
-/// RGB given is the RGB seen, and a blackbody to unit luminance, so its luminance is its scale
-/// (`power` and `illuminance` then scale either).
+/// RGB given is the RGB seen, and a spectrum (a blackbody, a named illuminant, pairs of
+/// wavelength and power) to unit luminance, so its luminance is its scale (`power` and
+/// `illuminance` then scale either).
 #[derive(Clone, Debug)]
 enum Emission {
     /// Linear sRGB.
     Rgb(DVec3),
-    /// Planck's spectrum.
-    Blackbody(Blackbody),
+    /// A spectrum over wavelength.
+    Spectral(Spectral),
 }
 
 /// CIE standard illuminant A as a temperature: the CIE defines it as Planck's law at 2848 K
@@ -276,28 +278,56 @@ enum Emission {
 /// c₂ = hc/k = 1.438777·10⁻² m·K (Planck's law depends on c₂/T alone, up to its scale).
 const ILLUMINANT_A_KELVIN: f64 = 2848.0 * 1.438_776_877e-2 / 1.435e-2;
 
-/// Planck's spectrum at `kelvin`, of luminance `luminance` relative to unit-power D65's (a
-/// white of luminance 1 is (1, 1, 1)), written at `place`.
+/// A spectrum's `shape`, of luminance `luminance` relative to unit-power D65's (a white of
+/// luminance 1 is (1, 1, 1)), written at `place`.
 #[derive(Clone, Debug)]
-struct Blackbody {
-    kelvin: f64,
+struct Spectral {
+    shape: Shape,
     luminance: f64,
     place: Place,
 }
 
-impl Blackbody {
+impl Spectral {
+    /// A spectrum of `shape` at unit luminance, written at `place`.
+    fn unit(shape: Shape, place: &Place) -> Self {
+        Self {
+            shape,
+            luminance: 1.0,
+            place: place.clone(),
+        }
+    }
+
     /// grinlight's spectrum of it, and the power (in units of that spectrum, one of which has
     /// luminance `Spectrum::luminance`) that has its luminance.
     fn spectrum_and_power(&self) -> Result<(crate::spectrum::Spectrum, f64)> {
-        let shape = crate::spectrum::emission::Shape::Blackbody {
-            kelvin: self.kelvin,
-        };
-        let spectrum = crate::spectrum::Spectrum::new(shape).map_err(|e| {
-            self.place
-                .error(format!("a blackbody of {} K: {e}", self.kelvin))
-        })?;
+        let spectrum = crate::spectrum::Spectrum::new(self.shape.clone())
+            .map_err(|e| self.place.error(format!("the light's spectrum: {e}")))?;
         let power = self.luminance / spectrum.luminance();
         Ok((spectrum, power))
+    }
+
+    /// Its shape as a light's `spectrum` key.
+    fn toml(&self) -> Toml {
+        match &self.shape {
+            Shape::D65 => Toml::String("D65".into()),
+            Shape::Equal => Toml::String("E".into()),
+            Shape::Gaussian { peak, fwhm } => Toml::Table(table([(
+                "gaussian",
+                Toml::Array(vec![Toml::Float(*peak), Toml::Float(*fwhm)]),
+            )])),
+            Shape::Blackbody { kelvin } => {
+                Toml::Table(table([("blackbody", Toml::Float(*kelvin))]))
+            }
+            Shape::Table(nodes) => Toml::Table(table([(
+                "table",
+                Toml::Array(
+                    nodes
+                        .iter()
+                        .map(|&(nm, power)| Toml::Array(vec![Toml::Float(nm), Toml::Float(power)]))
+                        .collect(),
+                ),
+            )])),
+        }
     }
 }
 
@@ -306,7 +336,7 @@ impl Emission {
     fn times(self, k: f64) -> Emission {
         match self {
             Emission::Rgb(c) => Emission::Rgb(c * k),
-            Emission::Blackbody(b) => Emission::Blackbody(Blackbody {
+            Emission::Spectral(b) => Emission::Spectral(Spectral {
                 luminance: b.luminance * k,
                 ..b
             }),
@@ -314,19 +344,16 @@ impl Emission {
     }
 
     /// Writes the emission as the light's `key`: an RGB, or one number (the power of the
-    /// blackbody `spectrum` written beside it).
+    /// `spectrum` written beside it).
     fn put(&self, light: &mut Table, key: &str) -> Result<()> {
         match self {
             Emission::Rgb(c) => {
                 light.insert(key.into(), vec3(*c));
             }
-            Emission::Blackbody(b) => {
+            Emission::Spectral(b) => {
                 let (_, power) = b.spectrum_and_power()?;
                 light.insert(key.into(), Toml::Float(power));
-                light.insert(
-                    "spectrum".into(),
-                    Toml::Table(table([("blackbody", Toml::Float(b.kelvin))])),
-                );
+                light.insert("spectrum".into(), b.toml());
             }
         }
         Ok(())
@@ -336,7 +363,7 @@ impl Emission {
     fn rgb(&self) -> Result<DVec3> {
         match self {
             Emission::Rgb(c) => Ok(*c),
-            Emission::Blackbody(b) => {
+            Emission::Spectral(b) => {
                 let (spectrum, power) = b.spectrum_and_power()?;
                 Ok(spectrum.colour().0 * power)
             }
@@ -390,17 +417,17 @@ impl<'s> Converter<'s> {
         }
     }
 
-    /// An emission parameter (`default` white when absent): an `rgb`, or a `blackbody`
-    /// temperature; spectra over wavelength and textures are refused by name.
+    /// An emission parameter (`default` white when absent): an `rgb`, a `blackbody`
+    /// temperature, or a `spectrum` — pbrt's named illuminants D65 and A, or pairs of
+    /// wavelength and power; other named spectra and textures are refused by name.
     fn emission(&self, p: &Params, name: &str, owner: &str) -> Result<Emission> {
         match p.take(name) {
             Some(param) if param.ty == "blackbody" => {
                 match p.numbers(name, &["blackbody"])?.expect("taken").0[..] {
-                    [kelvin] if kelvin > 0.0 => Ok(Emission::Blackbody(Blackbody {
-                        kelvin,
-                        luminance: 1.0,
-                        place: param.place.clone(),
-                    })),
+                    [kelvin] if kelvin > 0.0 => Ok(Emission::Spectral(Spectral::unit(
+                        Shape::Blackbody { kelvin },
+                        &param.place,
+                    ))),
                     _ => Err(param.place.error(format!(
                         "{owner}: {}: expected one temperature in kelvin, > 0",
                         param.what()
@@ -414,22 +441,41 @@ impl<'s> Converter<'s> {
                 // (c₂ = hc/k = 1.438777·10⁻² m·K).
                 [parse::Value::Text(n)] if n == "stdillum-D65" => Ok(Emission::Rgb(DVec3::ONE)),
                 [parse::Value::Text(n)] if n == "stdillum-A" => {
-                    Ok(Emission::Blackbody(Blackbody {
-                        kelvin: ILLUMINANT_A_KELVIN,
-                        luminance: 1.0,
-                        place: param.place.clone(),
-                    }))
+                    Ok(Emission::Spectral(Spectral::unit(
+                        Shape::Blackbody {
+                            kelvin: ILLUMINANT_A_KELVIN,
+                        },
+                        &param.place,
+                    )))
                 }
                 [parse::Value::Text(n)] => Err(param.place.error(format!(
                     "{owner}: the spectrum \"{}\": grinlight's import reads the named \
-                     illuminants stdillum-D65 and stdillum-A (or give an rgb or a blackbody)",
+                     illuminants stdillum-D65 and stdillum-A, and pairs of wavelength and power \
+                     (or give an rgb or a blackbody)",
                     cut(n)
                 ))),
-                _ => Err(param.place.error(format!(
-                    "{owner}: {} over wavelength is not supported (give a named illuminant, an \
-                     rgb or a blackbody)",
-                    param.what()
-                ))),
+                // Pairs λ, power: pbrt-v4's piecewise-linear spectrum, 0 beyond its ends.
+                values => {
+                    let numbers = p.numbers(name, &["spectrum"])?.expect("taken").0;
+                    let nodes: Vec<(f64, f64)> =
+                        numbers.chunks_exact(2).map(|w| (w[0], w[1])).collect();
+                    let rising = nodes.windows(2).all(|w| w[0].0 < w[1].0);
+                    let valid = values.len() % 2 == 0
+                        && nodes.len() >= 2
+                        && rising
+                        && nodes.iter().all(|&(nm, power)| nm > 0.0 && power >= 0.0);
+                    match valid {
+                        true => Ok(Emission::Spectral(Spectral::unit(
+                            Shape::Table(nodes.into()),
+                            &param.place,
+                        ))),
+                        false => Err(param.place.error(format!(
+                            "{owner}: {}: expected pairs of wavelength (nm, rising, > 0) and \
+                             power (≥ 0), two or more",
+                            param.what()
+                        ))),
+                    }
+                }
             },
             _ => Ok(Emission::Rgb(self.rgb(p, name, DVec3::ONE, owner)?)),
         }
@@ -1704,9 +1750,9 @@ impl<'s> Converter<'s> {
         let p = &s.params;
         let colour = match self.emission(p, "I", &s.what())? {
             Emission::Rgb(rgb) => rgb,
-            Emission::Blackbody(_) => {
+            Emission::Spectral(_) => {
                 return Err(s.place.error(format!(
-                    "{}: a blackbody I is not supported on a goniometric light (give rgb I)",
+                    "{}: a spectrum I is not supported on a goniometric light (give rgb I)",
                     s.what()
                 )))
             }
