@@ -840,9 +840,9 @@ fn what_pbrt_cannot_convert_is_refused_by_file_line_and_column() {
             "s.pbrt:7:27: Material \"thindielectric\": \"spectrum eta\" — an index over wavelength",
         ),
         (
-            "spectral light",
-            in_world("LightSource \"point\" \"spectrum I\" [ 400 1 700 1 ]"),
-            "s.pbrt:7:21: LightSource \"point\": \"spectrum I\" over wavelength is not supported",
+            "spectral light of falling wavelengths",
+            in_world("LightSource \"point\" \"spectrum I\" [ 700 1 400 1 ]"),
+            "s.pbrt:7:21: LightSource \"point\": \"spectrum I\": expected pairs of wavelength",
         ),
         (
             "cold blackbody",
@@ -1356,9 +1356,9 @@ fn pbrts_named_illuminants_convert_to_their_light() {
     assert!((xyz.y / 3.0 - 1.0).abs() < 1e-3, "Y {}", xyz.y);
     for (name, light, words) in [
         (
-            "F2",
-            "\"spectrum I\" \"stdillum-F2\"",
-            "the spectrum \"stdillum-F2\"",
+            "a camera's",
+            "\"spectrum I\" \"canon_eos_100d_r\"",
+            "the spectrum \"canon_eos_100d_r\"",
         ),
         (
             "odd values",
@@ -1494,12 +1494,7 @@ fn a_pbrt_spectrum_of_pairs_converts_to_a_table_of_its_colour_and_scale() {
         ),
     );
     let light = tables(&t, "light")[0];
-    let rows: Vec<(f64, f64)> = light["spectrum"]["table"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|r| (f(&r[0]), f(&r[1])))
-        .collect();
+    let rows = table_rows(light);
     assert_eq!(rows, pairs);
     let at = |nm: f64| {
         pairs
@@ -1538,4 +1533,61 @@ fn a_pbrt_spectrum_of_pairs_converts_to_a_table_of_its_colour_and_scale() {
         ((rgb - expected) / expected).abs().max_element() < 1e-3,
         "{rgb} against {expected}"
     );
+}
+
+/// pbrt-v4's named illuminants beyond D65 and A — D50, the fluorescent lamps F1–F12 and ACES
+/// D60 — convert to tables of pbrt's samples (held at their end values beyond them, as pbrt
+/// reads them) at unit luminance times the scale (1e-12). F2's and F11's chromaticities are the
+/// CIE's (CIE 15:2004: F2 (0.37208, 0.37529), F11 (0.38052, 0.37713)) to 1e-4 (grinlight's
+/// white balance scales each channel by up to 1e-3; measured 3·10⁻⁵), and F2's 405 nm mercury
+/// line holds its sample (15.69). pbrt's `stdillum-D50` is converted as pbrt has it: its
+/// table (`CIE_Illum_D5000`) has the chromaticity (0.33681, 0.35800) by the CIE 1931 observer
+/// (grinlight's tables summed over its samples, which match the CIE's F2 and F11 above to
+/// 10⁻⁵), not CIE D50's (0.34567, 0.35850) — to 1e-4.
+#[test]
+fn pbrts_fluorescent_lamps_and_d50_convert_as_pbrt_has_them() {
+    for (name, x0, y0) in [
+        ("stdillum-D50", 0.33681, 0.35800),
+        ("stdillum-F2", 0.37208, 0.37529),
+        ("stdillum-F11", 0.38052, 0.37713),
+    ] {
+        let t = converted(
+            name,
+            "LookAt 0 0 5  0 0 0  0 1 0",
+            &format!("LightSource \"point\" \"spectrum I\" \"{name}\" \"float scale\" 2"),
+        );
+        let light = tables(&t, "light")[0];
+        let rows = table_rows(light);
+        if name == "stdillum-F2" {
+            assert!(rows.contains(&(405.0, 15.69)), "{rows:?}");
+            assert_eq!(rows[0], (359.0, 1.18));
+            assert_eq!(rows[rows.len() - 1].0, 831.0);
+        }
+        let spectrum = grinlight::spectrum::Spectrum::new(
+            grinlight::spectrum::emission::Shape::Table(rows.into()),
+        )
+        .unwrap();
+        let intensity = f(&light["intensity"]);
+        assert!((intensity * spectrum.luminance() - 2.0).abs() < 1e-12);
+        let rgb = spectrum.colour().0 * intensity;
+        let xyz = glam::DMat3::from_cols_array(&[
+            0.4124, 0.2126, 0.0193, 0.3576, 0.7152, 0.1192, 0.1805, 0.0722, 0.9505,
+        ]) * rgb;
+        let (x, y) = (xyz.x / xyz.element_sum(), xyz.y / xyz.element_sum());
+        println!("{name}: x {x:.5}, y {y:.5} against {x0}, {y0}");
+        assert!(
+            (x - x0).abs() < 1e-4 && (y - y0).abs() < 1e-4,
+            "{name}: x {x}, y {y}"
+        );
+    }
+}
+
+/// The rows of a converted light's `spectrum = { table = [[nm, power], ...] }`.
+fn table_rows(light: &toml::Table) -> Vec<(f64, f64)> {
+    light["spectrum"]["table"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| (f(&r[0]), f(&r[1])))
+        .collect()
 }

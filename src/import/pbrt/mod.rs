@@ -11,6 +11,7 @@
 //! at (−x, y, z) in grinlight's scene), which renders the image pbrt renders; a scene whose
 //! camera transform mirrors (the usual `Scale -1 1 1` before `LookAt`) keeps its coordinates.
 
+mod illuminant;
 mod index;
 pub mod parse;
 
@@ -448,12 +449,23 @@ impl<'s> Converter<'s> {
                         &param.place,
                     )))
                 }
-                [parse::Value::Text(n)] => Err(param.place.error(format!(
-                    "{owner}: the spectrum \"{}\": grinlight's import reads the named \
-                     illuminants stdillum-D65 and stdillum-A, and pairs of wavelength and power \
-                     (or give an rgb or a blackbody)",
-                    cut(n)
-                ))),
+                [parse::Value::Text(n)] => match illuminant::rows(n) {
+                    Some(rows) => Ok(Emission::Spectral(Spectral::unit(
+                        Shape::Table(rows.into()),
+                        &param.place,
+                    ))),
+                    None => Err(param.place.error(format!(
+                        "{owner}: the spectrum \"{}\": grinlight's import reads pbrt-v4's named \
+                         illuminants ({}), and pairs of wavelength and power (or give an rgb or \
+                         a blackbody)",
+                        cut(n),
+                        ["stdillum-A", "stdillum-D65"]
+                            .into_iter()
+                            .chain(illuminant::names())
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    ))),
+                },
                 // Pairs λ, power: pbrt-v4's piecewise-linear spectrum, 0 beyond its ends.
                 values => {
                     let numbers = p.numbers(name, &["spectrum"])?.expect("taken").0;
