@@ -58,16 +58,14 @@ pub fn dye_sources(
     rng: &mut impl Rng,
     stats: &mut Stats,
 ) -> Vec<DyeSource> {
-    if tracer.scene.media().first_fluorescent().is_none() {
-        return Vec::new();
-    }
     beams
         .walked()
         .filter_map(|w| source(&w, tracer, rng, stats))
         .collect()
 }
 
-/// The point drawn on the walked stretch `w`, if its medium holds a dye and one is drawn.
+/// The point drawn on the walked stretch `w`, if its medium holds a dye and one is drawn (no
+/// number is drawn for a stretch through a medium without one).
 fn source(w: &Walked, tracer: &Tracer, rng: &mut impl Rng, stats: &mut Stats) -> Option<DyeSource> {
     let dye = tracer.scene.media().fluorescence(w.medium)?;
     // A chain in a dye carries one wavelength (the medium is dispersive).
