@@ -471,29 +471,15 @@ impl Luminaire {
         }
     }
 
-    /// The angles (cos γ, C) of unit direction `dir` leaving the luminaire.
-    fn angles(&self, dir: DVec3) -> (f64, f64) {
-        (
-            dir.dot(self.nadir),
-            dir.dot(self.c90).atan2(dir.dot(self.c0)),
-        )
+    /// Unit direction `dir` leaving the luminaire in its own frame
+    /// ([`crate::photometry`]): x along C = 0, y along C = 90°, z the nadir.
+    fn local(&self, dir: DVec3) -> DVec3 {
+        DVec3::new(dir.dot(self.c0), dir.dot(self.c90), dir.dot(self.nadir))
     }
 
-    /// Unit direction `dir` in the frame of an intensity image
-    /// ([`crate::photometry::image`]): x along C = 0, y along C = 90°, z the zenith (−nadir).
-    fn image_direction(&self, dir: DVec3) -> DVec3 {
-        DVec3::new(dir.dot(self.c0), dir.dot(self.c90), -dir.dot(self.nadir))
-    }
-
-    /// The world direction of unit direction `d` of an intensity image's frame.
-    fn world_direction(&self, d: DVec3) -> DVec3 {
-        self.c0 * d.x + self.c90 * d.y - self.nadir * d.z
-    }
-
-    /// The unit direction of angles (cos γ, C).
-    fn direction(&self, cos_gamma: f64, c: f64) -> DVec3 {
-        let sin_gamma = (1.0 - cos_gamma * cos_gamma).max(0.0).sqrt();
-        self.nadir * cos_gamma + (self.c0 * c.cos() + self.c90 * c.sin()) * sin_gamma
+    /// The world direction of unit direction `d` of the luminaire's frame.
+    fn world(&self, d: DVec3) -> DVec3 {
+        self.c0 * d.x + self.c90 * d.y + self.nadir * d.z
     }
 }
 
@@ -619,16 +605,7 @@ impl Light {
             }
             Light::Goniometric {
                 aim, colour, map, ..
-            } => {
-                *colour
-                    * match &**map {
-                        IntensityMap::Table(table) => {
-                            let (cos_gamma, c) = aim.angles(dir);
-                            table.intensity(cos_gamma.clamp(-1.0, 1.0).acos(), c)
-                        }
-                        IntensityMap::Image(image) => image.intensity(aim.image_direction(dir)),
-                    }
-            }
+            } => *colour * map.intensity(aim.local(dir)),
             Light::Area { .. } | Light::Directional { .. } => Rgb::ZERO,
         }
     }
@@ -806,16 +783,8 @@ impl Light {
                 map,
                 ..
             } => {
-                let (direction, pdf) = match &**map {
-                    IntensityMap::Table(table) => {
-                        let drawn = table.draw([u[0], u[1], u[2]])?;
-                        (luminaire.direction(drawn.cos_gamma, drawn.c), drawn.pdf)
-                    }
-                    IntensityMap::Image(image) => {
-                        let (d, pdf) = image.draw([u[0], u[1], u[2]])?;
-                        (luminaire.world_direction(d), pdf)
-                    }
-                };
+                let (local, pdf) = map.draw([u[0], u[1], u[2]])?;
+                let direction = luminaire.world(local);
                 let power = self.intensity(direction) / pdf;
                 (power != Rgb::ZERO).then_some(())?;
                 emission(*position, direction, power)

@@ -8,7 +8,7 @@
 //! format's description by Stockmar (1990) counts them. Intensities are in candela: cd/klm
 //! times the lamp sets' total flux over 1000, times the conversion factor (line 24).
 
-use super::Goniogram;
+use super::{Goniogram, Web};
 
 /// A file's lines, numbered from 1, read in order.
 struct Lines<'t, I: Iterator<Item = (usize, &'t str)>>(I);
@@ -187,6 +187,7 @@ pub fn parse(text: &str) -> Result<Goniogram, String> {
     };
     let planes: Vec<f64> = (0..mc).flat_map(|i| column(stored_at(i))).collect();
     Ok(Goniogram::new(
+        Web::C,
         gammas.iter().map(|g| g.to_radians()).collect(),
         cs.iter().map(|c| c.to_radians()).collect(),
         planes.into_iter().map(|v| v * scale).collect(),
