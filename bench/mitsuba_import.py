@@ -42,6 +42,8 @@ CASES = {
     "spheres_envmap": ("spheres_envmap.xml", {}),
     # An image texture on a rectangle and on an OBJ quad.
     "textures": ("textures.xml", {}),
+    # The texture and a checkerboard on a sphere, a cylinder, a disk and a cube: their frames.
+    "round_textures": ("round_textures.xml", {}),
     # The texture on serialized, PLY and OBJ meshes, their v flipped or not, with and without
     # texture coordinates.
     "mesh_textures": ("mesh_textures.xml", {}),

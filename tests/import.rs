@@ -285,19 +285,20 @@ fn what_cannot_be_converted_is_refused_by_file_line_and_element() {
         let message = refusal(name, body, &exact);
         assert!(message.contains(words), "{name}: {message}");
     }
-    // Refusals naming files of the repository: a texture where Mitsuba's (u, v) are not
-    // grinlight's; a flipped serialized mesh, which Mitsuba 3.9.1 refuses too ("unreferenced
+    // Refusals naming files of the repository: a textured sphere turned inside out
+    // (flip_normals is not read on a sphere); a flipped serialized mesh, which Mitsuba 3.9.1 refuses too ("unreferenced
     // property": a serialized mesh's (u, v) are read as stored).
     let file = |p: &str| std::fs::canonicalize(p).unwrap().display().to_string();
     for (name, body, words) in [
         (
-            "texture",
+            "texture on a mirrored sphere",
             format!(
-                "<shape type=\"sphere\"><bsdf type=\"diffuse\"><texture name=\"reflectance\" \
+                "<shape type=\"sphere\"><boolean name=\"flip_normals\" value=\"true\"/>\
+                 <bsdf type=\"diffuse\"><texture name=\"reflectance\" \
                  type=\"bitmap\"><string name=\"filename\" value=\"{}\"/></texture></bsdf></shape>",
                 file("scenes/mitsuba/texture.png")
             ),
-            "its (u, v) in Mitsuba are not grinlight's",
+            "flip_normals on a sphere is not supported",
         ),
         (
             "flipped serialized",
@@ -713,6 +714,10 @@ fn the_mitsuba_scenes_render_as_mitsuba_renders_them() {
         ("textures", "textures.xml", vec![], 16),
         // The same texture on serialized, PLY and OBJ meshes, each way Mitsuba reads their v.
         ("mesh_textures", "mesh_textures.xml", vec![], 16),
+        // The texture and a checkerboard on a sphere, a cylinder, a disk and a cube, each
+        // turned: the (u, v) of Mitsuba's local frames (with v read from the image's bottom,
+        // a block reads z 4463).
+        ("round_textures", "round_textures.xml", vec![], 16),
         // Smoke whose density is a grid (Mitsuba's gridvolume, its .vol file) in a box.
         ("smoke_box", "smoke_box.xml", vec![], 16),
         // Two emitting spheres: grinlight's sphere lights, seen and lighting.

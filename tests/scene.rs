@@ -174,6 +174,13 @@ const BAD: &[(&str, usize, usize, &str)] = &[
     ("[[shape]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"nope\"\n", 5, 1, "no material named 'nope'"),
     ("[[shape]]\ntype = \"mesh\"\nfile = \"no_such_mesh.obj\"\nmaterial = \"m\"\n", 3, 1, "cannot read scenes/no_such_mesh.obj"),
     ("[[shape]]\ntype = \"quad\"\nvertices = [[0,0,0],[1,0,0],[1,2,0],[0,1,0]]\nmaterial = \"m\"\n", 3, 1, "not a parallelogram"),
+    // A round shape's frame of surface coordinates: three unit orthogonal axes, z along a
+    // cylinder's axis; not on a quad; `v_from_top` only with it.
+    ("[[shape]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nuv_frame = [[1, 0, 0], [0.1, 1, 0], [0, 0, 1]]\nmaterial = \"m\"\n", 5, 1, "three unit, orthogonal axes"),
+    ("[[shape]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nuv_frame = [[1, 0, 0], [0, 1, 0]]\nmaterial = \"m\"\n", 5, 1, "expected three axes"),
+    ("[[shape]]\ntype = \"cylinder\"\nbase = [0, 0, 0]\nradius = 1\nheight = 1\nuv_frame = [[0, 1, 0], [0, 0, 1], [1, 0, 0]]\nmaterial = \"m\"\n", 6, 1, "z must be along the cylinder's axis"),
+    ("[[shape]]\ntype = \"quad\"\nvertices = [[0,0,0],[1,0,0],[1,1,0],[0,1,0]]\nuv_frame = [[1, 0, 0], [0, 1, 0], [0, 0, 1]]\nmaterial = \"m\"\n", 4, 1, "only a sphere, a cylinder or a disk takes a frame"),
+    ("[[material]]\nname = \"m\"\ntype = \"diffuse\"\nalbedo = 0.5\n[[shape]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nv_from_top = true\nmaterial = \"m\"\n", 9, 1, "unknown key `v_from_top`"),
     // A mesh given by its points: an index naming no point, points not in threes, both a file and points.
     ("[[shape]]\ntype = \"mesh\"\npoints = [0, 0, 0, 1, 0, 0, 0, 1, 0]\nindices = [0, 1, 3]\nmaterial = \"m\"\n", 4, 1, "key `indices`: triangle 1 names vertex 3: indices are whole numbers from 0 to 2"),
     ("[[shape]]\ntype = \"mesh\"\npoints = [0, 0, 0, 1, 0, 0, 0, 1]\nindices = [0, 1, 2]\nmaterial = \"m\"\n", 3, 1, "key `points`: expected 3 numbers a vertex, got 8 numbers"),

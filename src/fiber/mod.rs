@@ -197,6 +197,7 @@ impl Description {
             ..
         } = fiber;
         let top = base + axis * height;
+        let uv_frame = self.shapes[shape].uv_frame;
         // The fiber's shape (its tube and end faces) gives way to one shape per layer: a tube
         // with the next layer (or the fiber's exterior) outside, and two annular end faces.
         let mut twin = Vec::with_capacity(layers.len());
@@ -237,6 +238,7 @@ impl Description {
                     exterior: outside,
                     ..surface
                 },
+                uv_frame,
             });
             twin.push(Shape {
                 primitives: [(base, -axis), (top, axis)]
@@ -253,6 +255,7 @@ impl Description {
                     interior: Some(layer),
                     ..surface
                 },
+                uv_frame,
             });
         }
         self.shapes.splice(shape..=shape, twin);

@@ -209,6 +209,7 @@ fn read_shapes(
         t.finish()?;
         shapes.push(Shape {
             primitives: desc.primitives,
+            uv_frame: desc.uv_frame,
             surface: Surface {
                 role: Role::Scatter(MaterialId::new(material)),
                 interior,

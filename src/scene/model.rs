@@ -13,9 +13,10 @@ use crate::lights::Light;
 use crate::material::{FluorescentLayer, Material};
 use crate::media::{Medium, Parametric};
 use crate::receiver::Receiver;
-use crate::shapes::Primitive;
+use crate::shapes::{Primitive, UvFrame};
 use crate::spectrum::{colour, Binned, Excitation, Hero, Spectrum, LAMBDA_D};
 use crate::volume::{Fluorescence, Participating, Scattering};
+use glam::{DVec2, DVec3};
 use std::path::{Path, PathBuf};
 
 /// A dispersive medium's profile at a vacuum wavelength (nm): its constants evaluated there.
@@ -235,6 +236,8 @@ pub struct Shape {
     pub primitives: Vec<Primitive>,
     /// What they are made of and what they hold.
     pub surface: Surface,
+    /// The frame its round primitives' surface coordinates are read in (None: their own).
+    pub uv_frame: Option<UvFrame>,
 }
 
 /// What a scene file says, names resolved: editable, then built.
@@ -273,11 +276,18 @@ impl Description {
     pub fn build(self) -> Scene {
         let mut primitives = Vec::new();
         let mut surfaces = Vec::new();
+        let mut uv_frames = Vec::new();
         for shape in self.shapes {
             let surface = Surface {
                 exterior: shape.surface.exterior.or(self.ambient),
                 ..shape.surface
             };
+            if let Some(frame) = shape.uv_frame {
+                let first = primitives.len();
+                uv_frames.extend(
+                    (first..first + shape.primitives.len()).map(|i| (PrimId::new(i), frame)),
+                );
+            }
             surfaces.extend(std::iter::repeat_n(surface, shape.primitives.len()));
             primitives.extend(shape.primitives);
         }
@@ -334,6 +344,7 @@ impl Description {
             ambient: self.ambient,
             materials: self.materials,
             surfaces,
+            uv_frames,
             accel: Accel::new(primitives),
             lights: self.lights,
             light_spectra: self.light_spectra,
@@ -371,6 +382,8 @@ pub struct Scene {
     pub materials: Vec<Material>,
     /// Per primitive of [`Scene::accel`], its surface.
     pub surfaces: Vec<Surface>,
+    /// The primitives whose surface coordinates are read in a frame of their own, ascending.
+    uv_frames: Vec<(PrimId, UvFrame)>,
     /// The primitives and their BVH.
     pub accel: Accel,
     /// Lights (the environment apart).
@@ -434,6 +447,16 @@ impl Scene {
     /// The surface of primitive `prim`.
     pub fn surface(&self, prim: PrimId) -> Surface {
         self.surfaces[prim.index()]
+    }
+
+    /// The surface coordinates of point `x` on analytic primitive `prim`: in its shape's
+    /// frame where the scene gives one ([`UvFrame`]), else its own ([`Primitive::uv_at`]).
+    pub fn uv_at(&self, prim: PrimId, x: DVec3) -> DVec2 {
+        let primitive = self.accel.primitive(prim);
+        match self.uv_frames.binary_search_by_key(&prim, |(p, _)| *p) {
+            Ok(i) => self.uv_frames[i].1.uv_at(primitive, x),
+            Err(_) => primitive.uv_at(x),
+        }
     }
 
     /// Whether a surface may join equal indices (a smooth dielectric: its indices are

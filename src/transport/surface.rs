@@ -94,13 +94,8 @@ struct HitPoint<'t, 'a> {
 
 impl SurfacePoint for HitPoint<'_, '_> {
     fn uv(&self) -> DVec2 {
-        self.uv.unwrap_or_else(|| {
-            self.tracer
-                .scene
-                .accel
-                .primitive(self.prim)
-                .uv_at(self.position)
-        })
+        self.uv
+            .unwrap_or_else(|| self.tracer.scene.uv_at(self.prim, self.position))
     }
     fn wavelength(&self) -> Option<f64> {
         self.tracer.single_wavelength()

@@ -1478,17 +1478,6 @@ impl Converter<'_> {
     /// The geometry keys of a shape; `textured`: its material has an image texture, looked up
     /// at the shape's (u, v), which must then be Mitsuba's.
     fn geometry(&mut self, shape: &Object, m: &DMat4, flip: bool, textured: bool) -> Result<Table> {
-        if textured
-            && !matches!(
-                shape.kind.as_str(),
-                "rectangle" | "obj" | "ply" | "serialized"
-            )
-        {
-            return Err(shape.error(
-                "a texture on this shape: its (u, v) in Mitsuba are not grinlight's (textures \
-                 are read on rectangles and meshes)",
-            ));
-        }
         let refuse_flip = |what: &str| -> Result<()> {
             match flip {
                 true => Err(shape.error(format!("flip_normals on a {what} is not supported"))),
@@ -1522,11 +1511,15 @@ impl Converter<'_> {
             "sphere" => {
                 refuse_flip("sphere")?;
                 let (center, radius) = sphere(shape, m)?;
-                table([
-                    ("type", string("sphere")),
-                    ("center", vec3(center)),
-                    ("radius", Toml::Float(radius)),
-                ])
+                let l = linear(m);
+                with_uv_frame(
+                    table([
+                        ("type", string("sphere")),
+                        ("center", vec3(center)),
+                        ("radius", Toml::Float(radius)),
+                    ]),
+                    textured.then(|| local_frame(l.z_axis, l.x_axis, l.y_axis)),
+                )
             }
             "rectangle" => {
                 // Mitsuba's image row is v from the top, grinlight's from the bottom: a textured
@@ -1549,12 +1542,31 @@ impl Converter<'_> {
             }
             "disk" => {
                 let (center, normal, radius) = disk(shape, m, flip)?;
-                table([
-                    ("type", string("disk")),
-                    ("center", vec3(center)),
-                    ("normal", vec3(normal)),
-                    ("radius", Toml::Float(radius)),
-                ])
+                let l = linear(m);
+                with_uv_frame(
+                    table([
+                        ("type", string("disk")),
+                        ("center", vec3(center)),
+                        ("normal", vec3(normal)),
+                        ("radius", Toml::Float(radius)),
+                    ]),
+                    textured.then(|| local_frame(normal, l.x_axis, l.y_axis)),
+                )
+            }
+            "cube" if textured => {
+                refuse_flip("cube")?;
+                if linear(m).determinant() == 0.0 {
+                    return Err(shape.error("to_world flattens the cube"));
+                }
+                table([(
+                    "faces",
+                    Toml::Array(
+                        textured_cube_faces(m)
+                            .into_iter()
+                            .map(|f| Toml::Array(f.into_iter().map(vec3).collect()))
+                            .collect(),
+                    ),
+                )])
             }
             "cube" => {
                 refuse_flip("cube")?;
@@ -1604,15 +1616,23 @@ impl Converter<'_> {
                 let axis = (b - a)
                     .try_normalize()
                     .ok_or_else(|| shape.error("p0 = p1"))?;
-                table([
-                    ("type", string("cylinder")),
-                    ("base", vec3(a)),
-                    ("axis", vec3(axis)),
-                    ("radius", Toml::Float(radius * s)),
-                    ("height", Toml::Float((b - a).length())),
-                    // Mitsuba's cylinder is a tube without caps.
-                    ("capped", Toml::Boolean(false)),
-                ])
+                // Mitsuba's local frame: p0 at its origin, the axis its z, its x and y the
+                // Duff et al. (2017) basis of the axis before to_world (Frame3f), as glam's.
+                let local = (p1 - p0).normalize();
+                let (x, y) = local.any_orthonormal_pair();
+                let l = linear(m);
+                with_uv_frame(
+                    table([
+                        ("type", string("cylinder")),
+                        ("base", vec3(a)),
+                        ("axis", vec3(axis)),
+                        ("radius", Toml::Float(radius * s)),
+                        ("height", Toml::Float((b - a).length())),
+                        // Mitsuba's cylinder is a tube without caps.
+                        ("capped", Toml::Boolean(false)),
+                    ]),
+                    textured.then(|| local_frame(axis, l * x, l * y)),
+                )
             }
             other => {
                 return Err(shape.error(format!(
@@ -1960,6 +1980,67 @@ fn disk(shape: &Object, m: &DMat4, flip: bool) -> Result<(DVec3, DVec3, f64)> {
         if flip { -normal } else { normal },
         a.length(),
     ))
+}
+
+/// A shape's keys with, where given, its surface coordinates' frame: `uv_frame` and
+/// `v_from_top` (Mitsuba reads an image's rows from the top).
+fn with_uv_frame(mut t: Table, frame: Option<[DVec3; 3]>) -> Table {
+    if let Some(axes) = frame {
+        t.insert(
+            "uv_frame".into(),
+            Toml::Array(axes.into_iter().map(vec3).collect()),
+        );
+        t.insert("v_from_top".into(), Toml::Boolean(true));
+    }
+    t
+}
+
+/// The frame [x, y, z] of a round shape's local axes as `to_world` turns them: z along `z`,
+/// x and y along the images `x` and `y` of the local x and y, made orthogonal to it and to
+/// each other in that order (a similarity turns them orthogonal already, to rounding), so
+/// that z keeps the direction of grinlight's axis or normal exactly.
+fn local_frame(z: DVec3, x: DVec3, y: DVec3) -> [DVec3; 3] {
+    let z = z.normalize();
+    let x = (x - z * z.dot(x)).normalize();
+    let y = (y - z * z.dot(y) - x * x.dot(y)).normalize();
+    [x, y, z]
+}
+
+/// Mitsuba 3.9.1's cube (`cube.cpp`) placed by `m` as six parallelograms whose corners are
+/// its faces' four vertices in its order: texture coordinates (0, 1), (1, 1), (1, 0), (0, 0)
+/// in Mitsuba, so that a quad from the first toward the second and the fourth reads (u,
+/// 1 − v), grinlight's image coordinates of Mitsuba's (u, v).
+fn textured_cube_faces(m: &DMat4) -> Vec<[DVec3; 4]> {
+    const VERTICES: [[f64; 3]; 24] = [
+        [1., -1., -1.],
+        [1., -1., 1.],
+        [-1., -1., 1.],
+        [-1., -1., -1.],
+        [1., 1., -1.],
+        [-1., 1., -1.],
+        [-1., 1., 1.],
+        [1., 1., 1.],
+        [1., -1., -1.],
+        [1., 1., -1.],
+        [1., 1., 1.],
+        [1., -1., 1.],
+        [1., -1., 1.],
+        [1., 1., 1.],
+        [-1., 1., 1.],
+        [-1., -1., 1.],
+        [-1., -1., 1.],
+        [-1., 1., 1.],
+        [-1., 1., -1.],
+        [-1., -1., -1.],
+        [1., 1., -1.],
+        [1., -1., -1.],
+        [-1., -1., -1.],
+        [-1., 1., -1.],
+    ];
+    VERTICES
+        .chunks(4)
+        .map(|face| std::array::from_fn(|k| m.transform_point3(DVec3::from(face[k]))))
+        .collect()
 }
 
 /// Mitsuba's cube [−1, 1]³ placed by `m` as six parallelograms, normals outward.

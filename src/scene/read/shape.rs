@@ -3,7 +3,7 @@
 use crate::error::Result;
 use crate::scene::mesh::ObjTriangles;
 use crate::scene::table::{TableReader, MAX_MAGNITUDE};
-use crate::shapes::{Disk, Primitive, Quad, TriangleMesh};
+use crate::shapes::{Disk, Primitive, Quad, TriangleMesh, UvFrame};
 use glam::{DMat3, DVec3};
 use std::sync::Arc;
 
@@ -15,6 +15,29 @@ pub struct ShapeDesc {
     pub material: String,
     /// Interior override.
     pub interior: Option<String>,
+    /// The frame its round primitives' surface coordinates are read in (None: their own).
+    pub uv_frame: Option<UvFrame>,
+}
+
+/// A round shape's `uv_frame` (three axes [x, y, z]) and `v_from_top`, checked against each of
+/// its `primitives`.
+fn uv_frame(t: &mut TableReader, primitives: &[Primitive]) -> Result<Option<UvFrame>> {
+    if !t.has("uv_frame") {
+        return Ok(None);
+    }
+    let axes = t.vec3_list("uv_frame")?;
+    t.check(
+        "uv_frame",
+        axes.len() == 3,
+        format!("expected three axes [x, y, z], got {}", axes.len()),
+    )?;
+    let v_from_top = t.bool_or("v_from_top", false)?;
+    let frame =
+        UvFrame::new(axes[0], axes[1], axes[2], v_from_top).map_err(|e| t.error("uv_frame", e))?;
+    if let Some(why) = primitives.iter().find_map(|p| frame.misfit(p)) {
+        return Err(t.error("uv_frame", why));
+    }
+    Ok(Some(frame))
 }
 
 /// The parallelogram of four vertices v0..v3 (refs convention: triangles (v0,v1,v2), (v0,v2,v3)).
@@ -109,8 +132,13 @@ pub fn read_shape(t: &mut TableReader) -> Result<ShapeDesc> {
             ))
         }
     };
+    let uv_frame = match kind.as_str() {
+        "mesh" => None,
+        _ => uv_frame(t, &primitives)?,
+    };
     Ok(ShapeDesc {
         primitives,
+        uv_frame,
         material: t.string("material")?,
         interior: t.string_opt("interior")?,
     })
