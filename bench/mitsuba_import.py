@@ -44,6 +44,8 @@ CASES = {
     "textures": ("textures.xml", {}),
     # The texture and a checkerboard on a sphere, a cylinder, a disk and a cube: their frames.
     "round_textures": ("round_textures.xml", {}),
+    # The twin of scenes/pbrt/textured_shapes.pbrt: textures on a sphere, a cylinder, a rectangle.
+    "textured_shapes": ("textured_shapes.xml", {}),
     # The texture on serialized, PLY and OBJ meshes, their v flipped or not, with and without
     # texture coordinates.
     "mesh_textures": ("mesh_textures.xml", {}),

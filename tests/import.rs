@@ -595,20 +595,6 @@ pub(super) fn grinlight_blocks(
     runs: u64,
     spp: u32,
 ) -> Blocks {
-    let mut blocks = grinlight_layer_blocks(scene, defines, runs, spp, false, &["beauty"]);
-    blocks.remove(0)
-}
-
-/// [`grinlight_blocks`] of each of the EXR's `layers`, the camera's Stokes vector measured
-/// where `stokes`.
-pub(super) fn grinlight_layer_blocks(
-    scene: &Path,
-    defines: &[(&str, &str)],
-    runs: u64,
-    spp: u32,
-    stokes: bool,
-    layers: &[&str],
-) -> Vec<Blocks> {
     let options = ImportOptions {
         defines: defines
             .iter()
@@ -616,7 +602,21 @@ pub(super) fn grinlight_layer_blocks(
             .collect(),
         approximate: false,
     };
-    let (description, mut settings) = load_description(scene, &options).unwrap();
+    let mut blocks = grinlight_layer_blocks(scene, &options, runs, spp, false, &["beauty"]);
+    blocks.remove(0)
+}
+
+/// [`grinlight_blocks`] of each of the EXR's `layers` of the scene imported as `options`
+/// say, the camera's Stokes vector measured where `stokes`.
+pub(super) fn grinlight_layer_blocks(
+    scene: &Path,
+    options: &ImportOptions,
+    runs: u64,
+    spp: u32,
+    stokes: bool,
+    layers: &[&str],
+) -> Vec<Blocks> {
+    let (description, mut settings) = load_description(scene, options).unwrap();
     let scene = description.build();
     let window = scene.camera.as_ref().expect("a camera").window();
     let (w, h) = (window.width as usize, window.height as usize);

@@ -741,7 +741,7 @@ fn glass_and_metal_have_mitsubas_stokes_vector() {
     use super::import::{compare, grinlight_layer_blocks, reference};
     let scene = std::path::Path::new("tests/data/mitsuba/polarized_spheres.toml");
     let layers = ["S0", "S1", "S2", "S3"];
-    let ours = grinlight_layer_blocks(scene, &[], 32, 16, true, &layers);
+    let ours = grinlight_layer_blocks(scene, &Default::default(), 32, 16, true, &layers);
     for (k, (ours, layer)) in ours.iter().zip(layers).enumerate() {
         let theirs = reference(&format!("polarized_spheres_{layer}"));
         // Blocks whose value the reference knows to 10 standard errors: what is tested.

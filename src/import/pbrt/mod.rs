@@ -14,6 +14,7 @@
 mod illuminant;
 mod index;
 pub mod parse;
+mod texture;
 
 use super::geometry::{
     axis_scales, emitting_side, linear, look_at, normal_turn, parallelogram, similarity,
@@ -60,6 +61,8 @@ pub fn convert(scene: &Scene, approximate: bool) -> Result<Imported> {
         mirror: false,
         world: false,
         named_materials: HashMap::new(),
+        textures: HashMap::new(),
+        used_textures: HashSet::new(),
         converted_materials: HashMap::new(),
         used_materials: HashSet::new(),
         default_material: None,
@@ -97,8 +100,14 @@ pub fn convert(scene: &Scene, approximate: bool) -> Result<Imported> {
         return Err(place.error("the scene has no WorldBegin: nothing to render"));
     }
     for s in &scene.statements {
-        let defines_material = matches!(s.directive.as_str(), "Material" | "MakeNamedMaterial");
-        if defines_material && !c.used_materials.contains(&(s as *const Statement)) {
+        let unused = match s.directive.as_str() {
+            "Material" | "MakeNamedMaterial" => {
+                !c.used_materials.contains(&(s as *const Statement))
+            }
+            "Texture" => !c.used_textures.contains(s.text(0)),
+            _ => false,
+        };
+        if unused {
             c.told.note(
                 &s.place,
                 format!("{} is used by no shape: left out", s.what()),
@@ -166,8 +175,13 @@ impl Default for Graphics<'_> {
 /// What a material became.
 #[derive(Clone)]
 enum Surface {
-    /// A grinlight material, its name; a dielectric's relative index.
-    Material { name: String, ior: Option<Eta> },
+    /// A grinlight material, its name; a dielectric's relative index; whether a texture
+    /// colours it (looked up at the shape's (u, v), which must then be pbrt's).
+    Material {
+        name: String,
+        ior: Option<Eta>,
+        textured: bool,
+    },
     /// pbrt's `interface`: no surface, a medium's boundary only.
     Interface,
 }
@@ -216,6 +230,9 @@ struct Converter<'s> {
     world: bool,
     /// `MakeNamedMaterial` statements by name.
     named_materials: HashMap<String, &'s Statement>,
+    /// `Texture` statements by name, and the names a material used.
+    textures: HashMap<String, &'s Statement>,
+    used_textures: HashSet<String>,
     /// Each material statement converted, by address (one material however often used).
     converted_materials: HashMap<*const Statement, Surface>,
     /// The material statements a shape or an area light's shape used.
@@ -709,10 +726,13 @@ impl<'s> Converter<'s> {
                 self.shape(s)?;
             }
             "Texture" => {
-                return Err(s.place.error(format!(
-                    "{}: textures are not supported by grinlight's pbrt import",
-                    s.what()
-                )))
+                let name = s.text(0).to_string();
+                if self.textures.insert(name.clone(), s).is_some() {
+                    return Err(s.place.error(format!(
+                        "Texture \"{}\" redefined (pbrt-v4 refuses it too)",
+                        cut(&name)
+                    )));
+                }
             }
             "ObjectBegin" => {
                 if !self.world {
@@ -1239,6 +1259,26 @@ impl<'s> Converter<'s> {
         Ok(Eta::Spectrum(nodes))
     }
 
+    /// A diffuse base's `reflectance` (0.5 when absent) as a material's keys: its `albedo`,
+    /// or a named texture's ([`texture::reflectance`], its approximation listed).
+    fn reflectance(&mut self, p: &Params, what: &str) -> Result<Table> {
+        let Some(param) = p.take("reflectance").filter(|r| r.ty == "texture") else {
+            let r = self.rgb(p, "reflectance", DVec3::splat(0.5), what)?;
+            return Ok(table([("albedo", vec3(r))]));
+        };
+        let name = p.string("reflectance")?.unwrap_or_default();
+        let Some(&defined) = self.textures.get(&name) else {
+            return Err(param.place.error(format!(
+                "{what}: {} names no texture defined before it",
+                param.what()
+            )));
+        };
+        self.used_textures.insert(name);
+        let converted = texture::reflectance(defined, |file, place| self.scene.find(file, place))?;
+        self.told.approximate(&defined.place, converted.differs)?;
+        Ok(converted.keys)
+    }
+
     /// The grinlight material of a pbrt material of type `kind`, named `wanted` (or a free
     /// name near it).
     fn material(
@@ -1266,10 +1306,7 @@ impl<'s> Converter<'s> {
                 p.finish(what)?;
                 return Ok(Surface::Interface);
             }
-            "diffuse" => {
-                let r = self.rgb(p, "reflectance", DVec3::splat(0.5), what)?;
-                ("diffuse", table([("albedo", vec3(r))]), None)
-            }
+            "diffuse" => ("diffuse", self.reflectance(p, what)?, None),
             "dielectric" => {
                 let eta = self.dielectric_eta(p, what)?;
                 let a = alpha(p, place)?;
@@ -1351,7 +1388,7 @@ impl<'s> Converter<'s> {
                 ("conductor", m, None)
             }
             "coateddiffuse" => {
-                let base = self.rgb(p, "reflectance", DVec3::splat(0.5), what)?;
+                let mut m = self.reflectance(p, what)?;
                 let eta = self.eta(p, what)?;
                 let a = alpha(p, place)?.max(1e-3);
                 if self.rgb(p, "albedo", DVec3::ZERO, what)? != DVec3::ZERO {
@@ -1371,7 +1408,6 @@ impl<'s> Converter<'s> {
                          over a diffuse base, the light between them summed in closed form)"
                     ),
                 )?;
-                let mut m = table([("albedo", vec3(base))]);
                 m.insert("ior".into(), Toml::Float(eta));
                 m.insert("roughness".into(), Toml::Float(a));
                 ("plastic", m, None)
@@ -1383,8 +1419,13 @@ impl<'s> Converter<'s> {
         let name = free_name(&self.lists.materials, wanted);
         m.insert("name".into(), string(&name));
         m.insert("type".into(), string(grin_kind));
+        let textured = m.contains_key("texture") || m.contains_key("checkerboard");
         self.lists.materials.push(m);
-        Ok(Surface::Material { name, ior })
+        Ok(Surface::Material {
+            name,
+            ior,
+            textured,
+        })
     }
 
     /// The grinlight medium the pbrt medium `name` becomes at (relative) index `n`.
@@ -1825,7 +1866,9 @@ impl<'s> Converter<'s> {
             return Ok(false);
         };
         self.used_materials.insert(s);
+        let textured = (s.params.take("reflectance")).is_some_and(|r| r.ty == "texture");
         Ok(Self::material_kind(s).0 == "diffuse"
+            && !textured
             && self.rgb(&s.params, "reflectance", DVec3::splat(0.5), &s.what())? == DVec3::ZERO)
     }
 
@@ -1857,7 +1900,11 @@ impl<'s> Converter<'s> {
                 name
             }
         };
-        Ok(Surface::Material { name, ior: None })
+        Ok(Surface::Material {
+            name,
+            ior: None,
+            textured: false,
+        })
     }
 
     /// Places every `ObjectInstance`: each shape of its object's definition converted with
@@ -1959,7 +2006,7 @@ impl<'s> Converter<'s> {
                     &s.place,
                     format!("{what} is an interface with no medium inside: invisible, left out"),
                 );
-                self.geometry(s, &g, false)?;
+                self.geometry(s, &g, false, false)?;
                 return p.finish(&what);
             }
             (Surface::Interface, inside) => {
@@ -2021,7 +2068,11 @@ impl<'s> Converter<'s> {
             )?;
         }
         let dielectric = matches!(surface, Surface::Material { ior: Some(_), .. });
-        for (k, v) in self.geometry(s, &g, dielectric)? {
+        let textured = matches!(surface, Surface::Material { textured: true, .. });
+        if textured {
+            self.has_pbrts_uv(s)?;
+        }
+        for (k, v) in self.geometry(s, &g, dielectric, textured)? {
             out.insert(k, v);
         }
         p.finish(&what)?;
@@ -2090,9 +2141,63 @@ impl<'s> Converter<'s> {
         g.reverse ^ (linear(&g.ctm).determinant() < 0.0) ^ self.mirror
     }
 
+    /// Refuses a textured shape whose (u, v) grinlight cannot read as pbrt-v4 does: a disk
+    /// (pbrt's (φ/2π, (R − r)/(R − r_inner)) is no frame's), a triangle mesh without `uv` (pbrt
+    /// gives each triangle's corners (0, 0), (1, 0), (1, 1); grinlight reads the corners'
+    /// weights) and a bilinear patch given its own.
+    fn has_pbrts_uv(&mut self, s: &'s Statement) -> Result<()> {
+        let refuse = |why: &str| {
+            Err(s
+                .place
+                .error(format!("{}: a texture on it: {why}", s.what())))
+        };
+        match s.text(0) {
+            "disk" => {
+                refuse("pbrt's disk (u, v) = (φ/2π, (R − r)/(R − r_inner)) is not grinlight's")
+            }
+            "trianglemesh" if TriangleMesh::read(s)?.uv.is_none() => refuse(
+                "it gives no \"uv\" (pbrt's triangles then read (0, 0), (1, 0), (1, 1) at their \
+                 corners, grinlight's the corners' weights)",
+            ),
+            "plymesh" if self.ply_mesh(s)?.texcoords.is_none() => refuse(
+                "its file gives no texture coordinates (pbrt's triangles then read (0, 0), \
+                 (1, 0), (1, 1) at their corners, grinlight's the corners' weights)",
+            ),
+            "bilinearmesh" if s.params.has("uv") => refuse("a patch's own \"uv\" is not read"),
+            _ => Ok(()),
+        }
+    }
+
+    /// A round shape's keys with, where `v_from_top` is given (a texture colours it), its
+    /// object frame as `uv_frame`: pbrt's (u, v) are a sphere's and a cylinder's in their
+    /// object space (φ from x toward y), which `m` places in pbrt's world and the scene's
+    /// negated x in grinlight's (a similarity: its axes orthogonal to rounding, made so).
+    fn with_object_frame(&self, mut t: Table, m: &DMat4, v_from_top: Option<bool>) -> Table {
+        if let Some(v_from_top) = v_from_top {
+            let [x, y, z] = [DVec3::X, DVec3::Y, DVec3::Z].map(|a| self.vector(m, a));
+            let z = z.normalize();
+            let x = (x - z * z.dot(x)).normalize();
+            let y = (y - z * z.dot(y) - x * x.dot(y)).normalize();
+            t.insert(
+                "uv_frame".into(),
+                Toml::Array([x, y, z].into_iter().map(vec3).collect()),
+            );
+            t.insert("v_from_top".into(), Toml::Boolean(v_from_top));
+        }
+        t
+    }
+
     /// The geometry keys of a shape; `oriented`: its inside and outside differ in grinlight
-    /// (a dielectric), so its orientation must be kept.
-    fn geometry(&mut self, s: &Statement, g: &Graphics, oriented: bool) -> Result<Table> {
+    /// (a dielectric), so its orientation must be kept; `textured`: a texture is looked up at
+    /// its (u, v), which must then be pbrt's (a sphere's and a cylinder's in their object
+    /// frame, `uv_frame`; a bilinear patch's corners in pbrt's order).
+    fn geometry(
+        &mut self,
+        s: &Statement,
+        g: &Graphics,
+        oriented: bool,
+        textured: bool,
+    ) -> Result<Table> {
         let p = &s.params;
         let m = g.ctm;
         let uniform = |what: &str| -> Result<f64> {
@@ -2114,11 +2219,17 @@ impl<'s> Converter<'s> {
         Ok(match s.text(0) {
             "sphere" => {
                 let (center, radius) = self.sphere(s, g)?;
-                table([
-                    ("type", string("sphere")),
-                    ("center", vec3(center)),
-                    ("radius", Toml::Float(radius)),
-                ])
+                // pbrt's v = (θ − θ(zmin))/(θ(zmax) − θ(zmin)) = 1 − θ/π of a whole sphere:
+                // the frame's θ/π read from the top.
+                self.with_object_frame(
+                    table([
+                        ("type", string("sphere")),
+                        ("center", vec3(center)),
+                        ("radius", Toml::Float(radius)),
+                    ]),
+                    &m,
+                    textured.then_some(true),
+                )
             }
             "disk" => {
                 let (height, radius) = (p.float("height", 0.0)?, p.float("radius", 1.0)?);
@@ -2146,15 +2257,20 @@ impl<'s> Converter<'s> {
                     return Err(s.place.error("the cylinder has no height (zmin = zmax)"));
                 }
                 let axis = self.vector(&m, DVec3::Z).normalize();
-                table([
-                    ("type", string("cylinder")),
-                    ("base", vec3(self.point(&m, DVec3::new(0.0, 0.0, lo)))),
-                    ("axis", vec3(axis)),
-                    ("radius", Toml::Float(radius * k)),
-                    ("height", Toml::Float((hi - lo) * k)),
-                    // pbrt's cylinder is open.
-                    ("capped", Toml::Boolean(false)),
-                ])
+                // pbrt's v = (z − zmin)/(zmax − zmin): the height from the base.
+                self.with_object_frame(
+                    table([
+                        ("type", string("cylinder")),
+                        ("base", vec3(self.point(&m, DVec3::new(0.0, 0.0, lo)))),
+                        ("axis", vec3(axis)),
+                        ("radius", Toml::Float(radius * k)),
+                        ("height", Toml::Float((hi - lo) * k)),
+                        // pbrt's cylinder is open.
+                        ("capped", Toml::Boolean(false)),
+                    ]),
+                    &m,
+                    textured.then_some(false),
+                )
             }
             "trianglemesh" => {
                 let mesh = TriangleMesh::read(s)?;
@@ -2200,7 +2316,7 @@ impl<'s> Converter<'s> {
                 ])
             }
             "bilinearmesh" => {
-                let (corners, _) = self.bilinear_quad(s, g)?;
+                let (corners, _) = self.bilinear_quad(s, g, !textured)?;
                 table([
                     ("type", string("quad")),
                     (
@@ -2253,7 +2369,12 @@ impl<'s> Converter<'s> {
 
     /// A `bilinearmesh` of one flat parallelogram patch: its corners in grinlight's world,
     /// ordered to face pbrt's normal, and that normal.
-    fn bilinear_quad(&self, s: &Statement, g: &Graphics) -> Result<([DVec3; 4], DVec3)> {
+    fn bilinear_quad(
+        &self,
+        s: &Statement,
+        g: &Graphics,
+        facing_normal: bool,
+    ) -> Result<([DVec3; 4], DVec3)> {
         let p = &s.params;
         let points = p
             .numbers("P", &["point3", "point"])?
@@ -2292,7 +2413,11 @@ impl<'s> Converter<'s> {
         if !normal.is_finite() {
             return Err(s.place.error("the bilinear patch has no area"));
         }
-        Ok((facing([p00, p10, p11, p01], normal), normal))
+        let corners = [p00, p10, p11, p01];
+        match facing_normal {
+            true => Ok((facing(corners, normal), normal)),
+            false => Ok((corners, normal)),
+        }
     }
 
     /// A `trianglemesh` of two triangles forming a parallelogram, in grinlight's world and
@@ -2447,7 +2572,7 @@ impl<'s> Converter<'s> {
                 let emitter = self.emitting_mesh(s, g, &file, keys, area.power)?;
                 (emitter, file.triangles.len() as f64)
             }
-            "bilinearmesh" => (AreaEmitter::Quad(self.bilinear_quad(s, g)?.0), 1.0),
+            "bilinearmesh" => (AreaEmitter::Quad(self.bilinear_quad(s, g, true)?.0), 1.0),
             "sphere" => {
                 if g.reverse || linear(&g.ctm).determinant() < 0.0 {
                     return Err(s.place.error(
