@@ -783,9 +783,9 @@ impl Light {
                 map,
                 ..
             } => {
-                let (local, pdf) = map.draw([u[0], u[1], u[2]])?;
-                let direction = luminaire.world(local);
-                let power = self.intensity(direction) / pdf;
+                let drawn = map.draw([u[0], u[1], u[2]])?;
+                let direction = luminaire.world(drawn.direction);
+                let power = self.intensity(direction) / drawn.pdf;
                 (power != Rgb::ZERO).then_some(())?;
                 emission(*position, direction, power)
             }

@@ -1014,8 +1014,9 @@ fn what_pbrt_cannot_convert_is_refused_by_file_line_and_column() {
 /// pbrt textures grinlight cannot read as pbrt-v4 does are refused by file, line and column
 /// (with `--approximate`, which every texture needs): a class other than imagemap and
 /// checkerboard, a float texture as a reflectance, another mapping, an inverted image, a PNG
-/// said to be linear, a name defined twice or never, and shapes whose (u, v) are not pbrt's —
-/// a disk, a triangle mesh without `uv`. An unused texture is a note.
+/// said to be linear, a checker colour above 1, a name defined twice or never, and shapes
+/// whose (u, v) are not pbrt's — a disk, a triangle mesh without `uv`. An unused texture is a
+/// note.
 #[test]
 fn pbrt_textures_grinlight_cannot_read_are_refused() {
     let approximate = ImportOptions {
@@ -1058,6 +1059,11 @@ fn pbrt_textures_grinlight_cannot_read_are_refused() {
             "linear PNG",
             textured(&format!("Texture \"t\" \"spectrum\" \"imagemap\" {image} \"string encoding\" \"linear\""), sphere),
             "with encoding \"linear\"",
+        ),
+        (
+            "bright checker",
+            textured("Texture \"t\" \"spectrum\" \"checkerboard\" \"rgb tex1\" [2 0 0]", sphere),
+            "\"rgb tex1\" — give an rgb of three numbers in [0, 1]",
         ),
         (
             "redefined",

@@ -55,13 +55,16 @@ impl IntensityMap {
         }
     }
 
-    /// A unit direction of the luminaire's frame drawn for three uniform numbers, and its
+    /// A unit direction of the luminaire's frame drawn for three uniform numbers, with its
     /// solid-angle density (a photon sent along it carries I/pdf). None when the luminaire
     /// sends nothing.
-    pub fn draw(&self, u: [f64; 3]) -> Option<(DVec3, f64)> {
+    pub fn draw(&self, u: [f64; 3]) -> Option<Drawn> {
         match self {
-            Self::Table(t) => t.draw(u).map(|drawn| (drawn.direction, drawn.pdf)),
-            Self::Image(i) => i.draw(u).map(|(d, pdf)| (zenith_up(d), pdf)),
+            Self::Table(t) => t.draw(u),
+            Self::Image(i) => i.draw(u).map(|(d, pdf)| Drawn {
+                direction: zenith_up(d),
+                pdf,
+            }),
         }
     }
 }
@@ -72,9 +75,9 @@ fn zenith_up(d: DVec3) -> DVec3 {
 }
 
 /// Where a goniogram's photometric web lies on the luminaire: which of its axes is the web's
-/// polar axis and where the web's longitudes start (IES LM-63's photometric types; the types A
-/// and B of LM-63 are the types of those letters in CIE 102, C its C-γ system). A table's
-/// angles are (θ, φ): θ from the polar axis in [0, π], φ about it.
+/// polar axis and where the web's longitudes start: IES LM-63's photometric types (its type
+/// C is CIE 121's C-γ system, its type B CIE 121's B-β). A table's angles are (θ, φ): θ from
+/// the polar axis in [0, π], φ about it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Web {
     /// Type C (architectural and roadway luminaires): the polar axis is the nadir z; θ = γ
@@ -172,11 +175,6 @@ impl Goniogram {
         g.cells = Discrete::new(&weights);
         g.power = weights.iter().sum();
         g
-    }
-
-    /// The web the table lies on.
-    pub fn web(&self) -> Web {
-        self.web
     }
 
     /// The number of columns of cells in longitude: one a longitude when they wrap (the last

@@ -88,9 +88,11 @@ pub(super) fn reflectance(
                     return Ok(DVec3::splat(default));
                 };
                 match p.numbers(name, &["rgb"])?.map(|(v, _)| v).as_deref() {
-                    Some([r, g, b]) => Ok(DVec3::new(*r, *g, *b)),
+                    Some([r, g, b]) if [r, g, b].iter().all(|c| (0.0..=1.0).contains(*c)) => {
+                        Ok(DVec3::new(*r, *g, *b))
+                    }
                     _ => Err(param.place.error(format!(
-                        "{what}: {} — give an rgb of three numbers",
+                        "{what}: {} — give an rgb of three numbers in [0, 1] (a reflectance)",
                         param.what()
                     ))),
                 }
