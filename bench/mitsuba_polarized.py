@@ -11,7 +11,7 @@ variant (the scene is grey, so its monochrome render is each of grinlight's RGB 
 a camera records through an ideal linear polarizer at angle φ in Mitsuba's Stokes basis is
 I = ½(S0 + S1 cos 2φ + S2 sin 2φ); grinlight's camera polarizer at θ = 0°, 45°, 90° and 135°
 (`polarizer_deg`, from the image's right toward its up) is at φ(θ) at each pixel's centre
-(analyzer_angles: θ itself on the image's axes, up to 2.7° from it at this image's corners).
+(analyzer_angles: θ itself on the image's axes, up to 5.3° from it at this image's corners, at θ = 90°).
 I's means over blocks of
 8 × 8 pixels and their standard errors (from the spread of the K runs) are written with --write
 to tests/data/mitsuba/polarized_spheres_<θ>.csv (the references were written with --runs 16
@@ -45,10 +45,10 @@ def analyzer_angles(camera, degrees):
     """Per pixel (h, w): the angle (radians) of grinlight's camera polarizer at `degrees` in
     Mitsuba's Stokes basis of the ray d through the pixel's centre. Mitsuba's first axis is
     d × u (u the sensor's up), its second turned from it toward the light's direction −d's
-    right hand; grinlight's polarizer is a sheet square to the view whose axis
-    a = cos θ r + sin θ u (r the image's right) acts along its part across the ray. On the
-    image's axes the two agree; off them the projected axes of θ and θ + 90° are not quite
-    square to each other (by about (r·d)(u·d))."""
+    right hand; grinlight's polarizer is a sheet square to the view whose transmission axis is
+    t = cos θ r + sin θ u (r the image's right): it absorbs along f × t (f the view's
+    forward axis), so light along d leaves it polarized along d × (f × t) (Korger et al.
+    2013's tilted polarizer, as Mitsuba's own `polarizer`). At the image's centre that is t."""
     position = np.array(camera["position"], float)
     f = np.array(camera["look_at"], float) - position
     f /= np.linalg.norm(f)
@@ -66,7 +66,7 @@ def analyzer_angles(camera, degrees):
     second = np.cross(-d, first)
     theta = np.radians(degrees)
     axis = np.cos(theta) * r + np.sin(theta) * u
-    across = axis - np.sum(axis * d, axis=-1, keepdims=True) * d
+    across = np.cross(d, np.cross(f, axis))
     return np.arctan2(np.sum(across * second, axis=-1), np.sum(across * first, axis=-1))
 
 

@@ -5,6 +5,7 @@
 //! dir = normalize(f + x r + y u′).
 
 use crate::pixel_filter::PixelFilter;
+use crate::polarization::{Element, Sheet};
 use glam::{DVec2, DVec3};
 
 /// The point of the film and of the lens a camera ray is drawn through.
@@ -215,11 +216,19 @@ impl Camera {
     }
 
     /// The transmission axis of the polarizer in front of the lens, if any: a unit vector in
-    /// the image plane at [`Camera::polarizer`] (light along an oblique ray meets its part
-    /// across the ray, as at any polarizer sheet).
+    /// the image plane at [`Camera::polarizer`].
     pub fn polarizer_axis(&self) -> Option<DVec3> {
         self.polarizer
             .map(|angle| angle.cos() * self.right + angle.sin() * self.up)
+    }
+
+    /// What its polarizer does to light arriving against the ray of unit direction `d`: a
+    /// sheet across the view, normal to its forward axis, its transmission axis
+    /// [`Camera::polarizer_axis`] ([`Sheet::element`]: off the image's centre the light crosses
+    /// it obliquely). None without a polarizer.
+    pub fn analyzer(&self, d: DVec3) -> Option<Element> {
+        let axis = self.polarizer_axis()?;
+        Some(Sheet::Polarizer { axis }.element(self.forward, d))
     }
 
     /// The first axis of the basis the camera's Stokes vector of light arriving along the ray

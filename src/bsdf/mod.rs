@@ -660,7 +660,7 @@ impl Bsdf<'_> {
                     s(),
                 ))
             }
-            Bsdf::Sheet { sheet } => Some(sheet.element()),
+            Bsdf::Sheet { sheet } => Some(sheet.element(n, wo)),
             Bsdf::Lambert { .. }
             | Bsdf::Conductor {
                 microsurface: Some(_),

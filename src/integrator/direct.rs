@@ -12,7 +12,6 @@ use super::beam::Beams;
 use super::single::single_scattering;
 use super::CameraRay;
 use crate::color::Rgb;
-use crate::polarization::Sheet;
 use crate::transport::chain::{Carried, Chain, End, Policy, Ray, Walker};
 pub use crate::transport::lighting::emission_seen;
 use crate::transport::lighting::{bsdf_sample_weight, direct_light, light_samples, LightNumbers};
@@ -78,9 +77,7 @@ pub fn camera_path<'w>(
         direction: camera.direction,
         medium: carried.tracer.camera_medium,
     };
-    let analyzer = (carried.tracer.scene.camera.as_ref())
-        .and_then(|c| c.polarizer_axis())
-        .map(|axis| Sheet::Polarizer { axis });
+    let analyzer = (carried.tracer.scene.camera.as_ref()).and_then(|c| c.analyzer(ray.direction));
     let mut walker = Walker::carrying(carried, Policy::Weighted)
         .choosing(camera.choices)
         .seeing_through(analyzer);

@@ -17,6 +17,11 @@ pub fn linear(s: [f64; 4]) -> (f64, f64) {
         return (0.0, 0.0);
     }
     let angle = (0.5 * s2.atan2(s1)).rem_euclid(std::f64::consts::PI);
+    // A tiny negative angle's remainder rounds to π itself: the same polarization as 0.
+    let angle = match angle < std::f64::consts::PI {
+        true => angle,
+        false => 0.0,
+    };
     (angle, degree.clamp(0.0, 1.0))
 }
 
@@ -51,7 +56,8 @@ mod tests {
 
     /// Unpolarized light is its preview's grey; wholly polarized light along the first axis
     /// red, along the second cyan, at 45° chartreuse (hue 90°), at 135° violet (hue 270°), and
-    /// a polarization half as strong half as saturated; S3 does not enter; no light is black.
+    /// a polarization half as strong half as saturated; S3 does not enter; no light is black;
+    /// an angle a hair below 0 is red.
     #[test]
     fn hue_is_the_angle_and_saturation_the_degree() {
         let grey = preview_byte(0.5);
@@ -64,6 +70,8 @@ mod tests {
         assert_eq!(colour([0.5, 0.25, 0.0, 0.0], 1.0), [grey, half, half]);
         assert_eq!(colour([0.0, 0.0, 0.0, 0.0], 1.0), [0; 3]);
         assert_eq!(colour([f64::NAN, 1.0, 0.0, 0.0], 1.0), [0; 3]);
+        // Along the first axis from a hair below it: red, not the far end of the hue circle.
+        assert_eq!(colour([0.5, 0.5, -1e-20, 0.0], 1.0), [grey, 0, 0]);
         let (angle, degree) = linear([2.0, 0.0, -1.0, 0.0]);
         assert!((angle - 0.75 * std::f64::consts::PI).abs() < 1e-15 && degree == 0.5);
     }

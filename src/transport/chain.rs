@@ -16,7 +16,7 @@ use crate::color::Rgb;
 use crate::curve::ArcPoint;
 use crate::ids::{MediumId, PrimId, ReceiverId};
 use crate::material::Material;
-use crate::polarization::{Polarization, Sense, Sheet};
+use crate::polarization::{Element, Polarization, Sense};
 use crate::scene::Role;
 use crate::volume::{Flights, Scattering};
 use glam::DVec3;
@@ -261,7 +261,7 @@ pub struct Walker<'w> {
     choices: Choices,
     /// The polarizer its first chain starts behind, where a camera looks through one
     /// ([`Walker::seeing_through`]).
-    analyzer: Option<Sheet>,
+    analyzer: Option<Element>,
 }
 
 /// Numbers in [0, 1) that a path's first choices between reflection and refraction take, in
@@ -428,7 +428,7 @@ impl<'w> Walker<'w> {
     /// The walker whose first chain starts behind `analyzer` (a camera's polarizer): where the
     /// transport is polarized, it measures the light through it
     /// ([`Polarization::measured_through`]).
-    pub fn seeing_through(self, analyzer: Option<Sheet>) -> Self {
+    pub fn seeing_through(self, analyzer: Option<Element>) -> Self {
         Self { analyzer, ..self }
     }
 
@@ -546,7 +546,7 @@ impl<'w> Walker<'w> {
         // The polarization lives here (or in the caller's place) and the walk holds a
         // reference to it: an unpolarized walk moves no polarization state around.
         let mut own = None;
-        let analyzer = self.analyzer.take().map(|sheet| sheet.element());
+        let analyzer = self.analyzer.take();
         let (place, stokes_axis, shares) = match start {
             Start::Unpolarized => (&mut own, None, None),
             Start::MeasuringStokes(axis, shares) => (&mut own, Some(axis), Some(shares)),
