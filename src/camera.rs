@@ -5,7 +5,6 @@
 //! dir = normalize(f + x r + y u′).
 
 use crate::pixel_filter::PixelFilter;
-use crate::polarization::{Element, Sheet};
 use glam::{DVec2, DVec3};
 
 /// The point of the film and of the lens a camera ray is drawn through.
@@ -222,13 +221,9 @@ impl Camera {
             .map(|angle| angle.cos() * self.right + angle.sin() * self.up)
     }
 
-    /// What its polarizer does to light arriving against the ray of unit direction `d`: a
-    /// sheet across the view, normal to its forward axis, its transmission axis
-    /// [`Camera::polarizer_axis`] ([`Sheet::element`]: off the image's centre the light crosses
-    /// it obliquely). None without a polarizer.
-    pub fn analyzer(&self, d: DVec3) -> Option<Element> {
-        let axis = self.polarizer_axis()?;
-        Some(Sheet::Polarizer { axis }.element(self.forward, d))
+    /// The unit direction it looks along (its polarizer's normal).
+    pub fn forward(&self) -> DVec3 {
+        self.forward
     }
 
     /// The first axis of the basis the camera's Stokes vector of light arriving along the ray

@@ -11,11 +11,14 @@
 use super::beam::Beams;
 use super::single::single_scattering;
 use super::CameraRay;
+use crate::camera::Camera;
 use crate::color::Rgb;
+use crate::polarization::{Element, Sheet};
 use crate::transport::chain::{Carried, Chain, End, Policy, Ray, Walker};
 pub use crate::transport::lighting::emission_seen;
 use crate::transport::lighting::{bsdf_sample_weight, direct_light, light_samples, LightNumbers};
 use crate::transport::{HeroTracer, Scattered, Stats, Tracer, Vertex};
+use glam::DVec3;
 use rand::Rng;
 
 /// A scattering vertex a camera path has reached, with what radiance leaving it becomes at
@@ -77,7 +80,7 @@ pub fn camera_path<'w>(
         direction: camera.direction,
         medium: carried.tracer.camera_medium,
     };
-    let analyzer = (carried.tracer.scene.camera.as_ref()).and_then(|c| c.analyzer(ray.direction));
+    let analyzer = (carried.tracer.scene.camera.as_ref()).and_then(|c| analyzer(c, ray.direction));
     let mut walker = Walker::carrying(carried, Policy::Weighted)
         .choosing(camera.choices)
         .seeing_through(analyzer);
@@ -168,4 +171,13 @@ pub fn record_cut(chain: &Chain, throughput: Rgb, stats: &mut Stats) {
     if chain.end == End::DepthLimit {
         stats.camera_weight_cut += (throughput * chain.weight).mean();
     }
+}
+
+/// What `camera`'s polarizer does to light arriving against its ray of unit direction `d`: a
+/// sheet across the view, normal to its forward axis, its transmission axis
+/// [`Camera::polarizer_axis`] ([`Sheet::element`]: off the image's centre the light crosses it
+/// obliquely). None without a polarizer.
+fn analyzer(camera: &Camera, d: DVec3) -> Option<Element> {
+    let axis = camera.polarizer_axis()?;
+    Some(Sheet::Polarizer { axis }.element(camera.forward(), d))
 }
