@@ -173,3 +173,14 @@ pub fn normal_turn(
     }
     turn
 }
+
+/// The frame [x, y, z] of a round shape's local axes as its transform turns them: z along `z`,
+/// x and y along `x` and `y` (the images of the local x and y) made orthogonal to it and to
+/// each other in that order — a similarity turns them orthogonal already, to rounding — so
+/// that z keeps the direction of grinlight's axis or normal exactly.
+pub fn local_frame(z: DVec3, x: DVec3, y: DVec3) -> [DVec3; 3] {
+    let z = z.normalize();
+    let x = (x - z * z.dot(x)).normalize();
+    let y = (y - z * z.dot(y) - x * x.dot(y)).normalize();
+    [x, y, z]
+}

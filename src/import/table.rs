@@ -178,3 +178,16 @@ pub fn pixel_filter_keys(filter: PixelFilter, camera: &mut Table) {
         }
     }
 }
+
+/// A round shape's keys `t` with, where given, the frame its texture coordinates are read in
+/// and whether v counts from the image's top (`uv_frame`, `v_from_top`).
+pub fn with_uv_frame(mut t: Table, frame: Option<([DVec3; 3], bool)>) -> Table {
+    if let Some((axes, v_from_top)) = frame {
+        t.insert(
+            "uv_frame".into(),
+            Toml::Array(axes.into_iter().map(vec3).collect()),
+        );
+        t.insert("v_from_top".into(), Toml::Boolean(v_from_top));
+    }
+    t
+}

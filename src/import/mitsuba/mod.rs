@@ -7,11 +7,12 @@ mod spectrum;
 pub mod xml;
 
 use super::geometry::{
-    axis_scales, emitting_side, linear, normal_turn, parallelogram, similarity, triangle_area,
-    Facing, FACES_TOLERANCE,
+    axis_scales, emitting_side, linear, local_frame, normal_turn, parallelogram, similarity,
+    triangle_area, Facing, FACES_TOLERANCE,
 };
 use super::table::{
-    absorption, affine_rows, free_name, pixel_filter_keys, string, table, vec3, AreaEmitter, Lists,
+    absorption, affine_rows, free_name, pixel_filter_keys, string, table, vec3, with_uv_frame,
+    AreaEmitter, Lists,
 };
 use super::{Imported, Place, Told};
 use crate::bsdf::Distribution;
@@ -1518,7 +1519,7 @@ impl Converter<'_> {
                         ("center", vec3(center)),
                         ("radius", Toml::Float(radius)),
                     ]),
-                    textured.then(|| local_frame(l.z_axis, l.x_axis, l.y_axis)),
+                    textured.then(|| (local_frame(l.z_axis, l.x_axis, l.y_axis), true)),
                 )
             }
             "rectangle" => {
@@ -1550,7 +1551,7 @@ impl Converter<'_> {
                         ("normal", vec3(normal)),
                         ("radius", Toml::Float(radius)),
                     ]),
-                    textured.then(|| local_frame(normal, l.x_axis, l.y_axis)),
+                    textured.then(|| (local_frame(normal, l.x_axis, l.y_axis), true)),
                 )
             }
             "cube" if textured => {
@@ -1631,7 +1632,7 @@ impl Converter<'_> {
                         // Mitsuba's cylinder is a tube without caps.
                         ("capped", Toml::Boolean(false)),
                     ]),
-                    textured.then(|| local_frame(axis, l * x, l * y)),
+                    textured.then(|| (local_frame(axis, l * x, l * y), true)),
                 )
             }
             other => {
@@ -1980,30 +1981,6 @@ fn disk(shape: &Object, m: &DMat4, flip: bool) -> Result<(DVec3, DVec3, f64)> {
         if flip { -normal } else { normal },
         a.length(),
     ))
-}
-
-/// A shape's keys with, where given, its surface coordinates' frame: `uv_frame` and
-/// `v_from_top` (Mitsuba reads an image's rows from the top).
-fn with_uv_frame(mut t: Table, frame: Option<[DVec3; 3]>) -> Table {
-    if let Some(axes) = frame {
-        t.insert(
-            "uv_frame".into(),
-            Toml::Array(axes.into_iter().map(vec3).collect()),
-        );
-        t.insert("v_from_top".into(), Toml::Boolean(true));
-    }
-    t
-}
-
-/// The frame [x, y, z] of a round shape's local axes as `to_world` turns them: z along `z`,
-/// x and y along the images `x` and `y` of the local x and y, made orthogonal to it and to
-/// each other in that order (a similarity turns them orthogonal already, to rounding), so
-/// that z keeps the direction of grinlight's axis or normal exactly.
-fn local_frame(z: DVec3, x: DVec3, y: DVec3) -> [DVec3; 3] {
-    let z = z.normalize();
-    let x = (x - z * z.dot(x)).normalize();
-    let y = (y - z * z.dot(y) - x * x.dot(y)).normalize();
-    [x, y, z]
 }
 
 /// Mitsuba 3.9.1's cube (`cube.cpp`) placed by `m` as six parallelograms whose corners are

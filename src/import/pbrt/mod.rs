@@ -17,11 +17,12 @@ pub mod parse;
 mod texture;
 
 use super::geometry::{
-    axis_scales, emitting_side, linear, look_at, normal_turn, parallelogram, similarity,
-    triangle_area, Facing, FACES_TOLERANCE,
+    axis_scales, emitting_side, linear, local_frame, look_at, normal_turn, parallelogram,
+    similarity, triangle_area, Facing, FACES_TOLERANCE,
 };
 use super::table::{
-    absorption, affine_rows, free_name, pixel_filter_keys, string, table, vec3, AreaEmitter, Lists,
+    absorption, affine_rows, free_name, pixel_filter_keys, string, table, vec3, with_uv_frame,
+    AreaEmitter, Lists,
 };
 use super::{Imported, Place, Told};
 use crate::error::{cut, Result};
@@ -2168,23 +2169,12 @@ impl<'s> Converter<'s> {
         }
     }
 
-    /// A round shape's keys with, where `v_from_top` is given (a texture colours it), its
-    /// object frame as `uv_frame`: pbrt's (u, v) are a sphere's and a cylinder's in their
-    /// object space (φ from x toward y), which `m` places in pbrt's world and the scene's
-    /// negated x in grinlight's (a similarity: its axes orthogonal to rounding, made so).
-    fn with_object_frame(&self, mut t: Table, m: &DMat4, v_from_top: Option<bool>) -> Table {
-        if let Some(v_from_top) = v_from_top {
-            let [x, y, z] = [DVec3::X, DVec3::Y, DVec3::Z].map(|a| self.vector(m, a));
-            let z = z.normalize();
-            let x = (x - z * z.dot(x)).normalize();
-            let y = (y - z * z.dot(y) - x * x.dot(y)).normalize();
-            t.insert(
-                "uv_frame".into(),
-                Toml::Array([x, y, z].into_iter().map(vec3).collect()),
-            );
-            t.insert("v_from_top".into(), Toml::Boolean(v_from_top));
-        }
-        t
+    /// A textured round shape's frame and `v_from_top`: pbrt's (u, v) are a sphere's and a
+    /// cylinder's in their object space (φ from x toward y), which `m` places in pbrt's world
+    /// and the scene's negated x in grinlight's.
+    fn object_frame(&self, m: &DMat4, v_from_top: bool) -> ([DVec3; 3], bool) {
+        let [x, y, z] = [DVec3::X, DVec3::Y, DVec3::Z].map(|a| self.vector(m, a));
+        (local_frame(z, x, y), v_from_top)
     }
 
     /// The geometry keys of a shape; `oriented`: its inside and outside differ in grinlight
@@ -2221,14 +2211,13 @@ impl<'s> Converter<'s> {
                 let (center, radius) = self.sphere(s, g)?;
                 // pbrt's v = (θ − θ(zmin))/(θ(zmax) − θ(zmin)) = 1 − θ/π of a whole sphere:
                 // the frame's θ/π read from the top.
-                self.with_object_frame(
+                with_uv_frame(
                     table([
                         ("type", string("sphere")),
                         ("center", vec3(center)),
                         ("radius", Toml::Float(radius)),
                     ]),
-                    &m,
-                    textured.then_some(true),
+                    textured.then(|| self.object_frame(&m, true)),
                 )
             }
             "disk" => {
@@ -2258,7 +2247,7 @@ impl<'s> Converter<'s> {
                 }
                 let axis = self.vector(&m, DVec3::Z).normalize();
                 // pbrt's v = (z − zmin)/(zmax − zmin): the height from the base.
-                self.with_object_frame(
+                with_uv_frame(
                     table([
                         ("type", string("cylinder")),
                         ("base", vec3(self.point(&m, DVec3::new(0.0, 0.0, lo)))),
@@ -2268,8 +2257,7 @@ impl<'s> Converter<'s> {
                         // pbrt's cylinder is open.
                         ("capped", Toml::Boolean(false)),
                     ]),
-                    &m,
-                    textured.then_some(false),
+                    textured.then(|| self.object_frame(&m, false)),
                 )
             }
             "trianglemesh" => {
