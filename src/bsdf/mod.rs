@@ -645,10 +645,14 @@ impl Bsdf<'_> {
             Bsdf::Conductor {
                 fresnel,
                 microsurface: None,
-            } => Some(Element {
-                mueller: fresnel.mueller(cos),
-                x: s(),
-            }),
+            } => {
+                let x = s();
+                Some(Element {
+                    mueller: fresnel.mueller(cos),
+                    x,
+                    x_leaving: x,
+                })
+            }
             Bsdf::ThinDielectric { eta } => {
                 let [reflection, transmission] = mueller::thin_pane(cos, eta);
                 let reflected = wi.dot(n) * wo.dot(n) > 0.0;

@@ -32,20 +32,29 @@ pub enum Sense {
 }
 
 /// An optical element's Mueller matrix per RGB channel (the same three for a wavelength-blind
-/// element), written in the basis whose first axis is `x` (its s direction or its axis).
+/// element), from the light arriving, written in the basis whose first axis is `x`, to the
+/// light leaving, in the basis whose first axis is `x_leaving` — the same axis for an
+/// interface's s direction across both rays or a sheet's axis, another where the light leaves
+/// as a crystal's wave, polarized along its own field ([`super::crystal`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Element {
     /// Per channel.
     pub mueller: [DMat4; 3],
-    /// The basis's first axis (any vector not along the light; its part across the light is
-    /// taken).
+    /// The arriving light's basis's first axis (any vector not along the light; its part
+    /// across the light is taken).
     pub x: DVec3,
+    /// The leaving light's basis's first axis (as `x`).
+    pub x_leaving: DVec3,
 }
 
 impl Element {
-    /// The same matrix `m` for every channel, in the basis `x`.
+    /// The same matrix `m` for every channel, in the basis `x` on both sides.
     pub fn grey(m: DMat4, x: DVec3) -> Self {
-        Self { mueller: [m; 3], x }
+        Self {
+            mueller: [m; 3],
+            x,
+            x_leaving: x,
+        }
     }
 }
 
@@ -102,7 +111,7 @@ impl Polarization {
     /// A camera measurement looks through `element` on a path starting along unit `direction`
     /// (against the light): each row r becomes Mᵀr, M not divided by its first element.
     fn look_through(&mut self, element: &Element, direction: DVec3) {
-        self.rebase(direction, element.x);
+        self.rebase(direction, element.x_leaving);
         let through = |row: &mut [DVec4; 3]| {
             for (v, m) in row.iter_mut().zip(&element.mueller) {
                 *v = m.transpose() * *v;
@@ -145,12 +154,17 @@ impl Polarization {
     }
 
     /// Meets `element` where the path arrives along unit `direction`: the element's matrix
-    /// (divided by its first element) applied in its basis, which the state keeps for the way
-    /// on (the element's x lies across the path on both sides). Returns the factor by which
-    /// the light's power changes beyond what unpolarized light's would (with the light; 1
-    /// against it, where it shows at the chain's end); zero where the element passes none.
+    /// (divided by its first element) applied in its bases — the state is re-expressed in the
+    /// basis of the light's side the path arrives on, and keeps the other's for the way on.
+    /// Returns the factor by which the light's power changes beyond what unpolarized light's
+    /// would (with the light; 1 against it, where it shows at the chain's end); zero where the
+    /// element passes none.
     pub fn meet(&mut self, element: &Element, direction: DVec3) -> Rgb {
-        self.rebase(direction, element.x);
+        let (arriving, leaving) = match self.sense {
+            Sense::WithLight => (element.x, element.x_leaving),
+            Sense::AgainstLight => (element.x_leaving, element.x),
+        };
+        self.rebase(direction, arriving);
         let mut factor = [1.0; 3];
         for (c, ((v, m), f)) in (self.channels.iter_mut())
             .zip(&element.mueller)
@@ -184,6 +198,12 @@ impl Polarization {
                 }
                 Sense::AgainstLight => *v = m.transpose() * *v,
             }
+        }
+        // An element of one basis leaves the state in it (as projected across the light
+        // arriving, which lies across the light leaving too); one of two, in the other's,
+        // a unit axis across the light leaving.
+        if element.x_leaving != element.x {
+            self.x = leaving;
         }
         Rgb::new(factor[0], factor[1], factor[2])
     }

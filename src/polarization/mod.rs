@@ -5,6 +5,7 @@
 //! polarization of a render's Stokes layers ([`preview`]).
 
 pub mod carried;
+pub mod crystal;
 pub mod mueller;
 pub mod preview;
 pub mod rytov;
