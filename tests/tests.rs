@@ -4,6 +4,7 @@
 
 mod common;
 
+mod birefringence;
 mod black_hole_exact;
 mod bsdf;
 mod cli;

@@ -429,6 +429,10 @@ fn build_checked(
             scene.path().display()
         )));
     }
+    crate::render::sources_outside_crystals(
+        &scene,
+        &crate::transport::Tracer::new(&scene, &settings.trace),
+    )?;
     if let Some(c) = &scene.camera {
         let tracer = crate::transport::Tracer::new(&scene, &settings.trace);
         crate::render::views_carry_media_polarization(&scene, &tracer)?;

@@ -240,6 +240,31 @@ pub fn views_carry_media_polarization(scene: &Scene, tracer: &Tracer) -> Result<
     }
 }
 
+/// Refuses a camera or a light inside a uniaxial crystal: light there travels as the crystal's
+/// two waves, and neither a camera's nor a source's light is written for them (paths that would
+/// set off in one are lost: [`crate::transport::Stats::lost_in_crystal`]).
+pub fn sources_outside_crystals(scene: &Scene, tracer: &Tracer) -> Result<()> {
+    let inside = |medium: Option<crate::ids::MediumId>| {
+        medium.and_then(|m| scene.media().crystal(m).map(|_| m))
+    };
+    let camera = scene.camera.as_ref().and(inside(tracer.camera_medium));
+    let light = (scene.lights.iter())
+        .filter_map(|l| l.origin())
+        .find_map(|p| inside(tracer.medium_containing(p)));
+    match camera
+        .map(|m| ("camera", m))
+        .or(light.map(|m| ("a light", m)))
+    {
+        Some((what, m)) => Err(crate::error::Error::Usage(format!(
+            "{}: {what} sits inside crystal '{}': place it outside the crystal, whose faces \
+             split the light it sends or receives",
+            scene.path().display(),
+            scene.media().names().nth(m.index()).unwrap_or_default()
+        ))),
+        None => Ok(()),
+    }
+}
+
 /// A range of global pass indices.
 #[derive(Clone, Copy, Debug)]
 pub struct Passes<'f> {

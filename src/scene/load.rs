@@ -7,7 +7,7 @@ use super::media::{
     read_absorption, read_density, read_emission, read_fluorescence, read_profile, read_scattering,
     uniform,
 };
-use super::model::{Description, Media, Role, Scene, Shape, Surface};
+use super::model::{Description, Media, Profile, Role, Scene, Shape, Surface};
 use super::read::{
     read_camera, read_environment, read_light_and_spectrum, read_material, read_output,
     read_receiver, read_render, read_shape, Interior,
@@ -108,6 +108,21 @@ fn read_media(source: &Source, tables: Vec<Spanned<SpannedTable>>) -> Result<Rea
                 "a density scales `absorption` and `scattering`, and this medium has neither",
             );
         }
+        if matches!(medium, Profile::Crystal(_)) {
+            for (key, given) in [
+                ("scattering", scattering.is_some()),
+                ("emission", emission.is_some()),
+                ("fluorescence", fluorescence.is_some()),
+            ] {
+                t.check(
+                    key,
+                    !given,
+                    "a uniaxial crystal may absorb (`absorption`), but not scatter, emit or \
+                     fluoresce: light in it travels as its two polarized waves, which those \
+                     would need",
+                )?;
+            }
+        }
         t.finish()?;
         let i = media.add_profile(name, medium);
         media.set_participating(
@@ -206,6 +221,21 @@ fn read_shapes(
             Some(m) => Some(medium_index(&t, "exterior", &m, media)?),
             None => None,
         };
+        let crystal = [interior, exterior]
+            .into_iter()
+            .flatten()
+            .find(|&m| media.crystal(m).is_some());
+        if let Some(m) = crystal {
+            t.check(
+                "material",
+                matches!(kind, Material::Dielectric { microsurface: None }),
+                format!(
+                    "a surface of crystal '{}' must be a smooth `dielectric` (its faces split \
+                     light into the crystal's two waves; a rough or thin one is not read)",
+                    media.names().nth(m.index()).unwrap_or_default()
+                ),
+            )?;
+        }
         t.finish()?;
         shapes.push(Shape {
             primitives: desc.primitives,
@@ -329,12 +359,22 @@ fn parse(source: Source) -> Result<(Description, Settings)> {
     refuse_coloured_absorption(coloured_absorption, &media, &materials.list, &receivers)?;
     let ambient = match &file.ambient {
         None => None,
-        Some(name) => Some(media.index(name.get_ref()).ok_or_else(|| {
-            source.error_at(
-                name.span().start,
-                format!("key `ambient`: no medium named '{}'", name.get_ref()),
-            )
-        })?),
+        Some(name) => {
+            let error = |message: &str| {
+                source.error_at(
+                    name.span().start,
+                    format!("key `ambient`: {message} '{}'", name.get_ref()),
+                )
+            };
+            let m = (media.index(name.get_ref())).ok_or_else(|| error("no medium named"))?;
+            if media.crystal(m).is_some() {
+                return Err(error(
+                    "the space around the scene cannot be a uniaxial crystal: bound it by a \
+                     dielectric shape, as",
+                ));
+            }
+            Some(m)
+        }
     };
     let camera = file
         .camera

@@ -12,6 +12,7 @@ use crate::media::{
     ParabolicFiber, Parametric, RadialTable, SechFiber, UniformMedium, GLADSTONE_DALE_AIR,
     STANDARD_PRESSURE,
 };
+use crate::polarization::crystal::Uniaxial;
 use crate::spectrum::{Dispersion, Excitation, Fluorophore, LAMBDA_D};
 use crate::volume::{Absorption, Emission, Fluorescence, Phase, Scattering};
 use glam::DVec3;
@@ -21,6 +22,7 @@ use toml::Value;
 /// The profile names a `[[medium]]` table may give.
 pub const PROFILES: &[&str] = &[
     "uniform",
+    "uniaxial",
     "linear",
     "exponential",
     "parabolic",
@@ -211,6 +213,19 @@ pub fn read_profile(t: &mut TableReader) -> Result<Profile> {
         "radial_table" | "height_table" | "luneburg" | "black_hole" | "schwarzschild"
         | "reissner_nordstrom" | "grid" => Profile::Fixed(read_fixed(t, &profile)?),
         "uniform" => uniform(t.dispersion("n")?),
+        "uniaxial" => {
+            let mut index = |key: &str| -> Result<f64> {
+                let n = t.positive(key)?;
+                t.check(key, n <= 10.0, format!("must be at most 10, got {n}"))?;
+                Ok(n)
+            };
+            let (ordinary, extraordinary) = (index("no")?, index("ne")?);
+            Profile::Crystal(Uniaxial {
+                ordinary,
+                extraordinary,
+                axis: t.direction("optic_axis")?,
+            })
+        }
         "linear" => {
             let n0 = t.dispersion("n0")?;
             let (gradient, origin) = (t.vec3("gradient")?, t.vec3_or("origin", DVec3::ZERO)?);

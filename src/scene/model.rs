@@ -11,7 +11,8 @@ use crate::error::{Error, Result};
 use crate::ids::{LightId, MaterialId, MediumId, PrimId, ReceiverId};
 use crate::lights::Light;
 use crate::material::{FluorescentLayer, Material};
-use crate::media::{Medium, Parametric};
+use crate::media::{Medium, Parametric, UniformMedium};
+use crate::polarization::crystal::{Uniaxial, Wave};
 use crate::receiver::Receiver;
 use crate::shapes::{Primitive, UvFrame};
 use crate::spectrum::{colour, Binned, Excitation, Hero, Spectrum, LAMBDA_D};
@@ -29,6 +30,20 @@ pub enum Profile {
     Fixed(Box<dyn Medium>),
     /// Dispersive.
     Dispersive(AtWavelength),
+    /// A uniaxial crystal: a medium for each of its two waves ([`Media::crystal`]).
+    Crystal(Uniaxial),
+}
+
+/// Where a medium is one of a crystal's waves: the crystal, the wave, and the medium of its
+/// other wave.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CrystalWave {
+    /// The crystal.
+    pub crystal: Uniaxial,
+    /// Which of its waves the medium carries.
+    pub wave: Wave,
+    /// The medium of its other wave.
+    pub other: MediumId,
 }
 
 /// One medium of the scene: its name, the medium at [`LAMBDA_D`] (what RGB camera paths see)
@@ -39,6 +54,8 @@ struct Entry {
     dispersion: Option<AtWavelength>,
     /// What it does to light's power: absorbs, scatters, emits.
     participating: Participating,
+    /// Where it is one of a crystal's waves.
+    crystal: Option<CrystalWave>,
 }
 
 /// The scene's media by name; [`Surface::interior`], [`Surface::exterior`] and the ambient
@@ -56,6 +73,7 @@ impl Media {
             medium,
             dispersion: None,
             participating: Participating::default(),
+            crystal: None,
         });
         MediumId::new(self.0.len() - 1)
     }
@@ -67,6 +85,7 @@ impl Media {
             medium: at(LAMBDA_D).boxed(),
             dispersion: Some(at),
             participating: Participating::default(),
+            crystal: None,
         });
         MediumId::new(self.0.len() - 1)
     }
@@ -76,7 +95,64 @@ impl Media {
         match profile {
             Profile::Fixed(m) => self.add(name, m),
             Profile::Dispersive(at) => self.add_dispersive(name, at),
+            Profile::Crystal(crystal) => self.add_crystal(name.into(), crystal),
         }
+    }
+
+    /// Adds a uniaxial crystal: the medium its ordinary wave travels in (index n_o, called
+    /// `name`: shapes and materials name it) and, next, its extraordinary wave's ("`name`
+    /// (extraordinary wave)"), each straight and uniform; returns the ordinary one's index.
+    /// What either is to the transport beyond a straight stretch — its index for a wave, and
+    /// what its interfaces do — is [`Media::crystal`]'s.
+    fn add_crystal(&mut self, name: String, crystal: Uniaxial) -> MediumId {
+        let uniform = || -> Box<dyn Medium> {
+            Box::new(UniformMedium {
+                n: crystal.ordinary,
+            })
+        };
+        let (ordinary, extraordinary) =
+            (MediumId::new(self.0.len()), MediumId::new(self.0.len() + 1));
+        for (label, wave, other) in [
+            (name.clone(), Wave::Ordinary, extraordinary),
+            (
+                format!("{name} (extraordinary wave)"),
+                Wave::Extraordinary,
+                ordinary,
+            ),
+        ] {
+            self.0.push(Entry {
+                name: label,
+                medium: uniform(),
+                dispersion: None,
+                participating: Participating::default(),
+                crystal: Some(CrystalWave {
+                    crystal,
+                    wave,
+                    other,
+                }),
+            });
+        }
+        ordinary
+    }
+
+    /// Where medium `i` is one of a crystal's waves (None: it is isotropic).
+    pub fn crystal(&self, i: MediumId) -> Option<&CrystalWave> {
+        self.0[i.index()].crystal.as_ref()
+    }
+
+    /// The medium of crystal medium `i`'s wave `wave` (`i` itself for an isotropic one).
+    pub fn of_wave(&self, i: MediumId, wave: Wave) -> MediumId {
+        match self.crystal(i) {
+            Some(c) if c.wave != wave => c.other,
+            Some(_) | None => i,
+        }
+    }
+
+    /// The first crystal, by name (None: none).
+    pub fn first_crystal(&self) -> Option<&str> {
+        (self.0.iter())
+            .find(|e| e.crystal.is_some())
+            .map(|e| e.name.as_str())
     }
 
     /// The medium at index `i`, at [`LAMBDA_D`].
@@ -84,8 +160,11 @@ impl Media {
         self.0[i.index()].medium.as_ref()
     }
 
-    /// Sets what medium `i` does to light's power.
+    /// Sets what medium `i` does to light's power (and its other wave's, for a crystal).
     pub fn set_participating(&mut self, i: MediumId, participating: Participating) {
+        if let Some(c) = self.0[i.index()].crystal {
+            self.0[c.other.index()].participating = participating.clone();
+        }
         self.0[i.index()].participating = participating;
     }
 
@@ -425,9 +504,16 @@ impl Scene {
         }
     }
 
-    /// The medium called `name`; the error lists the names that exist.
+    /// The medium called `name`; the error lists the names that exist. A crystal is refused:
+    /// what a ray does in it depends on which of its waves it is.
     pub fn medium(&self, name: &str) -> Result<&dyn Medium> {
         match self.media.index(name) {
+            Some(i) if self.media.crystal(i).is_some() => Err(Error::Usage(format!(
+                "{}: medium '{name}' is a uniaxial crystal: rays in it are straight, and its \
+                 light travels as two waves that part at its faces — render it, or measure \
+                 it with receivers",
+                self.path.display()
+            ))),
             Some(i) => Ok(self.media.at(i)),
             None => {
                 let known: Vec<&str> = self.media.names().collect();

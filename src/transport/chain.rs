@@ -16,6 +16,7 @@ use crate::color::Rgb;
 use crate::curve::ArcPoint;
 use crate::ids::{MediumId, PrimId, ReceiverId};
 use crate::material::Material;
+use crate::polarization::crystal::{Beam, Interface};
 use crate::polarization::{Element, Polarization, Sense};
 use crate::scene::Role;
 use crate::volume::{Flights, Scattering};
@@ -590,6 +591,10 @@ impl<'w> Walker<'w> {
             dispersed: None,
         };
         self.meet_dispersion(self.tracer.disperses_in(ray.medium), &mut chain);
+        if self.tracer.wave(ray.medium).is_some() {
+            lent.stats.lost_in_crystal += 1;
+            return chain;
+        }
         let Some(n_start) = self.tracer.index(ray.medium, ray.origin) else {
             return chain;
         };
@@ -821,6 +826,10 @@ impl<'w> Walker<'w> {
         observer.point(hit.position);
         let surface = scene.surface(hit.prim);
         match surface.role {
+            Role::Emitter(_) if self.tracer.wave(at.medium).is_some() => {
+                lent.stats.lost_in_crystal += 1;
+                ControlFlow::Break(End::Lost)
+            }
             Role::Emitter(light) => {
                 let front = hit.incoming.dot(hit.normals.geometric) < 0.0;
                 ControlFlow::Break(End::Emitter {
@@ -870,6 +879,16 @@ impl<'w> Walker<'w> {
                     lent.stats.undefined_index += 1;
                     return ControlFlow::Break(End::Lost);
                 };
+                if let Some(interface) = self.tracer.crystal_interface(&vertex) {
+                    if exhausted {
+                        return cut(lent);
+                    }
+                    return self.split(chain, at, &vertex, &interface, lent, observer);
+                }
+                if self.tracer.wave(at.medium).is_some() {
+                    lent.stats.lost_in_crystal += 1;
+                    return ControlFlow::Break(End::Lost);
+                }
                 if self.tracer.crosses_unchanged(&vertex) {
                     lent.crossings += 1;
                     if lent.crossings > MAX_CROSSINGS {
@@ -1032,6 +1051,98 @@ impl<'w> Walker<'w> {
             return ControlFlow::Break(End::Stopped);
         }
         *at = b.ray;
+        ControlFlow::Continue(())
+    }
+}
+
+impl<'w> Walker<'w> {
+    /// Splits the chain at `vertex`, a face of a crystal ([`Interface`]): a photon (with the
+    /// light) goes on as one of the beams the light arriving leaves as, a camera path (against
+    /// it) as one of the beams feeding the light it carries back, each drawn in proportion to
+    /// its power (of unpolarized light on an isotropic side, of its own wave's in a crystal)
+    /// and weighed by the branches' summed power — 1 for a photon, the power kept — and the
+    /// factor its Mueller matrix gives the polarization carried. The principal ray takes the
+    /// strongest; a chain that stops at the first specular surface stops.
+    fn split(
+        &mut self,
+        chain: &mut Chain,
+        at: &mut Ray,
+        vertex: &SurfaceVertex,
+        interface: &Interface,
+        lent: &mut Lent<impl Rng>,
+        observer: &mut dyn ChainEvents,
+    ) -> ControlFlow<End<'w>> {
+        let wave = self.tracer.wave(at.medium);
+        let with_light = match self.policy {
+            Policy::Unscattered => return ControlFlow::Break(End::Stopped),
+            Policy::Roulette | Policy::Principal => true,
+            Policy::Weighted => false,
+        };
+        let branches = match with_light {
+            true => interface.scatter(Beam {
+                direction: -vertex.wo,
+                wave,
+            }),
+            false => interface.gather(Beam {
+                direction: vertex.wo,
+                wave,
+            }),
+        };
+        let total = branches.power();
+        let chosen = match self.policy {
+            Policy::Principal => (branches.iter()).max_by(|a, b| a.power().total_cmp(&b.power())),
+            _ => {
+                let u = self.choices.next().unwrap_or_else(|| lent.rng.gen()) * total;
+                let mut sum = 0.0;
+                let mut last = None;
+                (branches.iter())
+                    .find(|b| {
+                        sum += b.power();
+                        last = Some(*b);
+                        u < sum
+                    })
+                    .or(last)
+            }
+        };
+        let Some(branch) = chosen.copied().filter(|_| total > 0.0) else {
+            return ControlFlow::Break(End::Absorbed { medium: None });
+        };
+        let mut weight = Rgb::splat(total);
+        if let Some(p) = lent.polarization.as_deref_mut() {
+            weight *= p.meet(&branch.element, -vertex.wo);
+        }
+        match self.policy {
+            Policy::Weighted => chain.weight *= weight,
+            Policy::Roulette => {
+                let survive = weight.max_element();
+                if survive < 1.0 && lent.rng.gen::<f64>() >= survive {
+                    return ControlFlow::Break(End::Absorbed { medium: None });
+                }
+                chain.weight *= weight / survive.clamp(f64::MIN_POSITIVE, 1.0);
+            }
+            Policy::Principal | Policy::Unscattered => {}
+        }
+        let (side, normal) = match branch.beyond {
+            true => (vertex.beyond, -vertex.normal),
+            false => (vertex.medium, vertex.normal),
+        };
+        let medium = match (side, branch.beam.wave) {
+            (Some(m), Some(w)) => Some(self.tracer.scene.media().of_wave(m, w)),
+            (m, _) => m,
+        };
+        let direction = match with_light {
+            true => branch.beam.direction,
+            false => -branch.beam.direction,
+        };
+        chain.specular += 1;
+        if observer.specular(vertex.prim, at.medium, medium).is_break() {
+            return ControlFlow::Break(End::Stopped);
+        }
+        *at = Ray {
+            origin: super::offset(vertex.position, normal),
+            direction,
+            medium,
+        };
         ControlFlow::Continue(())
     }
 }

@@ -114,7 +114,8 @@ impl<'a> Tracer<'a> {
         let polarized = settings.polarized
             || settings.stokes
             || (scene.materials.iter()).any(|m| matches!(m, crate::material::Material::Sheet(_)))
-            || (scene.camera.as_ref()).is_some_and(|c| c.polarizer.is_some());
+            || (scene.camera.as_ref()).is_some_and(|c| c.polarizer.is_some())
+            || scene.media().first_crystal().is_some();
         let mut tracer = Self {
             scene,
             settings: TraceSettings {

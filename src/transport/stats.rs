@@ -27,6 +27,10 @@ pub struct Stats {
     /// Paths lost at a surface because a medium's index is undefined there (inside a medium's
     /// capture region: a black hole's horizon, the hyperbolic medium's rim).
     pub undefined_index: u64,
+    /// Paths lost inside a crystal at a surface that is none of its faces (a diffuse surface
+    /// or a light in it), or that set off inside one: what such a vertex reads of the light
+    /// is not defined for a crystal's two waves.
+    pub lost_in_crystal: u64,
     /// Photons emitted.
     pub photons_emitted: u64,
     /// Gather rays of the final gather.
@@ -77,6 +81,7 @@ impl Stats {
         self.photon_power_emitted += o.photon_power_emitted;
         self.photon_power_cut += o.photon_power_cut;
         self.undefined_index += o.undefined_index;
+        self.lost_in_crystal += o.lost_in_crystal;
         self.photons_emitted += o.photons_emitted;
         self.gather_rays += o.gather_rays;
         self.photon_queries += o.photon_queries;
@@ -139,12 +144,19 @@ impl Stats {
                  reaching into a medium's capture region)"
             ),
         };
+        let crystal = match self.lost_in_crystal {
+            0 => String::new(),
+            n => format!(
+                ", paths lost in a crystal {n} (at a surface in it that is none of its faces, \
+                 or setting off in it)"
+            ),
+        };
         let connections = match self.connections {
             (0, 0) => String::new(),
             (ok, failed) => format!(", curved light connections {ok} ({failed} unsolved)"),
         };
         format!(
-            "camera rays {}, photons {}, gather rays {}, photon queries {} ({:.2} µs each), straight traversals {}, curved marches {} ({} steps; ends: {}), paths cut at max_depth {}{undefined}{connections}",
+            "camera rays {}, photons {}, gather rays {}, photon queries {} ({:.2} µs each), straight traversals {}, curved marches {} ({} steps; ends: {}), paths cut at max_depth {}{undefined}{crystal}{connections}",
             self.camera_rays,
             self.photons_emitted,
             self.gather_rays,

@@ -4,6 +4,7 @@
 use super::{facing, SurfaceHit, SurfaceVertex, Tracer};
 use crate::ids::{MediumId, PrimId};
 use crate::material::SurfacePoint;
+use crate::polarization::crystal::{Interface, Optics, Wave};
 use crate::scene::Surface;
 use glam::{DVec2, DVec3};
 
@@ -77,7 +78,35 @@ impl Tracer<'_> {
     /// gradient medium the ray bends beyond it, and it stays a specular surface.
     pub fn crosses_unchanged(&self, vertex: &SurfaceVertex) -> bool {
         let uniform = |m: Option<MediumId>| m.is_none_or(|m| self.medium(m).is_uniform());
-        vertex.bsdf.is_index_matched() && uniform(vertex.medium) && uniform(vertex.beyond)
+        vertex.bsdf.is_index_matched()
+            && uniform(vertex.medium)
+            && uniform(vertex.beyond)
+            && self.crystal_interface(vertex).is_none()
+    }
+
+    /// The interface `vertex` is on, where a uniaxial crystal lies on either side of it: its
+    /// face, which splits light into the crystal's two waves ([`crate::polarization::crystal`]);
+    /// None between isotropic media, and where an isotropic side's index is undefined.
+    pub fn crystal_interface(&self, vertex: &SurfaceVertex) -> Option<Interface> {
+        let media = self.scene.media();
+        let crystal = |m: Option<MediumId>| m.and_then(|m| media.crystal(m));
+        if crystal(vertex.medium).is_none() && crystal(vertex.beyond).is_none() {
+            return None;
+        }
+        let optics = |m: Option<MediumId>| match crystal(m) {
+            Some(c) => Some(Optics::Crystal(c.crystal)),
+            None => self.index(m, vertex.position).map(Optics::Isotropic),
+        };
+        Some(Interface {
+            near: optics(vertex.medium)?,
+            far: optics(vertex.beyond)?,
+            normal: vertex.normal,
+        })
+    }
+
+    /// The crystal's wave a path in `medium` travels as (None: an isotropic medium).
+    pub fn wave(&self, medium: Option<MediumId>) -> Option<Wave> {
+        medium.and_then(|m| self.scene.media().crystal(m).map(|c| c.wave))
     }
 }
 
