@@ -1,7 +1,7 @@
 //! `[[medium]]` tables ⇒ media. Each profile's keys, units and defaults are listed in
 //! `docs/scene-format.md`; lengths are scene units, vectors [x, y, z].
 
-use super::model::Profile;
+use super::model::{Crystal, Profile};
 use super::table::TableReader;
 use crate::color::Rgb;
 use crate::error::Result;
@@ -12,7 +12,6 @@ use crate::media::{
     ParabolicFiber, Parametric, RadialTable, SechFiber, UniformMedium, GLADSTONE_DALE_AIR,
     STANDARD_PRESSURE,
 };
-use crate::polarization::crystal::Uniaxial;
 use crate::spectrum::{Dispersion, Excitation, Fluorophore, LAMBDA_D};
 use crate::volume::{Absorption, Emission, Fluorescence, Phase, Scattering};
 use glam::DVec3;
@@ -214,13 +213,18 @@ pub fn read_profile(t: &mut TableReader) -> Result<Profile> {
         | "reissner_nordstrom" | "grid" => Profile::Fixed(read_fixed(t, &profile)?),
         "uniform" => uniform(t.dispersion("n")?),
         "uniaxial" => {
-            let mut index = |key: &str| -> Result<f64> {
-                let n = t.positive(key)?;
-                t.check(key, n <= 10.0, format!("must be at most 10, got {n}"))?;
+            let mut index = |key: &str| -> Result<Dispersion> {
+                let n = t.dispersion(key)?;
+                let most = n.max_visible();
+                t.check(
+                    key,
+                    most <= 10.0,
+                    format!("must be at most 10 from 360 to 830 nm, got {most:?} there"),
+                )?;
                 Ok(n)
             };
             let (ordinary, extraordinary) = (index("no")?, index("ne")?);
-            Profile::Crystal(Uniaxial {
+            Profile::Crystal(Crystal {
                 ordinary,
                 extraordinary,
                 axis: t.direction("optic_axis")?,

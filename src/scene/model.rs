@@ -15,6 +15,7 @@ use crate::media::{Medium, Parametric, UniformMedium};
 use crate::polarization::crystal::{Uniaxial, Wave};
 use crate::receiver::Receiver;
 use crate::shapes::{Primitive, UvFrame};
+use crate::spectrum::Dispersion;
 use crate::spectrum::{colour, Binned, Excitation, Hero, Spectrum, LAMBDA_D};
 use crate::volume::{Fluorescence, Participating, Scattering};
 use glam::{DVec2, DVec3};
@@ -31,15 +32,42 @@ pub enum Profile {
     /// Dispersive.
     Dispersive(AtWavelength),
     /// A uniaxial crystal: a medium for each of its two waves ([`Media::crystal`]).
-    Crystal(Uniaxial),
+    Crystal(Crystal),
+}
+
+/// A uniaxial crystal as read: its indices over wavelength and its optic axis.
+#[derive(Clone, Debug)]
+pub struct Crystal {
+    /// n_o(λ), the ordinary index.
+    pub ordinary: Dispersion,
+    /// n_e(λ), the extraordinary index.
+    pub extraordinary: Dispersion,
+    /// The unit optic axis.
+    pub axis: DVec3,
+}
+
+impl Crystal {
+    /// The crystal at vacuum wavelength `nm`.
+    pub fn at(&self, nm: f64) -> Uniaxial {
+        Uniaxial {
+            ordinary: self.ordinary.at(nm),
+            extraordinary: self.extraordinary.at(nm),
+            axis: self.axis,
+        }
+    }
+
+    /// Whether its indices depend on wavelength.
+    pub fn is_dispersive(&self) -> bool {
+        self.ordinary.is_dispersive() || self.extraordinary.is_dispersive()
+    }
 }
 
 /// Where a medium is one of a crystal's waves: the crystal, the wave, and the medium of its
 /// other wave.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug)]
 pub struct CrystalWave {
     /// The crystal.
-    pub crystal: Uniaxial,
+    pub crystal: Crystal,
     /// Which of its waves the medium carries.
     pub wave: Wave,
     /// The medium of its other wave.
@@ -101,15 +129,11 @@ impl Media {
 
     /// Adds a uniaxial crystal: the medium its ordinary wave travels in (index n_o, called
     /// `name`: shapes and materials name it) and, next, its extraordinary wave's ("`name`
-    /// (extraordinary wave)"), each straight and uniform; returns the ordinary one's index.
-    /// What either is to the transport beyond a straight stretch — its index for a wave, and
-    /// what its interfaces do — is [`Media::crystal`]'s.
-    fn add_crystal(&mut self, name: String, crystal: Uniaxial) -> MediumId {
-        let uniform = || -> Box<dyn Medium> {
-            Box::new(UniformMedium {
-                n: crystal.ordinary,
-            })
-        };
+    /// (extraordinary wave)"), each straight and uniform, and dispersive where either index
+    /// is (a path takes on one wavelength where it meets the crystal); returns the ordinary
+    /// one's index. What either is to the transport beyond a straight stretch — its index for
+    /// a wave, and what its faces do — is [`Media::crystal`]'s.
+    fn add_crystal(&mut self, name: String, crystal: Crystal) -> MediumId {
         let (ordinary, extraordinary) =
             (MediumId::new(self.0.len()), MediumId::new(self.0.len() + 1));
         for (label, wave, other) in [
@@ -120,13 +144,17 @@ impl Media {
                 ordinary,
             ),
         ] {
+            let n = crystal.ordinary.clone();
+            let at = move |nm: f64| Parametric::Uniform(UniformMedium { n: n.at(nm) });
             self.0.push(Entry {
                 name: label,
-                medium: uniform(),
-                dispersion: None,
+                medium: at(LAMBDA_D).boxed(),
+                dispersion: crystal
+                    .is_dispersive()
+                    .then(|| Box::new(at) as AtWavelength),
                 participating: Participating::default(),
                 crystal: Some(CrystalWave {
-                    crystal,
+                    crystal: crystal.clone(),
                     wave,
                     other,
                 }),
@@ -162,8 +190,8 @@ impl Media {
 
     /// Sets what medium `i` does to light's power (and its other wave's, for a crystal).
     pub fn set_participating(&mut self, i: MediumId, participating: Participating) {
-        if let Some(c) = self.0[i.index()].crystal {
-            self.0[c.other.index()].participating = participating.clone();
+        if let Some(other) = self.0[i.index()].crystal.as_ref().map(|c| c.other) {
+            self.0[other.index()].participating = participating.clone();
         }
         self.0[i.index()].participating = participating;
     }

@@ -6,6 +6,7 @@ use crate::ids::{MediumId, PrimId};
 use crate::material::SurfacePoint;
 use crate::polarization::crystal::{Interface, Optics, Wave};
 use crate::scene::Surface;
+use crate::spectrum::LAMBDA_D;
 use glam::{DVec2, DVec3};
 
 impl<'a> Tracer<'a> {
@@ -93,8 +94,9 @@ impl Tracer<'_> {
         if crystal(vertex.medium).is_none() && crystal(vertex.beyond).is_none() {
             return None;
         }
+        let nm = self.single_wavelength().unwrap_or(LAMBDA_D);
         let optics = |m: Option<MediumId>| match crystal(m) {
-            Some(c) => Some(Optics::Crystal(c.crystal)),
+            Some(c) => Some(Optics::Crystal(c.crystal.at(nm))),
             None => self.index(m, vertex.position).map(Optics::Isotropic),
         };
         Some(Interface {
