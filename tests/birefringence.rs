@@ -2,6 +2,7 @@
 // on receivers), is lossless under a uniform sky (both integrators' camera paths), doubles an
 // edge seen through it (camera paths), and bad crystal input is refused by place.
 
+use crate::common::mean_and_error;
 use grinlight::receiver::Measurement;
 use grinlight::scene::load::parse_scene;
 use grinlight::settings::{IntegratorKind, Settings};
@@ -117,10 +118,7 @@ fn image_mean(text: &str, integrator: IntegratorKind) -> (f64, f64) {
     let values: Vec<f64> = (film.layer("beauty").unwrap().iter())
         .map(|p| p[1] as f64)
         .collect();
-    let n = values.len() as f64;
-    let mean = values.iter().sum::<f64>() / n;
-    let var = values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0);
-    (mean, (var / n).sqrt())
+    mean_and_error(&values)
 }
 
 /// A furnace: a calcite block filling the view under a uniform sky of radiance 1 reads 1 —
@@ -180,10 +178,7 @@ fn an_edge_seen_through_the_plate_is_doubled_by_the_walk_off() {
                 let values: Vec<f64> = (0..height)
                     .map(|y| pixels[y * width + x][1] as f64)
                     .collect();
-                let mean = values.iter().sum::<f64>() / height as f64;
-                let var =
-                    values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (height as f64 - 1.0);
-                (mean, (var / height as f64).sqrt())
+                mean_and_error(&values)
             })
             .collect()
     };

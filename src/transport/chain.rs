@@ -1006,6 +1006,24 @@ impl<'w> Walker<'w> {
         ControlFlow::Continue(())
     }
 
+    /// Carries a specular event's `weight` (per channel) by the policy: a camera path's weight
+    /// takes it, a photon goes on with its largest channel's probability (its power weighed by
+    /// each channel's over that); true where Russian roulette absorbs the photon there.
+    fn absorbed_at_specular(&self, chain: &mut Chain, weight: Rgb, rng: &mut impl Rng) -> bool {
+        match self.policy {
+            Policy::Weighted => chain.weight *= weight,
+            Policy::Roulette => {
+                let survive = weight.max_element();
+                if survive < 1.0 && rng.gen::<f64>() >= survive {
+                    return true;
+                }
+                chain.weight *= weight / survive.clamp(f64::MIN_POSITIVE, 1.0);
+            }
+            Policy::Principal | Policy::Unscattered => {}
+        }
+        false
+    }
+
     /// Reflects or refracts the chain at the purely specular `vertex`.
     fn bounce(
         &mut self,
@@ -1032,16 +1050,8 @@ impl<'w> Walker<'w> {
                 None => p.depolarize(),
             }
         }
-        match self.policy {
-            Policy::Weighted => chain.weight *= weight,
-            Policy::Roulette => {
-                let survive = weight.max_element();
-                if survive < 1.0 && lent.rng.gen::<f64>() >= survive {
-                    return ControlFlow::Break(End::Absorbed { medium: None });
-                }
-                chain.weight *= weight / survive.clamp(f64::MIN_POSITIVE, 1.0);
-            }
-            Policy::Principal | Policy::Unscattered => {}
+        if self.absorbed_at_specular(chain, weight, lent.rng) {
+            return ControlFlow::Break(End::Absorbed { medium: None });
         }
         chain.specular += 1;
         if observer
@@ -1062,7 +1072,9 @@ impl<'w> Walker<'w> {
     /// its power (of unpolarized light on an isotropic side, of its own wave's in a crystal)
     /// and weighed by the branches' summed power — 1 for a photon, the power kept — and the
     /// factor its Mueller matrix gives the polarization carried. The principal ray takes the
-    /// strongest; a chain that stops at the first specular surface stops.
+    /// strongest; a chain that stops at the first specular surface stops. Kept out of line:
+    /// scenes without a crystal never come here, and the walk's loop stays small.
+    #[inline(never)]
     fn split(
         &mut self,
         chain: &mut Chain,
@@ -1111,16 +1123,8 @@ impl<'w> Walker<'w> {
         if let Some(p) = lent.polarization.as_deref_mut() {
             weight *= p.meet(&branch.element, -vertex.wo);
         }
-        match self.policy {
-            Policy::Weighted => chain.weight *= weight,
-            Policy::Roulette => {
-                let survive = weight.max_element();
-                if survive < 1.0 && lent.rng.gen::<f64>() >= survive {
-                    return ControlFlow::Break(End::Absorbed { medium: None });
-                }
-                chain.weight *= weight / survive.clamp(f64::MIN_POSITIVE, 1.0);
-            }
-            Policy::Principal | Policy::Unscattered => {}
+        if self.absorbed_at_specular(chain, weight, lent.rng) {
+            return ControlFlow::Break(End::Absorbed { medium: None });
         }
         let (side, normal) = match branch.beyond {
             true => (vertex.beyond, -vertex.normal),

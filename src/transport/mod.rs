@@ -75,6 +75,9 @@ pub struct Tracer<'a> {
     /// Whether a surface of the scene may join equal indices ([`Scene::may_match_indices`],
     /// asked once here rather than by every shadow ray).
     pub may_match_indices: bool,
+    /// Whether a medium of the scene is a crystal ([`crate::scene::Media::crystal`], asked once
+    /// here rather than at every surface a path meets).
+    pub has_crystals: bool,
 }
 
 /// A gradient medium a march crosses: its index field and what it does to light's power.
@@ -129,6 +132,7 @@ impl<'a> Tracer<'a> {
             light_samples: LightSamples::One,
             wavelength: None,
             may_match_indices: scene.may_match_indices(),
+            has_crystals: scene.media().first_crystal().is_some(),
         };
         if let Some(c) = &scene.camera {
             tracer.camera_medium = tracer.medium_containing(c.position);

@@ -91,6 +91,7 @@ impl<'a> Tracer<'a> {
             light_samples: self.light_samples,
             wavelength: Some(nm),
             may_match_indices: self.may_match_indices,
+            has_crystals: self.has_crystals,
         }
     }
 

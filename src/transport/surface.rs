@@ -89,6 +89,9 @@ impl Tracer<'_> {
     /// face, which splits light into the crystal's two waves ([`crate::polarization::crystal`]);
     /// None between isotropic media, and where an isotropic side's index is undefined.
     pub fn crystal_interface(&self, vertex: &SurfaceVertex) -> Option<Interface> {
+        if !self.has_crystals {
+            return None;
+        }
         let media = self.scene.media();
         let crystal = |m: Option<MediumId>| m.and_then(|m| media.crystal(m));
         if crystal(vertex.medium).is_none() && crystal(vertex.beyond).is_none() {
@@ -108,7 +111,8 @@ impl Tracer<'_> {
 
     /// The crystal's wave a path in `medium` travels as (None: an isotropic medium).
     pub fn wave(&self, medium: Option<MediumId>) -> Option<Wave> {
-        medium.and_then(|m| self.scene.media().crystal(m).map(|c| c.wave))
+        let m = medium.filter(|_| self.has_crystals)?;
+        self.scene.media().crystal(m).map(|c| c.wave)
     }
 }
 

@@ -84,3 +84,11 @@ pub fn sphere_obj(k: usize, normals: bool) -> String {
     }
     text + &faces
 }
+
+/// The mean of `values` and its standard error (their spread over √n).
+pub fn mean_and_error(values: &[f64]) -> (f64, f64) {
+    let n = values.len() as f64;
+    let mean = values.iter().sum::<f64>() / n;
+    let var = values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0);
+    (mean, (var / n).sqrt())
+}
