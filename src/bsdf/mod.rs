@@ -615,10 +615,13 @@ impl Bsdf<'_> {
 
     /// The Mueller matrices per channel of a specular sample's event, from the path's `wo` to
     /// its `wi` about `n` ([`crate::polarization::carried`]), in the s/p basis of its plane of
-    /// incidence (any basis at normal incidence) or a sheet's axis; None for every other lobe
-    /// (they scatter, and polarized transport takes their light as depolarized). Either way
-    /// along the path the same matrices hold: a reflection's are the same both ways, and a
-    /// transmission's differ only in their scale, which the scalar transport carries.
+    /// incidence (any basis at normal incidence) or a sheet's axis; a rough conductor's, the
+    /// Fresnel matrix of the microfacet that reflects `wo` into `wi` (normal wo + wi, at
+    /// cos θ = wo·h, in the s/p basis of the plane of wo and wi: the microfacet model's, whose
+    /// first element is the scalar F its BRDF holds); None for every other lobe (they scatter,
+    /// and polarized transport takes their light as depolarized). Either way along the path the
+    /// same matrices hold: a reflection's are the same both ways, and a transmission's differ
+    /// only in their scale, which the scalar transport carries.
     pub fn mueller(&self, wo: DVec3, wi: DVec3, n: DVec3) -> Option<Element> {
         let cos = wo.dot(n).abs().min(1.0);
         // The s direction, across the plane of incidence (any across the ray square on).
@@ -653,6 +656,21 @@ impl Bsdf<'_> {
                     x_leaving: x,
                 })
             }
+            Bsdf::Conductor {
+                fresnel,
+                microsurface: Some(_),
+            } => {
+                let h = (wo + wi).try_normalize()?;
+                let x = wo
+                    .cross(wi)
+                    .try_normalize()
+                    .unwrap_or_else(|| wo.any_orthonormal_vector());
+                Some(Element {
+                    mueller: fresnel.mueller(wo.dot(h).abs().min(1.0)),
+                    x,
+                    x_leaving: x,
+                })
+            }
             Bsdf::ThinDielectric { eta } => {
                 let [reflection, transmission] = mueller::thin_pane(cos, eta);
                 let reflected = wi.dot(n) * wo.dot(n) > 0.0;
@@ -666,10 +684,6 @@ impl Bsdf<'_> {
             }
             Bsdf::Sheet { sheet } => Some(sheet.element(n, wo)),
             Bsdf::Lambert { .. }
-            | Bsdf::Conductor {
-                microsurface: Some(_),
-                ..
-            }
             | Bsdf::Dielectric {
                 microsurface: Some(_),
                 ..
