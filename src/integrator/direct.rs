@@ -81,16 +81,18 @@ pub fn camera_path<'w>(
         medium: carried.tracer.camera_medium,
     };
     let analyzer = (carried.tracer.scene.camera.as_ref()).and_then(|c| analyzer(c, ray.direction));
-    let mut walker = Walker::carrying(carried, Policy::Weighted)
-        .choosing(camera.choices)
-        .seeing_through(analyzer);
+    let mut walker = Walker::carrying(carried, Policy::Weighted).choosing(camera.choices);
     let recording = &mut beams.record(carried.tracer);
+    let analyzer = analyzer.as_ref();
     let (chain, stokes) = match (carried.tracer.settings.stokes, &carried.tracer.scene.camera) {
         (true, Some(c)) => {
             let axis = c.stokes_axis(ray.direction);
-            walker.follow_measuring_stokes(ray, axis, rng, stats, recording)
+            walker.follow_measuring_stokes(ray, analyzer, axis, rng, stats, recording)
         }
-        (true, None) | (false, _) => (walker.follow(ray, rng, stats, recording), None),
+        (true, None) | (false, _) => (
+            walker.follow_through(ray, analyzer, rng, stats, recording),
+            None,
+        ),
     };
     record_cut(&chain, Rgb::ONE, stats);
     let hidden = chain.specular == 0
