@@ -13,6 +13,7 @@ import pytest
 import grinlight
 
 ROD = {"name": "rod", "profile": "linear", "n0": 1.5, "gradient": [0.0, 0.1, 0.0]}
+CALCITE = {"name": "calcite", "profile": "uniaxial", "no": 1.6584, "ne": 1.4864, "optic_axis": [0, 0, 1]}
 
 
 @pytest.mark.parametrize(
@@ -31,12 +32,22 @@ ROD = {"name": "rod", "profile": "linear", "n0": 1.5, "gradient": [0.0, 0.1, 0.0
         ({"medium": [ROD], "render": {"spp": 2**70}}, "render.spp"),
         ({"medium": [{"name": object()}]}, "medium[0].name"),
         ({"medium": [{1: "rod"}]}, "medium[0]"),
+        ({"medium": [dict(CALCITE, ne=-1.0)]}, "medium[0].ne"),
+        ({"medium": [dict(CALCITE, no=math.nan)]}, "medium[0].no"),
+        ({"medium": [dict(CALCITE, optic_axis=[0.0, 0.0, 0.0])]}, "medium[0].optic_axis"),
     ],
 )
 def test_a_bad_dict_names_its_key(data, key):
     with pytest.raises(ValueError) as e:
         grinlight.load_dict(data)
     assert str(e.value).startswith(key), str(e.value)
+
+
+def test_a_ray_is_not_traced_in_a_crystal():
+    """A crystal's light travels as two waves that part at its faces: `trace` names it and
+    raises, it does not follow one of them silently."""
+    with pytest.raises(ValueError, match="'calcite' is a uniaxial crystal"):
+        grinlight.trace({"medium": [CALCITE]}, [0, 0, 0], [0, 0, 1], 1.0, medium="calcite")
 
 
 def test_a_list_that_holds_itself_or_nests_too_deep_is_refused():
