@@ -429,12 +429,9 @@ fn build_checked(
             scene.path().display()
         )));
     }
-    crate::render::sources_outside_crystals(
-        &scene,
-        &crate::transport::Tracer::new(&scene, &settings.trace),
-    )?;
+    let tracer = crate::transport::Tracer::new(&scene, &settings.trace);
+    crate::render::sources_outside_crystals(&scene, &tracer)?;
     if let Some(c) = &scene.camera {
-        let tracer = crate::transport::Tracer::new(&scene, &settings.trace);
         crate::render::views_carry_media_polarization(&scene, &tracer)?;
         if let Some(w) = crate::render::dye_light_warning(&scene) {
             observer.warning(&w);

@@ -802,11 +802,11 @@ fn scatter_photon(
             return Some(PhotonBounce { weight, scattered });
         }
     }
-    let bounce = match vertex.surface().and_then(|v| v.bsdf.lambert_albedo()) {
+    let (bounce, polarizes) = match vertex.surface().and_then(|v| v.bsdf.lambert_albedo()) {
         Some(albedo) => {
             let weight = roulette(albedo, rng)?;
             let scattered = vertex.scatter_with(rng)?;
-            PhotonBounce { weight, scattered }
+            (PhotonBounce { weight, scattered }, false)
         }
         None => {
             let scattered = vertex.scatter_with(rng)?;
@@ -818,13 +818,10 @@ fn scatter_photon(
                 Some(state.meet(&element, -v.wo))
             });
             let weight = roulette(scattered.sample.weight * carried.unwrap_or(Rgb::ONE), rng)?;
-            if carried.is_some() {
-                return Some(PhotonBounce { weight, scattered });
-            }
-            PhotonBounce { weight, scattered }
+            (PhotonBounce { weight, scattered }, carried.is_some())
         }
     };
-    if let Some(state) = polarization.as_mut() {
+    if let (Some(state), false) = (polarization.as_mut(), polarizes) {
         *state = Polarization::unpolarized(Sense::WithLight, bounce.scattered.ray.direction);
     }
     Some(bounce)

@@ -28,6 +28,7 @@
 //! one is its field's, whatever a Stokes vector would say: its matrix reads only the power.
 
 use super::carried::Element;
+use super::mueller::from_jones;
 use glam::{DMat3, DMat4, DVec3, DVec4};
 use num_complex::Complex64;
 
@@ -78,16 +79,8 @@ impl Uniaxial {
         }
     }
 
-    /// The unit ray (energy) direction of `wave` whose unit wave normal is `k`.
-    pub fn ray(&self, wave: Wave, k: DVec3) -> DVec3 {
-        match wave {
-            Wave::Ordinary => k,
-            Wave::Extraordinary => (self.normal_surface() * k).normalize(),
-        }
-    }
-
-    /// The unit wave normal of `wave` whose unit ray direction is `s` (the inverse of
-    /// [`Uniaxial::ray`]: k ∝ M⁻¹ s).
+    /// The unit wave normal of `wave` whose unit ray direction is `s` (the ray runs along the
+    /// normal surface's normal M k, so k ∝ M⁻¹ s).
     pub fn wave_normal(&self, wave: Wave, s: DVec3) -> DVec3 {
         match wave {
             Wave::Ordinary => s,
@@ -298,7 +291,7 @@ fn waves(optics: Optics, kt: DVec3, n: DVec3, s: DVec3) -> [(PlaneWave, Option<W
             };
             let ke = along((root - b) / (2.0 * a));
             let eo = ko.cross(c);
-            let de = ko_free_displacement(ke, c);
+            let de = extraordinary_displacement(ke, c);
             // Along the optic axis the two waves are one (index n_o): any two fields across
             // it are eigenwaves; take the s and p waves there.
             let degenerate =
@@ -322,7 +315,7 @@ fn waves(optics: Optics, kt: DVec3, n: DVec3, s: DVec3) -> [(PlaneWave, Option<W
 
 /// The extraordinary wave's displacement direction, (k × c) × k: across k, in the plane of
 /// k and c.
-fn ko_free_displacement(k: Phasor, c: Phasor) -> Phasor {
+fn extraordinary_displacement(k: Phasor, c: Phasor) -> Phasor {
     k.cross(c).cross(k)
 }
 
@@ -355,42 +348,6 @@ fn solve(mut a: [[C; 4]; 4], mut b: [C; 4]) -> Option<[C; 4]> {
         x[row] = sum / a[row][row];
     }
     x.iter().all(|z| z.is_finite()).then_some(x)
-}
-
-/// The Mueller matrix of Jones matrix `j` (rows: the leaving light's x and y components; columns:
-/// the arriving light's): M_ab = ½ tr(σ_a J σ_b J†), with the Pauli matrices of
-/// [`super::mueller`]'s Stokes convention (σ1 = diag(1, −1), σ2 = [[0, 1], [1, 0]],
-/// σ3 = [[0, i], [−i, 0]]).
-fn mueller(j: [[C; 2]; 2]) -> DMat4 {
-    let (o, i) = (C::new(0.0, 0.0), C::new(0.0, 1.0));
-    let one = C::new(1.0, 0.0);
-    let sigma = [
-        [[one, o], [o, one]],
-        [[one, o], [o, -one]],
-        [[o, one], [one, o]],
-        [[o, i], [-i, o]],
-    ];
-    let mul = |a: [[C; 2]; 2], b: [[C; 2]; 2]| {
-        let mut r = [[o; 2]; 2];
-        for (r_row, a_row) in r.iter_mut().zip(&a) {
-            for (c, out) in r_row.iter_mut().enumerate() {
-                *out = a_row[0] * b[0][c] + a_row[1] * b[1][c];
-            }
-        }
-        r
-    };
-    let dagger = [
-        [j[0][0].conj(), j[1][0].conj()],
-        [j[0][1].conj(), j[1][1].conj()],
-    ];
-    let mut rows = [[0.0; 4]; 4];
-    for (a, row) in rows.iter_mut().enumerate() {
-        for (b, m) in row.iter_mut().enumerate() {
-            let p = mul(mul(sigma[a], j), mul(sigma[b], dagger));
-            *m = 0.5 * (p[0][0] + p[1][1]).re;
-        }
-    }
-    DMat4::from_cols_array_2d(&rows).transpose()
 }
 
 /// One side's two waves leaving the interface and the basis their light is written in.
@@ -620,7 +577,7 @@ fn branch(
     beyond: bool,
     arriving: Option<Wave>,
 ) -> Branch {
-    let mut m = mueller(j);
+    let mut m = from_jones(j);
     if arriving.is_some() {
         let out = m.col(0) + m.col(1);
         m = DMat4::from_cols(out, DVec4::ZERO, DVec4::ZERO, DVec4::ZERO);
@@ -707,7 +664,7 @@ mod tests {
         let [rs, rp] = amplitudes.reflected;
         let zero = C::new(0.0, 0.0);
         assert!(close(
-            mueller([[rs, zero], [zero, rp]]),
+            from_jones([[rs, zero], [zero, rp]]),
             amplitudes.reflection(),
             1e-15
         ));

@@ -102,6 +102,43 @@ fn interface(a_s: Complex64, a_p: Complex64, scale: f64) -> Option<DMat4> {
     m.is_finite().then_some(m)
 }
 
+/// The Mueller matrix of Jones matrix `j` (rows: the leaving light's x and y components; columns:
+/// the arriving light's): M_ab = ½ tr(σ_a J σ_b J†), with the Pauli matrices of
+/// the module's Stokes convention (σ1 = diag(1, −1), σ2 = [[0, 1], [1, 0]],
+/// σ3 = [[0, i], [−i, 0]]); [`interface`] is its diagonal case written out (a crystal's
+/// unit tests hold the two equal).
+pub fn from_jones(j: [[Complex64; 2]; 2]) -> DMat4 {
+    let (o, i) = (Complex64::new(0.0, 0.0), Complex64::new(0.0, 1.0));
+    let one = Complex64::new(1.0, 0.0);
+    let sigma = [
+        [[one, o], [o, one]],
+        [[one, o], [o, -one]],
+        [[o, one], [one, o]],
+        [[o, i], [-i, o]],
+    ];
+    let mul = |a: [[Complex64; 2]; 2], b: [[Complex64; 2]; 2]| {
+        let mut r = [[o; 2]; 2];
+        for (r_row, a_row) in r.iter_mut().zip(&a) {
+            for (c, out) in r_row.iter_mut().enumerate() {
+                *out = a_row[0] * b[0][c] + a_row[1] * b[1][c];
+            }
+        }
+        r
+    };
+    let dagger = [
+        [j[0][0].conj(), j[1][0].conj()],
+        [j[0][1].conj(), j[1][1].conj()],
+    ];
+    let mut rows = [[0.0; 4]; 4];
+    for (a, row) in rows.iter_mut().enumerate() {
+        for (b, m) in row.iter_mut().enumerate() {
+            let p = mul(mul(sigma[a], j), mul(sigma[b], dagger));
+            *m = 0.5 * (p[0][0] + p[1][1]).re;
+        }
+    }
+    DMat4::from_cols_array_2d(&rows).transpose()
+}
+
 /// The Fresnel amplitude coefficients of the interface to relative index η (complex for a
 /// conductor, η + ik; below 1 toward a less dense dielectric) at cos θi = `cos_i` ∈ (0, 1].
 #[derive(Clone, Copy, Debug, PartialEq)]

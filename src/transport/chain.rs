@@ -1136,7 +1136,7 @@ impl<'w> Walker<'w> {
         let total = branches.power();
         let chosen = match self.policy {
             Policy::Principal => (branches.iter()).max_by(|a, b| a.power().total_cmp(&b.power())),
-            _ => {
+            Policy::Weighted | Policy::Roulette | Policy::Unscattered => {
                 let u = self.choices.next().unwrap_or_else(|| lent.rng.gen()) * total;
                 let mut sum = 0.0;
                 let mut last = None;
@@ -1165,7 +1165,9 @@ impl<'w> Walker<'w> {
         };
         let medium = match (side, branch.beam.wave) {
             (Some(m), Some(w)) => Some(self.tracer.scene.media().of_wave(m, w)),
-            (m, _) => m,
+            (side, None) => side,
+            // A wave is a crystal's, and a crystal is a medium: no beam has one in vacuum.
+            (None, Some(_)) => None,
         };
         let direction = match with_light {
             true => branch.beam.direction,

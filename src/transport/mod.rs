@@ -114,11 +114,12 @@ impl<'a> Tracer<'a> {
             center,
             radius: extent.max(1e-9),
         };
+        let has_crystals = scene.media().first_crystal().is_some();
         let polarized = settings.polarized
             || settings.stokes
             || (scene.materials.iter()).any(|m| matches!(m, crate::material::Material::Sheet(_)))
             || (scene.camera.as_ref()).is_some_and(|c| c.polarizer.is_some())
-            || scene.media().first_crystal().is_some();
+            || has_crystals;
         let mut tracer = Self {
             scene,
             settings: TraceSettings {
@@ -132,7 +133,7 @@ impl<'a> Tracer<'a> {
             light_samples: LightSamples::One,
             wavelength: None,
             may_match_indices: scene.may_match_indices(),
-            has_crystals: scene.media().first_crystal().is_some(),
+            has_crystals,
         };
         if let Some(c) = &scene.camera {
             tracer.camera_medium = tracer.medium_containing(c.position);

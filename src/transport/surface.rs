@@ -82,7 +82,8 @@ impl Tracer<'_> {
         vertex.bsdf.is_index_matched()
             && uniform(vertex.medium)
             && uniform(vertex.beyond)
-            && self.crystal_interface(vertex).is_none()
+            && self.wave(vertex.medium).is_none()
+            && self.wave(vertex.beyond).is_none()
     }
 
     /// The interface `vertex` is on, where a uniaxial crystal lies on either side of it: its
