@@ -22,6 +22,7 @@
 use super::{CameraRay, Integrator, Sample};
 use crate::camera::{FilmPoint, PrimaryRay};
 use crate::color::Rgb;
+use crate::polarization::Recorded;
 use crate::report::Report;
 use crate::transport::{Event, Stats, Tracer};
 use glam::{DVec2, DVec3};
@@ -431,6 +432,6 @@ impl Integrator for DeflectionTable<'_> {
             (Some(d), Some(env)) => env.radiance(d) * self.scale,
             _ => Rgb::ZERO,
         };
-        sample.add(TableLayer::Emitted, radiance);
+        sample.record(TableLayer::Emitted, Recorded::radiance(radiance));
     }
 }

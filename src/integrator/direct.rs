@@ -13,10 +13,12 @@ use super::single::single_scattering;
 use super::CameraRay;
 use crate::camera::Camera;
 use crate::color::Rgb;
-use crate::polarization::{Element, Sheet};
+use crate::polarization::{Element, Polarization, Recorded, Sense, Sheet};
 use crate::transport::chain::{Carried, Chain, End, Policy, Ray, Walker};
 pub use crate::transport::lighting::emission_seen;
-use crate::transport::lighting::{bsdf_sample_weight, direct_light, light_samples, LightNumbers};
+use crate::transport::lighting::{
+    bsdf_sample_weight, direct_light, light_samples, LightNumbers, Measuring, Radiance,
+};
 use crate::transport::{HeroTracer, Scattered, Stats, Tracer, Vertex};
 use glam::DVec3;
 use rand::Rng;
@@ -50,10 +52,6 @@ pub struct Components<'w> {
     pub curved: bool,
     /// The wavelengths the path carries there.
     pub carried: Carried<'w>,
-    /// Where the camera measures the whole Stokes vector: what it records as S1, S2, S3 of
-    /// the (depolarized) light that reaches the chain's end, over what it records as S0, per
-    /// channel ([`crate::polarization::Polarization::stokes_shares`]).
-    pub stokes: Option<[Rgb; 3]>,
 }
 
 /// A camera sample's hero wavelength ([`crate::scene::Scene::hero`]), drawn from `rng` in a
@@ -67,11 +65,14 @@ pub fn hero<'a>(tracer: &'a Tracer<'a>, rng: &mut impl Rng) -> Option<HeroTracer
 }
 
 /// Follows a camera ray through mirrors, dielectrics and curved media to its visible point,
-/// recording its stretches through scattering media in `beams`.
+/// recording its stretches through scattering media in `beams`. Where the transport is
+/// polarized, `measure` is left holding the camera's measurement of the light at the chain's
+/// end, per unit of the throughput there ([`Walker::follow_from_camera`]); None otherwise.
 pub fn camera_path<'w>(
     carried: Carried<'w>,
     camera: CameraRay,
     beams: &mut Beams,
+    measure: &mut Option<Polarization>,
     rng: &mut impl Rng,
     stats: &mut Stats,
 ) -> Components<'w> {
@@ -84,16 +85,12 @@ pub fn camera_path<'w>(
     let mut walker = Walker::carrying(carried, Policy::Weighted).choosing(camera.choices);
     let recording = &mut beams.record(carried.tracer);
     let analyzer = analyzer.as_ref();
-    let (chain, stokes) = match (carried.tracer.settings.stokes, &carried.tracer.scene.camera) {
-        (true, Some(c)) => {
-            let axis = c.stokes_axis(ray.direction);
-            walker.follow_measuring_stokes(ray, analyzer, axis, rng, stats, recording)
-        }
-        (true, None) | (false, _) => (
-            walker.follow_through(ray, analyzer, rng, stats, recording),
-            None,
-        ),
+    let stokes_axis = match (carried.tracer.settings.stokes, &carried.tracer.scene.camera) {
+        (true, Some(c)) => Some(c.stokes_axis(ray.direction)),
+        (true, None) | (false, _) => None,
     };
+    let chain =
+        walker.follow_from_camera(ray, analyzer, stokes_axis, measure, rng, stats, recording);
     record_cut(&chain, Rgb::ONE, stats);
     let hidden = chain.specular == 0
         && (carried.tracer.scene.camera.as_ref()).is_some_and(|c| c.hide_emitters);
@@ -108,7 +105,6 @@ pub fn camera_path<'w>(
         bounces: chain.specular,
         curved: chain.curved,
         carried: walker.carried(),
-        stokes,
     };
     if let End::Scatter(vertex) = chain.end {
         out.visible = Some(VisiblePoint {
@@ -119,14 +115,24 @@ pub fn camera_path<'w>(
     out
 }
 
-/// Direct light at the visible point `vp` ([`direct_light`]) as seen at the camera (times the
-/// path's throughput there) — but none at a point in a scattering
-/// medium of uniform index: the direct light scattered along the whole straight stretch that
-/// ended there is [`super::single::single_scattering`]'s, which samples it where the lights are.
-pub fn direct(carried: Carried, vp: &VisiblePoint, rng: &mut impl Rng, stats: &mut Stats) -> Rgb {
-    match takes_direct(carried.tracer, &vp.vertex) {
-        true => vp.throughput * direct_light(carried, &vp.vertex, rng, stats),
-        false => Rgb::ZERO,
+/// Direct light at the visible point `vp` ([`direct_light`]) as the camera records it
+/// through the measurement its path carries there (`measure`, where the transport is
+/// polarized) — but none at a point in a scattering medium of uniform index: the direct light
+/// scattered along the whole straight stretch that ended there is
+/// [`super::single::single_scattering`]'s, which samples it where the lights are.
+pub fn direct(
+    carried: Carried,
+    vp: &VisiblePoint,
+    measure: Option<&Polarization>,
+    rng: &mut impl Rng,
+    stats: &mut Stats,
+) -> Recorded {
+    match (takes_direct(carried.tracer, &vp.vertex), measure) {
+        (false, _) => Recorded::default(),
+        (true, None) => Recorded::radiance(
+            vp.throughput * direct_light(carried, &vp.vertex, Radiance, rng, stats),
+        ),
+        (true, Some(p)) => direct_light(carried, &vp.vertex, Measuring(p), rng, stats) * vp.throughput,
     }
 }
 
@@ -136,12 +142,35 @@ pub fn lit(
     carried: Carried,
     vp: &VisiblePoint,
     numbers: LightNumbers,
+    measure: Option<&Polarization>,
     rng: &mut impl Rng,
     stats: &mut Stats,
-) -> Rgb {
-    match takes_direct(carried.tracer, &vp.vertex) {
-        true => vp.throughput * light_samples(carried, &vp.vertex, numbers, rng, stats),
-        false => Rgb::ZERO,
+) -> Recorded {
+    match (takes_direct(carried.tracer, &vp.vertex), measure) {
+        (false, _) => Recorded::default(),
+        (true, None) => Recorded::radiance(
+            vp.throughput * light_samples(carried, &vp.vertex, numbers, Radiance, rng, stats),
+        ),
+        (true, Some(p)) => {
+            light_samples(carried, &vp.vertex, numbers, Measuring(p), rng, stats) * vp.throughput
+        }
+    }
+}
+
+/// The measurement of radiance alone, for a path that sets off along unit `direction` from
+/// light that is unpolarized (from a point where it is depolarized: a dye's, a diffuse
+/// vertex's), where the transport is polarized; None where it is not.
+pub fn measuring_radiance(tracer: &Tracer, direction: DVec3) -> Option<Polarization> {
+    (tracer.settings.polarized).then(|| Polarization::unpolarized(Sense::AgainstLight, direction))
+}
+
+/// Light `value` (radiance, as the chain that found it sees it) as the camera records it
+/// through the measurement a path carries where the light is depolarized (None: radiance, where
+/// the transport is not polarized).
+pub fn recorded(measure: Option<&Polarization>, value: Rgb) -> Recorded {
+    match measure {
+        Some(p) => p.recorded() * value,
+        None => Recorded::radiance(value),
     }
 }
 

@@ -113,6 +113,7 @@ impl<'a> Eye<'a> {
                 carried,
                 neighbour,
                 &mut Beams::default(),
+                &mut None,
                 &mut rng.clone(),
                 stats,
             );

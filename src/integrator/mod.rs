@@ -33,6 +33,7 @@ pub use photon_map::{PhotonMapper, Plan};
 use crate::camera::FilmPoint;
 use crate::color::Rgb;
 use crate::film::Layer;
+use crate::polarization::Recorded;
 use crate::report::Report;
 use crate::sample_stream::SampleStream;
 use crate::transport::chain::Choices;
@@ -50,9 +51,6 @@ pub struct Sample<'a, L> {
     pub stats: &'a mut Stats,
     /// Values per layer.
     pub values: &'a mut [Rgb],
-    /// What the camera records as S1, S2, S3 of the radiance its first chain brings, over
-    /// what it records as S0 ([`Sample::measure_stokes`]).
-    stokes: Option<[Rgb; 3]>,
     layers: std::marker::PhantomData<L>,
 }
 
@@ -64,27 +62,26 @@ impl<'a, L: Layers> Sample<'a, L> {
             rng,
             stats,
             values,
-            stokes: None,
             layers: std::marker::PhantomData,
         }
     }
 
-    /// From here on, radiance added is also measured as a Stokes vector: S0 the radiance,
-    /// S1–S3 its `shares` of it per channel (the camera's first chain's
-    /// [`direct::Components::stokes`]; None: nothing is).
-    pub fn measure_stokes(&mut self, shares: Option<[Rgb; 3]>) {
-        self.stokes = shares;
+    /// Adds `value` to the auxiliary layer `layer` (a denoiser's albedo or normal).
+    pub fn add(&mut self, layer: L, value: Rgb) {
+        debug_assert!(L::FILM[layer.index()].kind != crate::film::LayerKind::Radiance);
+        self.values[layer.index()] += value;
     }
 
-    /// Adds `value` to `layer` (and, for radiance, to the Stokes layers where measured).
-    pub fn add(&mut self, layer: L, value: Rgb) {
-        self.values[layer.index()] += value;
-        let Some(shares) = self.stokes else { return };
-        let radiance = L::FILM[layer.index()].kind == crate::film::LayerKind::Radiance;
-        if let (true, Some([s0, rest @ ..])) = (radiance, self.values.get_mut(L::FILM.len()..)) {
-            *s0 += value;
-            for (s, share) in rest.iter_mut().zip(shares) {
-                *s += value * share;
+    /// Adds the light `value` as the camera records it to the radiance layer `layer` (its S0),
+    /// and to the Stokes layers where the render measures them.
+    pub fn record(&mut self, layer: L, value: Recorded) {
+        self.values[layer.index()] += value.s0;
+        if let Some([s0, rest @ ..]) = self.values.get_mut(L::FILM.len()..) {
+            *s0 += value.s0;
+            if let Some(stokes) = value.stokes {
+                for (s, v) in rest.iter_mut().zip(stokes) {
+                    *s += v;
+                }
             }
         }
     }

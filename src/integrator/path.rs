@@ -17,7 +17,8 @@
 
 use super::beam::Beams;
 use super::direct::{
-    camera_path, continued_emission, hero, lit, record_cut, takes_direct, VisiblePoint,
+    camera_path, continued_emission, hero, lit, measuring_radiance, record_cut, recorded,
+    takes_direct, VisiblePoint,
 };
 use super::dye::dye_sources;
 use super::relight::{fluoresces, relight, Relighting};
@@ -25,9 +26,10 @@ use super::single::single_scattering;
 use super::{CameraRay, FirstVertex, Integrator, Sample};
 use crate::color::Rgb;
 use crate::lights::LightSamples;
+use crate::polarization::{Polarization, Recorded};
 use crate::report::Report;
 use crate::transport::chain::{Carried, End, Policy, Walker};
-use crate::transport::lighting::{direct_light, LightNumbers};
+use crate::transport::lighting::{direct_light, LightNumbers, Radiance};
 use crate::transport::{BsdfNumbers, Stats, Tracer, Vertex};
 use rand::Rng;
 
@@ -69,17 +71,20 @@ impl<'a> PathTracer<'a> {
 
 /// The light reaching the camera from the scattering vertex `vp` a camera path carrying
 /// `carried` has reached, estimated by path tracing: its light samples (taking `first`'s light
-/// numbers where given), and the bounces on from it ([`bounces`]). At a fluorescent layer the
-/// path goes on at the wavelength the layer absorbs ([`relight`]).
+/// numbers where given), and the bounces on from it ([`bounces`]), as the camera records them
+/// through the measurement its path carries (`measure`, where the transport is polarized;
+/// changed by the bounces). At a fluorescent layer the path goes on at the wavelength the
+/// layer absorbs ([`relight`]).
 pub fn onward<'w, R: Rng>(
     mut vp: VisiblePoint<'w>,
     carried: Carried<'w>,
     first: FirstVertex,
+    measure: &mut Option<Polarization>,
     rng: &mut R,
     stats: &mut Stats,
 ) -> Onward {
     match relight(carried.tracer, &mut vp, rng) {
-        Relighting::Unchanged => lit_and_bounces(vp, carried, first, rng, stats),
+        Relighting::Unchanged => lit_and_bounces(vp, carried, first, measure, rng, stats),
         Relighting::Dark => Onward::default(),
         Relighting::Relit { nm } => {
             let tracer = past_fluorophore(carried.tracer, nm);
@@ -88,7 +93,7 @@ pub fn onward<'w, R: Rng>(
                 hero: None,
                 ..carried
             };
-            lit_and_bounces(vp, carried, first, rng, stats)
+            lit_and_bounces(vp, carried, first, measure, rng, stats)
         }
     }
 }
@@ -105,7 +110,9 @@ fn past_fluorophore<'a>(tracer: &'a Tracer<'a>, nm: f64) -> Tracer<'a> {
 /// The light dyes emit toward the chain recorded in `beams` on its way through their media
 /// ([`super::dye`]), per unit of the path's throughput before it, estimated by path tracing on
 /// from a point on each stretch at a wavelength the dye absorbs; `carried`: what the chain
-/// carried at its end.
+/// carried at its end. A dye's light leaves it unpolarized: what the camera records of it is
+/// its radiance times what it records of unpolarized light there; where the transport is
+/// polarized, the path from the dye's point carries a measurement of that radiance on.
 pub fn dye_light<R: Rng>(beams: &Beams, carried: Carried, rng: &mut R, stats: &mut Stats) -> Rgb {
     let mut sum = Rgb::ZERO;
     for source in dye_sources(beams, carried.tracer, rng, stats) {
@@ -120,7 +127,8 @@ pub fn dye_light<R: Rng>(beams: &Beams, carried: Carried, rng: &mut R, stats: &m
             vertex: Vertex::Medium(source.vertex),
             throughput: source.weight,
         };
-        sum += from_point(vp, carried, rng, stats);
+        let mut measure = measuring_radiance(&tracer, -source.vertex.wo);
+        sum += from_point(vp, carried, &mut measure, rng, stats).s0;
     }
     sum
 }
@@ -131,17 +139,21 @@ pub fn dye_light<R: Rng>(beams: &Beams, carried: Carried, rng: &mut R, stats: &m
 fn from_point<'w, R: Rng>(
     vp: VisiblePoint<'w>,
     carried: Carried<'w>,
+    measure: &mut Option<Polarization>,
     rng: &mut R,
     stats: &mut Stats,
-) -> Rgb {
+) -> Recorded {
     let direct = match takes_direct(carried.tracer, &vp.vertex) {
-        true => lit(carried, &vp, LightNumbers::default(), rng, stats),
-        false => vp.throughput * direct_light(carried, &vp.vertex, rng, stats),
+        true => lit(carried, &vp, LightNumbers::default(), measure.as_ref(), rng, stats),
+        false => recorded(
+            measure.as_ref(),
+            vp.throughput * direct_light(carried, &vp.vertex, Radiance, rng, stats),
+        ),
     };
     let Bounces {
         direct: found,
         indirect,
-    } = bounces(vp, carried, BsdfNumbers::default(), rng, stats);
+    } = bounces(vp, carried, BsdfNumbers::default(), measure, rng, stats);
     direct + found + indirect
 }
 
@@ -150,11 +162,12 @@ fn lit_and_bounces<'w, R: Rng>(
     vp: VisiblePoint<'w>,
     carried: Carried<'w>,
     first: FirstVertex,
+    measure: &mut Option<Polarization>,
     rng: &mut R,
     stats: &mut Stats,
 ) -> Onward {
-    let lit = lit(carried, &vp, first.light, rng, stats);
-    let Bounces { direct, indirect } = bounces(vp, carried, first.bsdf, rng, stats);
+    let lit = lit(carried, &vp, first.light, measure.as_ref(), rng, stats);
+    let Bounces { direct, indirect } = bounces(vp, carried, first.bsdf, measure, rng, stats);
     Onward {
         lit,
         direct,
@@ -167,17 +180,19 @@ fn lit_and_bounces<'w, R: Rng>(
 /// (weighed against the light samples where it met no specular surface); the first bounce's,
 /// where it met none, is `vp`'s direct light. The first bounce's BSDF or phase sample takes
 /// `first` where given. A bounce that reaches a fluorescent layer goes on from it by
-/// [`onward`].
+/// [`onward`]. Where the transport is polarized, the camera's measurement `measure` meets each
+/// vertex's Mueller matrix on the way ([`Vertex::measure_toward`]) and each chain's elements.
 fn bounces<'w, R: Rng>(
     mut vp: VisiblePoint<'w>,
     carried: Carried<'w>,
     first: BsdfNumbers,
+    measure: &mut Option<Polarization>,
     rng: &mut R,
     stats: &mut Stats,
 ) -> Bounces {
     let mut walker = Walker::carrying(carried, Policy::Weighted);
-    let mut direct = Rgb::ZERO;
-    let mut sum = Rgb::ZERO;
+    let mut direct = Recorded::default();
+    let mut sum = Recorded::default();
     for bounce in 0.. {
         if bounce >= SURE_BOUNCES {
             let survive = vp.throughput.max_element().min(0.95);
@@ -193,17 +208,30 @@ fn bounces<'w, R: Rng>(
         let Some(b) = vp.vertex.scatter_given(numbers, rng) else {
             break;
         };
+        if let Some(p) = measure.as_mut() {
+            vp.vertex.measure_toward(p, b.sample.wi);
+        }
         let mut beams = Beams::default();
-        let chain = walker.follow(b.ray, rng, stats, &mut beams.record(walker.tracer));
+        let chain = walker.follow_carrying(
+            b.ray,
+            measure,
+            rng,
+            stats,
+            &mut beams.record(walker.tracer),
+        );
+        let at_end = |value: Rgb| recorded(measure.as_ref(), value);
         let weight = b.sample.weight * b.radiance_scale;
         record_cut(&chain, vp.throughput * weight, stats);
-        sum += vp.throughput * weight * single_scattering(&beams, walker.carried(), rng, stats);
-        sum += vp.throughput * weight * dye_light(&beams, walker.carried(), rng, stats);
+        sum += at_end(
+            vp.throughput * weight * single_scattering(&beams, walker.carried(), rng, stats),
+        );
+        sum += at_end(vp.throughput * weight * dye_light(&beams, walker.carried(), rng, stats));
         let throughput = vp.throughput * weight * chain.weight;
         // Light emitted by media on the way is sampled by no light sample: it counts here.
-        sum += vp.throughput * weight * chain.emitted;
+        sum += at_end(vp.throughput * weight * chain.emitted);
         // The sample is also direct light's second strategy, weighed against `lit`'s.
-        let found = vp.throughput * continued_emission(walker.tracer, &vp.vertex, &b, &chain);
+        let found =
+            at_end(vp.throughput * continued_emission(walker.tracer, &vp.vertex, &b, &chain));
         match bounce == 0 && chain.specular == 0 {
             true => direct += found,
             false => sum += found,
@@ -216,10 +244,18 @@ fn bounces<'w, R: Rng>(
             throughput: throughput * chain.radiance_scale(),
         };
         if fluoresces(walker.tracer, &vp.vertex) {
-            sum += onward(vp, walker.carried(), FirstVertex::default(), rng, stats).total();
+            let onward = onward(vp, walker.carried(), FirstVertex::default(), measure, rng, stats);
+            sum += onward.total();
             break;
         }
-        sum += lit(walker.carried(), &vp, LightNumbers::default(), rng, stats);
+        sum += lit(
+            walker.carried(),
+            &vp,
+            LightNumbers::default(),
+            measure.as_ref(),
+            rng,
+            stats,
+        );
     }
     Bounces {
         direct,
@@ -227,27 +263,28 @@ fn bounces<'w, R: Rng>(
     }
 }
 
-/// The light a camera path's bounces from a vertex bring: the vertex's direct light its first
-/// bounce found (the second strategy of direct light there), and the rest.
+/// The light a camera path's bounces from a vertex bring, as the camera records it: the
+/// vertex's direct light its first bounce found (the second strategy of direct light there),
+/// and the rest.
 struct Bounces {
-    direct: Rgb,
-    indirect: Rgb,
+    direct: Recorded,
+    indirect: Recorded,
 }
 
-/// The light reaching the camera from a vertex ([`onward`]), as seen at the camera.
+/// The light reaching the camera from a vertex ([`onward`]), as the camera records it.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Onward {
     /// The vertex's light samples.
-    pub lit: Rgb,
+    pub lit: Recorded,
     /// Its direct light the first bounce found.
-    pub direct: Rgb,
+    pub direct: Recorded,
     /// The rest.
-    pub indirect: Rgb,
+    pub indirect: Recorded,
 }
 
 impl Onward {
     /// All of it.
-    pub fn total(&self) -> Rgb {
+    pub fn total(&self) -> Recorded {
         self.lit + self.direct + self.indirect
     }
 }
@@ -265,18 +302,19 @@ impl Integrator for PathTracer<'_> {
         let hero = hero(self.tracer, s.rng);
         let carried = Carried::starting(self.tracer, hero.as_ref());
         let mut beams = Beams::default();
-        let c = camera_path(carried, ray, &mut beams, s.rng, s.stats);
-        s.measure_stokes(c.stokes);
-        s.add(PathLayer::Emitted, c.emitted);
-        s.add(PathLayer::Direct, c.single);
+        let mut measure = None;
+        let c = camera_path(carried, ray, &mut beams, &mut measure, s.rng, s.stats);
+        let at_end = |value: Rgb| recorded(measure.as_ref(), value);
+        s.record(PathLayer::Emitted, at_end(c.emitted));
+        s.record(PathLayer::Direct, at_end(c.single));
         let dyed = dye_light(&beams, c.carried, s.rng, s.stats);
-        s.add(PathLayer::Indirect, dyed);
+        s.record(PathLayer::Indirect, at_end(dyed));
         let Some(vp) = c.visible else { return };
         s.add(PathLayer::Albedo, vp.vertex.albedo());
         s.add(PathLayer::Normal, vp.vertex.normal());
-        let onward = onward(vp, c.carried, ray.first, s.rng, s.stats);
-        s.add(PathLayer::Direct, onward.lit);
-        s.add(PathLayer::Direct, onward.direct);
-        s.add(PathLayer::Indirect, onward.indirect);
+        let onward = onward(vp, c.carried, ray.first, &mut measure, s.rng, s.stats);
+        s.record(PathLayer::Direct, onward.lit);
+        s.record(PathLayer::Direct, onward.direct);
+        s.record(PathLayer::Indirect, onward.indirect);
     }
 }

@@ -29,7 +29,10 @@
 //!   by the same schedule (a beam reads a 2D kernel, as a surface does).
 
 use super::beam::Beams;
-use super::direct::{camera_path, direct, emission_seen, hero, record_cut, VisiblePoint};
+use super::direct::{
+    camera_path, direct, emission_seen, hero, measuring_radiance, record_cut, recorded,
+    VisiblePoint,
+};
 use super::footprint::{Eye, Way};
 use super::neighbourhood::Neighbourhood;
 use super::path::{dye_light, onward};
@@ -39,6 +42,7 @@ use super::{CameraRay, FirstVertex, Integrator, Sample};
 use crate::color::Rgb;
 use crate::material::Material;
 use crate::photon::{shoot, Batch, PhotonMap, Photons, Sources, VolumeMap};
+use crate::polarization::{Polarization, Recorded};
 use crate::report::Report;
 use crate::scene::Scene;
 use crate::settings::{PhotonSettings, Settings};
@@ -301,8 +305,10 @@ impl<'a> PhotonMapper<'a> {
                             throughput: Rgb::ONE,
                         };
                         let carried = walker.carried();
-                        let rest = onward(vp, carried, FirstVertex::default(), s.rng, s.stats);
-                        sum += weight * rest.total();
+                        let mut measure = measuring_radiance(walker.tracer, -y.wo());
+                        let first = FirstVertex::default();
+                        let rest = onward(vp, carried, first, &mut measure, s.rng, s.stats);
+                        sum += weight * rest.total().s0;
                         None
                     }
                     Vertex::Surface(y) if y.lobes().has_diffuse() => {
@@ -333,6 +339,7 @@ impl<'a> PhotonMapper<'a> {
         maps: &Maps,
         mut vp: VisiblePoint<'w>,
         carried: Carried<'w>,
+        measure: &mut Option<Polarization>,
         found: &mut Found,
         s: &mut Sample<MapLayer>,
     ) -> Option<(VisiblePoint<'w>, SurfaceVertex<'w>, Carried<'w>)> {
@@ -356,20 +363,27 @@ impl<'a> PhotonMapper<'a> {
             }
             let in_medium = matches!(vp.vertex, Vertex::Medium(_));
             if in_medium || !volume {
-                found.direct += direct(walker.carried(), &vp, s.rng, s.stats);
+                found.direct += direct(walker.carried(), &vp, measure.as_ref(), s.rng, s.stats);
             }
             volume |= maps.volume.is_some() && in_medium;
             let b = vp.vertex.scatter_with(s.rng)?;
+            if let Some(p) = measure.as_mut() {
+                vp.vertex.measure_toward(p, b.sample.wi);
+            }
             let throughput = vp.throughput * b.sample.weight * b.radiance_scale;
             let mut beams = Beams::default();
-            let chain = walker.follow(b.ray, s.rng, s.stats, &mut beams.record(walker.tracer));
+            let recording = &mut beams.record(walker.tracer);
+            let chain = walker.follow_carrying(b.ray, measure, s.rng, s.stats, recording);
+            let at_end = |value: Rgb| recorded(measure.as_ref(), value);
             record_cut(&chain, throughput, s.stats);
-            found.caustic += throughput * self.volume_caustic(maps, &beams, walker.tracer, s);
-            found.direct +=
-                throughput * single_scattering(&beams, walker.carried(), s.rng, s.stats);
-            found.dyed += throughput * dye_light(&beams, walker.carried(), s.rng, s.stats);
+            let caustic = self.volume_caustic(maps, &beams, walker.tracer, s);
+            found.caustic += at_end(throughput * caustic);
+            let single = single_scattering(&beams, walker.carried(), s.rng, s.stats);
+            found.direct += at_end(throughput * single);
+            let dyed = dye_light(&beams, walker.carried(), s.rng, s.stats);
+            found.dyed += at_end(throughput * dyed);
             if chain.specular > 0 && !volume {
-                found.emitted += throughput * emission_seen(walker.tracer, &chain);
+                found.emitted += at_end(throughput * emission_seen(walker.tracer, &chain));
             }
             let End::Scatter(vertex) = chain.end else {
                 return None;
@@ -400,12 +414,12 @@ impl<'a> PhotonMapper<'a> {
 /// Light a camera path found on its way to its visible point.
 #[derive(Default)]
 struct Found {
-    direct: Rgb,
-    emitted: Rgb,
+    direct: Recorded,
+    emitted: Recorded,
     /// Volume caustics scattered into the path along its way through media.
-    caustic: Rgb,
+    caustic: Recorded,
     /// Light dyes emitted toward it along its way through their media (path traced).
-    dyed: Rgb,
+    dyed: Recorded,
 }
 
 /// r_p²/r₀² of Knaus and Zwicker's schedule at pass `index`: Π_{j=1..index} (j + α)/(j + 1).
@@ -460,14 +474,15 @@ impl<'a> Integrator for PhotonMapper<'a> {
         // What the path starts with, for the footprint's neighbouring paths.
         let (start, start_rng) = (carried, s.rng.clone());
         let mut beams = Beams::default();
-        let c = camera_path(carried, ray, &mut beams, s.rng, s.stats);
-        s.measure_stokes(c.stokes);
-        s.add(MapLayer::Emitted, c.emitted);
-        s.add(MapLayer::Direct, c.single);
+        let mut measure = None;
+        let c = camera_path(carried, ray, &mut beams, &mut measure, s.rng, s.stats);
+        let at_end = |value: Rgb, measure: &Option<Polarization>| recorded(measure.as_ref(), value);
+        s.record(MapLayer::Emitted, at_end(c.emitted, &measure));
+        s.record(MapLayer::Direct, at_end(c.single, &measure));
         let caustic = self.volume_caustic(maps, &beams, c.carried.tracer, s);
-        s.add(MapLayer::Caustic, caustic);
+        s.record(MapLayer::Caustic, at_end(caustic, &measure));
         let dyed = dye_light(&beams, c.carried, s.rng, s.stats);
-        s.add(MapLayer::Secondary, dyed);
+        s.record(MapLayer::Secondary, at_end(dyed, &measure));
         let Some(first) = c.visible else { return };
         // The way the path took to its visible point, where that is its first vertex (the
         // pixel's footprint is measured there).
@@ -482,26 +497,28 @@ impl<'a> Integrator for PhotonMapper<'a> {
         s.add(MapLayer::Albedo, first.vertex.albedo());
         s.add(MapLayer::Normal, first.vertex.normal());
         let mut found = Found::default();
-        let visible = self.visible_point(maps, first, c.carried, &mut found, s);
-        s.add(MapLayer::Direct, found.direct);
-        s.add(MapLayer::Emitted, found.emitted);
-        s.add(MapLayer::Caustic, found.caustic);
-        s.add(MapLayer::Secondary, found.dyed);
+        let visible = self.visible_point(maps, first, c.carried, &mut measure, &mut found, s);
+        s.record(MapLayer::Direct, found.direct);
+        s.record(MapLayer::Emitted, found.emitted);
+        s.record(MapLayer::Caustic, found.caustic);
+        s.record(MapLayer::Secondary, found.dyed);
         let Some((vp, v, carried)) = visible else {
             return;
         };
         if fluoresces(carried.tracer, &vp.vertex) {
             // A fluorescent layer's light is path traced ([`super::relight`]).
-            let onward = onward(vp, carried, FirstVertex::default(), s.rng, s.stats);
-            s.add(MapLayer::Direct, onward.lit + onward.direct);
-            s.add(MapLayer::Secondary, onward.indirect);
+            let first = FirstVertex::default();
+            let onward = onward(vp, carried, first, &mut measure, s.rng, s.stats);
+            s.record(MapLayer::Direct, onward.lit + onward.direct);
+            s.record(MapLayer::Secondary, onward.indirect);
             return;
         }
-        let direct = direct(carried, &vp, s.rng, s.stats);
-        s.add(MapLayer::Direct, direct);
+        let direct = direct(carried, &vp, measure.as_ref(), s.rng, s.stats);
+        s.record(MapLayer::Direct, direct);
+        // The visible point's diffuse lobe depolarizes what the maps bring.
         if let Some(global) = &maps.global {
             let secondary = self.secondary(global, &vp, carried, s);
-            s.add(MapLayer::Secondary, secondary);
+            s.record(MapLayer::Secondary, at_end(secondary, &measure));
         }
         if let Some(caustic) = &maps.caustic {
             let r2 = match pixel.radii.iter().find(|r| r.way == way) {
@@ -536,7 +553,7 @@ impl<'a> Integrator for PhotonMapper<'a> {
                 Some(albedo) => vp.throughput * albedo * e * FRAC_1_PI,
                 None => vp.throughput * e,
             };
-            s.add(MapLayer::Caustic, caustic_light);
+            s.record(MapLayer::Caustic, at_end(caustic_light, &measure));
         }
     }
 }

@@ -19,7 +19,7 @@
 use super::beam::{Beams, Straight};
 use crate::color::Rgb;
 use crate::transport::chain::Carried;
-use crate::transport::lighting::direct_light;
+use crate::transport::lighting::{direct_light, Radiance};
 use crate::transport::{MediumVertex, Stats, Vertex};
 use glam::DVec3;
 use rand::Rng;
@@ -87,7 +87,7 @@ pub fn single_scattering(
             * s.scattering.sigma_s
             * kept
             * (scatters * density * absorbed * s.radiance_scale / pdf);
-        sum += throughput * direct_light(carried, &vertex, rng, stats);
+        sum += throughput * direct_light(carried, &vertex, Radiance, rng, stats);
     }
     sum
 }

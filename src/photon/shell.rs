@@ -32,7 +32,7 @@ use crate::math::Ball;
 use crate::sampling::{uniform_sphere, UNIFORM_SPHERE_PDF};
 use crate::spectrum::Spectrum;
 use crate::transport::chain::Carried;
-use crate::transport::lighting::direct_light;
+use crate::transport::lighting::{direct_light, Radiance};
 use crate::transport::{MediumVertex, Stats, Tracer, Vertex};
 use rand::Rng;
 use std::f64::consts::PI;
@@ -134,7 +134,7 @@ impl Shell {
                 medium: Some(self.medium),
                 phase: sc.phase,
             });
-            let light = direct_light(Carried::on(tracer), &vertex, rng, stats);
+            let light = direct_light(Carried::on(tracer), &vertex, Radiance, rng, stats);
             Some(sc.sigma_s * d * light / (point_density * direction_density))
         };
         let (power, hero) = match dispersive {

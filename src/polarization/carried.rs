@@ -1,21 +1,22 @@
-//! The polarization a specular chain carries, and the elements it meets.
+//! The polarization a path carries, and the elements it meets.
 //!
-//! Light leaves every source unpolarized and every scattering vertex depolarized (a
-//! Lambertian surface, a rough or coated one, a medium's isotropic or Henyey–Greenstein
-//! phase function: polarized transport treats each as a perfect depolarizer), so polarization
-//! lives within one specular chain: from its start to its next scattering vertex, through
-//! smooth dielectrics, conductors, polarizers and retarders, and along curved stretches where
-//! the basis is parallel-transported (Rytov's law, [`super::RytovTransport`]).
+//! Light leaves every source unpolarized. Along a specular chain it meets smooth dielectrics,
+//! conductors, polarizers, retarders and crystal faces, and along curved stretches its basis
+//! is parallel-transported (Rytov's law, [`super::RytovTransport`]). At a scattering vertex a
+//! rough conductor's microfacet and Rayleigh's phase function apply their Mueller matrices;
+//! every other vertex (a Lambertian surface, a rough dielectric, a plastic's coat, isotropic
+//! and Henyey–Greenstein phase functions) is taken as a perfect depolarizer.
 //!
 //! A photon's chain runs with the light and carries the light's Stokes vector per channel,
 //! S0 = 1: the chain's weight holds the power, and each element's factor on S0 joins it. A
-//! camera's chain runs against the light and carries the measurement the camera makes of the
+//! camera's path runs against the light and carries the measurement the camera makes of the
 //! light arriving along it, a row vector r per channel (r·S is what the camera records of
-//! light S): r = (1, 0, 0, 0) at the camera, r ← r·M at each element met, and where the chain
-//! ends on depolarized light the camera records r0 of it ([`Polarization::closing`]). Each
-//! element's matrix enters divided by its first element (what it does to unpolarized light),
-//! which the scalar transport already carries in its weight and its choices between
-//! reflection and refraction.
+//! light S): r = (1, 0, 0, 0) at the camera, r ← r·M at each element met, and where a chain
+//! ends the camera records r0 of depolarized light there ([`Polarization::closing`]), which the
+//! chain's weight takes on: the rows go on per unit of it ([`Polarization::close`]), past
+//! the scattering vertex, to the next chain. Each element's matrix enters divided by its first
+//! element (what it does to unpolarized light), which the scalar transport already carries in
+//! its weight and its choices between reflection and refraction.
 
 use super::mueller::basis_change;
 use super::RytovTransport;
@@ -91,7 +92,7 @@ impl Polarization {
     /// `direction`, in the basis whose first axis is the unit `first_axis` across it (the
     /// second: the light's direction × it), through `analyzer` where it looks through one:
     /// row k measures S_k, so that where the chain ends on depolarized light of radiance L
-    /// the camera sees L·(r₀₀, r₁₀, r₂₀, r₃₀) ([`Polarization::stokes_shares`]).
+    /// the camera sees L·(r₀₀, r₁₀, r₂₀, r₃₀) ([`Polarization::recorded`]).
     pub fn measuring_stokes(
         analyzer: Option<&Element>,
         direction: DVec3,
@@ -264,20 +265,41 @@ impl Polarization {
         }
     }
 
-    /// Where the camera measures the whole Stokes vector ([`Polarization::measuring_stokes`]):
-    /// what it records as S1, S2, S3 of depolarized light where the chain ends, per channel,
-    /// over what it records as S0 (0 where it records nothing) — each in [−1, 1]. None where
-    /// it measures S0 alone.
-    pub fn stokes_shares(&self) -> Option<[Rgb; 3]> {
-        let rows = self.stokes.as_ref()?;
-        let s0 = self.closing();
-        Some(rows.map(|row| {
-            let [r, g, b] = [0, 1, 2].map(|c| match s0[c] > 0.0 {
-                true => row[c].x / s0[c],
-                false => 0.0,
-            });
-            Rgb::new(r, g, b)
-        }))
+    /// Closes a chain against the light: returns [`Polarization::closing`] — the chain's
+    /// weight takes it on — and divides every row by it, per channel, so that from here the
+    /// rows measure per unit of what the weight holds (a row recording nothing stays zero: a
+    /// physical row's first element bounds the others). With the light: 1, nothing changes.
+    pub fn close(&mut self) -> Rgb {
+        let closing = self.closing();
+        if self.sense == Sense::AgainstLight {
+            let per_unit = |row: &mut [DVec4; 3]| {
+                for (v, c) in row.iter_mut().zip(closing.0.to_array()) {
+                    *v = match c > 0.0 {
+                        true => *v / c,
+                        false => DVec4::ZERO,
+                    };
+                }
+            };
+            per_unit(&mut self.channels);
+            if let Some(rows) = self.stokes.as_mut() {
+                rows.iter_mut().for_each(per_unit);
+            }
+        }
+        closing
+    }
+
+    /// What the camera records of depolarized light where the chain is now, per unit of
+    /// radiance: S0 [`Polarization::closing`], and S1–S3 where it measures them (against the
+    /// light; with it, S0 = 1 alone).
+    pub fn recorded(&self) -> Recorded {
+        let first = |row: &[DVec4; 3]| Rgb::new(row[0].x, row[1].x, row[2].x);
+        Recorded {
+            s0: self.closing(),
+            stokes: match self.sense {
+                Sense::AgainstLight => self.stokes.as_ref().map(|rows| rows.map(|r| first(&r))),
+                Sense::WithLight => None,
+            },
+        }
     }
 
     /// The light's Stokes vector per channel with S0 = 1, in the basis whose first axis is `x`,
@@ -288,6 +310,71 @@ impl Polarization {
             turned.rebase(direction, x);
             turned.channels
         })
+    }
+}
+
+/// Light as a camera records it: S0 per channel — what its radiance layers hold, through its
+/// polarizer where it looks through one — and, where it measures the whole Stokes vector,
+/// S1–S3 (W/(m²·sr), in the basis of [`crate::camera::Camera::stokes_axis`]). Also what it
+/// records per unit of radiance ([`Polarization::recorded`]), which radiance multiplies.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Recorded {
+    /// S0.
+    pub s0: Rgb,
+    /// S1, S2, S3 (None where the camera measures S0 alone).
+    pub stokes: Option<[Rgb; 3]>,
+}
+
+impl Recorded {
+    /// Radiance `s0` of a camera that measures S0 alone.
+    pub fn radiance(s0: Rgb) -> Self {
+        Self { s0, stokes: None }
+    }
+}
+
+impl std::ops::AddAssign for Recorded {
+    fn add_assign(&mut self, other: Self) {
+        self.s0 += other.s0;
+        self.stokes = match (self.stokes, other.stokes) {
+            (Some(a), Some(b)) => Some([0, 1, 2].map(|k| a[k] + b[k])),
+            (a, None) => a,
+            (None, b) => b,
+        };
+    }
+}
+
+impl std::ops::Add for Recorded {
+    type Output = Self;
+    fn add(mut self, other: Self) -> Self {
+        self += other;
+        self
+    }
+}
+
+impl std::ops::Mul<Rgb> for Recorded {
+    type Output = Self;
+    fn mul(self, radiance: Rgb) -> Self {
+        Self {
+            s0: self.s0 * radiance,
+            stokes: self.stokes.map(|s| s.map(|c| c * radiance)),
+        }
+    }
+}
+
+impl std::ops::Div<f64> for Recorded {
+    type Output = Self;
+    fn div(self, divisor: f64) -> Self {
+        Self {
+            s0: self.s0 / divisor,
+            stokes: self.stokes.map(|s| s.map(|c| c / divisor)),
+        }
+    }
+}
+
+impl std::ops::Mul<f64> for Recorded {
+    type Output = Self;
+    fn mul(self, factor: f64) -> Self {
+        self * Rgb::splat(factor)
     }
 }
 
@@ -396,7 +483,11 @@ mod tests {
             measuring.meet(e, -k);
         }
         let arrived = photon.stokes(k, DVec3::X).unwrap()[0];
-        let shares = measuring.stokes_shares().unwrap().map(|s| s.0.x);
+        // Closed, the measurement records per unit of what it recorded as S0.
+        assert!((measuring.close().0.x - power).abs() < 1e-12);
+        let recorded = measuring.recorded();
+        assert_eq!(recorded.s0, Rgb::ONE);
+        let shares = recorded.stokes.unwrap().map(|s| s.0.x);
         let want = [arrived.y, arrived.z, arrived.w];
         for (got, want) in shares.iter().zip(want) {
             assert!((got - want).abs() < 1e-12, "{shares:?} against {arrived}");
@@ -405,6 +496,5 @@ mod tests {
             want.iter().all(|s| s.abs() > 0.05),
             "{want:?}: every component tested"
         );
-        assert!((measuring.closing().0.x - power).abs() < 1e-12);
     }
 }

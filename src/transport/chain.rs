@@ -309,14 +309,17 @@ struct Lent<'a, R> {
 
 /// The polarization a chain starts from, where the transport is polarized.
 enum Start<'a> {
-    /// Unpolarized light (a photon), or the camera's measurement of the light's power through
-    /// the polarizer given, if any (a camera's analyzer, before its first chain).
-    Unpolarized(Option<&'a Element>),
-    /// A camera's measurement of the whole Stokes vector in the basis of the first axis given,
-    /// through its analyzer, if any; what it records of the light at the chain's end is
-    /// written to the place given (a chain is returned by value at every bounce: what only a
-    /// camera's first chain needs is not returned with it).
-    MeasuringStokes(Option<&'a Element>, DVec3, &'a mut Option<[Rgb; 3]>),
+    /// Unpolarized light, or an unpolarized measurement of it.
+    Unpolarized,
+    /// A camera's measurement of the light, through its analyzer if any, of the whole Stokes
+    /// vector in the basis of `stokes_axis` where that is given, left in `measure` at the
+    /// chain's end (a chain is returned by value at every bounce: what a camera path carries
+    /// past its first chain is not returned with it).
+    Camera {
+        analyzer: Option<&'a Element>,
+        stokes_axis: Option<DVec3>,
+        measure: &'a mut Option<Polarization>,
+    },
     /// What the place holds (unpolarized where it holds none), left there at the chain's end.
     Carrying(&'a mut Option<Polarization>),
 }
@@ -486,21 +489,34 @@ impl<'w> Walker<'w> {
         stats: &mut Stats,
         observer: &mut dyn ChainEvents,
     ) -> Chain<'w> {
-        self.walk(ray, Start::Unpolarized(None), rng, stats, observer)
+        self.walk(ray, Start::Unpolarized, rng, stats, observer)
     }
 
     /// [`Walker::follow`] for a camera's first chain, which starts behind `analyzer` (its
     /// polarizer, if any): where the transport is polarized, it measures the light through it
-    /// ([`Polarization::measured_through`]).
-    pub fn follow_through<R: Rng>(
+    /// ([`Polarization::measured_through`]) — the whole Stokes vector, in the basis whose first
+    /// axis is the unit `stokes_axis` across the ray, where that is given
+    /// ([`Polarization::measuring_stokes`]) — and leaves the measurement at the chain's end in
+    /// `measure` (None where the transport is not polarized), per unit of what the chain's
+    /// weight holds ([`Polarization::close`]): what a camera path carries on past its first
+    /// scattering vertex.
+    #[allow(clippy::too_many_arguments)]
+    pub fn follow_from_camera<R: Rng>(
         &mut self,
         ray: Ray,
         analyzer: Option<&Element>,
+        stokes_axis: Option<DVec3>,
+        measure: &mut Option<Polarization>,
         rng: &mut R,
         stats: &mut Stats,
         observer: &mut dyn ChainEvents,
     ) -> Chain<'w> {
-        self.walk(ray, Start::Unpolarized(analyzer), rng, stats, observer)
+        let start = Start::Camera {
+            analyzer,
+            stokes_axis,
+            measure,
+        };
+        self.walk(ray, start, rng, stats, observer)
     }
 
     /// [`Walker::follow`] for a chain that starts carrying the polarization `carried` holds
@@ -519,26 +535,6 @@ impl<'w> Walker<'w> {
         self.walk(ray, Start::Carrying(carried), rng, stats, observer)
     }
 
-    /// [`Walker::follow_through`] for a camera that measures the whole Stokes vector of the
-    /// light arriving along `ray`, in the basis whose first axis is the unit `first_axis`
-    /// across it: the chain, and what the camera records as S1, S2, S3 of depolarized light
-    /// where it ends over what it records as S0, per channel ([`Polarization::stokes_shares`];
-    /// None where the transport is not polarized).
-    pub fn follow_measuring_stokes<R: Rng>(
-        &mut self,
-        ray: Ray,
-        analyzer: Option<&Element>,
-        first_axis: DVec3,
-        rng: &mut R,
-        stats: &mut Stats,
-        observer: &mut dyn ChainEvents,
-    ) -> (Chain<'w>, Option<[Rgb; 3]>) {
-        let mut shares = None;
-        let start = Start::MeasuringStokes(analyzer, first_axis, &mut shares);
-        let chain = self.walk(ray, start, rng, stats, observer);
-        (chain, shares)
-    }
-
     /// Follows `ray` (see [`Walker::follow`]) from the polarization `start` gives.
     fn walk<R: Rng>(
         &mut self,
@@ -551,12 +547,17 @@ impl<'w> Walker<'w> {
         // The polarization lives here (or in the caller's place) and the walk holds a
         // reference to it: an unpolarized walk moves no polarization state around.
         let mut own = None;
-        let (place, analyzer, stokes_axis, shares) = match start {
-            Start::Unpolarized(analyzer) => (&mut own, analyzer, None, None),
-            Start::MeasuringStokes(analyzer, axis, shares) => {
-                (&mut own, analyzer, Some(axis), Some(shares))
+        let (place, analyzer, stokes_axis) = match start {
+            Start::Unpolarized => (&mut own, None, None),
+            Start::Camera {
+                analyzer,
+                stokes_axis,
+                measure,
+            } => {
+                *measure = None;
+                (measure, analyzer, stokes_axis)
             }
-            Start::Carrying(carried) => (carried, None, None, None),
+            Start::Carrying(carried) => (carried, None, None),
         };
         let polarization = match self.polarizes() {
             None => {
@@ -611,11 +612,8 @@ impl<'w> Walker<'w> {
             }
         };
         chain.medium = at.medium;
-        if let Some(p) = &lent.polarization {
-            if let Some(shares) = shares {
-                *shares = p.stokes_shares();
-            }
-            chain.weight *= p.closing();
+        if let Some(p) = lent.polarization.as_deref_mut() {
+            chain.weight *= p.close();
         }
         if !matches!(end, End::Escaped { .. }) {
             let p = match end {

@@ -9,12 +9,57 @@ use super::chain::{Carried, Chain, End, Policy, Walker};
 use super::connect::connect;
 use super::{offset, visibility, Scattered, Stats, SurfaceVertex, Tracer, Vertex};
 use crate::color::Rgb;
+use crate::polarization::{Polarization, Recorded};
 use crate::ids::MediumId;
 use crate::lights::LightSamples;
 use crate::sampling::{Given, Pick};
 use crate::scene::Role;
 use glam::DVec3;
 use rand::Rng;
+use std::ops::{Add, AddAssign, Div, Mul};
+
+/// What the light a scattering vertex sends toward ωo is tallied as: radiance
+/// ([`Radiance`]), or what the measurement a camera path carries there records of it
+/// ([`Measuring`]).
+pub trait Tally: Copy {
+    /// The tallied light.
+    type Light: Copy
+        + Default
+        + Add<Output = Self::Light>
+        + AddAssign
+        + Mul<Rgb, Output = Self::Light>
+        + Mul<f64, Output = Self::Light>
+        + Div<f64, Output = Self::Light>;
+    /// What is tallied per unit of radiance of the unpolarized light arriving at `vertex` from
+    /// unit `wi` that leaves toward ωo, the scattering function aside.
+    fn through(self, vertex: &Vertex, wi: DVec3) -> Self::Light;
+}
+
+/// Light tallied as radiance (per RGB channel).
+#[derive(Clone, Copy, Debug)]
+pub struct Radiance;
+
+impl Tally for Radiance {
+    type Light = Rgb;
+    fn through(self, _: &Vertex, _: DVec3) -> Rgb {
+        Rgb::ONE
+    }
+}
+
+/// Light tallied as the camera records it through the measurement its path carries to the
+/// vertex (against the light, per unit of the path's weight: [`Polarization::close`]): the
+/// vertex's Mueller matrix met on the way ([`Vertex::measure_toward`]).
+#[derive(Clone, Copy, Debug)]
+pub struct Measuring<'p>(pub &'p Polarization);
+
+impl Tally for Measuring<'_> {
+    type Light = Recorded;
+    fn through(self, vertex: &Vertex, wi: DVec3) -> Recorded {
+        let mut measure = *self.0;
+        vertex.measure_toward(&mut measure, wi);
+        measure.recorded()
+    }
+}
 
 /// Radiance the end of `chain` sends back along it, as seen at its start: an emitter's (in
 /// its medium), or the environment's where it escaped into the ambient medium; zero for
@@ -109,23 +154,24 @@ enum Sides {
 /// side the light lies on, among `sides` (the far side only through a surface that transmits
 /// into a uniform medium); multiple importance weighted against the BSDF or phase sample for
 /// area lights.
-fn straight_light(
+fn straight_light<T: Tally>(
     tracer: &Tracer,
     vertex: &Vertex,
     sides: Sides,
     index: usize,
     chosen: f64,
     uv: (f64, f64),
-) -> Rgb {
+    tally: T,
+) -> T::Light {
     let light = &tracer.scene.lights[index];
     let Some(inc) = light.sample_incident(vertex.origin(), uv) else {
-        return Rgb::ZERO;
+        return T::Light::default();
     };
     let Some(side) = lit_side(tracer, vertex, inc.wi) else {
-        return Rgb::ZERO;
+        return T::Light::default();
     };
     if sides == Sides::Far && side.face == Face::Arrival {
-        return Rgb::ZERO;
+        return T::Light::default();
     }
     let reach = if inc.distance.is_finite() {
         inc.distance * (1.0 - 1e-7)
@@ -134,39 +180,43 @@ fn straight_light(
     };
     let f = vertex.eval(inc.wi);
     if f == Rgb::ZERO {
-        return Rgb::ZERO;
+        return T::Light::default();
     }
     let kept = visibility::transmittance(tracer, side.origin, side.medium, inc.wi, reach);
     let weight = power_heuristic(inc.pdf * chosen, vertex.pdf(inc.wi));
-    f * tracer.emitted_by(index, inc.irradiance) * (side.cos * weight * side.radiance_scale) * kept
+    tally.through(vertex, inc.wi)
+        * (f * tracer.emitted_by(index, inc.irradiance)
+            * (side.cos * weight * side.radiance_scale)
+            * kept)
 }
 
 /// A point, spot, LED or parallel light (light `index`) at a scattering vertex, through the curved connection
 /// to it from its `face` in the gradient medium there: its arrival side, or the far side of a
 /// surface that transmits into one (`uv` samples an LED's disk). Zero where that side's
 /// medium is uniform (a straight shadow ray serves it) or no connection reaches the light.
-fn curved_light(
+fn curved_light<T: Tally>(
     tracer: &Tracer,
     vertex: &Vertex,
     face: Face,
     index: usize,
     uv: (f64, f64),
+    tally: T,
     stats: &mut Stats,
-) -> Rgb {
+) -> T::Light {
     let light = &tracer.scene.lights[index];
     let (origin, medium) = match (face, vertex.surface()) {
         (Face::Arrival, _) => (vertex.origin(), vertex.medium()),
         (Face::Far, Some(v)) if v.lobes().transmits() => (offset(v.position, -v.normal), v.beyond),
-        (Face::Far, _) => return Rgb::ZERO,
+        (Face::Far, _) => return T::Light::default(),
     };
     let Some(m) = medium.filter(|&m| !tracer.medium(m).is_uniform()) else {
-        return Rgb::ZERO;
+        return T::Light::default();
     };
     let Some(anchor) = light.anchor(uv) else {
-        return Rgb::ZERO;
+        return T::Light::default();
     };
     let Some(link) = connect(tracer, origin, m, &anchor, stats) else {
-        return Rgb::ZERO;
+        return T::Light::default();
     };
     let (cos, radiance_scale) = match (face, vertex.surface()) {
         (Face::Far, Some(v)) => (
@@ -176,7 +226,7 @@ fn curved_light(
         (Face::Arrival, _) | (Face::Far, None) => (vertex.cos(link.direction), 1.0),
     };
     if cos <= 0.0 {
-        return Rgb::ZERO;
+        return T::Light::default();
     }
     let e = link.irradiance(
         &anchor,
@@ -185,7 +235,8 @@ fn curved_light(
     let unscattered = tracer
         .scattering(m)
         .map_or(Rgb::ONE, |sc| sc.transmittance(link.column));
-    vertex.eval(link.direction) * e * unscattered * (cos * radiance_scale)
+    tally.through(vertex, link.direction)
+        * (vertex.eval(link.direction) * e * unscattered * (cos * radiance_scale))
 }
 
 fn power_heuristic(a: f64, b: f64) -> f64 {
@@ -217,33 +268,37 @@ fn power_heuristic(a: f64, b: f64) -> f64 {
 /// A BSDF ray that meets a purely specular surface first carries nothing: that light is the
 /// caustic map's. A BSDF ray into a dispersive medium takes on the hero wavelength there;
 /// connections are traced at the wavelength(s) the path carries.
-pub fn direct_light(
+pub fn direct_light<T: Tally>(
     carried: Carried,
     vertex: &Vertex,
+    tally: T,
     rng: &mut impl Rng,
     stats: &mut Stats,
-) -> Rgb {
-    let mut radiance = light_samples(carried, vertex, LightNumbers::default(), rng, stats);
+) -> T::Light {
+    let mut radiance = light_samples(carried, vertex, LightNumbers::default(), tally, rng, stats);
     let Some(s) = vertex.scatter_with(rng) else {
         return radiance;
     };
+    // A chain that stops at its first specular surface meets no polarizing element.
     let mut walker = Walker::carrying(carried, Policy::Unscattered);
     let chain = walker.follow(s.ray, rng, stats, &mut ());
     let mis = bsdf_sample_weight(carried.tracer, vertex, &s, &chain);
-    radiance += s.sample.weight * emission_seen(walker.tracer, &chain) * (mis * s.radiance_scale);
+    radiance += tally.through(vertex, s.sample.wi)
+        * (s.sample.weight * emission_seen(walker.tracer, &chain) * (mis * s.radiance_scale));
     radiance
 }
 
 /// The light samples of [`direct_light`] alone (its first strategy): for a path that goes on
 /// along its own BSDF or phase sample and weighs the emission that finds by
 /// [`bsdf_sample_weight`], so that one ray serves as the second strategy and as the way on.
-pub fn light_samples(
+pub fn light_samples<T: Tally>(
     carried: Carried,
     vertex: &Vertex,
     numbers: LightNumbers,
+    tally: T,
     rng: &mut impl Rng,
     stats: &mut Stats,
-) -> Rgb {
+) -> T::Light {
     let tracer = carried.tracer;
     let scene = tracer.scene;
     let graded = vertex
@@ -254,26 +309,26 @@ pub fn light_samples(
         let light = &scene.lights[index];
         let uv = (u, v);
         let lit = match (graded, light.is_hittable()) {
-            (false, _) => straight_light(tracer, vertex, Sides::Either, index, probability, uv),
+            (false, _) => straight_light(tracer, vertex, Sides::Either, index, probability, uv, tally),
             (true, false) => {
-                curved_light(tracer, vertex, Face::Arrival, index, uv, stats)
-                    + straight_light(tracer, vertex, Sides::Far, index, probability, uv)
+                curved_light(tracer, vertex, Face::Arrival, index, uv, tally, stats)
+                    + straight_light(tracer, vertex, Sides::Far, index, probability, uv, tally)
             }
             // An area light's light reaches a vertex in a gradient medium by the BSDF ray.
-            (true, true) => Rgb::ZERO,
+            (true, true) => T::Light::default(),
         };
         // A delta light in a gradient medium beyond a surface that transmits into it is
         // reached by no direction sample and no straight shadow ray: by the curved connection
         // from the far side only (an area light there by the BSDF ray).
         let beyond = match light.is_hittable() {
-            false => curved_light(tracer, vertex, Face::Far, index, uv, stats),
-            true => Rgb::ZERO,
+            false => curved_light(tracer, vertex, Face::Far, index, uv, tally, stats),
+            true => T::Light::default(),
         };
         (lit + beyond) / probability
     };
     match tracer.light_samples {
         LightSamples::Each => {
-            let mut radiance = Rgb::ZERO;
+            let mut radiance = T::Light::default();
             for index in 0..scene.lights.len() {
                 let uv = [rng.gen(), rng.gen()];
                 let each = Pick {
@@ -289,7 +344,7 @@ pub fn light_samples(
             let choice = tracer.light_sampler.at(vertex.origin());
             match choice.pick(numbers.pick, rng) {
                 Some(pick) => sample(pick, uv, stats),
-                None => Rgb::ZERO,
+                None => T::Light::default(),
             }
         }
     }

@@ -15,6 +15,7 @@ use super::offset;
 use crate::bsdf::{Bsdf, BsdfSample, Lobes};
 use crate::color::Rgb;
 use crate::ids::{MediumId, PrimId};
+use crate::polarization::{Element, Polarization};
 use crate::sampling::Given;
 use crate::volume::Phase;
 use glam::DVec3;
@@ -90,6 +91,29 @@ impl<'s> Vertex<'s> {
         match self {
             Vertex::Surface(v) => v.medium,
             Vertex::Medium(v) => v.medium,
+        }
+    }
+
+    /// What the vertex does to the polarization of light arriving from unit `wi` as it
+    /// leaves toward ωo: a rough conductor's microfacet Fresnel matrix
+    /// ([`Bsdf::mueller`]), Rayleigh's ([`Phase::mueller`]); None where it depolarizes (every
+    /// other lobe and phase function).
+    pub fn mueller(&self, wi: DVec3) -> Option<Element> {
+        match self {
+            Vertex::Surface(v) => v.bsdf.mueller(v.wo, wi, v.normal),
+            Vertex::Medium(v) => v.phase.mueller(-wi, v.wo),
+        }
+    }
+
+    /// A camera path's measurement `measure` (carried against the light) past the vertex, for
+    /// the path going on toward unit `wi`: the vertex's Mueller matrix met
+    /// ([`Vertex::mueller`]), or the light depolarized.
+    pub fn measure_toward(&self, measure: &mut Polarization, wi: DVec3) {
+        match self.mueller(wi) {
+            Some(element) => {
+                measure.meet(&element, -self.wo());
+            }
+            None => measure.depolarize(),
         }
     }
 
