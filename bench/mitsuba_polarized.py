@@ -1,9 +1,11 @@
 #!/usr/bin/env python3
-"""Render tests/data/mitsuba/polarized_spheres.toml with Mitsuba 3's polarized path tracer: the
-references that tests/polarization.rs holds grinlight's views through a camera polarizer
+"""Render tests/data/mitsuba/polarized_spheres.toml (or --scene NAME: tests/data/mitsuba/NAME.toml,
+polarized_rough for rough metal balls) with Mitsuba 3's polarized path tracer: the references
+that tests/polarization.rs holds grinlight's Stokes images and views through a camera polarizer
 against.
 
-    python3 bench/mitsuba_polarized.py [--runs K] [--spp N] [--write] [--grinlight [--integrator I]]
+    python3 bench/mitsuba_polarized.py [--scene NAME] [--runs K] [--spp N] [--write]
+                                       [--grinlight [--integrator I]]
 
 Mitsuba renders the scene (converted by bench/mitsuba_reference.py) K times (seeds 0..K-1, N
 samples a pixel) with its `stokes` integrator over `path` in the `llvm_ad_mono_polarized`
@@ -14,7 +16,7 @@ I = ½(S0 + S1 cos 2φ + S2 sin 2φ); grinlight's camera polarizer at θ = 0°, 
 (analyzer_angles: θ itself on the image's axes, up to 5.3° from it at this image's corners, at θ = 90°).
 I's means over blocks of
 8 × 8 pixels and their standard errors (from the spread of the K runs) are written with --write
-to tests/data/mitsuba/polarized_spheres_<θ>.csv (the references were written with --runs 16
+to tests/data/mitsuba/NAME_<θ>.csv, and S0–S3's to NAME_S<k>.csv (the references were written with --runs 16
 --spp 1024). With --grinlight, grinlight renders the scene through a camera polarizer at each θ
 as many times (`grinlight render --integrator I`, `path` unless given; its release build, N/4
 samples a pixel)
@@ -37,7 +39,7 @@ from mitsuba_import import (ROOT, BLOCK, block_z, blocks, grinlight_layer_runs, 
                             stats, write_blocks)
 from mitsuba_reference import mitsuba_scene  # noqa: E402
 
-SCENE = os.path.join(ROOT, "tests", "data", "mitsuba", "polarized_spheres.toml")
+DATA = os.path.join(ROOT, "tests", "data", "mitsuba")
 ANGLES = (0, 45, 90, 135)
 
 
@@ -70,13 +72,13 @@ def analyzer_angles(camera, degrees):
     return np.arctan2(np.sum(across * second, axis=-1), np.sum(across * first, axis=-1))
 
 
-def mitsuba_runs(runs, spp):
+def mitsuba_runs(scene_path, runs, spp):
     """Per run, per angle: I(θ)'s block means, as (runs, angles, h/B, w/B, 3); per run, S0–S3's
     block means, as (runs, 4, h/B, w/B, 3); and the mean |S3|/S0 over the image."""
     import mitsuba as mi
 
     mi.set_variant("llvm_ad_mono_polarized")
-    with open(SCENE, "rb") as f:
+    with open(scene_path, "rb") as f:
         table = tomllib.load(f)
     d = mitsuba_scene(mi, table, spp)
     angles = [analyzer_angles(table["camera"], a) for a in ANGLES]
@@ -96,19 +98,20 @@ def mitsuba_runs(runs, spp):
 
 
 def write_reference(name, what, a, mean, se):
-    """tests/data/mitsuba/polarized_spheres_<name>.csv: the scene's `what`, Mitsuba's block
-    means and their standard errors over a.runs runs of a.spp spp."""
+    """tests/data/mitsuba/<a.scene>_<name>.csv: the scene's `what`, Mitsuba's block means and
+    their standard errors over a.runs runs of a.spp spp."""
     import mitsuba as mi
 
-    write_blocks(os.path.join(ROOT, "tests", "data", "mitsuba", f"polarized_spheres_{name}.csv"),
+    write_blocks(os.path.join(DATA, f"{a.scene}_{name}.csv"),
                  f"Mitsuba {mi.__version__} llvm_ad_mono_polarized (stokes over path), "
-                 f"tests/data/mitsuba/polarized_spheres.toml {what}: {a.runs} runs of {a.spp} spp, "
+                 f"tests/data/mitsuba/{a.scene}.toml {what}: {a.runs} runs of {a.spp} spp, "
                  f"means over blocks of {BLOCK}x{BLOCK} pixels and their standard errors "
                  f"(bench/mitsuba_polarized.py)", mean, se)
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--scene", default="polarized_spheres")
     ap.add_argument("--runs", type=int, default=16)
     ap.add_argument("--spp", type=int, default=1024)
     ap.add_argument("--write", action="store_true")
@@ -117,14 +120,15 @@ def main():
     a = ap.parse_args()
     import mitsuba as mi
 
-    runs, stokes, circular = mitsuba_runs(a.runs, a.spp)
+    scene = os.path.join(DATA, f"{a.scene}.toml")
+    runs, stokes, circular = mitsuba_runs(scene, a.runs, a.spp)
     print(f"Mitsuba: mean |S3|/S0 {circular:.5f}")
     rows = []
     # The Stokes vector itself, grinlight's S0–S3 layers (`--stokes true`) against Mitsuba's.
     ours = None
     if a.grinlight:
         layers = [f"S{k}" for k in range(4)]
-        ours = grinlight_layer_runs(SCENE, {}, a.runs, a.spp // 4, layers,
+        ours = grinlight_layer_runs(scene, {}, a.runs, a.spp // 4, layers,
                                     ["--integrator", a.integrator, "--stokes", "true"])
     for k in range(4):
         mean, se = stats(stokes[:, k])
@@ -142,7 +146,7 @@ def main():
         if a.grinlight:
             with tempfile.TemporaryDirectory() as tmp:
                 path = os.path.join(tmp, f"polarizer_{angle}.toml")
-                with open(SCENE) as f:
+                with open(scene) as f:
                     text = f.read().replace("[camera]\n", f"[camera]\npolarizer_deg = {angle}\n", 1)
                 with open(path, "w") as f:
                     f.write(text)

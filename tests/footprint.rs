@@ -53,7 +53,14 @@ fn measure(text: &str) -> Option<(f64, Way)> {
     let rng = grinlight::sample_stream::SampleStream::Independent(rand_pcg::Pcg64Mcg::new(7));
     let mut stats = Stats::default();
     let mut beams = Default::default();
-    let c = camera_path(carried, ray, &mut beams, &mut None, &mut rng.clone(), &mut stats);
+    let c = camera_path(
+        carried,
+        ray,
+        &mut beams,
+        &mut None,
+        &mut rng.clone(),
+        &mut stats,
+    );
     let Some(Vertex::Surface(v)) = c.visible.map(|vp| vp.vertex) else {
         panic!("the ray through {film:?} reaches no surface");
     };

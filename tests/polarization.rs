@@ -738,22 +738,60 @@ fn glass_and_metal_through_a_camera_polarizer_as_mitsuba_sees_them() {
 /// receiver; with the sign the other way its blocks differed by 9.2 standard errors).
 #[test]
 fn glass_and_metal_have_mitsubas_stokes_vector() {
-    use super::import::{compare, grinlight_layer_blocks, reference};
-    let scene = std::path::Path::new("tests/data/mitsuba/polarized_spheres.toml");
+    stokes_like_mitsubas("polarized_spheres", "path", [64, 20, 20, 2]);
+}
+
+/// Two rough metal balls (GGX, α = 0.08 and 0.12) under the same light and sky, against
+/// Mitsuba 3.9.1's `stokes` integrator as above, through both integrators: a camera path
+/// carries its measurement through each microfacet's Fresnel matrix, to the light samples and
+/// the bounce of the vertex (measured, largest block z for S0–S3: path tracer 3.10, 2.13, 3.50,
+/// 3.64, S0's mean 1.0007; photon mapper 4.80, 2.65, 3.06, 2.76, S0 1.0008). Their masking differs (grinlight's correlated heights,
+/// Mitsuba's separable G₁G₁, a percent apart at α = 0.3 toward grazing: the balls are smooth
+/// enough for it to stay within the noise). A camera path that took a rough conductor as a
+/// depolarizer (before 0.27.0) read S1–S3 as zero over the whole image.
+#[test]
+fn rough_metal_has_mitsubas_stokes_vector() {
+    for integrator in ["path", "photon_map"] {
+        stokes_like_mitsubas("polarized_rough", integrator, [64, 20, 20, 0]);
+    }
+}
+
+/// The Stokes layers of tests/data/mitsuba/`name`.toml rendered by `integrator` against
+/// Mitsuba's references beside it: every block within 5 standard errors, S0's image mean
+/// within 0.5 %, and at least `known` blocks of each layer whose value the reference knows to
+/// 10 standard errors (what is tested).
+fn stokes_like_mitsubas(name: &str, integrator: &str, known: [usize; 4]) {
+    use super::import::{compare, dir, grinlight_layer_blocks, reference, write};
+    let text = std::fs::read_to_string(format!("tests/data/mitsuba/{name}.toml")).unwrap();
+    // The photon mapper's density estimates blur the floor's light (most near the balls'
+    // contacts): S0's blocks are its own tests' (its mean is tested here), and with a million
+    // photons a pass what the balls reflect of it keeps S1–S3 within the tolerance.
+    let blurred = integrator == "photon_map";
+    let photons = match blurred {
+        true => "photons = 1000000\ncaustic_photons = 1000000\n",
+        false => "",
+    };
+    let text = text.replacen(
+        "integrator = \"path\"\n",
+        &format!("integrator = \"{integrator}\"\n{photons}"),
+        1,
+    );
+    let scene = write(&dir(name), &format!("{integrator}.toml"), &text);
     let layers = ["S0", "S1", "S2", "S3"];
-    let ours = grinlight_layer_blocks(scene, &Default::default(), 32, 16, true, &layers);
+    let ours = grinlight_layer_blocks(&scene, &Default::default(), 32, 16, true, &layers);
     for (k, (ours, layer)) in ours.iter().zip(layers).enumerate() {
-        let theirs = reference(&format!("polarized_spheres_{layer}"));
-        // Blocks whose value the reference knows to 10 standard errors: what is tested.
-        let known = (theirs.mean.iter().zip(&theirs.se))
+        let theirs = reference(&format!("{name}_{layer}"));
+        let well_known = (theirs.mean.iter().zip(&theirs.se))
             .filter(|(m, s)| m[0].abs() > 10.0 * s[0])
             .count();
         let (worst, ratio) = compare(ours, &theirs);
-        eprintln!("{layer}: largest block z {worst:.2}, mean ratio {ratio:.5}, {known} blocks known to 10 σ");
-        // Measured: 64, 28, 28 and 2.
-        assert!(known >= [64, 20, 20, 2][k], "{layer}: {known} blocks");
+        eprintln!(
+            "{name}, {integrator}, {layer}: largest block z {worst:.2}, mean ratio {ratio:.5}, \
+             {well_known} blocks known to 10 σ"
+        );
+        assert!(well_known >= known[k], "{layer}: {well_known} blocks");
         assert!(
-            worst < 5.0,
+            worst < 5.0 || (k == 0 && blurred),
             "{layer}: a block differs by {worst:.2} standard errors"
         );
         if k == 0 {

@@ -132,7 +132,9 @@ pub fn direct(
         (true, None) => Recorded::radiance(
             vp.throughput * direct_light(carried, &vp.vertex, Radiance, rng, stats),
         ),
-        (true, Some(p)) => direct_light(carried, &vp.vertex, Measuring(p), rng, stats) * vp.throughput,
+        (true, Some(p)) => {
+            direct_light(carried, &vp.vertex, Measuring(p), rng, stats) * vp.throughput
+        }
     }
 }
 

@@ -144,7 +144,14 @@ fn from_point<'w, R: Rng>(
     stats: &mut Stats,
 ) -> Recorded {
     let direct = match takes_direct(carried.tracer, &vp.vertex) {
-        true => lit(carried, &vp, LightNumbers::default(), measure.as_ref(), rng, stats),
+        true => lit(
+            carried,
+            &vp,
+            LightNumbers::default(),
+            measure.as_ref(),
+            rng,
+            stats,
+        ),
         false => recorded(
             measure.as_ref(),
             vp.throughput * direct_light(carried, &vp.vertex, Radiance, rng, stats),
@@ -212,13 +219,8 @@ fn bounces<'w, R: Rng>(
             vp.vertex.measure_toward(p, b.sample.wi);
         }
         let mut beams = Beams::default();
-        let chain = walker.follow_carrying(
-            b.ray,
-            measure,
-            rng,
-            stats,
-            &mut beams.record(walker.tracer),
-        );
+        let chain =
+            walker.follow_carrying(b.ray, measure, rng, stats, &mut beams.record(walker.tracer));
         let at_end = |value: Rgb| recorded(measure.as_ref(), value);
         let weight = b.sample.weight * b.radiance_scale;
         record_cut(&chain, vp.throughput * weight, stats);
@@ -244,7 +246,14 @@ fn bounces<'w, R: Rng>(
             throughput: throughput * chain.radiance_scale(),
         };
         if fluoresces(walker.tracer, &vp.vertex) {
-            let onward = onward(vp, walker.carried(), FirstVertex::default(), measure, rng, stats);
+            let onward = onward(
+                vp,
+                walker.carried(),
+                FirstVertex::default(),
+                measure,
+                rng,
+                stats,
+            );
             sum += onward.total();
             break;
         }

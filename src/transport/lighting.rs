@@ -9,9 +9,9 @@ use super::chain::{Carried, Chain, End, Policy, Walker};
 use super::connect::connect;
 use super::{offset, visibility, Scattered, Stats, SurfaceVertex, Tracer, Vertex};
 use crate::color::Rgb;
-use crate::polarization::{Polarization, Recorded};
 use crate::ids::MediumId;
 use crate::lights::LightSamples;
+use crate::polarization::{Polarization, Recorded};
 use crate::sampling::{Given, Pick};
 use crate::scene::Role;
 use glam::DVec3;
@@ -309,7 +309,9 @@ pub fn light_samples<T: Tally>(
         let light = &scene.lights[index];
         let uv = (u, v);
         let lit = match (graded, light.is_hittable()) {
-            (false, _) => straight_light(tracer, vertex, Sides::Either, index, probability, uv, tally),
+            (false, _) => {
+                straight_light(tracer, vertex, Sides::Either, index, probability, uv, tally)
+            }
             (true, false) => {
                 curved_light(tracer, vertex, Face::Arrival, index, uv, tally, stats)
                     + straight_light(tracer, vertex, Sides::Far, index, probability, uv, tally)
