@@ -125,6 +125,7 @@ def mitsuba_scene(mi, scene, spp, crop=None):
             "albedo": {"type": "rgb", "value": [s_ / t if t > 0 else 0.0
                                                 for s_, t in zip(sigma_s, sigma_t)]},
             "phase": ({"type": "hg", "g": phase["hg"]} if isinstance(phase, dict)
+                      else {"type": "rayleigh"} if phase == "rayleigh"
                       else {"type": "isotropic"}),
         }
     d = {

@@ -22,6 +22,7 @@ use crate::color::Rgb;
 use crate::ids::MediumId;
 use crate::math::Segment;
 use crate::photon::VolumeMap;
+use crate::polarization::{Polarization, Recorded};
 use crate::transport::chain::{ChainEvents, Stretch};
 use crate::transport::Tracer;
 use crate::volume::{Flights, Scattering};
@@ -36,7 +37,10 @@ pub struct Beams {
     /// n at the chain's start, looked up at its first stretch in a scattering medium (a chain
     /// through none costs no lookup).
     n_start: Option<f64>,
-    stretches: Vec<Recorded>,
+    stretches: Vec<RecordedStretch>,
+    /// Where the transport is polarized, each recorded stretch's camera measurement at its
+    /// start, per unit of its weight ([`Polarization::close`]); else empty.
+    measures: Vec<Polarization>,
     /// Every recorded stretch's points after its origin, in order.
     points: Vec<DVec3>,
     /// Whether the stretch under way is recorded.
@@ -53,7 +57,7 @@ struct Start {
 }
 
 /// A stretch in a scattering medium and where its points start in [`Beams::points`].
-struct Recorded {
+struct RecordedStretch {
     stretch: Stretch,
     medium: MediumId,
     first: usize,
@@ -86,6 +90,9 @@ pub struct Straight<'a> {
     pub flights: Flights,
     /// (n at the chain's start / n here)²: radiance in-scattered here, seen at the start.
     pub radiance_scale: f64,
+    /// Where the transport is polarized, the camera's measurement at its start, per unit of
+    /// `weight`.
+    pub measure: Option<&'a Polarization>,
 }
 
 /// A straight piece of a recorded stretch where the index is defined.
@@ -143,6 +150,7 @@ impl Beams {
         self.start = None;
         self.n_start = None;
         self.stretches.clear();
+        self.measures.clear();
         self.points.clear();
         self.recording = false;
         Recording {
@@ -154,13 +162,13 @@ impl Beams {
     /// The radiance `volume`'s photons scatter into the recorded chain along its stretches,
     /// as seen at its start per unit of the path's throughput there; `tracer` is the one the
     /// chain ended on (it reads indices and absorption).
-    pub fn radiance(&self, volume: &VolumeMap, tracer: &Tracer) -> Rgb {
+    pub fn radiance(&self, volume: &VolumeMap, tracer: &Tracer) -> Recorded {
         let Some(n_start) = self.n_start.filter(|_| !volume.is_empty()) else {
-            return Rgb::ZERO;
+            return Recorded::default();
         };
-        let mut sum = Rgb::ZERO;
+        let mut sum = Recorded::default();
         let mut read = Vec::new();
-        for (r, points) in self.recorded() {
+        for (r, points, measure) in self.recorded() {
             let radiometry = tracer.participating(r.medium);
             let Some(scattering) = tracer.scattering(r.medium) else {
                 continue;
@@ -185,16 +193,16 @@ impl Beams {
                 let scale = (n_start / n) * (n_start / n);
                 light += kept * photon.flux() * ((-depth).exp() * phase * scale * along.kernel);
             });
-            sum += r.stretch.weight * light;
+            sum += Recorded::of(measure, r.stretch.weight * light);
         }
-        tracer.photon_irradiance(sum)
+        sum * tracer.photon_irradiance(Rgb::ONE)
     }
 
     /// The recorded stretches through media of uniform index (straight, whole: from their
     /// origin to their last point), on `tracer`, the one the chain ended on.
     pub fn straight<'a>(&'a self, tracer: &'a Tracer) -> impl Iterator<Item = Straight<'a>> + 'a {
         let n_start = self.n_start.unwrap_or(1.0);
-        self.recorded().filter_map(move |(r, points)| {
+        self.recorded().filter_map(move |(r, points, measure)| {
             let scattering = tracer.scattering(r.medium)?;
             if !tracer.medium(r.medium).is_uniform() {
                 return None;
@@ -216,6 +224,7 @@ impl Beams {
                 weight: r.stretch.weight,
                 flights: r.stretch.flights,
                 radiance_scale: (n_start / n) * (n_start / n),
+                measure,
             })
         })
     }
@@ -223,7 +232,7 @@ impl Beams {
     /// The recorded stretches, each with its medium and its points, and n at the chain's start.
     pub fn walked(&self) -> impl Iterator<Item = Walked<'_>> {
         let n_start = self.n_start.unwrap_or(1.0);
-        self.recorded().map(move |(r, points)| Walked {
+        self.recorded().map(move |(r, points, _)| Walked {
             stretch: &r.stretch,
             medium: r.medium,
             points,
@@ -231,14 +240,17 @@ impl Beams {
         })
     }
 
-    /// The recorded stretches with their points after their origins.
-    fn recorded(&self) -> impl Iterator<Item = (&Recorded, &[DVec3])> {
+    /// The recorded stretches with their points after their origins, and the camera's
+    /// measurement at each where the transport is polarized.
+    fn recorded(
+        &self,
+    ) -> impl Iterator<Item = (&RecordedStretch, &[DVec3], Option<&Polarization>)> {
         self.stretches.iter().enumerate().map(|(k, r)| {
             let end = self
                 .stretches
                 .get(k + 1)
                 .map_or(self.points.len(), |s| s.first);
-            (r, &self.points[r.first..end])
+            (r, &self.points[r.first..end], self.measures.get(k))
         })
     }
 }
@@ -249,7 +261,7 @@ impl Beams {
 fn chords<'a>(
     tracer: &'a Tracer,
     scattering: &'a Scattering,
-    r: &'a Recorded,
+    r: &'a RecordedStretch,
     points: &'a [DVec3],
 ) -> impl Iterator<Item = Chord> + 'a {
     let medium = tracer.medium(r.medium);
@@ -301,7 +313,7 @@ pub struct Recording<'b> {
 }
 
 impl ChainEvents for Recording<'_> {
-    fn stretch(&mut self, stretch: &Stretch) {
+    fn stretch(&mut self, stretch: &Stretch, polarization: Option<&Polarization>) {
         let beams = &mut *self.beams;
         let start = *beams.start.get_or_insert(Start {
             origin: stretch.origin,
@@ -319,11 +331,16 @@ impl ChainEvents for Recording<'_> {
             if beams.stretches.is_empty() {
                 beams.n_start = self.tracer.index(start.medium, start.origin);
             }
-            beams.stretches.push(Recorded {
+            beams.stretches.push(RecordedStretch {
                 stretch: *stretch,
                 medium,
                 first: beams.points.len(),
             });
+            if let Some(p) = polarization {
+                let mut measure = *p;
+                measure.close();
+                beams.measures.push(measure);
+            }
         }
     }
 

@@ -39,11 +39,12 @@ pub struct VisiblePoint<'w> {
 pub struct Components<'w> {
     /// Emission and environment radiance met along the specular chain (none where the camera
     /// hides emitters and the chain met no specular surface), and the light its media emitted
-    /// on the way.
-    pub emitted: Rgb,
+    /// on the way (S0 alone: a render measuring S1–S3 refuses media that shine), as the camera
+    /// records them.
+    pub emitted: Recorded,
     /// Direct light scattered toward the camera along the chain's straight stretches through
-    /// scattering media ([`super::single::single_scattering`]).
-    pub single: Rgb,
+    /// scattering media ([`super::single::single_scattering`]), as the camera records it.
+    pub single: Recorded,
     /// Its first scattering vertex, if it reached one.
     pub visible: Option<VisiblePoint<'w>>,
     /// The specular bounces on its way there.
@@ -99,7 +100,7 @@ pub fn camera_path<'w>(
         false => emission_seen(walker.tracer, &chain),
     };
     let mut out = Components {
-        emitted: seen + chain.emitted,
+        emitted: Recorded::of(measure.as_ref(), seen) + Recorded::radiance(chain.emitted),
         single: single_scattering(beams, walker.carried(), rng, stats),
         visible: None,
         bounces: chain.specular,
@@ -164,16 +165,6 @@ pub fn lit(
 /// vertex's), where the transport is polarized; None where it is not.
 pub fn measuring_radiance(tracer: &Tracer, direction: DVec3) -> Option<Polarization> {
     (tracer.settings.polarized).then(|| Polarization::unpolarized(Sense::AgainstLight, direction))
-}
-
-/// Light `value` (radiance, as the chain that found it sees it) as the camera records it
-/// through the measurement a path carries where the light is depolarized (None: radiance, where
-/// the transport is not polarized).
-pub fn recorded(measure: Option<&Polarization>, value: Rgb) -> Recorded {
-    match measure {
-        Some(p) => p.recorded() * value,
-        None => Recorded::radiance(value),
-    }
 }
 
 /// The emission the chain of a path's BSDF or phase sample `s` from `vertex` found, as seen

@@ -17,8 +17,8 @@
 
 use super::beam::Beams;
 use super::direct::{
-    camera_path, continued_emission, hero, lit, measuring_radiance, record_cut, recorded,
-    takes_direct, VisiblePoint,
+    camera_path, continued_emission, hero, lit, measuring_radiance, record_cut, takes_direct,
+    VisiblePoint,
 };
 use super::dye::dye_sources;
 use super::relight::{fluoresces, relight, Relighting};
@@ -152,7 +152,7 @@ fn from_point<'w, R: Rng>(
             rng,
             stats,
         ),
-        false => recorded(
+        false => Recorded::of(
             measure.as_ref(),
             vp.throughput * direct_light(carried, &vp.vertex, Radiance, rng, stats),
         ),
@@ -221,16 +221,17 @@ fn bounces<'w, R: Rng>(
         let mut beams = Beams::default();
         let chain =
             walker.follow_carrying(b.ray, measure, rng, stats, &mut beams.record(walker.tracer));
-        let at_end = |value: Rgb| recorded(measure.as_ref(), value);
         let weight = b.sample.weight * b.radiance_scale;
         record_cut(&chain, vp.throughput * weight, stats);
-        sum += at_end(
-            vp.throughput * weight * single_scattering(&beams, walker.carried(), rng, stats),
-        );
-        sum += at_end(vp.throughput * weight * dye_light(&beams, walker.carried(), rng, stats));
+        sum += single_scattering(&beams, walker.carried(), rng, stats) * (vp.throughput * weight);
+        // Light media emit (a dye's, and on the way) is measured as S0 alone: a render
+        // measuring S1–S3 refuses media that shine.
+        let dyed = dye_light(&beams, walker.carried(), rng, stats);
+        sum += Recorded::radiance(vp.throughput * weight * dyed);
         let throughput = vp.throughput * weight * chain.weight;
         // Light emitted by media on the way is sampled by no light sample: it counts here.
-        sum += at_end(vp.throughput * weight * chain.emitted);
+        sum += Recorded::radiance(vp.throughput * weight * chain.emitted);
+        let at_end = |value: Rgb| Recorded::of(measure.as_ref(), value);
         // The sample is also direct light's second strategy, weighed against `lit`'s.
         let found =
             at_end(vp.throughput * continued_emission(walker.tracer, &vp.vertex, &b, &chain));
@@ -313,11 +314,10 @@ impl Integrator for PathTracer<'_> {
         let mut beams = Beams::default();
         let mut measure = None;
         let c = camera_path(carried, ray, &mut beams, &mut measure, s.rng, s.stats);
-        let at_end = |value: Rgb| recorded(measure.as_ref(), value);
-        s.record(PathLayer::Emitted, at_end(c.emitted));
-        s.record(PathLayer::Direct, at_end(c.single));
+        s.record(PathLayer::Emitted, c.emitted);
+        s.record(PathLayer::Direct, c.single);
         let dyed = dye_light(&beams, c.carried, s.rng, s.stats);
-        s.record(PathLayer::Indirect, at_end(dyed));
+        s.record(PathLayer::Indirect, Recorded::radiance(dyed));
         let Some(vp) = c.visible else { return };
         s.add(PathLayer::Albedo, vp.vertex.albedo());
         s.add(PathLayer::Normal, vp.vertex.normal());

@@ -30,8 +30,7 @@
 
 use super::beam::Beams;
 use super::direct::{
-    camera_path, direct, emission_seen, hero, measuring_radiance, record_cut, recorded,
-    VisiblePoint,
+    camera_path, direct, emission_seen, hero, measuring_radiance, record_cut, VisiblePoint,
 };
 use super::footprint::{Eye, Way};
 use super::neighbourhood::Neighbourhood;
@@ -374,14 +373,14 @@ impl<'a> PhotonMapper<'a> {
             let mut beams = Beams::default();
             let recording = &mut beams.record(walker.tracer);
             let chain = walker.follow_carrying(b.ray, measure, s.rng, s.stats, recording);
-            let at_end = |value: Rgb| recorded(measure.as_ref(), value);
+            let at_end = |value: Rgb| Recorded::of(measure.as_ref(), value);
             record_cut(&chain, throughput, s.stats);
-            let caustic = self.volume_caustic(maps, &beams, walker.tracer, s);
-            found.caustic += at_end(throughput * caustic);
-            let single = single_scattering(&beams, walker.carried(), s.rng, s.stats);
-            found.direct += at_end(throughput * single);
+            found.caustic += self.volume_caustic(maps, &beams, walker.tracer, s) * throughput;
+            found.direct +=
+                single_scattering(&beams, walker.carried(), s.rng, s.stats) * throughput;
+            // A dye's light: S0 alone (a render measuring S1–S3 refuses media that shine).
             let dyed = dye_light(&beams, walker.carried(), s.rng, s.stats);
-            found.dyed += at_end(throughput * dyed);
+            found.dyed += Recorded::radiance(throughput * dyed);
             if chain.specular > 0 && !volume {
                 found.emitted += at_end(throughput * emission_seen(walker.tracer, &chain));
             }
@@ -403,10 +402,10 @@ impl<'a> PhotonMapper<'a> {
         beams: &Beams,
         tracer: &Tracer,
         s: &mut Sample<MapLayer>,
-    ) -> Rgb {
+    ) -> Recorded {
         match &maps.volume {
             Some(volume) => s.stats.time_query(|| beams.radiance(volume, tracer)),
-            None => Rgb::ZERO,
+            None => Recorded::default(),
         }
     }
 }
@@ -476,13 +475,14 @@ impl<'a> Integrator for PhotonMapper<'a> {
         let mut beams = Beams::default();
         let mut measure = None;
         let c = camera_path(carried, ray, &mut beams, &mut measure, s.rng, s.stats);
-        let at_end = |value: Rgb, measure: &Option<Polarization>| recorded(measure.as_ref(), value);
-        s.record(MapLayer::Emitted, at_end(c.emitted, &measure));
-        s.record(MapLayer::Direct, at_end(c.single, &measure));
+        s.record(MapLayer::Emitted, c.emitted);
+        s.record(MapLayer::Direct, c.single);
         let caustic = self.volume_caustic(maps, &beams, c.carried.tracer, s);
-        s.record(MapLayer::Caustic, at_end(caustic, &measure));
+        s.record(MapLayer::Caustic, caustic);
         let dyed = dye_light(&beams, c.carried, s.rng, s.stats);
-        s.record(MapLayer::Secondary, at_end(dyed, &measure));
+        s.record(MapLayer::Secondary, Recorded::radiance(dyed));
+        let at_end =
+            |value: Rgb, measure: &Option<Polarization>| Recorded::of(measure.as_ref(), value);
         let Some(first) = c.visible else { return };
         // The way the path took to its visible point, where that is its first vertex (the
         // pixel's footprint is measured there).

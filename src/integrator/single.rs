@@ -17,30 +17,30 @@
 //! gradient medium is not a line to sample along.
 
 use super::beam::{Beams, Straight};
-use crate::color::Rgb;
+use crate::polarization::Recorded;
 use crate::transport::chain::Carried;
-use crate::transport::lighting::{direct_light, Radiance};
+use crate::transport::lighting::{direct_light, Measuring, Radiance};
 use crate::transport::{MediumVertex, Stats, Vertex};
 use glam::DVec3;
 use rand::Rng;
 
 /// The direct light scattered toward the start of the chain recorded in `beams` along its
-/// straight stretches, per unit of the path's throughput there; `carried`: what the chain
-/// carried at its end.
+/// straight stretches, per unit of the path's throughput there, as the camera records it;
+/// `carried`: what the chain carried at its end.
 pub fn single_scattering(
     beams: &Beams,
     carried: Carried,
     rng: &mut impl Rng,
     stats: &mut Stats,
-) -> Rgb {
+) -> Recorded {
     let tracer = carried.tracer;
     let scene = tracer.scene;
     // The environment is found by the phase sample alone: uniform draws serve it.
     let sky = scene.environment.is_some();
     if scene.lights.is_empty() && !sky {
-        return Rgb::ZERO;
+        return Recorded::default();
     }
-    let mut sum = Rgb::ZERO;
+    let mut sum = Recorded::default();
     for s in beams.straight(tracer) {
         let middle = s.segment.origin + s.segment.dir * (0.5 * s.segment.length);
         let mut strategies: Vec<Strategy> = scene
@@ -87,7 +87,14 @@ pub fn single_scattering(
             * s.scattering.sigma_s
             * kept
             * (scatters * density * absorbed * s.radiance_scale / pdf);
-        sum += throughput * direct_light(carried, &vertex, Radiance, rng, stats);
+        // As the camera records it through the measurement it carries there, a phase
+        // function that polarizes (Rayleigh's) met on the way from each light.
+        sum += match s.measure {
+            Some(m) => direct_light(carried, &vertex, Measuring(m), rng, stats) * throughput,
+            None => Recorded::radiance(
+                throughput * direct_light(carried, &vertex, Radiance, rng, stats),
+            ),
+        };
     }
     sum
 }

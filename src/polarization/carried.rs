@@ -330,6 +330,17 @@ impl Recorded {
     pub fn radiance(s0: Rgb) -> Self {
         Self { s0, stokes: None }
     }
+
+    /// Depolarized light of radiance `value` (as the path's weight sees it where the light
+    /// is met) as the camera records it through the measurement `measure` the path carries
+    /// there ([`Polarization::recorded`]); None: radiance, where the transport is not
+    /// polarized.
+    pub fn of(measure: Option<&Polarization>, value: Rgb) -> Self {
+        match measure {
+            Some(p) => p.recorded() * value,
+            None => Self::radiance(value),
+        }
+    }
 }
 
 impl std::ops::AddAssign for Recorded {

@@ -135,7 +135,7 @@ pub fn render_passes(
 ) -> Result<(Film, Report)> {
     stokes_measurable(scene, settings)?;
     let tracer = Tracer::new(scene, &settings.trace);
-    views_carry_media_polarization(scene, &tracer)?;
+    views_carry_media_polarization(scene, &tracer, settings.integrator)?;
     match settings.integrator {
         Kind::PhotonMap => {
             photons_carry_all_light(scene)?;
@@ -201,17 +201,16 @@ pub fn dye_light_warning(scene: &Scene) -> Option<String> {
     })
 }
 
-/// Refuses to write the camera's Stokes vector (`stokes`) of a scene with a medium that
-/// scatters, emits or holds a dye: the light a camera ray gathers along its way through such a medium
-/// would need the Stokes basis of each stretch it is gathered on, which the camera path does
-/// not yet carry to it (light met at the end of the camera's first chain, and everything
-/// beyond, it does).
+/// Refuses to write the camera's Stokes vector (`stokes`) of a scene with a medium that emits
+/// or holds a dye: the light a camera ray gathers from such a medium along its way is
+/// measured as S0 alone (light media scatter toward it is measured whole, through the
+/// measurement the path carries on each stretch).
 fn stokes_measurable(scene: &Scene, settings: &Settings) -> Result<()> {
     match (settings.trace.stokes, scene.media().first_shining()) {
         (true, Some(name)) => Err(crate::error::Error::Setting {
             key: "stokes",
             message: format!(
-                "medium '{name}' scatters, emits or fluoresces light toward the camera's rays on their way: \
+                "medium '{name}' emits or fluoresces light toward the camera's rays on their way: \
                  the Stokes vector of such light is not measured yet (render S0 alone, or \
                  through `polarizer_deg`)"
             ),
@@ -220,23 +219,30 @@ fn stokes_measurable(scene: &Scene, settings: &Settings) -> Result<()> {
     }
 }
 
-/// Refuses a camera view of a scene with a medium whose scattering polarizes (Rayleigh's)
-/// where the transport is polarized (`polarized`, `stokes`, a sheet or a camera polarizer): a
-/// camera path takes the light a medium scatters toward it as unpolarized, which such light is
-/// not. Photons carry it, so receivers measure it; without polarized transport Rayleigh's
-/// phase function is its unpolarized intensity's, and images render.
-pub fn views_carry_media_polarization(scene: &Scene, tracer: &Tracer) -> Result<()> {
-    match (tracer.settings.polarized, scene.media().first_polarizing()) {
-        (true, Some(name)) => Err(crate::error::Error::Setting {
+/// Refuses a photon mapper's camera view of a scene with a medium whose scattering polarizes
+/// (Rayleigh's) where the transport is polarized (`polarized`, `stokes`, a sheet or a camera
+/// polarizer): its volume photons are stored without their Stokes vectors, which the light
+/// Rayleigh's phase function scatters toward the camera depends on. The path tracer's camera
+/// paths carry their measurement through it, and photons carry the light's Stokes vectors to
+/// receivers; without polarized transport Rayleigh's phase function is its unpolarized
+/// intensity's, and images render.
+pub fn views_carry_media_polarization(
+    scene: &Scene,
+    tracer: &Tracer,
+    integrator: Kind,
+) -> Result<()> {
+    let polarizing = scene.media().first_polarizing();
+    match (tracer.settings.polarized, integrator, polarizing) {
+        (true, Kind::PhotonMap, Some(name)) => Err(crate::error::Error::Setting {
             key: "polarized",
             message: format!(
-                "medium '{name}' scatters as Rayleigh's phase function, which polarizes: a \
-                 camera's view through it does not carry that polarization yet (its receivers \
-                 measure it; leave out [camera] to measure them alone, or render the view \
-                 unpolarized)"
+                "medium '{name}' scatters as Rayleigh's phase function, which polarizes: the \
+                 photon mapper's view through it does not carry that polarization (its volume \
+                 photons keep no Stokes vector; render the view with the path tracer, leave \
+                 out [camera] to measure the receivers alone, or render it unpolarized)"
             ),
         }),
-        (true, None) | (false, _) => Ok(()),
+        (true, Kind::PhotonMap, None) | (true, Kind::Path, _) | (false, _, _) => Ok(()),
     }
 }
 

@@ -219,14 +219,13 @@ impl Media {
             .map(|e| e.name.as_str())
     }
 
-    /// The first medium that sends light toward a ray crossing it — it scatters, emits or
-    /// holds a dye — by name (None: none does).
+    /// The first medium that shines — it emits or holds a dye — by name (None: none does).
     pub fn first_shining(&self) -> Option<&str> {
         self.0
             .iter()
             .find(|e| {
                 let p = &e.participating;
-                p.scattering.is_some() || p.emission.is_some() || p.fluorescence.is_some()
+                p.emission.is_some() || p.fluorescence.is_some()
             })
             .map(|e| e.name.as_str())
     }

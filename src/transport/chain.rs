@@ -173,8 +173,8 @@ pub struct DetectorCrossing<'p> {
 
 /// Told of what a chain passes (all optional).
 pub trait ChainEvents {
-    /// It sets off on a stretch.
-    fn stretch(&mut self, _stretch: &Stretch) {}
+    /// It sets off on a stretch, carrying `polarization` (None: unpolarized transport).
+    fn stretch(&mut self, _stretch: &Stretch, _polarization: Option<&Polarization>) {}
     /// A point the path passes: each accepted point of a curved stretch, each surface met,
     /// where a free flight ends, and where it leaves the world.
     fn point(&mut self, _p: DVec3) {}
@@ -652,15 +652,18 @@ impl<'w> Walker<'w> {
         let tracks =
             scattering.filter(|_| matches!(self.policy, Policy::Weighted | Policy::Roulette));
         let mut flight = tracks.map(|sc| Flight::from(at.origin, sc, &mut self.flights, lent.rng));
-        observer.stretch(&Stretch {
-            origin: at.origin,
-            direction: at.direction,
-            medium: at.medium,
-            weight: seen(chain, lent),
-            flights: self.flights,
-            may_scatter: !exhausted,
-            depth: self.depth,
-        });
+        observer.stretch(
+            &Stretch {
+                origin: at.origin,
+                direction: at.direction,
+                medium: at.medium,
+                weight: seen(chain, lent),
+                flights: self.flights,
+                may_scatter: !exhausted,
+                depth: self.depth,
+            },
+            lent.polarization.as_deref(),
+        );
         let integrates = scattering.filter(|sc| {
             sc.is_heterogeneous() && (!sc.is_grey() || self.policy == Policy::Unscattered)
         });
