@@ -159,6 +159,12 @@ impl Beams {
         }
     }
 
+    /// Whether the chain crossed a stretch that is recorded (through a medium that scatters or
+    /// holds a dye).
+    pub fn recorded_any(&self) -> bool {
+        !self.stretches.is_empty()
+    }
+
     /// The radiance `volume`'s photons scatter into the recorded chain along its stretches,
     /// as seen at its start per unit of the path's throughput there; `tracer` is the one the
     /// chain ended on (it reads indices and absorption).

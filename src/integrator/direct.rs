@@ -17,7 +17,7 @@ use crate::polarization::{Element, Polarization, Recorded, Sense, Sheet};
 use crate::transport::chain::{Carried, Chain, End, Policy, Ray, Walker};
 pub use crate::transport::lighting::emission_seen;
 use crate::transport::lighting::{
-    bsdf_sample_weight, direct_light, light_samples, LightNumbers, Measuring, Radiance,
+    bsdf_sample_weight, direct_light, light_samples, LightNumbers, Measure,
 };
 use crate::transport::{HeroTracer, Scattered, Stats, Tracer, Vertex};
 use glam::DVec3;
@@ -116,47 +116,36 @@ pub fn camera_path<'w>(
     out
 }
 
-/// Direct light at the visible point `vp` ([`direct_light`]) as the camera records it
-/// through the measurement its path carries there (`measure`, where the transport is
-/// polarized) — but none at a point in a scattering medium of uniform index: the direct light
-/// scattered along the whole straight stretch that ended there is
-/// [`super::single::single_scattering`]'s, which samples it where the lights are.
-pub fn direct(
+/// Direct light at the visible point `vp` ([`direct_light`]) as seen at the camera, tallied
+/// through the measurement its path carries there — but none at a point in a scattering
+/// medium of uniform index: the direct light scattered along the whole straight stretch that
+/// ended there is [`super::single::single_scattering`]'s, which samples it where the lights are.
+pub fn direct<M: Measure>(
     carried: Carried,
     vp: &VisiblePoint,
-    measure: Option<&Polarization>,
+    measure: &M,
     rng: &mut impl Rng,
     stats: &mut Stats,
-) -> Recorded {
-    match (takes_direct(carried.tracer, &vp.vertex), measure) {
-        (false, _) => Recorded::default(),
-        (true, None) => Recorded::radiance(
-            vp.throughput * direct_light(carried, &vp.vertex, Radiance, rng, stats),
-        ),
-        (true, Some(p)) => {
-            direct_light(carried, &vp.vertex, Measuring(p), rng, stats) * vp.throughput
-        }
+) -> M::Light {
+    match takes_direct(carried.tracer, &vp.vertex) {
+        true => direct_light(carried, &vp.vertex, measure, rng, stats) * vp.throughput,
+        false => M::Light::default(),
     }
 }
 
 /// [`direct`]'s light samples alone, for a path that goes on along its own BSDF or phase
 /// sample and weighs the emission it finds ([`continued_emission`]).
-pub fn lit(
+pub fn lit<M: Measure>(
     carried: Carried,
     vp: &VisiblePoint,
     numbers: LightNumbers,
-    measure: Option<&Polarization>,
+    measure: &M,
     rng: &mut impl Rng,
     stats: &mut Stats,
-) -> Recorded {
-    match (takes_direct(carried.tracer, &vp.vertex), measure) {
-        (false, _) => Recorded::default(),
-        (true, None) => Recorded::radiance(
-            vp.throughput * light_samples(carried, &vp.vertex, numbers, Radiance, rng, stats),
-        ),
-        (true, Some(p)) => {
-            light_samples(carried, &vp.vertex, numbers, Measuring(p), rng, stats) * vp.throughput
-        }
+) -> M::Light {
+    match takes_direct(carried.tracer, &vp.vertex) {
+        true => light_samples(carried, &vp.vertex, numbers, measure, rng, stats) * vp.throughput,
+        false => M::Light::default(),
     }
 }
 

@@ -26,10 +26,10 @@ use super::single::single_scattering;
 use super::{CameraRay, FirstVertex, Integrator, Sample};
 use crate::color::Rgb;
 use crate::lights::LightSamples;
-use crate::polarization::{Polarization, Recorded};
+use crate::polarization::Recorded;
 use crate::report::Report;
 use crate::transport::chain::{Carried, End, Policy, Walker};
-use crate::transport::lighting::{direct_light, LightNumbers, Radiance};
+use crate::transport::lighting::{direct_light, LightNumbers, Measure, Radiance};
 use crate::transport::{BsdfNumbers, Stats, Tracer, Vertex};
 use rand::Rng;
 
@@ -71,18 +71,17 @@ impl<'a> PathTracer<'a> {
 
 /// The light reaching the camera from the scattering vertex `vp` a camera path carrying
 /// `carried` has reached, estimated by path tracing: its light samples (taking `first`'s light
-/// numbers where given), and the bounces on from it ([`bounces`]), as the camera records them
-/// through the measurement its path carries (`measure`, where the transport is polarized;
-/// changed by the bounces). At a fluorescent layer the path goes on at the wavelength the
-/// layer absorbs ([`relight`]).
-pub fn onward<'w, R: Rng>(
+/// numbers where given), and the bounces on from it ([`bounces`]), tallied through the
+/// measurement its path carries there (`measure`, changed by the bounces). At a fluorescent
+/// layer the path goes on at the wavelength the layer absorbs ([`relight`]).
+pub fn onward<'w, M: Measure, R: Rng>(
     mut vp: VisiblePoint<'w>,
     carried: Carried<'w>,
     first: FirstVertex,
-    measure: &mut Option<Polarization>,
+    measure: &mut M,
     rng: &mut R,
     stats: &mut Stats,
-) -> Onward {
+) -> Onward<M::Light> {
     match relight(carried.tracer, &mut vp, rng) {
         Relighting::Unchanged => lit_and_bounces(vp, carried, first, measure, rng, stats),
         Relighting::Dark => Onward::default(),
@@ -98,6 +97,22 @@ pub fn onward<'w, R: Rng>(
     }
 }
 
+/// [`onward`] from a vertex whose light leaves it unpolarized (a dye's point, a diffuse
+/// vertex a gather reaches), as the camera records its radiance alone: carrying a measurement
+/// of it where the transport is polarized ([`measuring_radiance`]).
+pub fn onward_from_unpolarized<'w, R: Rng>(
+    vp: VisiblePoint<'w>,
+    carried: Carried<'w>,
+    rng: &mut R,
+    stats: &mut Stats,
+) -> Rgb {
+    let first = FirstVertex::default();
+    match measuring_radiance(carried.tracer, -vp.vertex.wo()) {
+        Some(mut m) => onward(vp, carried, first, &mut m, rng, stats).total().s0,
+        None => onward(vp, carried, first, &mut Radiance, rng, stats).total(),
+    }
+}
+
 /// The tracer a path goes on with past a fluorophore, at the vacuum wavelength `nm` it absorbs:
 /// its light samples go to every light, since the light sampler weighs lights by their RGB
 /// power, and at one wavelength a light of little colour (a violet lamp) may be the brightest.
@@ -110,9 +125,8 @@ fn past_fluorophore<'a>(tracer: &'a Tracer<'a>, nm: f64) -> Tracer<'a> {
 /// The light dyes emit toward the chain recorded in `beams` on its way through their media
 /// ([`super::dye`]), per unit of the path's throughput before it, estimated by path tracing on
 /// from a point on each stretch at a wavelength the dye absorbs; `carried`: what the chain
-/// carried at its end. A dye's light leaves it unpolarized: what the camera records of it is
-/// its radiance times what it records of unpolarized light there; where the transport is
-/// polarized, the path from the dye's point carries a measurement of that radiance on.
+/// carried at its end. A dye's light leaves it unpolarized: its radiance alone is estimated
+/// (carrying a measurement of it where the transport is polarized: [`measuring_radiance`]).
 pub fn dye_light<R: Rng>(beams: &Beams, carried: Carried, rng: &mut R, stats: &mut Stats) -> Rgb {
     let mut sum = Rgb::ZERO;
     for source in dye_sources(beams, carried.tracer, rng, stats) {
@@ -127,8 +141,10 @@ pub fn dye_light<R: Rng>(beams: &Beams, carried: Carried, rng: &mut R, stats: &m
             vertex: Vertex::Medium(source.vertex),
             throughput: source.weight,
         };
-        let mut measure = measuring_radiance(&tracer, -source.vertex.wo);
-        sum += from_point(vp, carried, &mut measure, rng, stats).s0;
+        sum += match measuring_radiance(&tracer, -source.vertex.wo) {
+            Some(mut m) => from_point(vp, carried, &mut m, rng, stats).s0,
+            None => from_point(vp, carried, &mut Radiance, rng, stats),
+        };
     }
     sum
 }
@@ -136,44 +152,33 @@ pub fn dye_light<R: Rng>(beams: &Beams, carried: Carried, rng: &mut R, stats: &m
 /// The light reaching the camera from the point `vp` in a medium where no free flight ended
 /// (a dye's point): its direct light in full — at a point in a medium of uniform index too,
 /// where a flight's end leaves it to the stretch's single scattering — and the bounces on.
-fn from_point<'w, R: Rng>(
+fn from_point<'w, M: Measure, R: Rng>(
     vp: VisiblePoint<'w>,
     carried: Carried<'w>,
-    measure: &mut Option<Polarization>,
+    measure: &mut M,
     rng: &mut R,
     stats: &mut Stats,
-) -> Recorded {
+) -> M::Light {
     let direct = match takes_direct(carried.tracer, &vp.vertex) {
-        true => lit(
-            carried,
-            &vp,
-            LightNumbers::default(),
-            measure.as_ref(),
-            rng,
-            stats,
-        ),
-        false => Recorded::of(
-            measure.as_ref(),
-            vp.throughput * direct_light(carried, &vp.vertex, Radiance, rng, stats),
-        ),
+        true => lit(carried, &vp, LightNumbers::default(), measure, rng, stats),
+        false => {
+            measure.of(vp.throughput * direct_light(carried, &vp.vertex, &Radiance, rng, stats))
+        }
     };
-    let Bounces {
-        direct: found,
-        indirect,
-    } = bounces(vp, carried, BsdfNumbers::default(), measure, rng, stats);
-    direct + found + indirect
+    let found = bounces(vp, carried, BsdfNumbers::default(), measure, rng, stats);
+    direct + found.direct + found.indirect
 }
 
 /// [`onward`] from a vertex the path goes on from as it is.
-fn lit_and_bounces<'w, R: Rng>(
+fn lit_and_bounces<'w, M: Measure, R: Rng>(
     vp: VisiblePoint<'w>,
     carried: Carried<'w>,
     first: FirstVertex,
-    measure: &mut Option<Polarization>,
+    measure: &mut M,
     rng: &mut R,
     stats: &mut Stats,
-) -> Onward {
-    let lit = lit(carried, &vp, first.light, measure.as_ref(), rng, stats);
+) -> Onward<M::Light> {
+    let lit = lit(carried, &vp, first.light, measure, rng, stats);
     let Bounces { direct, indirect } = bounces(vp, carried, first.bsdf, measure, rng, stats);
     Onward {
         lit,
@@ -187,19 +192,19 @@ fn lit_and_bounces<'w, R: Rng>(
 /// (weighed against the light samples where it met no specular surface); the first bounce's,
 /// where it met none, is `vp`'s direct light. The first bounce's BSDF or phase sample takes
 /// `first` where given. A bounce that reaches a fluorescent layer goes on from it by
-/// [`onward`]. Where the transport is polarized, the camera's measurement `measure` meets each
-/// vertex's Mueller matrix on the way ([`Vertex::measure_toward`]) and each chain's elements.
-fn bounces<'w, R: Rng>(
+/// [`onward`]. The camera's measurement `measure` meets each vertex's Mueller matrix on the
+/// way ([`Measure::toward`]) and each chain's elements.
+fn bounces<'w, M: Measure, R: Rng>(
     mut vp: VisiblePoint<'w>,
     carried: Carried<'w>,
     first: BsdfNumbers,
-    measure: &mut Option<Polarization>,
+    measure: &mut M,
     rng: &mut R,
     stats: &mut Stats,
-) -> Bounces {
+) -> Bounces<M::Light> {
     let mut walker = Walker::carrying(carried, Policy::Weighted);
-    let mut direct = Recorded::default();
-    let mut sum = Recorded::default();
+    let mut direct = M::Light::default();
+    let mut sum = M::Light::default();
     for bounce in 0.. {
         if bounce >= SURE_BOUNCES {
             let survive = vp.throughput.max_element().min(0.95);
@@ -215,26 +220,27 @@ fn bounces<'w, R: Rng>(
         let Some(b) = vp.vertex.scatter_given(numbers, rng) else {
             break;
         };
-        if let Some(p) = measure.as_mut() {
-            vp.vertex.measure_toward(p, b.sample.wi);
-        }
+        measure.toward(&vp.vertex, b.sample.wi);
         let mut beams = Beams::default();
-        let chain =
-            walker.follow_carrying(b.ray, measure, rng, stats, &mut beams.record(walker.tracer));
+        let recording = &mut beams.record(walker.tracer);
+        let chain = measure.follow(&mut walker, b.ray, rng, stats, recording);
         let weight = b.sample.weight * b.radiance_scale;
         record_cut(&chain, vp.throughput * weight, stats);
-        sum += single_scattering(&beams, walker.carried(), rng, stats) * (vp.throughput * weight);
-        // Light media emit (a dye's, and on the way) is measured as S0 alone: a render
-        // measuring S1–S3 refuses media that shine.
-        let dyed = dye_light(&beams, walker.carried(), rng, stats);
-        sum += Recorded::radiance(vp.throughput * weight * dyed);
+        if beams.recorded_any() {
+            let single = single_scattering(&beams, walker.carried(), rng, stats);
+            sum += M::tallied(single * (vp.throughput * weight));
+            // A dye's light is measured as its S0 alone (a render measuring S1–S3 refuses
+            // media that shine).
+            let dyed = dye_light(&beams, walker.carried(), rng, stats);
+            sum += M::radiance(vp.throughput * weight * dyed);
+        }
         let throughput = vp.throughput * weight * chain.weight;
-        // Light emitted by media on the way is sampled by no light sample: it counts here.
-        sum += Recorded::radiance(vp.throughput * weight * chain.emitted);
-        let at_end = |value: Rgb| Recorded::of(measure.as_ref(), value);
+        // Light emitted by media on the way is sampled by no light sample: it counts here (as
+        // S0 alone, as a dye's).
+        sum += M::radiance(vp.throughput * weight * chain.emitted);
         // The sample is also direct light's second strategy, weighed against `lit`'s.
         let found =
-            at_end(vp.throughput * continued_emission(walker.tracer, &vp.vertex, &b, &chain));
+            measure.of(vp.throughput * continued_emission(walker.tracer, &vp.vertex, &b, &chain));
         match bounce == 0 && chain.specular == 0 {
             true => direct += found,
             false => sum += found,
@@ -262,7 +268,7 @@ fn bounces<'w, R: Rng>(
             walker.carried(),
             &vp,
             LightNumbers::default(),
-            measure.as_ref(),
+            measure,
             rng,
             stats,
         );
@@ -273,29 +279,37 @@ fn bounces<'w, R: Rng>(
     }
 }
 
-/// The light a camera path's bounces from a vertex bring, as the camera records it: the
-/// vertex's direct light its first bounce found (the second strategy of direct light there),
-/// and the rest.
-struct Bounces {
-    direct: Recorded,
-    indirect: Recorded,
+/// The light a camera path's bounces from a vertex bring, tallied: the vertex's direct light
+/// its first bounce found (the second strategy of direct light there), and the rest.
+struct Bounces<L> {
+    direct: L,
+    indirect: L,
 }
 
-/// The light reaching the camera from a vertex ([`onward`]), as the camera records it.
+/// The light reaching the camera from a vertex ([`onward`]), tallied.
 #[derive(Clone, Copy, Debug, Default)]
-pub struct Onward {
+pub struct Onward<L> {
     /// The vertex's light samples.
-    pub lit: Recorded,
+    pub lit: L,
     /// Its direct light the first bounce found.
-    pub direct: Recorded,
+    pub direct: L,
     /// The rest.
-    pub indirect: Recorded,
+    pub indirect: L,
 }
 
-impl Onward {
+impl<L: Copy + std::ops::Add<Output = L>> Onward<L> {
     /// All of it.
-    pub fn total(&self) -> Recorded {
+    pub fn total(&self) -> L {
         self.lit + self.direct + self.indirect
+    }
+
+    /// Each part as `f` makes it.
+    pub fn map<K>(self, f: impl Fn(L) -> K) -> Onward<K> {
+        Onward {
+            lit: f(self.lit),
+            direct: f(self.direct),
+            indirect: f(self.indirect),
+        }
     }
 }
 
@@ -321,9 +335,27 @@ impl Integrator for PathTracer<'_> {
         let Some(vp) = c.visible else { return };
         s.add(PathLayer::Albedo, vp.vertex.albedo());
         s.add(PathLayer::Normal, vp.vertex.normal());
-        let onward = onward(vp, c.carried, ray.first, &mut measure, s.rng, s.stats);
-        s.record(PathLayer::Direct, onward.lit);
-        s.record(PathLayer::Direct, onward.direct);
-        s.record(PathLayer::Indirect, onward.indirect);
+        match measure.as_mut() {
+            Some(p) => self.record_onward(vp, c.carried, ray, p, s),
+            None => self.record_onward(vp, c.carried, ray, &mut Radiance, s),
+        }
+    }
+}
+
+impl PathTracer<'_> {
+    /// Records the light reaching the camera from its path's first scattering vertex `vp`
+    /// ([`onward`]), tallied through the measurement `measure` its path carries there.
+    fn record_onward<'w, M: Measure>(
+        &self,
+        vp: VisiblePoint<'w>,
+        carried: Carried<'w>,
+        ray: CameraRay,
+        measure: &mut M,
+        s: &mut Sample<PathLayer>,
+    ) {
+        let onward = onward(vp, carried, ray.first, measure, s.rng, s.stats);
+        s.record(PathLayer::Direct, M::recorded(onward.lit));
+        s.record(PathLayer::Direct, M::recorded(onward.direct));
+        s.record(PathLayer::Indirect, M::recorded(onward.indirect));
     }
 }

@@ -29,12 +29,10 @@
 //!   by the same schedule (a beam reads a 2D kernel, as a surface does).
 
 use super::beam::Beams;
-use super::direct::{
-    camera_path, direct, emission_seen, hero, measuring_radiance, record_cut, VisiblePoint,
-};
+use super::direct::{camera_path, direct, emission_seen, hero, record_cut, VisiblePoint};
 use super::footprint::{Eye, Way};
 use super::neighbourhood::Neighbourhood;
-use super::path::{dye_light, onward};
+use super::path::{dye_light, onward, onward_from_unpolarized};
 use super::relight::fluoresces;
 use super::single::single_scattering;
 use super::{CameraRay, FirstVertex, Integrator, Sample};
@@ -46,6 +44,7 @@ use crate::report::Report;
 use crate::scene::Scene;
 use crate::settings::{PhotonSettings, Settings};
 use crate::transport::chain::{Carried, End, Policy, Walker};
+use crate::transport::lighting::Radiance;
 use crate::transport::{Stats, SurfaceVertex, Tracer, Vertex};
 use std::f64::consts::FRAC_1_PI;
 use std::time::Instant;
@@ -304,10 +303,7 @@ impl<'a> PhotonMapper<'a> {
                             throughput: Rgb::ONE,
                         };
                         let carried = walker.carried();
-                        let mut measure = measuring_radiance(walker.tracer, -y.wo());
-                        let first = FirstVertex::default();
-                        let rest = onward(vp, carried, first, &mut measure, s.rng, s.stats);
-                        sum += weight * rest.total().s0;
+                        sum += weight * onward_from_unpolarized(vp, carried, s.rng, s.stats);
                         None
                     }
                     Vertex::Surface(y) if y.lobes().has_diffuse() => {
@@ -362,7 +358,7 @@ impl<'a> PhotonMapper<'a> {
             }
             let in_medium = matches!(vp.vertex, Vertex::Medium(_));
             if in_medium || !volume {
-                found.direct += direct(walker.carried(), &vp, measure.as_ref(), s.rng, s.stats);
+                found.direct += recorded_direct(walker.carried(), &vp, measure, s.rng, s.stats);
             }
             volume |= maps.volume.is_some() && in_medium;
             let b = vp.vertex.scatter_with(s.rng)?;
@@ -407,6 +403,21 @@ impl<'a> PhotonMapper<'a> {
             Some(volume) => s.stats.time_query(|| beams.radiance(volume, tracer)),
             None => Recorded::default(),
         }
+    }
+}
+
+/// [`direct`] as the camera records it through the measurement `measure` its path carries
+/// (None: unpolarized transport).
+fn recorded_direct(
+    carried: Carried,
+    vp: &VisiblePoint,
+    measure: &Option<Polarization>,
+    rng: &mut impl rand::Rng,
+    stats: &mut Stats,
+) -> Recorded {
+    match measure {
+        Some(p) => direct(carried, vp, p, rng, stats),
+        None => Recorded::radiance(direct(carried, vp, &Radiance, rng, stats)),
     }
 }
 
@@ -508,12 +519,16 @@ impl<'a> Integrator for PhotonMapper<'a> {
         if fluoresces(carried.tracer, &vp.vertex) {
             // A fluorescent layer's light is path traced ([`super::relight`]).
             let first = FirstVertex::default();
-            let onward = onward(vp, carried, first, &mut measure, s.rng, s.stats);
+            let onward = match measure.as_mut() {
+                Some(p) => onward(vp, carried, first, p, s.rng, s.stats),
+                None => onward(vp, carried, first, &mut Radiance, s.rng, s.stats)
+                    .map(Recorded::radiance),
+            };
             s.record(MapLayer::Direct, onward.lit + onward.direct);
             s.record(MapLayer::Secondary, onward.indirect);
             return;
         }
-        let direct = direct(carried, &vp, measure.as_ref(), s.rng, s.stats);
+        let direct = recorded_direct(carried, &vp, &measure, s.rng, s.stats);
         s.record(MapLayer::Direct, direct);
         // The visible point's diffuse lobe depolarizes what the maps bring.
         if let Some(global) = &maps.global {

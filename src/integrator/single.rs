@@ -19,7 +19,7 @@
 use super::beam::{Beams, Straight};
 use crate::polarization::Recorded;
 use crate::transport::chain::Carried;
-use crate::transport::lighting::{direct_light, Measuring, Radiance};
+use crate::transport::lighting::{direct_light, Radiance};
 use crate::transport::{MediumVertex, Stats, Vertex};
 use glam::DVec3;
 use rand::Rng;
@@ -90,9 +90,9 @@ pub fn single_scattering(
         // As the camera records it through the measurement it carries there, a phase
         // function that polarizes (Rayleigh's) met on the way from each light.
         sum += match s.measure {
-            Some(m) => direct_light(carried, &vertex, Measuring(m), rng, stats) * throughput,
+            Some(m) => direct_light(carried, &vertex, m, rng, stats) * throughput,
             None => Recorded::radiance(
-                throughput * direct_light(carried, &vertex, Radiance, rng, stats),
+                throughput * direct_light(carried, &vertex, &Radiance, rng, stats),
             ),
         };
     }

@@ -134,7 +134,7 @@ impl Shell {
                 medium: Some(self.medium),
                 phase: sc.phase,
             });
-            let light = direct_light(Carried::on(tracer), &vertex, Radiance, rng, stats);
+            let light = direct_light(Carried::on(tracer), &vertex, &Radiance, rng, stats);
             Some(sc.sigma_s * d * light / (point_density * direction_density))
         };
         let (power, hero) = match dispersive {

@@ -322,6 +322,9 @@ enum Start<'a> {
     },
     /// What the place holds (unpolarized where it holds none), left there at the chain's end.
     Carrying(&'a mut Option<Polarization>),
+    /// A camera path's measurement, carried on past a scattering vertex and left as the chain
+    /// ends (where the transport is polarized; untouched where it is not).
+    Measured(&'a mut Polarization),
 }
 
 /// The chain's weight as its start sees light that is unpolarized where the chain is now: with
@@ -519,6 +522,20 @@ impl<'w> Walker<'w> {
         self.walk(ray, start, rng, stats, observer)
     }
 
+    /// [`Walker::follow`] for a camera path that carries the measurement `measure` past a
+    /// scattering vertex: it meets what the chain meets, and is closed where the chain ends
+    /// ([`Polarization::close`]; the chain's weight takes on what it records there).
+    pub fn follow_measured<R: Rng>(
+        &mut self,
+        ray: Ray,
+        measure: &mut Polarization,
+        rng: &mut R,
+        stats: &mut Stats,
+        observer: &mut dyn ChainEvents,
+    ) -> Chain<'w> {
+        self.walk(ray, Start::Measured(measure), rng, stats, observer)
+    }
+
     /// [`Walker::follow`] for a chain that starts carrying the polarization `carried` holds
     /// (unpolarized light where it holds none: a photon leaving a source or a depolarizing
     /// vertex) and leaves in it what it carries at its end — what a photon takes on through a
@@ -558,6 +575,10 @@ impl<'w> Walker<'w> {
                 (measure, analyzer, stokes_axis)
             }
             Start::Carrying(carried) => (carried, None, None),
+            Start::Measured(measure) => {
+                let polarization = self.polarizes().map(|_| measure);
+                return self.walk_from(ray, polarization, rng, stats, observer);
+            }
         };
         let polarization = match self.polarizes() {
             None => {
@@ -579,6 +600,18 @@ impl<'w> Walker<'w> {
                 }),
             }),
         };
+        self.walk_from(ray, polarization, rng, stats, observer)
+    }
+
+    /// Follows `ray` (see [`Walker::follow`]) carrying `polarization` (None: unpolarized).
+    fn walk_from<R: Rng>(
+        &mut self,
+        ray: Ray,
+        polarization: Option<&mut Polarization>,
+        rng: &mut R,
+        stats: &mut Stats,
+        observer: &mut dyn ChainEvents,
+    ) -> Chain<'w> {
         let mut lent = Lent {
             rng,
             stats,

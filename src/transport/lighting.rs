@@ -5,7 +5,7 @@
 //! indices as [`super::chain`] says. Camera paths, the path tracer and the photons the
 //! medium around the scene scatters toward it all estimate direct light here.
 
-use super::chain::{Carried, Chain, End, Policy, Walker};
+use super::chain::{Carried, Chain, ChainEvents, End, Policy, Ray, Walker};
 use super::connect::connect;
 use super::{offset, visibility, Scattered, Stats, SurfaceVertex, Tracer, Vertex};
 use crate::color::Rgb;
@@ -18,10 +18,13 @@ use glam::DVec3;
 use rand::Rng;
 use std::ops::{Add, AddAssign, Div, Mul};
 
-/// What the light a scattering vertex sends toward ωo is tallied as: radiance
-/// ([`Radiance`]), or what the measurement a camera path carries there records of it
-/// ([`Measuring`]).
-pub trait Tally: Copy {
+/// What a camera path carries of the camera's measurement past its first chain, and what the
+/// light it estimates is tallied as: radiance where the transport is not polarized
+/// ([`Radiance`]), or what the camera records through the rows of its polarized measurement
+/// ([`Polarization`], carried against the light, per unit of the path's weight:
+/// [`Polarization::close`]). Estimates are generic over it, so that unpolarized transport
+/// adds up radiance alone.
+pub trait Measure {
     /// The tallied light.
     type Light: Copy
         + Default
@@ -31,33 +34,96 @@ pub trait Tally: Copy {
         + Mul<f64, Output = Self::Light>
         + Div<f64, Output = Self::Light>;
     /// What is tallied per unit of radiance of the unpolarized light arriving at `vertex` from
-    /// unit `wi` that leaves toward ωo, the scattering function aside.
-    fn through(self, vertex: &Vertex, wi: DVec3) -> Self::Light;
+    /// unit `wi` that leaves toward ωo, the scattering function aside
+    /// ([`Vertex::measure_toward`]).
+    fn through(&self, vertex: &Vertex, wi: DVec3) -> Self::Light;
+    /// Depolarized light of radiance `value` (as the path's weight sees it) where the path is.
+    fn of(&self, value: Rgb) -> Self::Light;
+    /// Light measured as its S0 alone (light media emit: a render measuring S1–S3 refuses media
+    /// that shine).
+    fn radiance(value: Rgb) -> Self::Light;
+    /// Light as the camera records it, as tallied.
+    fn tallied(recorded: Recorded) -> Self::Light;
+    /// Tallied light as the camera records it.
+    fn recorded(light: Self::Light) -> Recorded;
+    /// The measurement past `vertex`, the path going on toward unit `wi`.
+    fn toward(&mut self, vertex: &Vertex, wi: DVec3);
+    /// Follows `ray` with `walker`, the measurement carried along ([`Walker::follow`]).
+    fn follow<'w, R: Rng>(
+        &mut self,
+        walker: &mut Walker<'w>,
+        ray: Ray,
+        rng: &mut R,
+        stats: &mut Stats,
+        observer: &mut dyn ChainEvents,
+    ) -> Chain<'w>;
 }
 
-/// Light tallied as radiance (per RGB channel).
+/// Light tallied as radiance (per RGB channel): unpolarized transport.
 #[derive(Clone, Copy, Debug)]
 pub struct Radiance;
 
-impl Tally for Radiance {
+impl Measure for Radiance {
     type Light = Rgb;
-    fn through(self, _: &Vertex, _: DVec3) -> Rgb {
+    fn through(&self, _: &Vertex, _: DVec3) -> Rgb {
         Rgb::ONE
+    }
+    fn of(&self, value: Rgb) -> Rgb {
+        value
+    }
+    fn radiance(value: Rgb) -> Rgb {
+        value
+    }
+    fn tallied(recorded: Recorded) -> Rgb {
+        recorded.s0
+    }
+    fn recorded(light: Rgb) -> Recorded {
+        Recorded::radiance(light)
+    }
+    fn toward(&mut self, _: &Vertex, _: DVec3) {}
+    fn follow<'w, R: Rng>(
+        &mut self,
+        walker: &mut Walker<'w>,
+        ray: Ray,
+        rng: &mut R,
+        stats: &mut Stats,
+        observer: &mut dyn ChainEvents,
+    ) -> Chain<'w> {
+        walker.follow(ray, rng, stats, observer)
     }
 }
 
-/// Light tallied as the camera records it through the measurement its path carries to the
-/// vertex (against the light, per unit of the path's weight: [`Polarization::close`]): the
-/// vertex's Mueller matrix met on the way ([`Vertex::measure_toward`]).
-#[derive(Clone, Copy, Debug)]
-pub struct Measuring<'p>(pub &'p Polarization);
-
-impl Tally for Measuring<'_> {
+impl Measure for Polarization {
     type Light = Recorded;
-    fn through(self, vertex: &Vertex, wi: DVec3) -> Recorded {
-        let mut measure = *self.0;
+    fn through(&self, vertex: &Vertex, wi: DVec3) -> Recorded {
+        let mut measure = *self;
         vertex.measure_toward(&mut measure, wi);
         measure.recorded()
+    }
+    fn of(&self, value: Rgb) -> Recorded {
+        Recorded::of(Some(self), value)
+    }
+    fn radiance(value: Rgb) -> Recorded {
+        Recorded::radiance(value)
+    }
+    fn tallied(recorded: Recorded) -> Recorded {
+        recorded
+    }
+    fn recorded(light: Recorded) -> Recorded {
+        light
+    }
+    fn toward(&mut self, vertex: &Vertex, wi: DVec3) {
+        vertex.measure_toward(self, wi);
+    }
+    fn follow<'w, R: Rng>(
+        &mut self,
+        walker: &mut Walker<'w>,
+        ray: Ray,
+        rng: &mut R,
+        stats: &mut Stats,
+        observer: &mut dyn ChainEvents,
+    ) -> Chain<'w> {
+        walker.follow_measured(ray, self, rng, stats, observer)
     }
 }
 
@@ -154,24 +220,24 @@ enum Sides {
 /// side the light lies on, among `sides` (the far side only through a surface that transmits
 /// into a uniform medium); multiple importance weighted against the BSDF or phase sample for
 /// area lights.
-fn straight_light<T: Tally>(
+fn straight_light<M: Measure>(
     tracer: &Tracer,
     vertex: &Vertex,
     sides: Sides,
     index: usize,
     chosen: f64,
     uv: (f64, f64),
-    tally: T,
-) -> T::Light {
+    measure: &M,
+) -> M::Light {
     let light = &tracer.scene.lights[index];
     let Some(inc) = light.sample_incident(vertex.origin(), uv) else {
-        return T::Light::default();
+        return M::Light::default();
     };
     let Some(side) = lit_side(tracer, vertex, inc.wi) else {
-        return T::Light::default();
+        return M::Light::default();
     };
     if sides == Sides::Far && side.face == Face::Arrival {
-        return T::Light::default();
+        return M::Light::default();
     }
     let reach = if inc.distance.is_finite() {
         inc.distance * (1.0 - 1e-7)
@@ -180,11 +246,11 @@ fn straight_light<T: Tally>(
     };
     let f = vertex.eval(inc.wi);
     if f == Rgb::ZERO {
-        return T::Light::default();
+        return M::Light::default();
     }
     let kept = visibility::transmittance(tracer, side.origin, side.medium, inc.wi, reach);
     let weight = power_heuristic(inc.pdf * chosen, vertex.pdf(inc.wi));
-    tally.through(vertex, inc.wi)
+    measure.through(vertex, inc.wi)
         * (f * tracer.emitted_by(index, inc.irradiance)
             * (side.cos * weight * side.radiance_scale)
             * kept)
@@ -194,29 +260,29 @@ fn straight_light<T: Tally>(
 /// to it from its `face` in the gradient medium there: its arrival side, or the far side of a
 /// surface that transmits into one (`uv` samples an LED's disk). Zero where that side's
 /// medium is uniform (a straight shadow ray serves it) or no connection reaches the light.
-fn curved_light<T: Tally>(
+fn curved_light<M: Measure>(
     tracer: &Tracer,
     vertex: &Vertex,
     face: Face,
     index: usize,
     uv: (f64, f64),
-    tally: T,
+    measure: &M,
     stats: &mut Stats,
-) -> T::Light {
+) -> M::Light {
     let light = &tracer.scene.lights[index];
     let (origin, medium) = match (face, vertex.surface()) {
         (Face::Arrival, _) => (vertex.origin(), vertex.medium()),
         (Face::Far, Some(v)) if v.lobes().transmits() => (offset(v.position, -v.normal), v.beyond),
-        (Face::Far, _) => return T::Light::default(),
+        (Face::Far, _) => return M::Light::default(),
     };
     let Some(m) = medium.filter(|&m| !tracer.medium(m).is_uniform()) else {
-        return T::Light::default();
+        return M::Light::default();
     };
     let Some(anchor) = light.anchor(uv) else {
-        return T::Light::default();
+        return M::Light::default();
     };
     let Some(link) = connect(tracer, origin, m, &anchor, stats) else {
-        return T::Light::default();
+        return M::Light::default();
     };
     let (cos, radiance_scale) = match (face, vertex.surface()) {
         (Face::Far, Some(v)) => (
@@ -226,7 +292,7 @@ fn curved_light<T: Tally>(
         (Face::Arrival, _) | (Face::Far, None) => (vertex.cos(link.direction), 1.0),
     };
     if cos <= 0.0 {
-        return T::Light::default();
+        return M::Light::default();
     }
     let e = link.irradiance(
         &anchor,
@@ -235,7 +301,7 @@ fn curved_light<T: Tally>(
     let unscattered = tracer
         .scattering(m)
         .map_or(Rgb::ONE, |sc| sc.transmittance(link.column));
-    tally.through(vertex, link.direction)
+    measure.through(vertex, link.direction)
         * (vertex.eval(link.direction) * e * unscattered * (cos * radiance_scale))
 }
 
@@ -268,14 +334,21 @@ fn power_heuristic(a: f64, b: f64) -> f64 {
 /// A BSDF ray that meets a purely specular surface first carries nothing: that light is the
 /// caustic map's. A BSDF ray into a dispersive medium takes on the hero wavelength there;
 /// connections are traced at the wavelength(s) the path carries.
-pub fn direct_light<T: Tally>(
+pub fn direct_light<M: Measure>(
     carried: Carried,
     vertex: &Vertex,
-    tally: T,
+    measure: &M,
     rng: &mut impl Rng,
     stats: &mut Stats,
-) -> T::Light {
-    let mut radiance = light_samples(carried, vertex, LightNumbers::default(), tally, rng, stats);
+) -> M::Light {
+    let mut radiance = light_samples(
+        carried,
+        vertex,
+        LightNumbers::default(),
+        measure,
+        rng,
+        stats,
+    );
     let Some(s) = vertex.scatter_with(rng) else {
         return radiance;
     };
@@ -283,7 +356,7 @@ pub fn direct_light<T: Tally>(
     let mut walker = Walker::carrying(carried, Policy::Unscattered);
     let chain = walker.follow(s.ray, rng, stats, &mut ());
     let mis = bsdf_sample_weight(carried.tracer, vertex, &s, &chain);
-    radiance += tally.through(vertex, s.sample.wi)
+    radiance += measure.through(vertex, s.sample.wi)
         * (s.sample.weight * emission_seen(walker.tracer, &chain) * (mis * s.radiance_scale));
     radiance
 }
@@ -291,14 +364,14 @@ pub fn direct_light<T: Tally>(
 /// The light samples of [`direct_light`] alone (its first strategy): for a path that goes on
 /// along its own BSDF or phase sample and weighs the emission that finds by
 /// [`bsdf_sample_weight`], so that one ray serves as the second strategy and as the way on.
-pub fn light_samples<T: Tally>(
+pub fn light_samples<M: Measure>(
     carried: Carried,
     vertex: &Vertex,
     numbers: LightNumbers,
-    tally: T,
+    measure: &M,
     rng: &mut impl Rng,
     stats: &mut Stats,
-) -> T::Light {
+) -> M::Light {
     let tracer = carried.tracer;
     let scene = tracer.scene;
     let graded = vertex
@@ -309,28 +382,34 @@ pub fn light_samples<T: Tally>(
         let light = &scene.lights[index];
         let uv = (u, v);
         let lit = match (graded, light.is_hittable()) {
-            (false, _) => {
-                straight_light(tracer, vertex, Sides::Either, index, probability, uv, tally)
-            }
+            (false, _) => straight_light(
+                tracer,
+                vertex,
+                Sides::Either,
+                index,
+                probability,
+                uv,
+                measure,
+            ),
             (true, false) => {
-                curved_light(tracer, vertex, Face::Arrival, index, uv, tally, stats)
-                    + straight_light(tracer, vertex, Sides::Far, index, probability, uv, tally)
+                curved_light(tracer, vertex, Face::Arrival, index, uv, measure, stats)
+                    + straight_light(tracer, vertex, Sides::Far, index, probability, uv, measure)
             }
             // An area light's light reaches a vertex in a gradient medium by the BSDF ray.
-            (true, true) => T::Light::default(),
+            (true, true) => M::Light::default(),
         };
         // A delta light in a gradient medium beyond a surface that transmits into it is
         // reached by no direction sample and no straight shadow ray: by the curved connection
         // from the far side only (an area light there by the BSDF ray).
         let beyond = match light.is_hittable() {
-            false => curved_light(tracer, vertex, Face::Far, index, uv, tally, stats),
-            true => T::Light::default(),
+            false => curved_light(tracer, vertex, Face::Far, index, uv, measure, stats),
+            true => M::Light::default(),
         };
         (lit + beyond) / probability
     };
     match tracer.light_samples {
         LightSamples::Each => {
-            let mut radiance = T::Light::default();
+            let mut radiance = M::Light::default();
             for index in 0..scene.lights.len() {
                 let uv = [rng.gen(), rng.gen()];
                 let each = Pick {
@@ -346,7 +425,7 @@ pub fn light_samples<T: Tally>(
             let choice = tracer.light_sampler.at(vertex.origin());
             match choice.pick(numbers.pick, rng) {
                 Some(pick) => sample(pick, uv, stats),
-                None => T::Light::default(),
+                None => M::Light::default(),
             }
         }
     }
