@@ -158,6 +158,7 @@ impl Strategy {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::color::Rgb;
 
     /// Equiangular draws follow their density: the density integrates to 1 over the stretch
     /// (midpoint sum, 1e-6) and the draws' histogram matches it (χ² over 20 bins at 10⁵ draws,
@@ -181,6 +182,7 @@ mod tests {
             weight: Rgb::ONE,
             flights: crate::volume::Flights::default(),
             radiance_scale: 1.0,
+            measure: None,
         };
         let q = Strategy::about(&s, DVec3::new(0.7, 0.2, 0.0));
         let n = 100_000;
