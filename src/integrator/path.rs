@@ -223,7 +223,7 @@ fn bounces<'w, M: Measure, R: Rng>(
         measure.toward(&vp.vertex, b.sample.wi);
         let mut beams = Beams::default();
         let recording = &mut beams.record(walker.tracer);
-        let chain = measure.follow(&mut walker, b.ray, rng, stats, recording);
+        let chain = walker.follow_measured(b.ray, measure.rows(), rng, stats, recording);
         let weight = b.sample.weight * b.radiance_scale;
         record_cut(&chain, vp.throughput * weight, stats);
         if beams.recorded_any() {

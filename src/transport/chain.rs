@@ -523,17 +523,22 @@ impl<'w> Walker<'w> {
     }
 
     /// [`Walker::follow`] for a camera path that carries the measurement `measure` past a
-    /// scattering vertex: it meets what the chain meets, and is closed where the chain ends
-    /// ([`Polarization::close`]; the chain's weight takes on what it records there).
+    /// scattering vertex (None: radiance alone, unpolarized transport): it meets what the chain
+    /// meets, and is closed where the chain ends ([`Polarization::close`]; the chain's weight
+    /// takes on what it records there).
     pub fn follow_measured<R: Rng>(
         &mut self,
         ray: Ray,
-        measure: &mut Polarization,
+        measure: Option<&mut Polarization>,
         rng: &mut R,
         stats: &mut Stats,
         observer: &mut dyn ChainEvents,
     ) -> Chain<'w> {
-        self.walk(ray, Start::Measured(measure), rng, stats, observer)
+        let start = match measure {
+            Some(rows) => Start::Measured(rows),
+            None => Start::Unpolarized,
+        };
+        self.walk(ray, start, rng, stats, observer)
     }
 
     /// [`Walker::follow`] for a chain that starts carrying the polarization `carried` holds

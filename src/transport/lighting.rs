@@ -5,7 +5,7 @@
 //! indices as [`super::chain`] says. Camera paths, the path tracer and the photons the
 //! medium around the scene scatters toward it all estimate direct light here.
 
-use super::chain::{Carried, Chain, ChainEvents, End, Policy, Ray, Walker};
+use super::chain::{Carried, Chain, End, Policy, Walker};
 use super::connect::connect;
 use super::{offset, visibility, Scattered, Stats, SurfaceVertex, Tracer, Vertex};
 use crate::color::Rgb;
@@ -48,15 +48,8 @@ pub trait Measure {
     fn recorded(light: Self::Light) -> Recorded;
     /// The measurement past `vertex`, the path going on toward unit `wi`.
     fn toward(&mut self, vertex: &Vertex, wi: DVec3);
-    /// Follows `ray` with `walker`, the measurement carried along ([`Walker::follow`]).
-    fn follow<'w, R: Rng>(
-        &mut self,
-        walker: &mut Walker<'w>,
-        ray: Ray,
-        rng: &mut R,
-        stats: &mut Stats,
-        observer: &mut dyn ChainEvents,
-    ) -> Chain<'w>;
+    /// The rows a chain carries along ([`Walker::follow_measured`]; None: radiance alone).
+    fn rows(&mut self) -> Option<&mut Polarization>;
 }
 
 /// Light tallied as radiance (per RGB channel): unpolarized transport.
@@ -81,15 +74,8 @@ impl Measure for Radiance {
         Recorded::radiance(light)
     }
     fn toward(&mut self, _: &Vertex, _: DVec3) {}
-    fn follow<'w, R: Rng>(
-        &mut self,
-        walker: &mut Walker<'w>,
-        ray: Ray,
-        rng: &mut R,
-        stats: &mut Stats,
-        observer: &mut dyn ChainEvents,
-    ) -> Chain<'w> {
-        walker.follow(ray, rng, stats, observer)
+    fn rows(&mut self) -> Option<&mut Polarization> {
+        None
     }
 }
 
@@ -115,15 +101,8 @@ impl Measure for Polarization {
     fn toward(&mut self, vertex: &Vertex, wi: DVec3) {
         vertex.measure_toward(self, wi);
     }
-    fn follow<'w, R: Rng>(
-        &mut self,
-        walker: &mut Walker<'w>,
-        ray: Ray,
-        rng: &mut R,
-        stats: &mut Stats,
-        observer: &mut dyn ChainEvents,
-    ) -> Chain<'w> {
-        walker.follow_measured(ray, self, rng, stats, observer)
+    fn rows(&mut self) -> Option<&mut Polarization> {
+        Some(self)
     }
 }
 
