@@ -615,13 +615,16 @@ impl Bsdf<'_> {
 
     /// The Mueller matrices per channel of a specular sample's event, from the path's `wo` to
     /// its `wi` about `n` ([`crate::polarization::carried`]), in the s/p basis of its plane of
-    /// incidence (any basis at normal incidence) or a sheet's axis; a rough conductor's, the
-    /// Fresnel matrix of the microfacet that reflects `wo` into `wi` (normal wo + wi, at
-    /// cos θ = wo·h, in the s/p basis of the plane of wo and wi: the microfacet model's, whose
-    /// first element is the scalar F its BRDF holds); None for every other lobe (they scatter,
-    /// and polarized transport takes their light as depolarized). Either way along the path the
-    /// same matrices hold: a reflection's are the same both ways, and a transmission's differ
-    /// only in their scale, which the scalar transport carries.
+    /// incidence (any basis at normal incidence) or a sheet's axis; a rough conductor's or
+    /// dielectric's, the Fresnel matrix of the microfacet that reflects or refracts `wo` into
+    /// `wi` (normal h = wo + wi, or n1 wo + n2 wi for a refraction, at cos θ = wo·h, in the s/p
+    /// basis of the plane of wo and wi, which holds h: the microfacet model's, whose first
+    /// element is the scalar F or 1 − F its BSDF holds — for the light a rough dielectric's walk
+    /// scatters more than once, the matrix of one scattering toward the same direction); None
+    /// for every other lobe (they scatter, and polarized transport takes their light as
+    /// depolarized). Either way along the path the same matrices hold: a reflection's are the
+    /// same both ways, and a transmission's differ only in their scale, which the scalar
+    /// transport carries.
     pub fn mueller(&self, wo: DVec3, wi: DVec3, n: DVec3) -> Option<Element> {
         let cos = wo.dot(n).abs().min(1.0);
         // The s direction, across the plane of incidence (any across the ray square on).
@@ -630,19 +633,41 @@ impl Bsdf<'_> {
                 .try_normalize()
                 .unwrap_or_else(|| wo.any_orthonormal_vector())
         };
+        // A microfacet's: across the plane of wo and wi.
+        let across = || {
+            wo.cross(wi)
+                .try_normalize()
+                .unwrap_or_else(|| wo.any_orthonormal_vector())
+        };
+        let reflected = wi.dot(n) * wo.dot(n) > 0.0;
         match *self {
             Bsdf::Dielectric {
                 n1,
                 n2,
                 microsurface: None,
+            } => Some(Element::grey(
+                match reflected {
+                    true => mueller::dielectric_reflection(cos, n1, n2),
+                    false => mueller::dielectric_transmission(cos, n1, n2),
+                },
+                s(),
+            )),
+            Bsdf::Dielectric {
+                n1,
+                n2,
+                microsurface: Some(_),
             } => {
-                let reflected = wi.dot(n) * wo.dot(n) > 0.0;
+                let h = match reflected {
+                    true => wo + wi,
+                    false => n1 * wo + n2 * wi,
+                };
+                let cos = wo.dot(h.try_normalize()?).abs().min(1.0);
                 Some(Element::grey(
                     match reflected {
                         true => mueller::dielectric_reflection(cos, n1, n2),
                         false => mueller::dielectric_transmission(cos, n1, n2),
                     },
-                    s(),
+                    across(),
                 ))
             }
             Bsdf::Conductor {
@@ -661,10 +686,7 @@ impl Bsdf<'_> {
                 microsurface: Some(_),
             } => {
                 let h = (wo + wi).try_normalize()?;
-                let x = wo
-                    .cross(wi)
-                    .try_normalize()
-                    .unwrap_or_else(|| wo.any_orthonormal_vector());
+                let x = across();
                 Some(Element {
                     mueller: fresnel.mueller(wo.dot(h).abs().min(1.0)),
                     x,
@@ -673,7 +695,6 @@ impl Bsdf<'_> {
             }
             Bsdf::ThinDielectric { eta } => {
                 let [reflection, transmission] = mueller::thin_pane(cos, eta);
-                let reflected = wi.dot(n) * wo.dot(n) > 0.0;
                 Some(Element::grey(
                     match reflected {
                         true => reflection,
@@ -683,12 +704,7 @@ impl Bsdf<'_> {
                 ))
             }
             Bsdf::Sheet { sheet } => Some(sheet.element(n, wo)),
-            Bsdf::Lambert { .. }
-            | Bsdf::Dielectric {
-                microsurface: Some(_),
-                ..
-            }
-            | Bsdf::Plastic { .. } => None,
+            Bsdf::Lambert { .. } | Bsdf::Plastic { .. } => None,
         }
     }
 }

@@ -787,9 +787,9 @@ fn absorbed_by_fluorophore<'s>(
 /// whose weight (its albedo) is known before sampling, plays the roulette first (as photons
 /// always have: the same numbers, the same photons). Where the photon carries a Stokes vector
 /// (`polarization`, polarized transport) a phase function that polarizes draws its direction
-/// with the polarization's factor ([`polarized_direction`]), and a rough conductor's
-/// microfacet applies its Fresnel matrix ([`crate::bsdf::Bsdf::mueller`]); every other vertex
-/// leaves the light unpolarized.
+/// with the polarization's factor ([`polarized_direction`]), and a rough conductor's or
+/// dielectric's microfacet applies its Fresnel matrix ([`crate::bsdf::Bsdf::mueller`]); every
+/// other vertex leaves the light unpolarized.
 fn scatter_photon(
     vertex: &Vertex,
     polarization: &mut Option<Polarization>,
@@ -810,8 +810,9 @@ fn scatter_photon(
         }
         None => {
             let scattered = vertex.scatter_with(rng)?;
-            // A surface whose reflection has a Mueller matrix (a rough conductor's microfacet)
-            // carries the photon's Stokes vector on, its power weighed by what it does to it.
+            // A surface whose scattering has a Mueller matrix (a rough conductor's or
+            // dielectric's microfacet) carries the photon's Stokes vector on, its power weighed
+            // by what it does to it.
             let carried = polarization.as_mut().and_then(|state| {
                 let v = vertex.surface()?;
                 let element = v.bsdf.mueller(v.wo, scattered.sample.wi, v.normal)?;

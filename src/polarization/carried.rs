@@ -3,9 +3,9 @@
 //! Light leaves every source unpolarized. Along a specular chain it meets smooth dielectrics,
 //! conductors, polarizers, retarders and crystal faces, and along curved stretches its basis
 //! is parallel-transported (Rytov's law, [`super::RytovTransport`]). At a scattering vertex a
-//! rough conductor's microfacet and Rayleigh's phase function apply their Mueller matrices;
-//! every other vertex (a Lambertian surface, a rough dielectric, a plastic's coat, isotropic
-//! and Henyey–Greenstein phase functions) is taken as a perfect depolarizer.
+//! rough conductor's or dielectric's microfacet and Rayleigh's phase function apply their
+//! Mueller matrices; every other vertex (a Lambertian surface, a plastic's coat, isotropic and
+//! Henyey–Greenstein phase functions) is taken as a perfect depolarizer.
 //!
 //! A photon's chain runs with the light and carries the light's Stokes vector per channel,
 //! S0 = 1: the chain's weight holds the power, and each element's factor on S0 joins it. A

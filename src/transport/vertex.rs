@@ -95,7 +95,7 @@ impl<'s> Vertex<'s> {
     }
 
     /// What the vertex does to the polarization of light arriving from unit `wi` as it
-    /// leaves toward ωo: a rough conductor's microfacet Fresnel matrix
+    /// leaves toward ωo: a rough conductor's or dielectric's microfacet Fresnel matrix
     /// ([`Bsdf::mueller`]), Rayleigh's ([`Phase::mueller`]); None where it depolarizes (every
     /// other lobe and phase function).
     pub fn mueller(&self, wi: DVec3) -> Option<Element> {
