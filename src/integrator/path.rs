@@ -161,9 +161,7 @@ fn from_point<'w, M: Measure, R: Rng>(
 ) -> M::Light {
     let direct = match takes_direct(carried.tracer, &vp.vertex) {
         true => lit(carried, &vp, LightNumbers::default(), measure, rng, stats),
-        false => {
-            measure.of(vp.throughput * direct_light(carried, &vp.vertex, &Radiance, rng, stats))
-        }
+        false => direct_light(carried, &vp.vertex, measure, rng, stats) * vp.throughput,
     };
     let found = bounces(vp, carried, BsdfNumbers::default(), measure, rng, stats);
     direct + found.direct + found.indirect
@@ -232,12 +230,12 @@ fn bounces<'w, M: Measure, R: Rng>(
             // A dye's light is measured as its S0 alone (a render measuring S1–S3 refuses
             // media that shine).
             let dyed = dye_light(&beams, walker.carried(), rng, stats);
-            sum += M::radiance(vp.throughput * weight * dyed);
+            sum += M::tallied(Recorded::radiance(vp.throughput * weight * dyed));
         }
         let throughput = vp.throughput * weight * chain.weight;
         // Light emitted by media on the way is sampled by no light sample: it counts here (as
         // S0 alone, as a dye's).
-        sum += M::radiance(vp.throughput * weight * chain.emitted);
+        sum += M::tallied(Recorded::radiance(vp.throughput * weight * chain.emitted));
         // The sample is also direct light's second strategy, weighed against `lit`'s.
         let found =
             measure.of(vp.throughput * continued_emission(walker.tracer, &vp.vertex, &b, &chain));

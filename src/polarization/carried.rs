@@ -267,8 +267,9 @@ impl Polarization {
 
     /// Closes a chain against the light: returns [`Polarization::closing`] — the chain's
     /// weight takes it on — and divides every row by it, per channel, so that from here the
-    /// rows measure per unit of what the weight holds (a row recording nothing stays zero: a
-    /// physical row's first element bounds the others). With the light: 1, nothing changes.
+    /// rows measure per unit of what the weight holds (where it records nothing every row is
+    /// zero: each element of a physical chain's Mueller matrix is bounded by its first). With
+    /// the light: 1, nothing changes.
     pub fn close(&mut self) -> Rgb {
         let closing = self.closing();
         if self.sense == Sense::AgainstLight {

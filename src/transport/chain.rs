@@ -322,9 +322,6 @@ enum Start<'a> {
     },
     /// What the place holds (unpolarized where it holds none), left there at the chain's end.
     Carrying(&'a mut Option<Polarization>),
-    /// A camera path's measurement, carried on past a scattering vertex and left as the chain
-    /// ends (where the transport is polarized; untouched where it is not).
-    Measured(&'a mut Polarization),
 }
 
 /// The chain's weight as its start sees light that is unpolarized where the chain is now: with
@@ -534,11 +531,13 @@ impl<'w> Walker<'w> {
         stats: &mut Stats,
         observer: &mut dyn ChainEvents,
     ) -> Chain<'w> {
-        let start = match measure {
-            Some(rows) => Start::Measured(rows),
-            None => Start::Unpolarized,
-        };
-        self.walk(ray, start, rng, stats, observer)
+        match measure {
+            Some(rows) => {
+                let polarization = self.polarizes().map(|_| rows);
+                self.walk_from(ray, polarization, rng, stats, observer)
+            }
+            None => self.walk(ray, Start::Unpolarized, rng, stats, observer),
+        }
     }
 
     /// [`Walker::follow`] for a chain that starts carrying the polarization `carried` holds
@@ -580,10 +579,6 @@ impl<'w> Walker<'w> {
                 (measure, analyzer, stokes_axis)
             }
             Start::Carrying(carried) => (carried, None, None),
-            Start::Measured(measure) => {
-                let polarization = self.polarizes().map(|_| measure);
-                return self.walk_from(ray, polarization, rng, stats, observer);
-            }
         };
         let polarization = match self.polarizes() {
             None => {

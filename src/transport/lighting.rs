@@ -39,9 +39,6 @@ pub trait Measure {
     fn through(&self, vertex: &Vertex, wi: DVec3) -> Self::Light;
     /// Depolarized light of radiance `value` (as the path's weight sees it) where the path is.
     fn of(&self, value: Rgb) -> Self::Light;
-    /// Light measured as its S0 alone (light media emit: a render measuring S1–S3 refuses media
-    /// that shine).
-    fn radiance(value: Rgb) -> Self::Light;
     /// Light as the camera records it, as tallied.
     fn tallied(recorded: Recorded) -> Self::Light;
     /// Tallied light as the camera records it.
@@ -64,9 +61,6 @@ impl Measure for Radiance {
     fn of(&self, value: Rgb) -> Rgb {
         value
     }
-    fn radiance(value: Rgb) -> Rgb {
-        value
-    }
     fn tallied(recorded: Recorded) -> Rgb {
         recorded.s0
     }
@@ -82,15 +76,19 @@ impl Measure for Radiance {
 impl Measure for Polarization {
     type Light = Recorded;
     fn through(&self, vertex: &Vertex, wi: DVec3) -> Recorded {
-        let mut measure = *self;
-        vertex.measure_toward(&mut measure, wi);
-        measure.recorded()
+        match vertex.mueller(wi) {
+            Some(element) => {
+                let mut measure = *self;
+                measure.meet(&element, -vertex.wo());
+                measure.recorded()
+            }
+            // Depolarized light is recorded by each row's first element, which a depolarizer
+            // keeps: no copy to depolarize.
+            None => self.recorded(),
+        }
     }
     fn of(&self, value: Rgb) -> Recorded {
         Recorded::of(Some(self), value)
-    }
-    fn radiance(value: Rgb) -> Recorded {
-        Recorded::radiance(value)
     }
     fn tallied(recorded: Recorded) -> Recorded {
         recorded
