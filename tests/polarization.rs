@@ -1459,3 +1459,36 @@ fn light_scattered_many_times_by_rayleigh_air_reads_alike_against_and_with_the_l
         "no circular light: {sums:?}"
     );
 }
+
+/// A rough interface between equal indices lets light straight through, its polarization
+/// unchanged: the facet matrix of wi = −wo is the identity (to 1e-12) rather than none (a
+/// depolarizer), and a pair between unequal indices keeps its Fresnel matrix.
+#[test]
+fn a_rough_interface_between_equal_indices_keeps_the_polarization() {
+    use grinlight::bsdf::{Bsdf, Microsurface};
+    let n = DVec3::Z;
+    let wo = DVec3::new(0.3, -0.2, 0.9).normalize();
+    let matched = Bsdf::Dielectric {
+        n1: 1.5,
+        n2: 1.5,
+        microsurface: Some(Microsurface::ggx(0.3)),
+    };
+    let element = matched
+        .mueller(wo, -wo, n)
+        .expect("a matrix, not a depolarizer");
+    for m in element.mueller {
+        let m = m / m.col(0).x;
+        assert!(
+            m.abs_diff_eq(glam::DMat4::IDENTITY, 1e-12),
+            "between equal indices: {m}"
+        );
+    }
+    let glass = Bsdf::Dielectric {
+        n1: 1.0,
+        n2: 1.5,
+        microsurface: Some(Microsurface::ggx(0.3)),
+    };
+    let wi = DVec3::new(-0.1, 0.15, -0.98).normalize();
+    let m = glass.mueller(wo, wi, n).unwrap().mueller[0];
+    assert!(m.col(0).y.abs() > 1e-3, "a refraction polarizes: {m}");
+}

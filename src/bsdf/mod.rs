@@ -661,7 +661,9 @@ impl Bsdf<'_> {
                     true => wo + wi,
                     false => n1 * wo + n2 * wi,
                 };
-                let cos = wo.dot(h.try_normalize()?).abs().min(1.0);
+                // Between equal indices the light goes straight through (n1 wo + n2 wi = 0):
+                // any facet passes it as one square on, unchanged.
+                let cos = h.try_normalize().map_or(1.0, |h| wo.dot(h).abs().min(1.0));
                 Some(Element::grey(
                     match reflected {
                         true => mueller::dielectric_reflection(cos, n1, n2),
