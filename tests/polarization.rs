@@ -1466,6 +1466,7 @@ fn light_scattered_many_times_by_rayleigh_air_reads_alike_against_and_with_the_l
 #[test]
 fn a_rough_interface_between_equal_indices_keeps_the_polarization() {
     use grinlight::bsdf::{Bsdf, Microsurface};
+    use grinlight::polarization::Sense;
     let n = DVec3::Z;
     let wo = DVec3::new(0.3, -0.2, 0.9).normalize();
     let matched = Bsdf::Dielectric {
@@ -1474,7 +1475,7 @@ fn a_rough_interface_between_equal_indices_keeps_the_polarization() {
         microsurface: Some(Microsurface::ggx(0.3)),
     };
     let element = matched
-        .mueller(wo, -wo, n)
+        .mueller(wo, -wo, n, Sense::WithLight)
         .expect("a matrix, not a depolarizer");
     for m in element.mueller {
         let m = m / m.col(0).x;
@@ -1489,6 +1490,6 @@ fn a_rough_interface_between_equal_indices_keeps_the_polarization() {
         microsurface: Some(Microsurface::ggx(0.3)),
     };
     let wi = DVec3::new(-0.1, 0.15, -0.98).normalize();
-    let m = glass.mueller(wo, wi, n).unwrap().mueller[0];
+    let m = glass.mueller(wo, wi, n, Sense::WithLight).unwrap().mueller[0];
     assert!(m.col(0).y.abs() > 1e-3, "a refraction polarizes: {m}");
 }

@@ -27,6 +27,7 @@ mod photon_map;
 mod plane;
 mod ply;
 mod polarization;
+mod polarized_plastic;
 mod radiometry;
 mod render;
 mod repository;

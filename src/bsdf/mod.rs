@@ -32,7 +32,7 @@ pub use microfacet::{Distribution, Microsurface, SMOOTH_ALPHA};
 pub use plastic::Coat;
 
 use crate::color::Rgb;
-use crate::polarization::{mueller, Element, Sheet};
+use crate::polarization::{mueller, Element, Sense, Sheet};
 use crate::sampling::{cosine_hemisphere, Frame};
 use glam::{DMat4, DVec3};
 use std::f64::consts::FRAC_1_PI;
@@ -621,11 +621,13 @@ impl Bsdf<'_> {
     /// basis of the plane of wo and wi, which holds h: the microfacet model's, whose first
     /// element is the scalar F or 1 − F its BSDF holds — for the light a rough dielectric's walk
     /// scatters more than once, the matrix of one scattering toward the same direction); None
-    /// for every other lobe (they scatter, and polarized transport takes their light as
-    /// depolarized). Either way along the path the same matrices hold: a reflection's are the
-    /// same both ways, and a transmission's differ only in their scale, which the scalar
-    /// transport carries.
-    pub fn mueller(&self, wo: DVec3, wi: DVec3, n: DVec3) -> Option<Element> {
+    /// a plastic's, its coat's reflection and its diffuse part's refractions in and out
+    /// ([`Coat::element`]), whose light goes from `wi` to `wo` against the light (`sense`: a
+    /// camera path) and from `wo` to `wi` with it (a photon); None for every other lobe (they
+    /// scatter, and polarized transport takes their light as depolarized). Every other
+    /// matrix holds either way along the path: a reflection's is the same both ways, and a
+    /// transmission's differs only in its scale, which the scalar transport carries.
+    pub fn mueller(&self, wo: DVec3, wi: DVec3, n: DVec3, sense: Sense) -> Option<Element> {
         let cos = wo.dot(n).abs().min(1.0);
         // The s direction, across the plane of incidence (any across the ray square on).
         let s = || {
@@ -706,7 +708,14 @@ impl Bsdf<'_> {
                 ))
             }
             Bsdf::Sheet { sheet } => Some(sheet.element(n, wo)),
-            Bsdf::Lambert { .. } | Bsdf::Plastic { .. } => None,
+            Bsdf::Plastic { albedo, coat } => {
+                let (from, to) = match sense {
+                    Sense::AgainstLight => (wi, wo),
+                    Sense::WithLight => (wo, wi),
+                };
+                coat.element(albedo, n.normalize(), from, to)
+            }
+            Bsdf::Lambert { .. } => None,
         }
     }
 }

@@ -12,12 +12,24 @@
 //! of diffuse light, T̄ = 2∫(1 − E(μ)) μ dμ (reciprocity: the inner mean transmittance is the
 //! outer one over η²). Its albedo is E(μo) + (1 − E(μo)) ρx/(1 − ρ + ρx), x = T̄/η² — at most
 //! 1, and 1 for ρ = 1: no energy is made, and a white plastic loses none.
+//!
+//! **Polarization** ([`Coat::element`]). The coat's reflection is its microfacet's Fresnel
+//! reflection matrix. The diffuse part is light refracted into the coat, depolarized by the
+//! base and refracted out, as Baek et al. (2018) and Mitsuba 3's `pplastic` model it: the
+//! smooth coat's transmission matrices at the arriving and the leaving angle about the
+//! surface's normal, a depolarizer between them. Its entry passes s and p light in the ratio
+//! T_s/T_p of the angle the light arrives at, and its light leaves partly p-polarized, in the
+//! plane of the normal and the light, by (T_p − T_s)/(T_p + T_s) of the angle it leaves at
+//! (Atkinson and Hancock 2006). The part's scale stays the coat's 1 − E of the rough
+//! microsurface above; only the matrices' shape is the smooth coat's.
 
 use super::fresnel::dielectric;
 use super::microfacet::Microsurface;
 use super::{reflect, BsdfSample, Lobes};
 use crate::color::Rgb;
-use glam::DVec3;
+use crate::polarization::{mueller, Element};
+use crate::sampling::Frame;
+use glam::{DMat4, DVec3, DVec4};
 use std::f64::consts::FRAC_1_PI;
 
 /// Nodes of the tabulated coat albedo E(μ), uniform in μ = cos θ over [0, 1].
@@ -95,6 +107,57 @@ impl Coat {
             * self.microsurface.g2(i, o)
             / (4.0 * i.z * o.z);
         self.leaving(o.z, albedo) * self.entering(i.z) + Rgb::splat(specular)
+    }
+
+    /// The Mueller matrices per channel of the plastic of base albedo `albedo` about unit
+    /// normal `n` for light arriving from unit `from` and leaving toward unit `to` (both
+    /// pointing away from the surface), whose first element is f — the same both ways, as f
+    /// is — in the basis across the plane of the two directions on both sides (see the
+    /// module's notes); None unless both lie above the surface.
+    pub fn element(&self, albedo: Rgb, n: DVec3, from: DVec3, to: DVec3) -> Option<Element> {
+        let frame = Frame::new(n);
+        let (a, l) = (frame.to_local(from), frame.to_local(to));
+        if a.z <= 0.0 || l.z <= 0.0 {
+            return None;
+        }
+        let across = from
+            .cross(to)
+            .try_normalize()
+            .unwrap_or_else(|| to.any_orthonormal_vector());
+        let m = (a + l).normalize();
+        let specular = mueller::dielectric_reflection(a.dot(m), 1.0, self.eta)
+            * (self.microsurface.d(m) * self.microsurface.g2(a, l) / (4.0 * a.z * l.z));
+        // The diffuse part's entry (a row: what it takes of the light arriving along −from)
+        // and exit (a column: the light leaving along `to`), each (1, b, 0, 0) in the basis of
+        // its own plane of incidence, turned into the basis across both directions.
+        let transmitted = |w: DVec3| -> (DVec4, Option<DVec3>) {
+            let t = mueller::dielectric_transmission(w.dot(n).min(1.0), 1.0, self.eta).col(0);
+            let shape = DVec4::new(1.0, t.y / t.x, 0.0, 0.0);
+            (shape, w.cross(n).try_normalize())
+        };
+        let exit = match transmitted(to) {
+            (shape, Some(s)) => mueller::basis_change(to, s, across).map_or(shape, |t| t.0 * shape),
+            // Square to the surface s and p are alike: b = 0, any basis.
+            (shape, None) => shape,
+        };
+        let entry = match transmitted(from) {
+            (shape, Some(s)) => {
+                mueller::basis_change(-from, across, s).map_or(shape, |t| t.0.transpose() * shape)
+            }
+            (shape, None) => shape,
+        };
+        let diffuse = DMat4::from_cols(
+            entry.x * exit,
+            entry.y * exit,
+            entry.z * exit,
+            entry.w * exit,
+        );
+        let f = self.leaving(l.z, albedo) * self.entering(a.z);
+        Some(Element {
+            mueller: [f.0.x, f.0.y, f.0.z].map(|f| specular + diffuse * f),
+            x: across,
+            x_leaving: across,
+        })
     }
 
     /// The diffuse part's factor of the light arriving at cos θi = `mu`: the share 1 − E(μ)

@@ -5,9 +5,8 @@
 //! it. (A wider reach serves more points but makes each read longer: with 2r, serving points
 //! within r, the glossy Cornell box took 1.3 % longer in all, median of five.)
 
-use crate::color::Rgb;
 use crate::ids::PrimId;
-use crate::photon::{Photon, PhotonMap};
+use crate::photon::{Photon, PhotonMap, Summand};
 use crate::transport::visibility::Occluders;
 use crate::transport::{offset, SurfaceVertex, Tracer};
 use glam::DVec3;
@@ -53,15 +52,15 @@ impl<'a> Neighbourhood<'a> {
     /// Σ weight(photon)·K(d) over the photons within r of `v` on its side that no surface
     /// hides from it ([`PhotonMap::weighted`]'s Epanechnikov kernel): the caustic estimate
     /// at `v` when `weight` is the BSDF times the flux.
-    pub fn estimate(
+    pub fn estimate<T: Summand>(
         &self,
         map: &PhotonMap,
         v: &SurfaceVertex,
-        weight: impl Fn(&Photon) -> Rgb,
-    ) -> Rgb {
+        weight: impl Fn(&Photon) -> T,
+    ) -> T {
         let origin = offset(v.position, v.normal);
         let read = |p: &Photon| match self.hidden.hide(origin, p.position, p.normal) {
-            true => Rgb::ZERO,
+            true => T::default(),
             false => weight(p),
         };
         map.weighted_among(v.position, v.normal, self.r2, &self.photons, read)

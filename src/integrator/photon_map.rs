@@ -38,13 +38,13 @@ use super::single::single_scattering;
 use super::{CameraRay, FirstVertex, Integrator, Sample};
 use crate::color::Rgb;
 use crate::material::Material;
-use crate::photon::{shoot, Batch, PhotonMap, Photons, Sources, VolumeMap};
+use crate::photon::{shoot, Batch, Photon, PhotonMap, Photons, Sources, VolumeMap};
 use crate::polarization::{Polarization, Recorded};
 use crate::report::Report;
 use crate::scene::Scene;
 use crate::settings::{PhotonSettings, Settings};
 use crate::transport::chain::{Carried, End, Policy, Walker};
-use crate::transport::lighting::Radiance;
+use crate::transport::lighting::{Measure, Radiance};
 use crate::transport::{Stats, SurfaceVertex, Tracer, Vertex};
 use std::f64::consts::FRAC_1_PI;
 use std::time::Instant;
@@ -259,22 +259,27 @@ impl<'a> PhotonMapper<'a> {
     /// glossy lobes: the map is read through diffuse lobes only, so each light path is
     /// counted once, and through a glossy lobe the photons would be a narrow, noisy estimate.
     /// Emission and environment met by gather rays are not counted: that light is the direct
-    /// or caustic part.
-    fn secondary(
+    /// or caustic part. The light a gather ray brings back is depolarized (the map's photons
+    /// keep no Stokes vector); `measure` records it through the visible point's Mueller matrix
+    /// for the ray's direction (a plastic's polarizes it).
+    fn secondary<M: Measure>(
         &self,
         global: &PhotonMap,
         vp: &VisiblePoint,
         carried: Carried,
+        measure: &M,
         s: &mut Sample<MapLayer>,
-    ) -> Rgb {
+    ) -> M::Light {
         let gather = self.photons.gather;
         let dyes = self.tracer.scene.media().first_fluorescent().is_some();
-        let mut sum = Rgb::ZERO;
+        let mut sum = M::Light::default();
         for _ in 0..gather {
             s.stats.gather_rays += 1;
             let mut walker = Walker::carrying(carried, Policy::Weighted);
             let mut weight = Rgb::ONE;
             let mut next = vp.vertex.scatter_with(s.rng);
+            let Some(first) = &next else { continue };
+            let seen = measure.through(&vp.vertex, first.sample.wi);
             let mut beams = Beams::default();
             while let Some(b) = next {
                 // A dye's light is path traced from points on the ray's way through it.
@@ -289,7 +294,7 @@ impl<'a> PhotonMapper<'a> {
                 record_cut(&chain, before / gather as f64, s.stats);
                 if dyes {
                     let dyed = dye_light(&beams, walker.carried(), s.rng, s.stats);
-                    sum += weight * b.sample.weight * b.radiance_scale * dyed;
+                    sum += seen * (weight * b.sample.weight * b.radiance_scale * dyed);
                 }
                 weight = weight * b.sample.weight * chain.weight * b.radiance_scale;
                 let End::Scatter(y) = chain.end else { break };
@@ -303,14 +308,16 @@ impl<'a> PhotonMapper<'a> {
                             throughput: Rgb::ONE,
                         };
                         let carried = walker.carried();
-                        sum += weight * onward_from_unpolarized(vp, carried, s.rng, s.stats);
+                        sum +=
+                            seen * (weight * onward_from_unpolarized(vp, carried, s.rng, s.stats));
                         None
                     }
                     Vertex::Surface(y) if y.lobes().has_diffuse() => {
                         let e = s
                             .stats
                             .time_query(|| global.nearest_irradiance(y.position, y.normal));
-                        sum += weight * y.diffuse_exit() * walker.tracer.photon_irradiance(e);
+                        sum +=
+                            seen * (weight * y.diffuse_exit() * walker.tracer.photon_irradiance(e));
                         match walker.depth > 0 {
                             true => y.scatter_beyond_diffuse_with(s.rng),
                             false => None,
@@ -321,7 +328,7 @@ impl<'a> PhotonMapper<'a> {
                 };
             }
         }
-        vp.throughput * sum / gather.max(1) as f64
+        sum * vp.throughput / gather.max(1) as f64
     }
 
     /// The camera path's visible point: past glossy-only vertices and points in scattering
@@ -421,6 +428,35 @@ fn recorded_direct(
     }
 }
 
+/// The caustic light (`tracer`: the one the path ended on) the photons of `map` around the visible point `v` (the path's `vp`,
+/// served by `near`) send the camera, as `measure` records it: each photon's flux through the
+/// BSDF (a Lambertian surface's albedo/π applied once), depolarized light (the map's photons
+/// keep no Stokes vector) taken to the camera through the point's Mueller matrix for its
+/// direction where it has one (a plastic's).
+fn caustic_light<M: Measure>(
+    tracer: &Tracer,
+    map: &PhotonMap,
+    near: &Neighbourhood,
+    vp: &VisiblePoint,
+    v: &SurfaceVertex,
+    measure: &M,
+    stats: &mut Stats,
+) -> M::Light {
+    stats.time_query(|| match v.bsdf.lambert_albedo() {
+        Some(albedo) => {
+            let e = tracer.photon_irradiance(near.estimate(map, v, Photon::flux));
+            measure.of(vp.throughput * albedo * e * FRAC_1_PI)
+        }
+        None => {
+            let sum = near.estimate(map, v, |p| {
+                let wi = p.from_direction();
+                measure.through(&vp.vertex, wi) * (v.eval(wi) * p.flux())
+            });
+            sum * tracer.photon_irradiance(Rgb::ONE) * vp.throughput
+        }
+    })
+}
+
 /// Light a camera path found on its way to its visible point.
 #[derive(Default)]
 struct Found {
@@ -492,8 +528,6 @@ impl<'a> Integrator for PhotonMapper<'a> {
         s.record(MapLayer::Caustic, caustic);
         let dyed = dye_light(&beams, c.carried, s.rng, s.stats);
         s.record(MapLayer::Secondary, Recorded::radiance(dyed));
-        let at_end =
-            |value: Rgb, measure: &Option<Polarization>| Recorded::of(measure.as_ref(), value);
         let Some(first) = c.visible else { return };
         // The way the path took to its visible point, where that is its first vertex (the
         // pixel's footprint is measured there).
@@ -530,10 +564,14 @@ impl<'a> Integrator for PhotonMapper<'a> {
         }
         let direct = recorded_direct(carried, &vp, &measure, s.rng, s.stats);
         s.record(MapLayer::Direct, direct);
-        // The visible point's diffuse lobe depolarizes what the maps bring.
+        // The maps bring depolarized light, which the visible point's matrix takes to the
+        // camera (a plastic's polarizes it; a Lambertian surface's is none).
         if let Some(global) = &maps.global {
-            let secondary = self.secondary(global, &vp, carried, s);
-            s.record(MapLayer::Secondary, at_end(secondary, &measure));
+            let secondary = match &measure {
+                Some(p) => self.secondary(global, &vp, carried, p, s),
+                None => Recorded::radiance(self.secondary(global, &vp, carried, &Radiance, s)),
+            };
+            s.record(MapLayer::Secondary, secondary);
         }
         if let Some(caustic) = &maps.caustic {
             let r2 = match pixel.radii.iter().find(|r| r.way == way) {
@@ -554,21 +592,15 @@ impl<'a> Integrator for PhotonMapper<'a> {
                     .stats
                     .time_query(|| Neighbourhood::around(self.tracer, caustic, &v, r2)),
             };
-            // Each photon through the BSDF; a Lambertian surface's albedo/π is applied once.
-            let lambert = v.bsdf.lambert_albedo();
-            let sum = s.stats.time_query(|| {
-                near.estimate(caustic, &v, |p| match lambert {
-                    Some(_) => p.flux(),
-                    None => v.eval(p.from_direction()) * p.flux(),
-                })
-            });
-            pixel.near = Some(near);
-            let e = carried.tracer.photon_irradiance(sum);
-            let caustic_light = match lambert {
-                Some(albedo) => vp.throughput * albedo * e * FRAC_1_PI,
-                None => vp.throughput * e,
+            let tracer = carried.tracer;
+            let light = match &measure {
+                Some(p) => caustic_light(tracer, caustic, &near, &vp, &v, p, s.stats),
+                None => Recorded::radiance(caustic_light(
+                    tracer, caustic, &near, &vp, &v, &Radiance, s.stats,
+                )),
             };
-            s.record(MapLayer::Caustic, at_end(caustic_light, &measure));
+            pixel.near = Some(near);
+            s.record(MapLayer::Caustic, light);
         }
     }
 }

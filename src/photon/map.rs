@@ -7,6 +7,7 @@ use glam::DVec3;
 use kiddo::immutable::float::kdtree::ImmutableKdTree;
 use kiddo::SquaredEuclidean;
 use std::num::NonZero;
+use std::ops::{AddAssign, Mul};
 
 /// A stored photon: at a scattering surface (diffuse or glossy), or where it scattered in a
 /// medium ([`super::VolumeMap`]: no surface, a zero normal).
@@ -47,28 +48,34 @@ impl Photon {
     }
 }
 
+/// What a density estimate sums per photon: its weight per channel (`Rgb`), or what a camera
+/// records of its light ([`crate::polarization::Recorded`]).
+pub trait Summand: Copy + Default + AddAssign + Mul<f64, Output = Self> {}
+
+impl<T: Copy + Default + AddAssign + Mul<f64, Output = T>> Summand for T {}
+
 /// The Epanechnikov density estimate, K(d) = 2(1 − d²/r²)/(π r²) (normalised over the disk),
 /// summed over photons.
-struct Epanechnikov {
+struct Epanechnikov<T> {
     r2: f64,
-    sum: Rgb,
+    sum: T,
     count: usize,
 }
 
-impl Epanechnikov {
+impl<T: Summand> Epanechnikov<T> {
     fn new(r2: f64) -> Self {
         Self {
             r2,
-            sum: Rgb::ZERO,
+            sum: T::default(),
             count: 0,
         }
     }
 
     /// The estimate of squared radius `r2` over the photons `gather` adds: (Σ weight·K, how
     /// many); nothing for r² ≤ 0.
-    fn sum(r2: f64, gather: impl FnOnce(&mut Self)) -> (Rgb, usize) {
+    fn sum(r2: f64, gather: impl FnOnce(&mut Self)) -> (T, usize) {
         if r2 <= 0.0 {
-            return (Rgb::ZERO, 0);
+            return (T::default(), 0);
         }
         let mut kernel = Self::new(r2);
         gather(&mut kernel);
@@ -76,13 +83,13 @@ impl Epanechnikov {
     }
 
     /// Adds a photon's weight at squared distance `d2` (≤ r²).
-    fn add(&mut self, weight: Rgb, d2: f64) {
+    fn add(&mut self, weight: T, d2: f64) {
         self.sum += weight * (1.0 - d2 / self.r2);
         self.count += 1;
     }
 
     /// Σ weight·K(d), and how many photons were added.
-    fn estimate(&self) -> (Rgb, usize) {
+    fn estimate(&self) -> (T, usize) {
         let k = 2.0 / (std::f64::consts::PI * self.r2);
         (self.sum * k, self.count)
     }
@@ -383,14 +390,14 @@ impl PhotonMap {
     /// [`PhotonMap::weighted`] over the photons `among` (indices, e.g. from
     /// [`PhotonMap::indices_within`] around a nearby point): the same sum when `among` holds
     /// every photon within √`r2` of `p`.
-    pub fn weighted_among(
+    pub fn weighted_among<T: Summand>(
         &self,
         p: DVec3,
         normal: DVec3,
         r2: f64,
         among: &[u32],
-        weight: impl Fn(&Photon) -> Rgb,
-    ) -> (Rgb, usize) {
+        weight: impl Fn(&Photon) -> T,
+    ) -> (T, usize) {
         Epanechnikov::sum(r2, |kernel| {
             for &i in among {
                 let photon = &self.photons[i as usize];

@@ -22,7 +22,7 @@ mod shell;
 mod volume;
 
 pub use budget::{Budget, Dye, DyeEvent, DyeSite, Ended, Fate, Ledger};
-pub use map::{Photon, PhotonMap};
+pub use map::{Photon, PhotonMap, Summand};
 pub use shell::Shell;
 pub use volume::VolumeMap;
 
@@ -788,8 +788,8 @@ fn absorbed_by_fluorophore<'s>(
 /// always have: the same numbers, the same photons). Where the photon carries a Stokes vector
 /// (`polarization`, polarized transport) a phase function that polarizes draws its direction
 /// with the polarization's factor ([`polarized_direction`]), and a rough conductor's or
-/// dielectric's microfacet applies its Fresnel matrix ([`crate::bsdf::Bsdf::mueller`]); every
-/// other vertex leaves the light unpolarized.
+/// dielectric's microfacet or a plastic applies its Mueller matrix
+/// ([`crate::bsdf::Bsdf::mueller`]); every other vertex leaves the light unpolarized.
 fn scatter_photon(
     vertex: &Vertex,
     polarization: &mut Option<Polarization>,
@@ -811,11 +811,13 @@ fn scatter_photon(
         None => {
             let scattered = vertex.scatter_with(rng)?;
             // A surface whose scattering has a Mueller matrix (a rough conductor's or
-            // dielectric's microfacet) carries the photon's Stokes vector on, its power weighed
-            // by what it does to it.
+            // dielectric's microfacet, a plastic) carries the photon's Stokes vector on, its
+            // power weighed by what it does to it.
             let carried = polarization.as_mut().and_then(|state| {
                 let v = vertex.surface()?;
-                let element = v.bsdf.mueller(v.wo, scattered.sample.wi, v.normal)?;
+                let element =
+                    v.bsdf
+                        .mueller(v.wo, scattered.sample.wi, v.normal, Sense::WithLight)?;
                 Some(state.meet(&element, -v.wo))
             });
             let weight = roulette(scattered.sample.weight * carried.unwrap_or(Rgb::ONE), rng)?;

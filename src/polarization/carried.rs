@@ -4,8 +4,9 @@
 //! conductors, polarizers, retarders and crystal faces, and along curved stretches its basis
 //! is parallel-transported (Rytov's law, [`super::RytovTransport`]). At a scattering vertex a
 //! rough conductor's or dielectric's microfacet and Rayleigh's phase function apply their
-//! Mueller matrices; every other vertex (a Lambertian surface, a plastic's coat, isotropic and
-//! Henyey–Greenstein phase functions) is taken as a perfect depolarizer.
+//! Mueller matrices, as does a plastic (its coat's reflection, and its base's light refracted
+//! in and out); every other vertex (a Lambertian surface, isotropic and Henyey–Greenstein
+//! phase functions) is taken as a perfect depolarizer.
 //!
 //! A photon's chain runs with the light and carries the light's Stokes vector per channel,
 //! S0 = 1: the chain's weight holds the power, and each element's factor on S0 joins it. A
@@ -239,6 +240,11 @@ impl Polarization {
         if let Some(rows) = self.stokes.as_mut() {
             rows.iter_mut().flatten().for_each(keep);
         }
+    }
+
+    /// Which way the chain runs.
+    pub fn sense(&self) -> Sense {
+        self.sense
     }
 
     /// The largest degree of linear polarization √(S1² + S2²)/S0 of the light over the

@@ -1084,7 +1084,10 @@ impl<'w> Walker<'w> {
         };
         let mut weight = b.sample.weight;
         if let Some(p) = lent.polarization.as_deref_mut() {
-            match vertex.bsdf.mueller(vertex.wo, b.sample.wi, vertex.normal) {
+            match vertex
+                .bsdf
+                .mueller(vertex.wo, b.sample.wi, vertex.normal, p.sense())
+            {
                 Some(element) => weight *= p.meet(&element, -vertex.wo),
                 None => p.depolarize(),
             }

@@ -15,7 +15,7 @@ use super::offset;
 use crate::bsdf::{Bsdf, BsdfSample, Lobes};
 use crate::color::Rgb;
 use crate::ids::{MediumId, PrimId};
-use crate::polarization::{Element, Polarization};
+use crate::polarization::{Element, Polarization, Sense};
 use crate::sampling::Given;
 use crate::volume::Phase;
 use glam::DVec3;
@@ -95,12 +95,12 @@ impl<'s> Vertex<'s> {
     }
 
     /// What the vertex does to the polarization of light arriving from unit `wi` as it
-    /// leaves toward ωo: a rough conductor's or dielectric's microfacet Fresnel matrix
-    /// ([`Bsdf::mueller`]), Rayleigh's ([`Phase::mueller`]); None where it depolarizes (every
-    /// other lobe and phase function).
+    /// leaves toward ωo (a camera path's sense): a rough conductor's or dielectric's
+    /// microfacet Fresnel matrix, a plastic's ([`Bsdf::mueller`]), Rayleigh's
+    /// ([`Phase::mueller`]); None where it depolarizes (every other lobe and phase function).
     pub fn mueller(&self, wi: DVec3) -> Option<Element> {
         match self {
-            Vertex::Surface(v) => v.bsdf.mueller(v.wo, wi, v.normal),
+            Vertex::Surface(v) => v.bsdf.mueller(v.wo, wi, v.normal, Sense::AgainstLight),
             Vertex::Medium(v) => v.phase.mueller(-wi, v.wo),
         }
     }
