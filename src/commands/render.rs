@@ -432,7 +432,6 @@ fn build_checked(
     let tracer = crate::transport::Tracer::new(&scene, &settings.trace);
     crate::render::sources_outside_crystals(&scene, &tracer)?;
     if let Some(c) = &scene.camera {
-        crate::render::views_carry_media_polarization(&scene, &tracer, settings.integrator)?;
         if let Some(w) = crate::render::dye_light_warning(&scene) {
             observer.warning(&w);
         }

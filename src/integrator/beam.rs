@@ -22,7 +22,7 @@ use crate::color::Rgb;
 use crate::ids::MediumId;
 use crate::math::Segment;
 use crate::photon::VolumeMap;
-use crate::polarization::{Polarization, Recorded};
+use crate::polarization::{Polarization, Recorded, StoredStokes};
 use crate::transport::chain::{ChainEvents, Stretch};
 use crate::transport::Tracer;
 use crate::volume::{Flights, Scattering};
@@ -43,6 +43,9 @@ pub struct Beams {
     measures: Vec<Polarization>,
     /// Every recorded stretch's points after its origin, in order.
     points: Vec<DVec3>,
+    /// S1–S3 of the light media emitted along the chain as the camera records it, where the
+    /// chain carries a measurement of them ([`ChainEvents::emitted`]).
+    emitted: Option<[Rgb; 3]>,
     /// Whether the stretch under way is recorded.
     recording: bool,
 }
@@ -74,6 +77,9 @@ pub struct Walked<'a> {
     pub points: &'a [DVec3],
     /// n at the chain's start.
     pub n_start: f64,
+    /// Where the transport is polarized, the camera's measurement at its start, per unit of
+    /// the chain's weight there.
+    pub measure: Option<&'a Polarization>,
 }
 
 /// A recorded stretch through a medium of uniform index: one straight segment.
@@ -152,10 +158,20 @@ impl Beams {
         self.stretches.clear();
         self.measures.clear();
         self.points.clear();
+        self.emitted = None;
         self.recording = false;
         Recording {
             beams: self,
             tracer,
+        }
+    }
+
+    /// The light media emitted along the recorded chain as the camera records it, `s0` its
+    /// S0 (the chain's [`crate::transport::chain::Chain::emitted`]).
+    pub fn emission(&self, s0: Rgb) -> Recorded {
+        Recorded {
+            s0,
+            stokes: self.emitted,
         }
     }
 
@@ -180,9 +196,13 @@ impl Beams {
                 continue;
             };
             let mut light = Rgb::ZERO;
+            // Where the camera measures through a phase function that polarizes, each photon's
+            // light as the camera records it, through the scattering's matrix.
+            let mut polarized = Recorded::default();
+            let through = measure.filter(|_| scattering.phase.polarizes());
             read.clear();
             read.extend(chords(tracer, &scattering, r, points));
-            volume.along_path(&read, |k, photon, along| {
+            volume.along_path(&read, |k, photon, stokes, along| {
                 let c: &Chord = &read[k];
                 let Segment {
                     origin,
@@ -195,11 +215,22 @@ impl Beams {
                 let column = c.column + scattering.column(origin, dir, along.distance);
                 let kept = flights.weigh(&scattering, column, false);
                 // Light arrives travelling along −from and leaves toward the camera, −dir.
-                let phase = scattering.phase.between(-photon.from_direction(), -dir);
+                let before = -photon.from_direction();
+                let phase = scattering.phase.between(before, -dir);
                 let scale = (n_start / n) * (n_start / n);
-                light += kept * photon.flux() * ((-depth).exp() * phase * scale * along.kernel);
+                let amount = kept * photon.flux() * ((-depth).exp() * phase * scale * along.kernel);
+                match through {
+                    Some(rows) => {
+                        polarized +=
+                            recorded_photon(rows, &scattering, stokes, before, dir) * amount
+                    }
+                    None => light += amount,
+                }
             });
             sum += Recorded::of(measure, r.stretch.weight * light);
+            if through.is_some() {
+                sum += polarized * r.stretch.weight;
+            }
         }
         sum * tracer.photon_irradiance(Rgb::ONE)
     }
@@ -238,11 +269,12 @@ impl Beams {
     /// The recorded stretches, each with its medium and its points, and n at the chain's start.
     pub fn walked(&self) -> impl Iterator<Item = Walked<'_>> {
         let n_start = self.n_start.unwrap_or(1.0);
-        self.recorded().map(move |(r, points, _)| Walked {
+        self.recorded().map(move |(r, points, measure)| Walked {
             stretch: &r.stretch,
             medium: r.medium,
             points,
             n_start,
+            measure,
         })
     }
 
@@ -258,6 +290,27 @@ impl Beams {
                 .map_or(self.points.len(), |s| s.first);
             (r, &self.points[r.first..end], self.measures.get(k))
         })
+    }
+}
+
+/// What the camera records, through the measurement `rows` a camera path carries along `dir`,
+/// of a volume photon's light (`stokes` its Stokes vector, unpolarized where the map keeps
+/// none) travelling along `before` and scattered toward the camera by `scattering`'s phase
+/// function, per unit of the light the phase function sends that way from unpolarized light.
+fn recorded_photon(
+    rows: &Polarization,
+    scattering: &Scattering,
+    stokes: Option<&StoredStokes>,
+    before: DVec3,
+    dir: DVec3,
+) -> Recorded {
+    let mut rows = *rows;
+    if let Some(element) = scattering.phase.mueller(before, -dir) {
+        rows.meet(&element, dir);
+    }
+    match stokes {
+        Some(s) => rows.recorded_of(&Polarization::from_stored(s, before), before),
+        None => rows.recorded(),
     }
 }
 
@@ -348,6 +401,15 @@ impl ChainEvents for Recording<'_> {
                 beams.measures.push(measure);
             }
         }
+    }
+
+    fn emitted(&mut self, light: Recorded) {
+        let beams = &mut *self.beams;
+        beams.emitted = match (beams.emitted, light.stokes) {
+            (Some(sum), Some(more)) => Some([0, 1, 2].map(|k| sum[k] + more[k])),
+            (sum, None) => sum,
+            (None, more) => more,
+        };
     }
 
     fn point(&mut self, p: DVec3) {

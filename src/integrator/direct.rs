@@ -39,8 +39,7 @@ pub struct VisiblePoint<'w> {
 pub struct Components<'w> {
     /// Emission and environment radiance met along the specular chain (none where the camera
     /// hides emitters and the chain met no specular surface), and the light its media emitted
-    /// on the way (S0 alone: a render measuring S1–S3 refuses media that shine), as the camera
-    /// records them.
+    /// on the way, as the camera records them.
     pub emitted: Recorded,
     /// Direct light scattered toward the camera along the chain's straight stretches through
     /// scattering media ([`super::single::single_scattering`]), as the camera records it.
@@ -100,7 +99,7 @@ pub fn camera_path<'w>(
         false => emission_seen(walker.tracer, &chain),
     };
     let mut out = Components {
-        emitted: Recorded::of(measure.as_ref(), seen) + Recorded::radiance(chain.emitted),
+        emitted: Recorded::of(measure.as_ref(), seen) + beams.emission(chain.emitted),
         single: single_scattering(beams, walker.carried(), rng, stats),
         visible: None,
         bounces: chain.specular,

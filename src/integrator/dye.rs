@@ -31,12 +31,13 @@
 
 use super::beam::{Beams, Walked};
 use crate::color::Rgb;
+use crate::polarization::Polarization;
 use crate::transport::{Event, MediumVertex, Stats, Tracer};
 use crate::volume::{Flights, Phase};
 use rand::Rng;
 
 /// A point where a dye emits toward a camera chain, and how the chain goes on from it.
-pub struct DyeSource {
+pub struct DyeSource<'b> {
     /// The point, scattering isotropically.
     pub vertex: MediumVertex,
     /// The vacuum wavelength (nm) the light is estimated at there.
@@ -48,16 +49,19 @@ pub struct DyeSource {
     pub flights: Flights,
     /// The events the path may still meet past the point.
     pub depth: u32,
+    /// Where the transport is polarized, the camera's measurement on the stretch, per unit of
+    /// the chain's weight at its start (the dye's light leaves it unpolarized).
+    pub measure: Option<&'b Polarization>,
 }
 
 /// The points where dyes emit toward the chain recorded in `beams` (see the module's notes),
 /// `tracer` the one it ended on; numbers from `rng`.
-pub fn dye_sources(
-    beams: &Beams,
+pub fn dye_sources<'b>(
+    beams: &'b Beams,
     tracer: &Tracer,
     rng: &mut impl Rng,
     stats: &mut Stats,
-) -> Vec<DyeSource> {
+) -> Vec<DyeSource<'b>> {
     beams
         .walked()
         .filter_map(|w| source(&w, tracer, rng, stats))
@@ -66,7 +70,12 @@ pub fn dye_sources(
 
 /// The point drawn on the walked stretch `w`, if its medium holds a dye and one is drawn (no
 /// number is drawn for a stretch through a medium without one).
-fn source(w: &Walked, tracer: &Tracer, rng: &mut impl Rng, stats: &mut Stats) -> Option<DyeSource> {
+fn source<'b>(
+    w: &Walked<'b>,
+    tracer: &Tracer,
+    rng: &mut impl Rng,
+    stats: &mut Stats,
+) -> Option<DyeSource<'b>> {
     let dye = tracer.scene.media().fluorescence(w.medium)?;
     // A chain in a dye carries one wavelength (the medium is dispersive).
     let seen = tracer.single_wavelength()?;
@@ -125,5 +134,6 @@ fn source(w: &Walked, tracer: &Tracer, rng: &mut impl Rng, stats: &mut Stats) ->
             * (scale * length / chance * line * ratio),
         flights: w.stretch.flights,
         depth: w.stretch.depth,
+        measure: w.measure,
     })
 }

@@ -126,9 +126,15 @@ fn past_fluorophore<'a>(tracer: &'a Tracer<'a>, nm: f64) -> Tracer<'a> {
 /// ([`super::dye`]), per unit of the path's throughput before it, estimated by path tracing on
 /// from a point on each stretch at a wavelength the dye absorbs; `carried`: what the chain
 /// carried at its end. A dye's light leaves it unpolarized: its radiance alone is estimated
-/// (carrying a measurement of it where the transport is polarized: [`measuring_radiance`]).
-pub fn dye_light<R: Rng>(beams: &Beams, carried: Carried, rng: &mut R, stats: &mut Stats) -> Rgb {
-    let mut sum = Rgb::ZERO;
+/// (carrying a measurement of it where the transport is polarized: [`measuring_radiance`]),
+/// and recorded through the camera's measurement on the stretch where the chain carries one.
+pub fn dye_light<R: Rng>(
+    beams: &Beams,
+    carried: Carried,
+    rng: &mut R,
+    stats: &mut Stats,
+) -> Recorded {
+    let mut sum = Recorded::default();
     for source in dye_sources(beams, carried.tracer, rng, stats) {
         let tracer = past_fluorophore(carried.tracer, source.nm);
         let carried = Carried {
@@ -141,10 +147,11 @@ pub fn dye_light<R: Rng>(beams: &Beams, carried: Carried, rng: &mut R, stats: &m
             vertex: Vertex::Medium(source.vertex),
             throughput: source.weight,
         };
-        sum += match measuring_radiance(&tracer, -source.vertex.wo) {
+        let light = match measuring_radiance(&tracer, -source.vertex.wo) {
             Some(mut m) => from_point(vp, carried, &mut m, rng, stats).s0,
             None => from_point(vp, carried, &mut Radiance, rng, stats),
         };
+        sum += Recorded::of(source.measure, light);
     }
     sum
 }
@@ -227,15 +234,12 @@ fn bounces<'w, M: Measure, R: Rng>(
         if beams.recorded_any() {
             let single = single_scattering(&beams, walker.carried(), rng, stats);
             sum += M::tallied(single * (vp.throughput * weight));
-            // A dye's light is measured as its S0 alone (a render measuring S1–S3 refuses
-            // media that shine).
             let dyed = dye_light(&beams, walker.carried(), rng, stats);
-            sum += M::tallied(Recorded::radiance(vp.throughput * weight * dyed));
+            sum += M::tallied(dyed * (vp.throughput * weight));
         }
         let throughput = vp.throughput * weight * chain.weight;
-        // Light emitted by media on the way is sampled by no light sample: it counts here (as
-        // S0 alone, as a dye's).
-        sum += M::tallied(Recorded::radiance(vp.throughput * weight * chain.emitted));
+        // Light emitted by media on the way is sampled by no light sample: it counts here.
+        sum += M::tallied(beams.emission(chain.emitted) * (vp.throughput * weight));
         // The sample is also direct light's second strategy, weighed against `lit`'s.
         let found =
             measure.of(vp.throughput * continued_emission(walker.tracer, &vp.vertex, &b, &chain));
@@ -329,7 +333,7 @@ impl Integrator for PathTracer<'_> {
         s.record(PathLayer::Emitted, c.emitted);
         s.record(PathLayer::Direct, c.single);
         let dyed = dye_light(&beams, c.carried, s.rng, s.stats);
-        s.record(PathLayer::Indirect, Recorded::radiance(dyed));
+        s.record(PathLayer::Indirect, dyed);
         let Some(vp) = c.visible else { return };
         s.add(PathLayer::Albedo, vp.vertex.albedo());
         s.add(PathLayer::Normal, vp.vertex.normal());

@@ -294,7 +294,8 @@ impl<'a> PhotonMapper<'a> {
                 record_cut(&chain, before / gather as f64, s.stats);
                 if dyes {
                     let dyed = dye_light(&beams, walker.carried(), s.rng, s.stats);
-                    sum += seen * (weight * b.sample.weight * b.radiance_scale * dyed);
+                    // The gather ray carries no measurement: the dye's radiance.
+                    sum += seen * (weight * b.sample.weight * b.radiance_scale * dyed.s0);
                 }
                 weight = weight * b.sample.weight * chain.weight * b.radiance_scale;
                 let End::Scatter(y) = chain.end else { break };
@@ -381,9 +382,7 @@ impl<'a> PhotonMapper<'a> {
             found.caustic += self.volume_caustic(maps, &beams, walker.tracer, s) * throughput;
             found.direct +=
                 single_scattering(&beams, walker.carried(), s.rng, s.stats) * throughput;
-            // A dye's light: S0 alone (a render measuring S1–S3 refuses media that shine).
-            let dyed = dye_light(&beams, walker.carried(), s.rng, s.stats);
-            found.dyed += Recorded::radiance(throughput * dyed);
+            found.dyed += dye_light(&beams, walker.carried(), s.rng, s.stats) * throughput;
             if chain.specular > 0 && !volume {
                 found.emitted += at_end(throughput * emission_seen(walker.tracer, &chain));
             }
@@ -527,7 +526,7 @@ impl<'a> Integrator for PhotonMapper<'a> {
         let caustic = self.volume_caustic(maps, &beams, c.carried.tracer, s);
         s.record(MapLayer::Caustic, caustic);
         let dyed = dye_light(&beams, c.carried, s.rng, s.stats);
-        s.record(MapLayer::Secondary, Recorded::radiance(dyed));
+        s.record(MapLayer::Secondary, dyed);
         let Some(first) = c.visible else { return };
         // The way the path took to its visible point, where that is its first vertex (the
         // pixel's footprint is measured there).

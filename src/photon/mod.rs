@@ -24,7 +24,7 @@ mod volume;
 pub use budget::{Budget, Dye, DyeEvent, DyeSite, Ended, Fate, Ledger};
 pub use map::{Photon, PhotonMap, Summand};
 pub use shell::Shell;
-pub use volume::VolumeMap;
+pub use volume::{VolumeMap, VolumePhotons};
 
 use crate::bsdf::{Bsdf, Lobes};
 use crate::color::Rgb;
@@ -457,7 +457,7 @@ pub struct Sink {
     /// Photons stored at diffuse hits.
     pub photons: Vec<Photon>,
     /// Caustic photons stored where they first scattered in a medium.
-    pub volume: Vec<Photon>,
+    pub volume: VolumePhotons,
     /// Receiver crossings.
     pub detections: Vec<Detection>,
     /// Where the photons' power went.
@@ -1225,7 +1225,7 @@ struct Lent<'a, R> {
 /// Where a photon's branches are stored: the photons on surfaces and in media.
 struct Stores<'a> {
     photons: &'a mut Vec<Photon>,
-    volume: &'a mut Vec<Photon>,
+    volume: &'a mut VolumePhotons,
 }
 
 /// Follows `branch` of a photon launched as `launch` to its end, storing it as its batch says
@@ -1321,13 +1321,20 @@ fn follow_branch<'w, R: Rng>(
             }
         } else if tag.batch == Batch::Caustic && b.bent && !b.fogged {
             // L (S|G)+ V: a volume caustic, where it first scatters in a medium.
-            stored.volume.push(Photon {
+            // Where the transport is polarized, with its Stokes vector, on which the light a
+            // polarizing phase function scatters toward a camera depends.
+            let stokes = (tracer.settings.polarized).then(|| match &b.polarization {
+                Some(state) => state.stored(),
+                None => Polarization::unpolarized(Sense::WithLight, -vertex.wo()).stored(),
+            });
+            let photon = Photon {
                 position: vertex.position(),
                 normal: DVec3::ZERO,
                 power: (walk.power * b.seen_as).as_vec3().to_array(),
                 from: vertex.wo().as_vec3().to_array(),
                 base: 1.0,
-            });
+            };
+            stored.volume.push(photon, stokes);
         }
         if tag.batch == Batch::Caustic && vertex.lobes() == Lobes::DIFFUSE_REFLECTION {
             break Fate::Absorbed;

@@ -14,6 +14,7 @@ use super::Photon;
 use crate::bvh::{build_bvh, Tuning};
 use crate::math::Bounds3;
 use crate::math::Segment;
+use crate::polarization::StoredStokes;
 use crate::shapes::{padded_box, TraversalRay};
 use glam::DVec3;
 use kiddo::immutable::float::kdtree::ImmutableKdTree;
@@ -24,10 +25,45 @@ use rayon::prelude::*;
 use std::f64::consts::PI;
 use std::num::NonZero;
 
+/// Volume photons as traced, in photon order, with their Stokes vectors where the transport
+/// is polarized (one each, or none at all).
+#[derive(Clone, Debug, Default)]
+pub struct VolumePhotons {
+    photons: Vec<Photon>,
+    stokes: Vec<StoredStokes>,
+}
+
+impl VolumePhotons {
+    /// Adds `photon`, with its Stokes vector where the transport is polarized.
+    pub fn push(&mut self, photon: Photon, stokes: Option<StoredStokes>) {
+        self.photons.push(photon);
+        self.stokes.extend(stokes);
+        debug_assert!(self.stokes.is_empty() || self.stokes.len() == self.photons.len());
+    }
+
+    /// Adds `more`, traced after these.
+    pub fn extend(&mut self, more: VolumePhotons) {
+        self.photons.extend(more.photons);
+        self.stokes.extend(more.stokes);
+    }
+
+    /// Number of photons.
+    pub fn len(&self) -> usize {
+        self.photons.len()
+    }
+
+    /// True when it holds no photon.
+    pub fn is_empty(&self) -> bool {
+        self.photons.is_empty()
+    }
+}
+
 /// Volume photons, each with the squared radius of its ball, and a BVH over the balls.
 pub struct VolumeMap {
     /// In the BVH's leaf order.
     photons: Vec<Photon>,
+    /// Their Stokes vectors, where the transport is polarized (same order; else empty).
+    stokes: Vec<StoredStokes>,
     /// Each photon's squared radius (same order).
     r2: Vec<f64>,
     /// The photons' mean radius: the width of the tube around a path that its balls touch.
@@ -65,11 +101,17 @@ impl VolumeMap {
     /// The map of `photons` (at most u32::MAX of them), each with the squared radius
     /// `shrink` × the squared distance to its k-th nearest neighbour among them (bounded by
     /// `max_r2`: where fewer lie within that, `max_r2`), as in Jarosz et al.'s estimate.
-    pub fn new(mut photons: Vec<Photon>, k: usize, max_r2: f64, shrink: f64) -> Self {
+    pub fn new(traced: VolumePhotons, k: usize, max_r2: f64, shrink: f64) -> Self {
+        let VolumePhotons {
+            mut photons,
+            mut stokes,
+        } = traced;
         photons.truncate(u32::MAX as usize);
+        stokes.truncate(u32::MAX as usize);
         if photons.is_empty() {
             return Self {
                 photons,
+                stokes,
                 r2: Vec::new(),
                 mean_radius: 0.0,
                 bvh: Bvh2::default(),
@@ -101,6 +143,10 @@ impl VolumeMap {
         let mean_radius = r2.iter().map(|r2| r2.sqrt()).sum::<f64>() / r2.len() as f64;
         Self {
             photons: order.iter().map(|&i| photons[i as usize]).collect(),
+            stokes: match stokes.is_empty() {
+                true => stokes,
+                false => order.iter().map(|&i| stokes[i as usize]).collect(),
+            },
             r2: order.iter().map(|&i| r2[i as usize]).collect(),
             mean_radius,
             bvh,
@@ -118,13 +164,14 @@ impl VolumeMap {
     }
 
     /// Shows `visit` every photon whose ball the straight stretch from `origin` along unit
-    /// `dir` over `length` passes through, with where and how much of its kernel it meets.
+    /// `dir` over `length` passes through, with its Stokes vector where the map keeps them,
+    /// and where and how much of its kernel it meets.
     pub fn along(
         &self,
         origin: DVec3,
         dir: DVec3,
         length: f64,
-        mut visit: impl FnMut(&Photon, Along),
+        mut visit: impl FnMut(&Photon, Option<&StoredStokes>, Along),
     ) {
         if self.photons.is_empty() || length.is_nan() || length <= 0.0 {
             return;
@@ -134,7 +181,7 @@ impl VolumeMap {
         self.bvh.ray_traverse(ray.ray, &mut unused, |_, i| {
             let photon = &self.photons[i];
             if let Some(along) = chord(photon.position - origin, dir, length, self.r2[i]) {
-                visit(photon, along);
+                visit(photon, self.stokes.get(i), along);
             }
             // Never a hit: every ball on the stretch is visited.
             f32::INFINITY
@@ -149,7 +196,7 @@ impl VolumeMap {
     pub fn along_path<S: AsRef<Segment>>(
         &self,
         path: &[S],
-        mut visit: impl FnMut(usize, &Photon, Along),
+        mut visit: impl FnMut(usize, &Photon, Option<&StoredStokes>, Along),
     ) {
         if self.photons.is_empty() {
             return;
@@ -157,13 +204,13 @@ impl VolumeMap {
         for run in self.runs(path) {
             let segments = &path[run.first..run.first + run.count];
             match run.is_tight() {
-                true => self.within(&run, segments, |k, photon, along| {
-                    visit(run.first + k, photon, along)
+                true => self.within(&run, segments, |k, photon, stokes, along| {
+                    visit(run.first + k, photon, stokes, along)
                 }),
                 false => {
                     let s = segments[0].as_ref();
-                    self.along(s.origin, s.dir, s.length, |photon, along| {
-                        visit(run.first, photon, along)
+                    self.along(s.origin, s.dir, s.length, |photon, stokes, along| {
+                        visit(run.first, photon, stokes, along)
                     })
                 }
             }
@@ -196,7 +243,7 @@ impl VolumeMap {
         &self,
         run: &Run,
         segments: &[S],
-        mut visit: impl FnMut(usize, &Photon, Along),
+        mut visit: impl FnMut(usize, &Photon, Option<&StoredStokes>, Along),
     ) {
         self.bvh.aabb_traverse(padded_box(run.bounds), |bvh, node| {
             let node = &bvh.nodes[node as usize];
@@ -215,7 +262,7 @@ impl VolumeMap {
                     if let Some(along) =
                         chord(photon.position - s.origin, s.dir, s.length, self.r2[i])
                     {
-                        visit(k, photon, along);
+                        visit(k, photon, self.stokes.get(i), along);
                     }
                 }
             }
@@ -351,7 +398,9 @@ mod tests {
                 base: 1.0,
             })
             .collect();
-        VolumeMap::new(photons, 8, 0.01, 0.5)
+        let mut traced = VolumePhotons::default();
+        photons.into_iter().for_each(|p| traced.push(p, None));
+        VolumeMap::new(traced, 8, 0.01, 0.5)
     }
 
     /// The sum of the kernels of the balls segment `s` meets, found by testing every photon.
@@ -380,7 +429,7 @@ mod tests {
             let dir = (DVec3::new(rng.gen(), rng.gen(), rng.gen()) - 0.5).normalize();
             let length = rng.gen::<f64>();
             let mut found = 0.0;
-            map.along(origin, dir, length, |_, a| found += a.kernel);
+            map.along(origin, dir, length, |_, _, a| found += a.kernel);
             let brute = brute_force(
                 &map,
                 &Segment {
@@ -444,7 +493,7 @@ mod tests {
                 });
             }
             let mut found = vec![0.0; path.len()];
-            map.along_path(&path, |k, _, a| found[k] += a.kernel);
+            map.along_path(&path, |k, _, _, a| found[k] += a.kernel);
             for (s, found) in path.iter().zip(&found) {
                 let brute = brute_force(&map, s);
                 assert!(

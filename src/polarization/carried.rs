@@ -60,6 +60,14 @@ impl Element {
     }
 }
 
+/// A photon's Stokes vector as a photon map keeps it: per channel (S1, S2, S3)/S0, in the
+/// basis whose first axis is `x` across its direction (f32, as its power).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StoredStokes {
+    stokes: [[f32; 3]; 3],
+    x: [f32; 3],
+}
+
 /// What a chain carries of the light's polarization (see the module's notes).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Polarization {
@@ -306,6 +314,48 @@ impl Polarization {
                 Sense::AgainstLight => self.stokes.as_ref().map(|rows| rows.map(|r| first(&r))),
                 Sense::WithLight => None,
             },
+        }
+    }
+
+    /// What the camera records (against the light: the rows) of the light `light` (with it:
+    /// its Stokes vector per unit of power) arriving along unit `direction` (the light's), per
+    /// unit of that power: each row times the light's Stokes vector in one basis.
+    pub fn recorded_of(&self, light: &Polarization, direction: DVec3) -> Recorded {
+        let mut light = *light;
+        // The rows' basis is across the light (a row's basis is the light's it measures).
+        light.rebase(direction, self.x);
+        let read = |row: &[DVec4; 3]| {
+            let [r, g, b] = [0, 1, 2].map(|c| row[c].dot(light.channels[c]));
+            Rgb::new(r, g, b)
+        };
+        Recorded {
+            s0: read(&self.channels),
+            stokes: self.stokes.as_ref().map(|rows| rows.map(|r| read(&r))),
+        }
+    }
+
+    /// The light's Stokes vector as a photon map keeps it (with the light).
+    pub fn stored(&self) -> StoredStokes {
+        StoredStokes {
+            stokes: self.channels.map(|v| [v.y as f32, v.z as f32, v.w as f32]),
+            x: self.x.as_vec3().to_array(),
+        }
+    }
+
+    /// The light a photon map kept (`stored`), travelling along unit `direction`: its axis
+    /// (kept to f32's digits) projected across the direction again.
+    pub fn from_stored(stored: &StoredStokes, direction: DVec3) -> Self {
+        let x = DVec3::from_array(stored.x.map(f64::from));
+        let x = (x - x.dot(direction) * direction)
+            .try_normalize()
+            .unwrap_or_else(|| direction.any_orthonormal_vector());
+        Self {
+            sense: Sense::WithLight,
+            channels: (stored.stokes)
+                .map(|[s1, s2, s3]| DVec4::new(1.0, f64::from(s1), f64::from(s2), f64::from(s3))),
+            stokes: None,
+            x,
+            curve: None,
         }
     }
 

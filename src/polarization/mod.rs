@@ -11,6 +11,6 @@ pub mod preview;
 pub mod rytov;
 mod sheet;
 
-pub use carried::{Element, Polarization, Recorded, Sense};
+pub use carried::{Element, Polarization, Recorded, Sense, StoredStokes};
 pub use rytov::RytovTransport;
 pub use sheet::Sheet;

@@ -133,9 +133,7 @@ pub fn render_passes(
     passes: Passes,
     observer: &dyn Observer,
 ) -> Result<(Film, Report)> {
-    stokes_measurable(scene, settings)?;
     let tracer = Tracer::new(scene, &settings.trace);
-    views_carry_media_polarization(scene, &tracer, settings.integrator)?;
     match settings.integrator {
         Kind::PhotonMap => {
             photons_carry_all_light(scene)?;
@@ -199,51 +197,6 @@ pub fn dye_light_warning(scene: &Scene) -> Option<String> {
                  or reflecting surface; its receivers measure all of it"
         )
     })
-}
-
-/// Refuses to write the camera's Stokes vector (`stokes`) of a scene with a medium that emits
-/// or holds a dye: the light a camera ray gathers from such a medium along its way is
-/// measured as S0 alone (light media scatter toward it is measured whole, through the
-/// measurement the path carries on each stretch).
-fn stokes_measurable(scene: &Scene, settings: &Settings) -> Result<()> {
-    match (settings.trace.stokes, scene.media().first_shining()) {
-        (true, Some(name)) => Err(crate::error::Error::Setting {
-            key: "stokes",
-            message: format!(
-                "medium '{name}' emits or fluoresces light toward the camera's rays on their way: \
-                 the Stokes vector of such light is not measured yet (render S0 alone, or \
-                 through `polarizer_deg`)"
-            ),
-        }),
-        (true, None) | (false, _) => Ok(()),
-    }
-}
-
-/// Refuses a photon mapper's camera view of a scene with a medium whose scattering polarizes
-/// (Rayleigh's) where the transport is polarized (`polarized`, `stokes`, a sheet or a camera
-/// polarizer): its volume photons are stored without their Stokes vectors, which the light
-/// Rayleigh's phase function scatters toward the camera depends on. The path tracer's camera
-/// paths carry their measurement through it, and photons carry the light's Stokes vectors to
-/// receivers; without polarized transport Rayleigh's phase function is its unpolarized
-/// intensity's, and images render.
-pub fn views_carry_media_polarization(
-    scene: &Scene,
-    tracer: &Tracer,
-    integrator: Kind,
-) -> Result<()> {
-    let polarizing = scene.media().first_polarizing();
-    match (tracer.settings.polarized, integrator, polarizing) {
-        (true, Kind::PhotonMap, Some(name)) => Err(crate::error::Error::Setting {
-            key: "polarized",
-            message: format!(
-                "medium '{name}' scatters as Rayleigh's phase function, which polarizes: the \
-                 photon mapper's view through it does not carry that polarization (its volume \
-                 photons keep no Stokes vector; render the view with the path tracer, leave \
-                 out [camera] to measure the receivers alone, or render it unpolarized)"
-            ),
-        }),
-        (true, Kind::PhotonMap, None) | (true, Kind::Path, _) | (false, _, _) => Ok(()),
-    }
 }
 
 /// Refuses a camera or a light inside a uniaxial crystal: light there travels as the crystal's

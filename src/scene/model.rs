@@ -219,26 +219,6 @@ impl Media {
             .map(|e| e.name.as_str())
     }
 
-    /// The first medium that shines — it emits or holds a dye — by name (None: none does).
-    pub fn first_shining(&self) -> Option<&str> {
-        self.0
-            .iter()
-            .find(|e| {
-                let p = &e.participating;
-                p.emission.is_some() || p.fluorescence.is_some()
-            })
-            .map(|e| e.name.as_str())
-    }
-
-    /// The first medium whose scattering polarizes light ([`crate::volume::Phase::polarizes`]),
-    /// by name (None: none does).
-    pub fn first_polarizing(&self) -> Option<&str> {
-        self.0
-            .iter()
-            .find(|e| (e.participating.scattering.as_ref()).is_some_and(|s| s.phase.polarizes()))
-            .map(|e| e.name.as_str())
-    }
-
     /// The dye medium `i` holds (None: none).
     pub fn fluorescence(&self, i: MediumId) -> Option<&Fluorescence> {
         self.0[i.index()].participating.fluorescence.as_ref()

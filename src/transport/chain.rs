@@ -17,7 +17,7 @@ use crate::curve::ArcPoint;
 use crate::ids::{MediumId, PrimId, ReceiverId};
 use crate::material::Material;
 use crate::polarization::crystal::{Beam, Interface};
-use crate::polarization::{Element, Polarization, Sense};
+use crate::polarization::{Element, Polarization, Recorded, Sense};
 use crate::scene::Role;
 use crate::volume::{Flights, Scattering};
 use glam::DVec3;
@@ -175,6 +175,9 @@ pub struct DetectorCrossing<'p> {
 pub trait ChainEvents {
     /// It sets off on a stretch, carrying `polarization` (None: unpolarized transport).
     fn stretch(&mut self, _stretch: &Stretch, _polarization: Option<&Polarization>) {}
+    /// It gathered light a medium emitted along its stretch, `light` as the camera records it
+    /// through the measurement the chain carries (only where it carries one).
+    fn emitted(&mut self, _light: Recorded) {}
     /// A point the path passes: each accepted point of a curved stretch, each surface met,
     /// where a free flight ends, and where it leaves the world.
     fn point(&mut self, _p: DVec3) {}
@@ -828,7 +831,7 @@ impl<'w> Walker<'w> {
                 (Policy::Principal, _) => Rgb::ONE,
             };
         }
-        self.gather_emission(chain, seen(chain, lent), at.medium, &event);
+        self.gather_emission(chain, lent, at.medium, &event, observer);
         let hit = match event {
             Event::Lost => return ControlFlow::Break(End::Lost),
             _ if self.absorbed(chain, event.transmittance(), lent.rng) => {
@@ -954,23 +957,30 @@ impl<'w> Walker<'w> {
 
     /// Adds to a camera path's chain the light `medium` emitted along the stretch to `event`
     /// and did not absorb again: Le·(1 − e^(−τa)) as basic radiance, exact for any density and
-    /// any curved path ([`crate::volume::Emission`]), times `weight`, the chain's weight at
-    /// the stretch's start as the camera sees it there ([`seen`]; its free flight weighed in:
-    /// the flight's survival stands for the scattering along the way, as for anything met at
-    /// its end).
-    fn gather_emission(
+    /// any curved path ([`crate::volume::Emission`]), times the chain's weight at the
+    /// stretch's start as the camera sees it there ([`seen`]; its free flight weighed in: the
+    /// flight's survival stands for the scattering along the way, as for anything met at its
+    /// end). The light leaves the medium unpolarized; where the chain carries the camera's
+    /// measurement, `observer` is given it as the camera records it through the measurement
+    /// ([`ChainEvents::emitted`]).
+    fn gather_emission<R>(
         &self,
         chain: &mut Chain,
-        weight: Rgb,
+        lent: &Lent<R>,
         medium: Option<MediumId>,
         event: &Event,
+        observer: &mut dyn ChainEvents,
     ) {
         let emission = medium.and_then(|m| self.tracer.participating(m).emission);
         if let (Policy::Weighted, Some(emission), false) =
             (self.policy, emission, *event == Event::Lost)
         {
             let basic = self.tracer.radiance(emission.along(event.optical_depth()));
-            chain.emitted += weight * basic * (chain.n_start * chain.n_start);
+            let scale = chain.n_start * chain.n_start;
+            chain.emitted += seen(chain, lent) * basic * scale;
+            if let Some(p) = lent.polarization.as_deref() {
+                observer.emitted(p.recorded() * (chain.weight * basic * scale));
+            }
         }
     }
 
