@@ -182,7 +182,7 @@ fn caustic_photons_aimed_at_specular_surfaces_carry_the_same_power() {
         let focus = DVec3::new(0.2, 0.0, 0.1);
         let sums = |near: bool| {
             let (mut s, mut q) = (0.0, 0.0);
-            for p in &sink.photons {
+            for p in sink.photons.photons() {
                 let x = p.power.iter().map(|&c| c as f64).sum::<f64>() / 3.0;
                 if !near || (p.position - focus).length() < 0.6 {
                     s += x;
@@ -194,7 +194,7 @@ fn caustic_photons_aimed_at_specular_surfaces_carry_the_same_power() {
         (
             sums(false),
             sums(true),
-            sink.photons.len() as f64 / n as f64,
+            sink.photons.photons().len() as f64 / n as f64,
         )
     };
     let local = "[[light]]\ntype = \"point\"\nposition = [1.5,3,0]\nintensity = 1\n\

@@ -62,7 +62,7 @@ fn photon_flux_onto_a_disk_matches_the_closed_form() {
         let sources = Sources::new(&tracer);
         let photons = Photons::all(Batch::Global, 0, 0, 200_000);
         let (sink, stats) = shoot(&tracer, &sources, photons, &|| false);
-        let photons = sink.photons;
+        let photons = sink.photons.photons();
         assert_eq!(stats.photons_emitted, 200_000);
         let sum = photons.iter().fold([0.0f64; 3], |acc, p| {
             [0, 1, 2].map(|c| acc[c] + p.power[c] as f64)

@@ -22,7 +22,7 @@ use crate::color::Rgb;
 use crate::ids::MediumId;
 use crate::math::Segment;
 use crate::photon::VolumeMap;
-use crate::polarization::{Polarization, Recorded, StoredStokes};
+use crate::polarization::{Polarization, Recorded};
 use crate::transport::chain::{ChainEvents, Stretch};
 use crate::transport::Tracer;
 use crate::volume::{Flights, Scattering};
@@ -221,8 +221,9 @@ impl Beams {
                 let amount = kept * photon.flux() * ((-depth).exp() * phase * scale * along.kernel);
                 match through {
                     Some(rows) => {
+                        let element = scattering.phase.mueller(before, -dir);
                         polarized +=
-                            recorded_photon(rows, &scattering, stokes, before, dir) * amount
+                            rows.recorded_through(element.as_ref(), dir, stokes, before) * amount
                     }
                     None => light += amount,
                 }
@@ -290,27 +291,6 @@ impl Beams {
                 .map_or(self.points.len(), |s| s.first);
             (r, &self.points[r.first..end], self.measures.get(k))
         })
-    }
-}
-
-/// What the camera records, through the measurement `rows` a camera path carries along `dir`,
-/// of a volume photon's light (`stokes` its Stokes vector, unpolarized where the map keeps
-/// none) travelling along `before` and scattered toward the camera by `scattering`'s phase
-/// function, per unit of the light the phase function sends that way from unpolarized light.
-fn recorded_photon(
-    rows: &Polarization,
-    scattering: &Scattering,
-    stokes: Option<&StoredStokes>,
-    before: DVec3,
-    dir: DVec3,
-) -> Recorded {
-    let mut rows = *rows;
-    if let Some(element) = scattering.phase.mueller(before, -dir) {
-        rows.meet(&element, dir);
-    }
-    match stokes {
-        Some(s) => rows.recorded_of(&Polarization::from_stored(s, before), before),
-        None => rows.recorded(),
     }
 }
 

@@ -7,6 +7,7 @@
 
 use crate::ids::PrimId;
 use crate::photon::{Photon, PhotonMap, Summand};
+use crate::polarization::StoredStokes;
 use crate::transport::visibility::Occluders;
 use crate::transport::{offset, SurfaceVertex, Tracer};
 use glam::DVec3;
@@ -56,12 +57,15 @@ impl<'a> Neighbourhood<'a> {
         &self,
         map: &PhotonMap,
         v: &SurfaceVertex,
-        weight: impl Fn(&Photon) -> T,
+        weight: impl Fn(&Photon, Option<&StoredStokes>) -> T,
     ) -> T {
         let origin = offset(v.position, v.normal);
-        let read = |p: &Photon| match self.hidden.hide(origin, p.position, p.normal) {
+        let read = |p: &Photon, stokes: Option<&StoredStokes>| match self
+            .hidden
+            .hide(origin, p.position, p.normal)
+        {
             true => T::default(),
-            false => weight(p),
+            false => weight(p, stokes),
         };
         map.weighted_among(v.position, v.normal, self.r2, &self.photons, read)
             .0

@@ -38,7 +38,7 @@ use super::single::single_scattering;
 use super::{CameraRay, FirstVertex, Integrator, Sample};
 use crate::color::Rgb;
 use crate::material::Material;
-use crate::photon::{shoot, Batch, Photon, PhotonMap, Photons, Sources, VolumeMap};
+use crate::photon::{shoot, Batch, PhotonMap, Photons, Sources, VolumeMap};
 use crate::polarization::{Polarization, Recorded};
 use crate::report::Report;
 use crate::scene::Scene;
@@ -148,10 +148,16 @@ impl PhotonMapper<'_> {
 
     /// What one pass's photon maps take (bytes) for `scene` with `photons`: as traced in
     /// chunks and merged, global photons stored ≈ 4 times each (the mean path of Russian
-    /// roulette at albedo 0.75), with their kd-tree entries.
-    pub fn memory_needed(scene: &Scene, photons: &PhotonSettings) -> u64 {
+    /// roulette at albedo 0.75), with their kd-tree entries, and each photon's Stokes vector
+    /// where the transport is `polarized`.
+    pub fn memory_needed(scene: &Scene, photons: &PhotonSettings, polarized: bool) -> u64 {
+        use std::mem::size_of;
         let plan = Plan::of(scene, photons);
-        let per_photon = 2 * std::mem::size_of::<crate::photon::Photon>() as u64 + 32;
+        let stokes = match polarized {
+            true => size_of::<crate::polarization::StoredStokes>() as u64,
+            false => 0,
+        };
+        let per_photon = 2 * (size_of::<crate::photon::Photon>() as u64 + stokes) + 32;
         let caustic = if plan.caustic { photons.caustic } else { 0 };
         let global = if plan.global { 4 * photons.global } else { 0 };
         (caustic + global).saturating_mul(per_photon)
@@ -196,7 +202,7 @@ impl<'a> PhotonMapper<'a> {
         if stop() {
             return None;
         }
-        let mut map = PhotonMap::new(sink.photons);
+        let mut map = PhotonMap::traced(sink.photons);
         if batch == Batch::Global {
             map.precompute_irradiance(self.photons.knn as usize, self.max_r2);
         }
@@ -279,7 +285,7 @@ impl<'a> PhotonMapper<'a> {
             let mut weight = Rgb::ONE;
             let mut next = vp.vertex.scatter_with(s.rng);
             let Some(first) = &next else { continue };
-            let seen = measure.through(&vp.vertex, first.sample.wi);
+            let seen = measure.through(&vp.vertex, first.sample.wi, None);
             let mut beams = Beams::default();
             while let Some(b) = next {
                 // A dye's light is path traced from points on the ray's way through it.
@@ -443,13 +449,13 @@ fn caustic_light<M: Measure>(
 ) -> M::Light {
     stats.time_query(|| match v.bsdf.lambert_albedo() {
         Some(albedo) => {
-            let e = tracer.photon_irradiance(near.estimate(map, v, Photon::flux));
+            let e = tracer.photon_irradiance(near.estimate(map, v, |p, _| p.flux()));
             measure.of(vp.throughput * albedo * e * FRAC_1_PI)
         }
         None => {
-            let sum = near.estimate(map, v, |p| {
+            let sum = near.estimate(map, v, |p, kept| {
                 let wi = p.from_direction();
-                measure.through(&vp.vertex, wi) * (v.eval(wi) * p.flux())
+                measure.through(&vp.vertex, wi, kept) * (v.eval(wi) * p.flux())
             });
             sum * tracer.photon_irradiance(Rgb::ONE) * vp.throughput
         }

@@ -3,6 +3,7 @@
 //! Queries take squared radii, as kiddo's `SquaredEuclidean` does.
 
 use crate::color::Rgb;
+use crate::polarization::StoredStokes;
 use glam::DVec3;
 use kiddo::immutable::float::kdtree::ImmutableKdTree;
 use kiddo::SquaredEuclidean;
@@ -45,6 +46,49 @@ impl Photon {
     /// The flux that reaches the surface's diffuse base ([`Photon::base`] of it).
     pub fn flux_to_base(&self) -> Rgb {
         self.flux() * self.base as f64
+    }
+}
+
+/// Photons as traced, in photon order, with their Stokes vectors where the transport
+/// is polarized (one each, or none at all).
+#[derive(Clone, Debug, Default)]
+pub struct TracedPhotons {
+    photons: Vec<Photon>,
+    stokes: Vec<StoredStokes>,
+}
+
+impl TracedPhotons {
+    /// Adds `photon`, with its Stokes vector where the transport is polarized.
+    pub fn push(&mut self, photon: Photon, stokes: Option<StoredStokes>) {
+        self.photons.push(photon);
+        self.stokes.extend(stokes);
+        debug_assert!(self.stokes.is_empty() || self.stokes.len() == self.photons.len());
+    }
+
+    /// Adds `more`, traced after these.
+    pub fn extend(&mut self, more: TracedPhotons) {
+        self.photons.extend(more.photons);
+        self.stokes.extend(more.stokes);
+    }
+
+    /// Number of photons.
+    pub fn len(&self) -> usize {
+        self.photons.len()
+    }
+
+    /// True when it holds no photon.
+    pub fn is_empty(&self) -> bool {
+        self.photons.is_empty()
+    }
+
+    /// The photons.
+    pub fn photons(&self) -> &[Photon] {
+        &self.photons
+    }
+
+    /// The photons and their Stokes vectors (empty where the transport is not polarized).
+    pub fn into_parts(self) -> (Vec<Photon>, Vec<StoredStokes>) {
+        (self.photons, self.stokes)
     }
 }
 
@@ -98,6 +142,8 @@ impl<T: Summand> Epanechnikov<T> {
 /// Photons with a kd-tree over their positions.
 pub struct PhotonMap {
     photons: Vec<Photon>,
+    /// Their Stokes vectors, where the transport is polarized (same order; else empty).
+    stokes: Vec<StoredStokes>,
     tree: Option<ImmutableKdTree<f64, u32, 3, 32>>,
     /// Precomputed irradiance of the diffuse bases, when [`PhotonMap::precompute_irradiance`]
     /// has run.
@@ -158,14 +204,25 @@ fn on_side(photon: &Photon, normal: DVec3) -> bool {
 impl PhotonMap {
     /// Builds the tree over `photons`. At most u32::MAX photons are indexed (a pass of that
     /// many would need > 300 GiB); any beyond are dropped.
-    pub fn new(mut photons: Vec<Photon>) -> Self {
+    pub fn new(photons: Vec<Photon>) -> Self {
+        let mut traced = TracedPhotons::default();
+        photons.into_iter().for_each(|p| traced.push(p, None));
+        Self::traced(traced)
+    }
+
+    /// [`PhotonMap::new`] of photons with their Stokes vectors where the transport is
+    /// polarized ([`PhotonMap::weighted_among`] shows them).
+    pub fn traced(traced: TracedPhotons) -> Self {
+        let (mut photons, mut stokes) = traced.into_parts();
         photons.truncate(u32::MAX as usize);
+        stokes.truncate(u32::MAX as usize);
         let tree = (!photons.is_empty()).then(|| {
             let points: Vec<[f64; 3]> = photons.iter().map(|p| tree_point(p.position)).collect();
             ImmutableKdTree::new_from_slice(&points)
         });
         Self {
             photons,
+            stokes,
             tree,
             sites: None,
         }
@@ -389,21 +446,22 @@ impl PhotonMap {
 
     /// [`PhotonMap::weighted`] over the photons `among` (indices, e.g. from
     /// [`PhotonMap::indices_within`] around a nearby point): the same sum when `among` holds
-    /// every photon within √`r2` of `p`.
+    /// every photon within √`r2` of `p`. `weight` is shown each photon's Stokes vector where
+    /// the map keeps them.
     pub fn weighted_among<T: Summand>(
         &self,
         p: DVec3,
         normal: DVec3,
         r2: f64,
         among: &[u32],
-        weight: impl Fn(&Photon) -> T,
+        weight: impl Fn(&Photon, Option<&StoredStokes>) -> T,
     ) -> (T, usize) {
         Epanechnikov::sum(r2, |kernel| {
             for &i in among {
                 let photon = &self.photons[i as usize];
                 let d2 = photon.position.distance_squared(p);
                 if d2 <= r2 && on_side(photon, normal) {
-                    kernel.add(weight(photon), d2);
+                    kernel.add(weight(photon, self.stokes.get(i as usize)), d2);
                 }
             }
         })

@@ -22,9 +22,9 @@ mod shell;
 mod volume;
 
 pub use budget::{Budget, Dye, DyeEvent, DyeSite, Ended, Fate, Ledger};
-pub use map::{Photon, PhotonMap, Summand};
+pub use map::{Photon, PhotonMap, Summand, TracedPhotons};
 pub use shell::Shell;
-pub use volume::{VolumeMap, VolumePhotons};
+pub use volume::VolumeMap;
 
 use crate::bsdf::{Bsdf, Lobes};
 use crate::color::Rgb;
@@ -33,7 +33,7 @@ use crate::environment::Environment;
 use crate::ids::{MediumId, PrimId};
 use crate::lights::{Aim, Cone, Emission, Entry, Light};
 use crate::math::Ball;
-use crate::polarization::{Polarization, Sense};
+use crate::polarization::{Polarization, Sense, StoredStokes};
 use crate::receiver::Detection;
 use crate::sampling::{cosine_hemisphere, stream, uniform_sphere, Discrete, Frame, Pick, Purpose};
 use crate::spectrum::{colour, Fluorophore, Spectrum};
@@ -455,9 +455,9 @@ pub enum Batch {
 #[derive(Clone, Debug, Default)]
 pub struct Sink {
     /// Photons stored at diffuse hits.
-    pub photons: Vec<Photon>,
+    pub photons: TracedPhotons,
     /// Caustic photons stored where they first scattered in a medium.
-    pub volume: VolumePhotons,
+    pub volume: TracedPhotons,
     /// Receiver crossings.
     pub detections: Vec<Detection>,
     /// Where the photons' power went.
@@ -828,6 +828,17 @@ fn scatter_photon(
         *state = Polarization::unpolarized(Sense::WithLight, bounce.scattered.ray.direction);
     }
     Some(bounce)
+}
+
+/// What a map keeps of a photon's polarization `state` where it arrives from unit `wo`
+/// (pointing back along its way) — its Stokes vector where the transport is polarized, on
+/// which the light a polarizing phase function or a plastic sends toward a camera depends;
+/// nothing where it is not.
+fn stokes_kept(tracer: &Tracer, state: &Option<Polarization>, wo: DVec3) -> Option<StoredStokes> {
+    (tracer.settings.polarized).then(|| match state {
+        Some(state) => state.stored(),
+        None => Polarization::unpolarized(Sense::WithLight, -wo).stored(),
+    })
 }
 
 /// The most directions [`polarized_direction`] draws before it gives up: each is taken with
@@ -1224,8 +1235,8 @@ struct Lent<'a, R> {
 
 /// Where a photon's branches are stored: the photons on surfaces and in media.
 struct Stores<'a> {
-    photons: &'a mut Vec<Photon>,
-    volume: &'a mut VolumePhotons,
+    photons: &'a mut TracedPhotons,
+    volume: &'a mut TracedPhotons,
 }
 
 /// Follows `branch` of a photon launched as `launch` to its end, storing it as its batch says
@@ -1317,16 +1328,13 @@ fn follow_branch<'w, R: Rng>(
                 Batch::Receivers => false,
             };
             if stores && v.lobes().has_diffuse() {
-                stored.photons.push(photon);
+                stored
+                    .photons
+                    .push(photon, stokes_kept(tracer, &b.polarization, v.wo));
             }
         } else if tag.batch == Batch::Caustic && b.bent && !b.fogged {
             // L (S|G)+ V: a volume caustic, where it first scatters in a medium.
-            // Where the transport is polarized, with its Stokes vector, on which the light a
-            // polarizing phase function scatters toward a camera depends.
-            let stokes = (tracer.settings.polarized).then(|| match &b.polarization {
-                Some(state) => state.stored(),
-                None => Polarization::unpolarized(Sense::WithLight, -vertex.wo()).stored(),
-            });
+            let stokes = stokes_kept(tracer, &b.polarization, vertex.wo());
             let photon = Photon {
                 position: vertex.position(),
                 normal: DVec3::ZERO,

@@ -10,7 +10,7 @@
 //! becomes its chord integral ([`Along::kernel`], 1/area): the photon's share of the light
 //! in-scattered along the whole stretch, with no distance drawn.
 
-use super::Photon;
+use super::{Photon, TracedPhotons};
 use crate::bvh::{build_bvh, Tuning};
 use crate::math::Bounds3;
 use crate::math::Segment;
@@ -24,39 +24,6 @@ use obvhs::ray::RayHit;
 use rayon::prelude::*;
 use std::f64::consts::PI;
 use std::num::NonZero;
-
-/// Volume photons as traced, in photon order, with their Stokes vectors where the transport
-/// is polarized (one each, or none at all).
-#[derive(Clone, Debug, Default)]
-pub struct VolumePhotons {
-    photons: Vec<Photon>,
-    stokes: Vec<StoredStokes>,
-}
-
-impl VolumePhotons {
-    /// Adds `photon`, with its Stokes vector where the transport is polarized.
-    pub fn push(&mut self, photon: Photon, stokes: Option<StoredStokes>) {
-        self.photons.push(photon);
-        self.stokes.extend(stokes);
-        debug_assert!(self.stokes.is_empty() || self.stokes.len() == self.photons.len());
-    }
-
-    /// Adds `more`, traced after these.
-    pub fn extend(&mut self, more: VolumePhotons) {
-        self.photons.extend(more.photons);
-        self.stokes.extend(more.stokes);
-    }
-
-    /// Number of photons.
-    pub fn len(&self) -> usize {
-        self.photons.len()
-    }
-
-    /// True when it holds no photon.
-    pub fn is_empty(&self) -> bool {
-        self.photons.is_empty()
-    }
-}
 
 /// Volume photons, each with the squared radius of its ball, and a BVH over the balls.
 pub struct VolumeMap {
@@ -101,11 +68,8 @@ impl VolumeMap {
     /// The map of `photons` (at most u32::MAX of them), each with the squared radius
     /// `shrink` × the squared distance to its k-th nearest neighbour among them (bounded by
     /// `max_r2`: where fewer lie within that, `max_r2`), as in Jarosz et al.'s estimate.
-    pub fn new(traced: VolumePhotons, k: usize, max_r2: f64, shrink: f64) -> Self {
-        let VolumePhotons {
-            mut photons,
-            mut stokes,
-        } = traced;
+    pub fn new(traced: TracedPhotons, k: usize, max_r2: f64, shrink: f64) -> Self {
+        let (mut photons, mut stokes) = traced.into_parts();
         photons.truncate(u32::MAX as usize);
         stokes.truncate(u32::MAX as usize);
         if photons.is_empty() {
@@ -398,7 +362,7 @@ mod tests {
                 base: 1.0,
             })
             .collect();
-        let mut traced = VolumePhotons::default();
+        let mut traced = TracedPhotons::default();
         photons.into_iter().for_each(|p| traced.push(p, None));
         VolumeMap::new(traced, 8, 0.01, 0.5)
     }

@@ -320,7 +320,7 @@ impl Polarization {
     /// What the camera records (against the light: the rows) of the light `light` (with it:
     /// its Stokes vector per unit of power) arriving along unit `direction` (the light's), per
     /// unit of that power: each row times the light's Stokes vector in one basis.
-    pub fn recorded_of(&self, light: &Polarization, direction: DVec3) -> Recorded {
+    fn recorded_of(&self, light: &Polarization, direction: DVec3) -> Recorded {
         let mut light = *light;
         // The rows' basis is across the light (a row's basis is the light's it measures).
         light.rebase(direction, self.x);
@@ -334,6 +334,30 @@ impl Polarization {
         }
     }
 
+    /// What the camera records, through these rows carried along unit `direction` (the
+    /// path's), of light travelling along unit `light_direction` that meets `element` (None: a
+    /// depolarizer) — unpolarized, or of the Stokes vector a photon map kept (`kept`) — per
+    /// unit of the light the element sends on from unpolarized light.
+    pub fn recorded_through(
+        &self,
+        element: Option<&Element>,
+        direction: DVec3,
+        kept: Option<&StoredStokes>,
+        light_direction: DVec3,
+    ) -> Recorded {
+        let Some(element) = element else {
+            // Depolarized light is recorded by each row's first element, which a depolarizer
+            // keeps: no copy to depolarize.
+            return self.recorded();
+        };
+        let mut rows = *self;
+        rows.meet(element, direction);
+        match kept {
+            Some(s) => rows.recorded_of(&Self::from_stored(s, light_direction), light_direction),
+            None => rows.recorded(),
+        }
+    }
+
     /// The light's Stokes vector as a photon map keeps it (with the light).
     pub fn stored(&self) -> StoredStokes {
         StoredStokes {
@@ -344,7 +368,7 @@ impl Polarization {
 
     /// The light a photon map kept (`stored`), travelling along unit `direction`: its axis
     /// (kept to f32's digits) projected across the direction again.
-    pub fn from_stored(stored: &StoredStokes, direction: DVec3) -> Self {
+    fn from_stored(stored: &StoredStokes, direction: DVec3) -> Self {
         let x = DVec3::from_array(stored.x.map(f64::from));
         let x = (x - x.dot(direction) * direction)
             .try_normalize()

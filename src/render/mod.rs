@@ -603,7 +603,11 @@ pub fn memory_needed(scene: &Scene, settings: &Settings) -> u64 {
     // What the integrator keeps besides the film, and its film's layers.
     let (own, layers) = match settings.integrator {
         Kind::PhotonMap => (
-            PhotonMapper::memory_needed(scene, &settings.photons),
+            PhotonMapper::memory_needed(
+                scene,
+                &settings.photons,
+                crate::transport::carries_polarization(scene, &settings.trace),
+            ),
             PhotonMapper::LAYERS,
         ),
         Kind::Path => (0, PathTracer::LAYERS),

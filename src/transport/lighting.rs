@@ -11,7 +11,7 @@ use super::{offset, visibility, Scattered, Stats, SurfaceVertex, Tracer, Vertex}
 use crate::color::Rgb;
 use crate::ids::MediumId;
 use crate::lights::LightSamples;
-use crate::polarization::{Polarization, Recorded};
+use crate::polarization::{Polarization, Recorded, StoredStokes};
 use crate::sampling::{Given, Pick};
 use crate::scene::Role;
 use glam::DVec3;
@@ -33,10 +33,10 @@ pub trait Measure {
         + Mul<Rgb, Output = Self::Light>
         + Mul<f64, Output = Self::Light>
         + Div<f64, Output = Self::Light>;
-    /// What is tallied per unit of radiance of the unpolarized light arriving at `vertex` from
-    /// unit `wi` that leaves toward ωo, the scattering function aside
-    /// ([`Vertex::measure_toward`]).
-    fn through(&self, vertex: &Vertex, wi: DVec3) -> Self::Light;
+    /// What is tallied per unit of radiance of the light arriving at `vertex` from unit `wi`
+    /// that leaves toward ωo, the scattering function aside ([`Vertex::measure_toward`]): of
+    /// unpolarized light, or of the Stokes vector a photon map kept (`kept`).
+    fn through(&self, vertex: &Vertex, wi: DVec3, kept: Option<&StoredStokes>) -> Self::Light;
     /// Depolarized light of radiance `value` (as the path's weight sees it) where the path is.
     fn of(&self, value: Rgb) -> Self::Light;
     /// Light as the camera records it, as tallied.
@@ -55,7 +55,7 @@ pub struct Radiance;
 
 impl Measure for Radiance {
     type Light = Rgb;
-    fn through(&self, _: &Vertex, _: DVec3) -> Rgb {
+    fn through(&self, _: &Vertex, _: DVec3, _: Option<&StoredStokes>) -> Rgb {
         Rgb::ONE
     }
     fn of(&self, value: Rgb) -> Rgb {
@@ -75,17 +75,9 @@ impl Measure for Radiance {
 
 impl Measure for Polarization {
     type Light = Recorded;
-    fn through(&self, vertex: &Vertex, wi: DVec3) -> Recorded {
-        match vertex.mueller(wi) {
-            Some(element) => {
-                let mut measure = *self;
-                measure.meet(&element, -vertex.wo());
-                measure.recorded()
-            }
-            // Depolarized light is recorded by each row's first element, which a depolarizer
-            // keeps: no copy to depolarize.
-            None => self.recorded(),
-        }
+    fn through(&self, vertex: &Vertex, wi: DVec3, kept: Option<&StoredStokes>) -> Recorded {
+        let element = vertex.mueller(wi);
+        self.recorded_through(element.as_ref(), -vertex.wo(), kept, -wi)
     }
     fn of(&self, value: Rgb) -> Recorded {
         Recorded::of(Some(self), value)
@@ -227,7 +219,7 @@ fn straight_light<M: Measure>(
     }
     let kept = visibility::transmittance(tracer, side.origin, side.medium, inc.wi, reach);
     let weight = power_heuristic(inc.pdf * chosen, vertex.pdf(inc.wi));
-    measure.through(vertex, inc.wi)
+    measure.through(vertex, inc.wi, None)
         * (f * tracer.emitted_by(index, inc.irradiance)
             * (side.cos * weight * side.radiance_scale)
             * kept)
@@ -278,7 +270,7 @@ fn curved_light<M: Measure>(
     let unscattered = tracer
         .scattering(m)
         .map_or(Rgb::ONE, |sc| sc.transmittance(link.column));
-    measure.through(vertex, link.direction)
+    measure.through(vertex, link.direction, None)
         * (vertex.eval(link.direction) * e * unscattered * (cos * radiance_scale))
 }
 
@@ -333,7 +325,7 @@ pub fn direct_light<M: Measure>(
     let mut walker = Walker::carrying(carried, Policy::Unscattered);
     let chain = walker.follow(s.ray, rng, stats, &mut ());
     let mis = bsdf_sample_weight(carried.tracer, vertex, &s, &chain);
-    radiance += measure.through(vertex, s.sample.wi)
+    radiance += measure.through(vertex, s.sample.wi, None)
         * (s.sample.weight * emission_seen(walker.tracer, &chain) * (mis * s.radiance_scale));
     radiance
 }

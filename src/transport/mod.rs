@@ -95,6 +95,16 @@ struct Marched {
     optical_depth: Rgb,
 }
 
+/// Whether transport on `scene` under `settings` is polarized: asked for (`polarized`, or
+/// `stokes`), or implied by a polarizing sheet, a camera polarizer or a crystal.
+pub fn carries_polarization(scene: &Scene, settings: &TraceSettings) -> bool {
+    settings.polarized
+        || settings.stokes
+        || (scene.materials.iter()).any(|m| matches!(m, crate::material::Material::Sheet(_)))
+        || (scene.camera.as_ref()).is_some_and(|c| c.polarizer.is_some())
+        || scene.media().first_crystal().is_some()
+}
+
 impl<'a> Tracer<'a> {
     /// The tracer of a scene; the world sphere is the scene's `world_radius` around the centre
     /// of everything in it (primitives and camera), or 10× its extent (at least 10 units).
@@ -115,11 +125,7 @@ impl<'a> Tracer<'a> {
             radius: extent.max(1e-9),
         };
         let has_crystals = scene.media().first_crystal().is_some();
-        let polarized = settings.polarized
-            || settings.stokes
-            || (scene.materials.iter()).any(|m| matches!(m, crate::material::Material::Sheet(_)))
-            || (scene.camera.as_ref()).is_some_and(|c| c.polarizer.is_some())
-            || has_crystals;
+        let polarized = carries_polarization(scene, settings);
         let mut tracer = Self {
             scene,
             settings: TraceSettings {
