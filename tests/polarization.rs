@@ -580,6 +580,35 @@ fn a_helical_ray_in_a_render_turns_its_polarization_by_the_geometric_phase() {
     assert!(s3.abs() < 1e-5, "S3/S0 {s3}");
 }
 
+/// The shipped `scenes/helical_fiber.toml` says what it shows: one, two and three turns along
+/// the helix, its receivers read S1/S0 = cos 2nΓ and S2/S0 = sin 2nΓ, Γ = 2π(1 − cos θ)
+/// (1e-5 a turn, as the render above).
+#[test]
+fn the_helical_fiber_scene_turns_its_light_by_the_geometric_phase_each_turn() {
+    let (scene, settings) =
+        grinlight::scene::load::load_scene(std::path::Path::new("scenes/helical_fiber.toml"))
+            .unwrap();
+    let measured = grinlight::render::measure(&scene, &settings, 0, &())
+        .unwrap()
+        .0;
+    let sin2: f64 = 1.5 * 0.1 / (1.5 * (1.0 - 0.05));
+    let gamma = TAU * (1.0 - (1.0 - sin2).sqrt());
+    // The receivers in the scene's order.
+    let names = ["one_turn", "two_turns", "three_turns"];
+    assert_eq!(measured.len(), 3);
+    for (k, (m, name)) in measured.iter().zip(names).enumerate() {
+        let turns = (k + 1) as f64;
+        assert!(m.flux.0 > 0.0, "{name}");
+        let [s1, s2] = [0, 1].map(|i| m.stokes[i].flux.0 / m.flux.0);
+        let (want1, want2) = ((2.0 * turns * gamma).cos(), (2.0 * turns * gamma).sin());
+        println!("{name}: S1/S0 {s1:.6} ({want1:.6}), S2/S0 {s2:.6} ({want2:.6})");
+        assert!(
+            (s1 - want1).abs() < 1e-5 * turns && (s2 - want2).abs() < 1e-5 * turns,
+            "{name}: {s1} {s2} against {want1} {want2}"
+        );
+    }
+}
+
 /// What a camera path gathers along its stretches — fog's in-scattered light (volume beams,
 /// single scattering) and a medium's emission — is seen through the polarizers it crossed
 /// before: behind crossed polarizers a box of lit, glowing fog (its boundary index-matched) is
