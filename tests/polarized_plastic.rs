@@ -10,7 +10,6 @@ use grinlight::bsdf::{Bsdf, Coat, Microsurface};
 use grinlight::color::Rgb;
 use grinlight::polarization::Sense;
 use grinlight::receiver::Measurement;
-use std::path::Path;
 
 /// The coat's index in every scene here.
 const ETA: f64 = 1.5;
@@ -275,20 +274,8 @@ fn a_plastic_polarizes_the_light_the_maps_bring_alike_in_both_integrators() {
             let ratios: Vec<f64> = (1..=4)
                 .map(|seed| {
                     let text = room(integrator, seed);
-                    let (scene, settings) = grinlight::scene::load::parse_scene(
-                        std::path::Path::new("room.toml"),
-                        text,
-                    )
-                    .unwrap();
-                    let film = grinlight::render::render(&scene, &settings, &()).unwrap().0;
-                    let near_half = |name| {
-                        let layer = film.layer(name).unwrap();
-                        layer[16 * 32..]
-                            .iter()
-                            .map(|p| f64::from(p[1]))
-                            .sum::<f64>()
-                    };
-                    near_half("S1") / near_half("S0")
+                    let film = rendered(text);
+                    near_half(&film, "S1") / near_half(&film, "S0")
                 })
                 .collect();
             let mean = ratios.iter().sum::<f64>() / 4.0;
@@ -341,17 +328,9 @@ fn a_polarized_caustic_on_a_plastic_reads_alike_in_both_integrators() {
             .map(|seed| {
                 let [x, z] = ["[1, 0, 0]", "[0, 0, 1]"].map(|axis| {
                     let text = room(integrator, axis, seed);
-                    let (scene, settings) =
-                        grinlight::scene::load::parse_scene(Path::new("room.toml"), text).unwrap();
-                    let film = grinlight::render::render(&scene, &settings, &()).unwrap().0;
-                    let near_half = |name| {
-                        let layer = film.layer(name).unwrap();
-                        layer[16 * 32..]
-                            .iter()
-                            .map(|p| f64::from(p[1]))
-                            .sum::<f64>()
-                    };
-                    (near_half("S0"), near_half("S1") / near_half("S0"))
+                    let film = rendered(text);
+                    let s0 = near_half(&film, "S0");
+                    (s0, near_half(&film, "S1") / s0)
                 });
                 [x.1, z.1, x.0 / z.0, 0.0]
             })
@@ -374,4 +353,18 @@ fn a_polarized_caustic_on_a_plastic_reads_alike_in_both_integrators() {
             "{name}: {a:?} against {b:?}"
         );
     }
+}
+
+/// The film of scene `text` (a test's own, at a made-up path).
+fn rendered(text: String) -> grinlight::film::Film {
+    let (scene, settings) =
+        grinlight::scene::load::parse_scene(std::path::Path::new("room.toml"), text).unwrap();
+    grinlight::render::render(&scene, &settings, &()).unwrap().0
+}
+
+/// The green channel of layer `name` summed over the lower half of a 32 × 32 image (the
+/// floor nearest the camera).
+fn near_half(film: &grinlight::film::Film, name: &str) -> f64 {
+    let layer = film.layer(name).unwrap();
+    layer[16 * 32..].iter().map(|p| f64::from(p[1])).sum()
 }

@@ -71,16 +71,6 @@ impl TracedPhotons {
         self.stokes.extend(more.stokes);
     }
 
-    /// Number of photons.
-    pub fn len(&self) -> usize {
-        self.photons.len()
-    }
-
-    /// True when it holds no photon.
-    pub fn is_empty(&self) -> bool {
-        self.photons.is_empty()
-    }
-
     /// The photons.
     pub fn photons(&self) -> &[Photon] {
         &self.photons
