@@ -132,7 +132,9 @@ impl Coat {
         // its own plane of incidence, turned into the basis across both directions.
         let transmitted = |w: DVec3| -> (DVec4, Option<DVec3>) {
             let t = mueller::dielectric_transmission(w.dot(n).min(1.0), 1.0, self.eta).col(0);
-            let shape = DVec4::new(1.0, t.y / t.x, 0.0, 0.0);
+            // Grazing, where the coat lets nothing through, s and p alike.
+            let b = if t.x > 0.0 { t.y / t.x } else { 0.0 };
+            let shape = DVec4::new(1.0, b, 0.0, 0.0);
             (shape, w.cross(n).try_normalize())
         };
         let exit = match transmitted(to) {

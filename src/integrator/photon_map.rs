@@ -148,8 +148,8 @@ impl PhotonMapper<'_> {
 
     /// What one pass's photon maps take (bytes) for `scene` with `photons`: as traced in
     /// chunks and merged, global photons stored ≈ 4 times each (the mean path of Russian
-    /// roulette at albedo 0.75), with their kd-tree entries, and each photon's Stokes vector
-    /// where the transport is `polarized`.
+    /// roulette at albedo 0.75), with their kd-tree entries, and each caustic photon's Stokes
+    /// vector where the transport is `polarized`.
     pub fn memory_needed(scene: &Scene, photons: &PhotonSettings, polarized: bool) -> u64 {
         use std::mem::size_of;
         let plan = Plan::of(scene, photons);
@@ -157,10 +157,10 @@ impl PhotonMapper<'_> {
             true => size_of::<crate::polarization::StoredStokes>() as u64,
             false => 0,
         };
-        let per_photon = 2 * (size_of::<crate::photon::Photon>() as u64 + stokes) + 32;
+        let per_photon = 2 * size_of::<crate::photon::Photon>() as u64 + 32;
         let caustic = if plan.caustic { photons.caustic } else { 0 };
         let global = if plan.global { 4 * photons.global } else { 0 };
-        (caustic + global).saturating_mul(per_photon)
+        (caustic + global).saturating_mul(per_photon) + caustic.saturating_mul(2 * stokes)
     }
 }
 
@@ -265,9 +265,9 @@ impl<'a> PhotonMapper<'a> {
     /// glossy lobes: the map is read through diffuse lobes only, so each light path is
     /// counted once, and through a glossy lobe the photons would be a narrow, noisy estimate.
     /// Emission and environment met by gather rays are not counted: that light is the direct
-    /// or caustic part. The light a gather ray brings back is depolarized (the map's photons
-    /// keep no Stokes vector); `measure` records it through the visible point's Mueller matrix
-    /// for the ray's direction (a plastic's polarizes it).
+    /// or caustic part. The light a gather ray brings back is taken as unpolarized (the global
+    /// map's irradiance reads no Stokes vector); `measure` records it through the visible
+    /// point's Mueller matrix for the ray's direction (a plastic's polarizes it).
     fn secondary<M: Measure>(
         &self,
         global: &PhotonMap,
@@ -433,11 +433,11 @@ fn recorded_direct(
     }
 }
 
-/// The caustic light (`tracer`: the one the path ended on) the photons of `map` around the visible point `v` (the path's `vp`,
-/// served by `near`) send the camera, as `measure` records it: each photon's flux through the
-/// BSDF (a Lambertian surface's albedo/π applied once), depolarized light (the map's photons
-/// keep no Stokes vector) taken to the camera through the point's Mueller matrix for its
-/// direction where it has one (a plastic's).
+/// The caustic light the photons of `map` around the visible point `v` (the path's `vp`,
+/// served by `near`; `tracer` the one the path ended on) send the camera, as `measure`
+/// records it: each photon's flux through the BSDF (a Lambertian surface's albedo/π applied
+/// once), taken to the camera through the point's Mueller matrix for the photon's direction
+/// and the Stokes vector the map kept of it, where the point has one (a plastic's).
 fn caustic_light<M: Measure>(
     tracer: &Tracer,
     map: &PhotonMap,

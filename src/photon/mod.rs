@@ -1328,9 +1328,14 @@ fn follow_branch<'w, R: Rng>(
                 Batch::Receivers => false,
             };
             if stores && v.lobes().has_diffuse() {
-                stored
-                    .photons
-                    .push(photon, stokes_kept(tracer, &b.polarization, v.wo));
+                // The caustic map's photons keep their Stokes vectors (the caustic estimate
+                // reads them through the surface's matrix); the global map's irradiance reads
+                // none.
+                let stokes = match tag.batch {
+                    Batch::Caustic => stokes_kept(tracer, &b.polarization, v.wo),
+                    Batch::Global | Batch::Receivers => None,
+                };
+                stored.photons.push(photon, stokes);
             }
         } else if tag.batch == Batch::Caustic && b.bent && !b.fogged {
             // L (S|G)+ V: a volume caustic, where it first scatters in a medium.
