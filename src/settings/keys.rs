@@ -421,7 +421,7 @@ pub const POLARIZED: Key = Key {
     name: "polarized",
     table: Table::Render,
     default: "false",
-    doc: "Carry polarization (Stokes vectors through Fresnel reflection and refraction, smooth and rough conductors and dielectrics, polarizer and retarder sheets, crystal faces, Rayleigh scattering, and the geometric phase along curved stretches; other scattering vertices depolarize); a polarizer or retarder in the scene turns it on",
+    doc: "Carry polarization (Stokes vectors through Fresnel reflection and refraction, smooth and rough conductors and dielectrics, plastics, polarizer and retarder sheets, crystal faces, Rayleigh scattering, and the geometric phase along curved stretches; other scattering vertices depolarize); a polarizer or retarder in the scene turns it on",
     kind: Kind::Flag {
         set: |t, b| t.settings.trace.polarized = b,
     },
