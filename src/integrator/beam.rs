@@ -43,9 +43,9 @@ pub struct Beams {
     measures: Vec<Polarization>,
     /// Every recorded stretch's points after its origin, in order.
     points: Vec<DVec3>,
-    /// S1–S3 of the light media emitted along the chain as the camera records it, where the
-    /// chain carries a measurement of them ([`ChainEvents::emitted`]).
-    emitted: Option<[Rgb; 3]>,
+    /// The light media emitted along the chain as the camera records it, where the chain
+    /// carries a measurement ([`ChainEvents::emitted`]; its S1–S3 are read).
+    emitted: Recorded,
     /// Whether the stretch under way is recorded.
     recording: bool,
 }
@@ -158,7 +158,7 @@ impl Beams {
         self.stretches.clear();
         self.measures.clear();
         self.points.clear();
-        self.emitted = None;
+        self.emitted = Recorded::default();
         self.recording = false;
         Recording {
             beams: self,
@@ -171,7 +171,7 @@ impl Beams {
     pub fn emission(&self, s0: Rgb) -> Recorded {
         Recorded {
             s0,
-            stokes: self.emitted,
+            stokes: self.emitted.stokes,
         }
     }
 
@@ -384,12 +384,7 @@ impl ChainEvents for Recording<'_> {
     }
 
     fn emitted(&mut self, light: Recorded) {
-        let beams = &mut *self.beams;
-        beams.emitted = match (beams.emitted, light.stokes) {
-            (Some(sum), Some(more)) => Some([0, 1, 2].map(|k| sum[k] + more[k])),
-            (sum, None) => sum,
-            (None, more) => more,
-        };
+        self.beams.emitted += light;
     }
 
     fn point(&mut self, p: DVec3) {
