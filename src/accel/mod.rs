@@ -28,9 +28,10 @@ pub struct PrimHit {
 /// Primitives with a BVH over them; a hit names its primitive by its place in `primitives`.
 pub struct Accel {
     primitives: Vec<Primitive>,
-    /// Over the primitives not in a stack; leaf `i` is primitive `in_bvh[i]`.
+    /// Over the primitives not in a stack.
     bvh: Bvh2,
-    in_bvh: Vec<PrimId>,
+    /// The primitive in each of the BVH's leaf slots (`bvh.primitive_indices`' order).
+    in_slot: Vec<PrimId>,
     stacks: Vec<CoaxialStack>,
 }
 
@@ -49,10 +50,13 @@ impl Accel {
                 .map(|&i| padded(primitives[i.index()].bounds())),
             Tuning::Speed,
         );
+        let in_slot = (bvh.primitive_indices.iter())
+            .map(|&i| in_bvh[i as usize])
+            .collect();
         Self {
             primitives,
             bvh,
-            in_bvh,
+            in_slot,
             stacks,
         }
     }
@@ -76,7 +80,7 @@ impl Accel {
                 best = Some(hit);
             }
         }
-        if self.in_bvh.is_empty() {
+        if self.in_slot.is_empty() {
             return best;
         }
         // The search ends at t_max or a stack's hit: nodes beyond it are not visited (a free
@@ -84,7 +88,7 @@ impl Accel {
         let ray = TraversalRay::new(o, d, best.map_or(t_max, |b| b.hit.t));
         let mut found = RayHit::none();
         self.bvh.ray_traverse(ray.ray, &mut found, |_, i| {
-            let prim = self.in_bvh[self.bvh.primitive_indices[i] as usize];
+            let prim = self.in_slot[i];
             let limit = best.map_or(t_max, |b| b.hit.t);
             match self.primitive(prim).intersect_ray(o, d, t_min, limit) {
                 Some(hit) => {
@@ -117,16 +121,16 @@ impl Accel {
                 from = b.hit.t;
             }
         }
-        if self.in_bvh.is_empty() {
+        if self.in_slot.is_empty() {
             return false;
         }
         let ray = TraversalRay::new(o, d, t_max);
         let missed = self.bvh.ray_traverse_miss(ray.ray, |_, i| {
-            let id = self.in_bvh[self.bvh.primitive_indices[i] as usize];
-            match self.primitive(id).intersect_ray(o, d, t_min, t_max) {
+            let id = self.in_slot[i];
+            match self.primitive(id).meets_ray(o, d, t_min, t_max) && !passes(id) {
                 // Any value below the ray's bound ends the traversal.
-                Some(_) if !passes(id) => f32::NEG_INFINITY,
-                _ => f32::INFINITY,
+                true => f32::NEG_INFINITY,
+                false => f32::INFINITY,
             }
         });
         !missed
@@ -149,11 +153,11 @@ impl Accel {
             return true;
         }
         let mut found = false;
-        if !self.in_bvh.is_empty() {
+        if !self.in_slot.is_empty() {
             self.bvh.aabb_traverse(padded(bounds), |bvh, node_index| {
                 let node = &bvh.nodes[node_index as usize];
                 found = (node.first_index..node.first_index + node.prim_count).any(|i| {
-                    let id = self.in_bvh[bvh.primitive_indices[i as usize] as usize];
+                    let id = self.in_slot[i as usize];
                     self.primitive(id).may_cross(hull)
                 });
                 !found
@@ -170,13 +174,13 @@ impl Accel {
                 stack.members().for_each(&mut f);
             }
         }
-        if self.in_bvh.is_empty() {
+        if self.in_slot.is_empty() {
             return;
         }
         self.bvh.aabb_traverse(padded(bounds), |bvh, node_index| {
             let node = &bvh.nodes[node_index as usize];
             for i in node.first_index..node.first_index + node.prim_count {
-                let id = self.in_bvh[bvh.primitive_indices[i as usize] as usize];
+                let id = self.in_slot[i as usize];
                 if self.primitive(id).bounds().overlaps(&bounds) {
                     f(id);
                 }
@@ -208,13 +212,13 @@ impl SegmentHits for Accel {
                 }
             }
         }
-        if self.in_bvh.is_empty() {
+        if self.in_slot.is_empty() {
             return best;
         }
         self.bvh.aabb_traverse(padded(bounds), |bvh, node_index| {
             let node = &bvh.nodes[node_index as usize];
             for i in node.first_index..node.first_index + node.prim_count {
-                let prim = self.in_bvh[bvh.primitive_indices[i as usize] as usize];
+                let prim = self.in_slot[i as usize];
                 let limit = best.map_or(length, |b| b.hit.t);
                 if let Some(hit) = self
                     .primitive(prim)

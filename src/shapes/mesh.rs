@@ -254,6 +254,22 @@ impl TriangleMesh {
         best.map(|(id, h)| self.shaded(id, o + h.t * d, h))
     }
 
+    /// Whether the straight ray o + t d (d unit) meets a triangle with t ∈ (t_min, t_max): an
+    /// any-hit query, which stops at the first triangle it finds ([`Self::intersect_ray`]
+    /// would go on to the nearest and complete its hit).
+    pub fn meets_ray(&self, o: DVec3, d: DVec3, t_min: f64, t_max: f64) -> bool {
+        let ray = TraversalRay::new(o, d, t_max);
+        let missed = self.bvh.ray_traverse_miss(ray.ray, |_, i| {
+            let id = self.bvh.primitive_indices[i] as usize;
+            match self.triangle(id).ray_parameter(o, d, t_min, t_max) {
+                // Any value below the ray's bound ends the traversal.
+                Some(_) => f32::NEG_INFINITY,
+                None => f32::INFINITY,
+            }
+        });
+        !missed
+    }
+
     /// Calls `visit` with each triangle that may meet the path `hull` holds, until `visit`
     /// returns false: the BVH is descended where a node's box, grown by the hull's deviation,
     /// meets the hull's chord (a long diagonal step's own box would take in a whole patch of

@@ -48,6 +48,12 @@ impl Quad {
     pub fn point_at(&self, (u, v): (f64, f64)) -> DVec3 {
         self.origin + u * self.e1 + v * self.e2
     }
+
+    /// The parameter t ∈ (t_min, t_max) where the straight ray o + t d meets it.
+    pub fn ray_parameter(&self, o: DVec3, d: DVec3, t_min: f64, t_max: f64) -> Option<f64> {
+        let (t, uv) = edge_coordinates_hit(self.origin, self.e1, self.e2, o, d, t_min, t_max)?;
+        ((0.0..=1.0).contains(&uv.x) && (0.0..=1.0).contains(&uv.y)).then_some(t)
+    }
 }
 
 /// A disk, or an annulus when `inner` > 0.
@@ -277,6 +283,20 @@ impl Primitive {
         self.flat_ray_hit(o, d, t_min, t_max)
     }
 
+    /// Whether the straight ray o + t d (d unit) meets the primitive with t ∈ (t_min, t_max):
+    /// [`Self::intersect_ray`]'s answer without the hit (a shadow ray's question; a mesh
+    /// stops at the first triangle it finds).
+    pub fn meets_ray(&self, o: DVec3, d: DVec3, t_min: f64, t_max: f64) -> bool {
+        match self {
+            Primitive::Mesh(mesh) => mesh.meets_ray(o, d, t_min, t_max),
+            Primitive::Quad(q) => q.ray_parameter(o, d, t_min, t_max).is_some(),
+            Primitive::Triangle(t) => t.ray_parameter(o, d, t_min, t_max).is_some(),
+            Primitive::Sphere { .. } | Primitive::Tube { .. } | Primitive::Disk(..) => {
+                self.flat_ray_hit(o, d, t_min, t_max).is_some()
+            }
+        }
+    }
+
     /// [`Self::intersect_ray`] for the analytic primitives.
     fn flat_ray_hit(&self, o: DVec3, d: DVec3, t_min: f64, t_max: f64) -> Option<Hit> {
         let valid = |t: f64| t > t_min && t < t_max;
@@ -328,10 +348,9 @@ impl Primitive {
                     })
                 })
             }
-            Primitive::Quad(Quad { origin, e1, e2 }) => {
-                let (t, uv) = edge_coordinates_hit(origin, e1, e2, o, d, t_min, t_max)?;
-                let inside = (0.0..=1.0).contains(&uv.x) && (0.0..=1.0).contains(&uv.y);
-                inside.then(|| Hit::flat(t, e1.cross(e2).normalize()))
+            Primitive::Quad(q) => {
+                let t = q.ray_parameter(o, d, t_min, t_max)?;
+                Some(Hit::flat(t, q.normal()))
             }
             Primitive::Triangle(t) => t.intersect_ray(o, d, t_min, t_max),
             Primitive::Disk(..) => {

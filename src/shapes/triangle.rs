@@ -119,9 +119,15 @@ impl Triangle {
 
     /// Nearest hit of the straight ray o + t d with t ∈ (t_min, t_max) (its (u, v) not set).
     pub fn intersect_ray(&self, o: DVec3, d: DVec3, t_min: f64, t_max: f64) -> Option<Hit> {
+        let t = self.ray_parameter(o, d, t_min, t_max)?;
+        Some(Hit::flat(t, self.plane().normal))
+    }
+
+    /// The parameter t ∈ (t_min, t_max) where the straight ray o + t d meets the triangle:
+    /// [`Self::intersect_ray`]'s test without its normal (a shadow ray's question).
+    pub fn ray_parameter(&self, o: DVec3, d: DVec3, t_min: f64, t_max: f64) -> Option<f64> {
         let (t, uv) = edge_coordinates_hit(self.v0, self.e1, self.e2, o, d, t_min, t_max)?;
-        (uv.x >= 0.0 && uv.y >= 0.0 && uv.x + uv.y <= 1.0)
-            .then(|| Hit::flat(t, self.plane().normal))
+        (uv.x >= 0.0 && uv.y >= 0.0 && uv.x + uv.y <= 1.0).then_some(t)
     }
 
     /// Nearest crossing of a curved path at arclength s ∈ (s_min, length] (its (u, v) not
