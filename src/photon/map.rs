@@ -143,10 +143,18 @@ pub struct PhotonMap {
 /// Every [`SITE_STRIDE`]-th photon with its precomputed irradiance and a tree over them.
 struct Sites {
     tree: ImmutableKdTree<f64, u32, 3, 32>,
-    /// Photon index of each site.
-    photons: Vec<u32>,
-    /// Irradiance reaching the diffuse base at each site, W/m² per channel.
-    irradiance: Vec<[f32; 3]>,
+    /// Each site's estimate, by the tree's item: all a lookup reads of a site in one place
+    /// (it read the photon's normal, the site's photon index and its irradiance from three
+    /// arrays: three cache misses a final-gather ray where one will do).
+    estimates: Vec<SiteEstimate>,
+}
+
+/// What a site holds.
+struct SiteEstimate {
+    /// Its photon's normal (the side of the surface it lies on).
+    normal: DVec3,
+    /// Irradiance reaching the diffuse base there, W/m² per channel.
+    irradiance: [f32; 3],
 }
 
 /// Where a position is kept in the kd-trees: turned by a fixed rotation (about the axis
@@ -185,10 +193,10 @@ pub const SITE_STRIDE: usize = 8;
 /// the other wall of a corner and on the back of a thin object.
 const SAME_SURFACE_COS: f64 = 0.9;
 
-/// Whether `photon` lies on the surface side of unit normal `normal` (see
-/// [`SAME_SURFACE_COS`]).
-fn on_side(photon: &Photon, normal: DVec3) -> bool {
-    photon.normal.dot(normal) >= SAME_SURFACE_COS
+/// Whether a photon (or a site) of normal `at` lies on the surface side of unit normal
+/// `normal` (see [`SAME_SURFACE_COS`]).
+fn on_side(at: DVec3, normal: DVec3) -> bool {
+    at.dot(normal) >= SAME_SURFACE_COS
 }
 
 impl PhotonMap {
@@ -233,15 +241,17 @@ impl PhotonMap {
             .step_by(SITE_STRIDE)
             .collect();
         let scale = SITE_STRIDE as f64 / (SITE_STRIDE - 1) as f64;
-        let irradiance: Vec<[f32; 3]> = sites
+        let estimates: Vec<SiteEstimate> = sites
             .par_iter()
             .map(|&i| {
                 let p = &self.photons[i as usize];
                 let keep = |j| j % stride != 0;
-                (self.knn_weighted(p.position, p.normal, k, max_r2, keep, Photon::flux_to_base)
-                    * scale)
-                    .as_vec3()
-                    .to_array()
+                let e =
+                    self.knn_weighted(p.position, p.normal, k, max_r2, keep, Photon::flux_to_base);
+                SiteEstimate {
+                    normal: p.normal,
+                    irradiance: (e * scale).as_vec3().to_array(),
+                }
             })
             .collect();
         let points: Vec<[f64; 3]> = sites
@@ -250,8 +260,7 @@ impl PhotonMap {
             .collect();
         self.sites = (!sites.is_empty()).then(|| Sites {
             tree: ImmutableKdTree::new_from_slice(&points),
-            photons: sites,
-            irradiance,
+            estimates,
         });
     }
 
@@ -267,11 +276,10 @@ impl PhotonMap {
             return Rgb::ZERO;
         };
         let query = tree_point(p);
-        let matches =
-            |item: u32| on_side(&self.photons[sites.photons[item as usize] as usize], normal);
+        let matches = |item: u32| on_side(sites.estimates[item as usize].normal, normal);
         let value = |item: u32| {
             Rgb(DVec3::from_array(
-                sites.irradiance[item as usize].map(f64::from),
+                sites.estimates[item as usize].irradiance.map(f64::from),
             ))
         };
         // Almost always the nearest site lies on the same surface: one cheap query.
@@ -314,7 +322,7 @@ impl PhotonMap {
         let Some(tree) = &self.tree else { return };
         for nn in tree.within_unsorted::<SquaredEuclidean>(&tree_point(p), r2) {
             let photon = &self.photons[nn.item as usize];
-            if on_side(photon, normal) {
+            if on_side(photon.normal, normal) {
                 f(photon, nn.distance);
             }
         }
@@ -349,7 +357,9 @@ impl PhotonMap {
             let exhausted = candidates.len() < ask;
             let found: Vec<(u32, f64)> = candidates
                 .into_iter()
-                .filter(|nn| keep(nn.item) && on_side(&self.photons[nn.item as usize], normal))
+                .filter(|nn| {
+                    keep(nn.item) && on_side(self.photons[nn.item as usize].normal, normal)
+                })
                 .take(k)
                 .map(|nn| (nn.item, nn.distance))
                 .collect();
@@ -450,7 +460,7 @@ impl PhotonMap {
             for &i in among {
                 let photon = &self.photons[i as usize];
                 let d2 = photon.position.distance_squared(p);
-                if d2 <= r2 && on_side(photon, normal) {
+                if d2 <= r2 && on_side(photon.normal, normal) {
                     kernel.add(weight(photon, self.stokes.get(i as usize)), d2);
                 }
             }
