@@ -50,6 +50,7 @@ impl Quad {
     }
 
     /// The parameter t ∈ (t_min, t_max) where the straight ray o + t d meets it.
+    #[inline]
     pub fn ray_parameter(&self, o: DVec3, d: DVec3, t_min: f64, t_max: f64) -> Option<f64> {
         let (t, uv) = edge_coordinates_hit(self.origin, self.e1, self.e2, o, d, t_min, t_max)?;
         ((0.0..=1.0).contains(&uv.x) && (0.0..=1.0).contains(&uv.y)).then_some(t)

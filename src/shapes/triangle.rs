@@ -125,6 +125,7 @@ impl Triangle {
 
     /// The parameter t ∈ (t_min, t_max) where the straight ray o + t d meets the triangle:
     /// [`Self::intersect_ray`]'s test without its normal (a shadow ray's question).
+    #[inline]
     pub fn ray_parameter(&self, o: DVec3, d: DVec3, t_min: f64, t_max: f64) -> Option<f64> {
         let (t, uv) = edge_coordinates_hit(self.v0, self.e1, self.e2, o, d, t_min, t_max)?;
         (uv.x >= 0.0 && uv.y >= 0.0 && uv.x + uv.y <= 1.0).then_some(t)
