@@ -15,6 +15,9 @@ pub struct Lattice {
     values: Vec<f64>,
     /// Node spacing along each axis.
     cell: DVec3,
+    /// Cells per unit length along each axis (worked out once: a lookup's division was a
+    /// tenth of a tricubic grid's sample).
+    scale: DVec3,
 }
 
 /// Why a grid cannot be built.
@@ -101,6 +104,7 @@ impl Lattice {
             dims,
             values,
             cell,
+            scale: Self::extent(dims) / (max - min),
         })
     }
 
@@ -140,16 +144,17 @@ impl Lattice {
 
     /// Cells per unit length along each axis.
     pub fn scale(&self) -> DVec3 {
-        Self::extent(self.dims) / (self.max - self.min)
+        self.scale
     }
 
     /// The cell `p` (clamped to the box) lies in and its fractions there.
     pub fn locate(&self, p: DVec3) -> Located {
-        let u = ((p.clamp(self.min, self.max) - self.min) * self.scale()).to_array();
+        let u = ((p.clamp(self.min, self.max) - self.min) * self.scale).to_array();
         let mut cell = [0usize; 3];
         let mut frac = [0.0f64; 3];
         for a in 0..3 {
-            cell[a] = (u[a].floor() as usize).min(self.dims[a] - 2);
+            // u ≥ 0 (clamped to the box), where truncation is the floor.
+            cell[a] = (u[a] as usize).min(self.dims[a] - 2);
             frac[a] = u[a] - cell[a] as f64;
         }
         Located {
