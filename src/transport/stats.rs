@@ -65,7 +65,7 @@ impl Stats {
     /// [`TIMED_QUERY_EVERY`].
     pub fn time_query<T>(&mut self, query: impl FnOnce() -> T) -> T {
         self.photon_queries += 1;
-        if self.photon_queries % TIMED_QUERY_EVERY != 0 {
+        if !self.photon_queries.is_multiple_of(TIMED_QUERY_EVERY) {
             return query();
         }
         let t = std::time::Instant::now();
