@@ -224,11 +224,11 @@ pub fn read_profile(t: &mut TableReader) -> Result<Profile> {
                 Ok(n)
             };
             let (ordinary, extraordinary) = (index("no")?, index("ne")?);
-            Profile::Crystal(Crystal {
+            Profile::Crystal(Box::new(Crystal {
                 ordinary,
                 extraordinary,
                 axis: t.direction("optic_axis")?,
-            })
+            }))
         }
         "linear" => {
             let n0 = t.dispersion("n0")?;

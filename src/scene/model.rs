@@ -32,7 +32,7 @@ pub enum Profile {
     /// Dispersive.
     Dispersive(AtWavelength),
     /// A uniaxial crystal: a medium for each of its two waves ([`Media::crystal`]).
-    Crystal(Crystal),
+    Crystal(Box<Crystal>),
 }
 
 /// A uniaxial crystal as read: its indices over wavelength and its optic axis.
@@ -123,7 +123,7 @@ impl Media {
         match profile {
             Profile::Fixed(m) => self.add(name, m),
             Profile::Dispersive(at) => self.add_dispersive(name, at),
-            Profile::Crystal(crystal) => self.add_crystal(name.into(), crystal),
+            Profile::Crystal(crystal) => self.add_crystal(name.into(), *crystal),
         }
     }
 
