@@ -19,7 +19,7 @@ pub use air::{GridQuantity, GAS_CONSTANT, GLADSTONE_DALE_AIR, MOLAR_MASS_AIR, ST
 pub use density::{Density, LocalMajorant};
 pub use grid::{GridMedium, Interpolation};
 pub use lattice::{GridError, Lattice};
-pub use parametric::Parametric;
+pub use parametric::{Parametric, WithMedium};
 pub use planar::{ExponentialMedium, HeightTable, LinearMedium, UniformMedium};
 pub use radial::{Axis, ParabolicFiber, RadialTable, SechFiber};
 pub use spherical::{

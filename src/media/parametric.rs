@@ -7,7 +7,16 @@ use super::{
     UniformMedium,
 };
 
-/// Declares [`Parametric`] with one variant per profile, and its two views.
+/// Work done with a medium as its own type, compiled for it (its samples inlined where the work
+/// calls them), rather than through `dyn Medium`'s vtable: [`Parametric::apply`].
+pub trait WithMedium {
+    /// What the work gives.
+    type Output;
+    /// Does the work with `medium`.
+    fn with<M: Medium + ?Sized>(self, medium: &M) -> Self::Output;
+}
+
+/// Declares [`Parametric`] with one variant per profile, and its views.
 macro_rules! parametric {
     ($($(#[$doc:meta])* $variant:ident($profile:ty),)+) => {
         /// An index profile given by a formula and its constants.
@@ -28,6 +37,13 @@ macro_rules! parametric {
             pub fn boxed(self) -> Box<dyn Medium> {
                 match self {
                     $(Self::$variant(m) => Box::new(m),)+
+                }
+            }
+
+            /// Does `work` with the profile as its own type.
+            pub fn apply<W: WithMedium>(&self, work: W) -> W::Output {
+                match self {
+                    $(Self::$variant(m) => work.with(m),)+
                 }
             }
         }

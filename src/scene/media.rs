@@ -309,7 +309,7 @@ fn by_wavelength<const N: usize>(
     if dispersive {
         Profile::Dispersive(Box::new(at))
     } else {
-        Profile::Fixed(at(LAMBDA_D).boxed())
+        Profile::Parametric(at(LAMBDA_D))
     }
 }
 

@@ -29,6 +29,8 @@ pub type AtWavelength = Box<dyn Fn(f64) -> Parametric + Send + Sync>;
 pub enum Profile {
     /// The same at every wavelength.
     Fixed(Box<dyn Medium>),
+    /// The same at every wavelength, given by a formula and its constants.
+    Parametric(Parametric),
     /// Dispersive.
     Dispersive(AtWavelength),
     /// A uniaxial crystal: a medium for each of its two waves ([`Media::crystal`]).
@@ -78,12 +80,28 @@ pub struct CrystalWave {
 /// and, if its index depends on wavelength, how to build it at another.
 struct Entry {
     name: String,
-    medium: Box<dyn Medium>,
+    medium: Held,
     dispersion: Option<AtWavelength>,
     /// What it does to light's power: absorbs, scatters, emits.
     participating: Participating,
     /// Where it is one of a crystal's waves.
     crystal: Option<CrystalWave>,
+}
+
+/// How a medium at [`LAMBDA_D`] is held: as its own type where it is given by a formula (a
+/// march can then be compiled for it: [`Media::parametric`]), else behind `dyn Medium`.
+enum Held {
+    Parametric(Parametric),
+    Boxed(Box<dyn Medium>),
+}
+
+impl Held {
+    fn medium(&self) -> &(dyn Medium + 'static) {
+        match self {
+            Held::Parametric(p) => p.as_medium(),
+            Held::Boxed(m) => m.as_ref(),
+        }
+    }
 }
 
 /// The scene's media by name; [`Surface::interior`], [`Surface::exterior`] and the ambient
@@ -96,8 +114,17 @@ pub struct Media(Vec<Entry>);
 impl Media {
     /// Adds a medium whose index does not depend on wavelength and returns its index.
     pub fn add(&mut self, name: impl Into<String>, medium: Box<dyn Medium>) -> MediumId {
+        self.push(name.into(), Held::Boxed(medium))
+    }
+
+    /// Adds a medium given by a formula, the same at every wavelength, and returns its index.
+    pub fn add_parametric(&mut self, name: impl Into<String>, medium: Parametric) -> MediumId {
+        self.push(name.into(), Held::Parametric(medium))
+    }
+
+    fn push(&mut self, name: String, medium: Held) -> MediumId {
         self.0.push(Entry {
-            name: name.into(),
+            name,
             medium,
             dispersion: None,
             participating: Participating::default(),
@@ -110,7 +137,7 @@ impl Media {
     pub fn add_dispersive(&mut self, name: impl Into<String>, at: AtWavelength) -> MediumId {
         self.0.push(Entry {
             name: name.into(),
-            medium: at(LAMBDA_D).boxed(),
+            medium: Held::Parametric(at(LAMBDA_D)),
             dispersion: Some(at),
             participating: Participating::default(),
             crystal: None,
@@ -122,6 +149,7 @@ impl Media {
     pub fn add_profile(&mut self, name: impl Into<String>, profile: Profile) -> MediumId {
         match profile {
             Profile::Fixed(m) => self.add(name, m),
+            Profile::Parametric(m) => self.add_parametric(name, m),
             Profile::Dispersive(at) => self.add_dispersive(name, at),
             Profile::Crystal(crystal) => self.add_crystal(name.into(), *crystal),
         }
@@ -148,7 +176,7 @@ impl Media {
             let at = move |nm: f64| Parametric::Uniform(UniformMedium { n: n.at(nm) });
             self.0.push(Entry {
                 name: label,
-                medium: at(LAMBDA_D).boxed(),
+                medium: Held::Parametric(at(LAMBDA_D)),
                 dispersion: crystal
                     .is_dispersive()
                     .then(|| Box::new(at) as AtWavelength),
@@ -185,7 +213,15 @@ impl Media {
 
     /// The medium at index `i`, at [`LAMBDA_D`].
     pub fn at(&self, i: MediumId) -> &(dyn Medium + 'static) {
-        self.0[i.index()].medium.as_ref()
+        self.0[i.index()].medium.medium()
+    }
+
+    /// Medium `i` at [`LAMBDA_D`] as its own type, where it is given by a formula.
+    pub fn parametric(&self, i: MediumId) -> Option<&Parametric> {
+        match &self.0[i.index()].medium {
+            Held::Parametric(p) => Some(p),
+            Held::Boxed(_) => None,
+        }
     }
 
     /// Sets what medium `i` does to light's power (and its other wave's, for a crystal).

@@ -18,8 +18,22 @@ use std::borrow::Cow;
 pub enum MediumAt<'a> {
     /// The scene's medium, the same at the rays' wavelength as at every other.
     Scene(&'a (dyn Medium + 'static)),
+    /// The scene's medium given by a formula, the same at the rays' wavelength as at every
+    /// other.
+    SceneParametric(&'a Parametric),
     /// A dispersive medium at the rays' wavelength.
     Dispersed(Parametric),
+}
+
+impl MediumAt<'_> {
+    /// The medium as its own type, where it is given by a formula ([`Parametric::apply`]).
+    pub fn parametric(&self) -> Option<&Parametric> {
+        match self {
+            Self::Scene(_) => None,
+            Self::SceneParametric(p) => Some(p),
+            Self::Dispersed(p) => Some(p),
+        }
+    }
 }
 
 impl std::ops::Deref for MediumAt<'_> {
@@ -28,6 +42,7 @@ impl std::ops::Deref for MediumAt<'_> {
     fn deref(&self) -> &Self::Target {
         match self {
             Self::Scene(m) => *m,
+            Self::SceneParametric(p) => p.as_medium(),
             Self::Dispersed(p) => p.as_medium(),
         }
     }
@@ -166,7 +181,10 @@ impl<'a> Tracer<'a> {
         let media = self.scene.media();
         match self.wavelength.and_then(|nm| media.at_wavelength(i, nm)) {
             Some(p) => MediumAt::Dispersed(p),
-            None => MediumAt::Scene(media.at(i)),
+            None => match media.parametric(i) {
+                Some(p) => MediumAt::SceneParametric(p),
+                None => MediumAt::Scene(media.at(i)),
+            },
         }
     }
 
