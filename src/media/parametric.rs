@@ -1,10 +1,11 @@
-//! The index profiles fixed by a few constants (an index n or n0, a fiber's shape constant),
-//! as one value type: a dispersive medium is one of these evaluated at a path's wavelength,
-//! made on the stack where the path needs it, never allocated.
+//! The index profiles fixed by a few constants (an index n or n0, a fiber's shape constant, a
+//! lens's or a black hole's centre and radius), as one value type: a dispersive medium is one
+//! of these evaluated at a path's wavelength, made on the stack where the path needs it, never
+//! allocated; a march is compiled for each ([`Parametric::apply`]).
 
 use super::{
-    ExponentialMedium, FishEye, HyperbolicMedium, LinearMedium, Medium, ParabolicFiber, SechFiber,
-    UniformMedium,
+    BlackHole, ExactBlackHole, ExponentialMedium, FishEye, HyperbolicMedium, LinearMedium,
+    Luneburg, Medium, ParabolicFiber, SechFiber, UniformMedium,
 };
 
 /// Work done with a medium as its own type, compiled for it (its samples inlined where the work
@@ -65,4 +66,10 @@ parametric! {
     FishEye(FishEye),
     /// The Poincaré ball.
     Hyperbolic(HyperbolicMedium),
+    /// The Luneburg lens.
+    Luneburg(Luneburg),
+    /// A Reissner–Nordström black hole's weak-field index.
+    BlackHole(BlackHole),
+    /// A Reissner–Nordström (or Schwarzschild) black hole as the exact index medium.
+    ExactBlackHole(ExactBlackHole),
 }

@@ -209,8 +209,10 @@ pub fn read_scattering(
 pub fn read_profile(t: &mut TableReader) -> Result<Profile> {
     let profile = t.string("profile")?;
     Ok(match profile.as_str() {
-        "radial_table" | "height_table" | "luneburg" | "black_hole" | "schwarzschild"
-        | "reissner_nordstrom" | "grid" => Profile::Fixed(read_fixed(t, &profile)?),
+        "radial_table" | "height_table" | "grid" => Profile::Fixed(read_fixed(t, &profile)?),
+        "luneburg" | "black_hole" | "schwarzschild" | "reissner_nordstrom" => {
+            Profile::Parametric(read_spherical(t, &profile)?)
+        }
         "uniform" => uniform(t.dispersion("n")?),
         "uniaxial" => {
             let mut index = |key: &str| -> Result<Dispersion> {
@@ -339,8 +341,35 @@ fn fiber_axis(t: &mut TableReader) -> Result<Axis> {
     })
 }
 
-/// The profiles whose index is not one number: tables, the Luneburg lens, the black hole,
-/// grids (the same at every wavelength).
+/// The spherically symmetric profiles given by their constants (the same at every
+/// wavelength): the Luneburg lens and the black holes.
+fn read_spherical(t: &mut TableReader, profile: &str) -> Result<Parametric> {
+    let center = t.vec3_or("center", DVec3::ZERO)?;
+    Ok(match profile {
+        "luneburg" => Parametric::Luneburg(Luneburg {
+            center,
+            radius: t.positive("radius")?,
+        }),
+        "black_hole" => {
+            let rs = t.positive("rs")?;
+            let q = t.f64_or("q", 0.0)?;
+            t.check("q", q >= 0.0, format!("must be ≥ 0, got {q:?}"))?;
+            Parametric::BlackHole(BlackHole::new(center, rs, q))
+        }
+        _ => {
+            let rs = t.positive("rs")?;
+            let q = if profile == "schwarzschild" {
+                0.0
+            } else {
+                t.f64("q")?
+            };
+            t.check("q", q >= 0.0, format!("must be ≥ 0, got {q:?}"))?;
+            Parametric::ExactBlackHole(ExactBlackHole { center, rs, q })
+        }
+    })
+}
+
+/// The profiles of data: tables and grids (the same at every wavelength).
 fn read_fixed(t: &mut TableReader, profile: &str) -> Result<Box<dyn Medium>> {
     Ok(match profile {
         "radial_table" => {
@@ -355,28 +384,6 @@ fn read_fixed(t: &mut TableReader, profile: &str) -> Result<Box<dyn Medium>> {
             let origin = t.vec3_or("origin", DVec3::ZERO)?;
             let up = t.direction_or("up", DVec3::Y)?;
             Box::new(HeightTable::new(h, n, origin, up).map_err(|(key, e)| t.error(key, e))?)
-        }
-        "luneburg" => Box::new(Luneburg {
-            center: t.vec3_or("center", DVec3::ZERO)?,
-            radius: t.positive("radius")?,
-        }),
-        "black_hole" => {
-            let center = t.vec3_or("center", DVec3::ZERO)?;
-            let rs = t.positive("rs")?;
-            let q = t.f64_or("q", 0.0)?;
-            t.check("q", q >= 0.0, format!("must be ≥ 0, got {q:?}"))?;
-            Box::new(BlackHole::new(center, rs, q))
-        }
-        "schwarzschild" | "reissner_nordstrom" => {
-            let center = t.vec3_or("center", DVec3::ZERO)?;
-            let rs = t.positive("rs")?;
-            let q = if profile == "schwarzschild" {
-                0.0
-            } else {
-                t.f64("q")?
-            };
-            t.check("q", q >= 0.0, format!("must be ≥ 0, got {q:?}"))?;
-            Box::new(ExactBlackHole { center, rs, q })
         }
         _ => Box::new(read_grid(t)?),
     })
