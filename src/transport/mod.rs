@@ -272,18 +272,10 @@ impl WithMedium for CurvedMarch<'_, '_, '_> {
     type Output = Event;
 
     fn with<M: Medium + ?Sized>(self, medium: &M) -> Event {
-        let CurvedMarch {
-            tracer,
-            medium: i,
-            origin,
-            dir,
-            reach,
-            stats,
-            path,
-        } = self;
+        let (tracer, origin, dir) = (self.tracer, self.origin, self.dir);
         let settings = &tracer.settings;
         let Some(start) = RayState::new(medium, origin, dir) else {
-            stats.record_end(Termination::Captured);
+            self.stats.record_end(Termination::Captured);
             return Event::Lost;
         };
         let limits = MarchLimits {
@@ -294,13 +286,14 @@ impl WithMedium for CurvedMarch<'_, '_, '_> {
         let control = keyed_by_ray(settings.control, origin, dir);
         let along = Along {
             medium,
-            radiometry: tracer.participating(i),
+            radiometry: tracer.participating(self.medium),
         };
         let Marched {
             hit,
             outcome: out,
             optical_depth,
-        } = tracer.march_to_surface(along, control, start, &limits, reach, path);
+        } = tracer.march_to_surface(along, control, start, &limits, self.reach, self.path);
+        let stats = self.stats;
         stats.curved_marches += 1;
         stats.curved_steps += out.steps;
         stats.record_end(out.reason);
