@@ -34,13 +34,6 @@ macro_rules! parametric {
                 }
             }
 
-            /// The profile as an owned index field.
-            pub fn boxed(self) -> Box<dyn Medium> {
-                match self {
-                    $(Self::$variant(m) => Box::new(m),)+
-                }
-            }
-
             /// Does `work` with the profile as its own type.
             pub fn apply<W: WithMedium>(&self, work: W) -> W::Output {
                 match self {
