@@ -61,11 +61,13 @@ const ENDS: [Termination; 6] = [
 pub const TIMED_QUERY_EVERY: u64 = 32;
 
 impl Stats {
-    /// Runs a photon-map query, counting it, and timing it if it is one in
-    /// [`TIMED_QUERY_EVERY`].
+    /// Runs a photon-map query, counting it, and timing it if it is the first of a run of
+    /// [`TIMED_QUERY_EVERY`] (so that a render of a few queries has one timed: it would
+    /// report 0 µs each).
     pub fn time_query<T>(&mut self, query: impl FnOnce() -> T) -> T {
+        let timed = self.photon_queries.is_multiple_of(TIMED_QUERY_EVERY);
         self.photon_queries += 1;
-        if !self.photon_queries.is_multiple_of(TIMED_QUERY_EVERY) {
+        if !timed {
             return query();
         }
         let t = std::time::Instant::now();
