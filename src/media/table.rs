@@ -194,14 +194,17 @@ mod tests {
     use super::*;
 
     /// A lookup finds the piece a binary search over the nodes finds: on uneven tables (a
-    /// mirage's heights, a node 1e-9 from the next, cubes spreading over six decades), at
-    /// every node, just below each and at points between.
+    /// mirage's heights, a node 1e-9 from the next, cubes spreading over six decades) and on
+    /// spans whose stretches per unit overflow (subnormal nodes) or vanish (a span beyond
+    /// f64's range), at every node, just below each and at points between.
     #[test]
     fn a_lookup_finds_the_piece_a_binary_search_finds() {
         let tables = [
             vec![0.0, 0.1, 0.2, 0.35, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0],
             vec![-1e-3, 0.0, 1e-9, 1.0],
             (0..50).map(|i| 0.01 * f64::from(i).powi(3)).collect(),
+            vec![0.0, 1e-320, 2e-320],
+            vec![-1e308, 0.0, 1e308],
         ];
         for x in tables {
             let pieces = Pieces::new(&x);
