@@ -194,6 +194,17 @@ pub enum Emitter {
 }
 
 impl Emitter {
+    /// Whether the straight ray o + t d (d unit) meets the surface at some t > 0, either
+    /// face ([`Primitive::meets_ray`], the test the scene's own primitive answers).
+    pub fn meets_ray(&self, o: DVec3, d: DVec3) -> bool {
+        match self {
+            Emitter::Mesh(m) => m.mesh().meets_ray(o, d, 0.0, f64::INFINITY),
+            Emitter::Quad(_) | Emitter::Disk(_) | Emitter::Sphere(_) => {
+                self.primitive().meets_ray(o, d, 0.0, f64::INFINITY)
+            }
+        }
+    }
+
     /// The largest distance of a point of the surface from its centre (length).
     pub fn extent(&self) -> f64 {
         match self {

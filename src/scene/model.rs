@@ -242,6 +242,13 @@ impl Media {
         self.0[i.index()].participating.scattering.as_ref()
     }
 
+    /// Whether every medium's index is the same all through it (each as it is at
+    /// [`LAMBDA_D`]; a dispersive medium keeps its form at every wavelength): rays are then
+    /// straight between surfaces.
+    pub fn all_uniform(&self) -> bool {
+        self.0.iter().all(|e| e.medium.medium().is_uniform())
+    }
+
     /// Whether any medium scatters.
     pub fn any_scatters(&self) -> bool {
         self.0.iter().any(|e| e.participating.scattering.is_some())

@@ -5,12 +5,12 @@
 //! indices as [`super::chain`] says. Camera paths, the path tracer and the photons the
 //! medium around the scene scatters toward it all estimate direct light here.
 
-use super::chain::{Carried, Chain, End, Policy, Walker};
+use super::chain::{Carried, Chain, End, Policy, Ray, Walker};
 use super::connect::connect;
 use super::{offset, visibility, Scattered, Stats, SurfaceVertex, Tracer, Vertex};
 use crate::color::Rgb;
 use crate::ids::MediumId;
-use crate::lights::LightSamples;
+use crate::lights::{Light, LightSamples};
 use crate::polarization::{Polarization, Recorded, StoredStokes};
 use crate::sampling::{Given, Pick};
 use crate::scene::Role;
@@ -321,6 +321,9 @@ pub fn direct_light<M: Measure>(
     let Some(s) = vertex.scatter_with(rng) else {
         return radiance;
     };
+    if !may_find_emission(carried.tracer, &s.ray) {
+        return radiance;
+    }
     // A chain that stops at its first specular surface meets no polarizing element.
     let mut walker = Walker::carrying(carried, Policy::Unscattered);
     let chain = walker.follow(s.ray, rng, stats, &mut ());
@@ -328,6 +331,25 @@ pub fn direct_light<M: Measure>(
     radiance += measure.through(vertex, s.sample.wi, None)
         * (s.sample.weight * emission_seen(walker.tracer, &chain) * (mis * s.radiance_scale));
     radiance
+}
+
+/// Whether the BSDF ray `ray` of [`direct_light`] may find emission ([`emission_seen`] not
+/// zero): yes, unless the tracer finds emission along straight lines only
+/// ([`Tracer::emission_on_lines`]) and the ray's line meets no area light. Its chain then
+/// cannot: it follows that line (every medium of uniform index; through sheets, detectors and
+/// surfaces joining equal indices) to its end — a scattering vertex, a specular surface where
+/// it stops, an emitter, or the world's edge, where no environment shines — drawing no random
+/// number on the way ([`Policy::Unscattered`]), so leaving it untraced changes no estimate.
+pub fn may_find_emission(tracer: &Tracer, ray: &Ray) -> bool {
+    !tracer.emission_on_lines
+        || tracer.scene.lights.iter().any(|light| match light {
+            Light::Area { emitter, .. } => emitter.meets_ray(ray.origin, ray.direction),
+            Light::Point { .. }
+            | Light::Spot { .. }
+            | Light::Led { .. }
+            | Light::Goniometric { .. }
+            | Light::Directional { .. } => false,
+        })
 }
 
 /// The light samples of [`direct_light`] alone (its first strategy): for a path that goes on

@@ -107,6 +107,7 @@ impl<'a> Tracer<'a> {
             wavelength: Some(nm),
             may_match_indices: self.may_match_indices,
             has_crystals: self.has_crystals,
+            emission_on_lines: self.emission_on_lines,
         }
     }
 
