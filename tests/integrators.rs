@@ -350,3 +350,79 @@ intensity = 2.0
         );
     }
 }
+
+/// A BSDF or phase ray of the direct estimate whose straight line meets no area light is left
+/// untraced where the tracer finds emission only along straight lines
+/// (`Tracer::emission_on_lines`: no environment, no gradient medium). At 2000 points of the
+/// fogged Cornell box's fog, some a few millimetres under its lamp, the direct light is the
+/// same to the bit with and without the shortcut (same random numbers: the chain it skips
+/// draws none), and most phase rays take the shortcut. A scene with a sky or a gradient medium
+/// does not take it.
+#[test]
+fn a_direction_sample_left_untraced_changes_no_direct_light() {
+    use glam::DVec3;
+    use grinlight::transport::chain::{Carried, Ray};
+    use grinlight::transport::lighting::{direct_light, may_find_emission, Radiance};
+    use grinlight::transport::{MediumVertex, Stats, Vertex};
+    use rand::{Rng, SeedableRng};
+    let (scene, settings) = load_scene(Path::new("bench/cornell_fog.toml")).unwrap();
+    let tracer = Tracer::new(&scene, &settings.trace);
+    assert!(tracer.emission_on_lines);
+    let mut traced = Tracer::new(&scene, &settings.trace);
+    traced.emission_on_lines = false;
+    let fog = scene.ambient().unwrap();
+    let phase = tracer.scattering(fog).unwrap().phase;
+    let mut draw = rand_pcg::Pcg64::seed_from_u64(7);
+    let (mut lit, mut missed) = (0, 0);
+    for i in 0..2000 {
+        let mut p = DVec3::new(draw.gen(), draw.gen(), draw.gen()) * 1.98 - 0.99;
+        if i % 4 == 0 {
+            // Just under the lamp (x, z in [-0.25, 0.25] at y = 0.999).
+            p = DVec3::new(0.6 * p.x, 0.995, 0.6 * p.z);
+        }
+        let wo = DVec3::new(draw.gen(), draw.gen(), draw.gen()) * 2.0 - 1.0;
+        let vertex = Vertex::Medium(MediumVertex {
+            position: p,
+            wo: wo.normalize(),
+            medium: Some(fog),
+            phase,
+        });
+        let estimate = |t: &Tracer| {
+            let mut rng = rand_pcg::Pcg64::seed_from_u64(i);
+            let light = direct_light(
+                Carried::on(t),
+                &vertex,
+                &Radiance,
+                &mut rng,
+                &mut Stats::default(),
+            );
+            (light, rng.gen::<u64>())
+        };
+        let (shortcut, full) = (estimate(&tracer), estimate(&traced));
+        assert_eq!(
+            shortcut.0 .0.to_array().map(f64::to_bits),
+            full.0 .0.to_array().map(f64::to_bits),
+            "point {p}"
+        );
+        assert_eq!(shortcut.1, full.1, "the random numbers drawn differ at {p}");
+        lit += (shortcut.0 .0.max_element() > 0.0) as u32;
+        let ray = Ray {
+            origin: p,
+            direction: phase.sample(-wo.normalize(), (draw.gen(), draw.gen())),
+            medium: Some(fog),
+        };
+        missed += !may_find_emission(&tracer, &ray) as u32;
+    }
+    assert!(lit > 1000, "{lit} of 2000 points lit");
+    assert!(missed > 1200, "{missed} of 2000 phase rays left untraced");
+    for (path, why) in [
+        ("scenes/heat_haze.toml", "a gradient medium and a sky"),
+        ("scenes/luneburg.toml", "a gradient medium"),
+    ] {
+        let (scene, settings) = load_scene(Path::new(path)).unwrap();
+        assert!(
+            !Tracer::new(&scene, &settings.trace).emission_on_lines,
+            "{path}: {why}"
+        );
+    }
+}
