@@ -23,6 +23,7 @@ use crate::transport::lighting::{direct_light, Radiance};
 use crate::transport::{MediumVertex, Stats, Vertex};
 use glam::DVec3;
 use rand::Rng;
+use smallvec::SmallVec;
 
 /// The direct light scattered toward the start of the chain recorded in `beams` along its
 /// straight stretches, per unit of the path's throughput there, as the camera records it;
@@ -43,7 +44,7 @@ pub fn single_scattering(
     let mut sum = Recorded::default();
     for s in beams.straight(tracer) {
         let middle = s.segment.origin + s.segment.dir * (0.5 * s.segment.length);
-        let mut strategies: Vec<Strategy> = scene
+        let mut strategies: Strategies = scene
             .lights
             .iter()
             .map(|light| {
@@ -98,6 +99,11 @@ pub fn single_scattering(
     }
     sum
 }
+
+/// A stretch's strategies, one a light and the sky's: held in place for up to four (an
+/// allocation for each stretch was a tenth of a path-traced sample's instructions in a fogged
+/// box).
+type Strategies = SmallVec<[Strategy; 4]>;
 
 /// How one light's sample draws t along a stretch.
 enum Strategy {
