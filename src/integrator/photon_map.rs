@@ -136,16 +136,10 @@ pub struct Maps {
 }
 
 /// What a batch of photons left: the map of those stored on surfaces, and of those stored in
-/// media (empty but for the caustic batch in a scene with scattering media), with what
-/// tracing and building them took.
+/// media (empty but for the caustic batch in a scene with scattering media).
 struct Traced {
     surfaces: PhotonMap,
     volume: VolumeMap,
-    stats: Stats,
-    /// Seconds spent tracing the batch and building its maps, each measured on its own
-    /// (the two batches of a pass run at once: see [`PhotonMapper::begin_pass`]).
-    tracing: f64,
-    building: f64,
 }
 
 impl PhotonMapper<'_> {
@@ -193,6 +187,7 @@ impl<'a> PhotonMapper<'a> {
         batch: Batch,
         index: u32,
         count: u64,
+        report: &mut Report,
         stop: &(dyn Fn() -> bool + Sync),
     ) -> Option<Traced> {
         let t0 = Instant::now();
@@ -203,6 +198,7 @@ impl<'a> PhotonMapper<'a> {
         };
         let (sink, stats) = shoot(self.tracer, sources, photons, stop);
         let t1 = Instant::now();
+        report.stats.add(&stats);
         if stop() {
             return None;
         }
@@ -214,12 +210,11 @@ impl<'a> PhotonMapper<'a> {
         // reads a 2D kernel, so its area follows the surfaces' schedule).
         let k = self.photons.knn as usize;
         let volume = VolumeMap::new(sink.volume, k, self.max_r2, schedule(index));
+        report.seconds.photons += (t1 - t0).as_secs_f64();
+        report.seconds.maps += t1.elapsed().as_secs_f64();
         Some(Traced {
             surfaces: map,
             volume,
-            stats,
-            tracing: (t1 - t0).as_secs_f64(),
-            building: t1.elapsed().as_secs_f64(),
         })
     }
 
@@ -494,34 +489,14 @@ impl<'a> Integrator for PhotonMapper<'a> {
         report: &mut Report,
         stop: &(dyn Fn() -> bool + Sync),
     ) -> Option<Maps> {
-        // The two batches run at once, so that one's serial steps (merging its chunks,
-        // building its kd-trees) overlap the other's parallel tracing and estimates. Each
-        // batch's photons and maps are what they are alone: only the timings interleave, and
-        // the pass's wall time is shared between tracing and building in proportion to the
-        // time each took on its own.
-        let t0 = Instant::now();
-        let batch = |plan: bool, batch: Batch, count: u64| match plan {
-            true => self.map(batch, index, count, stop).map(Some),
-            false => Some(None),
+        let caustic = match self.plan.caustic {
+            true => Some(self.map(Batch::Caustic, index, self.photons.caustic, report, stop)?),
+            false => None,
         };
-        let (caustic, global) = rayon::join(
-            || batch(self.plan.caustic, Batch::Caustic, self.photons.caustic),
-            || batch(self.plan.global, Batch::Global, self.photons.global),
-        );
-        let (caustic, global) = (caustic?, global?);
-        let (mut tracing, mut building) = (0.0, 0.0);
-        for t in caustic.iter().chain(&global) {
-            report.stats.add(&t.stats);
-            tracing += t.tracing;
-            building += t.building;
-        }
-        let wall = t0.elapsed().as_secs_f64();
-        let share = match tracing + building > 0.0 {
-            true => tracing / (tracing + building),
-            false => 1.0,
+        let global = match self.plan.global {
+            true => Some(self.map(Batch::Global, index, self.photons.global, report, stop)?),
+            false => None,
         };
-        report.seconds.photons += wall * share;
-        report.seconds.maps += wall * (1.0 - share);
         let (caustic, volume) = match caustic {
             Some(t) => (Some(t.surfaces), self.plan.volume.then_some(t.volume)),
             None => (None, None),
