@@ -203,6 +203,7 @@ def main():
             text = text.replace('metal = "%s"' % name, "eta = %r\nk = %r" % (eta, k))
         with open(a.rgb_metals, "w") as f:
             f.write(text)
+    import drjit as dr
     import mitsuba as mi
     mi.set_variant(a.variant)
     d = mitsuba_scene(mi, scene, a.spp, a.crop)
@@ -217,6 +218,10 @@ def main():
     for p in range(passes):
         image = mi.TensorXf(mi.render(loaded, spp=per_pass, seed=p + a.seed))
         total = image if total is None else total + image
+    # The LLVM variants evaluate lazily: without this the last pass (a one-pass run's whole
+    # rendering) would be left out of the time.
+    dr.eval(total)
+    dr.sync_thread()
     seconds = time.monotonic() - start
     mi.util.write_bitmap(a.out, total / passes)
     print("%s: %d spp in %d passes, variant %s, %.1f s rendering" % (
