@@ -100,9 +100,8 @@ pub fn single_scattering(
     sum
 }
 
-/// A stretch's strategies, one a light and the sky's: held in place for up to four (an
-/// allocation for each stretch was a tenth of a path-traced sample's instructions in a fogged
-/// box).
+/// A stretch's strategies, one a light and the sky's: held in place for up to four, so that
+/// a stretch allocates nothing in a scene of a few lights.
 type Strategies = SmallVec<[Strategy; 4]>;
 
 /// How one light's sample draws t along a stretch.

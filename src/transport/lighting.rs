@@ -301,7 +301,7 @@ fn power_heuristic(a: f64, b: f64) -> f64 {
 ///   are no area-light samples to weigh it against).
 ///
 /// A BSDF ray that meets a purely specular surface first carries nothing: that light is the
-/// caustic map's. A BSDF ray into a dispersive medium takes on the hero wavelength there;
+/// caustic map's. A BSDF ray that can find no emission is not traced ([`may_find_emission`]). A BSDF ray into a dispersive medium takes on the hero wavelength there;
 /// connections are traced at the wavelength(s) the path carries.
 pub fn direct_light<M: Measure>(
     carried: Carried,
