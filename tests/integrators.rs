@@ -356,8 +356,8 @@ intensity = 2.0
 /// (`Tracer::emission_on_lines`: no environment, no gradient medium). At 2000 points of the
 /// fogged Cornell box's fog, some a few millimetres under its lamp, the direct light is the
 /// same to the bit with and without the shortcut (same random numbers: the chain it skips
-/// draws none), and most phase rays take the shortcut. A scene with a sky or a gradient medium
-/// does not take it.
+/// draws none), and most phase rays take the shortcut. A scene with a sky, a gradient medium
+/// or 64 lights does not take it.
 #[test]
 fn a_direction_sample_left_untraced_changes_no_direct_light() {
     use glam::DVec3;
@@ -418,6 +418,10 @@ fn a_direction_sample_left_untraced_changes_no_direct_light() {
     for (path, why) in [
         ("scenes/heat_haze.toml", "a gradient medium and a sky"),
         ("scenes/luneburg.toml", "a gradient medium"),
+        (
+            "bench/many_lights.toml",
+            "more lights than are looked through per sample",
+        ),
     ] {
         let (scene, settings) = load_scene(Path::new(path)).unwrap();
         assert!(

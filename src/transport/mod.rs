@@ -79,16 +79,17 @@ pub struct Tracer<'a> {
     /// here rather than at every surface a path meets).
     pub has_crystals: bool,
     /// Whether a direction sample finds emission only where its straight line meets an area
-    /// light: the scene has no environment, every medium a uniform index, and at most
-    /// [`MOST_EMITTERS_ON_LINES`] area lights (asked once here; see
-    /// [`lighting::may_find_emission`]).
+    /// light, and the lights are few enough to look through for each sample: the scene has
+    /// no environment, every medium a uniform index, and at most [`MOST_LIGHTS_ON_LINES`]
+    /// lights (asked once here; see [`lighting::may_find_emission`]).
     pub emission_on_lines: bool,
 }
 
-/// The most area lights a direction sample's line is tested against one by one before its
-/// chain is traced ([`Tracer::emission_on_lines`]): each test is a few dozen operations, so 32
-/// cost about one traversal of the scene's BVH, which the test is there to save.
-pub const MOST_EMITTERS_ON_LINES: usize = 32;
+/// The most lights a direction sample's line is checked against one by one before its chain
+/// is traced ([`Tracer::emission_on_lines`]): an area light's test is a few dozen operations
+/// (another light's a comparison), so 32 cost about one traversal of the scene's BVH, which
+/// the check is there to save. Scenes with more lights trace every such ray, as before.
+pub const MOST_LIGHTS_ON_LINES: usize = 32;
 
 /// A gradient medium a march crosses: its index field and what it does to light's power.
 struct Along<'m, M: ?Sized> {
@@ -146,10 +147,9 @@ impl<'a> Tracer<'a> {
             radius: extent.max(1e-9),
         };
         let has_crystals = scene.media().first_crystal().is_some();
-        let area_lights = scene.lights.iter().filter(|l| l.is_hittable()).count();
         let emission_on_lines = scene.environment.is_none()
             && scene.media().all_uniform()
-            && area_lights <= MOST_EMITTERS_ON_LINES;
+            && scene.lights.len() <= MOST_LIGHTS_ON_LINES;
         let polarized = carries_polarization(scene, settings);
         let mut tracer = Self {
             scene,
